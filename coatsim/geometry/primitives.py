@@ -1,0 +1,143 @@
+"""Polysegment primitives: straight lines and circular arcs in the plane (mm, radians).
+
+A polysegment is a chain of lines and arcs; consecutive segments share end points exactly.
+Headings are angles of the unit tangent, measured counter-clockwise from +x.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar, Union
+
+import numpy as np
+
+Point = tuple[float, float]
+
+
+def _unit(angle: float) -> np.ndarray:
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
+@dataclass(frozen=True)
+class Line:
+    """Straight segment from ``start`` to ``end``."""
+
+    start: Point
+    end: Point
+    kind: ClassVar[str] = "line"
+
+    @property
+    def length(self) -> float:
+        return math.hypot(self.end[0] - self.start[0], self.end[1] - self.start[1])
+
+    @property
+    def curvature(self) -> float:
+        return 0.0
+
+    @property
+    def start_heading(self) -> float:
+        return math.atan2(self.end[1] - self.start[1], self.end[0] - self.start[0])
+
+    @property
+    def end_heading(self) -> float:
+        return self.start_heading
+
+    def points(self, s: np.ndarray) -> np.ndarray:
+        """Points at arc lengths ``s`` (n,) from the start, shape (n, 2)."""
+        s = np.asarray(s, dtype=float)
+        a, b = np.asarray(self.start), np.asarray(self.end)
+        frac = s / self.length if self.length > 0 else np.zeros_like(s)
+        return a + frac[:, None] * (b - a)
+
+    def tangents(self, s: np.ndarray) -> np.ndarray:
+        """Unit tangents at arc lengths ``s``, shape (n, 2)."""
+        return np.tile(_unit(self.start_heading), (len(np.atleast_1d(s)), 1))
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float) -> Line:
+        """Image under p -> scale * matrix @ p + offset (matrix a rotation)."""
+        f = lambda p: tuple(float(v) for v in scale * matrix @ np.asarray(p) + offset)  # noqa: E731
+        return Line(f(self.start), f(self.end))
+
+    def reversed(self) -> Line:
+        return Line(self.end, self.start)
+
+
+@dataclass(frozen=True)
+class Arc:
+    """Circular arc; ``sweep`` is signed (positive = counter-clockwise)."""
+
+    start: Point
+    end: Point
+    center: Point
+    radius: float
+    sweep: float
+    kind: ClassVar[str] = "arc"
+
+    @property
+    def length(self) -> float:
+        return self.radius * abs(self.sweep)
+
+    @property
+    def curvature(self) -> float:
+        return math.copysign(1.0 / self.radius, self.sweep)
+
+    @property
+    def start_angle(self) -> float:
+        """Polar angle of ``start`` about ``center``."""
+        return math.atan2(self.start[1] - self.center[1], self.start[0] - self.center[0])
+
+    @property
+    def start_heading(self) -> float:
+        return self.start_angle + math.copysign(math.pi / 2, self.sweep)
+
+    @property
+    def end_heading(self) -> float:
+        return self.start_heading + self.sweep
+
+    def points(self, s: np.ndarray) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        phi = self.start_angle + np.sign(self.sweep) * s / self.radius
+        return np.asarray(self.center) + self.radius * np.column_stack((np.cos(phi), np.sin(phi)))
+
+    def tangents(self, s: np.ndarray) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        h = self.start_heading + np.sign(self.sweep) * s / self.radius
+        return np.column_stack((np.cos(h), np.sin(h)))
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float) -> Arc:
+        """Image under p -> scale * matrix @ p + offset; a reflection flips the sweep."""
+        f = lambda p: tuple(float(v) for v in scale * matrix @ np.asarray(p) + offset)  # noqa: E731
+        sign = 1.0 if np.linalg.det(matrix) > 0 else -1.0
+        return Arc(f(self.start), f(self.end), f(self.center), scale * self.radius, sign * self.sweep)
+
+    def reversed(self) -> Arc:
+        return Arc(self.end, self.start, self.center, self.radius, -self.sweep)
+
+
+Segment = Union[Line, Arc]
+
+
+def make_segment(start: Point, heading: float, curvature: float, length: float) -> Segment:
+    """The line or arc that leaves ``start`` at ``heading`` with ``curvature`` for ``length``.
+
+    Zero curvature gives a line; otherwise the arc's centre lies on the left normal for
+    positive curvature (counter-clockwise turn).
+    """
+    p = np.asarray(start, dtype=float)
+    if curvature == 0.0:
+        end = p + length * _unit(heading)
+        return Line(tuple(map(float, p)), (float(end[0]), float(end[1])))
+    radius = 1.0 / abs(curvature)
+    sweep = curvature * length
+    normal = _unit(heading + math.copysign(math.pi / 2, curvature))
+    center = p + radius * normal
+    phi_end = math.atan2(p[1] - center[1], p[0] - center[0]) + sweep
+    end = center + radius * _unit(phi_end)
+    return Arc(
+        tuple(map(float, p)),
+        (float(end[0]), float(end[1])),
+        (float(center[0]), float(center[1])),
+        radius,
+        sweep,
+    )

@@ -1,0 +1,102 @@
+"""ToolPath: what a robot program asks the tool to do, in Cartesian terms.
+
+This is the contract between the programs stage (the interpreter produces it from parsed AS
+text) and the robot stage (which executes it). All positions are in mm in the robot base frame;
+a rotation is a 3x3 matrix whose columns are the tool x, y, z axes (z = spray axis).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping, Union
+
+import numpy as np
+
+
+@dataclass(frozen=True, eq=False)
+class Pose:
+    """Tool pose: ``position`` (3,) mm and ``rotation`` (3, 3), base frame."""
+
+    position: np.ndarray
+    rotation: np.ndarray
+
+
+@dataclass(frozen=True)
+class MotionSettings:
+    """Controller settings in force for one motion.
+
+    ``stop_at_end``: the controller brings the tool to rest at the end of this motion
+    (CP OFF, ACCURACY ... FINE, or a BREAK before the next step); otherwise it blends into
+    the next motion within ``accuracy_mm``.
+    """
+
+    speed_mm_s: float
+    accuracy_mm: float
+    cp: bool
+    stop_at_end: bool
+
+
+@dataclass(frozen=True, eq=False)
+class JointMove:
+    """JMOVE / JAPPRO / HOME: joint-interpolated move to ``target`` (path not Cartesian).
+
+    ``start`` is None for the first move of a program: the robot starts wherever it is.
+    """
+
+    start: Pose | None
+    target: Pose
+    settings: MotionSettings
+    spray: bool
+    line: int
+    kind: str = field(default="joint", init=False)
+
+
+@dataclass(frozen=True, eq=False)
+class LinearMove:
+    """LMOVE / LAPPRO / LDEPART: straight TCP line from ``start`` to ``end``."""
+
+    start: Pose
+    end: Pose
+    settings: MotionSettings
+    spray: bool
+    line: int
+    kind: str = field(default="line", init=False)
+
+
+@dataclass(frozen=True, eq=False)
+class CircularMove:
+    """C1MOVE via + C2MOVE end: the circle arc through ``start``, ``via`` and ``end``.
+
+    ``line`` is the source line of the C2MOVE.
+    """
+
+    start: Pose
+    via: Pose
+    end: Pose
+    settings: MotionSettings
+    spray: bool
+    line: int
+    kind: str = field(default="arc", init=False)
+
+
+Move = Union[JointMove, LinearMove, CircularMove]
+
+
+@dataclass(frozen=True, eq=False)
+class ToolPath:
+    """The moves of a program in execution order.
+
+    ``spray`` on a move is true when the gun output is on for the whole move (signals are
+    applied at move boundaries; the writer puts BREAK before every SIGNAL).
+    ``metadata`` holds ``; coatsim: key=value`` header comments of the program (e.g. lead-in
+    and lead-out lengths in mm) so downstream stages can tell the curve proper from the
+    run-in and run-out without the in-memory polysegment.
+    """
+
+    name: str
+    moves: tuple[Move, ...]
+    metadata: Mapping[str, str] = field(default_factory=dict)
+
+    @property
+    def spray_moves(self) -> tuple[Move, ...]:
+        return tuple(m for m in self.moves if m.spray)

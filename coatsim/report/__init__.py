@@ -1,0 +1,1 @@
+"""coatsim.report stage."""
