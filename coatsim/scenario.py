@@ -1,0 +1,268 @@
+"""Scenario files: the strict schema of one coating job and its YAML loading.
+
+A scenario names the curve, the fitter options, the workpiece, the robot, the gun, the motion,
+the program variants to compare, the coating mesh and the CI gates. Loading is strict: an
+unknown key, a wrong type or a value out of range is an InputError that names the file, the
+line and the key path, e.g. ``job.yaml:12: gun.standoff_mm: must be > 0 (got -5)``.
+"""
+
+from __future__ import annotations
+
+import inspect
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any, Literal, Mapping, Optional, Union
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+
+from coatsim.errors import InputError
+from coatsim.geometry.builtin_curves import BUILTINS
+from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
+
+VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
+VariantName = Literal["polysegment", "polyline-stop", "polyline-blend"]
+BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
+Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
+Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
+Positive = Annotated[float, Field(gt=0)]
+NonNegative = Annotated[float, Field(ge=0)]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+
+
+class CurveSpec(_Strict):
+    """Where the curve comes from (exactly one of ``builtin`` or ``file``) and how it is
+    placed in the workpiece XY plane: scaled, rotated, then its bounding-box centre moved
+    to ``offset_mm`` (when ``center``)."""
+
+    builtin: Optional[BuiltinName] = Field(None, description="built-in curve name")
+    file: Optional[str] = Field(None, description="CSV/TXT/NPY curve file, relative to the scenario")
+    params: dict[str, Union[int, float, str]] = Field(default_factory=dict, description="built-in curve parameters")
+    closed: Union[Literal["auto"], bool] = "auto"
+    scale: Positive = 1.0
+    rotate_deg: float = 0.0
+    center: bool = True
+    offset_mm: Vec2 = Field(default_factory=lambda: [0.0, 0.0])
+
+    @model_validator(mode="after")
+    def _one_source(self) -> CurveSpec:
+        if (self.builtin is None) == (self.file is None):
+            raise ValueError("give exactly one of 'builtin' or 'file'")
+        if self.file is not None and self.params:
+            raise ValueError("'params' applies to built-in curves only")
+        if self.builtin is not None:
+            allowed = [p for p in inspect.signature(BUILTINS[self.builtin]).parameters if p != "points"]
+            unknown = sorted(set(self.params) - set(allowed))
+            if unknown:
+                raise ValueError(
+                    f"built-in {self.builtin!r} has no parameter {unknown[0]!r} (allowed: {', '.join(allowed)})"
+                )
+        return self
+
+
+class SegmentationSpec(_Strict):
+    """Fitter options: tolerance in mm (guaranteed), fitting method, corner threshold."""
+
+    tolerance_mm: Positive = 0.1
+    method: Literal["optimal", "paper"] = "optimal"
+    corner_deg: Annotated[float, Field(gt=0, lt=180)] = 20.0
+
+
+class PoseSpec(_Strict):
+    """Workpiece frame in the robot base frame: position (mm) and fixed-axis roll, pitch,
+    yaw (deg, applied x then y then z)."""
+
+    position_mm: Vec3 = Field(default_factory=lambda: [600.0, 0.0, 200.0])
+    rpy_deg: Vec3 = Field(default_factory=lambda: [0.0, 0.0, 0.0])
+
+
+class PlateSpec(_Strict):
+    """A flat rectangular plate centred on the workpiece origin, sprayed side +z."""
+
+    kind: Literal["plate"]
+    size_mm: Annotated[list[Positive], Field(min_length=2, max_length=2)]
+    pose: PoseSpec = Field(default_factory=PoseSpec)
+
+
+class CylinderSpec(_Strict):
+    """A cylinder with its axis along the workpiece y axis; the curve's x is wrapped around it."""
+
+    kind: Literal["cylinder"]
+    radius_mm: Positive
+    length_mm: Positive
+    pose: PoseSpec = Field(default_factory=PoseSpec)
+
+
+class MeshSpec(_Strict):
+    """A mesh file (STL/PLY/OBJ, mm), relative to the scenario."""
+
+    kind: Literal["mesh"]
+    file: str
+    pose: PoseSpec = Field(default_factory=PoseSpec)
+
+
+WorkpieceSpec = Annotated[Union[PlateSpec, CylinderSpec, MeshSpec], Field(discriminator="kind")]
+
+
+class RobotSpec(_Strict):
+    """The arm: ``default`` (the project's MJCF arm) or an MJCF file relative to the scenario."""
+
+    model: str = "default"
+
+
+class FootprintSpec(_Strict):
+    """Stationary spray footprint at the stand-off: a round Gaussian of deviation sigma."""
+
+    kind: Literal["gaussian"] = "gaussian"
+    sigma_mm: Positive = 5.0
+
+
+class GunSpec(_Strict):
+    """Spray gun: stand-off along the surface normal, footprint, deposited volume rate Q,
+    the thickness the job aims for, and the output signal that opens the gun."""
+
+    standoff_mm: Positive = 100.0
+    footprint: FootprintSpec = Field(default_factory=FootprintSpec)
+    flow_mm3_s: Positive = 40.0
+    target_thickness_um: Positive = 10.0
+    signal: Annotated[int, Field(ge=1, le=999)] = 1
+
+
+class MotionSpec(_Strict):
+    """Programmed tool speed, blending accuracy, and straight run-in/run-out lengths."""
+
+    speed_mm_s: Positive = 200.0
+    accuracy_mm: NonNegative = 1.0
+    lead_in_mm: NonNegative = 20.0
+    lead_out_mm: NonNegative = 20.0
+
+
+class CoatingSpec(_Strict):
+    """Coating mesh: target vertex spacing in mm."""
+
+    spacing_mm: Positive = 1.5
+
+
+class FastSpec(_Strict):
+    """What ``--fast`` changes (for CI): coarser coating mesh and coarser path sampling."""
+
+    coating_spacing_mm: Positive = 3.0
+    sample_step_mm: Positive = 4.0
+
+
+class GateSpec(_Strict):
+    """A pass/fail check on one metric of one variant: against a ``threshold``, or against
+    ``factor`` times the same metric of the ``compare_to`` variant."""
+
+    metric: Annotated[str, Field(pattern=r"^[a-z_]+\.[a-z0-9_]+$", description="group.name, e.g. coating.thickness_cv")]
+    variant: VariantName = "polysegment"
+    op: Literal["<", "<=", ">", ">=", "=="]
+    threshold: Optional[float] = None
+    compare_to: Optional[VariantName] = None
+    factor: Positive = 1.0
+
+    @model_validator(mode="after")
+    def _one_reference(self) -> GateSpec:
+        if (self.threshold is None) == (self.compare_to is None):
+            raise ValueError("give exactly one of 'threshold' or 'compare_to'")
+        if self.compare_to == self.variant:
+            raise ValueError(f"'compare_to' must name another variant than {self.variant!r}")
+        if self.threshold is not None and self.factor != 1.0:
+            raise ValueError("'factor' applies only with 'compare_to'")
+        return self
+
+    @property
+    def label(self) -> str:
+        rhs = repr(self.threshold) if self.compare_to is None else (
+            f"{self.compare_to}" if self.factor == 1.0 else f"{self.factor:g} x {self.compare_to}"
+        )
+        return f"{self.metric} [{self.variant}] {self.op} {rhs}"
+
+
+class Scenario(_Strict):
+    """One coating job, as written in a scenario YAML file."""
+
+    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
+    description: str = ""
+    curve: CurveSpec
+    segmentation: SegmentationSpec = Field(default_factory=SegmentationSpec)
+    workpiece: WorkpieceSpec
+    robot: RobotSpec = Field(default_factory=RobotSpec)
+    gun: GunSpec = Field(default_factory=GunSpec)
+    motion: MotionSpec = Field(default_factory=MotionSpec)
+    variants: Annotated[list[VariantName], Field(min_length=1)] = Field(default_factory=lambda: list(VARIANTS))
+    coating: CoatingSpec = Field(default_factory=CoatingSpec)
+    fast: FastSpec = Field(default_factory=FastSpec)
+    gates: list[GateSpec] = Field(default_factory=list)
+
+    @field_validator("variants")
+    @classmethod
+    def _unique(cls, variants: list[str]) -> list[str]:
+        twice = [v for i, v in enumerate(variants) if v in variants[:i]]
+        if twice:
+            raise ValueError(f"variant {twice[0]!r} is listed twice")
+        return variants
+
+
+@dataclass(frozen=True)
+class ScenarioFile:
+    """A validated scenario with its source file and the line of every key path."""
+
+    spec: Scenario
+    path: Path
+    lines: Mapping[Loc, int]
+
+    def where(self, *loc: str | int) -> str:
+        """``file:line`` of the deepest key path prefix of ``loc`` that the file spells out."""
+        for n in range(len(loc), -1, -1):
+            if tuple(loc[:n]) in self.lines:
+                return f"{self.path}:{self.lines[tuple(loc[:n])]}"
+        return str(self.path)
+
+    def resolve(self, relative: str) -> Path:
+        """A file named in the scenario, relative to the scenario's folder."""
+        p = Path(relative).expanduser()
+        return p if p.is_absolute() else self.path.parent / p
+
+
+def _check_references(spec: Scenario, where: ScenarioFile) -> None:
+    """Gates may only name variants the scenario runs."""
+    for i, gate in enumerate(spec.gates):
+        for key in ("variant", "compare_to"):
+            name = getattr(gate, key)
+            if name is not None and name not in spec.variants:
+                raise InputError(
+                    f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
+                    f"(add it to 'variants': {', '.join(spec.variants)})"
+                )
+
+
+def load_scenario(path: str | Path) -> ScenarioFile:
+    """Read and validate a scenario YAML file; any defect is an InputError with its line."""
+    path = Path(path)
+    data, lines = load_yaml_with_lines(path)
+    if not isinstance(data, dict):
+        raise InputError(f"{path}:1: a scenario is a mapping of keys (name, curve, workpiece, ...)")
+    try:
+        spec = Scenario.model_validate(data)
+    except ValidationError as exc:
+        raise InputError(format_validation_error(exc, path, data, lines, Scenario)) from None
+    loaded = ScenarioFile(spec, path, lines)
+    _check_references(spec, loaded)
+    return loaded
+
+
+def json_schema() -> str:
+    """The JSON Schema of scenario files (for editor completion), as indented JSON text."""
+    schema = Scenario.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "coatsim scenario"
+    return json.dumps(schema, indent=2, sort_keys=True) + "\n"
+
+
+def as_dict(spec: Scenario) -> dict[str, Any]:
+    """Plain JSON-ready dict of a scenario (for metrics.json and the report)."""
+    return spec.model_dump(mode="json")

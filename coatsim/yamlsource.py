@@ -1,0 +1,198 @@
+"""YAML with line numbers: load a document, remember the line of every key path, and turn a
+pydantic validation error into one line that names the file, the line and the key path.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+import typing
+from pathlib import Path
+from typing import Any, Mapping, Union
+
+import yaml
+from pydantic import BaseModel, ValidationError
+
+from coatsim.errors import InputError
+
+Loc = tuple[Union[str, int], ...]
+
+_FLOAT = re.compile(
+    r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
+    |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
+    |[-+]?\.[0-9_]+(?:[eE][-+]?[0-9]+)?
+    |[-+]?\.(?:inf|Inf|INF)
+    |\.(?:nan|NaN|NAN))$""",
+    re.X,
+)
+
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader that reads ``1e-3`` as a float (YAML 1.2 style) and keeps dates as text."""
+
+
+_Loader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag not in ("tag:yaml.org,2002:float", "tag:yaml.org,2002:timestamp")]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+_Loader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT, list("-+0123456789."))
+
+
+def _record_lines(node: yaml.Node, loc: Loc, lines: dict[Loc, int], path: Path) -> None:
+    """Fill ``lines`` with the 1-based line of every key path below ``node``; reject
+    duplicate keys, which YAML would otherwise resolve silently to the last one."""
+    if isinstance(node, yaml.MappingNode):
+        seen: dict[Any, int] = {}
+        for key_node, value_node in node.value:
+            key = key_node.value if isinstance(key_node, yaml.ScalarNode) else str(key_node.value)
+            line = key_node.start_mark.line + 1
+            if key in seen:
+                raise InputError(f"{path}:{line}: duplicate key {key!r} (first given on line {seen[key]})")
+            seen[key] = line
+            lines[loc + (key,)] = line
+            _record_lines(value_node, loc + (key,), lines, path)
+    elif isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            lines[loc + (i,)] = item.start_mark.line + 1
+            _record_lines(item, loc + (i,), lines, path)
+
+
+def load_yaml_with_lines(path: Path) -> tuple[Any, dict[Loc, int]]:
+    """Parse one YAML document; return the data and the line of every key path."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a folder, expected a scenario YAML file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
+    loader = _Loader(text)
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            raise InputError(f"{path}: empty file, expected a scenario (name, curve, workpiece, ...)")
+        lines: dict[Loc, int] = {(): node.start_mark.line + 1}
+        _record_lines(node, (), lines, path)
+        data = loader.construct_document(node)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        where = f"{path}:{mark.line + 1}" if mark else str(path)
+        raise InputError(f"{where}: invalid YAML: {exc.problem or exc.context}") from None
+    except yaml.YAMLError as exc:
+        raise InputError(f"{path}: invalid YAML: {exc}") from None
+    finally:
+        loader.dispose()
+    return data, lines
+
+
+def _data_path(loc: Loc, data: Any) -> Loc:
+    """The part of a pydantic error location that indexes the data: union tags and
+    validator names are dropped; a missing key (the last item) is kept."""
+    out: list[Union[str, int]] = []
+    node = data
+    for i, item in enumerate(loc):
+        if isinstance(node, dict) and item in node:
+            node = node[item]
+        elif isinstance(node, list) and isinstance(item, int) and 0 <= item < len(node):
+            node = node[item]
+        elif i < len(loc) - 1 or not isinstance(node, dict):
+            continue
+        out.append(item)
+    return tuple(out)
+
+
+def _dotted(loc: Loc) -> str:
+    text = ""
+    for item in loc:
+        text += f"[{item}]" if isinstance(item, int) else (f".{item}" if text else str(item))
+    return text or "(top level)"
+
+
+def _annotation_at(model: type[BaseModel], loc: Loc, data: Any) -> Any:
+    """The type that validates the value at ``loc`` (a model class when the value is a
+    mapping; a union when a discriminated union cannot pick one)."""
+    node: Any = data
+    current: Any = model
+    for item in loc:
+        if isinstance(node, dict):
+            node = node.get(item)
+        elif isinstance(node, list) and isinstance(item, int) and 0 <= item < len(node):
+            node = node[item]
+        else:
+            node = None
+        if isinstance(current, type) and issubclass(current, BaseModel):
+            field = current.model_fields.get(str(item))
+            if field is None:
+                return None
+            current = field.annotation
+        elif typing.get_origin(current) is list:
+            current = typing.get_args(current)[0]
+        current = _pick(current, node)
+    return current
+
+
+def _is_model(annotation: Any) -> bool:
+    return isinstance(annotation, type) and issubclass(annotation, BaseModel)
+
+
+def _tags(annotation: Any) -> list[str]:
+    """The ``kind`` values a discriminated union accepts."""
+    options = typing.get_args(annotation) if typing.get_origin(annotation) is Union else ()
+    return [t for o in options if _is_model(o) and "kind" in o.model_fields for t in typing.get_args(o.model_fields["kind"].annotation)]
+
+
+def _pick(annotation: Any, node: Any) -> Any:
+    """Unwrap Annotated/Optional/discriminated unions to the class that validates ``node``."""
+    while typing.get_origin(annotation) is typing.Annotated:
+        annotation = typing.get_args(annotation)[0]
+    if typing.get_origin(annotation) is Union:
+        options = [a for a in typing.get_args(annotation) if a is not type(None)]
+        for option in options:
+            fields = getattr(option, "model_fields", {})
+            kind = fields.get("kind")
+            if kind is not None and isinstance(node, dict) and node.get("kind") in typing.get_args(kind.annotation):
+                return option
+        return options[0] if len(options) == 1 else annotation
+    return annotation
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _describe(err: Mapping[str, Any], key: Any, allowed: list[str], tags: list[str]) -> str:
+    kind, msg = err["type"], err["msg"]
+    if kind == "extra_forbidden":
+        close = difflib.get_close_matches(str(key), allowed, n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else (f"; allowed: {', '.join(allowed)}" if allowed else "")
+        return f"unknown key{hint}"
+    if kind == "missing":
+        return "required key is missing"
+    if kind == "union_tag_not_found":
+        return f"missing key 'kind' (one of {', '.join(tags)})" if tags else "missing key 'kind'"
+    if kind == "union_tag_invalid":
+        return f"kind must be one of {err['ctx']['expected_tags']} (got {_short(err['ctx']['tag'])})"
+    if kind == "value_error":
+        return msg.removeprefix("Value error, ")
+    if isinstance(err.get("input"), (dict, list)):
+        return msg
+    return f"{msg} (got {_short(err.get('input'))})"
+
+
+def format_validation_error(
+    exc: ValidationError, path: Path, data: Any, lines: Mapping[Loc, int], model: type[BaseModel]
+) -> str:
+    """One line for the first error: ``file:line: key.path: what is wrong`` (+ a count)."""
+    errors = exc.errors()
+    err = errors[0]
+    loc = _data_path(tuple(err["loc"]), data)
+    line = next((lines[loc[:n]] for n in range(len(loc), -1, -1) if loc[:n] in lines), None)
+    parent = _annotation_at(model, loc[:-1], data) if loc else model
+    allowed = sorted(parent.model_fields) if _is_model(parent) else []
+    tags = _tags(_annotation_at(model, loc, data))
+    text = f"{path}:{line}: {_dotted(loc)}: {_describe(err, loc[-1] if loc else None, allowed, tags)}"
+    if len(errors) > 1:
+        text += f" (and {len(errors) - 1} more problem{'s' if len(errors) > 2 else ''})"
+    return text

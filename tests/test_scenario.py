@@ -1,0 +1,164 @@
+"""Scenario schema: strict loading, one-line errors naming file, line and key path."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from coatsim.errors import InputError
+from coatsim.scenario import VARIANTS, Scenario, json_schema, load_scenario
+
+BASE = """\
+name: demo
+curve:
+  builtin: raster
+  params: {passes: 3, pitch: 20}
+workpiece:
+  kind: plate
+  size_mm: [300, 200]
+"""
+
+
+def write(tmp_path: Path, text: str, name: str = "job.yaml") -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def load_error(tmp_path: Path, text: str) -> str:
+    with pytest.raises(InputError) as info:
+        load_scenario(write(tmp_path, text))
+    message = str(info.value)
+    assert "\n" not in message
+    return message
+
+
+def test_minimal_scenario_gets_documented_defaults(tmp_path: Path) -> None:
+    loaded = load_scenario(write(tmp_path, BASE))
+    spec = loaded.spec
+    assert spec.variants == list(VARIANTS)
+    assert spec.curve.params == {"passes": 3, "pitch": 20}
+    assert isinstance(spec.curve.params["passes"], int)
+    assert spec.segmentation.tolerance_mm == 0.1
+    assert spec.workpiece.kind == "plate" and spec.workpiece.size_mm == [300.0, 200.0]
+    assert spec.gates == []
+    assert loaded.where("workpiece", "size_mm") == f"{loaded.path}:7"
+    assert loaded.where("gun", "standoff_mm") == f"{loaded.path}:1"  # not spelled out: top
+
+
+def test_yaml_exponent_without_dot_is_a_float(tmp_path: Path) -> None:
+    spec = load_scenario(write(tmp_path, BASE + "segmentation:\n  tolerance_mm: 5e-2\n")).spec
+    assert spec.segmentation.tolerance_mm == pytest.approx(0.05)
+
+
+def test_relative_files_resolve_against_the_scenario_folder(tmp_path: Path) -> None:
+    text = BASE.replace("builtin: raster\n  params: {passes: 3, pitch: 20}", "file: curves/c.csv")
+    sub = tmp_path / "jobs"
+    sub.mkdir()
+    loaded = load_scenario(write(sub, text))
+    assert loaded.resolve(loaded.spec.curve.file) == sub / "curves" / "c.csv"
+
+
+MALFORMED = [
+    # (name, appended or replaced text, line, fragments the message must contain)
+    ("unknown top-level key", BASE + "colour: red\n", 8, ["colour", "unknown key"]),
+    ("misspelt nested key", BASE + "gun:\n  standoff: 100\n", 9, ["gun.standoff", "did you mean 'standoff_mm'"]),
+    ("negative stand-off", BASE + "gun:\n  standoff_mm: -5\n", 9, ["gun.standoff_mm", "greater than 0", "-5"]),
+    ("word for a number", BASE + "motion:\n  speed_mm_s: fast\n", 9, ["motion.speed_mm_s", "valid number", "'fast'"]),
+    ("quoted number", BASE + "motion:\n  speed_mm_s: '200'\n", 9, ["motion.speed_mm_s", "valid number"]),
+    ("boolean for a number", BASE + "gun:\n  flow_mm3_s: true\n", 9, ["gun.flow_mm3_s", "valid number"]),
+    ("not-a-number", BASE + "gun:\n  standoff_mm: .nan\n", 9, ["gun.standoff_mm", "finite"]),
+    ("unknown workpiece kind", BASE.replace("kind: plate", "kind: cube"), 5, ["workpiece", "plate, cylinder, mesh".replace(", ", "', '"), "'cube'"]),
+    ("workpiece without kind", BASE.replace("  kind: plate\n", ""), 5, ["workpiece", "missing key 'kind'", "plate, cylinder, mesh"]),
+    ("missing curve", "name: demo\nworkpiece:\n  kind: plate\n  size_mm: [300, 200]\n", 1, ["curve", "required key is missing"]),
+    ("key of another workpiece kind", BASE + "  radius_mm: 4\n", 8, ["workpiece.radius_mm", "unknown key"]),
+    ("short vector", BASE.replace("[300, 200]", "[300]"), 7, ["workpiece.size_mm", "at least 2 items"]),
+    ("unknown variant", BASE + "variants: [polysegment, spline]\n", 8, ["variants[1]", "'spline'"]),
+    ("variant twice", BASE + "variants: [polysegment, polysegment]\n", 8, ["variants", "listed twice"]),
+    ("bad gate operator", BASE + "gates:\n  - metric: coating.thickness_cv\n    op: '<<'\n    threshold: 0.1\n", 10, ["gates[0].op", "'<<'"]),
+    ("gate with two references", BASE + "gates:\n  - metric: coating.thickness_cv\n    op: '<'\n    threshold: 0.1\n    compare_to: polyline-stop\n", 9, ["gates[0]", "exactly one of 'threshold' or 'compare_to'"]),
+    ("gate metric without group", BASE + "gates:\n  - metric: thickness_cv\n    op: '<'\n    threshold: 0.1\n", 9, ["gates[0].metric", "'thickness_cv'"]),
+    ("gate on a variant not run", BASE + "variants: [polysegment]\ngates:\n  - metric: coating.thickness_cv\n    op: '<'\n    compare_to: polyline-stop\n", 12, ["gates[0].compare_to", "not run"]),
+    ("unknown built-in curve", BASE.replace("builtin: raster", "builtin: hexagon"), 3, ["curve.builtin", "'hexagon'"]),
+    ("unknown built-in parameter", BASE.replace("passes: 3", "passez: 3"), 2, ["curve", "no parameter 'passez'", "passes"]),
+    ("two curve sources", BASE.replace("builtin: raster", "builtin: raster\n  file: c.csv"), 2, ["curve", "exactly one of 'builtin' or 'file'"]),
+    ("duplicate key", BASE + "name: again\n", 8, ["duplicate key 'name'", "line 1"]),
+    ("broken YAML", BASE + "gun: [\n", 9, ["invalid YAML"]),
+    ("a list, not a mapping", "- a\n- b\n", 1, ["a scenario is a mapping"]),
+]
+
+
+@pytest.mark.parametrize("text,line,fragments", [m[1:] for m in MALFORMED], ids=[m[0] for m in MALFORMED])
+def test_malformed_scenario_names_line_and_key(tmp_path: Path, text: str, line: int, fragments: list[str]) -> None:
+    message = load_error(tmp_path, text)
+    assert message.startswith(f"{tmp_path / 'job.yaml'}:{line}: "), message
+    for fragment in fragments:
+        assert fragment in message, message
+
+
+def test_empty_and_missing_files(tmp_path: Path) -> None:
+    assert "empty file" in load_error(tmp_path, "")
+    with pytest.raises(InputError, match="no such file"):
+        load_scenario(tmp_path / "absent.yaml")
+    with pytest.raises(InputError, match="is a folder"):
+        load_scenario(tmp_path)
+
+
+SECTION_KEYS = {
+    "gun": ["standoff_mm", "flow_mm3_s", "target_thickness_um"],
+    "motion": ["speed_mm_s", "accuracy_mm", "lead_in_mm", "lead_out_mm"],
+    "coating": ["spacing_mm"],
+    "segmentation": ["tolerance_mm"],
+}
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    section=st.sampled_from(sorted(SECTION_KEYS)),
+    key=st.from_regex(r"[a-z][a-z_]{0,12}", fullmatch=True),
+    padding=st.integers(0, 5),
+)
+def test_any_unknown_key_is_named_with_its_line(tmp_path: Path, section: str, key: str, padding: int) -> None:
+    if key in Scenario.model_fields[section].annotation.model_fields:
+        return
+    text = BASE + "#\n" * padding + f"{section}:\n  {key}: 1\n"
+    message = load_error(tmp_path, text)
+    assert message.startswith(f"{tmp_path / 'job.yaml'}:{8 + padding + 1}: {section}.{key}: unknown key"), message
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    values=st.fixed_dictionaries({
+        section: st.fixed_dictionaries({k: st.floats(1e-3, 1e4, allow_nan=False) for k in keys})
+        for section, keys in SECTION_KEYS.items()
+    })
+)
+def test_valid_numbers_round_trip_exactly(tmp_path: Path, values: dict) -> None:
+    data = yaml.safe_load(BASE) | values
+    spec = load_scenario(write(tmp_path, yaml.safe_dump(data))).spec
+    for section, fields in values.items():
+        for key, value in fields.items():
+            assert getattr(getattr(spec, section), key) == value
+
+
+def test_json_schema_is_strict_and_lists_the_choices() -> None:
+    schema = json.loads(json_schema())
+    assert schema["additionalProperties"] is False
+    assert all(d.get("additionalProperties") is False for d in schema["$defs"].values() if d.get("type") == "object")
+    assert set(schema["required"]) == {"name", "curve", "workpiece"}
+    variants = schema["properties"]["variants"]["items"]["enum"]
+    assert variants == list(VARIANTS)
+    assert "raster" in schema["$defs"]["CurveSpec"]["properties"]["builtin"]["anyOf"][0]["enum"]
+
+
+def test_shipped_scenarios_load() -> None:
+    folder = Path(__file__).resolve().parents[1] / "scenarios"
+    files = sorted(folder.glob("*.yaml"))
+    assert files, "no shipped scenarios"
+    for path in files:
+        assert load_scenario(path).spec.name == path.stem
