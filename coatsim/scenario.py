@@ -72,11 +72,12 @@ class SegmentationSpec(_Strict):
 
 
 class PoseSpec(_Strict):
-    """Workpiece frame in the robot base frame: position (mm) and fixed-axis roll, pitch,
-    yaw (deg, applied x then y then z)."""
+    """Workpiece frame in the robot base frame, as AS writes a pose: origin x, y, z (mm) and
+    O-A-T Euler angles (deg, z-y'-z''). The curve lies in the frame's XY plane and the
+    sprayed side faces the frame's +z axis."""
 
-    position_mm: Vec3 = Field(default_factory=lambda: [600.0, 0.0, 200.0])
-    rpy_deg: Vec3 = Field(default_factory=lambda: [0.0, 0.0, 0.0])
+    position_mm: Vec3 = Field(default_factory=lambda: [700.0, 0.0, 200.0])
+    oat_deg: Vec3 = Field(default_factory=lambda: [0.0, 0.0, 0.0])
 
 
 class PlateSpec(_Strict):
@@ -88,11 +89,13 @@ class PlateSpec(_Strict):
 
 
 class CylinderSpec(_Strict):
-    """A cylinder with its axis along the workpiece y axis; the curve's x is wrapped around it."""
+    """The outside of a cylinder centred on the workpiece origin, its axis along the frame's
+    ``axis``; the curve lies in the plane tangent to the cylinder at its top (frame +z)."""
 
     kind: Literal["cylinder"]
     radius_mm: Positive
     length_mm: Positive
+    axis: Literal["x", "y"] = "x"
     pose: PoseSpec = Field(default_factory=PoseSpec)
 
 
@@ -122,13 +125,16 @@ class FootprintSpec(_Strict):
 
 class GunSpec(_Strict):
     """Spray gun: stand-off along the surface normal, footprint, deposited volume rate Q,
-    the thickness the job aims for, and the output signal that opens the gun."""
+    the thickness the job aims for, the output signal that opens the gun, and the tool roll
+    about the spray axis (fixed, or turning with the path when ``follow_tangent``)."""
 
     standoff_mm: Positive = 100.0
     footprint: FootprintSpec = Field(default_factory=FootprintSpec)
     flow_mm3_s: Positive = 40.0
     target_thickness_um: Positive = 10.0
     signal: Annotated[int, Field(ge=1, le=999)] = 1
+    roll_deg: float = 0.0
+    follow_tangent: bool = False
 
 
 class MotionSpec(_Strict):
@@ -173,13 +179,6 @@ class GateSpec(_Strict):
         if self.threshold is not None and self.factor != 1.0:
             raise ValueError("'factor' applies only with 'compare_to'")
         return self
-
-    @property
-    def label(self) -> str:
-        rhs = repr(self.threshold) if self.compare_to is None else (
-            f"{self.compare_to}" if self.factor == 1.0 else f"{self.factor:g} x {self.compare_to}"
-        )
-        return f"{self.metric} [{self.variant}] {self.op} {rhs}"
 
 
 class Scenario(_Strict):

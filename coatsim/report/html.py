@@ -1,0 +1,143 @@
+"""Self-contained HTML report: one file, images embedded as base64 PNG, inline CSS, no
+scripts and no external assets, so it opens anywhere without coatsim installed.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
+
+from coatsim.report.catalogue import METRICS, GROUPS
+
+CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:2em auto;max-width:1200px;
+padding:0 1em;color:#222;line-height:1.45}
+h1{margin-bottom:.2em}h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:2em}
+table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
+th,td{border:1px solid #ccc;padding:.25em .6em;text-align:right}
+th{background:#f3f3f3}td.l,th.l{text-align:left}
+tr.group td{background:#fafafa;font-weight:600;text-align:left}
+.pass{color:#0a7d28;font-weight:600}.fail{color:#b3121f;font-weight:600}
+figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}
+figcaption{color:#555;font-size:.9em}.muted{color:#777}
+"""
+
+
+@dataclass(frozen=True)
+class Figure:
+    """One embedded image: PNG bytes and a caption."""
+
+    title: str
+    png: bytes
+    caption: str
+
+
+@dataclass(frozen=True)
+class Section:
+    """A report section: an anchor id, a heading, HTML body (already escaped) and figures."""
+
+    anchor: str
+    heading: str
+    body: str = ""
+    figures: tuple[Figure, ...] = ()
+
+
+def esc(value: Any) -> str:
+    return html.escape(str(value), quote=True)
+
+
+def fmt(value: Any) -> str:
+    """A metric value as text: integers plainly, floats to 4 significant digits."""
+    if value is None:
+        return "–"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "–"
+        return f"{value:.4g}"
+    return esc(value)
+
+
+def figure_html(fig: Figure) -> str:
+    data = base64.b64encode(fig.png).decode("ascii")
+    return (
+        f'<figure><img alt="{esc(fig.title)}" src="data:image/png;base64,{data}">'
+        f"<figcaption><b>{esc(fig.title)}.</b> {esc(fig.caption)}</figcaption></figure>"
+    )
+
+
+def key_value_table(rows: Sequence[tuple[str, Any]]) -> str:
+    """Two-column table of labels and values."""
+    body = "".join(f'<tr><th class="l">{esc(k)}</th><td class="l">{esc(v)}</td></tr>' for k, v in rows)
+    return f"<table>{body}</table>"
+
+
+def _ratio(value: Any, base: Any) -> str:
+    if not isinstance(value, (int, float)) or not isinstance(base, (int, float)) or isinstance(value, bool):
+        return "–"
+    if base == 0 or math.isnan(base) or math.isnan(value):
+        return "–"
+    return f"{value / base:.3g}"
+
+
+def metrics_table(variants: Mapping[str, Mapping[str, Mapping[str, Any]]], baseline: str | None) -> str:
+    """Every metric for every variant, grouped, with ratios of each variant to ``baseline``."""
+    names = list(variants)
+    others = [v for v in names if v != baseline] if baseline in variants else []
+    head = '<th class="l">metric</th><th class="l">unit</th>' + "".join(f"<th>{esc(v)}</th>" for v in names)
+    head += "".join(f"<th>{esc(v)} / {esc(baseline)}</th>" for v in others)
+    rows = []
+    for group in GROUPS:
+        rows.append(f'<tr class="group"><td colspan="{2 + len(names) + len(others)}">{esc(group)}</td></tr>')
+        for key, info in METRICS.items():
+            if not key.startswith(group + "."):
+                continue
+            name = key.split(".", 1)[1]
+            values = [variants[v].get(group, {}).get(name) for v in names]
+            cells = "".join(f"<td>{fmt(x)}</td>" for x in values)
+            base = variants[baseline].get(group, {}).get(name) if others else None
+            cells += "".join(f"<td>{_ratio(variants[v].get(group, {}).get(name), base)}</td>" for v in others)
+            rows.append(
+                f'<tr><td class="l" title="{esc(info.meaning)}">{esc(key)}</td>'
+                f'<td class="l">{esc(info.unit)}</td>{cells}</tr>'
+            )
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
+
+
+def gates_table(gates: Sequence[Mapping[str, Any]]) -> str:
+    """One row per gate: the check, the measured value, the reference, pass or fail."""
+    if not gates:
+        return '<p class="muted">This scenario defines no gates.</p>'
+    rows = []
+    for g in gates:
+        status = '<span class="pass">pass</span>' if g["passed"] else '<span class="fail">FAIL</span>'
+        rows.append(
+            f'<tr><td class="l">{esc(g["label"])}</td><td>{fmt(g["value"])}</td>'
+            f'<td>{fmt(g["reference"])}</td><td class="l">{status}</td></tr>'
+        )
+    head = '<tr><th class="l">gate</th><th>value</th><th>reference</th><th class="l">result</th></tr>'
+    return f"<table>{head}{''.join(rows)}</table>"
+
+
+def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
+    """The whole document: title, table of contents, sections in order."""
+    toc = "".join(f'<li><a href="#{esc(s.anchor)}">{esc(s.heading)}</a></li>' for s in sections)
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{esc(title)}</title><style>{CSS}</style></head><body>",
+        f"<h1>{esc(title)}</h1><p class=\"muted\">{esc(subtitle)}</p>",
+        f"<nav><ol>{toc}</ol></nav>",
+    ]
+    for s in sections:
+        parts.append(f'<section id="{esc(s.anchor)}"><h2>{esc(s.heading)}</h2>{s.body}')
+        parts.extend(figure_html(f) for f in s.figures)
+        parts.append("</section>")
+    parts.append("</body></html>\n")
+    return "\n".join(parts)

@@ -1,0 +1,102 @@
+"""Report figures and the self-contained HTML document."""
+
+from __future__ import annotations
+
+import base64
+import math
+import re
+
+import numpy as np
+import pytest
+
+from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.geometry.primitives import Line
+from coatsim.report import plots
+from coatsim.report.catalogue import METRICS, names
+from coatsim.report.html import Figure, Section, gates_table, metrics_table, render_html
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def test_polysegment_theta_is_exact_on_a_line_arc_line_chain() -> None:
+    poly = Polysegment(chain((0.0, 0.0), 0.3, [0.0, 1 / 20, 0.0], [40.0, 10 * math.pi, 20.0]))
+    t, theta = plots.polysegment_theta(poly, start_heading=0.3)
+    total = 60.0 + 10 * math.pi
+    assert t == pytest.approx([0, 40 / total, 40 / total, (40 + 10 * math.pi) / total, (40 + 10 * math.pi) / total, 1])
+    assert theta == pytest.approx([0, 0, 0, math.pi / 2, math.pi / 2, math.pi / 2])
+
+
+def test_polysegment_theta_jumps_at_a_corner_and_keeps_turning_sign() -> None:
+    poly = Polysegment((Line((0.0, 0.0), (10.0, 0.0)), Line((10.0, 0.0), (10.0, -10.0))), corners=(0,))
+    t, theta = plots.polysegment_theta(poly, start_heading=0.0)
+    assert t == pytest.approx([0, 0.5, 0.5, 1])
+    assert theta == pytest.approx([0, 0, -math.pi / 2, -math.pi / 2])
+
+
+def _sample_poly() -> Polysegment:
+    return Polysegment(chain((0.0, 0.0), 0.0, [0.0, 0.05, 0.0], [30.0, 20.0, 30.0]))
+
+
+def test_figures_are_png_and_deterministic() -> None:
+    poly = _sample_poly()
+    xy, _ = poly.sample(0.5)
+    first = plots.segmentation_figure(xy, poly, xy[::10])
+    assert first.startswith(PNG_MAGIC)
+    assert plots.segmentation_figure(xy, poly, xy[::10]) == first
+    s = np.linspace(0, 100, 200)
+    profile = plots.SpeedProfile(s, np.minimum(200.0, 20 * np.sqrt(s + 1)), s > 5)
+    assert plots.speed_figure({"polysegment": profile, "polyline-stop": profile}, 200.0, (20.0, 80.0)).startswith(PNG_MAGIC)
+    gx, gy = np.meshgrid(np.linspace(-50, 50, 21), np.linspace(-30, 30, 13))
+    view = np.column_stack((gx.ravel(), gy.ravel()))
+    from matplotlib.tri import Triangulation
+
+    faces = Triangulation(view[:, 0], view[:, 1]).triangles
+    maps = {v: plots.ThicknessMap(view, faces, np.exp(-(view[:, 1] ** 2) / 50) * k, ("x (mm)", "y (mm)"))
+            for v, k in (("polysegment", 10.0), ("polyline-stop", 14.0))}
+    png, top = plots.heatmap_figure(maps, 10.0)
+    assert png.startswith(PNG_MAGIC) and 10.0 < top <= 14.0
+    section = plots.CrossSection(np.linspace(-30, 30, 61), 10 * np.exp(-np.linspace(-30, 30, 61) ** 2 / 50))
+    assert plots.cross_section_figure({"polysegment": section}, 10.0, "y").startswith(PNG_MAGIC)
+
+
+def _variants() -> dict:
+    return {
+        v: {g: {n: (i + 1) * 0.5 for n in names(g)} for g in ("segmentation", "motion", "coating")}
+        for i, v in enumerate(("polysegment", "polyline-stop"))
+    }
+
+
+def test_metrics_table_lists_every_metric_with_ratios() -> None:
+    html = metrics_table(_variants(), "polysegment")
+    for key in METRICS:
+        assert f">{key}<" in html
+    assert "polyline-stop / polysegment" in html
+    assert html.count("<td>2</td>") == len(METRICS)  # 1.0 / 0.5
+
+
+def test_gates_table_marks_failures() -> None:
+    rows = [{"label": "a < 1", "value": 0.5, "reference": 1.0, "passed": True},
+            {"label": "b <= 2", "value": 3.0, "reference": 2.0, "passed": False}]
+    html = gates_table(rows)
+    assert html.count('class="pass"') == 1 and html.count('class="fail"') == 1
+
+
+def test_document_is_self_contained_and_escaped() -> None:
+    png = plots.segmentation_figure(*_seg_args())
+    doc = render_html("job <1>", "sub & title", [
+        Section("one", "First", "<p>x</p>", (Figure("curve", png, "a <b> caption"),)),
+        Section("two", "Second", "<p>y</p>"),
+    ])
+    assert "job &lt;1&gt;" in doc and "a &lt;b&gt; caption" in doc
+    assert '<a href="#one">First</a>' in doc and 'id="two"' in doc
+    assert "<script" not in doc.lower()
+    sources = re.findall(r'src="([^"]+)"', doc)
+    assert len(sources) == 1 and sources[0].startswith("data:image/png;base64,")
+    assert base64.b64decode(sources[0].split(",", 1)[1]) == png
+    assert not re.search(r'(href|src)="(https?:)?//', doc)
+
+
+def _seg_args():
+    poly = _sample_poly()
+    xy, _ = poly.sample(1.0)
+    return xy, poly, None
