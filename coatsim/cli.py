@@ -27,6 +27,14 @@ def fail(message: str, code: int = 2) -> None:
     raise typer.Exit(code)
 
 
+@app.command()
+def schema() -> None:
+    """Print the JSON Schema of scenario files (point your editor's YAML plugin at it)."""
+    from coatsim.scenario import json_schema
+
+    typer.echo(json_schema(), nl=False)
+
+
 def main() -> None:
     """Console entry point: run the app, turning CoatsimError into a one-line error."""
     try:
