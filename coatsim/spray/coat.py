@@ -1,0 +1,126 @@
+"""The coating stage: trajectory + surface + gun -> per-vertex thickness, metrics and files.
+
+``coat`` is the in-process entry (the scenario runner calls it per variant on one surface);
+``write_coating`` writes thickness.ply, coating.json, heatmap.png and section.png;
+``run_coat`` parses the command-line specs and does both (``coatsim coat``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+
+from coatsim.errors import InputError
+from coatsim.fileio import write_text
+from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
+from coatsim.spray.coating_metrics import coating_metrics, region_of_interest
+from coatsim.spray.deposition import Deposit, SprayModel, deposit
+from coatsim.spray.footprints import parse_footprint_spec
+from coatsim.spray.outputs import (
+    Profile, default_section, heatmap_png, panel, profile_png, section_profile, write_thickness_ply,
+)
+from coatsim.spray.surfaces import Surface, parse_surface_spec
+
+COATING_FORMAT = "coatsim.coating/1"
+
+
+@dataclass(frozen=True, eq=False)
+class CoatingResult:
+    """Thickness field, ROI mask and metrics of one coating run on one surface."""
+
+    surface: Surface
+    model: SprayModel
+    deposit: Deposit
+    roi: np.ndarray
+    roi_kind: str
+    metrics: dict[str, float]
+
+    @property
+    def thickness_um(self) -> np.ndarray:
+        return self.deposit.thickness_um
+
+
+def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "band",
+         target_um: float | None = None, edge_band_mm: float | None = None,
+         band_halfwidth_mm: float | None = None, spacing: float | None = None,
+         progress: Callable[[float], None] | None = None) -> CoatingResult:
+    """Deposit the sprayed part of ``log`` on ``surface`` and measure it over the ROI."""
+    result = deposit(surface, log, model, progress)
+    mask = region_of_interest(surface, result, model, roi, edge_band_mm, band_halfwidth_mm, spacing)
+    metrics = coating_metrics(surface, result, model, mask, target_um)
+    return CoatingResult(surface, model, result, mask, roi, metrics)
+
+
+def parse_section(text: str) -> tuple[np.ndarray, np.ndarray]:
+    """Section line ``x0,y0,x1,y1`` in view coordinates (mm)."""
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) != 4 or not all(map(math.isfinite, values)) or values[:2] == values[2:]:
+        raise InputError(f"--section must be x0,y0,x1,y1 in mm (two distinct points), found {text!r}")
+    return np.array(values[:2]), np.array(values[2:])
+
+
+def write_coating(result: CoatingResult, outdir: str | Path, inputs: dict[str, object],
+                  section: tuple[np.ndarray, np.ndarray] | None = None) -> list[Path]:
+    """Write thickness.ply, coating.json (format, metrics, inputs), heatmap.png, section.png."""
+    outdir = Path(outdir)
+    surface, thickness = result.surface, result.thickness_um
+    section = default_section(surface) if section is None else section
+    files = [outdir / name for name in ("thickness.ply", "coating.json", "heatmap.png", "section.png")]
+    write_thickness_ply(files[0], surface, thickness, 0.0, float(thickness.max()))
+    document = {"format": COATING_FORMAT, **result.metrics, "inputs": inputs,
+                "mesh": {"vertices": surface.n_vertices, "triangles": len(surface.faces),
+                         "area_mm2": surface.area_mm2}}
+    write_text(files[1], json.dumps(document, indent=2) + "\n")
+    title = f"{surface.name}  {result.model.footprint.spec}  Q={result.model.rate_mm3_s:g} mm³/s"
+    heatmap_png([panel(surface, thickness)], 0.0, float(thickness.max()), files[2], title, section)
+    s, t = section_profile(surface.view, surface.faces, thickness, *section)
+    start, end = section
+    label = f"({start[0]:g}, {start[1]:g}) -> ({end[0]:g}, {end[1]:g}) mm"
+    profile_png([Profile(label, s, t)], files[3], f"cross-section of {surface.name}")
+    return files
+
+
+@contextmanager
+def _progress(label: str) -> Iterator[Callable[[float], None] | None]:
+    """A rich progress bar on a terminal, nothing otherwise."""
+    if not sys.stderr.isatty():
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import Progress
+
+    with Progress(console=Console(stderr=True), transient=True) as bar:
+        task = bar.add_task(label, total=1.0)
+        yield lambda fraction: bar.update(task, completed=fraction)
+
+
+def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = None,
+             footprint: str = "gaussian:sigma=5", rate: float = 40.0, standoff: float = 100.0,
+             target_um: float | None = None, roi: str = "band", edge_band_mm: float | None = None,
+             de_exponent: float = 1.0, occlusion: bool = False, section: str | None = None,
+             outdir: str | Path = "out/coat") -> tuple[CoatingResult, list[Path]]:
+    """``coatsim coat``: read, build, deposit, measure and write; spacing defaults to σ/3."""
+    fp = parse_footprint_spec(footprint)
+    model = SprayModel(fp, rate, standoff, de_exponent, occlusion)
+    spacing = fp.sigma_mm / 3 if spacing is None else spacing
+    line = parse_section(section) if section is not None else None
+    surface = parse_surface_spec(surface_spec, spacing)
+    log = read_trajectory_csv(trajectory)
+    with _progress("coating") as progress:
+        result = coat(log, surface, model, roi, target_um, edge_band_mm, spacing=spacing, progress=progress)
+    inputs = {"trajectory": str(trajectory), "surface": surface_spec, "spacing_mm": spacing,
+              "footprint": fp.spec, "rate_mm3_s": rate, "standoff_mm": standoff,
+              "de_exponent": de_exponent, "occlusion": occlusion, "substep_mm": model.step_mm,
+              "roi": roi, "edge_band_mm": 3 * fp.sigma_mm if edge_band_mm is None else edge_band_mm,
+              "band_halfwidth_mm": 2 * fp.sigma_mm}
+    return result, write_coating(result, outdir, inputs, line)

@@ -1,0 +1,241 @@
+"""Coated surfaces: triangle meshes in mm in the robot base frame, with what the kernel needs.
+
+A ``Surface`` carries vertices, faces, unit vertex normals, barycentric vertex areas (one third
+of each adjacent face's area, so Σ A_i T_i is the deposited volume) and 2-D ``view``
+coordinates for heat maps: top view (x, y) for plates and mesh files, unrolled
+(along-axis, arc length) for cylinders. Built-in parts are generated analytically (exact
+normals); mesh files are loaded with trimesh and refined until no edge exceeds the spacing.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from coatsim.errors import InputError
+
+#: refinement refuses to build meshes with more triangles than this (memory, run time)
+MAX_TRIANGLES = 4_000_000
+MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
+
+
+@dataclass(frozen=True, eq=False)
+class Surface:
+    """A coated part: n vertices (mm, base frame), m triangles, unit normals, vertex areas (mm²)."""
+
+    name: str
+    kind: str
+    vertices: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray
+    areas: np.ndarray
+    view: np.ndarray
+    view_labels: tuple[str, str]
+
+    @property
+    def n_vertices(self) -> int:
+        return len(self.vertices)
+
+    @property
+    def area_mm2(self) -> float:
+        return float(self.areas.sum())
+
+
+def vertex_areas(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Barycentric vertex areas: one third of the area of every adjacent triangle."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    face_area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    return np.bincount(faces.ravel(), weights=np.repeat(face_area / 3, 3), minlength=len(vertices))
+
+
+def _check_spacing(spacing: float) -> None:
+    if not (math.isfinite(spacing) and spacing > 0):
+        raise InputError(f"surface spacing must be a positive number of mm, found {spacing:g}")
+
+
+def _grid_faces(nu: int, nv: int) -> np.ndarray:
+    """Two counter-clockwise triangles per cell of an (nu+1) x (nv+1) node grid, u fastest."""
+    i, j = np.meshgrid(np.arange(nu), np.arange(nv))
+    n00 = (j * (nu + 1) + i).ravel()
+    n10, n01, n11 = n00 + 1, n00 + nu + 1, n00 + nu + 2
+    return np.concatenate([np.column_stack([n00, n10, n11]), np.column_stack([n00, n11, n01])])
+
+
+def _transform(points: np.ndarray, pose: np.ndarray, vectors: bool = False) -> np.ndarray:
+    out = points @ pose[:3, :3].T
+    return out if vectors else out + pose[:3, 3]
+
+
+def _pose(pose: np.ndarray | None) -> np.ndarray:
+    pose = np.eye(4) if pose is None else np.asarray(pose, dtype=float)
+    rot = pose[:3, :3]
+    if pose.shape != (4, 4) or not np.allclose(rot @ rot.T, np.eye(3), atol=1e-9) or np.linalg.det(rot) < 0:
+        raise InputError("workpiece pose must be a 4x4 rigid transform (rotation + translation)")
+    return pose
+
+
+def plate(width: float, height: float, spacing: float, pose: np.ndarray | None = None) -> Surface:
+    """Flat W x H plate centred on the pose origin, normal +z of the pose, structured grid."""
+    _check_spacing(spacing)
+    if not (width > 0 and height > 0):
+        raise InputError(f"plate size must be positive, found {width:g} x {height:g} mm")
+    pose = _pose(pose)
+    nu, nv = max(1, math.ceil(width / spacing - 1e-9)), max(1, math.ceil(height / spacing - 1e-9))
+    x = np.linspace(-width / 2, width / 2, nu + 1)
+    y = np.linspace(-height / 2, height / 2, nv + 1)
+    xx, yy = np.meshgrid(x, y)
+    local = np.column_stack([xx.ravel(), yy.ravel(), np.zeros(xx.size)])
+    faces = _grid_faces(nu, nv)
+    vertices = _transform(local, pose)
+    normals = np.tile(pose[:3, 2], (len(local), 1))
+    return Surface(f"plate:{width:g}x{height:g}", "plate", vertices, faces, normals,
+                   vertex_areas(vertices, faces), vertices[:, :2].copy(), ("x (mm)", "y (mm)"))
+
+
+_CYLINDER_FRAMES = {  # axis letter -> (axis direction, radial direction at phi=0, at phi=90 deg)
+    "x": ((1.0, 0, 0), (0, 0, 1.0), (0, 1.0, 0)),
+    "y": ((0, 1.0, 0), (0, 0, 1.0), (1.0, 0, 0)),
+    "z": ((0, 0, 1.0), (1.0, 0, 0), (0, 1.0, 0)),
+}
+
+
+def cylinder(radius: float, length: float, spacing: float, axis: str = "x",
+             pose: np.ndarray | None = None) -> Surface:
+    """Outside of a cylinder of radius R and length L centred on the pose origin, along its
+    ``axis``; angle 0 is +z (+x for a z axis). The seam at ±180° carries duplicated vertices
+    so the unrolled view (along-axis, R·angle) has no wrap-around."""
+    _check_spacing(spacing)
+    if not (radius > 0 and length > 0):
+        raise InputError(f"cylinder size must be positive, found R={radius:g} x L={length:g} mm")
+    if axis not in _CYLINDER_FRAMES:
+        raise InputError(f"cylinder axis must be x, y or z, found {axis!r}")
+    pose = _pose(pose)
+    ax, r0, r90 = (np.array(v) for v in _CYLINDER_FRAMES[axis])
+    n_phi = max(3, math.ceil(2 * math.pi * radius / spacing - 1e-9))
+    n_len = max(1, math.ceil(length / spacing - 1e-9))
+    phi = np.linspace(-math.pi, math.pi, n_phi + 1)
+    s = np.linspace(-length / 2, length / 2, n_len + 1)
+    ss, pp = np.meshgrid(s, phi)  # rows: phi, columns: along the axis
+    radial = np.cos(pp.ravel())[:, None] * r0 + np.sin(pp.ravel())[:, None] * r90
+    local = ss.ravel()[:, None] * ax + radius * radial
+    faces = _grid_faces(n_len, n_phi)
+    if np.dot(np.cross(ax, r90), r0) < 0:  # keep triangles counter-clockwise seen from outside
+        faces = faces[:, ::-1]
+    vertices = _transform(local, pose)
+    normals = _transform(radial, pose, vectors=True)
+    view = np.column_stack([ss.ravel(), radius * pp.ravel()])
+    return Surface(f"cylinder:{radius:g}x{length:g}", "cylinder", vertices, faces, normals,
+                   vertex_areas(vertices, faces), view, (f"along {axis} (mm)", "unrolled arc (mm)"))
+
+
+def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) -> Surface:
+    """Triangle mesh from an STL / PLY / OBJ / GLB file (mm), refined so no edge exceeds spacing."""
+    import trimesh
+    import trimesh.remesh
+
+    _check_spacing(spacing)
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: surface mesh file not found")
+    try:
+        mesh = trimesh.load(str(path), force="mesh")
+    except Exception as exc:  # trimesh raises many types for malformed files
+        raise InputError(f"{path}: cannot read mesh ({type(exc).__name__}: {exc})".splitlines()[0]) from None
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise InputError(f"{path}: mesh has no triangles; export the part surface as a triangle mesh")
+    if not np.all(np.isfinite(mesh.vertices)):
+        raise InputError(f"{path}: mesh has non-finite vertex coordinates")
+    mesh.update_faces(mesh.nondegenerate_faces())
+    if len(mesh.faces) == 0:
+        raise InputError(f"{path}: every triangle of the mesh is degenerate (zero area)")
+    estimate = mesh.area / (math.sqrt(3) / 4 * spacing**2)
+    if estimate > MAX_TRIANGLES:
+        raise InputError(f"{path}: spacing {spacing:g} mm would need ~{estimate:.2g} triangles; use a larger --spacing")
+    vertices, faces = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=spacing, max_iter=20)
+    refined = trimesh.Trimesh(vertices, faces, process=True)
+    refined.remove_unreferenced_vertices()
+    pose = _pose(pose)
+    vertices = _transform(np.asarray(refined.vertices, dtype=float), pose)
+    faces = np.asarray(refined.faces, dtype=np.int64)
+    normals = _transform(np.asarray(refined.vertex_normals, dtype=float), pose, vectors=True)
+    return Surface(str(path), "mesh", vertices, faces, normals, vertex_areas(vertices, faces),
+                   vertices[:, :2].copy(), ("x (mm)", "y (mm)"))
+
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_PRIMITIVE = re.compile(rf"^(plate|cylinder):\s*({_NUMBER})\s*[xX]\s*({_NUMBER})\s*(?:@(.*))?$")
+
+
+def _placement(text: str | None, spec: str, allow_axis: bool) -> tuple[np.ndarray, str]:
+    """Translation pose and axis letter from ``x,y,z[,axis]``."""
+    pose, axis = np.eye(4), "x"
+    if text is None:
+        return pose, axis
+    items = [t.strip() for t in text.split(",")]
+    if allow_axis and len(items) == 4:
+        axis = items.pop().lower()
+        if axis not in _CYLINDER_FRAMES:
+            raise InputError(f"surface {spec!r}: cylinder axis must be x, y or z, found {axis!r}")
+    try:
+        xyz = [float(t) for t in items]
+    except ValueError:
+        xyz = []
+    if len(xyz) != 3 or not all(map(math.isfinite, xyz)):
+        form = "x,y,z[,axis]" if allow_axis else "x,y,z"
+        raise InputError(f"surface {spec!r}: placement after '@' must be {form} in mm, found {text!r}")
+    pose[:3, 3] = xyz
+    return pose, axis
+
+
+def parse_surface_spec(spec: str, spacing: float) -> Surface:
+    """Surface from ``plate:WxH@x,y,z`` (normal +z), ``cylinder:RxL@x,y,z[,axis]`` (axis x by
+    default) or a mesh file path with an optional ``@x,y,z`` translation; all in mm."""
+    spec = spec.strip()
+    match = _PRIMITIVE.match(spec)
+    if match:
+        kind, a, b, at = match.groups()
+        pose, axis = _placement(at, spec, allow_axis=kind == "cylinder")
+        if kind == "plate":
+            surface = plate(float(a), float(b), spacing, pose)
+        else:
+            surface = cylinder(float(a), float(b), spacing, axis, pose)
+        return Surface(spec, surface.kind, surface.vertices, surface.faces, surface.normals,
+                       surface.areas, surface.view, surface.view_labels)
+    if spec.split(":", 1)[0].lower() in ("plate", "cylinder"):
+        raise InputError(f"surface {spec!r}: expected plate:WxH@x,y,z or cylinder:RxL@x,y,z[,axis] (mm)")
+    path, at, place = spec.rpartition("@") if "@" in spec else (spec, "", "")
+    if at and Path(spec).suffix.lower() not in MESH_SUFFIXES:
+        pose, _ = _placement(place, spec, allow_axis=False)
+        return mesh_file(path, spacing, pose)
+    return mesh_file(spec, spacing)
+
+
+def border_distance(surface: Surface, spacing: float | None = None) -> np.ndarray:
+    """3-D distance (mm) from every vertex to the part border (edges with one adjacent
+    triangle, after merging coincident vertices such as a cylinder seam); inf if closed.
+    Accurate to spacing/16 (border edges are sampled at spacing/8)."""
+    scale = float(np.ptp(surface.vertices, axis=0).max()) or 1.0
+    key = np.round(surface.vertices / (1e-7 * scale)).astype(np.int64)
+    _, merged = np.unique(key, axis=0, return_inverse=True)
+    merged = merged.ravel()
+    faces = merged[surface.faces]
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    unique, first, counts = np.unique(edges, axis=0, return_index=True, return_counts=True)
+    if not np.any(counts == 1):
+        return np.full(surface.n_vertices, np.inf)
+    all_edges = np.concatenate([surface.faces[:, [0, 1]], surface.faces[:, [1, 2]], surface.faces[:, [2, 0]]])
+    border = all_edges[np.sort(first[counts == 1])]
+    a, b = surface.vertices[border[:, 0]], surface.vertices[border[:, 1]]
+    lengths = np.linalg.norm(b - a, axis=1)
+    step = (spacing if spacing else float(np.median(lengths))) / 8
+    n = np.maximum(1, np.ceil(lengths / step).astype(np.int64))
+    edge = np.repeat(np.arange(len(border)), n + 1)
+    frac = (np.arange(len(edge)) - np.repeat(np.cumsum(n + 1) - (n + 1), n + 1)) / np.repeat(n, n + 1)
+    samples = a[edge] + frac[:, None] * (b - a)[edge]
+    distance, _ = cKDTree(samples).query(surface.vertices)
+    return distance
