@@ -1,0 +1,150 @@
+"""Kawasaki AS writer: a ProgramPlan becomes a complete, loadable .as file.
+
+Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly,
+a joint approach above the start, ``BREAK`` + ``SIGNAL gun`` (the gun opens with the robot at
+the start of the lead-in), one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end)
+pair per arc, ``BREAK`` + ``SIGNAL -gun``, a linear depart, ``.END``, then every pose in a
+``.TRANS`` section. Only straight-line code between the first and last sprayed move: loops and
+calls there make a Kawasaki controller slow down.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+
+from coatsim.program.arcs import DegenerateArc, circle_through
+from coatsim.program.dialect import ProgramPlan
+from coatsim.program.oat import matrix_to_oat
+from coatsim.program.placement import Frame, PlacedArc, PlacedLine
+from coatsim.program.toolpath import Pose
+
+# Coordinates are the program's only record of the path. 4 decimals in mm round each
+# coordinate by <= 5e-5 mm (<= 8.7e-5 mm in space), which keeps the path read back from the
+# text within 1e-4 mm of the placed path; 6 decimals in degrees round an angle by <= 5e-7 deg
+# (9e-9 rad), far below any joint resolution. (Real controllers save 3 decimals.)
+MM_DECIMALS = 4
+DEG_DECIMALS = 6
+# Longest arc one C1MOVE/C2MOVE pair may sweep; a pair cannot describe 180 deg or more reliably.
+MAX_ARC_SWEEP_DEG = 170.0
+# Controller limit on variable names (15 characters).
+MAX_NAME_LENGTH = 15
+INDENT = "  "
+_COMMENT_COLUMN = 30
+
+
+def fmt(value: float, decimals: int) -> str:
+    """Fixed-point text without negative zero."""
+    text = f"{value:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0.0 else text
+
+
+def fmt_short(value: float, decimals: int = MM_DECIMALS) -> str:
+    """Fixed-point text with trailing zeros removed ("50", "0.5")."""
+    text = fmt(value, decimals)
+    return text.rstrip("0").rstrip(".") if "." in text else text
+
+
+def pose_values(pose: Pose) -> tuple[str, ...]:
+    """x y z (mm) o a t (deg) as the writer formats them."""
+    o, a, t = matrix_to_oat(pose.rotation)
+    return tuple(fmt(v, MM_DECIMALS) for v in pose.position) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
+
+
+def _trans_literal(frame: Frame) -> str:
+    mm = ",".join(fmt(v, MM_DECIMALS) for v in (frame.x, frame.y, frame.z))
+    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (frame.o, frame.a, frame.t))
+    return f"TRANS({mm},{deg})"
+
+
+def program_name(text: str) -> str:
+    """A valid AS program name from any text: lower-case letters, digits and '_', starting
+    with a letter, at most 15 characters."""
+    name = re.sub(r"[^a-z0-9_]+", "_", text.lower()).strip("_")
+    if not name or not name[0].isalpha():
+        name = "c" + name
+    return name[:MAX_NAME_LENGTH].rstrip("_") or "coat"
+
+
+def _ascii(text: str) -> str:
+    return "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in text)
+
+
+class _Lines:
+    """Program lines with aligned trailing comments."""
+
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+
+    def add(self, statement: str, comment: str = "") -> None:
+        text = INDENT + statement
+        if comment:
+            text = f"{text.ljust(_COMMENT_COLUMN)} ; {comment}"
+        self.lines.append(text)
+
+
+def _arc_is_writable(start: Pose, via: Pose, end: Pose) -> bool:
+    """Whether the circle through the poses as written (rounded) is defined."""
+    rounded = [np.array([float(v) for v in pose_values(p)[:3]]) for p in (start, via, end)]
+    try:
+        circle_through(*rounded)
+    except DegenerateArc:
+        return False
+    return True
+
+
+def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> str:
+    """The complete AS program text of ``plan`` (ASCII, '\\n' line ends)."""
+    poses: list[Pose] = []
+
+    def name(pose: Pose) -> str:
+        poses.append(pose)
+        return f"p{len(poses) - 1:0{width}d}"
+
+    n_points = 1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
+                       for s in plan.path.segments)
+    width = max(4, len(str(n_points)))
+    if 1 + width > MAX_NAME_LENGTH:
+        raise ValueError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names")
+
+    out = _Lines()
+    for text in plan.comments:
+        out.add(f"; {_ascii(text)}")
+    for key, value in plan.metadata:
+        out.add(f"; coatsim: {_ascii(key)}={_ascii(value)}")
+    out.add("BASE NULL", "poses are in the robot base frame")
+    out.add(f"TOOL {_trans_literal(plan.tool)}", "spray gun TCP")
+    out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
+    out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
+    out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
+    start = name(plan.path.start)
+    out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
+    out.add(f"LMOVE {start}", "down to the stand-off")
+    out.add("BREAK", "at rest before the gun opens")
+    out.add(f"SIGNAL {plan.gun_signal}", "gun on")
+    counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
+    for seg in plan.path.segments:
+        counters[seg.part] += 1
+        label = seg.part.replace("_", "-") if seg.part != "curve" else f"segment {counters['curve']}"
+        if isinstance(seg, PlacedLine):
+            out.add(f"LMOVE {name(seg.end)}", label)
+            continue
+        pieces = seg.split(math.radians(max_arc_sweep_deg))
+        for k, piece in enumerate(pieces):
+            part_label = label if len(pieces) == 1 else f"{label} ({k + 1}/{len(pieces)})"
+            if _arc_is_writable(piece.start, piece.via, piece.end):
+                out.add(f"C1MOVE {name(piece.via)}", f"{part_label}, arc via")
+                out.add(f"C2MOVE {name(piece.end)}", "arc end")
+            else:
+                out.add(f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution")
+    out.add("BREAK", "at rest before the gun closes")
+    out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
+    out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+
+    lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
+    for k, pose in enumerate(poses):
+        lines.append(" ".join((f"p{k:0{width}d}", *pose_values(pose))))
+    lines.append(".END")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,127 @@
+"""Build a coating program: polysegment (or its polyline variant) -> placed path -> program text.
+
+Variants:
+- ``polysegment``: one move per line or arc of the polysegment, blended (CP ON).
+- ``polyline-stop``: the curve simplified to a polyline within the same tolerance (RDP on
+  positions), one LMOVE per vertex, exact stop at every vertex (CP OFF).
+- ``polyline-blend``: the same polyline, blended (CP ON, ACCURACY d).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from coatsim.errors import InputError
+from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.rdp import rdp_indices, simplify_closed
+from coatsim.program.as_writer import fmt_short, program_name, write_as
+from coatsim.program.dialect import ProgramPlan
+from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
+
+VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
+# Densest sampling of a polysegment when no input points are given for the polyline variant.
+_MAX_SAMPLES = 200_000
+
+
+@dataclass(frozen=True)
+class ProgramOptions:
+    """Controller settings of the program; ``name`` defaults to one made from the source."""
+
+    variant: str = "polysegment"
+    speed_mm_s: float = 500.0
+    accuracy_mm: float = 1.0
+    approach_mm: float = 50.0
+    gun_signal: int = 1
+    tool: Frame = DEFAULT_TOOL
+    name: Optional[str] = None
+
+    def __post_init__(self) -> None:
+        if self.variant not in VARIANTS:
+            raise InputError(f"--variant {self.variant!r}: expected one of {', '.join(VARIANTS)}")
+        for what, value, low in (("--speed", self.speed_mm_s, 0.0), ("--accuracy", self.accuracy_mm, -1.0),
+                                 ("--approach", self.approach_mm, -1.0)):
+            if not (math.isfinite(value) and (value > low if low == 0.0 else value >= 0.0)):
+                raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}")
+        if not 1 <= self.gun_signal <= 9999:
+            raise InputError(f"--gun {self.gun_signal}: expected an output number from 1 to 9999")
+
+
+@dataclass(frozen=True, eq=False)
+class BuiltProgram:
+    """A written program with the plan it came from."""
+
+    text: str
+    plan: ProgramPlan
+    curve: Polysegment
+
+    @property
+    def path(self) -> PlacedPath:
+        return self.plan.path
+
+
+def polyline_of(points: np.ndarray, closed: bool, tolerance_mm: float) -> Polysegment:
+    """The RDP polyline of ``points`` (n, 2) within ``tolerance_mm``, as a polysegment."""
+    pts = np.asarray(points, dtype=float)
+    if closed and not np.array_equal(pts[0], pts[-1]):
+        pts = np.vstack((pts, pts[:1]))
+    keep = simplify_closed(pts, tolerance_mm) if closed else rdp_indices(pts, tolerance_mm)
+    return polyline_polysegment(pts[keep], closed)
+
+
+def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
+    """Points on ``poly`` at most ``tolerance_mm`` apart (fewer if the curve is very long)."""
+    step = max(tolerance_mm, poly.length / _MAX_SAMPLES)
+    return poly.sample(step)[0]
+
+
+def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
+                  source: str, points: Optional[np.ndarray] = None) -> BuiltProgram:
+    """Write the ``options.variant`` program of a curve.
+
+    ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
+    curve, (n, 2)) or, without them, dense samples of ``poly``.
+    """
+    if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
+        raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
+    if options.variant == "polysegment":
+        curve = poly
+        summary = f"{poly.n_segments} segments ({poly.n_lines} lines, {poly.n_arcs} arcs)"
+    else:
+        raw = points if points is not None else dense_points(poly, tolerance_mm)
+        curve = polyline_of(raw, poly.closed, tolerance_mm)
+        summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
+    path = place(curve, placement)
+    metadata = (
+        ("variant", options.variant),
+        ("source", source),
+        ("tolerance_mm", fmt_short(tolerance_mm)),
+        ("curve_length_mm", fmt_short(path.curve_length_mm)),
+        ("lead_in_mm", fmt_short(placement.lead_in_mm)),
+        ("lead_out_mm", fmt_short(placement.lead_out_mm)),
+        ("standoff_mm", fmt_short(placement.standoff_mm)),
+        ("speed_mm_s", fmt_short(options.speed_mm_s)),
+        ("accuracy_mm", fmt_short(options.accuracy_mm)),
+        ("gun_signal", str(options.gun_signal)),
+        ("frame", str(placement.frame)),
+        ("closed", "yes" if curve.closed else "no"),
+        ("n_segments", str(curve.n_segments)),
+        ("n_lines", str(curve.n_lines)),
+        ("n_arcs", str(curve.n_arcs)),
+    )
+    plan = ProgramPlan(
+        name=options.name or program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
+        path=path,
+        speed_mm_s=options.speed_mm_s,
+        accuracy_mm=options.accuracy_mm,
+        exact_stop=options.variant == "polyline-stop",
+        approach_mm=options.approach_mm,
+        gun_signal=options.gun_signal,
+        tool=options.tool,
+        metadata=metadata,
+        comments=(f"coatsim {options.variant} program: {summary}, tolerance {fmt_short(tolerance_mm)} mm",),
+    )
+    return BuiltProgram(write_as(plan), plan, curve)

@@ -1,0 +1,52 @@
+"""The common interface of robot-language dialects.
+
+A dialect writes a :class:`ProgramPlan` (what to do, independent of any language) as program
+text and reads program text back into a :class:`~coatsim.program.toolpath.ToolPath`. Kawasaki AS
+is the first; RAPID, KRL or G-code plug in by implementing the same two methods.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+from coatsim.program.placement import Frame, PlacedPath
+from coatsim.program.toolpath import ToolPath
+
+
+@dataclass(frozen=True, eq=False)
+class ProgramPlan:
+    """Everything a coating program says, before it is written in a language.
+
+    ``path`` is sprayed from its start to its end; the program approaches its start from
+    ``approach_mm`` back along the tool axis and departs the same distance after its end.
+    ``exact_stop`` asks for a stop at every programmed point (no blending).
+    ``metadata`` pairs are written as machine-readable header comments and come back in
+    ``ToolPath.metadata``; ``comments`` are free header lines for people.
+    """
+
+    name: str
+    path: PlacedPath
+    speed_mm_s: float
+    accuracy_mm: float
+    exact_stop: bool
+    approach_mm: float
+    gun_signal: int
+    tool: Frame
+    metadata: tuple[tuple[str, str], ...] = ()
+    comments: tuple[str, ...] = ()
+
+
+class Dialect(Protocol):
+    """A robot language coatsim can write and read."""
+
+    name: str
+    suffix: str
+
+    def write(self, plan: ProgramPlan) -> str:
+        """Complete program text for ``plan`` (deterministic)."""
+        ...
+
+    def read(self, text: str, source: str, gun_signal: int = 1) -> ToolPath:
+        """The ToolPath the program text makes the robot execute; InputError on any defect."""
+        ...
