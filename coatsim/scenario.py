@@ -18,6 +18,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
+from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
 
 VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
@@ -116,25 +117,29 @@ class RobotSpec(_Strict):
     model: str = "default"
 
 
-class FootprintSpec(_Strict):
-    """Stationary spray footprint at the stand-off: a round Gaussian of deviation sigma."""
-
-    kind: Literal["gaussian"] = "gaussian"
-    sigma_mm: Positive = 5.0
-
-
 class GunSpec(_Strict):
     """Spray gun: stand-off along the surface normal, footprint, deposited volume rate Q,
     the thickness the job aims for, the output signal that opens the gun, and the tool roll
     about the spray axis (fixed, or turning with the path when ``follow_tangent``)."""
 
     standoff_mm: Positive = 100.0
-    footprint: FootprintSpec = Field(default_factory=FootprintSpec)
+    footprint: str = Field("gaussian:sigma=5", description="gaussian:sigma=S, elliptic:sx=A,sy=B, beta:radius=R,beta=B, "
+                           "double-beta:a=A,b=B,beta1=P,beta2=Q or table:FILE.csv (mm; FILE relative to the scenario)")
     flow_mm3_s: Positive = 40.0
     target_thickness_um: Positive = 10.0
     signal: Annotated[int, Field(ge=1, le=999)] = 1
     roll_deg: float = 0.0
     follow_tangent: bool = False
+
+    @field_validator("footprint")
+    @classmethod
+    def _footprint(cls, spec: str) -> str:
+        if not spec.strip().lower().startswith("table:"):
+            try:
+                parse_footprint_spec(spec)
+            except InputError as exc:
+                raise ValueError(str(exc)) from None
+        return spec
 
 
 class MotionSpec(_Strict):

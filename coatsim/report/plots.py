@@ -1,4 +1,5 @@
-"""Report figures as PNG bytes: segmentation, θ, speed profiles, thickness maps and sections.
+"""Report figures as PNG bytes: segmentation, θ and speed profiles (the thickness maps and
+cross-sections come from :mod:`coatsim.spray.outputs`).
 
 Every function takes plain arrays, draws with matplotlib's Agg backend (imported here, inside
 the functions, so importing coatsim stays light) and returns PNG bytes without a timestamp,
@@ -142,76 +143,4 @@ def speed_figure(profiles: Mapping[str, SpeedProfile], commanded_mm_s: float, cu
     ax.set_ylim(0, 1.15 * max(commanded_mm_s, max(float(np.nanmax(p.speed_mm_s)) for p in profiles.values())))
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
-    return _png(fig)
-
-
-@dataclass(frozen=True, eq=False)
-class ThicknessMap:
-    """Per-vertex thickness (µm) on a surface, drawn in its 2-D ``view`` coordinates."""
-
-    view: np.ndarray
-    faces: np.ndarray
-    thickness_um: np.ndarray
-    labels: tuple[str, str]
-
-
-def _crop(maps: Sequence[ThicknessMap], margin: float) -> tuple[np.ndarray, np.ndarray]:
-    """Bounding box of the coated area (thickness above 1 % of the peak) plus a margin."""
-    boxes = []
-    for m in maps:
-        coated = m.thickness_um > 0.01 * max(float(m.thickness_um.max()), 1e-12)
-        pts = m.view[coated] if coated.any() else m.view
-        boxes.append((pts.min(axis=0), pts.max(axis=0)))
-    lo = np.min([b[0] for b in boxes], axis=0) - margin
-    hi = np.max([b[1] for b in boxes], axis=0) + margin
-    return lo, hi
-
-
-def heatmap_figure(maps: Mapping[str, ThicknessMap], target_um: float) -> tuple[bytes, float]:
-    """Thickness maps side by side on one colour scale (0 to the largest 99.5th percentile
-    over the variants; higher values saturate). Returns (PNG, top of the scale in µm)."""
-    plt = _pyplot()
-    from matplotlib.colors import Normalize
-
-    items = list(maps.items())
-    top = max(float(np.percentile(m.thickness_um, 99.5)) for _, m in items)
-    top = max(top, target_um * 1e-3, 1e-9)
-    norm = Normalize(0.0, top)
-    lo, hi = _crop([m for _, m in items], margin=10.0)
-    fig, axes = plt.subplots(1, len(items), figsize=(5.2 * len(items), 4.8), squeeze=False, constrained_layout=True)
-    image = None
-    for ax, (name, m) in zip(axes[0], items):
-        image = ax.tripcolor(m.view[:, 0], m.view[:, 1], m.faces, m.thickness_um, shading="gouraud",
-                             cmap="viridis", norm=norm, rasterized=True)
-        ax.set_title(name, color=_colour(name))
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
-        ax.set_aspect("equal")
-        ax.set_xlabel(m.labels[0])
-        ax.set_ylabel(m.labels[1])
-    bar = fig.colorbar(image, ax=list(axes[0]), shrink=0.85, extend="max")
-    bar.set_label("coating thickness (µm)")
-    return _png(fig), top
-
-
-@dataclass(frozen=True, eq=False)
-class CrossSection:
-    """Thickness (µm) at positions (mm) along a straight line across the coat."""
-
-    position_mm: np.ndarray
-    thickness_um: np.ndarray
-
-
-def cross_section_figure(sections: Mapping[str, CrossSection], target_um: float, where: str) -> bytes:
-    """Thickness along one line for every variant on one plot, with the target thickness."""
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(11, 4.2))
-    for name, sec in sections.items():
-        ax.plot(sec.position_mm, sec.thickness_um, color=_colour(name), lw=1.2, label=name)
-    ax.axhline(target_um, color="black", ls="--", lw=0.8, label=f"target {target_um:g} µm")
-    ax.set_xlabel(f"position along {where} (mm)")
-    ax.set_ylabel("coating thickness (µm)")
-    ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
     return _png(fig)

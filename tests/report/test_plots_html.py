@@ -46,17 +46,6 @@ def test_figures_are_png_and_deterministic() -> None:
     s = np.linspace(0, 100, 200)
     profile = plots.SpeedProfile(s, np.minimum(200.0, 20 * np.sqrt(s + 1)), s > 5)
     assert plots.speed_figure({"polysegment": profile, "polyline-stop": profile}, 200.0, (20.0, 80.0)).startswith(PNG_MAGIC)
-    gx, gy = np.meshgrid(np.linspace(-50, 50, 21), np.linspace(-30, 30, 13))
-    view = np.column_stack((gx.ravel(), gy.ravel()))
-    from matplotlib.tri import Triangulation
-
-    faces = Triangulation(view[:, 0], view[:, 1]).triangles
-    maps = {v: plots.ThicknessMap(view, faces, np.exp(-(view[:, 1] ** 2) / 50) * k, ("x (mm)", "y (mm)"))
-            for v, k in (("polysegment", 10.0), ("polyline-stop", 14.0))}
-    png, top = plots.heatmap_figure(maps, 10.0)
-    assert png.startswith(PNG_MAGIC) and 10.0 < top <= 14.0
-    section = plots.CrossSection(np.linspace(-30, 30, 61), 10 * np.exp(-np.linspace(-30, 30, 61) ** 2 / 50))
-    assert plots.cross_section_figure({"polysegment": section}, 10.0, "y").startswith(PNG_MAGIC)
 
 
 def _variants() -> dict:
