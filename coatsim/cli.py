@@ -64,6 +64,51 @@ def coat(
     typer.echo(f"wrote {', '.join(str(f) for f in files)}")
 
 
+@app.command()
+def program(
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY), builtin:NAME, or a polysegment JSON (coatsim segment -o)."),
+    tol: Optional[float] = typer.Option(None, "--tol", help="Tolerance sigma, mm (required for a curve; default for a JSON: its tolerance_mm)."),
+    speed: float = typer.Option(500.0, "--speed", help="Programmed tool speed, mm/s."),
+    standoff: float = typer.Option(100.0, "--standoff", help="Stand-off of the TCP above the surface, mm."),
+    frame: str = typer.Option("700,0,200,0,0,0", "--frame", help="Workpiece frame x,y,z,o,a,t in the robot base frame (mm, deg O-A-T)."),
+    variant: str = typer.Option("polysegment", "--variant", help="polysegment | polyline-stop | polyline-blend."),
+    accuracy: float = typer.Option(1.0, "--accuracy", help="ACCURACY (blend zone radius), mm."),
+    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed)."),
+    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed)."),
+    approach: float = typer.Option(50.0, "--approach", help="Approach and depart distance along the tool axis, mm."),
+    roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
+    follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it)."),
+    center: Optional[bool] = typer.Option(None, "--center/--no-center", help="Move the curve's bounding-box centre to the frame origin [default: on for builtin curves]."),
+    gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
+    name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
+    output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+) -> None:
+    """Write the Kawasaki AS program (polysegment or polyline variant) of a curve."""
+    from coatsim.program.build import ProgramOptions
+    from coatsim.program.run import program_summary, run_program
+
+    options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
+                             gun_signal=gun, name=name)
+    built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
+                        lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
+                        output=output)
+    if output is None:
+        typer.echo(built.text, nl=False)
+    typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
+
+
+@app.command("check-program")
+def check_program(
+    path: Path = typer.Argument(..., help="Kawasaki AS program file."),
+    gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
+) -> None:
+    """Parse and interpret an AS program; report steps, poses, path length and problems."""
+    from coatsim.program.check import check_program as check
+    from coatsim.program.run import check_summary
+
+    typer.echo(check_summary(check(path, gun_signal=gun)))
+
+
 def main() -> None:
     """Console entry point: run the app, turning CoatsimError into a one-line error."""
     try:

@@ -21,11 +21,13 @@ from coatsim.program.oat import matrix_to_oat
 from coatsim.program.placement import Frame, PlacedArc, PlacedLine
 from coatsim.program.toolpath import Pose
 
-# Coordinates are the program's only record of the path. 4 decimals in mm round each
-# coordinate by <= 5e-5 mm (<= 8.7e-5 mm in space), which keeps the path read back from the
-# text within 1e-4 mm of the placed path; 6 decimals in degrees round an angle by <= 5e-7 deg
-# (9e-9 rad), far below any joint resolution. (Real controllers save 3 decimals.)
-MM_DECIMALS = 4
+# Coordinates are the program's only record of the path, and the twin executes the text.
+# Rounding a coordinate by e tilts the tangent of a segment of length L by up to ~10 e / L
+# (three-point arcs are the worst case). 4 decimals would keep positions within 1e-4 mm but
+# tilt the tangent of a 1 mm arc by ~2e-4 rad; 7 decimals (e <= 5e-8 mm) keep positions
+# within 1e-7 mm and tangents within 1e-6 rad down to 0.5 mm segments. 6 decimals in degrees
+# round an angle by <= 5e-7 deg (9e-9 rad). (Controllers save 3 decimals and store less.)
+MM_DECIMALS = 7
 DEG_DECIMALS = 6
 # Longest arc one C1MOVE/C2MOVE pair may sweep; a pair cannot describe 180 deg or more reliably.
 MAX_ARC_SWEEP_DEG = 170.0

@@ -1,0 +1,56 @@
+"""What ``coatsim program`` reads: a curve (file or ``builtin:NAME``, segmented here) or a
+polysegment JSON written by ``coatsim segment``."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+
+from coatsim.errors import InputError
+from coatsim.geometry.polysegment import Polysegment
+
+
+@dataclass(frozen=True, eq=False)
+class ProgramInput:
+    """The curve to program: its polysegment, the input points if any (n, 2), the tolerance."""
+
+    polysegment: Polysegment
+    points: Optional[np.ndarray]
+    tolerance_mm: float
+    source: str
+    builtin: bool
+
+
+def _json_tolerance(path: str) -> Optional[float]:
+    try:
+        value = json.loads(Path(path).read_text(encoding="utf-8")).get("tolerance_mm")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return float(value) if isinstance(value, (int, float)) and math.isfinite(value) and value > 0 else None
+
+
+def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0) -> ProgramInput:
+    """Read ``spec``; a curve is segmented within ``tol`` mm (required), a polysegment JSON is
+    taken as is (``tol`` defaults to the file's ``tolerance_mm``)."""
+    if tol is not None and not (math.isfinite(tol) and tol > 0.0):
+        raise InputError(f"--tol {tol}: must be a finite number > 0 (mm)")
+    if spec.lower().endswith(".json"):
+        from coatsim.geometry import read_polysegment_json
+
+        poly = read_polysegment_json(spec)
+        tolerance = tol if tol is not None else _json_tolerance(spec)
+        if tolerance is None:
+            raise InputError(f"{spec}: no tolerance_mm in the file; give --tol MM")
+        return ProgramInput(poly, None, tolerance, spec, False)
+    if tol is None:
+        raise InputError(f"{spec}: --tol MM is required to segment a curve")
+    from coatsim.geometry import load_curve, segment_curve
+
+    curve = load_curve(spec)
+    seg = segment_curve(curve, tol, corner_deg=corner_deg)
+    return ProgramInput(seg.polysegment, curve.points, tol, spec, spec.startswith("builtin:"))

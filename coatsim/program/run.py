@@ -1,0 +1,58 @@
+"""The ``coatsim program`` stage function: input -> program file, and its one-paragraph summary."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+from coatsim.fileio import write_text
+from coatsim.program.as_parser import parse_as
+from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
+from coatsim.program.check import ProgramCheck
+from coatsim.program.inputs import load_program_input
+from coatsim.program.placement import Frame, Placement, centering_offset
+
+
+def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
+                lead_in_mm: float, lead_out_mm: float, roll_deg: float = 0.0, follow_tangent: bool = False,
+                center: Optional[bool] = None, output: Optional[Path] = None) -> BuiltProgram:
+    """Load ``spec``, place it, write the program (to ``output`` if given).
+
+    ``center`` None centres built-in curves on the frame origin and leaves file curves where
+    their coordinates put them.
+    """
+    inp = load_program_input(spec, tol)
+    centred = inp.builtin if center is None else center
+    placement = Placement(
+        frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg, follow_tangent=follow_tangent,
+        lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm,
+        offset_xy=centering_offset(inp.polysegment) if centred else (0.0, 0.0),
+    )
+    built = build_program(inp.polysegment, placement, options, tolerance_mm=inp.tolerance_mm,
+                          source=inp.source, points=inp.points)
+    if output is not None:
+        write_text(output, built.text)
+    return built
+
+
+def program_summary(built: BuiltProgram) -> str:
+    """Two lines describing a written program."""
+    plan, curve = built.plan, built.curve
+    n_steps = len(parse_as(built.text).programs[0].statements)
+    return (
+        f"program {plan.name}: {dict(plan.metadata)['variant']}, {curve.n_lines} lines + {curve.n_arcs} arcs, "
+        f"{n_steps} steps, {built.text.count(chr(10))} lines of text\n"
+        f"path: curve {plan.path.curve_length_mm:.3f} mm + lead-in {plan.path.lead_in_mm:g} + lead-out "
+        f"{plan.path.lead_out_mm:g} mm at stand-off {plan.path.standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s"
+    )
+
+
+def check_summary(check: ProgramCheck) -> str:
+    """The report of ``coatsim check-program``: counts, lengths, then one line per problem."""
+    lines = [
+        f"{check.source}: program {check.program}: {check.n_steps} steps, {check.n_poses} poses; moves: "
+        f"{check.n_joint_moves} joint, {check.n_linear_moves} linear, {check.n_arc_moves} arc",
+        f"path length {check.path_length_mm:.3f} mm (sprayed {check.spray_length_mm:.3f} mm)",
+    ]
+    lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
+    return "\n".join(lines)
