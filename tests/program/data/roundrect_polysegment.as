@@ -1,0 +1,61 @@
+.PROGRAM roundrect()
+  ; coatsim polysegment program: 8 segments (4 lines, 4 arcs), tolerance 0.1 mm
+  ; coatsim: variant=polysegment
+  ; coatsim: source=builtin:roundrect
+  ; coatsim: tolerance_mm=0.1
+  ; coatsim: curve_length_mm=442.8318531
+  ; coatsim: lead_in_mm=30
+  ; coatsim: lead_out_mm=30
+  ; coatsim: standoff_mm=100
+  ; coatsim: speed_mm_s=500
+  ; coatsim: accuracy_mm=1
+  ; coatsim: gun_signal=1
+  ; coatsim: frame=700,0,200,0,0,0
+  ; coatsim: closed=yes
+  ; coatsim: n_segments=8
+  ; coatsim: n_lines=4
+  ; coatsim: n_arcs=4
+  BASE NULL                    ; poses are in the robot base frame
+  TOOL TRANS(0.0000000,0.0000000,200.0000000,0.000000,0.000000,0.000000) ; spray gun TCP
+  SPEED 500 MM/S ALWAYS
+  ACCURACY 1 ALWAYS
+  CP ON                        ; blend
+  JAPPRO p0000, 50             ; above the start
+  LMOVE p0000                  ; down to the stand-off
+  BREAK                        ; at rest before the gun opens
+  SIGNAL 1                     ; gun on
+  LMOVE p0001                  ; lead-in
+  LMOVE p0002                  ; segment 1
+  C1MOVE p0003                 ; segment 2, arc via
+  C2MOVE p0004                 ; arc end
+  LMOVE p0005                  ; segment 3
+  C1MOVE p0006                 ; segment 4, arc via
+  C2MOVE p0007                 ; arc end
+  LMOVE p0008                  ; segment 5
+  C1MOVE p0009                 ; segment 6, arc via
+  C2MOVE p0010                 ; arc end
+  LMOVE p0011                  ; segment 7
+  C1MOVE p0012                 ; segment 8, arc via
+  C2MOVE p0013                 ; arc end
+  LMOVE p0014                  ; lead-out
+  BREAK                        ; at rest before the gun closes
+  SIGNAL -1                    ; gun off
+  LDEPART 50                   ; back along the tool axis
+.END
+.TRANS
+p0000 605.0000000 -40.0000000 300.0000000 0.000000 180.000000 0.000000
+p0001 635.0000000 -40.0000000 300.0000000 0.000000 180.000000 0.000000
+p0002 765.0000000 -40.0000000 300.0000000 0.000000 180.000000 0.000000
+p0003 772.0710678 -37.0710678 300.0000000 0.000000 180.000000 0.000000
+p0004 775.0000000 -30.0000000 300.0000000 0.000000 180.000000 0.000000
+p0005 775.0000000 30.0000000 300.0000000 0.000000 180.000000 0.000000
+p0006 772.0710678 37.0710678 300.0000000 0.000000 180.000000 0.000000
+p0007 765.0000000 40.0000000 300.0000000 0.000000 180.000000 0.000000
+p0008 635.0000000 40.0000000 300.0000000 0.000000 180.000000 0.000000
+p0009 627.9289322 37.0710678 300.0000000 0.000000 180.000000 0.000000
+p0010 625.0000000 30.0000000 300.0000000 0.000000 180.000000 0.000000
+p0011 625.0000000 -30.0000000 300.0000000 0.000000 180.000000 0.000000
+p0012 627.9289322 -37.0710678 300.0000000 0.000000 180.000000 0.000000
+p0013 635.0000000 -40.0000000 300.0000000 0.000000 180.000000 0.000000
+p0014 665.0000000 -40.0000000 300.0000000 0.000000 180.000000 0.000000
+.END
