@@ -39,7 +39,7 @@ def schema() -> None:
 def coat(
     trajectory: Path = typer.Argument(..., help="Trajectory CSV (coatsim execute / run)."),
     surface: str = typer.Option(..., "--surface", help="plate:WxH@x,y,z | cylinder:RxL@x,y,z[,axis] | MESH.stl/ply/obj/glb[@x,y,z] (mm, base frame)."),
-    spacing: Optional[float] = typer.Option(None, "--spacing", help="Mesh vertex spacing, mm [default: footprint sigma/3]."),
+    spacing: Optional[float] = typer.Option(None, "--spacing", help="Mesh vertex spacing, mm [default: sigma/3, R/20 for beta footprints]."),
     footprint: str = typer.Option("gaussian:sigma=5", "--footprint", help="gaussian:sigma= | elliptic:sx=,sy= | beta:radius=,beta= | double-beta:a=,b=,beta1=,beta2= | table:FILE.csv (mm)."),
     rate: float = typer.Option(40.0, "--rate", help="Deposited volume rate Q, mm3/s."),
     standoff: float = typer.Option(100.0, "--standoff", help="Reference stand-off h0 at which the footprint is given, mm."),

@@ -109,10 +109,10 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
              target_um: float | None = None, roi: str = "band", edge_band_mm: float | None = None,
              de_exponent: float = 1.0, occlusion: bool = False, section: str | None = None,
              outdir: str | Path = "out/coat") -> tuple[CoatingResult, list[Path]]:
-    """``coatsim coat``: read, build, deposit, measure and write; spacing defaults to σ/3."""
+    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default)."""
     fp = parse_footprint_spec(footprint)
     model = SprayModel(fp, rate, standoff, de_exponent, occlusion)
-    spacing = fp.sigma_mm / 3 if spacing is None else spacing
+    spacing = fp.spacing_mm if spacing is None else spacing
     line = parse_section(section) if section is not None else None
     surface = parse_surface_spec(surface_spec, spacing)
     log = read_trajectory_csv(trajectory)
