@@ -1,0 +1,153 @@
+"""The execute stage: ToolPath -> IK -> timing -> MuJoCo playback -> trajectory log + metrics."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from coatsim.errors import ExecutionError, InputError
+from coatsim.program.toolpath import ToolPath
+from coatsim.robot.cell import Cell, load_cell
+from coatsim.robot.ik import Residual, Tracker, joint_path_events
+from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
+from coatsim.robot.playback import play
+from coatsim.robot.primitives3d import line
+from coatsim.robot.reference import ReferencePath, build_reference
+from coatsim.robot.sampling import CartesianPiece, JointPiece, plan_pieces, step_label
+from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
+from coatsim.robot.trajectory_log import TrajectoryLog
+
+_WINDOW_MM = 10.0  # progress search window around the commanded point (plus blend radii)
+
+
+@dataclass(frozen=True, eq=False)
+class Execution:
+    """Result of executing one program: the log, its metrics, the joint-limit and singularity
+    warnings by program step, the largest IK residual, and wall time per phase (s)."""
+
+    log: TrajectoryLog
+    metrics: MotionMetrics
+    events: tuple[str, ...]
+    residual: Residual
+    reference: ReferencePath
+    wall: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass
+class _Segment:
+    """A timed piece placed on the global timeline, with what the log needs about it."""
+
+    timed: TimedPiece
+    progress: np.ndarray  # commanded progress (mm) per row
+    spray: np.ndarray     # commanded spray flag per row
+
+
+def _metadata_mm(toolpath: ToolPath, key: str) -> float:
+    raw = toolpath.metadata.get(key)
+    if raw is None:
+        return 0.0
+    try:
+        value = float(raw)
+    except ValueError:
+        raise InputError(f"{toolpath.name}: header field {key}={raw!r} is not a number (mm)") from None
+    if not (math.isfinite(value) and value >= 0):
+        raise InputError(f"{toolpath.name}: header field {key}={raw!r} must be a length >= 0 mm")
+    return value
+
+
+def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float, float]:
+    """Progress interval of the curve proper and its programmed speed."""
+    cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
+    chosen = [i for i in cartesian if toolpath.moves[i].spray] or cartesian
+    if not chosen:
+        raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
+    a = ref.move_span(chosen[0])[0] + _metadata_mm(toolpath, "lead_in_mm")
+    b = ref.move_span(chosen[-1])[1] - _metadata_mm(toolpath, "lead_out_mm")
+    if b <= a:
+        raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
+    inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
+    speed = max(toolpath.moves[i].settings.speed_mm_s for i in inside)
+    return a, b, float(speed)
+
+
+def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
+    """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration."""
+    cell = cell or load_cell()
+    wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
+    t_start = time.perf_counter()
+    pieces = plan_pieces(toolpath, step_mm)
+    tracker = Tracker(cell)
+    fk = mujoco.MjData(cell.model)
+    q_now = cell.home.copy()
+    segments: list[_Segment] = []
+    chunks: list = []
+    events: list[str] = []
+    worst = [0.0, 0.0, 0]
+    offset = 0.0
+    max_blend = 0.0
+    for piece in pieces:
+        if isinstance(piece, JointPiece):
+            label = step_label(toolpath, piece.move)
+            t0 = time.perf_counter()
+            q_goal = tracker.solve_pose(q_now, piece.target.position, piece.target.rotation, label)
+            wall["ik_s"] += time.perf_counter() - t0
+            if np.max(np.abs(q_goal - q_now)) < 1e-9:
+                continue
+            t0 = time.perf_counter()
+            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label)
+            wall["timing_s"] += time.perf_counter() - t0
+            tcp = np.array([cell.forward(fk, q)[0] for q in timed.q])
+            chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
+            owner = -1 if piece.move is None else piece.move
+            chunks.append((chords, (owner,) * len(chords)))
+            along = np.concatenate(([0.0], np.cumsum([c.length for c in chords])))
+            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray)))
+            offset += float(along[-1])
+            q_now = q_goal
+            continue
+        labels = [step_label(toolpath, int(m)) for m in piece.move]
+        step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
+        t0 = time.perf_counter()
+        qs, wrist, res = tracker.track(q_now, piece.s, piece.position, piece.rotation, step_time,
+                                       lambda i: labels[i])
+        wall["ik_s"] += time.perf_counter() - t0
+        worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
+        events.extend(e for e in joint_path_events(cell, qs, wrist, labels) if e not in events)
+        t0 = time.perf_counter()
+        timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0])
+        wall["timing_s"] += time.perf_counter() - t0
+        idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
+        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx]))
+        chunks.append((piece.reference, piece.reference_moves))
+        offset += float(sum(p.length for p in piece.reference))
+        max_blend = max(max_blend, max(toolpath.moves[m].settings.accuracy_mm for m in piece.reference_moves))
+        q_now = qs[-1]
+    if not segments:
+        raise ExecutionError(f"{toolpath.name}: the program moves the tool nowhere")
+
+    # one timeline on the simulation grid; consecutive pieces share their rest point
+    keep = [slice(None)] + [slice(1, None)] * (len(segments) - 1)
+    cat = lambda attr: np.concatenate([getattr(s.timed, attr)[k] for s, k in zip(segments, keep)])  # noqa: E731
+    q, qd, qdd = cat("q"), cat("qd"), cat("qdd")
+    hint = np.maximum.accumulate(np.concatenate([s.progress[k] for s, k in zip(segments, keep)]))
+    spray = np.concatenate([s.spray[k] for s, k in zip(segments, keep)])
+
+    t0 = time.perf_counter()
+    run = play(cell, q, qd, qdd)
+    wall["playback_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    ref = build_reference(chunks)
+    dist, progress, curvature = ref.project(run.tcp, hint, _WINDOW_MM + 2 * max_blend)
+    log = TrajectoryLog(t=run.t, position=run.tcp, axis=run.axis, speed=run.speed, spray=spray,
+                        progress=progress, path_error=dist, q=run.q)
+    a, b, speed = _curve_proper(toolpath, ref)
+    metrics = motion_metrics(log, (a, b), speed, curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max,
+                             (worst[0], worst[1]))
+    wall["metrics_s"] = time.perf_counter() - t0
+    wall["total_s"] = time.perf_counter() - t_start
+    return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
+                     wall=wall)

@@ -1,0 +1,104 @@
+"""Motion metrics of one executed program, from the logged trajectory over the curve proper.
+
+The curve proper is the progress interval of the spray-on moves (all Cartesian moves when none
+sprays) without the lead-in and lead-out lengths named in the program header. Its window in
+time runs from the first log row at or past its start to the first row at or past its end.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from coatsim.errors import ExecutionError
+from coatsim.robot.trajectory_log import TrajectoryLog
+
+AT_SPEED = 0.95  # fraction of the programmed speed that counts as "at speed"
+STOPPED = 0.05   # below this fraction of the programmed speed the tool counts as stopped
+
+
+@dataclass(frozen=True)
+class MotionMetrics:
+    """Figures of one run; names carry their units (see the README metrics table)."""
+
+    programmed_speed_mm_s: float
+    curve_length_mm: float
+    cycle_time_s: float
+    ideal_time_s: float
+    total_time_s: float
+    mean_speed_mm_s: float
+    min_speed_mm_s: float
+    speed_cv: float
+    fraction_at_speed: float
+    fraction_at_speed_feasible: float
+    stops: int
+    max_path_error_mm: float
+    rms_path_error_mm: float
+    max_joint_speed_ratio: float
+    max_joint_accel_ratio: float
+    max_ik_residual_mm: float
+    max_ik_residual_deg: float
+
+    def as_dict(self) -> dict[str, float | int]:
+        return {k: (round(v, 6) if isinstance(v, float) else v) for k, v in asdict(self).items()}
+
+
+def _runs(mask: np.ndarray) -> int:
+    """Number of maximal runs of True in ``mask``."""
+    m = mask.astype(np.int8)
+    return int(m[0] + np.count_nonzero(np.diff(m) == 1)) if len(m) else 0
+
+
+def motion_metrics(
+    log: TrajectoryLog,
+    curve: tuple[float, float],
+    speed_mm_s: float,
+    path_curvature: np.ndarray,
+    tool_accel_mm_s2: float,
+    v_max: np.ndarray,
+    a_max: np.ndarray,
+    ik_residual: tuple[float, float],
+) -> MotionMetrics:
+    """Metrics over the curve proper ``curve`` = (start, end) progress in mm.
+
+    ``path_curvature`` (n,) is the programmed curvature at each row's closest point; the
+    "feasible" fraction counts only rows where speed^2 * curvature <= ``tool_accel_mm_s2``.
+    """
+    a, b = curve
+    i0 = int(np.searchsorted(np.maximum.accumulate(log.progress), a, side="left"))
+    reached = np.flatnonzero(log.progress[i0:] >= b - 1e-6)
+    if i0 >= len(log) or not len(reached):
+        raise ExecutionError(f"the simulated tool never covered the curve proper ({a:.1f} to {b:.1f} mm of the path)")
+    i1 = i0 + int(reached[0])
+    w = slice(i0, i1 + 1)
+    speed = log.speed[w]
+    step = np.linalg.norm(np.diff(log.position[w], axis=0), axis=1)
+    fast = speed[:-1] >= AT_SPEED * speed_mm_s
+    feasible = (speed_mm_s**2 * path_curvature[w][:-1]) <= tool_accel_mm_s2
+    travelled = float(step.sum())
+    dt = float(np.median(np.diff(log.t)))
+    qd = np.gradient(log.q, dt, axis=0)
+    qdd = np.gradient(qd, dt, axis=0)
+    err = log.path_error[w]
+    mean = float(speed.mean())
+    return MotionMetrics(
+        programmed_speed_mm_s=float(speed_mm_s),
+        curve_length_mm=float(b - a),
+        cycle_time_s=float(log.t[i1] - log.t[i0]),
+        ideal_time_s=float((b - a) / speed_mm_s),
+        total_time_s=float(log.t[-1]),
+        mean_speed_mm_s=mean,
+        min_speed_mm_s=float(speed.min()),
+        speed_cv=float(speed.std() / mean) if mean > 0 else 0.0,
+        fraction_at_speed=float(step[fast].sum() / travelled) if travelled > 0 else 0.0,
+        fraction_at_speed_feasible=float(step[fast & feasible].sum() / step[feasible].sum())
+        if step[feasible].sum() > 0 else 0.0,
+        stops=_runs(speed < STOPPED * speed_mm_s),
+        max_path_error_mm=float(err.max()),
+        rms_path_error_mm=float(np.sqrt(np.mean(err**2))),
+        max_joint_speed_ratio=float(np.max(np.abs(qd) / v_max)),
+        max_joint_accel_ratio=float(np.max(np.abs(qdd) / a_max)),
+        max_ik_residual_mm=float(ik_residual[0]),
+        max_ik_residual_deg=float(ik_residual[1]),
+    )

@@ -1,0 +1,248 @@
+"""ToolPath -> dense Cartesian samples, split into rest-to-rest pieces.
+
+Controller semantics modelled here (see the README's robot section):
+- a move with ``stop_at_end`` brings the tool to rest at its end point (piece boundary);
+- a joint move (JMOVE) starts and ends at rest;
+- where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the
+  tool runs straight through;
+- at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
+  the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
+  ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
+  cubic blend tangent to both moves (for two lines: the classic parabolic blend).
+Samples are at most ``step`` mm apart and include every primitive's (trimmed) end points exactly.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from coatsim.errors import ExecutionError
+from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
+from coatsim.robot.primitives3d import Primitive, arc_through, line
+
+TANGENT_TOL_RAD = math.radians(0.5)
+MIN_MOVE_MM = 1e-6
+
+
+@dataclass(frozen=True, eq=False)
+class CartesianPiece:
+    """One rest-to-rest stretch of Cartesian motion, n samples.
+
+    s (n,) mm from the piece start along the executed (blended) path; position (n, 3) mm;
+    rotation (n, 3, 3); tangent (n, 3); curvature (n,) 1/mm; speed (n,) programmed speed mm/s;
+    move (n,) index of the program move; spray (n,) bool; ref_s (n,) mm along this piece's
+    programmed reference path ``reference`` (the taught lines and arcs, corners unrounded).
+    """
+
+    s: np.ndarray
+    position: np.ndarray
+    rotation: np.ndarray
+    tangent: np.ndarray
+    curvature: np.ndarray
+    speed: np.ndarray
+    move: np.ndarray
+    spray: np.ndarray
+    ref_s: np.ndarray
+    reference: tuple[Primitive, ...]
+    reference_moves: tuple[int, ...]
+
+    @property
+    def length(self) -> float:
+        return float(self.s[-1])
+
+
+@dataclass(frozen=True, eq=False)
+class JointPiece:
+    """A joint-interpolated move to ``target`` (rest to rest); ``move`` is None for the
+    implicit move from home to the start of the first Cartesian move."""
+
+    target: Pose
+    speed_mm_s: float
+    spray: bool
+    move: int | None
+
+
+Piece = CartesianPiece | JointPiece
+
+
+@dataclass(frozen=True)
+class _Span:
+    """One Cartesian move resolved to a primitive with its end orientations."""
+
+    index: int
+    prim: Primitive
+    r0: np.ndarray
+    r1: np.ndarray
+    speed: float
+    spray: bool
+    accuracy: float
+    stop: bool
+
+
+def step_label(toolpath: ToolPath, index: int | None) -> str:
+    """How error messages name a program step: source line and instruction kind."""
+    if index is None:
+        return f"{toolpath.name}: start (joint move from home)"
+    move = toolpath.moves[index]
+    kind = {"joint": "joint move", "line": "LMOVE", "arc": "C1MOVE/C2MOVE"}[move.kind]
+    return f"{toolpath.name}: line {move.line} ({kind})"
+
+
+def _span(toolpath: ToolPath, index: int) -> _Span:
+    move = toolpath.moves[index]
+    a = np.asarray(move.start.position, float)
+    b = np.asarray(move.end.position, float)
+    if isinstance(move, CircularMove):
+        prim = arc_through(a, np.asarray(move.via.position, float), b)
+        if prim is None:
+            raise ExecutionError(
+                f"{step_label(toolpath, index)}: start, via and end points are collinear or coincide, "
+                "so they define no circle; split a full circle into two C1MOVE/C2MOVE pairs"
+            )
+    else:
+        prim = line(a, b)
+    s = move.settings
+    if not s.speed_mm_s > 0:
+        raise ExecutionError(f"{step_label(toolpath, index)}: programmed speed must be positive, got {s.speed_mm_s}")
+    return _Span(index, prim, np.asarray(move.start.rotation, float), np.asarray(move.end.rotation, float),
+                 float(s.speed_mm_s), bool(move.spray), max(float(s.accuracy_mm), 0.0), bool(s.stop_at_end))
+
+
+def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Rotations (n, 3, 3) from r0 to r1 at fractions f (n,), along the shortest rotation."""
+    rel = Rotation.from_matrix(r0.T @ r1).as_rotvec()
+    if not np.any(rel):
+        return np.broadcast_to(r0, (len(f), 3, 3)).copy()
+    return r0 @ Rotation.from_rotvec(np.outer(f, rel)).as_matrix()
+
+
+def _uniform(length: float, step: float) -> np.ndarray:
+    n = max(1, int(math.ceil(length / step - 1e-9)))
+    return np.linspace(0.0, length, n + 1)
+
+
+def _blend(a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, d: float, step: float):
+    """Cubic Bezier blend from a (tangent ta) to b (tangent tb) with handles 2d/3.
+
+    Returns samples (points, tangents, curvature, chord-length fraction) at most ``step`` apart,
+    the first sample (a) excluded.
+    """
+    ctrl = np.array([a, a + (2 * d / 3) * ta, b - (2 * d / 3) * tb, b])
+    w = np.linspace(0.0, 1.0, 257)
+    dense = _bezier(ctrl, w, 0)
+    arc = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))))
+    # at least 8 intervals, so the curvature peak of a short blend is resolved for timing
+    s = _uniform(float(arc[-1]), min(step, float(arc[-1]) / 8))[1:]
+    u = np.interp(s, arc, w)
+    d1, d2 = _bezier(ctrl, u, 1), _bezier(ctrl, u, 2)
+    speed = np.linalg.norm(d1, axis=1)
+    curv = np.linalg.norm(np.cross(d1, d2), axis=1) / speed**3
+    pts = _bezier(ctrl, u, 0)
+    pts[-1] = b
+    return pts, d1 / speed[:, None], curv, s / arc[-1], float(arc[-1])
+
+
+def _bezier(ctrl: np.ndarray, u: np.ndarray, order: int) -> np.ndarray:
+    u = u[:, None]
+    p0, p1, p2, p3 = ctrl
+    if order == 0:
+        return (1 - u) ** 3 * p0 + 3 * (1 - u) ** 2 * u * p1 + 3 * (1 - u) * u**2 * p2 + u**3 * p3
+    if order == 1:
+        return 3 * (1 - u) ** 2 * (p1 - p0) + 6 * (1 - u) * u * (p2 - p1) + 3 * u**2 * (p3 - p2)
+    return 6 * (1 - u) * (p2 - 2 * p1 + p0) + 6 * u * (p3 - 2 * p2 + p1)
+
+
+def _heading_change(a: Primitive, b: Primitive) -> float:
+    ta, tb = a.tangents(np.array([a.length]))[0], b.tangents(np.array([0.0]))[0]
+    return float(math.acos(np.clip(ta @ tb, -1.0, 1.0)))
+
+
+def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
+    """Sample a run of Cartesian moves that the controller executes without stopping."""
+    n = len(spans)
+    trims = [0.0] * (n + 1)  # trims[k] = blend half-length at the junction before span k
+    for k in range(1, n):
+        a, b = spans[k - 1], spans[k]
+        if _heading_change(a.prim, b.prim) > TANGENT_TOL_RAD:
+            trims[k] = min(a.accuracy, a.prim.length / 2, b.prim.length / 2)
+    cols: dict[str, list[np.ndarray]] = {k: [] for k in ("p", "r", "t", "c", "v", "m", "y", "rs")}
+    ref_offset = 0.0
+
+    def add(p, r, t, c, v, m, y, rs):
+        for key, val in zip(cols, (p, r, t, c, v, m, y, rs)):
+            cols[key].append(val)
+
+    for k, sp in enumerate(spans):
+        lo, hi = trims[k], sp.prim.length - trims[k + 1]
+        s = lo + _uniform(max(hi - lo, 0.0), step)
+        if k > 0:
+            s = s[1:]  # the first point is the previous blend's (or span's) last sample
+        if len(s):
+            m = len(s)
+            frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
+            add(sp.prim.points(s), _slerp(sp.r0, sp.r1, frac), sp.prim.tangents(s), np.full(m, sp.prim.curvature),
+                np.full(m, sp.speed), np.full(m, sp.index), np.full(m, sp.spray), ref_offset + s)
+        if k + 1 < n and trims[k + 1] > 0:
+            nxt, d = spans[k + 1], trims[k + 1]
+            a = sp.prim.points(np.array([hi]))[0]
+            ta = sp.prim.tangents(np.array([hi]))[0]
+            b = nxt.prim.points(np.array([d]))[0]
+            tb = nxt.prim.tangents(np.array([d]))[0]
+            pts, tan, curv, frac, _ = _blend(a, ta, b, tb, d, step)
+            ra = _slerp(sp.r0, sp.r1, np.array([hi / sp.prim.length]))[0]
+            rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
+            first = frac <= 0.5
+            add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
+                np.where(first, sp.index, nxt.index), np.where(first, sp.spray, nxt.spray),
+                ref_offset + hi + frac * (sp.prim.length - hi + d))
+        ref_offset += sp.prim.length
+    p = np.vstack(cols["p"])
+    s_exec = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
+    return CartesianPiece(
+        s=s_exec, position=p, rotation=np.concatenate(cols["r"]), tangent=np.vstack(cols["t"]),
+        curvature=np.concatenate(cols["c"]), speed=np.concatenate(cols["v"]),
+        move=np.concatenate(cols["m"]).astype(int), spray=np.concatenate(cols["y"]).astype(bool),
+        ref_s=np.concatenate(cols["rs"]), reference=tuple(sp.prim for sp in spans),
+        reference_moves=tuple(sp.index for sp in spans),
+    )
+
+
+def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
+    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm."""
+    if not step > 0:
+        raise ExecutionError(f"sampling step must be positive, got {step}")
+    if not toolpath.moves:
+        raise ExecutionError(f"{toolpath.name}: the program has no motion")
+    pieces: list[Piece] = []
+    chain: list[_Span] = []
+
+    def flush() -> None:
+        if chain:
+            pieces.append(_chain_piece(chain, step))
+            chain.clear()
+
+    for index, move in enumerate(toolpath.moves):
+        if isinstance(move, JointMove):
+            flush()
+            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index))
+            continue
+        if not isinstance(move, (LinearMove, CircularMove)):
+            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
+        span = _span(toolpath, index)
+        if span.prim.length <= MIN_MOVE_MM:
+            continue  # a move to where the tool already is: nothing to execute
+        chain.append(span)
+        if span.stop:
+            flush()
+    flush()
+    if not pieces:
+        raise ExecutionError(f"{toolpath.name}: the program moves the tool nowhere")
+    first = pieces[0]
+    if isinstance(first, CartesianPiece):
+        m = toolpath.moves[int(first.move[0])]
+        pieces.insert(0, JointPiece(m.start, float(m.settings.speed_mm_s), False, None))
+    return tuple(pieces)

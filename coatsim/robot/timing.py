@@ -1,0 +1,142 @@
+"""Time-optimal timing of one rest-to-rest piece with toppra.
+
+Constraints: joint speed and acceleration limits of the cell, the programmed tool speed (a
+first-order bound on the path speed, not a post-hoc scale) and, on Cartesian pieces, the tool
+acceleration limit applied to the combined tangential and centripetal acceleration. The path is
+a cubic spline through the IK samples, parametrised by the TCP arc length (m); gridpoints are the
+samples; ``ParametrizeConstAccel`` integrates the piecewise-constant path acceleration exactly,
+so the joint limits hold at every instant, not only at gridpoints.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+import toppra
+import toppra.algorithm
+import toppra.constraint as tc
+from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
+from toppra.parametrizer import ParametrizeConstAccel
+
+from coatsim.errors import ExecutionError
+from coatsim.robot.cell import MM, Cell
+
+logging.getLogger("toppra").setLevel(logging.ERROR)
+
+_FACETS = 8  # the tool-acceleration disc is approximated by an inscribed 16-gon
+
+
+@dataclass(frozen=True, eq=False)
+class TimedPiece:
+    """A piece sampled on the simulation grid: t (m,) s from the piece start (the last entry is
+    the duration), q, qd, qdd (m, 6), and the path parameter s (m,) with its rate sd (m,)
+    (TCP arc length in mm and mm/s for Cartesian pieces, the move fraction for joint pieces)."""
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    s: np.ndarray
+    sd: np.ndarray
+
+    @property
+    def duration(self) -> float:
+        return float(self.t[-1])
+
+
+class _PathSpeedBound(tc.LinearConstraint):
+    """First-order bound sd <= bound(s) on the path speed (toppra's x = sd^2 <= bound^2)."""
+
+    def __init__(self, s: np.ndarray, bound: np.ndarray):
+        super().__init__()
+        self._s, self._bound = s, bound
+
+    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
+        xbound = np.zeros((len(gridpoints), 2))
+        xbound[:, 1] = np.interp(gridpoints, self._s, self._bound) ** 2
+        return None, None, None, None, None, None, xbound
+
+
+class _ToolAcceleration(tc.LinearConstraint):
+    """|(sdd, kappa * sd^2)| <= a_max: tangential and centripetal TCP acceleration together.
+
+    Valid when s is the TCP arc length; the disc is replaced by an inscribed polygon, which is
+    linear in (u, x) = (sdd, sd^2) as toppra requires.
+    """
+
+    def __init__(self, s: np.ndarray, kappa: np.ndarray, accel: float):
+        super().__init__()
+        self._s, self._kappa = s, np.abs(kappa)
+        phi = np.linspace(0.0, math.pi, _FACETS + 1)
+        self._F = np.column_stack((np.cos(phi), np.sin(phi)))
+        self._g = np.full(_FACETS + 1, accel * math.cos(math.pi / (2 * _FACETS)))
+        self.identical = True
+        self.set_discretization_type(tc.DiscretizationType.Interpolation)
+
+    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
+        n = len(gridpoints)
+        kappa = np.interp(gridpoints, self._s, self._kappa)
+        a = np.column_stack((np.ones(n), np.zeros(n)))
+        b = np.column_stack((np.zeros(n), kappa))
+        return canlinear_colloc_to_interpolate(a, b, np.zeros((n, 2)), self._F, self._g, None, None,
+                                               gridpoints, identical=True)
+
+
+def _parametrize(cell: Cell, path, extra: list, gridpoints: np.ndarray, label: str):
+    constraints = [
+        tc.JointVelocityConstraint(cell.v_max),
+        tc.JointAccelerationConstraint(cell.a_max, discretization_scheme=tc.DiscretizationType.Interpolation),
+        *extra,
+    ]
+    algo = toppra.algorithm.TOPPRA(constraints, path, gridpoints=gridpoints, solver_wrapper="seidel",
+                                   parametrizer="ParametrizeConstAccel")
+    algo.compute_parameterization(0.0, 0.0)
+    data = algo.problem_data
+    code = data.return_code
+    if code != toppra.algorithm.ParameterizationReturnCode.Ok or data.sd_vec is None \
+            or not np.all(np.isfinite(data.sd_vec)):
+        raise ExecutionError(
+            f"{label}: timing failed (toppra {code.name if hasattr(code, 'name') else code}); the path is "
+            "not feasible under the joint limits, e.g. it passes too close to a singularity"
+        )
+    return data.gridpoints, np.maximum(data.sd_vec, 0.0)
+
+
+def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float) -> TimedPiece:
+    """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s)."""
+    traj = ParametrizeConstAccel(path7, gridpoints, sd)
+    duration = float(traj.duration)
+    m = int(math.ceil(duration / dt - 1e-9))
+    t = np.minimum(np.arange(m + 1) * dt, duration)
+    x, xd, xdd = traj(t), traj(t, 1), traj(t, 2)
+    return TimedPiece(t=t, q=x[:, :6], qd=xd[:, :6], qdd=xdd[:, :6], s=x[:, 6] * s_scale, sd=xd[:, 6] * s_scale)
+
+
+def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
+                   curvature_per_mm: np.ndarray, label: str) -> TimedPiece:
+    """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
+    s = s_mm * MM
+    path = toppra.SplineInterpolator(s, q)
+    path7 = toppra.SplineInterpolator(s, np.column_stack((q, s)))
+    extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
+    grid, sd = _parametrize(cell, path, extra, s, label)
+    return _sample(path7, grid, sd, cell.timestep, 1.0 / MM)
+
+
+def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
+               n_grid: int = 60) -> TimedPiece:
+    """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
+    u = np.linspace(0.0, 1.0, n_grid)
+    qs = q0 + u[:, None] * (q1 - q0)
+    data = mujoco.MjData(cell.model)
+    tcp = np.array([cell.forward(data, qk)[0] for qk in qs]) * MM
+    dp_du = np.linalg.norm(np.gradient(tcp, u, axis=0), axis=1)
+    bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
+    path = toppra.SplineInterpolator(u, qs)
+    path7 = toppra.SplineInterpolator(u, np.column_stack((qs, u)))
+    grid, sd = _parametrize(cell, path, [_PathSpeedBound(u, bound)], u, label)
+    return _sample(path7, grid, sd, cell.timestep, 1.0)
