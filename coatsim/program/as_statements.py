@@ -168,8 +168,10 @@ def _accuracy(c: _StatementCursor, op: str, line: int) -> ast.Statement:
     flags: set[str] = set()
     while c.peek() is not None:
         word = c.word("ALWAYS", "FINE")
-        if word is None or word in flags:
-            raise c.error(f"unexpected {c.peek().show() if word is None else repr(word)} in ACCURACY; expected ALWAYS, FINE or end of line", c.peek() if word is None else c.tokens[c.pos - 1])
+        if word is None:
+            raise c.error(f"unexpected {c.peek().show()} in ACCURACY; expected ALWAYS, FINE or end of line", c.peek())
+        if word in flags:
+            raise c.error(f"{word} given twice in ACCURACY", c.tokens[c.pos - 1])
         flags.add(word)
     return ast.Accuracy(line, value, "ALWAYS" in flags, "FINE" in flags)
 

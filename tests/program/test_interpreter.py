@@ -1,0 +1,198 @@
+"""Interpreter semantics: poses, settings, stops, forward-processed signals, errors with lines."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from coatsim.errors import InputError
+from coatsim.program import interpret, parse_as, read_toolpath
+from coatsim.program.arcs import circle_through, move_length
+from coatsim.program.interpreter import FULL_SPEED_MM_S
+from coatsim.program.oat import oat_to_matrix
+from coatsim.program.toolpath import CircularMove, JointMove, LinearMove
+
+TRANS = """.TRANS
+a 0 0 0 0 180 0
+b 100 0 0 0 180 0
+c 100 100 0 0 180 0
+v 170.7106781 29.2893219 0 0 180 0
+e 200 100 0 0 180 0
+.END
+"""
+
+
+def run(body: str, trans: str = TRANS, **kw):
+    return interpret(parse_as(".PROGRAM t()\n" + body + ".END\n" + trans, "t.as"), **kw)
+
+
+def test_reference_example_a_draws_the_rounded_square():
+    """Example A of the reference (SHIFT of a POINT origin, % and MM/S speeds, TWAIT)."""
+    text = """.PROGRAM sq_round()
+  BASE NULL
+  TOOL TRANS(0,0,150,0,0,0)
+  POINT org = TRANS(500,-100,200,0,180,0)
+  SPEED 30 ALWAYS
+  ACCURACY 10 ALWAYS
+  CP ON
+  JMOVE SHIFT(org BY 20,0,50)
+  ACCURACY 1 ALWAYS
+  SPEED 100 MM/S ALWAYS
+  LMOVE SHIFT(org BY 20,0,0)
+  BREAK
+  SIGNAL 5
+  TWAIT 0.2
+  LMOVE SHIFT(org BY 180,0,0)
+  C1MOVE SHIFT(org BY 194.142,5.858,0)
+  C2MOVE SHIFT(org BY 200,20,0)
+  LMOVE SHIFT(org BY 200,180,0)
+  C1MOVE SHIFT(org BY 194.142,194.142,0)
+  C2MOVE SHIFT(org BY 180,200,0)
+  LMOVE SHIFT(org BY 20,200,0)
+  C1MOVE SHIFT(org BY 5.858,194.142,0)
+  C2MOVE SHIFT(org BY 0,180,0)
+  LMOVE SHIFT(org BY 0,20,0)
+  C1MOVE SHIFT(org BY 5.858,5.858,0)
+  C2MOVE SHIFT(org BY 20,0,0)
+  BREAK
+  SIGNAL -5
+  LDEPART 50
+.END
+"""
+    tp = interpret(parse_as(text), gun_signal=5)
+    assert [m.kind for m in tp.moves] == ["joint", "line", "line", "arc", "line", "arc", "line", "arc", "line", "arc", "line"]
+    assert tp.moves[0].start is None and tp.moves[0].settings.speed_mm_s == pytest.approx(0.3 * FULL_SPEED_MM_S)
+    assert tp.moves[0].settings.accuracy_mm == 10.0 and tp.moves[1].settings.accuracy_mm == 1.0
+    assert [m.spray for m in tp.moves] == [False, False] + [True] * 8 + [False]
+    assert tp.moves[1].settings.stop_at_end and tp.moves[9].settings.stop_at_end
+    arcs = [m for m in tp.moves if isinstance(m, CircularMove)]
+    for arc in arcs:
+        c = circle_through(arc.start.position, arc.via.position, arc.end.position)
+        assert c.radius == pytest.approx(20.0, abs=2e-3) and c.sweep == pytest.approx(math.pi / 2, abs=1e-4)
+    sprayed = sum(move_length(m) for m in tp.spray_moves)
+    assert sprayed == pytest.approx(4 * 160 + 2 * math.pi * 20, abs=0.01)
+    depart = tp.moves[-1]
+    assert np.allclose(depart.end.position, [520, -100, 250])   # tool z points down: depart goes up
+    assert tp.metadata["tool"] == "0,0,150,0,0,0"
+
+
+def test_signal_after_break_switches_at_the_next_move():
+    tp = run("  JMOVE a\n  LMOVE b\n  BREAK\n  SIGNAL 1\n  LMOVE c\n  BREAK\n  SIGNAL -1\n  LMOVE a\n")
+    assert [m.spray for m in tp.moves] == [False, False, True, False]
+
+
+def test_signal_without_break_switches_as_the_previous_move_starts():
+    tp = run("  JMOVE a\n  LMOVE b\n  SIGNAL 1\n  LMOVE c\n  SIGNAL -1\n  LMOVE a\n")
+    assert [m.spray for m in tp.moves] == [False, True, False, False]
+
+
+def test_signal_before_any_motion_and_other_outputs():
+    tp = run("  SIGNAL 1, 7\n  JMOVE a\n  SIGNAL -7\n  LMOVE b\n")
+    assert [m.spray for m in tp.moves] == [True, True]
+    assert [m.spray for m in run("  SIGNAL 2\n  JMOVE a\n  LMOVE b\n", gun_signal=2).moves] == [True, True]
+    assert not any(m.spray for m in run("  SIGNAL 2\n  JMOVE a\n  LMOVE b\n").moves)
+
+
+def test_stop_at_end_from_break_cp_off_fine_delay_and_program_end():
+    tp = run("  JMOVE a\n  LMOVE b\n  BREAK\n  LMOVE c\n  CP OFF\n  LMOVE b\n  CP ON\n  ACCURACY 1 FINE\n"
+             "  LMOVE c\n  LMOVE b\n  DELAY 1\n  LMOVE c\n  TWAIT 1\n  LMOVE b\n  LMOVE a\n")
+    stops = [m.settings.stop_at_end for m in tp.moves]
+    assert stops == [False, True, False, True, True, True, False, False, True]
+    assert [m.settings.cp for m in tp.moves][3:5] == [False, True]
+
+
+def test_speed_and_accuracy_once_and_always():
+    tp = run("  SPEED 200 MM/S ALWAYS\n  ACCURACY 5 ALWAYS\n  JMOVE a\n  SPEED 50 MM/S\n  ACCURACY 0\n"
+             "  LMOVE b\n  LMOVE c\n  SPEED 6000 MM/MIN\n  LMOVE b\n  SPEED 4 S\n  LMOVE c\n  SPEED 50\n  LMOVE b\n")
+    assert [m.settings.speed_mm_s for m in tp.moves] == pytest.approx([200, 50, 200, 100, 25, 0.5 * FULL_SPEED_MM_S])
+    assert [m.settings.accuracy_mm for m in tp.moves] == [5, 0, 5, 5, 5, 5]
+
+
+def test_speed_in_seconds_on_an_arc_uses_the_arc_length():
+    tp = run("  JMOVE b\n  SPEED 2 S\n  C1MOVE v\n  C2MOVE e\n")
+    arc = tp.moves[1]
+    assert arc.settings.speed_mm_s == pytest.approx(math.pi / 2 * 100 / 2, rel=1e-6)
+
+
+def test_reals_shift_compose_base_and_point():
+    trans = ".TRANS\na 10 20 30 90 180 0\n.END\n.REALS\nd = 5\n.END\n"
+    tp = run("  POINT q = SHIFT(a BY 1, 2, 3)\n  JMOVE q\n  LMOVE a + TRANS(0, 0, d, 0, 0, 0)\n"
+             "  BASE TRANS(1000, 0, 0, 90, 0, 0)\n  LMOVE a\n  JAPPRO a, -d\n", trans=trans)
+    assert np.allclose(tp.moves[0].target.position, [11, 22, 33])
+    # a + TRANS(0,0,5): 5 mm along a's tool z, which points down.
+    assert np.allclose(tp.moves[1].end.position, [10, 20, 25])
+    # BASE rotates a by 90 deg about z and moves it by 1000 mm along x.
+    assert np.allclose(tp.moves[2].end.position, [1000 - 20, 10, 30])
+    assert np.allclose(tp.moves[2].end.rotation, oat_to_matrix(90, 0, 0) @ oat_to_matrix(90, 180, 0))
+    assert np.allclose(tp.moves[3].target.position, [980, 10, 25])   # negative distance: towards the tool
+
+
+def test_appro_depart_draw_tdraw():
+    trans = ".TRANS\na 0 0 0 0 90 0\n.END\n"  # tool z along base +x
+    tp = run("  JAPPRO a, 10\n  LAPPRO a, 4\n  LMOVE a\n  LDEPART 7\n  DRAW 1, 2, 3\n  TDRAW 0, 0, 5\n  JDEPART 1\n", trans=trans)
+    xs = [m.target.position if isinstance(m, JointMove) else m.end.position for m in tp.moves]
+    assert np.allclose(xs, [[-10, 0, 0], [-4, 0, 0], [0, 0, 0], [-7, 0, 0], [-6, 2, 3], [-1, 2, 3], [-2, 2, 3]])
+    assert isinstance(tp.moves[1], LinearMove) and isinstance(tp.moves[6], JointMove)
+
+
+def test_circle_through_three_poses():
+    tp = run("  JMOVE b\n  C1MOVE v\n  C2MOVE e\n")
+    c = circle_through(*(p.position for p in (tp.moves[1].start, tp.moves[1].via, tp.moves[1].end)))
+    assert np.allclose(c.center, [100, 100, 0], atol=1e-6) and c.radius == pytest.approx(100.0)
+    assert c.sweep == pytest.approx(math.pi / 2, abs=1e-8) and np.allclose(c.normal, [0, 0, 1])
+
+
+def test_metadata_and_program_selection():
+    text = ".PROGRAM a()\n  ; coatsim: lead_in_mm=12.5\n  JMOVE p\n.END\n.PROGRAM b()\n  JMOVE p\n  LMOVE q\n.END\n" \
+           ".TRANS\np 0 0 0 0 0 0\nq 1 0 0 0 0 0\n.END\n"
+    f = parse_as(text)
+    assert interpret(f).metadata == {"lead_in_mm": "12.5"}
+    assert len(interpret(f, program="B").moves) == 2
+    with pytest.raises(InputError, match="no program named 'c'"):
+        interpret(f, program="c")
+
+
+# (body, line named in the error, words)
+SEMANTIC_ERRORS = [
+    ("  JMOVE a\n  LMOVE zz\n", 3, "pose 'zz' is not defined"),
+    ("  LMOVE a\n", 2, "needs a known start pose"),
+    ("  JMOVE a\n  C2MOVE b\n", 3, "C2MOVE without a C1MOVE"),
+    ("  JMOVE a\n  C1MOVE b\n  LMOVE c\n", 3, "C1MOVE must be followed directly by C2MOVE"),
+    ("  JMOVE a\n  C1MOVE b\n", 3, "C1MOVE at the end of the program"),
+    ("  JMOVE a\n  C1MOVE b\n  C2MOVE SHIFT(b BY 100, 0, 0)\n", 4, "lie on one line"),
+    ("  JMOVE a\n  C1MOVE a\n  C2MOVE b\n", 4, "not distinct"),
+    ("  HOME\n", 2, "HOME"),
+    ("  JMOVE #home\n", 2, "joint pose #home"),
+    ("  JMOVE a\n  DRAW 1, 0, 0, 0, 10, 0\n", 3, "rotation"),
+    ("  JMOVE TRANS(x, 0, 0, 0, 0, 0)\n", 2, "real variable 'x'"),
+    ("  SPEED 0 MM/S\n", 2, "SPEED must be > 0"),
+    ("  ACCURACY -1\n", 2, "ACCURACY must be >= 0"),
+    ("  TWAIT -1\n", 2, "time must be >= 0"),
+    ("  JMOVE a\n  TOOL NULL\n", 3, "TOOL changes"),
+]
+
+
+@pytest.mark.parametrize("body,line,words", SEMANTIC_ERRORS)
+def test_errors_name_the_line(body, line, words):
+    with pytest.raises(InputError) as info:
+        run(body)
+    assert str(info.value).startswith(f"t.as:{line}: "), str(info.value)
+    assert words in str(info.value)
+
+
+def test_no_program_and_bad_gun():
+    with pytest.raises(InputError, match="no .PROGRAM section"):
+        interpret(parse_as(TRANS, "t.as"))
+    with pytest.raises(InputError, match="gun signal"):
+        run("  JMOVE a\n", gun_signal=0)
+
+
+def test_read_toolpath_file_errors(tmp_path):
+    with pytest.raises(InputError, match="cannot read program"):
+        read_toolpath(tmp_path / "missing.as")
+    bad = tmp_path / "bad.as"
+    bad.write_text(".PROGRAM x()\n  JMOVE a\n  LMOVE nowhere\n.END\n" + TRANS)
+    with pytest.raises(InputError, match=r"bad\.as:3: pose 'nowhere'"):
+        read_toolpath(bad)
