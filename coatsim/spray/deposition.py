@@ -75,12 +75,13 @@ class SprayModel:
 @dataclass(frozen=True, eq=False)
 class SubSteps:
     """Sprayed integration sub-steps: m midpoints with nozzle position (m, 3) mm, unit axis
-    (m, 3), footprint axis e1 (m, 3), duration dt (m,) s, and the spray-on stretch (m,) each
-    belongs to (consecutive sprayed log rows form one stretch)."""
+    (m, 3), footprint axes e1 and e2 = axis × e1 (m, 3), duration dt (m,) s, and the spray-on
+    stretch (m,) each belongs to (consecutive sprayed log rows form one stretch)."""
 
     position: np.ndarray
     axis: np.ndarray
     e1: np.ndarray
+    e2: np.ndarray
     dt: np.ndarray
     stretch: np.ndarray
 
@@ -119,7 +120,7 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     k = np.flatnonzero(np.asarray(log.spray[:-1], dtype=bool))
     if len(k) == 0:
         empty = np.zeros((0, 3))
-        return SubSteps(empty, empty, empty, np.zeros(0), np.zeros(0, dtype=np.int64))
+        return SubSteps(empty, empty, empty, empty, np.zeros(0), np.zeros(0, dtype=np.int64))
     dp = p[k + 1] - p[k]
     turn = np.arccos(np.clip(np.sum(a[k] * a[k + 1], axis=1), -1.0, 1.0))
     travel = np.maximum(np.linalg.norm(dp, axis=1), model.standoff_mm * turn)
@@ -139,7 +140,8 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     starts = np.ones(len(k), dtype=bool)
     starts[1:] = k[1:] != k[:-1] + 1
     stretch = (np.cumsum(starts) - 1)[rep]
-    return SubSteps(position, axis, _footprint_axes(axis, np.asarray(model.major_axis, float)), dt, stretch)
+    e1 = _footprint_axes(axis, np.asarray(model.major_axis, float))
+    return SubSteps(position, axis, e1, np.cross(axis, e1), dt, stretch)
 
 
 @dataclass(frozen=True, eq=False)
@@ -220,9 +222,8 @@ def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray, mode
     dn = -np.einsum("ij,ij->i", d, surface.normals[i])
     seen = (da > 1e-9) & (dn > 0)
     scale = np.where(seen, h0 / np.where(seen, da, 1.0), 0.0)
-    e1 = steps.e1[s]
-    u = np.einsum("ij,ij->i", d, e1) * scale
-    v = np.einsum("ij,ij->i", d, np.cross(a, e1)) * scale
+    u = np.einsum("ij,ij->i", d, steps.e1[s]) * scale
+    v = np.einsum("ij,ij->i", d, steps.e2[s]) * scale
     g = model.footprint.density(u, v)
     rate = model.rate_mm3_s * g * scale**3 * np.where(seen, dn, 0.0) / h0
     if model.de_exponent != 1.0:

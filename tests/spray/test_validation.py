@@ -160,7 +160,7 @@ def test_8_tilted_plate_volume_and_peak(degrees, ratio):
 
 
 def test_9_full_circle_inner_side_thicker():
-    rho, n = 50.0, 1200
+    rho, n = 50.0, 2400  # 0.13 mm chords: sagitta 4e-5 mm
     phase = np.linspace(0, 2 * math.pi, n + 1)
     log = make_log(phase * rho / V, np.column_stack([rho * np.cos(phase), rho * np.sin(phase), np.full(n + 1, H0)]))
     surface = plate(180, 180, SIGMA / 4)
@@ -168,7 +168,7 @@ def test_9_full_circle_inner_side_thicker():
     line = (np.abs(surface.vertices[:, 1]) < 1e-9) & (surface.vertices[:, 0] >= 30) & (surface.vertices[:, 0] <= 70)
     r = surface.vertices[line, 0]
     exact = Q * rho / (V * SIGMA**2) * np.exp(-(r - rho) ** 2 / (2 * SIGMA**2)) * i0e(r * rho / SIGMA**2) * 1000
-    np.testing.assert_allclose(result.thickness_um[line], exact, rtol=1e-5, atol=1e-7)
+    np.testing.assert_allclose(result.thickness_um[line], exact, rtol=5e-5, atol=1e-7)
     at = dict(zip(np.round(r, 6), result.thickness_um[line]))
     straight = pass_profile_um(5.0)
     assert at[45.0] / straight == pytest.approx(1.056, abs=1e-3)
