@@ -28,6 +28,33 @@ def fail(message: str, code: int = 2) -> None:
 
 
 @app.command()
+def run(
+    scenario: Path = typer.Argument(..., help="scenario YAML file (see `coatsim schema`)"),
+    outdir: Optional[Path] = typer.Option(None, "-o", "--outdir", help="output folder [default: runs/NAME]"),
+    fast: bool = typer.Option(False, "--fast", help="the scenario's coarser mesh and path sampling (for CI)"),
+) -> None:
+    """Run a scenario: programs, simulated arm, coating, metrics.json and report.html for every
+    variant; exit 1 if a gate fails."""
+    import time
+
+    from coatsim.errors import GateFailure
+    from coatsim.pipeline import run_scenario
+    from coatsim.report.summary import summary_text
+
+    started = time.perf_counter()
+    result = run_scenario(scenario, outdir, fast=fast)
+    typer.echo(summary_text(result.document))
+    for variant in result.variants:
+        for event in variant.execution.events:
+            typer.echo(f"warning: {variant.name}: {event}")
+    typer.echo(f"wrote {len(result.files)} files to {result.outdir} in {time.perf_counter() - started:.1f} s "
+               f"(report: {result.outdir / 'report.html'})")
+    failed = [g["label"] for g in result.document["gates"] if not g["passed"]]
+    if failed:
+        raise GateFailure(f"{len(failed)} gate(s) failed: {'; '.join(failed)}")
+
+
+@app.command()
 def schema() -> None:
     """Print the JSON Schema of scenario files (point your editor's YAML plugin at it)."""
     from coatsim.scenario import json_schema
@@ -95,6 +122,29 @@ def program(
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
+
+
+@app.command()
+def execute(
+    program: Path = typer.Argument(..., help="Kawasaki AS program file."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF [default: models/coating_cell.xml]."),
+    output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
+    gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
+    step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
+) -> None:
+    """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics."""
+    from coatsim.robot.execute import execute_program
+
+    result, files = execute_program(program, model, output, gun, step)
+    m = result.metrics
+    typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
+               f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
+               f"CV {m.speed_cv:.4f}, {m.fraction_at_speed:.1%} at speed, {m.stops} stops; path error max "
+               f"{m.max_path_error_mm:.3f} rms {m.rms_path_error_mm:.3f} mm; joint speed/accel "
+               f"{m.max_joint_speed_ratio:.2f}/{m.max_joint_accel_ratio:.2f} of limits")
+    for event in result.events:
+        typer.echo(f"warning: {event}")
+    typer.echo(f"wrote {', '.join(str(f) for f in files)}")
 
 
 @app.command("check-program")

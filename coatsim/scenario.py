@@ -152,9 +152,13 @@ class MotionSpec(_Strict):
 
 
 class CoatingSpec(_Strict):
-    """Coating mesh: target vertex spacing in mm."""
+    """Coating mesh spacing and the region of interest the thickness metrics cover: the
+    sprayed track, ``band_halfwidth_mm`` to each side of it (default 2 sigma of the
+    footprint), without ``edge_band_mm`` along the part border (default 3 sigma)."""
 
     spacing_mm: Positive = 1.5
+    band_halfwidth_mm: Optional[Positive] = None
+    edge_band_mm: Optional[NonNegative] = None
 
 
 class FastSpec(_Strict):

@@ -1,6 +1,6 @@
 """metrics.json: the one file every figure of a run comes from.
 
-``{"format": "coatsim.metrics/1", "scenario": {...}, "variants": {V: {"segmentation": {...},
+``{"format": "coatsim.metrics/1", "mode": "full" | "fast", "scenario": {...}, "variants": {V: {"segmentation": {...},
 "motion": {...}, "coating": {...}}}, "gates": [...], "passed": bool}``; the metric names are
 those of :mod:`coatsim.report.catalogue`, values are plain numbers (null where undefined).
 """
@@ -13,6 +13,8 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from coatsim.geometry.deviation import hausdorff
+from coatsim.geometry.polysegment import Polysegment
 from coatsim.report.catalogue import GROUPS, names
 from coatsim.report.gates import GateResult
 
@@ -34,6 +36,36 @@ def plain(value: Any) -> Any:
     return value
 
 
+def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm: float, corner_deg: float,
+                       deviation_mm: float | None = None) -> dict[str, Any]:
+    """The programmed curve (polysegment, or polyline as lines) against the input points.
+
+    A junction whose heading changes by more than ``corner_deg`` counts as a corner; the
+    tangent break is the largest change among the other junctions. ``deviation_mm`` is the
+    Hausdorff distance when already known (it is computed otherwise).
+    """
+    breaks = np.degrees(programmed.junction_breaks())
+    corner = breaks > corner_deg
+    smooth = breaks[~corner]
+    return {
+        "n_segments": programmed.n_segments,
+        "n_arcs": programmed.n_arcs,
+        "n_lines": programmed.n_lines,
+        "n_corners": int(np.count_nonzero(corner)),
+        "max_deviation_mm": hausdorff(points, programmed).hausdorff if deviation_mm is None else deviation_mm,
+        "tolerance_mm": tolerance_mm,
+        "max_tangent_break_deg": float(smooth.max()) if len(smooth) else 0.0,
+        "curve_length_mm": programmed.length,
+    }
+
+
+def coating_group(coating: Mapping[str, float]) -> dict[str, Any]:
+    """The catalogue's coating metrics from the coating stage's metrics."""
+    group = {name: coating[name] for name in names("coating") if name in coating}
+    group["mass_balance_error"] = abs(coating["deposited_volume_mm3"] / coating["sprayed_volume_mm3"] - 1.0)
+    return group
+
+
 def check_groups(variant: str, groups: Mapping[str, Mapping[str, Any]]) -> None:
     """Every variant carries exactly the catalogue's metric names (a programming error if not)."""
     for group in GROUPS:
@@ -47,8 +79,10 @@ def assemble(
     scenario: Mapping[str, Any],
     variants: Mapping[str, Mapping[str, Mapping[str, Any]]],
     gates: Sequence[GateResult],
+    mode: str = "full",
 ) -> dict[str, Any]:
-    """The metrics document; groups are ordered as in the catalogue."""
+    """The metrics document; groups are ordered as in the catalogue; ``mode`` says whether
+    the run used the scenario's full or fast settings."""
     ordered = {}
     for variant, groups in variants.items():
         check_groups(variant, groups)
@@ -56,6 +90,7 @@ def assemble(
     gate_rows = [dict(plain(g.to_dict()), label=g.label) for g in gates]
     return {
         "format": FORMAT,
+        "mode": mode,
         "scenario": plain(scenario),
         "variants": ordered,
         "gates": gate_rows,

@@ -1,0 +1,262 @@
+"""Run one scenario: every stage for every program variant, then metrics, gates and report.
+
+curve -> polysegment -> for each variant: AS program text (written) -> ToolPath read back from
+that file -> simulated arm -> trajectory (written) -> coating (written) -> metrics ->
+``metrics.json`` and ``report.html``. The execution stage consumes the program text parsed back,
+never the in-memory polysegment: the twin runs what the robot would run.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterator, Optional
+
+import numpy as np
+
+from coatsim.errors import CoatsimError, InputError
+from coatsim.fileio import write_text
+from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
+from coatsim.geometry.segment import Segmentation
+from coatsim.program import read_toolpath
+from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
+from coatsim.program.oat import oat_to_matrix
+from coatsim.program.placement import Frame, Placement, centering_offset
+from coatsim.report.catalogue import METRICS
+from coatsim.report.gates import evaluate_gates
+from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
+from coatsim.robot.cell import Cell, load_cell
+from coatsim.robot.execute import Execution, execute
+from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
+from coatsim.spray.coat import CoatingResult, coat
+from coatsim.spray.deposition import SprayModel
+from coatsim.spray.footprints import parse_footprint_spec
+from coatsim.spray.outputs import write_thickness_ply
+from coatsim.spray.surfaces import Surface, cylinder, mesh_file, plate
+
+Step = Callable[[str], None]
+
+
+@dataclass(frozen=True, eq=False)
+class VariantRun:
+    """One program variant carried through every stage."""
+
+    name: str
+    program: BuiltProgram
+    execution: Execution
+    coating: CoatingResult
+    groups: dict[str, dict[str, float | int | None]]
+
+
+@dataclass(frozen=True, eq=False)
+class RunResult:
+    """A finished run: inputs, every variant, the metrics document and the files written."""
+
+    scenario: ScenarioFile
+    outdir: Path
+    curve: Curve
+    variants: tuple[VariantRun, ...]
+    document: dict
+    files: tuple[Path, ...]
+
+    @property
+    def passed(self) -> bool:
+        return bool(self.document["passed"])
+
+
+def check_gate_metrics(loaded: ScenarioFile) -> None:
+    """Every gate names a metric of the catalogue (before anything runs)."""
+    for i, gate in enumerate(loaded.spec.gates):
+        if gate.metric not in METRICS:
+            raise InputError(
+                f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; "
+                f"known: {', '.join(METRICS)}"
+            )
+
+
+def load_input_curve(loaded: ScenarioFile) -> Curve:
+    """The scenario's curve, scaled and rotated as the scenario says (mm, workpiece plane)."""
+    spec = loaded.spec.curve
+    closed = "auto" if spec.closed == "auto" else ("yes" if spec.closed else "no")
+    try:
+        if spec.builtin is not None:
+            curve = builtin_curve(spec.builtin, **spec.params)
+            if closed != "auto":
+                curve = make_curve(curve.points, curve.name, closed)
+        else:
+            curve = read_curve_file(loaded.resolve(spec.file), closed)
+    except InputError as exc:
+        raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
+    angle = math.radians(spec.rotate_deg)
+    rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
+    return curve.transformed(rotation, np.zeros(2), spec.scale)
+
+
+def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:
+    pose = np.eye(4)
+    pose[:3, :3] = oat_to_matrix(*oat)
+    pose[:3, 3] = position
+    return pose
+
+
+def curve_frame(spec: Scenario) -> Frame:
+    """The frame whose XY plane holds the curve: the workpiece frame, lifted to the top of a
+    cylinder."""
+    wp = spec.workpiece
+    pose = _pose_matrix(wp.pose.position_mm, wp.pose.oat_deg)
+    origin = pose[:3, 3] + (wp.radius_mm * pose[:3, 2] if wp.kind == "cylinder" else 0.0)
+    return Frame(*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg))
+
+
+def build_surface(loaded: ScenarioFile, spacing_mm: float) -> Surface:
+    """The coated part, meshed at ``spacing_mm``, placed in the robot base frame."""
+    wp = loaded.spec.workpiece
+    pose = _pose_matrix(wp.pose.position_mm, wp.pose.oat_deg)
+    try:
+        if wp.kind == "plate":
+            return plate(wp.size_mm[0], wp.size_mm[1], spacing_mm, pose)
+        if wp.kind == "cylinder":
+            return cylinder(wp.radius_mm, wp.length_mm, spacing_mm, wp.axis, pose)
+        return mesh_file(loaded.resolve(wp.file), spacing_mm, pose)
+    except InputError as exc:
+        raise InputError(f"{loaded.where('workpiece')}: workpiece: {exc}") from None
+
+
+def spray_model(loaded: ScenarioFile) -> SprayModel:
+    """The gun as the coating stage models it (a table footprint is read relative to the scenario)."""
+    gun = loaded.spec.gun
+    text = gun.footprint.strip()
+    if text.lower().startswith("table:"):
+        text = f"table:{loaded.resolve(text.split(':', 1)[1].strip())}"
+    try:
+        return SprayModel(parse_footprint_spec(text), gun.flow_mm3_s, gun.standoff_mm)
+    except InputError as exc:
+        raise InputError(f"{loaded.where('gun')}: gun: {exc}") from None
+
+
+def load_arm(loaded: ScenarioFile) -> Cell:
+    """The robot cell: the project's default arm or the scenario's MJCF file."""
+    model = loaded.spec.robot.model
+    try:
+        return load_cell(None if model == "default" else loaded.resolve(model))
+    except InputError as exc:
+        raise InputError(f"{loaded.where('robot', 'model')}: robot.model: {exc}") from None
+
+
+@contextmanager
+def progress_steps(total: int, enabled: bool) -> Iterator[Step]:
+    """A rich progress bar on stderr when ``enabled``; otherwise a no-op step function."""
+    if not enabled:
+        yield lambda label: None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    columns = (TextColumn("{task.description:<40}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+               TimeElapsedColumn())
+    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
+        task = bar.add_task("starting", total=total)
+
+        def step(label: str) -> None:
+            bar.update(task, advance=1, description=label)
+
+        yield step
+
+
+@dataclass(frozen=True, eq=False)
+class Job:
+    """What every variant of a run shares: inputs, placement, part, gun, arm, numerics."""
+
+    loaded: ScenarioFile
+    segmentation: Segmentation
+    placement: Placement
+    surface: Surface
+    model: SprayModel
+    cell: Cell
+    outdir: Path
+    sample_step_mm: float
+    spacing_mm: float
+
+
+def run_variant(name: str, job: Job, step: Step) -> VariantRun:
+    """Program, execute and coat one variant; writes ``name.as``, ``name.trajectory.csv`` and
+    ``name.thickness.ply``."""
+    spec, out = job.loaded.spec, job.outdir
+    poly, points = job.segmentation.polysegment, job.segmentation.curve.points
+    options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
+                             gun_signal=spec.gun.signal, name=spec.name)
+    program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
+                            source=f"scenario:{spec.name}", points=points)
+    program_path = out / f"{name}.as"
+    write_text(program_path, program.text)
+    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal)
+    step(f"{name}: simulating the arm")
+    execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
+    execution.log.write_csv(out / f"{name}.trajectory.csv")
+    step(f"{name}: spraying")
+    result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
+                  edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
+                  spacing=job.spacing_mm)
+    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um)
+    groups = {
+        "segmentation": segmentation_group(
+            points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
+            job.segmentation.max_deviation_mm if program.curve is poly else None),
+        "motion": execution.metrics.as_dict(),
+        "coating": coating_group(result.metrics),
+    }
+    return VariantRun(name, program, execution, result, groups)
+
+
+def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
+                 progress: Optional[bool] = None) -> RunResult:
+    """Run every stage of the scenario at ``path`` for every variant and write all outputs.
+
+    ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
+    settings; ``progress`` defaults to showing a bar when stderr is a terminal.
+    """
+    from coatsim.report.document import write_report
+
+    loaded = load_scenario(path)
+    check_gate_metrics(loaded)
+    spec = loaded.spec
+    out = Path(outdir) if outdir is not None else Path("runs") / spec.name
+    spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
+    sample_step = spec.fast.sample_step_mm if fast else 1.0
+    show = sys.stderr.isatty() if progress is None else progress
+    with progress_steps(3 + 3 * len(spec.variants), show) as step:
+        step("segmenting the curve")
+        curve = load_input_curve(loaded)
+        segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
+                                     corner_deg=spec.segmentation.corner_deg)
+        poly = segmentation.polysegment
+        write_polysegment_json(out / "polysegment.json", segmentation)
+        offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
+                              follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
+                              lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
+        step("meshing the workpiece")
+        cell = load_arm(loaded)
+        job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
+                  sample_step, spacing)
+        runs = []
+        for name in spec.variants:
+            step(f"{name}: writing and reading the program")
+            try:
+                runs.append(run_variant(name, job, step))
+            except CoatsimError as exc:
+                raise type(exc)(f"{name}: {exc}") from None
+        step("metrics, gates and report")
+        variants = {r.name: r.groups for r in runs}
+        gates = evaluate_gates(spec.gates, variants)
+        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full")
+        write_text(out / "metrics.json", to_json(document))
+        write_report(out / "report.html", loaded, curve, segmentation, runs, document)
+    files = [out / "polysegment.json"]
+    for r in runs:
+        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
+    files += [out / "metrics.json", out / "report.html"]
+    return RunResult(loaded, out, curve, tuple(runs), document, tuple(files))

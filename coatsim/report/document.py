@@ -1,0 +1,143 @@
+"""report.html of a run: every section built from the run's values and its metrics document.
+
+Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
+profiles, thickness maps, cross-section, all metrics with ratios, gates.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from coatsim import __version__
+from coatsim.fileio import write_text
+from coatsim.report.catalogue import METRICS
+from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
+from coatsim.report.summary import headline_rows
+from coatsim.report.plots import SpeedProfile, polysegment_theta, segmentation_figure, speed_figure, theta_figure
+from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
+
+SECTION_TITLES = {
+    "summary": "Scenario",
+    "curve": "Curve and polysegment",
+    "theta": "Angular function θ",
+    "speed": "Tool speed",
+    "thickness": "Coating thickness",
+    "section": "Thickness cross-section",
+    "metrics": "All metrics",
+    "gates": "Gates",
+}
+
+
+def headline_table(document: Mapping[str, Any]) -> str:
+    names = list(document["variants"])
+    head = '<tr><th class="l">metric</th><th class="l">unit</th>' + "".join(f"<th>{esc(v)}</th>" for v in names) + "</tr>"
+    body = "".join(
+        f'<tr><td class="l">{esc(key)}</td><td class="l">{esc(METRICS[key].unit)}</td>'
+        + "".join(f"<td>{fmt(x)}</td>" for x in values) + "</tr>"
+        for key, values in headline_rows(document)
+    )
+    return f"<table>{head}{body}</table>"
+
+
+def _summary_rows(loaded, curve, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
+    spec = loaded.spec
+    c = spec.curve
+    source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    wp = spec.workpiece
+    size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
+            "cylinder": lambda: f"cylinder R {wp.radius_mm:g} x L {wp.length_mm:g} mm, axis {wp.axis}",
+            "mesh": lambda: f"mesh {wp.file}"}[wp.kind]()
+    seg = document["variants"].get("polysegment", {}).get("segmentation")
+    rows = [
+        ("scenario file", loaded.path.name),
+        ("description", spec.description or "–"),
+        ("curve", f"{source}; scale {c.scale:g}, rotated {c.rotate_deg:g} deg; {'closed' if curve.closed else 'open'}, "
+                  f"{len(curve.points)} points, {curve.length:.1f} mm"),
+        ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
+                         f"corners above {spec.segmentation.corner_deg:g} deg"),
+        ("workpiece", f"{size} at {wp.pose.position_mm} mm, O-A-T {wp.pose.oat_deg} deg"),
+        ("robot", spec.robot.model),
+        ("gun", f"{spec.gun.footprint}, Q {spec.gun.flow_mm3_s:g} mm³/s, stand-off {spec.gun.standoff_mm:g} mm, "
+                f"target {spec.gun.target_thickness_um:g} µm"),
+        ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
+                   f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
+        ("variants", ", ".join(spec.variants)),
+        ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
+    ]
+    if seg is not None:
+        rows.insert(4, ("polysegment", f"{seg['n_lines']} lines + {seg['n_arcs']} arcs, deviation "
+                                       f"{seg['max_deviation_mm']:.4g} mm"))
+    return rows
+
+
+def _speed_profiles(runs: Sequence, lead_in_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
+    """Speed against path length from where the gun opens (the run-in start); the curve
+    proper follows the run-in."""
+    profiles, span = {}, (0.0, 0.0)
+    for r in runs:
+        log = r.execution.log
+        origin = float(log.progress[np.argmax(log.spray)])
+        profiles[r.name] = SpeedProfile(log.progress - origin, log.speed, log.spray)
+        span = (lead_in_mm, lead_in_mm + r.program.path.curve_length_mm)
+    return profiles, span
+
+
+def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mapping[str, Any]) -> list[Section]:
+    """Every section of the report, in order."""
+    spec = loaded.spec
+    poly = segmentation.polysegment
+    polyline = next((r.program.curve for r in runs if r.name != "polysegment"), None)
+    polyline_xy = None if polyline is None else np.array([s.start for s in polyline.segments] + [polyline.end])
+    theta_in = segmentation.theta
+    t_fit, th_fit = polysegment_theta(poly, theta_in.start_heading)
+    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm)
+    surface = runs[0].coating.surface
+    top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
+    line = default_section(surface)
+    heat = heatmap_png([panel(surface, r.coating.thickness_um, r.name) for r in runs], 0.0, top, section=line)
+    cuts = [Profile(r.name, *section_profile(surface.view, surface.faces, r.coating.thickness_um, *line)) for r in runs]
+    where = f"({line[0][0]:g}, {line[0][1]:g}) -> ({line[1][0]:g}, {line[1][1]:g}) mm"
+    baseline = "polysegment" if "polysegment" in document["variants"] else None
+    return [
+        Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, document))
+                + "<h3>What arcs buy</h3>" + headline_table(document)),
+        Section("curve", SECTION_TITLES["curve"], figures=(Figure(
+            "Input curve and programmed curves", segmentation_figure(curve.points, poly, polyline_xy),
+            "Left: the polysegment over the input curve, lines and arcs in their own colours, junctions as dots, "
+            "true corners as crosses. Right: the polyline variant's vertices; without blending the arm stops at each."),)),
+        Section("theta", SECTION_TITLES["theta"], figures=(Figure(
+            "θ(t) and its piecewise-linear approximation", theta_figure(theta_in.t, theta_in.theta, t_fit, th_fit),
+            "Cumulative turning angle against normalised arc length; every linear piece of the polysegment's θ is "
+            "one arc (or a line where it is flat). Bottom: the difference."),)),
+        Section("speed", SECTION_TITLES["speed"], figures=(Figure(
+            "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
+            "Simulated tool-centre-point speed while the gun is on, from the trajectory logs; the shaded ends are "
+            "the run-in and run-out, outside the curve proper."),)),
+        Section("thickness", SECTION_TITLES["thickness"], figures=(Figure(
+            "Thickness maps on one colour scale", heat,
+            f"Per-vertex coating thickness of each variant, same scale 0 to {top:.3g} µm (the largest 99.5th "
+            f"percentile; thicker spots saturate). Dashed: the cross-section line."),)),
+        Section("section", SECTION_TITLES["section"], figures=(Figure(
+            "Thickness cross-section", profile_png(cuts, title=f"section {where}"),
+            f"Thickness along the dashed line of the maps, {where}, every variant."),)),
+        Section("metrics", SECTION_TITLES["metrics"],
+                metrics_table(document["variants"], baseline)
+                + '<p class="muted">Hover a metric name for its meaning; units and meanings are in the README.</p>'),
+        Section("gates", SECTION_TITLES["gates"], gates_table(document["gates"]) + _overall(document["passed"])),
+    ]
+
+
+def _overall(passed: bool) -> str:
+    verdict = '<span class="pass">all gates passed</span>' if passed else '<span class="fail">a gate FAILED</span>'
+    return f"<p>Overall: {verdict}</p>"
+
+
+def write_report(path: Path, loaded, curve, segmentation, runs: Sequence, document: Mapping[str, Any]) -> None:
+    """Write the self-contained report.html of a run."""
+    sections = build_sections(loaded, curve, segmentation, runs, document)
+    subtitle = f"coatsim {__version__}, scenario {loaded.path.name}, {document['mode']} mode"
+    write_text(path, render_html(f"coatsim report: {loaded.spec.name}", subtitle, sections))
