@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import mujoco
 import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
+from coatsim.fileio import write_text
 from coatsim.program.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
@@ -27,13 +30,15 @@ _WINDOW_MM = 10.0  # progress search window around the commanded point (plus ble
 @dataclass(frozen=True, eq=False)
 class Execution:
     """Result of executing one program: the log, its metrics, the joint-limit and singularity
-    warnings by program step, the largest IK residual, and wall time per phase (s)."""
+    warnings by program step, the largest IK residual, the programmed reference path, the
+    curve-proper progress interval (mm), and wall time per phase (s)."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
     events: tuple[str, ...]
     residual: Residual
     reference: ReferencePath
+    curve: tuple[float, float]
     wall: dict[str, float] = field(default_factory=dict)
 
 
@@ -150,4 +155,29 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
-                     wall=wall)
+                     curve=(a, b), wall=wall)
+
+
+def execute_program(program: str | Path, model: str | Path | None, outdir: str | Path, gun_signal: int = 1,
+                    step_mm: float = 1.0) -> tuple[Execution, list[Path]]:
+    """``coatsim execute``: read an AS program, run it, write trajectory.csv, motion.json and
+    speed.png into ``outdir``."""
+    from coatsim.program import read_toolpath
+    from coatsim.robot.plots import plot_speed
+
+    toolpath = read_toolpath(program, gun_signal=gun_signal)
+    result = execute(toolpath, load_cell(model), step_mm)
+    out = Path(outdir)
+    files = [out / "trajectory.csv", out / "motion.json", out / "speed.png"]
+    result.log.write_csv(files[0])
+    doc = {
+        "format": "coatsim.motion/1",
+        "program": str(program),
+        "model": str(model) if model is not None else "default",
+        "step_mm": step_mm,
+        "motion": result.metrics.as_dict(),
+        "events": list(result.events),
+    }
+    write_text(files[1], json.dumps(doc, indent=2) + "\n")
+    plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{toolpath.name}: tool speed along the path")
+    return result, files

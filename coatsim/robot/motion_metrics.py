@@ -2,7 +2,8 @@
 
 The curve proper is the progress interval of the spray-on moves (all Cartesian moves when none
 sprays) without the lead-in and lead-out lengths named in the program header. Its window in
-time runs from the first log row at or past its start to the first row at or past its end.
+time runs from the last log row not yet past its start to the first row at or past its end;
+rest at either end of the window is not counted as a stop.
 """
 
 from __future__ import annotations
@@ -44,10 +45,12 @@ class MotionMetrics:
         return {k: (round(v, 6) if isinstance(v, float) else v) for k, v in asdict(self).items()}
 
 
-def _runs(mask: np.ndarray) -> int:
-    """Number of maximal runs of True in ``mask``."""
-    m = mask.astype(np.int8)
-    return int(m[0] + np.count_nonzero(np.diff(m) == 1)) if len(m) else 0
+def _interior_runs(mask: np.ndarray) -> int:
+    """Number of maximal runs of True in ``mask`` that touch neither end (a program that
+    starts or ends its curve at rest has no stop there)."""
+    edges = np.diff(np.concatenate(([0], mask.astype(np.int8), [0])))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # run = [start, end)
+    return int(np.count_nonzero((starts > 0) & (ends < len(mask))))
 
 
 def motion_metrics(
@@ -66,7 +69,8 @@ def motion_metrics(
     "feasible" fraction counts only rows where speed^2 * curvature <= ``tool_accel_mm_s2``.
     """
     a, b = curve
-    i0 = int(np.searchsorted(np.maximum.accumulate(log.progress), a, side="left"))
+    # the window opens at the last row not yet past the start (at rest there, if the tool stops)
+    i0 = max(int(np.searchsorted(np.maximum.accumulate(log.progress), a, side="right")) - 1, 0)
     reached = np.flatnonzero(log.progress[i0:] >= b - 1e-6)
     if i0 >= len(log) or not len(reached):
         raise ExecutionError(f"the simulated tool never covered the curve proper ({a:.1f} to {b:.1f} mm of the path)")
@@ -94,7 +98,7 @@ def motion_metrics(
         fraction_at_speed=float(step[fast].sum() / travelled) if travelled > 0 else 0.0,
         fraction_at_speed_feasible=float(step[fast & feasible].sum() / step[feasible].sum())
         if step[feasible].sum() > 0 else 0.0,
-        stops=_runs(speed < STOPPED * speed_mm_s),
+        stops=_interior_runs(speed < STOPPED * speed_mm_s),
         max_path_error_mm=float(err.max()),
         rms_path_error_mm=float(np.sqrt(np.mean(err**2))),
         max_joint_speed_ratio=float(np.max(np.abs(qd) / v_max)),
