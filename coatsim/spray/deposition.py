@@ -36,7 +36,7 @@ from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface
 
-LEAF_SIZE = 24
+LEAF_SIZE = 48
 _LEAF_TESTS_PER_BATCH = 400_000
 _PAIRS_PER_BATCH = 1_000_000
 
@@ -196,14 +196,16 @@ def _kd_leaves(points: np.ndarray) -> _Leaves:
     return _Leaves(order, start, count, centre, radius * (1 + 1e-9) + 1e-9)
 
 
-def _candidate_pairs(leaves: _Leaves, steps: SubSteps, sel: slice, half_angle: float) -> tuple[np.ndarray, np.ndarray]:
-    """(sub-step, vertex) pairs of the sub-steps ``sel`` whose leaf sphere meets the cut-off cone."""
+def _candidate_pairs(leaves: _Leaves, steps: SubSteps, sel: slice, slope: float) -> tuple[np.ndarray, np.ndarray]:
+    """(sub-step, vertex) pairs of the sub-steps ``sel`` whose leaf sphere may meet the cut-off
+    cone (apex at the nozzle, lateral/axial = ``slope``). Conservative: the distance from a
+    centre at axial w, lateral l to the cone's boundary line, (l − slope·w)/√(1 + slope²),
+    never exceeds its distance to the cone."""
     v = leaves.centre[None, :, :] - steps.position[sel, None, :]
-    dist = np.linalg.norm(v, axis=2)
-    cos_angle = np.einsum("slk,sk->sl", v, steps.axis[sel]) / np.maximum(dist, 1e-300)
-    angle = np.arccos(np.clip(cos_angle, -1.0, 1.0))
-    spread = np.arcsin(np.clip(leaves.radius[None, :] / np.maximum(dist, 1e-300), 0.0, 1.0))
-    hit = (dist <= leaves.radius[None, :]) | (angle - spread <= half_angle)
+    w = np.einsum("slk,sk->sl", v, steps.axis[sel])
+    lateral = np.sqrt(np.maximum(np.einsum("slk,slk->sl", v, v) - w * w, 0.0))
+    r = leaves.radius[None, :]
+    hit = (w >= -r) & (lateral - slope * w <= r * math.sqrt(1 + slope * slope))
     step, leaf = np.nonzero(hit)
     counts = leaves.count[leaf]
     total = int(counts.sum())
@@ -256,7 +258,7 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
     if len(steps) == 0 or n == 0:
         return Deposit(thickness, exposure, np.sqrt(r2_min), steps, 0)
     leaves = _kd_leaves(surface.vertices)
-    half_angle = math.atan2(model.footprint.cutoff_mm, model.standoff_mm)
+    slope = model.footprint.cutoff_mm / model.standoff_mm
     mesh = None
     if model.occlusion:
         import trimesh
@@ -264,7 +266,7 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
         mesh = trimesh.Trimesh(surface.vertices, surface.faces, process=False)
     chunk = max(1, _LEAF_TESTS_PER_BATCH // len(leaves.start))
     for lo in range(0, len(steps), chunk):
-        s_all, i_all = _candidate_pairs(leaves, steps, slice(lo, min(lo + chunk, len(steps))), half_angle)
+        s_all, i_all = _candidate_pairs(leaves, steps, slice(lo, min(lo + chunk, len(steps))), slope)
         for b in range(0, len(s_all), _PAIRS_PER_BATCH):
             s, i = s_all[b:b + _PAIRS_PER_BATCH], i_all[b:b + _PAIRS_PER_BATCH]
             rate, r2 = _rates(surface, steps, s, i, model)
