@@ -1,0 +1,105 @@
+"""Benchmark of the execute stage (robot twin): prints figures, asserts nothing.
+
+1. Speed: a 1 m straight LMOVE at 200 mm/s (5 s of robot time) through IK, timing, playback
+   and logging, best of 3 (interpreter start-up and imports excluded).
+2. The paper's spiral (shared bench curve, sigma = 0.1 mm, 200 mm/s) as a polysegment program,
+   an exact-stop polyline program and a blended polyline program (ACCURACY 1 mm), each written
+   as AS text, parsed back and executed.
+Usage: python scripts/bench_twin.py [--curve PATH] [--tol MM] [--speed MM_S]
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
+from coatsim.robot.cell import load_cell
+from coatsim.robot.execute import execute
+
+DOWN = np.diag([-1.0, 1.0, -1.0])
+SPIRAL = Path("/work/shared/bench/curves/spiral.csv")
+
+
+def straight_metre(speed: float) -> ToolPath:
+    def pose(y: float) -> Pose:
+        return Pose(np.array([700.0, y, 300.0]), DOWN)
+
+    s = MotionSettings(speed, 1.0, True, False)
+    stop = MotionSettings(speed, 1.0, True, True)
+    return ToolPath("metre", (
+        JointMove(None, pose(-530.0), MotionSettings(1000.0, 10.0, True, True), False, 1),
+        LinearMove(pose(-530.0), pose(-500.0), s, True, 2),
+        LinearMove(pose(-500.0), pose(500.0), s, True, 3),
+        LinearMove(pose(500.0), pose(530.0), stop, True, 4),
+    ), {"lead_in_mm": "30", "lead_out_mm": "30"})
+
+
+def bench_speed(cell, speed: float) -> None:
+    best = None
+    for _ in range(3):
+        t0 = time.perf_counter()
+        result = execute(straight_metre(speed), cell)
+        result.log.to_csv_text()
+        wall = time.perf_counter() - t0
+        if best is None or wall < best[0]:
+            best = (wall, result)
+    wall, result = best
+    robot = float(result.log.t[-1])
+    m = result.metrics
+    print(f"1 m line at {speed:g} mm/s: robot time {robot:.3f} s (curve {m.cycle_time_s:.3f} s), wall {wall:.3f} s "
+          f"-> {robot / wall:.1f}x real time; rows {len(result.log)}")
+    print("  wall by phase (s): " + ", ".join(f"{k} {v:.3f}" for k, v in result.wall.items()))
+    print(f"  IK samples {int(round(m.curve_length_mm)) + 60}, max IK residual {m.max_ik_residual_mm:.2e} mm "
+          f"/ {m.max_ik_residual_deg:.2e} deg; path error max {m.max_path_error_mm:.4f} mm")
+
+
+def bench_spiral(cell, curve: Path, tol: float, speed: float) -> None:
+    try:
+        from coatsim.program import read_toolpath
+        from coatsim.program.build import ProgramOptions
+        from coatsim.program.run import run_program
+        from coatsim.geometry import segment_curve  # noqa: F401  (the programs stage needs it)
+    except ImportError as exc:
+        print(f"spiral: skipped ({exc})")
+        return
+    print(f"\nspiral {curve.name}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
+          f"{cell.tool_accel_mm_s2 / 1000:g} m/s^2")
+    header = ("variant", "moves", "cycle_s", "ideal_s", "min_v", "cv", "at_speed", "feasible", "stops",
+              "max_err", "rms_err", "jacc", "wall_s")
+    print(" ".join(f"{h:>10}" for h in header))
+    with tempfile.TemporaryDirectory() as tmp:
+        for variant in ("polysegment", "polyline-stop", "polyline-blend"):
+            path = Path(tmp) / f"{variant}.as"
+            options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=1.0)
+            run_program(str(curve), tol, options, frame="700,0,200,0,0,0", standoff_mm=100.0, lead_in_mm=30.0,
+                        lead_out_mm=30.0, roll_deg=0.0, follow_tangent=False, center=True, output=path)
+            toolpath = read_toolpath(path)
+            t0 = time.perf_counter()
+            result = execute(toolpath, cell)
+            wall = time.perf_counter() - t0
+            m = result.metrics
+            row = (variant, len(toolpath.moves), f"{m.cycle_time_s:.3f}", f"{m.ideal_time_s:.3f}",
+                   f"{m.min_speed_mm_s:.1f}", f"{m.speed_cv:.4f}", f"{m.fraction_at_speed:.4f}",
+                   f"{m.fraction_at_speed_feasible:.4f}", m.stops, f"{m.max_path_error_mm:.3f}",
+                   f"{m.rms_path_error_mm:.3f}", f"{m.max_joint_accel_ratio:.3f}", f"{wall:.2f}")
+            print(" ".join(f"{str(v):>10}" for v in row))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--curve", type=Path, default=SPIRAL)
+    parser.add_argument("--tol", type=float, default=0.1)
+    parser.add_argument("--speed", type=float, default=200.0)
+    args = parser.parse_args()
+    cell = load_cell()
+    bench_speed(cell, args.speed)
+    bench_spiral(cell, args.curve, args.tol, args.speed)
+
+
+if __name__ == "__main__":
+    main()
