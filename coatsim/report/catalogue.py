@@ -21,12 +21,12 @@ GROUPS = ("segmentation", "motion", "coating")
 METRICS: dict[str, MetricInfo] = {
     # segmentation: the programmed curve against the input curve
     "segmentation.n_segments": MetricInfo("count", "moves on the curve proper: lines + arcs (polysegment) or LMOVEs (polyline)"),
-    "segmentation.n_arcs": MetricInfo("count", "circular moves (C1MOVE/C2MOVE pairs before splitting) on the curve"),
+    "segmentation.n_arcs": MetricInfo("count", "arcs on the curve (one C1MOVE/C2MOVE pair each, more when longer than 170 deg)"),
     "segmentation.n_lines": MetricInfo("count", "straight moves on the curve"),
-    "segmentation.n_corners": MetricInfo("count", "junctions where tangency is intentionally broken (true corners of the input)"),
+    "segmentation.n_corners": MetricInfo("count", "true corners: junctions where the heading jumps by more than the scenario's corner_deg"),
     "segmentation.max_deviation_mm": MetricInfo("mm", "two-sided Hausdorff distance between the input curve and the programmed curve"),
     "segmentation.tolerance_mm": MetricInfo("mm", "deviation the fitter was asked to guarantee"),
-    "segmentation.max_tangent_break_deg": MetricInfo("deg", "largest heading change at a junction that is not a true corner (0 = tangent-continuous)"),
+    "segmentation.max_tangent_break_deg": MetricInfo("deg", "largest heading change at the other junctions (0 = tangent-continuous; a polyline turns at every vertex)"),
     "segmentation.curve_length_mm": MetricInfo("mm", "length of the programmed curve (without run-in and run-out)"),
     # motion: the simulated arm running the program text (the robot stage's motion metrics)
     "motion.programmed_speed_mm_s": MetricInfo("mm/s", "tool speed the program asks for on the curve"),
@@ -54,7 +54,7 @@ METRICS: dict[str, MetricInfo] = {
     "coating.thick_spot_fraction": MetricInfo("1", "area fraction of the region of interest thicker than 1.2 x the target thickness"),
     "coating.coverage_fraction": MetricInfo("1", "area fraction of the region of interest at least 0.8 x the target thickness"),
     "coating.deposited_volume_mm3": MetricInfo("mm³", "coating volume on the part, sum of vertex area x thickness"),
-    "coating.mass_balance_error": MetricInfo("1", "|deposited + oversprayed volume - Q x spray time| / (Q x spray time): conservation check of the deposition"),
+    "coating.mass_balance_error": MetricInfo("1", "abs(deposited volume / (Q x spray time) - 1): conservation check, 0 when all the spray lands on the part (otherwise the overspray fraction)"),
 }
 
 

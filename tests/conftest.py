@@ -1,0 +1,24 @@
+"""Shared test fixtures."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+
+
+@pytest.fixture(scope="session")
+def readme_metric_names() -> list[str]:
+    """Metric names listed, in order, in README.md's table under the ``## Metrics`` heading."""
+    lines = README.read_text(encoding="utf-8").splitlines()
+    start = lines.index("## Metrics")
+    names: list[str] = []
+    for line in lines[start + 1:]:
+        if line.startswith("## "):
+            break
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if line.lstrip().startswith("|") and cells[0].startswith("`"):
+            names.append(cells[0].strip("`"))
+    return names
