@@ -1,0 +1,42 @@
+"""Benchmark of `coatsim run`: every shipped scenario, its comparison table and wall time.
+
+Usage: python scripts/bench_run.py [--fast] [--outdir runs/bench] [SCENARIO.yaml ...]
+Prints figures only; never asserts.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from coatsim.pipeline import run_scenario
+from coatsim.report.summary import summary_text
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("scenarios", nargs="*", type=Path, help="scenario files [default: scenarios/*.yaml]")
+    parser.add_argument("--fast", action="store_true", help="use each scenario's fast settings")
+    parser.add_argument("--outdir", type=Path, default=ROOT / "runs" / "bench")
+    args = parser.parse_args()
+    files = args.scenarios or sorted((ROOT / "scenarios").glob("*.yaml"))
+    totals = []
+    for path in files:
+        started = time.perf_counter()
+        result = run_scenario(path, args.outdir / path.stem, fast=args.fast, progress=False)
+        wall = time.perf_counter() - started
+        totals.append((path.stem, wall, result.passed))
+        print(f"== {path.stem} ({'fast' if args.fast else 'full'} mode): wall time {wall:.1f} s")
+        print(summary_text(result.document))
+        print()
+    print(f"{'scenario':<18} {'wall (s)':>9}  gates")
+    for name, wall, passed in totals:
+        print(f"{name:<18} {wall:>9.1f}  {'pass' if passed else 'FAIL'}")
+    print(f"{'total':<18} {sum(w for _, w, _ in totals):>9.1f}")
+
+
+if __name__ == "__main__":
+    main()
