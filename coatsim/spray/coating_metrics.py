@@ -64,11 +64,11 @@ def region_of_interest(surface: Surface, deposit: Deposit, model: SprayModel, ki
 
 
 def weighted_quantile(values: np.ndarray, weights: np.ndarray, q: float) -> float:
-    """Quantile of an area-weighted sample (midpoint rule on the cumulative weight)."""
+    """Smallest value whose cumulative weight fraction reaches q (area-weighted inverse CDF;
+    splitting a vertex into pieces of the same value does not change it)."""
     order = np.argsort(values, kind="stable")
-    v, w = values[order], weights[order]
-    cum = (np.cumsum(w) - 0.5 * w) / w.sum()
-    return float(np.interp(q, cum, v))
+    v, cum = values[order], np.cumsum(weights[order])
+    return float(v[min(int(np.searchsorted(cum, q * cum[-1], side="left")), len(v) - 1)])
 
 
 def thickness_statistics(thickness_um: np.ndarray, areas: np.ndarray, mask: np.ndarray,

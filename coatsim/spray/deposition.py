@@ -148,7 +148,8 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
 class Deposit:
     """Per-vertex result: thickness (n,) mm, exposure (n,) s with a non-zero rate, and the
     smallest footprint radius (n,) mm at which the vertex was seen while spraying (inf if
-    never), i.e. its distance from the sprayed track on the reference plane."""
+    never): its distance, on the reference plane, from the nearest sprayed sub-step centre
+    (within (step/2)²/(2·distance) of the distance from the continuous track)."""
 
     thickness_mm: np.ndarray
     exposure_s: np.ndarray
