@@ -119,7 +119,8 @@ def heatmap_png(panels: Sequence[HeatPanel], vmin: float | None = None, vmax: fl
 
     vmin = min(float(p.thickness_um.min()) for p in panels) if vmin is None else vmin
     vmax = max(float(p.thickness_um.max()) for p in panels) if vmax is None else vmax
-    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels) + 1.2, 4.4), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels) + 1.2, 4.4), squeeze=False,
+                             layout="constrained")
     image = None
     for ax, p in zip(axes[0], panels):
         image = ax.tripcolor(p.view[:, 0], p.view[:, 1], p.faces, p.thickness_um, shading="gouraud",
@@ -130,7 +131,7 @@ def heatmap_png(panels: Sequence[HeatPanel], vmin: float | None = None, vmax: fl
         ax.set_title(p.title, fontsize=10)
         ax.set_xlabel(p.labels[0])
         ax.set_ylabel(p.labels[1])
-    fig.colorbar(image, ax=list(axes[0]), label="thickness (µm)", shrink=0.9)
+    fig.colorbar(image, ax=list(axes[0]), label="thickness (µm)")
     if title:
         fig.suptitle(title)
     return _png(fig, path)
