@@ -57,11 +57,14 @@ def circle_through(start: np.ndarray, via: np.ndarray, end: np.ndarray) -> Circl
     return Circle3(center=center, normal=normal, radius=radius, sweep=sweep)
 
 
-def _rotate(vectors: np.ndarray, axis: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """Rodrigues rotation of one vector (3,) about a unit ``axis`` by each angle: (n, 3)."""
-    c, s = np.cos(angles)[:, None], np.sin(angles)[:, None]
-    v = np.asarray(vectors, dtype=float)
-    return v * c + np.cross(axis, v) * s + np.outer(1.0 - c[:, 0], axis * float(axis @ v))
+def arc_offsets(radial: np.ndarray, axis: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Displacements (n, 3) of a point at ``radial`` (3,) from its centre when turned about
+    the unit ``axis`` by each angle; written without ``centre + ...`` so huge radii keep
+    their precision."""
+    angles = np.asarray(angles, dtype=float)
+    s, versine = np.sin(angles)[:, None], (2.0 * np.sin(angles / 2.0) ** 2)[:, None]
+    n_x_v = np.cross(axis, radial)
+    return s * n_x_v + versine * np.cross(axis, n_x_v)
 
 
 def move_length(move: Move) -> float:
@@ -80,10 +83,10 @@ def sample_move(move: LinearMove | CircularMove, u: np.ndarray) -> tuple[np.ndar
     u = np.atleast_1d(np.asarray(u, dtype=float))
     if isinstance(move, CircularMove):
         circle = circle_through(move.start.position, move.via.position, move.end.position)
-        angles = u * circle.sweep
-        radial = _rotate(move.start.position - circle.center, circle.normal, angles)
-        tangents = np.cross(circle.normal, radial) / circle.radius
-        return circle.center + radial, tangents
+        radial0 = move.start.position - circle.center
+        offsets = arc_offsets(radial0, circle.normal, u * circle.sweep)
+        tangents = np.cross(circle.normal, radial0 + offsets) / circle.radius
+        return move.start.position + offsets, tangents
     if isinstance(move, JointMove):
         raise TypeError("a joint move has no Cartesian path")
     delta = move.end.position - move.start.position

@@ -18,6 +18,7 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
+from coatsim.program.as_lexer import MAX_ABS_NUMBER
 from coatsim.program.as_writer import fmt_short, program_name, write_as
 from coatsim.program.dialect import ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
@@ -95,6 +96,9 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         curve = polyline_of(raw, poly.closed, tolerance_mm)
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
     path = place(curve, placement)
+    corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
+    if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_ABS_NUMBER):
+        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_ABS_NUMBER:g} mm)")
     metadata = (
         ("variant", options.variant),
         ("source", source),

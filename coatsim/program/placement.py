@@ -23,6 +23,7 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
+from coatsim.program.arcs import DegenerateArc, arc_offsets, circle_through
 from coatsim.program.oat import oat_to_matrix, rot_y, rot_z
 from coatsim.program.toolpath import Pose
 
@@ -67,6 +68,9 @@ class Frame:
 DEFAULT_FRAME = Frame(700.0, 0.0, 200.0, 0.0, 0.0, 0.0)
 # Spray gun TCP relative to the flange, written as the program's TOOL.
 DEFAULT_TOOL = Frame(0.0, 0.0, 200.0, 0.0, 0.0, 0.0)
+# An arc that bulges less than this from its chord is placed as the chord (far below the
+# 1e-7 mm a written coordinate carries).
+_MIN_SAGITTA_MM = 1e-8
 
 
 @dataclass(frozen=True)
@@ -143,9 +147,11 @@ class PlacedArc:
         """Pose at fraction ``u`` of the sweep (u = 1 gives ``end`` exactly)."""
         if u == 1.0:
             return self.end
-        turn = _axis_rotation(self.normal, u * self.sweep)
-        rotation = turn @ self.start.rotation if self.follow_tangent else self.start.rotation
-        return Pose(self.center + turn @ (self.start.position - self.center), rotation)
+        rotation = self.start.rotation
+        if self.follow_tangent:
+            rotation = _axis_rotation(self.normal, u * self.sweep) @ rotation
+        offset = arc_offsets(self.start.position - self.center, self.normal, np.array([u * self.sweep]))[0]
+        return Pose(self.start.position + offset, rotation)
 
     @property
     def via(self) -> Pose:
@@ -156,9 +162,8 @@ class PlacedArc:
         """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the sweep."""
         u = np.atleast_1d(np.asarray(u, dtype=float))
         radial0 = self.start.position - self.center
-        turns = [_axis_rotation(self.normal, x * self.sweep) @ radial0 for x in u]
-        radial = np.array(turns).reshape(len(u), 3)
-        return self.center + radial, np.cross(self.normal, radial) / self.radius
+        offsets = arc_offsets(radial0, self.normal, u * self.sweep)
+        return self.start.position + offsets, np.cross(self.normal, radial0 + offsets) / self.radius
 
     def split(self, max_sweep: float) -> tuple[PlacedArc, ...]:
         """Equal pieces of at most ``max_sweep`` rad each."""
@@ -244,6 +249,30 @@ def _extension(m: _Mapper, anchor: np.ndarray, heading: float, length: float, pa
     return PlacedLine(m.pose(a, heading), m.pose(b, heading), part)
 
 
+def _placed_arc(m: _Mapper, arc: Arc, follow_tangent: bool) -> PlacedSegment:
+    """An arc up to a half turn becomes the circle through its start, middle and end, which
+    is exactly what a program can say even if the arc's end is off its circle by rounding;
+    a longer arc (up to full turns) keeps its centre and sweep; an arc too flat to define a
+    circle becomes its chord."""
+    start, end = m.pose(arc.start, arc.start_heading), m.pose(arc.end, arc.end_heading)
+    if abs(arc.sweep) > math.pi:
+        normal = m.normal if arc.sweep > 0 else -m.normal
+        return PlacedArc(start, end, m.point(arc.center), normal, abs(arc.sweep), follow_tangent)
+    a, b = np.asarray(arc.start, dtype=float), np.asarray(arc.end, dtype=float)
+    chord = b - a
+    sagitta = 2.0 * arc.radius * math.sin(arc.sweep / 4.0) ** 2
+    if sagitta < _MIN_SAGITTA_MM:
+        return PlacedLine(start, end, "curve")
+    # The arc bulges away from its centre: to the right of the chord when turning left.
+    left = np.array([-chord[1], chord[0]]) / float(np.linalg.norm(chord))
+    middle = m.point((a + b) / 2.0 - math.copysign(sagitta, arc.sweep) * left)
+    try:
+        circle = circle_through(start.position, middle, end.position)
+    except DegenerateArc:
+        return PlacedLine(start, end, "curve")
+    return PlacedArc(start, end, circle.center, circle.normal, circle.sweep, follow_tangent)
+
+
 def place(poly: Polysegment, placement: Placement) -> PlacedPath:
     """The 3-D sprayed path of ``poly``: lead-in line, one placed segment per segment, lead-out."""
     m = _Mapper(placement)
@@ -257,15 +286,7 @@ def place(poly: Polysegment, placement: Placement) -> PlacedPath:
                 h = seg.start_heading
                 segments.append(PlacedLine(m.pose(seg.start, h), m.pose(seg.end, h), "curve"))
             continue
-        normal = m.normal if seg.sweep > 0 else -m.normal
-        segments.append(PlacedArc(
-            start=m.pose(seg.start, seg.start_heading),
-            end=m.pose(seg.end, seg.end_heading),
-            center=m.point(seg.center),
-            normal=normal,
-            sweep=abs(seg.sweep),
-            follow_tangent=placement.follow_tangent,
-        ))
+        segments.append(_placed_arc(m, seg, placement.follow_tangent))
     if placement.lead_out_mm > 0.0:
         segments.append(_extension(m, np.asarray(last.end, float), last.end_heading, placement.lead_out_mm, "lead_out"))
     return PlacedPath(

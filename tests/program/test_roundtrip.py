@@ -1,0 +1,115 @@
+"""Round trip: polysegment -> AS text -> parse -> interpret -> the same 3-D path.
+
+Positions within 1e-4 mm and tangents within 1e-6 rad, piece by piece, for both variants.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.program import interpret, parse_as
+from coatsim.program.build import VARIANTS, ProgramOptions, build_program
+from coatsim.program.placement import Frame, Placement, centering_offset
+
+from program_helpers import arc_spiral, path_errors, roundrect
+
+BENCH = Path("/work/shared/bench/curves")
+POSITION_MM, TANGENT_RAD, ROTATION_RAD = 1e-4, 1e-6, 1e-6
+
+
+def round_trip(poly: Polysegment, variant: str, placement: Placement = Placement(), points=None):
+    built = build_program(poly, placement, ProgramOptions(variant=variant), tolerance_mm=0.05,
+                          source="rt", points=points)
+    toolpath = interpret(parse_as(built.text, "rt.as"))
+    return built, toolpath, path_errors(built.path, toolpath)
+
+
+def assert_same_path(errors):
+    dp, dt, dr = errors
+    assert dp <= POSITION_MM and dt <= TANGENT_RAD and dr <= ROTATION_RAD, errors
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("poly", [roundrect(), arc_spiral(), roundrect(300.0, 20.0, 2.0)], ids=["rr", "spiral", "thin"])
+def test_constructed_curves(poly, variant):
+    built, toolpath, errors = round_trip(poly, variant)
+    assert_same_path(errors)
+    assert toolpath.metadata["variant"] == variant
+    assert float(toolpath.metadata["lead_in_mm"]) == 30.0
+
+
+@pytest.mark.parametrize("frame", [Frame(700, 0, 200, 0, 0, 0), Frame(600, -300, 900, 90, 90, 0),
+                                   Frame(-400, 500, 100, 35, 150, -60), Frame(800, 100, 300, 10, 180, 20)])
+@pytest.mark.parametrize("follow", [False, True])
+def test_frames_and_tool_roll(frame, follow):
+    placement = Placement(frame=frame, follow_tangent=follow, roll_deg=25.0, standoff_mm=60.0)
+    assert_same_path(round_trip(arc_spiral(turns=2), "polysegment", placement)[2])
+
+
+def test_sprayed_path_is_the_curve_with_its_leads_and_nothing_else(rr):
+    built, toolpath, _ = round_trip(rr, "polysegment", Placement(lead_in_mm=12.0, lead_out_mm=7.0))
+    from coatsim.program.arcs import move_length
+
+    sprayed = sum(move_length(m) for m in toolpath.spray_moves)
+    assert sprayed == pytest.approx(rr.length + 19.0, abs=1e-5)
+    approach, down = toolpath.moves[:2]
+    assert not approach.spray and not down.spray and not toolpath.moves[-1].spray
+    assert down.settings.stop_at_end and toolpath.spray_moves[-1].settings.stop_at_end
+    assert not any(m.settings.stop_at_end for m in toolpath.spray_moves[:-1])
+    # The approach and depart are along the surface normal, standoff + 50 mm above the surface.
+    assert approach.target.position[2] == pytest.approx(200.0 + 100.0 + 50.0)
+    assert toolpath.moves[-1].end.position[2] == pytest.approx(200.0 + 100.0 + 50.0)
+
+
+# make_segment builds an arc from its centre, so curvatures near zero (radius beyond ~1e6 mm)
+# give end points that are off by more than the test tolerance before any program is written.
+curvature = st.one_of(st.floats(1e-5, 0.3), st.floats(-0.3, -1e-5))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(curvature, st.floats(0.5, 60.0), st.booleans()), min_size=1, max_size=12),
+       st.floats(-math.pi, math.pi))
+def test_random_g1_chains(pieces, heading):
+    curvatures = [k if arc else 0.0 for k, _, arc in pieces]
+    poly = Polysegment(chain((3.0, -7.0), heading, curvatures, [length for _, length, _ in pieces]))
+    assert_same_path(round_trip(poly, "polysegment")[2])
+
+
+@pytest.mark.parametrize("name", ["ellipse", "naca0012", "roundrect", "sine", "spiral"])
+@pytest.mark.parametrize("variant", ["polyline-stop", "polyline-blend"])
+def test_benchmark_curves_polyline_variants(name, variant):
+    """The polyline variants simplify the input points directly (no fitter needed)."""
+    from coatsim.geometry import load_curve
+
+    curve = load_curve(str(BENCH / f"{name}.csv"))
+    # A stand-in polysegment only fixes closedness and centring here: the polyline comes from the points.
+    anchor = Polysegment(chain(tuple(curve.points[0]), 0.0, [0.0], [1.0]), closed=curve.closed)
+    built, _, errors = round_trip(anchor, variant, points=curve.points)
+    assert_same_path(errors)
+    assert built.curve.n_segments >= 4
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["ellipse", "naca0012", "roundrect", "sine", "spiral"])
+@pytest.mark.parametrize("tol", [0.01, 0.1])
+def test_benchmark_curves_segmented(name, tol):
+    """Every benchmark curve through the fitter, then both program variants."""
+    from coatsim.geometry import load_curve, segment_curve
+
+    curve = load_curve(str(BENCH / f"{name}.csv"))
+    poly = segment_curve(curve, tol).polysegment
+    placement = Placement(offset_xy=centering_offset(poly))
+    for variant in VARIANTS:
+        built, toolpath, errors = round_trip(poly, variant, placement, points=curve.points)
+        assert_same_path(errors)
+        if variant == "polysegment":
+            arcs_written = sum(m.kind == "arc" for m in toolpath.spray_moves)
+            assert arcs_written >= poly.n_arcs
+            assert np.isclose(float(toolpath.metadata["curve_length_mm"]), poly.length, atol=1e-6)
