@@ -1,0 +1,211 @@
+"""G1 arc/line fitting in the integrated-θ domain.
+
+For small deviations the lateral offset of a chain from the curve at arc length s is the
+running integral of θ̂ − θ, so we approximate Φ(s) = ∫θ ds (piecewise linear for a polyline)
+by a C1 piecewise-quadratic Φ̂ inside the band Φ ± σ. Each quadratic piece has constant
+second derivative κ, i.e. it is one arc (a line when κ = 0), and C1 continuity of Φ̂ is
+tangent continuity of the chain, so G1 holds by construction.
+
+Given the state (Φ̂, θ̂) at a knot, the curvatures that keep the piece inside the band up to
+knot b form an interval; its running intersection gives every reachable end at once. The
+greedy picks each piece's end and curvature by one step of look-ahead: the choice that lets
+the *next* piece reach farthest.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linprog
+
+N_END_CANDIDATES = 12
+N_CURVATURE_CANDIDATES = 5
+N_HEADING_CANDIDATES = 7
+
+
+@dataclass(frozen=True, eq=False)
+class BandProblem:
+    """Knots ``s`` (n,) and integrated heading ``phi`` (n,) of one open run of a curve."""
+
+    s: np.ndarray
+    phi: np.ndarray
+
+    @classmethod
+    def from_points(cls, points: np.ndarray) -> tuple["BandProblem", float]:
+        """Build from a polyline; returns the problem and the reference heading θ is taken from."""
+        d = np.diff(points, axis=0)
+        ell = np.linalg.norm(d, axis=1)
+        heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+        ref = float(heading[0])
+        s = np.concatenate(([0.0], np.cumsum(ell)))
+        phi = np.concatenate(([0.0], np.cumsum((heading - ref) * ell)))
+        return cls(s, phi), ref
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One quadratic piece of Φ̂ from knot ``a`` to knot ``b`` with curvature ``kappa``."""
+
+    a: int
+    b: int
+    kappa: float
+
+
+def _reach(prob: BandProblem, a: int, value: float, slope: float, band: float) -> tuple[int, np.ndarray, np.ndarray]:
+    """Farthest knot b reachable from state (value, slope) at knot a, and the feasible
+    curvature bounds (lo, hi) for every knot a+1..b (arrays of length b - a)."""
+    n = len(prob.s)
+    lo_all, hi_all = [], []
+    lo_run, hi_run = -np.inf, np.inf
+    start, width = a + 1, 256
+    while start < n:
+        stop = min(n, start + width)
+        u = prob.s[start:stop] - prob.s[a]
+        base = value + slope * u
+        inv = 2.0 / (u * u)
+        lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - band - base) * inv)))[1:]
+        hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + band - base) * inv)))[1:]
+        bad = np.flatnonzero(lo > hi)
+        if len(bad):
+            lo_all.append(lo[: bad[0]])
+            hi_all.append(hi[: bad[0]])
+            break
+        lo_all.append(lo)
+        hi_all.append(hi)
+        lo_run, hi_run = lo[-1], hi[-1]
+        start, width = stop, width * 4
+    lo_cat = np.concatenate(lo_all) if lo_all else np.empty(0)
+    hi_cat = np.concatenate(hi_all) if hi_all else np.empty(0)
+    return a + len(lo_cat), lo_cat, hi_cat
+
+
+def _advance(prob: BandProblem, a: int, b: int, value: float, slope: float, kappa: float) -> tuple[float, float]:
+    u = prob.s[b] - prob.s[a]
+    return value + slope * u + 0.5 * kappa * u * u, slope + kappa * u
+
+
+def _curvature_candidates(lo: float, hi: float) -> np.ndarray:
+    cands = np.linspace(lo, hi, N_CURVATURE_CANDIDATES)
+    if lo <= 0.0 <= hi:
+        cands = np.append(cands, 0.0)
+    return cands
+
+
+def _end_candidates(prob: BandProblem, a: int, b_max: int) -> np.ndarray:
+    """Knots to try as the piece end: the farthest, and others spread over the last 40 %."""
+    s_far = prob.s[b_max]
+    targets = prob.s[a] + (s_far - prob.s[a]) * np.linspace(0.6, 1.0, N_END_CANDIDATES)
+    ends = np.searchsorted(prob.s, targets).clip(a + 1, b_max)
+    return np.unique(ends)
+
+
+def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: float) -> tuple[Piece, float, float, float]:
+    """Choose the next piece from a state by one step of look-ahead.
+
+    Returns (piece, next value, next slope, score), score = arc length the following piece
+    reaches (infinity when this piece ends the run).
+    """
+    last = len(prob.s) - 1
+    b_max, lo, hi = _reach(prob, a, value, slope, band)
+    if b_max == a:
+        raise _Stuck(a)
+    if b_max == last:
+        # Final piece: end the run with the curvature that lands closest to the curve's end.
+        k_lo, k_hi = lo[-1], hi[-1]
+        u = prob.s[last] - prob.s[a]
+        ideal = 2.0 * (prob.phi[last] - value - slope * u) / (u * u)
+        kappa = 0.0 if k_lo <= 0.0 <= k_hi and abs(ideal) * u * u < 0.2 * band else float(np.clip(ideal, k_lo, k_hi))
+        v, t = _advance(prob, a, last, value, slope, kappa)
+        return Piece(a, last, kappa), v, t, np.inf
+    best = None
+    for b in _end_candidates(prob, a, b_max):
+        for kappa in _curvature_candidates(lo[b - a - 1], hi[b - a - 1]):
+            v, t = _advance(prob, a, b, value, slope, kappa)
+            nxt, _, _ = _reach(prob, b, v, t, band)
+            score = np.inf if nxt == last else prob.s[nxt]
+            key = (score, prob.s[b], kappa == 0.0)
+            if best is None or key > best[0]:
+                best = (key, Piece(a, int(b), float(kappa)), v, t)
+    _, piece, v, t = best
+    return piece, v, t, best[0][0]
+
+
+class _Stuck(Exception):
+    """No piece can leave this state inside the band."""
+
+    def __init__(self, knot: int) -> None:
+        super().__init__(f"stuck at knot {knot}")
+        self.knot = knot
+
+
+def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
+    """Range of start slopes θ̂(0) for which one piece starting on the curve reaches farthest.
+
+    Binary search on the reach with a 2-variable LP (slope, curvature), then the slope range
+    at 70 % of that reach, so the look-ahead has room to choose.
+    """
+    n = len(prob.s)
+
+    def slope_range(b: int) -> tuple[float, float] | None:
+        u = prob.s[1 : b + 1] - prob.s[0]
+        a_ub = np.vstack((np.column_stack((u, 0.5 * u * u)), -np.column_stack((u, 0.5 * u * u))))
+        rhs = prob.phi[1 : b + 1] - prob.phi[0]
+        b_ub = np.concatenate((rhs + band, band - rhs))
+        out = []
+        for c in (1.0, -1.0):
+            res = linprog([c, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * 2, method="highs")
+            if res.status != 0:
+                return None
+            out.append(res.x[0])
+        return out[0], out[1]
+
+    lo, hi = 1, n - 1
+    if slope_range(hi) is not None:
+        best = hi
+    else:
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if slope_range(mid) is not None:
+                lo = mid
+            else:
+                hi = mid
+        best = lo
+    target = int(np.searchsorted(prob.s, 0.7 * prob.s[best]).clip(1, best))
+    rng = slope_range(target)
+    assert rng is not None  # a shorter reach than a feasible one is feasible
+    return rng
+
+
+def fit_band(prob: BandProblem, band: float, start_slope: float | None = None) -> tuple[float, list[Piece]]:
+    """Greedy C1 piecewise-quadratic fit of Φ within ±band over the whole run.
+
+    The run starts on the curve (Φ̂(0) = Φ(0)); its start slope is ``start_slope`` if given,
+    otherwise chosen by look-ahead. Returns (start slope, pieces).
+    """
+    if start_slope is None:
+        lo, hi = _start_heading_range(prob, band)
+        options = np.linspace(lo, hi, N_HEADING_CANDIDATES)
+    else:
+        options = np.array([start_slope])
+    best = None
+    for slope in options:
+        try:
+            piece, v, t, score = _best_step(prob, 0, float(prob.phi[0]), float(slope), band)
+        except _Stuck:
+            continue
+        key = (score, prob.s[piece.b])
+        if best is None or key > best[0]:
+            best = (key, float(slope), piece, v, t)
+    if best is None:
+        raise _Stuck(0)
+    _, slope0, piece, v, t = best
+    pieces = [piece]
+    last = len(prob.s) - 1
+    while pieces[-1].b < last:
+        piece, v, t, _ = _best_step(prob, pieces[-1].b, v, t, band)
+        pieces.append(piece)
+    return slope0, pieces
+
+
+BandStuck = _Stuck

@@ -1,0 +1,194 @@
+"""Named parametric test curves, sampled uniformly by arc length (mm).
+
+``builtin_curve("ellipse", a=120)`` or, from the command line, ``builtin:ellipse:a=120,points=3000``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import numpy as np
+from scipy.special import fresnel
+
+from coatsim.errors import InputError
+from coatsim.geometry.curves import Curve, make_curve
+from coatsim.geometry.polysegment import Polysegment, chain
+
+DEFAULT_POINTS = 3000
+
+
+def _resample(xy: np.ndarray, n: int) -> np.ndarray:
+    """Resample a dense polyline to ``n`` points equally spaced in arc length."""
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))))
+    t = np.linspace(0.0, s[-1], n)
+    return np.column_stack((np.interp(t, s, xy[:, 0]), np.interp(t, s, xy[:, 1])))
+
+
+def _parametric(f: Callable[[np.ndarray], np.ndarray], t0: float, t1: float, n: int) -> np.ndarray:
+    return _resample(f(np.linspace(t0, t1, 40 * n + 1)), n)
+
+
+def paper_spiral(points: int = DEFAULT_POINTS, width: float = 200.0, turns: float = 2.0) -> np.ndarray:
+    """The paper's Fig. 6: x = -(1+2t) cos t, y = (1+2t) sin t, t in [0, 2π·turns]."""
+    f = lambda t: np.column_stack((-(1 + 2 * t) * np.cos(t), (1 + 2 * t) * np.sin(t)))  # noqa: E731
+    xy = _parametric(f, 0.0, 2 * math.pi * turns, points)
+    return xy * (width / np.ptp(xy[:, 0]))
+
+
+def ellipse(points: int = DEFAULT_POINTS, a: float = 100.0, b: float = 50.0) -> np.ndarray:
+    f = lambda t: np.column_stack((a * np.cos(t), b * np.sin(t)))  # noqa: E731
+    return _parametric(f, 0.0, 2 * math.pi, points)
+
+
+def naca(points: int = DEFAULT_POINTS, code: str = "0012", chord: float = 200.0) -> np.ndarray:
+    """NACA 4-digit airfoil (closed trailing edge): TE -> upper -> LE -> lower -> TE."""
+    code = str(code).zfill(4)
+    if len(code) != 4 or not code.isdigit():
+        raise InputError(f"builtin:naca: code must be 4 digits, got {code!r}")
+    m, p, tt = int(code[0]) / 100, int(code[1]) / 10, int(code[2:]) / 100
+    beta = np.linspace(0.0, math.pi, 20 * points)
+    x = (1 - np.cos(beta)) / 2
+    yt = 5 * tt * (0.2969 * np.sqrt(x) - 0.1260 * x - 0.3516 * x**2 + 0.2843 * x**3 - 0.1036 * x**4)
+    if m > 0 and p > 0:
+        yc = np.where(x < p, m / p**2 * (2 * p * x - x**2), m / (1 - p) ** 2 * (1 - 2 * p + 2 * p * x - x**2))
+        dyc = np.where(x < p, 2 * m / p**2 * (p - x), 2 * m / (1 - p) ** 2 * (p - x))
+    else:
+        yc, dyc = np.zeros_like(x), np.zeros_like(x)
+    th = np.arctan(dyc)
+    upper = np.column_stack((x - yt * np.sin(th), yc + yt * np.cos(th)))[::-1]
+    lower = np.column_stack((x + yt * np.sin(th), yc - yt * np.cos(th)))[1:]
+    xy = np.vstack((upper, lower)) * chord
+    return _resample(xy, points)
+
+
+def cam(points: int = DEFAULT_POINTS, base_radius: float = 40.0, lift: float = 12.0) -> np.ndarray:
+    """Disc cam: rise 120° (cycloidal), dwell 60°, return 120°, dwell 60°."""
+    phi = np.linspace(0.0, 2 * math.pi, 40 * points + 1)
+    u = np.degrees(phi)
+
+    def cycloid(x: np.ndarray) -> np.ndarray:
+        return x - np.sin(2 * math.pi * x) / (2 * math.pi)
+
+    lift_of = np.select(
+        [u < 120, u < 180, u < 300],
+        [cycloid(u / 120), np.ones_like(u), 1 - cycloid((u - 180) / 120)],
+        np.zeros_like(u),
+    )
+    r = base_radius + lift * lift_of
+    return _resample(np.column_stack((r * np.cos(phi), r * np.sin(phi))), points)
+
+
+def epitrochoid(points: int = DEFAULT_POINTS, big_r: float = 60.0, small_r: float = 20.0, d: float = 10.0) -> np.ndarray:
+    k = (big_r + small_r) / small_r
+    f = lambda t: np.column_stack(  # noqa: E731
+        ((big_r + small_r) * np.cos(t) - d * np.cos(k * t), (big_r + small_r) * np.sin(t) - d * np.sin(k * t))
+    )
+    return _parametric(f, 0.0, 2 * math.pi, points)
+
+
+def sine(points: int = DEFAULT_POINTS, amplitude: float = 20.0, wavelength: float = 100.0, length: float = 200.0) -> np.ndarray:
+    f = lambda t: np.column_stack((t, amplitude * np.sin(2 * math.pi * t / wavelength)))  # noqa: E731
+    return _parametric(f, 0.0, length, points)
+
+
+def clothoid(points: int = DEFAULT_POINTS, length: float = 200.0, end_radius: float = 40.0) -> np.ndarray:
+    """Euler spiral from curvature 0 to 1/end_radius over ``length`` (exact, via Fresnel)."""
+    scale = math.sqrt(math.pi * length * end_radius)
+    t = np.linspace(0.0, length / scale, points)
+    s_int, c_int = fresnel(t)
+    return scale * np.column_stack((c_int, s_int))
+
+
+def _sample_polysegment(poly: Polysegment, points: int) -> np.ndarray:
+    xy, _ = poly.sample(poly.length / max(points - 1, 1))
+    return xy
+
+
+def rounded_rectangle(points: int = DEFAULT_POINTS, width: float = 150.0, height: float = 80.0, radius: float = 10.0) -> np.ndarray:
+    """Exactly 4 lines + 4 quarter arcs, counter-clockwise from the middle of the bottom edge."""
+    if not 0 < radius < min(width, height) / 2:
+        raise InputError("builtin:rounded-rectangle: need 0 < radius < min(width, height) / 2")
+    lw, lh, q = width - 2 * radius, height - 2 * radius, math.pi / 2 * radius
+    k = 1 / radius
+    segs = chain((0.0, -height / 2), 0.0, [0, k, 0, k, 0, k, 0, k, 0], [lw / 2, q, lh, q, lw, q, lh, q, lw / 2])
+    return _sample_polysegment(Polysegment(segs, closed=True), points)
+
+
+def polygon(points: int = DEFAULT_POINTS, sides: int = 5, radius: float = 60.0) -> np.ndarray:
+    """Regular polygon with sharp corners (every vertex a true corner)."""
+    sides = int(sides)
+    if sides < 3:
+        raise InputError("builtin:polygon: sides must be >= 3")
+    ang = np.linspace(0.0, 2 * math.pi, sides + 1) + math.pi / 2
+    return _resample(np.column_stack((radius * np.cos(ang), radius * np.sin(ang))), points)
+
+
+def d_shape(points: int = DEFAULT_POINTS, radius: float = 50.0, stem: float = 40.0) -> np.ndarray:
+    """A glyph 'D': a straight stem, two lines and a half circle; the two stem ends are true
+    (90°) corners, the arc joins its lines tangentially."""
+    segs = chain((0.0, -radius), 0.0, [0, 1 / radius, 0], [stem, math.pi * radius, stem])
+    end = segs[-1].end
+    closing = chain(end, -math.pi / 2, [0], [2 * radius])
+    return _sample_polysegment(Polysegment(segs + closing, closed=True), points)
+
+
+def raster(points: int = DEFAULT_POINTS, width: float = 200.0, pitch: float = 20.0, passes: int = 6) -> np.ndarray:
+    """Serpentine raster: ``passes`` straight passes joined by semicircular turn-arounds."""
+    passes = int(passes)
+    if passes < 1 or pitch <= 0 or width <= 0:
+        raise InputError("builtin:raster: need passes >= 1, pitch > 0, width > 0")
+    kappas, lengths = [], []
+    for i in range(passes):
+        kappas.append(0.0)
+        lengths.append(width)
+        if i < passes - 1:
+            kappas.append((2.0 if i % 2 == 0 else -2.0) / pitch)
+            lengths.append(math.pi * pitch / 2)
+    segs = chain((-width / 2, 0.0), 0.0, kappas, lengths)
+    return _sample_polysegment(Polysegment(segs), points)
+
+
+BUILTINS: dict[str, Callable[..., np.ndarray]] = {
+    "paper-spiral": paper_spiral,
+    "ellipse": ellipse,
+    "naca": naca,
+    "cam": cam,
+    "epitrochoid": epitrochoid,
+    "sine": sine,
+    "clothoid": clothoid,
+    "rounded-rectangle": rounded_rectangle,
+    "polygon": polygon,
+    "d-shape": d_shape,
+    "raster": raster,
+}
+
+
+def builtin_curve(name: str, **params: float | int | str) -> Curve:
+    """Sample the named built-in curve; unknown names or parameters raise InputError."""
+    if name not in BUILTINS:
+        raise InputError(f"builtin:{name}: unknown curve; choose one of {', '.join(sorted(BUILTINS))}")
+    func = BUILTINS[name]
+    try:
+        xy = func(**params)
+    except TypeError as exc:
+        raise InputError(f"builtin:{name}: bad parameter ({exc})") from None
+    return make_curve(xy, f"builtin:{name}")
+
+
+def parse_builtin_spec(spec: str) -> Curve:
+    """``builtin:NAME`` or ``builtin:NAME:key=value,key=value``."""
+    body = spec[len("builtin:"):]
+    name, _, arg_text = body.partition(":")
+    params: dict[str, float | int | str] = {}
+    for item in filter(None, (a.strip() for a in arg_text.split(","))):
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise InputError(f"{spec}: parameter {item!r} must be key=value")
+        key = key.strip().replace("-", "_")
+        try:
+            number = float(value)
+            params[key] = int(number) if key in ("points", "sides", "passes") else number
+        except ValueError:
+            params[key] = value.strip()
+    return builtin_curve(name.strip(), **params)

@@ -1,0 +1,55 @@
+"""True corners of an input polyline: a large turn within a short length."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def _point_at(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
+    return np.column_stack((np.interp(at, s, points[:, 0]), np.interp(at, s, points[:, 1])))
+
+
+def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, tolerance: float) -> np.ndarray:
+    """Indices of the vertices where the curve turns by more than ``corner_deg`` within a
+    window w = max(2 median edge lengths, σ) on each side.
+
+    The turn is measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so noise
+    and fine sampling of a smooth bend do not count, while a sharp vertex does. Neighbouring
+    detections within 2w collapse to the vertex with the largest turn. End points of an open
+    curve are never corners.
+    """
+    pts = np.asarray(points, dtype=float)
+    edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate(([0.0], np.cumsum(edges)))
+    total = s[-1]
+    w = max(2.0 * float(np.median(edges)), tolerance)
+    n = len(pts) - 1 if closed else len(pts)
+    idx = np.arange(n)
+    if closed:
+        ext_s = np.concatenate((s[:-1] - total, s, s[1:] + total))
+        ext_p = np.vstack((pts[:-1], pts, pts[1:]))
+    else:
+        ext_s, ext_p = s, pts
+        idx = idx[(s[:n] >= w) & (s[:n] <= total - w)]
+    if len(idx) == 0 or w >= total / 4:
+        return np.empty(0, dtype=int)
+    here = pts[idx]
+    before = _point_at(ext_p, ext_s, s[idx] - w) - here
+    after = _point_at(ext_p, ext_s, s[idx] + w) - here
+    a_in = np.arctan2(-before[:, 1], -before[:, 0])
+    a_out = np.arctan2(after[:, 1], after[:, 0])
+    turn = np.abs(np.remainder(a_out - a_in + math.pi, 2 * math.pi) - math.pi)
+    hits = np.flatnonzero(turn > math.radians(corner_deg))
+    corners: list[int] = []
+    for h in hits[np.argsort(-turn[hits], kind="stable")]:
+        v = int(idx[h])
+        if all(_arc_gap(s, v, c, total, closed) > 2 * w for c in corners):
+            corners.append(v)
+    return np.array(sorted(corners), dtype=int)
+
+
+def _arc_gap(s: np.ndarray, i: int, j: int, total: float, closed: bool) -> float:
+    gap = abs(s[i] - s[j])
+    return min(gap, total - gap) if closed else gap

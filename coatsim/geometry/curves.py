@@ -1,0 +1,139 @@
+"""Planar input curves: the Curve value, file readers (CSV/TXT/NPY) and closure detection."""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from coatsim.errors import InputError
+
+ClosedMode = Literal["auto", "yes", "no"]
+CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
+
+
+@dataclass(frozen=True, eq=False)
+class Curve:
+    """A dense planar polyline in mm, shape (n, 2), n >= 2, no consecutive duplicates.
+
+    A closed curve repeats its first point as its last.
+    """
+
+    points: np.ndarray
+    closed: bool
+    name: str
+
+    @property
+    def length(self) -> float:
+        return float(np.linalg.norm(np.diff(self.points, axis=0), axis=1).sum())
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float = 1.0) -> Curve:
+        pts = scale * self.points @ np.asarray(matrix, float).T + np.asarray(offset, float)
+        return Curve(pts, self.closed, self.name)
+
+
+def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Curve:
+    """Validate raw points and build a Curve.
+
+    Drops consecutive duplicate points silently; rejects NaN/inf, fewer than two distinct
+    points and zero length with an InputError naming ``name``.
+    """
+    pts = np.asarray(points, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise InputError(f"{name}: expected x,y points, got an array of shape {pts.shape}")
+    if len(pts) == 0:
+        raise InputError(f"{name}: no points")
+    bad = ~np.isfinite(pts).all(axis=1)
+    if bad.any():
+        raise InputError(f"{name}: point {int(np.argmax(bad)) + 1} is not finite (NaN or inf)")
+    keep = np.ones(len(pts), dtype=bool)
+    keep[1:] = np.any(np.diff(pts, axis=0) != 0.0, axis=1)
+    pts = pts[keep]
+    if len(pts) < 2:
+        what = "one point" if keep.size == 1 else "all points are equal"
+        raise InputError(f"{name}: a curve needs at least two distinct points ({what})")
+    length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    gap = float(np.linalg.norm(pts[-1] - pts[0]))
+    if closed == "auto":
+        is_closed = len(pts) >= 4 and gap <= CLOSE_FRACTION * length
+    else:
+        is_closed = closed == "yes"
+    if is_closed:
+        if gap <= CLOSE_FRACTION * length:
+            pts = np.vstack((pts[:-1], pts[:1]))  # snap the closing point onto the first
+        else:
+            pts = np.vstack((pts, pts[:1]))
+        if len(pts) < 4:
+            raise InputError(f"{name}: a closed curve needs at least three distinct points")
+    return Curve(pts, is_closed, name)
+
+
+_SEPARATORS = re.compile(r"[,;\s]+")
+
+
+def _read_text_points(path: Path) -> np.ndarray:
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not a text file (expected x,y columns)") from None
+    rows: list[tuple[float, float]] = []
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        fields = [f for f in _SEPARATORS.split(line) if f]
+        try:
+            values = [float(f) for f in fields]
+        except ValueError:
+            if not rows and all(re.match(r"^[A-Za-z_\"']", f) for f in fields):
+                continue  # header row
+            bad = next(f for f in fields if not _is_float(f))
+            raise InputError(f"{path}:{number}: not a number: {bad!r} (expected x,y columns)") from None
+        if len(values) < 2:
+            raise InputError(f"{path}:{number}: expected two columns x,y, found {len(values)}")
+        x, y = values[0], values[1]
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise InputError(f"{path}:{number}: value is not finite (NaN or inf)")
+        rows.append((x, y))
+    if not rows:
+        raise InputError(f"{path}: no points (empty file)")
+    return np.asarray(rows, dtype=float)
+
+
+def _is_float(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _read_npy_points(path: Path) -> np.ndarray:
+    try:
+        data = np.load(path, allow_pickle=False)
+    except (ValueError, OSError) as exc:
+        raise InputError(f"{path}: not a readable .npy array ({exc})") from None
+    if data.ndim != 2 or data.shape[1] < 2 or not np.issubdtype(data.dtype, np.number):
+        raise InputError(f"{path}: expected a numeric (n, 2) array, got {data.dtype} {data.shape}")
+    return data[:, :2].astype(float)
+
+
+def read_curve_file(path: str | Path, closed: ClosedMode = "auto") -> Curve:
+    """Read a curve from CSV/TXT (x,y columns: comma, space, tab or semicolon; optional
+    header; '#' comments) or NPY ((n, 2) array)."""
+    path = Path(path)
+    if not path.exists():
+        raise InputError(f"{path}: no such file")
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder, expected a curve file")
+    try:
+        points = _read_npy_points(path) if path.suffix.lower() == ".npy" else _read_text_points(path)
+    except PermissionError:
+        raise InputError(f"{path}: permission denied") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    return make_curve(points, str(path), closed)

@@ -1,0 +1,156 @@
+"""Exact two-sided Hausdorff distance between an input polyline and a polysegment.
+
+Distances are computed point-to-primitive in closed form (no sampling of either curve).
+Both directions are evaluated at every point where the distance can have a local maximum:
+
+- polyline -> polysegment: every input vertex, plus on every input edge the foot of the
+  centre of a nearby arc (where a chord is deepest inside an arc, the sagitta case);
+- polysegment -> polyline: every segment end, the foot on the polysegment of every input
+  vertex, and on every arc the points whose tangent is parallel to a nearby input edge.
+
+Nearest input edges are found with a KD-tree and the search radius is widened until it
+provably contains every edge that could be closer, so the result is exact, not sampled.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.primitives import Arc
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """Hausdorff distance (mm) and its two directed parts."""
+
+    input_to_output: float
+    output_to_input: float
+
+    @property
+    def hausdorff(self) -> float:
+        return max(self.input_to_output, self.output_to_input)
+
+
+def distance_to_polysegment(points: np.ndarray, poly: Polysegment) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Exact distance from each point (m, 2) to the polysegment.
+
+    Returns (distance (m,), index of the nearest segment (m,), nearest point (m, 2)).
+    """
+    pts = np.asarray(points, dtype=float)
+    best = np.full(len(pts), np.inf)
+    index = np.zeros(len(pts), dtype=int)
+    foot = np.zeros_like(pts)
+    for j, seg in enumerate(poly.segments):
+        d, f = _distance_to_segment(pts, seg)
+        better = d < best
+        best[better], index[better], foot[better] = d[better], j, f[better]
+    return best, index, foot
+
+
+def _distance_to_segment(pts: np.ndarray, seg) -> tuple[np.ndarray, np.ndarray]:
+    a, b = np.asarray(seg.start), np.asarray(seg.end)
+    if not isinstance(seg, Arc):
+        ab = b - a
+        denom = float(ab @ ab)
+        u = np.clip((pts - a) @ ab / denom, 0.0, 1.0) if denom > 0 else np.zeros(len(pts))
+        f = a + u[:, None] * ab
+        return np.linalg.norm(pts - f, axis=1), f
+    c = np.asarray(seg.center)
+    rel = pts - c
+    r = np.linalg.norm(rel, axis=1)
+    ang = np.arctan2(rel[:, 1], rel[:, 0])
+    direction = 1.0 if seg.sweep > 0 else -1.0
+    phi = np.mod(direction * (ang - seg.start_angle), 2 * np.pi)
+    inside = phi <= abs(seg.sweep)
+    on_circle = c + seg.radius * np.column_stack((np.cos(ang), np.sin(ang)))
+    da, db = np.linalg.norm(pts - a, axis=1), np.linalg.norm(pts - b, axis=1)
+    end_foot = np.where((da <= db)[:, None], a, b)
+    d = np.where(inside, np.abs(r - seg.radius), np.minimum(da, db))
+    f = np.where(inside[:, None], on_circle, end_foot)
+    return d, f
+
+
+class PolylineDistance:
+    """Exact distance from query points to a fixed polyline (KD-tree accelerated)."""
+
+    def __init__(self, vertices: np.ndarray) -> None:
+        self.vertices = np.asarray(vertices, dtype=float)
+        self.tree = cKDTree(self.vertices)
+        edges = np.diff(self.vertices, axis=0)
+        self.max_edge = float(np.linalg.norm(edges, axis=1).max()) if len(edges) else 0.0
+
+    def _edge_distance(self, pts: np.ndarray, edge: np.ndarray) -> np.ndarray:
+        a, b = self.vertices[edge], self.vertices[edge + 1]
+        ab = b - a
+        denom = np.einsum("ij,ij->i", ab, ab)
+        u = np.clip(np.einsum("ij,ij->i", pts - a, ab) / np.where(denom > 0, denom, 1.0), 0.0, 1.0)
+        return np.linalg.norm(pts - (a + u[:, None] * ab), axis=1)
+
+    def __call__(self, points: np.ndarray, k: int = 8) -> np.ndarray:
+        pts = np.asarray(points, dtype=float)
+        n_vert = len(self.vertices)
+        k = min(k, n_vert)
+        dist_v, idx = self.tree.query(pts, k=k)
+        dist_v, idx = dist_v.reshape(len(pts), k), idx.reshape(len(pts), k)
+        best = dist_v[:, 0].copy()
+        for col in range(k):
+            for edge in (idx[:, col] - 1, idx[:, col]):
+                valid = (edge >= 0) & (edge < n_vert - 1)
+                if valid.any():
+                    d = self._edge_distance(pts[valid], edge[valid])
+                    best[valid] = np.minimum(best[valid], d)
+        # An edge closer than `best` has an end point within best + max_edge / 2: if such a
+        # vertex might lie beyond the k searched, search that radius exhaustively.
+        unsure = np.flatnonzero(dist_v[:, -1] <= best + self.max_edge / 2) if k < n_vert else []
+        for i in unsure:
+            near = np.asarray(self.tree.query_ball_point(pts[i], best[i] + self.max_edge / 2 + 1e-12))
+            edges = np.unique(np.concatenate((near - 1, near)))
+            edges = edges[(edges >= 0) & (edges < n_vert - 1)]
+            if len(edges):
+                best[i] = min(best[i], float(self._edge_distance(np.repeat(pts[i : i + 1], len(edges), 0), edges).min()))
+        return best
+
+
+def hausdorff(polyline: np.ndarray, poly: Polysegment) -> Deviation:
+    """Exact two-sided Hausdorff distance between ``polyline`` (n, 2) and ``poly``."""
+    verts = np.asarray(polyline, dtype=float)
+    d_vert, seg_of, foot = distance_to_polysegment(verts, poly)
+
+    # polyline -> polysegment: edge interiors deepest inside a nearby arc.
+    a, b = verts[:-1], verts[1:]
+    ab = b - a
+    denom = np.einsum("ij,ij->i", ab, ab)
+    extra = []
+    for owner in (seg_of[:-1], seg_of[1:]):
+        is_arc = np.array([isinstance(poly.segments[j], Arc) for j in owner])
+        if not is_arc.any():
+            continue
+        centers = np.array([poly.segments[j].center if isinstance(poly.segments[j], Arc) else (0.0, 0.0) for j in owner])
+        u = np.einsum("ij,ij->i", centers - a, ab) / np.where(denom > 0, denom, 1.0)
+        interior = is_arc & (u > 0) & (u < 1)
+        extra.append(a[interior] + u[interior, None] * ab[interior])
+    d_in = float(d_vert.max())
+    if extra:
+        cand = np.vstack(extra)
+        if len(cand):
+            d_in = max(d_in, float(distance_to_polysegment(cand, poly)[0].max()))
+
+    # polysegment -> polyline.
+    cand_out = [foot, np.array([s.start for s in poly.segments] + [poly.end])]
+    headings = np.arctan2(ab[:, 1], ab[:, 0])
+    for j, seg in enumerate(poly.segments):
+        if not isinstance(seg, Arc):
+            continue
+        near = np.flatnonzero((seg_of[:-1] == j) | (seg_of[1:] == j))
+        if not len(near):
+            continue
+        ang = headings[near] - np.sign(seg.sweep) * np.pi / 2
+        phi = np.mod(np.sign(seg.sweep) * (ang - seg.start_angle), 2 * np.pi)
+        ok = phi <= abs(seg.sweep)
+        cand_out.append(np.asarray(seg.center) + seg.radius * np.column_stack((np.cos(ang[ok]), np.sin(ang[ok]))))
+    d_out = float(PolylineDistance(verts)(np.vstack(cand_out)).max())
+    return Deviation(d_in, d_out)

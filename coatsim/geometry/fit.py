@@ -1,0 +1,131 @@
+"""The default fitter: guaranteed-tolerance G1 arc/line chains with few segments.
+
+Per run of the curve between true corners (or the whole closed loop):
+1. a greedy C1 piecewise-quadratic fit of the integrated heading inside a band (band_fit),
+2. a minimax refinement of the chain in its (heading, curvature, length) parameters that
+   also pins the run's end point (and closes a loop with its start heading) (refine),
+3. the exact two-sided Hausdorff check (deviation); if it exceeds σ, the band shrinks and the
+   run is fitted again,
+4. neighbouring segments are merged and re-refined while the exact check still holds.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from coatsim.errors import InputError
+from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
+from coatsim.geometry.deviation import hausdorff
+from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.geometry.primitives import Arc, Line, Segment
+from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
+
+MAX_ATTEMPTS = 12
+MERGE_TRIES = 3
+SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint
+TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
+
+
+def total_turn(points: np.ndarray) -> float:
+    """Total signed turning (rad) of a closed polyline, a multiple of 2π."""
+    d = np.diff(points, axis=0)
+    h = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    closing = math.remainder(h[0] - h[-1], 2 * math.pi)
+    return float(h[-1] - h[0] + closing)
+
+
+def build_chain(start: np.ndarray, p: ChainParams, end: np.ndarray) -> tuple[Segment, ...]:
+    """Segments of the chain with the last end point snapped exactly onto ``end``."""
+    segs = list(chain((float(start[0]), float(start[1])), p.heading, p.kappa, p.length))
+    last = segs[-1]
+    tip = (float(end[0]), float(end[1]))
+    segs[-1] = Arc(last.start, tip, last.center, last.radius, last.sweep) if isinstance(last, Arc) else Line(last.start, tip)
+    return tuple(segs)
+
+
+def _params_from_band(prob: BandProblem, ref: float, slope: float, pieces) -> ChainParams:
+    kappa = np.array([p.kappa for p in pieces])
+    length = np.array([prob.s[p.b] - prob.s[p.a] for p in pieces])
+    return ChainParams(ref + slope, kappa, length)
+
+
+def _check(points: np.ndarray, params: ChainParams, end: np.ndarray) -> tuple[float, tuple[Segment, ...]]:
+    segs = build_chain(points[0], params, end)
+    return hausdorff(points, Polysegment(segs)).hausdorff, segs
+
+
+def _merged(p: ChainParams, j: int) -> ChainParams:
+    """Parameters with segments j and j+1 merged into one of the same total turn and length."""
+    length = p.length[j] + p.length[j + 1]
+    kappa = (p.kappa[j] * p.length[j] + p.kappa[j + 1] * p.length[j + 1]) / length
+    return ChainParams(
+        p.heading,
+        np.concatenate((p.kappa[:j], [kappa], p.kappa[j + 2 :])),
+        np.concatenate((p.length[:j], [length], p.length[j + 2 :])),
+    )
+
+
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Segment, ...]:
+    """G1 chain within ``tolerance`` of a run (start and end points kept exactly)."""
+    pts = np.asarray(points, dtype=float)
+    end = pts[-1]
+    if len(pts) == 2:
+        return (Line(tuple(pts[0]), tuple(pts[1])),)
+    turn = total_turn(pts) if closed_loop else None
+    min_len = 1e-6 * float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    prob, ref = BandProblem.from_points(pts)
+    band, target = tolerance, TARGET * tolerance
+    best: tuple[ChainParams, tuple[Segment, ...]] | None = None
+    params: ChainParams | None = None
+    for _ in range(MAX_ATTEMPTS):
+        if params is None:
+            try:
+                slope, pieces = fit_band(prob, band)
+            except BandStuck:
+                band *= 0.7
+                continue
+            params = _params_from_band(prob, ref, slope, pieces)
+        params, sampled = refine_chain(pts[0], params, pts, end, turn, min_len, target)
+        params = close_exactly(pts[0], params, end, turn)
+        dev, segs = _check(pts, params, end)
+        if dev <= tolerance:
+            best = (params, segs)
+            break
+        if sampled <= target:
+            # The samples met the target but the exact check did not (chords of the input
+            # cut inside the chain): aim lower with the same segments.
+            target *= 0.99 * tolerance / dev
+        elif sampled < SPLIT_BELOW * tolerance and len(params.kappa) < 2 * len(pts):
+            params = split_segment(params, worst_segment(pts[0], params, pts))
+        else:
+            band *= float(np.clip(0.97 * tolerance / dev, 0.5, 0.9))
+            params = None
+    if best is None:
+        raise InputError(
+            f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points; "
+            "try a larger --tol or check the curve for noise larger than the tolerance"
+        )
+    return _merge_pass(pts, best[0], best[1], tolerance, end, turn, min_len, target)
+
+
+def _merge_pass(
+    pts: np.ndarray, params: ChainParams, segs: tuple[Segment, ...], tolerance: float,
+    end: np.ndarray, turn: float | None, min_len: float, target: float,
+) -> tuple[Segment, ...]:
+    """Merge neighbours (smallest curvature jump first) while the exact check holds."""
+    while len(params.kappa) > 1:
+        jumps = np.abs(np.diff(params.kappa)) * np.minimum(params.length[:-1], params.length[1:])
+        for j in np.argsort(jumps)[:MERGE_TRIES]:
+            trial, sampled = refine_chain(pts[0], _merged(params, int(j)), pts, end, turn, min_len, target)
+            if sampled > target:
+                continue
+            trial = close_exactly(pts[0], trial, end, turn)
+            dev, trial_segs = _check(pts, trial, end)
+            if dev <= tolerance:
+                params, segs = trial, trial_segs
+                break
+        else:
+            return segs
+    return segs

@@ -1,0 +1,239 @@
+"""Minimax refinement of a G1 chain in its (start heading, curvature, length) parameters.
+
+The chain starts at a fixed point; every parameter vector is a tangent-continuous chain, so
+optimising in this space keeps G1 by construction. We minimise the largest lateral distance
+of the input samples to the chain (each sample measured against the carrier circle of the
+segment at the same normalised arc length), subject to the chain ending at the run's end
+point (open runs) or closing onto its start with the start heading (closed curves).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linprog
+
+MAX_SAMPLES = 400
+EXCHANGE = 60  # worst points added to the samples per exchange round
+EXCHANGE_ROUNDS = 6
+
+
+@dataclass(frozen=True, eq=False)
+class ChainParams:
+    """start heading (rad), curvatures (n,) 1/mm, lengths (n,) mm."""
+
+    heading: float
+    kappa: np.ndarray
+    length: np.ndarray
+
+    def vector(self) -> np.ndarray:
+        return np.concatenate(([self.heading], self.kappa, self.length))
+
+    @classmethod
+    def from_vector(cls, x: np.ndarray) -> "ChainParams":
+        n = (len(x) - 1) // 2
+        return cls(float(x[0]), x[1 : n + 1].copy(), x[n + 1 :].copy())
+
+
+def _segment_starts(start: np.ndarray, heading0: np.ndarray, kappa: np.ndarray, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Segment start points (B, n+1, 2) (index n = chain end) and start headings (B, n+1)
+    for a batch of B parameter sets (heading0 (B,), kappa and length (B, n))."""
+    sweep = kappa * length
+    heading = heading0[:, None] + np.concatenate((np.zeros((len(sweep), 1)), np.cumsum(sweep, axis=1)), axis=1)
+    small = np.abs(sweep) < 1e-9
+    half = np.where(small, 1.0, sweep / 2)
+    factor = np.where(small, 1.0 - sweep**2 / 24, np.sin(half) / half)  # chord = length * sinc
+    mid = (heading[:, :-1] + heading[:, 1:]) / 2
+    step = (length * factor)[..., None] * np.stack((np.cos(mid), np.sin(mid)), axis=-1)
+    pts = np.concatenate((np.broadcast_to(start, (len(sweep), 1, 2)), start + np.cumsum(step, axis=1)), axis=1)
+    return pts, heading
+
+
+def _batch_residuals(start: np.ndarray, x: np.ndarray, samples: np.ndarray, s_frac: np.ndarray) -> np.ndarray:
+    """Signed lateral distance (B, m) of every sample for a batch of parameter vectors (B, 2n+1).
+
+    Each sample is compared with the carrier circle (or line) of the segment at the same
+    normalised arc length on the chain as the sample has on the input.
+    """
+    n = (x.shape[1] - 1) // 2
+    kappa, length = x[:, 1 : n + 1], x[:, n + 1 :]
+    pts, heading = _segment_starts(start, x[:, 0], kappa, length)
+    cum = np.concatenate((np.zeros((len(x), 1)), np.cumsum(length, axis=1)), axis=1)
+    target = s_frac[None, :] * cum[:, -1:]
+    idx = (np.sum(cum[:, None, 1:-1] <= target[:, :, None], axis=2))  # segment of each sample
+    rows = np.arange(len(x))[:, None]
+    w = samples[None] - pts[rows, idx]
+    h = heading[rows, idx]
+    lat = -w[..., 0] * np.sin(h) + w[..., 1] * np.cos(h)
+    k = kappa[rows, idx]
+    a = 2.0 * lat - k * np.einsum("bij,bij->bi", w, w)
+    return a / (1.0 + np.sqrt(np.clip(1.0 - k * a, 0.0, None)))
+
+
+def lateral_residuals(start: np.ndarray, p: ChainParams, samples: np.ndarray, s_frac: np.ndarray) -> np.ndarray:
+    """Signed distance of each sample to the carrier of its segment (see _batch_residuals)."""
+    return _batch_residuals(np.asarray(start, float), p.vector()[None], samples, s_frac)[0]
+
+
+def _closure(start: np.ndarray, x: np.ndarray, end: np.ndarray, turn: float | None) -> np.ndarray:
+    """Gap (B, 2 or 3) between each chain's end and the required end point, and between its
+    total turning and the required ``turn`` (closed curves)."""
+    n = (x.shape[1] - 1) // 2
+    pts, heading = _segment_starts(start, x[:, 0], x[:, 1 : n + 1], x[:, n + 1 :])
+    gap = pts[:, -1] - end
+    if turn is None:
+        return gap
+    return np.concatenate((gap, heading[:, -1:] - heading[:, :1] - turn), axis=1)
+
+
+def _jacobian(f, z: np.ndarray, eps: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+    """Value and forward-difference Jacobian of a batched function f((B, d)) -> (B, m)."""
+    batch = np.vstack((z, z + eps * np.eye(len(z))))
+    out = f(batch)
+    return out[0], ((out[1:] - out[0]) / eps).T
+
+
+def refine_chain(
+    start: np.ndarray,
+    params: ChainParams,
+    points: np.ndarray,
+    end: np.ndarray,
+    turn: float | None,
+    min_length: float,
+    target: float,
+    max_iter: int = 40,
+) -> tuple[ChainParams, float]:
+    """Minimise the largest lateral deviation of ``points`` from the chain.
+
+    Sequential linear programming with a trust region: at each step the residuals and the
+    end conditions are linearised and the LP "minimise the largest residual plus a heavy
+    penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
+    at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
+    Stops early once the sampled deviation is below ``target`` with the end gap closed, or
+    when it is still far above it after a few steps (a merge that cannot work).
+    Returns (parameters, sampled deviation).
+    """
+    seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    s = np.concatenate(([0.0], np.cumsum(seg)))
+    total = float(s[-1])
+    all_frac = s / total
+    pick = np.unique(np.searchsorted(s, np.linspace(0, total, min(MAX_SAMPLES, len(points)))).clip(0, len(points) - 1))
+    n = len(params.kappa)
+    d = 2 * n + 1
+    # Scaled variables z = x / unit: angles, curvature x run length, length / mean length.
+    unit = np.concatenate(([1.0], np.full(n, 1.0 / total), np.full(n, total / n)))
+    start = np.asarray(start, dtype=float)
+    end = np.asarray(end, dtype=float)
+    weight = 100.0  # the end gap costs this many times a lateral deviation
+
+    def res(zb: np.ndarray) -> np.ndarray:
+        return _batch_residuals(start, zb * unit, points[pick], all_frac[pick])
+
+    def worst_missing(z: np.ndarray) -> np.ndarray:
+        """Points whose residual exceeds every sampled one (the samples missed a peak)."""
+        full = np.abs(_batch_residuals(start, (z * unit)[None], points, all_frac)[0])
+        sampled = float(full[pick].max())
+        order = np.argsort(-full)[:EXCHANGE]
+        return order[full[order] > 1.001 * sampled + 1e-12]
+
+    def clo(zb: np.ndarray) -> np.ndarray:
+        return _closure(start, zb * unit, end, turn) * np.append([1.0, 1.0], [total] * (turn is not None))
+
+    def merit(zb: np.ndarray) -> np.ndarray:
+        return np.abs(res(zb)).max(axis=1) + weight * np.abs(clo(zb)).max(axis=1)
+
+    z = params.vector() / unit
+    f = float(merit(z[None])[0])
+    radius = 0.05
+    min_len_z = min_length / unit[n + 1 :]
+    for _ in range(EXCHANGE_ROUNDS):
+        for iteration in range(max_iter):
+            if f <= target or (iteration >= 12 and f > 1.5 * target):
+                break
+            r, jr = _jacobian(res, z)
+            c, jc = _jacobian(clo, z)
+            # Inside the trust region a residual moves by at most `reach`; rows that cannot
+            # become the largest one are left out of the LP (same optimum, much smaller LP).
+            reach = np.abs(jr).sum(axis=1) * radius
+            floor = float(np.max(np.abs(r) - reach))
+            active = np.abs(r) + reach >= floor
+            r, jr = r[active], jr[active]
+            m, k = len(r), len(c)
+            # variables: dz (d), t, e ; minimise t + weight * e
+            cost = np.concatenate((np.zeros(d), [1.0, weight]))
+            ones_m, ones_k = np.ones((m, 1)), np.ones((k, 1))
+            zeros_m, zeros_k = np.zeros((m, 1)), np.zeros((k, 1))
+            a_ub = np.vstack((
+                np.hstack((jr, -ones_m, zeros_m)),
+                np.hstack((-jr, -ones_m, zeros_m)),
+                np.hstack((jc, zeros_k, -ones_k)),
+                np.hstack((-jc, zeros_k, -ones_k)),
+            ))
+            b_ub = np.concatenate((-r, r, -c, c))
+            lower = np.full(d, -radius)
+            lower[n + 1 :] = np.maximum(lower[n + 1 :], min_len_z - z[n + 1 :])
+            bounds = list(zip(lower, np.full(d, radius))) + [(0, None), (0, None)]
+            lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs-ds")
+            if lp.status != 0:
+                break
+            step = lp.x[:d]
+            predicted = f - (lp.x[d] + weight * lp.x[d + 1])
+            if predicted <= 1e-4 * target:
+                break
+            f_new = float(merit((z + step)[None])[0])
+            ratio = (f - f_new) / predicted
+            if ratio > 0:
+                z, f = z + step, f_new
+            radius = radius * 2.0 if ratio > 0.75 else radius * 0.25 if ratio < 0.25 else radius
+            if radius < 1e-9:
+                break
+        missing = worst_missing(z)
+        if not len(missing):
+            break
+        pick = np.union1d(pick, missing)
+        f = float(merit(z[None])[0])
+    return ChainParams.from_vector(z * unit), f
+
+
+def worst_segment(start: np.ndarray, params: ChainParams, points: np.ndarray) -> int:
+    """Index of the segment whose carrier is farthest from its share of ``points``."""
+    seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    frac = np.concatenate(([0.0], np.cumsum(seg))) / seg.sum()
+    r = np.abs(lateral_residuals(np.asarray(start, float), params, points, frac))
+    cum = np.cumsum(params.length) / params.length.sum()
+    return int(np.searchsorted(cum, frac[int(np.argmax(r))]).clip(0, len(cum) - 1))
+
+
+def split_segment(params: ChainParams, j: int) -> ChainParams:
+    """Parameters with segment j cut into two equal halves (same geometry, one more joint)."""
+    return ChainParams(
+        params.heading,
+        np.insert(params.kappa, j, params.kappa[j]),
+        np.concatenate((params.length[:j], [params.length[j] / 2] * 2, params.length[j + 1 :])),
+    )
+
+
+def close_exactly(start: np.ndarray, params: ChainParams, end: np.ndarray, turn: float | None) -> ChainParams:
+    """Newton steps on the last segments' curvatures and lengths until the chain ends exactly
+    at ``end`` (and turns exactly ``turn``); least-norm steps keep the change small."""
+    x = params.vector()
+    n = len(params.kappa)
+    free = [i for i in range(max(1, n - 2), n + 1)] + [n + i for i in range(max(1, n - 2), n + 1)]
+    scale = np.array([params.length.sum() if i <= n else 1.0 for i in free])
+    start = np.asarray(start, float)
+    for _ in range(8):
+        gap = _closure(start, x[None], end, turn)[0]
+        if np.abs(gap).max() < 1e-12 * max(1.0, params.length.sum()):
+            break
+        eps = 1e-7
+        cols = []
+        for i, sc in zip(free, scale):
+            dx = x.copy()
+            dx[i] += eps / sc
+            cols.append((_closure(start, dx[None], end, turn)[0] - gap) / eps)
+        step = np.linalg.lstsq(np.column_stack(cols), -gap, rcond=None)[0]
+        x[free] += step / scale
+    out = ChainParams.from_vector(x)
+    return out if np.all(out.length > 0) else params
