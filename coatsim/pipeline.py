@@ -8,6 +8,7 @@ never the in-memory polysegment: the twin runs what the robot would run.
 
 from __future__ import annotations
 
+import difflib
 import math
 import sys
 from contextlib import contextmanager
@@ -68,13 +69,13 @@ class RunResult:
 
 
 def check_gate_metrics(loaded: ScenarioFile) -> None:
-    """Every gate names a metric of the catalogue (before anything runs)."""
+    """Every gate names a metric of the catalogue (checked before anything runs)."""
     for i, gate in enumerate(loaded.spec.gates):
         if gate.metric not in METRICS:
-            raise InputError(
-                f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; "
-                f"known: {', '.join(METRICS)}"
-            )
+            close = difflib.get_close_matches(gate.metric, list(METRICS), n=1)
+            group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
+            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
+            raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
 
 
 def load_input_curve(loaded: ScenarioFile) -> Curve:

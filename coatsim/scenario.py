@@ -165,7 +165,7 @@ class FastSpec(_Strict):
     """What ``--fast`` changes (for CI): coarser coating mesh and coarser path sampling."""
 
     coating_spacing_mm: Positive = 3.0
-    sample_step_mm: Positive = 4.0
+    sample_step_mm: Positive = 1.0
 
 
 class GateSpec(_Strict):
