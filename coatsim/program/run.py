@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Optional
 
@@ -21,13 +22,11 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     ``center`` None centres built-in curves on the frame origin and leaves file curves where
     their coordinates put them.
     """
+    placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
+                          follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
     inp = load_program_input(spec, tol)
-    centred = inp.builtin if center is None else center
-    placement = Placement(
-        frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg, follow_tangent=follow_tangent,
-        lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm,
-        offset_xy=centering_offset(inp.polysegment) if centred else (0.0, 0.0),
-    )
+    if inp.builtin if center is None else center:
+        placement = replace(placement, offset_xy=centering_offset(inp.polysegment))
     built = build_program(inp.polysegment, placement, options, tolerance_mm=inp.tolerance_mm,
                           source=inp.source, points=inp.points)
     if output is not None:
