@@ -19,8 +19,9 @@ from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.program.as_lexer import MAX_ABS_NUMBER
-from coatsim.program.as_writer import fmt_short, program_name, write_as
-from coatsim.program.dialect import ProgramPlan
+from coatsim.program.as_dialect import KAWASAKI_AS
+from coatsim.program.as_writer import fmt_short, program_name
+from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
 
 VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
@@ -80,8 +81,8 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None) -> BuiltProgram:
-    """Write the ``options.variant`` program of a curve.
+                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS) -> BuiltProgram:
+    """Write the ``options.variant`` program of a curve in ``dialect``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
     curve, (n, 2)) or, without them, dense samples of ``poly``.
@@ -128,4 +129,4 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         metadata=metadata,
         comments=(f"coatsim {options.variant} program: {summary}, tolerance {fmt_short(tolerance_mm)} mm",),
     )
-    return BuiltProgram(write_as(plan), plan, curve)
+    return BuiltProgram(dialect.write(plan), plan, curve)

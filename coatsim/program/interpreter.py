@@ -25,7 +25,6 @@ reference; the parts marked there as unconfirmed are modelled as stated here):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Optional
 

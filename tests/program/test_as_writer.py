@@ -127,5 +127,16 @@ def test_program_names(text, name):
     assert len(program_name(text)) <= MAX_NAME_LENGTH
 
 
+def test_dialect_interface_writes_and_reads(rr):
+    from coatsim.program import DIALECTS
+
+    dialect = DIALECTS["kawasaki-as"]
+    built = build_program(rr, Placement(), ProgramOptions(), tolerance_mm=0.1, source="builtin:roundrect",
+                          dialect=dialect)
+    assert built.text == golden_text() and dialect.suffix == ".as"
+    toolpath = dialect.read(built.text, "rr.as", gun_signal=1)
+    assert len(toolpath.spray_moves) == 10 and toolpath.name == "roundrect"
+
+
 if __name__ == "__main__":
     GOLDEN.write_text(golden_text(), encoding="ascii")
