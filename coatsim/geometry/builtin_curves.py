@@ -14,6 +14,7 @@ from scipy.special import fresnel
 from coatsim.errors import InputError
 from coatsim.geometry.curves import Curve, make_curve
 from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.geometry.primitives import Line
 
 DEFAULT_POINTS = 3000
 
@@ -121,7 +122,10 @@ def polygon(points: int = DEFAULT_POINTS, sides: int = 5, radius: float = 60.0) 
     if sides < 3:
         raise InputError("builtin:polygon: sides must be >= 3")
     ang = np.linspace(0.0, 2 * math.pi, sides + 1) + math.pi / 2
-    return _resample(np.column_stack((radius * np.cos(ang), radius * np.sin(ang))), points)
+    corners = np.column_stack((radius * np.cos(ang), radius * np.sin(ang)))
+    corners[-1] = corners[0]
+    lines = tuple(Line(tuple(a), tuple(b)) for a, b in zip(corners[:-1], corners[1:]))
+    return _sample_polysegment(Polysegment(lines, closed=True), points)
 
 
 def d_shape(points: int = DEFAULT_POINTS, radius: float = 50.0, stem: float = 40.0) -> np.ndarray:

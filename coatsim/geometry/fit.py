@@ -19,6 +19,7 @@ from coatsim.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.primitives import Arc, Line, Segment
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
@@ -71,8 +72,13 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Se
     """G1 chain within ``tolerance`` of a run (start and end points kept exactly)."""
     pts = np.asarray(points, dtype=float)
     end = pts[-1]
-    if len(pts) == 2:
-        return (Line(tuple(pts[0]), tuple(pts[1])),)
+    if not closed_loop:
+        line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
+        if len(pts) == 2 or hausdorff(pts, Polysegment(line)).hausdorff <= tolerance:
+            return line
+    exact = recover_exact(pts, closed_loop, tolerance)
+    if exact is not None:
+        return exact
     turn = total_turn(pts) if closed_loop else None
     min_len = 1e-6 * float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     prob, ref = BandProblem.from_points(pts)

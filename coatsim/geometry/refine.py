@@ -119,6 +119,7 @@ def refine_chain(
     s = np.concatenate(([0.0], np.cumsum(seg)))
     total = float(s[-1])
     all_frac = s / total
+    inset_left, inset_right = chord_insets(points)
     pick = np.unique(np.searchsorted(s, np.linspace(0, total, min(MAX_SAMPLES, len(points)))).clip(0, len(points) - 1))
     n = len(params.kappa)
     d = 2 * n + 1
@@ -131,9 +132,14 @@ def refine_chain(
     def res(zb: np.ndarray) -> np.ndarray:
         return _batch_residuals(start, zb * unit, points[pick], all_frac[pick])
 
+    def excess(r: np.ndarray, where: np.ndarray) -> np.ndarray:
+        """Distance bound per sample: the lateral residual, plus the chord inset of the input
+        on the side where the chain lies (output-to-input distance between vertices)."""
+        return np.maximum(r + inset_left[where], -r + inset_right[where])
+
     def worst_missing(z: np.ndarray) -> np.ndarray:
         """Points whose residual exceeds every sampled one (the samples missed a peak)."""
-        full = np.abs(_batch_residuals(start, (z * unit)[None], points, all_frac)[0])
+        full = excess(_batch_residuals(start, (z * unit)[None], points, all_frac)[0], slice(None))
         sampled = float(full[pick].max())
         order = np.argsort(-full)[:EXCHANGE]
         return order[full[order] > 1.001 * sampled + 1e-12]
@@ -142,7 +148,7 @@ def refine_chain(
         return _closure(start, zb * unit, end, turn) * np.append([1.0, 1.0], [total] * (turn is not None))
 
     def merit(zb: np.ndarray) -> np.ndarray:
-        return np.abs(res(zb)).max(axis=1) + weight * np.abs(clo(zb)).max(axis=1)
+        return excess(res(zb), pick).max(axis=1) + weight * np.abs(clo(zb)).max(axis=1)
 
     z = params.vector() / unit
     f = float(merit(z[None])[0])
@@ -156,10 +162,12 @@ def refine_chain(
             c, jc = _jacobian(clo, z)
             # Inside the trust region a residual moves by at most `reach`; rows that cannot
             # become the largest one are left out of the LP (same optimum, much smaller LP).
+            lift_l, lift_r = inset_left[pick], inset_right[pick]
+            size = excess(r, pick)
             reach = np.abs(jr).sum(axis=1) * radius
-            floor = float(np.max(np.abs(r) - reach))
-            active = np.abs(r) + reach >= floor
-            r, jr = r[active], jr[active]
+            floor = float(np.max(size - reach))
+            active = size + reach >= floor
+            r, jr, lift_l, lift_r = r[active], jr[active], lift_l[active], lift_r[active]
             m, k = len(r), len(c)
             # variables: dz (d), t, e ; minimise t + weight * e
             cost = np.concatenate((np.zeros(d), [1.0, weight]))
@@ -171,7 +179,7 @@ def refine_chain(
                 np.hstack((jc, zeros_k, -ones_k)),
                 np.hstack((-jc, zeros_k, -ones_k)),
             ))
-            b_ub = np.concatenate((-r, r, -c, c))
+            b_ub = np.concatenate((-r - lift_l, r - lift_r, -c, c))
             lower = np.full(d, -radius)
             lower[n + 1 :] = np.maximum(lower[n + 1 :], min_len_z - z[n + 1 :])
             bounds = list(zip(lower, np.full(d, radius))) + [(0, None), (0, None)]
@@ -195,6 +203,24 @@ def refine_chain(
         pick = np.union1d(pick, missing)
         f = float(merit(z[None])[0])
     return ChainParams.from_vector(z * unit), f
+
+
+def chord_insets(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How far the input's edges next to each vertex dip inside a smooth curve through the
+    vertices (the sagitta ℓ²|κ|/8), on the left and on the right side, shape (n,) each.
+
+    A chain that passes a vertex on the outer side of a bend is farther from the chords
+    than from the vertex by about this much.
+    """
+    d = np.diff(points, axis=0)
+    ell = np.linalg.norm(d, axis=1)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.zeros(len(points))
+    turn[1:-1] = np.remainder(np.diff(heading) + np.pi, 2 * np.pi) - np.pi
+    longest = np.maximum(np.concatenate(([0.0], ell)), np.concatenate((ell, [0.0])))
+    span = np.concatenate(([ell[0]], ell[:-1] + ell[1:], [ell[-1]]))
+    inset = longest**2 * 2 * np.abs(turn) / span / 8
+    return np.where(turn > 0, inset, 0.0), np.where(turn < 0, inset, 0.0)
 
 
 def worst_segment(start: np.ndarray, params: ChainParams, points: np.ndarray) -> int:

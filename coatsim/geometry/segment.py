@@ -62,11 +62,12 @@ def _runs(points: np.ndarray, corners: np.ndarray, closed: bool) -> tuple[np.nda
     return points, [points[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:])]
 
 
-def _corner_junctions(runs: list[np.ndarray], counts: list[int], closed: bool) -> tuple[int, ...]:
-    """Junction indices (end of segment k) that sit on corners."""
+def _corner_junctions(counts: list[int], closed: bool, has_corners: bool) -> tuple[int, ...]:
+    """Junction indices (end of segment k) that sit on corners: the ends of all runs but the
+    last, and the seam of a closed curve that starts at a corner."""
     ends = np.cumsum(counts) - 1
     junctions = [int(k) for k in ends[:-1]]
-    if closed and len(runs) > 1:
+    if closed and has_corners:
         junctions.append(int(ends[-1]))
     return tuple(junctions)
 
@@ -103,7 +104,7 @@ def segment_curve(
     closed_loop = curve.closed and len(corners) == 0
     pieces = [fit_run(run, tol, closed_loop) for run in runs]
     segments = tuple(seg for piece in pieces for seg in piece)
-    poly = Polysegment(segments, closed=curve.closed, corners=_corner_junctions(runs, [len(p) for p in pieces], curve.closed))
+    poly = Polysegment(segments, closed=curve.closed, corners=_corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0))
     dev = hausdorff(rotated, poly).hausdorff
     return Segmentation(curve, poly, method, tol, dev, time.perf_counter() - started, theta)
 
