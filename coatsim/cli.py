@@ -65,14 +65,14 @@ def schema() -> None:
 @app.command()
 def coat(
     trajectory: Path = typer.Argument(..., help="Trajectory CSV (coatsim execute / run)."),
-    surface: str = typer.Option(..., "--surface", help="plate:WxH@x,y,z | cylinder:RxL@x,y,z[,axis] | MESH.stl/ply/obj/glb[@x,y,z] (mm, base frame)."),
-    spacing: Optional[float] = typer.Option(None, "--spacing", help="Mesh vertex spacing, mm [default: sigma/3, R/20 for beta footprints]."),
+    surface: str = typer.Option(..., "--surface", help="plate:WxH@x,y,z | cylinder:RxL@x,y,z[,axis] | MESH.stl/ply/obj/glb optionally @x,y,z (mm, base frame)."),
+    spacing: Optional[float] = typer.Option(None, "--spacing", help="Mesh vertex spacing, mm (default: sigma/3; R/20 for beta footprints)."),
     footprint: str = typer.Option("gaussian:sigma=5", "--footprint", help="gaussian:sigma= | elliptic:sx=,sy= | beta:radius=,beta= | double-beta:a=,b=,beta1=,beta2= | table:FILE.csv (mm)."),
     rate: float = typer.Option(40.0, "--rate", help="Deposited volume rate Q, mm3/s."),
     standoff: float = typer.Option(100.0, "--standoff", help="Reference stand-off h0 at which the footprint is given, mm."),
-    target_um: Optional[float] = typer.Option(None, "--target-um", help="Target thickness for coverage, um [default: ROI mean]."),
+    target_um: Optional[float] = typer.Option(None, "--target-um", help="Target thickness for coverage, um (default: the ROI mean)."),
     roi: str = typer.Option("band", "--roi", help="band (sprayed strip) | part (whole part), both minus an edge band."),
-    edge_band: Optional[float] = typer.Option(None, "--edge-band", help="Edge band left out of the ROI, mm [default: 3 sigma]."),
+    edge_band: Optional[float] = typer.Option(None, "--edge-band", help="Edge band left out of the ROI, mm (default: 3 sigma)."),
     de_exponent: float = typer.Option(1.0, "--de-exponent", help="Deposition efficiency cos^(n-1) of the incidence angle; 1 = off."),
     occlusion: bool = typer.Option(False, "--occlusion", help="Ray-cast visibility for concave parts (slow)."),
     section: Optional[str] = typer.Option(None, "--section", help="Cross-section line x0,y0,x1,y1 in heat-map coordinates, mm."),

@@ -76,7 +76,7 @@ def write_coating(result: CoatingResult, outdir: str | Path, inputs: dict[str, o
     surface, thickness = result.surface, result.thickness_um
     section = default_section(surface) if section is None else section
     files = [outdir / name for name in ("thickness.ply", "coating.json", "heatmap.png", "section.png")]
-    write_thickness_ply(files[0], surface, thickness, 0.0, float(thickness.max()))
+    write_thickness_ply(files[0], surface, thickness, 0.0, float(thickness.max()), result.deposit.exposure_s)
     document = {"format": COATING_FORMAT, **result.metrics, "inputs": inputs,
                 "mesh": {"vertices": surface.n_vertices, "triangles": len(surface.faces),
                          "area_mm2": surface.area_mm2}}

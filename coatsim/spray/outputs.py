@@ -66,23 +66,25 @@ def colours(values: np.ndarray, vmin: float, vmax: float) -> np.ndarray:
 
 
 def ply_bytes(surface: Surface, thickness_um: np.ndarray, vmin: float | None = None,
-              vmax: float | None = None) -> bytes:
-    """Binary little-endian PLY: x y z nx ny nz (float32, mm), thickness (float32, µm), RGB."""
+              vmax: float | None = None, exposure_s: np.ndarray | None = None) -> bytes:
+    """Binary little-endian PLY: x y z nx ny nz (float32, mm), thickness (float32, µm),
+    optionally exposure (float32, s under the spray), and RGB of the thickness colour map."""
     vmin = float(thickness_um.min()) if vmin is None else vmin
     vmax = float(thickness_um.max()) if vmax is None else vmax
     n, m = surface.n_vertices, len(surface.faces)
+    scalars = ["thickness"] + ([] if exposure_s is None else ["exposure"])
     header = "\n".join([
         "ply", "format binary_little_endian 1.0",
         f"comment coatsim coating thickness in um; colours {COLOUR_MAP} from {vmin:.6g} to {vmax:.6g} um",
         f"element vertex {n}",
-        *(f"property float {name}" for name in ("x", "y", "z", "nx", "ny", "nz", "thickness")),
+        *(f"property float {name}" for name in ("x", "y", "z", "nx", "ny", "nz", *scalars)),
         "property uchar red", "property uchar green", "property uchar blue",
         f"element face {m}", "property list uchar int vertex_indices", "end_header", "",
     ])
-    vertex = np.zeros(n, dtype=[("xyz", "<f4", 3), ("n", "<f4", 3), ("t", "<f4"), ("rgb", "u1", 3)])
+    vertex = np.zeros(n, dtype=[("xyz", "<f4", 3), ("n", "<f4", 3), ("s", "<f4", len(scalars)), ("rgb", "u1", 3)])
     vertex["xyz"] = surface.vertices
     vertex["n"] = surface.normals
-    vertex["t"] = thickness_um
+    vertex["s"] = np.column_stack([thickness_um] + ([] if exposure_s is None else [exposure_s]))
     vertex["rgb"] = colours(thickness_um, vmin, vmax)
     face = np.zeros(m, dtype=[("k", "u1"), ("idx", "<i4", 3)])
     face["k"] = 3
@@ -91,8 +93,9 @@ def ply_bytes(surface: Surface, thickness_um: np.ndarray, vmin: float | None = N
 
 
 def write_thickness_ply(path: str | Path, surface: Surface, thickness_um: np.ndarray,
-                        vmin: float | None = None, vmax: float | None = None) -> None:
-    write_bytes(path, ply_bytes(surface, thickness_um, vmin, vmax))
+                        vmin: float | None = None, vmax: float | None = None,
+                        exposure_s: np.ndarray | None = None) -> None:
+    write_bytes(path, ply_bytes(surface, thickness_um, vmin, vmax, exposure_s))
 
 
 def _png(fig, path: str | Path | None) -> bytes:

@@ -120,6 +120,12 @@ def test_ply_round_trip_through_trimesh(tmp_path):
     raw = loaded.metadata["_ply_raw"]["vertex"]["data"]
     np.testing.assert_allclose(raw["thickness"].ravel(), thickness, rtol=1e-6)
     np.testing.assert_array_equal(loaded.visual.vertex_colors[:, :3], colours(thickness, 0.0, 7.0))
+    exposure = np.linspace(0, 1, surface.n_vertices)
+    both = tmp_path / "both.ply"
+    write_thickness_ply(both, surface, thickness, 0.0, 7.0, exposure)
+    raw = trimesh.load(both, process=False).metadata["_ply_raw"]["vertex"]["data"]
+    np.testing.assert_allclose(raw["thickness"].ravel(), thickness, rtol=1e-6)
+    np.testing.assert_allclose(raw["exposure"].ravel(), exposure, rtol=1e-6, atol=1e-7)
 
 
 def test_colour_scale_ends():
