@@ -75,13 +75,14 @@ def _summary_rows(loaded, curve, document: Mapping[str, Any]) -> list[tuple[str,
 
 
 def _speed_profiles(runs: Sequence, lead_in_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
-    """Speed against path length from where the gun opens (the run-in start); the curve
-    proper follows the run-in."""
+    """Speed against path length while the gun is on, from where it opens (the run-in start);
+    the curve proper follows the run-in."""
     profiles, span = {}, (0.0, 0.0)
     for r in runs:
         log = r.execution.log
-        origin = float(log.progress[np.argmax(log.spray)])
-        profiles[r.name] = SpeedProfile(log.progress - origin, log.speed, log.spray)
+        on = log.spray
+        origin = float(log.progress[np.argmax(on)])
+        profiles[r.name] = SpeedProfile(log.progress[on] - origin, log.speed[on])
         span = (lead_in_mm, lead_in_mm + r.program.path.curve_length_mm)
     return profiles, span
 

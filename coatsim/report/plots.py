@@ -119,11 +119,10 @@ def theta_figure(t_in: np.ndarray, theta_in: np.ndarray, t_fit: np.ndarray, thet
 
 @dataclass(frozen=True, eq=False)
 class SpeedProfile:
-    """Tool speed against programmed path length for one variant; ``spray`` (n,) bool."""
+    """Tool speed (n,) against programmed path length (n,) for one variant."""
 
     progress_mm: np.ndarray
     speed_mm_s: np.ndarray
-    spray: np.ndarray
 
 
 def speed_figure(profiles: Mapping[str, SpeedProfile], commanded_mm_s: float, curve_span_mm: tuple[float, float]) -> bytes:
@@ -136,8 +135,7 @@ def speed_figure(profiles: Mapping[str, SpeedProfile], commanded_mm_s: float, cu
     ax.axvspan(hi, max(p.progress_mm.max() for p in profiles.values()), color="#f0f0f0", lw=0)
     ax.axhline(commanded_mm_s, color="black", ls="--", lw=0.8, label=f"programmed {commanded_mm_s:g} mm/s")
     for name, p in profiles.items():
-        speed = np.where(p.spray, p.speed_mm_s, np.nan)
-        ax.plot(p.progress_mm, speed, color=_colour(name), lw=1.1, label=name)
+        ax.plot(p.progress_mm, p.speed_mm_s, color=_colour(name), lw=1.1, label=name)
     ax.set_xlabel("path length along the program (mm); grey: run-in / run-out")
     ax.set_ylabel("tool speed while spraying (mm/s)")
     ax.set_ylim(0, 1.15 * max(commanded_mm_s, max(float(np.nanmax(p.speed_mm_s)) for p in profiles.values())))

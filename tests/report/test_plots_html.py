@@ -44,7 +44,7 @@ def test_figures_are_png_and_deterministic() -> None:
     assert first.startswith(PNG_MAGIC)
     assert plots.segmentation_figure(xy, poly, xy[::10]) == first
     s = np.linspace(0, 100, 200)
-    profile = plots.SpeedProfile(s, np.minimum(200.0, 20 * np.sqrt(s + 1)), s > 5)
+    profile = plots.SpeedProfile(s, np.minimum(200.0, 20 * np.sqrt(s + 1)))
     assert plots.speed_figure({"polysegment": profile, "polyline-stop": profile}, 200.0, (20.0, 80.0)).startswith(PNG_MAGIC)
 
 
