@@ -170,7 +170,10 @@ def test_same_inputs_give_byte_identical_outputs(tmp_path: Path) -> None:
     files = sorted(p.name for p in (tmp_path / "a").iterdir())
     assert files == sorted(p.name for p in (tmp_path / "b").iterdir())
     for name in files:
-        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
+        a, b = ((tmp_path / d / name).read_bytes() for d in ("a", "b"))
+        if name == "polysegment.json":  # its stats record the fitter's wall time
+            a, b = (json.loads(x) | {"stats": json.loads(x)["stats"] | {"seconds": 0}} for x in (a, b))
+        assert a == b, name
 
 
 SHIPPED = sorted((Path(__file__).resolve().parents[1] / "scenarios").glob("*.yaml"))
