@@ -28,6 +28,35 @@ def fail(message: str, code: int = 2) -> None:
 
 
 @app.command()
+def segment(
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns) or builtin:NAME[:key=value,...]."),
+    tol: float = typer.Option(0.1, "--tol", help="Tolerance sigma: max two-sided deviation, mm."),
+    method: str = typer.Option("optimal", "--method", help="optimal (guaranteed tolerance, few segments) | paper (literal RDP on θ)."),
+    corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
+    closed: str = typer.Option("auto", "--closed", help="auto | yes | no: whether the curve is a closed loop."),
+    theta_tol: Optional[float] = typer.Option(None, "--theta-tol", help="paper method: fixed RDP tolerance on θ instead of searching for tol."),
+    output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
+) -> None:
+    """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
+    from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
+
+    if closed not in ("auto", "yes", "no"):
+        fail(f"--closed: expected auto, yes or no, got {closed!r}")
+    seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg, theta_tolerance=theta_tol)
+    if output is not None:
+        write_polysegment_json(output, seg)
+    if plot is not None:
+        from coatsim.geometry.plots import write_segmentation_plot
+
+        write_segmentation_plot(seg, plot)
+    typer.echo(seg.summary())
+    for path in (output, plot):
+        if path is not None:
+            typer.echo(f"wrote {path}")
+
+
+@app.command()
 def run(
     scenario: Path = typer.Argument(..., help="scenario YAML file (see `coatsim schema`)"),
     outdir: Optional[Path] = typer.Option(None, "-o", "--outdir", help="output folder [default: runs/NAME]"),
@@ -162,7 +191,8 @@ def check_program(
 def main() -> None:
     """Console entry point: run the app, turning CoatsimError into a one-line error."""
     try:
-        app(standalone_mode=False)
+        # Without standalone mode click returns typer.Exit's code instead of raising it.
+        code = app(standalone_mode=False)
     except CoatsimError as exc:
         typer.echo(f"coatsim: error: {exc}", err=True)
         sys.exit(exc.exit_code)
@@ -178,7 +208,7 @@ def main() -> None:
             exc.show()
             sys.exit(2 if isinstance(exc, click.UsageError) else exc.exit_code)
         raise
-    sys.exit(0)
+    sys.exit(code if isinstance(code, int) else 0)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,9 @@ from __future__ import annotations
 from coatsim.geometry.builtin_curves import BUILTINS, builtin_curve, parse_builtin_spec
 from coatsim.geometry.curves import ClosedMode, Curve, make_curve, read_curve_file
 from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.geometry.polysegment_json import read_polysegment_json, write_polysegment_json
 from coatsim.geometry.primitives import Arc, Line, Segment
+from coatsim.geometry.segment import METHODS, Segmentation, segment_curve
 
 
 def load_curve(spec: str, closed: ClosedMode = "auto") -> Curve:
@@ -18,5 +20,6 @@ def load_curve(spec: str, closed: ClosedMode = "auto") -> Curve:
 
 __all__ = [
     "Arc", "BUILTINS", "ClosedMode", "Curve", "Line", "Polysegment", "Segment",
-    "builtin_curve", "chain", "load_curve", "make_curve", "read_curve_file",
+    "METHODS", "Segmentation", "builtin_curve", "chain", "load_curve", "make_curve",
+    "read_curve_file", "read_polysegment_json", "segment_curve", "write_polysegment_json",
 ]

@@ -35,6 +35,22 @@ class Segmentation:
     theta_approx: ThetaFunction | None = None
     theta_tolerance: float | None = None
 
+    def summary(self) -> str:
+        """One screen of text: counts, verified deviation, tangency, time."""
+        st = self.stats()
+        lines = [
+            f"{self.curve.name}: {st['input_points']} points, length {self.curve.length:.3f} mm, "
+            f"{'closed' if self.curve.closed else 'open'}",
+            f"method {self.method}, tolerance {self.tolerance_mm:g} mm"
+            + (f", θ tolerance {self.theta_tolerance:.4g}" if self.theta_tolerance is not None else ""),
+            f"segments {st['n_segments']} ({st['n_arcs']} arcs, {st['n_lines']} lines), "
+            f"corners {len(self.polysegment.corners)}",
+            f"max deviation {st['max_deviation_mm']:.6f} mm (exact two-sided Hausdorff), "
+            f"max tangent break {st['max_tangent_break_deg']:.3g} deg",
+            f"time {st['seconds']:.3f} s",
+        ]
+        return "\n".join(lines)
+
     def stats(self) -> dict:
         poly = self.polysegment
         return {

@@ -98,3 +98,23 @@ def paper_polysegment(points: np.ndarray, theta_tolerance: float, closed: bool) 
     unit = rebuild_unit(approx)
     poly = similarity_onto(unit, pts[0], None if closed else pts[-1], theta.length, theta.start_heading)
     return Polysegment(poly.segments, closed=closed), theta, approx
+
+
+def theta_of_polysegment(poly: Polysegment) -> ThetaFunction:
+    """θ of a polysegment: linear on every segment, with a knot at every junction and a jump
+    at every corner (two knots at the same t there)."""
+    t, theta = [0.0], [0.0]
+    s, angle = 0.0, 0.0
+    total = poly.length
+    for k, seg in enumerate(poly.segments):
+        if k > 0:
+            jump = math.remainder(seg.start_heading - poly.segments[k - 1].end_heading, 2 * math.pi)
+            if jump != 0.0:
+                angle += jump
+                t.append(s / total)
+                theta.append(angle)
+        s += seg.length
+        angle += seg.end_heading - seg.start_heading
+        t.append(s / total)
+        theta.append(angle)
+    return ThetaFunction(np.array(t), np.array(theta), total, poly.segments[0].start_heading)
