@@ -10,6 +10,7 @@ import argparse
 import time
 from pathlib import Path
 
+from coatsim.errors import CoatsimError
 from coatsim.pipeline import run_scenario
 from coatsim.report.summary import summary_text
 
@@ -26,15 +27,20 @@ def main() -> None:
     totals = []
     for path in files:
         started = time.perf_counter()
-        result = run_scenario(path, args.outdir / path.stem, fast=args.fast, progress=False)
+        try:
+            result = run_scenario(path, args.outdir / path.stem, fast=args.fast, progress=False)
+        except CoatsimError as exc:
+            totals.append((path.stem, time.perf_counter() - started, f"error (exit {exc.exit_code})"))
+            print(f"== {path.stem}: error: {exc}\n")
+            continue
         wall = time.perf_counter() - started
-        totals.append((path.stem, wall, result.passed))
+        totals.append((path.stem, wall, "pass" if result.passed else "FAIL"))
         print(f"== {path.stem} ({'fast' if args.fast else 'full'} mode): wall time {wall:.1f} s")
         print(summary_text(result.document))
         print()
     print(f"{'scenario':<18} {'wall (s)':>9}  gates")
-    for name, wall, passed in totals:
-        print(f"{name:<18} {wall:>9.1f}  {'pass' if passed else 'FAIL'}")
+    for name, wall, verdict in totals:
+        print(f"{name:<18} {wall:>9.1f}  {verdict}")
     print(f"{'total':<18} {sum(w for _, w, _ in totals):>9.1f}")
 
 
