@@ -204,9 +204,15 @@ def main() -> None:
     except Exception as exc:  # click usage errors and the like
         import click
 
-        if isinstance(exc, click.ClickException):
+        try:  # recent typer raises the errors of its own vendored copy of click
+            from typer._click import exceptions as vendored
+
+            click_errors: tuple[type, ...] = (click.ClickException, vendored.ClickException)
+        except ImportError:
+            click_errors = (click.ClickException,)
+        if isinstance(exc, click_errors):
             exc.show()
-            sys.exit(2 if isinstance(exc, click.UsageError) else exc.exit_code)
+            sys.exit(exc.exit_code)
         raise
     sys.exit(code if isinstance(code, int) else 0)
 
