@@ -17,13 +17,14 @@ from coatsim.fileio import write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
 from coatsim.report.summary import headline_rows
-from coatsim.report.plots import SpeedProfile, polysegment_theta, segmentation_figure, speed_figure, theta_figure
+from coatsim.geometry.plots import segmentation_figure_png
+from coatsim.report.plots import SpeedProfile, polyline_figure, speed_figure
 from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
 
 SECTION_TITLES = {
     "summary": "Scenario",
-    "curve": "Curve and polysegment",
-    "theta": "Angular function θ",
+    "curve": "Curve, polysegment and θ",
+    "polyline": "Polyline program",
     "speed": "Tool speed",
     "thickness": "Coating thickness",
     "section": "Thickness cross-section",
@@ -90,11 +91,8 @@ def _speed_profiles(runs: Sequence, lead_in_mm: float) -> tuple[dict[str, SpeedP
 def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mapping[str, Any]) -> list[Section]:
     """Every section of the report, in order."""
     spec = loaded.spec
-    poly = segmentation.polysegment
     polyline = next((r.program.curve for r in runs if r.name != "polysegment"), None)
     polyline_xy = None if polyline is None else np.array([s.start for s in polyline.segments] + [polyline.end])
-    theta_in = segmentation.theta
-    t_fit, th_fit = polysegment_theta(poly, theta_in.start_heading)
     profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm)
     surface = runs[0].coating.surface
     top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
@@ -107,13 +105,14 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
         Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, document))
                 + "<h3>What arcs buy</h3>" + headline_table(document)),
         Section("curve", SECTION_TITLES["curve"], figures=(Figure(
-            "Input curve and programmed curves", segmentation_figure(curve.points, poly, polyline_xy),
-            "Left: the polysegment over the input curve, lines and arcs in their own colours, junctions as dots, "
-            "true corners as crosses. Right: the polyline variant's vertices; without blending the arm stops at each."),)),
-        Section("theta", SECTION_TITLES["theta"], figures=(Figure(
-            "θ(t) and its piecewise-linear approximation", theta_figure(theta_in.t, theta_in.theta, t_fit, th_fit),
-            "Cumulative turning angle against normalised arc length; every linear piece of the polysegment's θ is "
-            "one arc (or a line where it is flat). Bottom: the difference."),)),
+            "Input curve, polysegment and θ", segmentation_figure_png(segmentation),
+            "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
+            "true corners as crosses. Right: the angular function θ(t) (cumulative turning angle against "
+            "normalised arc length) of the input and of the polysegment, piecewise linear: each slope is an arc, "
+            "each flat piece a line."),)),
+        *([] if polyline_xy is None else [Section("polyline", SECTION_TITLES["polyline"], figures=(Figure(
+            "Polyline program", polyline_figure(curve.points, polyline_xy),
+            "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
         Section("speed", SECTION_TITLES["speed"], figures=(Figure(
             "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
             "Simulated tool-centre-point speed while the gun is on, from the trajectory logs; the shaded ends are "

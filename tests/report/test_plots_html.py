@@ -18,21 +18,6 @@ from coatsim.report.html import Figure, Section, gates_table, metrics_table, ren
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
-def test_polysegment_theta_is_exact_on_a_line_arc_line_chain() -> None:
-    poly = Polysegment(chain((0.0, 0.0), 0.3, [0.0, 1 / 20, 0.0], [40.0, 10 * math.pi, 20.0]))
-    t, theta = plots.polysegment_theta(poly, start_heading=0.3)
-    total = 60.0 + 10 * math.pi
-    assert t == pytest.approx([0, 40 / total, 40 / total, (40 + 10 * math.pi) / total, (40 + 10 * math.pi) / total, 1])
-    assert theta == pytest.approx([0, 0, 0, math.pi / 2, math.pi / 2, math.pi / 2])
-
-
-def test_polysegment_theta_jumps_at_a_corner_and_keeps_turning_sign() -> None:
-    poly = Polysegment((Line((0.0, 0.0), (10.0, 0.0)), Line((10.0, 0.0), (10.0, -10.0))), corners=(0,))
-    t, theta = plots.polysegment_theta(poly, start_heading=0.0)
-    assert t == pytest.approx([0, 0.5, 0.5, 1])
-    assert theta == pytest.approx([0, 0, -math.pi / 2, -math.pi / 2])
-
-
 def _sample_poly() -> Polysegment:
     return Polysegment(chain((0.0, 0.0), 0.0, [0.0, 0.05, 0.0], [30.0, 20.0, 30.0]))
 
@@ -40,9 +25,9 @@ def _sample_poly() -> Polysegment:
 def test_figures_are_png_and_deterministic() -> None:
     poly = _sample_poly()
     xy, _ = poly.sample(0.5)
-    first = plots.segmentation_figure(xy, poly, xy[::10])
+    first = plots.polyline_figure(xy, xy[::10])
     assert first.startswith(PNG_MAGIC)
-    assert plots.segmentation_figure(xy, poly, xy[::10]) == first
+    assert plots.polyline_figure(xy, xy[::10]) == first
     s = np.linspace(0, 100, 200)
     profile = plots.SpeedProfile(s, np.minimum(200.0, 20 * np.sqrt(s + 1)))
     assert plots.speed_figure({"polysegment": profile, "polyline-stop": profile}, 200.0, (20.0, 80.0)).startswith(PNG_MAGIC)
@@ -71,7 +56,7 @@ def test_gates_table_marks_failures() -> None:
 
 
 def test_document_is_self_contained_and_escaped() -> None:
-    png = plots.segmentation_figure(*_seg_args())
+    png = plots.polyline_figure(*_seg_args())
     doc = render_html("job <1>", "sub & title", [
         Section("one", "First", "<p>x</p>", (Figure("curve", png, "a <b> caption"),)),
         Section("two", "Second", "<p>y</p>"),
@@ -88,4 +73,4 @@ def test_document_is_self_contained_and_escaped() -> None:
 def _seg_args():
     poly = _sample_poly()
     xy, _ = poly.sample(1.0)
-    return xy, poly, None
+    return xy, xy[::5]
