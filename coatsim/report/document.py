@@ -44,7 +44,7 @@ def headline_table(document: Mapping[str, Any]) -> str:
     return f"<table>{head}{body}</table>"
 
 
-def _summary_rows(loaded, curve, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
+def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
     spec = loaded.spec
     c = spec.curve
     source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
@@ -69,6 +69,7 @@ def _summary_rows(loaded, curve, document: Mapping[str, Any]) -> list[tuple[str,
         ("variants", ", ".join(spec.variants)),
         ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
     ]
+    rows += [(f"arm warnings ({r.name})", "; ".join(r.execution.events)) for r in runs if r.execution.events]
     if seg is not None:
         rows.insert(4, ("polysegment", f"{seg['n_lines']} lines + {seg['n_arcs']} arcs, deviation "
                                        f"{seg['max_deviation_mm']:.4g} mm"))
@@ -102,7 +103,7 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     where = f"({line[0][0]:g}, {line[0][1]:g}) -> ({line[1][0]:g}, {line[1][1]:g}) mm"
     baseline = "polysegment" if "polysegment" in document["variants"] else None
     return [
-        Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, document))
+        Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, runs, document))
                 + "<h3>What arcs buy</h3>" + headline_table(document)),
         Section("curve", SECTION_TITLES["curve"], figures=(Figure(
             "Input curve, polysegment and θ", segmentation_figure_png(segmentation),
