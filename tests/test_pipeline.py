@@ -10,6 +10,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from coatsim.cli import main
@@ -139,6 +140,26 @@ def test_a_scenario_that_cannot_execute_exits_3(tmp_path: Path) -> None:
     cli = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
     assert cli.code == 3, cli.err
     assert cli.err.startswith("coatsim: error: polysegment: ") and cli.err.count("\n") == 1
+
+
+@pytest.mark.parametrize("workpiece", [
+    "{kind: cylinder, radius_mm: 150.0, length_mm: 130.0, axis: y}",
+    "{kind: mesh, file: panel.stl}",
+])
+def test_cylinder_and_mesh_workpieces_are_coated(tmp_path: Path, workpiece: str) -> None:
+    import trimesh
+
+    corners = np.array([[-65.0, -45.0, 0.0], [65.0, -45.0, 0.0], [65.0, 45.0, 0.0], [-65.0, 45.0, 0.0]])
+    trimesh.Trimesh(corners, [[0, 1, 2], [0, 2, 3]]).export(tmp_path / "panel.stl")
+    text = SMALL.replace("{kind: plate, size_mm: [130.0, 90.0]}", workpiece)
+    text = text.replace("gates:", "variants: [polysegment]\ngates:").replace(
+        '  - {metric: coating.thickness_cv, op: "<", threshold: 0.0}\n', "")
+    scenario = tmp_path / "part.yaml"
+    scenario.write_text(text, encoding="utf-8")
+    cli = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
+    assert cli.code == 0, cli.out + cli.err
+    coating = json.loads((tmp_path / "out" / "metrics.json").read_text(encoding="utf-8"))["variants"]["polysegment"]["coating"]
+    assert coating["mass_balance_error"] < 1e-3 and coating["thickness_mean_um"] > 5.0
 
 
 @pytest.mark.parametrize("edit,line,fragment", [
