@@ -39,6 +39,7 @@ from coatsim.spray.outputs import write_thickness_ply
 from coatsim.spray.surfaces import Surface, cylinder, mesh_file, plate
 
 Step = Callable[[str], None]
+FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,11 +55,9 @@ class VariantRun:
 
 @dataclass(frozen=True, eq=False)
 class RunResult:
-    """A finished run: inputs, every variant, the metrics document and the files written."""
+    """A finished run: every variant, the metrics document and the files written."""
 
-    scenario: ScenarioFile
     outdir: Path
-    curve: Curve
     variants: tuple[VariantRun, ...]
     document: dict
     files: tuple[Path, ...]
@@ -226,7 +225,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     spec = loaded.spec
     out = Path(outdir) if outdir is not None else Path("runs") / spec.name
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
-    sample_step = spec.fast.sample_step_mm if fast else 1.0
+    sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants), show) as step:
         step("segmenting the curve")
@@ -260,4 +259,4 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     for r in runs:
         files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
     files += [out / "metrics.json", out / "report.html"]
-    return RunResult(loaded, out, curve, tuple(runs), document, tuple(files))
+    return RunResult(out, tuple(runs), document, tuple(files))

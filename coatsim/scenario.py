@@ -3,7 +3,8 @@
 A scenario names the curve, the fitter options, the workpiece, the robot, the gun, the motion,
 the program variants to compare, the coating mesh and the CI gates. Loading is strict: an
 unknown key, a wrong type or a value out of range is an InputError that names the file, the
-line and the key path, e.g. ``job.yaml:12: gun.standoff_mm: must be > 0 (got -5)``.
+line and the key path, e.g. ``job.yaml:12: gun.standoff_mm: Input should be greater than 0
+(got -5)``.
 """
 
 from __future__ import annotations
@@ -18,11 +19,11 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
+from coatsim.program.build import VARIANTS
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
 
-VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
-VariantName = Literal["polysegment", "polyline-stop", "polyline-blend"]
+VariantName = Literal[VARIANTS]  # type: ignore[valid-type]
 BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
 Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
 Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
