@@ -177,11 +177,38 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
     return rng
 
 
-def fit_band(prob: BandProblem, band: float, start_slope: float | None = None) -> tuple[float, list[Piece]]:
+def _closing_pair(prob: BandProblem, a: int, value: float, slope: float, band: float, end_slope: float) -> list[Piece] | None:
+    """Two pieces from the state at knot ``a`` that end on the curve with ``end_slope``
+    (a closed loop then meets its start tangentially), inside the band; None if none fits."""
+    last = len(prob.s) - 1
+    reach, lo, hi = _reach(prob, a, value, slope, band)
+    for j in np.unique(np.linspace(a + 1, min(reach, last - 1), 24).astype(int))[::-1]:
+        u1, u2 = prob.s[j] - prob.s[a], prob.s[last] - prob.s[j]
+        if u1 <= 0 or u2 <= 0:
+            continue
+        # slope:  slope + k1 u1 + k2 u2 = end_slope
+        # value:  value + slope (u1 + u2) + k1 (u1²/2 + u1 u2) + k2 u2²/2 = phi[last]
+        mat = np.array([[u1, u2], [u1 * u1 / 2 + u1 * u2, u2 * u2 / 2]])
+        rhs = np.array([end_slope - slope, prob.phi[last] - value - slope * (u1 + u2)])
+        k1, k2 = np.linalg.solve(mat, rhs)
+        if not lo[j - a - 1] <= k1 <= hi[j - a - 1]:
+            continue
+        v, t = _advance(prob, a, j, value, slope, k1)
+        reach2, lo2, hi2 = _reach(prob, j, v, t, band)
+        if reach2 == last and lo2[-1] <= k2 <= hi2[-1]:
+            return [Piece(a, int(j), float(k1)), Piece(int(j), last, float(k2))]
+    return None
+
+
+def fit_band(
+    prob: BandProblem, band: float, start_slope: float | None = None, end_turn: float | None = None,
+) -> tuple[float, list[Piece]]:
     """Greedy C1 piecewise-quadratic fit of Φ within ±band over the whole run.
 
     The run starts on the curve (Φ̂(0) = Φ(0)); its start slope is ``start_slope`` if given,
-    otherwise chosen by look-ahead. Returns (start slope, pieces).
+    otherwise chosen by look-ahead. With ``end_turn`` (closed loops) the last pieces are
+    chosen to end with the start slope plus that turn where the band allows it.
+    Returns (start slope, pieces).
     """
     if start_slope is None:
         lo, hi = _start_heading_range(prob, band)
@@ -202,9 +229,18 @@ def fit_band(prob: BandProblem, band: float, start_slope: float | None = None) -
     _, slope0, piece, v, t = best
     pieces = [piece]
     last = len(prob.s) - 1
+    states = [(0, float(prob.phi[0]), slope0)]
     while pieces[-1].b < last:
+        states.append((pieces[-1].b, v, t))
         piece, v, t, _ = _best_step(prob, pieces[-1].b, v, t, band)
         pieces.append(piece)
+    if end_turn is not None:
+        # Re-end the loop from the start of the last piece, or of the one before it.
+        for back in range(1, min(2, len(pieces)) + 1):
+            a, value, slope = states[len(pieces) - back]
+            pair = _closing_pair(prob, a, value, slope, band, slope0 + end_turn)
+            if pair is not None:
+                return slope0, pieces[: len(pieces) - back] + pair
     return slope0, pieces
 
 

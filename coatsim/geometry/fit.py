@@ -6,7 +6,7 @@ Per run of the curve between true corners (or the whole closed loop):
    also pins the run's end point (and closes a loop with its start heading) (refine),
 3. the exact two-sided Hausdorff check (deviation); if it exceeds σ, the band shrinks and the
    run is fitted again,
-4. neighbouring segments are merged and re-refined while the exact check still holds.
+4. if the refined deviation is just above σ, the worst segment is split in two instead.
 """
 
 from __future__ import annotations
@@ -24,7 +24,6 @@ from coatsim.geometry.primitives import Arc, Line, Segment
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 12
-MERGE_TRIES = 3
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
 
@@ -57,17 +56,6 @@ def _check(points: np.ndarray, params: ChainParams, end: np.ndarray) -> tuple[fl
     return hausdorff(points, Polysegment(segs)).hausdorff, segs
 
 
-def _merged(p: ChainParams, j: int) -> ChainParams:
-    """Parameters with segments j and j+1 merged into one of the same total turn and length."""
-    length = p.length[j] + p.length[j + 1]
-    kappa = (p.kappa[j] * p.length[j] + p.kappa[j + 1] * p.length[j + 1]) / length
-    return ChainParams(
-        p.heading,
-        np.concatenate((p.kappa[:j], [kappa], p.kappa[j + 2 :])),
-        np.concatenate((p.length[:j], [length], p.length[j + 2 :])),
-    )
-
-
 def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Segment, ...]:
     """G1 chain within ``tolerance`` of a run (start and end points kept exactly)."""
     pts = np.asarray(points, dtype=float)
@@ -88,7 +76,7 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Se
     for _ in range(MAX_ATTEMPTS):
         if params is None:
             try:
-                slope, pieces = fit_band(prob, band)
+                slope, pieces = fit_band(prob, band, end_turn=turn)
             except BandStuck:
                 band *= 0.7
                 continue
@@ -113,25 +101,5 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Se
             f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points; "
             "try a larger --tol or check the curve for noise larger than the tolerance"
         )
-    return _merge_pass(pts, best[0], best[1], tolerance, end, turn, min_len, target)
+    return best[1]
 
-
-def _merge_pass(
-    pts: np.ndarray, params: ChainParams, segs: tuple[Segment, ...], tolerance: float,
-    end: np.ndarray, turn: float | None, min_len: float, target: float,
-) -> tuple[Segment, ...]:
-    """Merge neighbours (smallest curvature jump first) while the exact check holds."""
-    while len(params.kappa) > 1:
-        jumps = np.abs(np.diff(params.kappa)) * np.minimum(params.length[:-1], params.length[1:])
-        for j in np.argsort(jumps)[:MERGE_TRIES]:
-            trial, sampled = refine_chain(pts[0], _merged(params, int(j)), pts, end, turn, min_len, target)
-            if sampled > target:
-                continue
-            trial = close_exactly(pts[0], trial, end, turn)
-            dev, trial_segs = _check(pts, trial, end)
-            if dev <= tolerance:
-                params, segs = trial, trial_segs
-                break
-        else:
-            return segs
-    return segs
