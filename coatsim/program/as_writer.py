@@ -23,11 +23,13 @@ from coatsim.program.toolpath import Pose
 
 # Coordinates are the program's only record of the path, and the twin executes the text.
 # Rounding a coordinate by e tilts the tangent of a segment of length L by up to ~10 e / L
-# (three-point arcs are the worst case). 4 decimals would keep positions within 1e-4 mm but
-# tilt the tangent of a 1 mm arc by ~2e-4 rad; 7 decimals (e <= 5e-8 mm) keep positions
-# within 1e-7 mm and tangents within 1e-6 rad down to 0.5 mm segments. 6 decimals in degrees
-# round an angle by <= 5e-7 deg (9e-9 rad). (Controllers save 3 decimals and store less.)
-MM_DECIMALS = 7
+# (three-point arcs are the worst case), and fitted polysegments can hold segments of
+# 0.1 mm. 4 decimals would keep positions within 1e-4 mm but tilt the tangent of a 1 mm arc
+# by ~2e-4 rad; 8 decimals (e <= 5e-9 mm, 11 significant digits at a metre, well within a
+# double) keep positions within 1e-8 mm and tangents within 1e-6 rad down to 0.05 mm
+# segments. 6 decimals in degrees round an angle by <= 5e-7 deg (9e-9 rad).
+# (Controllers save 3 decimals and store less; the extra digits are for the twin.)
+MM_DECIMALS = 8
 DEG_DECIMALS = 6
 # Longest arc one C1MOVE/C2MOVE pair may sweep; a pair cannot describe 180 deg or more reliably.
 MAX_ARC_SWEEP_DEG = 170.0

@@ -45,7 +45,7 @@ def test_deterministic_and_well_formed(rr):
     for row in trans:
         name, *values = row.split(" ")
         assert len(name) <= MAX_NAME_LENGTH and len(values) == 6
-        assert all(re.fullmatch(r"-?\d+\.\d{7}", v) for v in values[:3])
+        assert all(re.fullmatch(r"-?\d+\.\d{8}", v) for v in values[:3])
         assert all(re.fullmatch(r"-?\d+\.\d{6}", v) for v in values[3:])
 
 
