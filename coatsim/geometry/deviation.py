@@ -8,8 +8,9 @@ Both directions are evaluated at every point where the distance can have a local
 - polysegment -> polyline: every segment end, the foot on the polysegment of every input
   vertex, and on every arc the points whose tangent is parallel to a nearby input edge.
 
-Nearest input edges are found with a KD-tree and the search radius is widened until it
-provably contains every edge that could be closer, so the result is exact, not sampled.
+Nearest input edges are found with a KD-tree among the edges at the nearest vertices; where
+that search cannot prove no farther edge is closer (very dense input), the value is the
+distance to the nearest edge found, an upper bound, so the check never under-reports.
 """
 
 from __future__ import annotations
@@ -90,8 +91,9 @@ class PolylineDistance:
         u = np.clip(np.einsum("ij,ij->i", pts - a, ab) / np.where(denom > 0, denom, 1.0), 0.0, 1.0)
         return np.linalg.norm(pts - (a + u[:, None] * ab), axis=1)
 
-    def __call__(self, points: np.ndarray, k: int = 8) -> np.ndarray:
-        pts = np.asarray(points, dtype=float)
+    def _nearest(self, pts: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Distance to the polyline using the edges at the k nearest vertices, and whether
+        that is provably exact (no farther vertex can start a closer edge)."""
         n_vert = len(self.vertices)
         k = min(k, n_vert)
         dist_v, idx = self.tree.query(pts, k=k)
@@ -100,18 +102,35 @@ class PolylineDistance:
         for col in range(k):
             for edge in (idx[:, col] - 1, idx[:, col]):
                 valid = (edge >= 0) & (edge < n_vert - 1)
-                if valid.any():
-                    d = self._edge_distance(pts[valid], edge[valid])
-                    best[valid] = np.minimum(best[valid], d)
-        # An edge closer than `best` has an end point within best + max_edge / 2: if such a
-        # vertex might lie beyond the k searched, search that radius exhaustively.
-        unsure = np.flatnonzero(dist_v[:, -1] <= best + self.max_edge / 2) if k < n_vert else []
-        for i in unsure:
-            near = np.asarray(self.tree.query_ball_point(pts[i], best[i] + self.max_edge / 2 + 1e-12))
-            edges = np.unique(np.concatenate((near - 1, near)))
-            edges = edges[(edges >= 0) & (edges < n_vert - 1)]
-            if len(edges):
-                best[i] = min(best[i], float(self._edge_distance(np.repeat(pts[i : i + 1], len(edges), 0), edges).min()))
+                best[valid] = np.minimum(best[valid], self._edge_distance(pts[valid], edge[valid]))
+        # An edge closer than `best` has an end point within best + max_edge / 2.
+        exact = (dist_v[:, -1] > best + self.max_edge / 2) | (k == n_vert)
+        return best, exact
+
+    def near(self, points: np.ndarray, anchors: np.ndarray, window: int = 6) -> np.ndarray:
+        """Distance from each point to the edges within ``window`` edges of its anchor
+        vertex: an upper bound on the distance to the polyline, tight when the anchor is
+        where the point's nearest approach lies."""
+        pts = np.asarray(points, dtype=float)
+        best = np.full(len(pts), np.inf)
+        for off in range(-window, window):
+            edge = np.clip(anchors + off, 0, len(self.vertices) - 2)
+            best = np.minimum(best, self._edge_distance(pts, edge))
+        return best
+
+    def __call__(self, points: np.ndarray) -> np.ndarray:
+        """Distance from each point to the polyline: exact where the neighbourhood search
+        proves it, otherwise the distance to the nearest of the 64 closest vertices' edges,
+        which can only be larger than the true one (a safe bound for a tolerance check)."""
+        pts = np.asarray(points, dtype=float)
+        best = np.empty(len(pts))
+        todo = np.arange(len(pts))
+        for k in (8, 64):
+            if not len(todo):
+                break
+            d, exact = self._nearest(pts[todo], k)
+            best[todo] = d
+            todo = todo[~exact]
         return best
 
 
@@ -124,33 +143,38 @@ def hausdorff(polyline: np.ndarray, poly: Polysegment) -> Deviation:
     a, b = verts[:-1], verts[1:]
     ab = b - a
     denom = np.einsum("ij,ij->i", ab, ab)
+    is_arc = np.array([isinstance(seg, Arc) for seg in poly.segments])
+    centers = np.array([seg.center if isinstance(seg, Arc) else (0.0, 0.0) for seg in poly.segments])
     extra = []
     for owner in (seg_of[:-1], seg_of[1:]):
-        is_arc = np.array([isinstance(poly.segments[j], Arc) for j in owner])
-        if not is_arc.any():
-            continue
-        centers = np.array([poly.segments[j].center if isinstance(poly.segments[j], Arc) else (0.0, 0.0) for j in owner])
-        u = np.einsum("ij,ij->i", centers - a, ab) / np.where(denom > 0, denom, 1.0)
-        interior = is_arc & (u > 0) & (u < 1)
+        u = np.einsum("ij,ij->i", centers[owner] - a, ab) / np.where(denom > 0, denom, 1.0)
+        interior = is_arc[owner] & (u > 0) & (u < 1)
         extra.append(a[interior] + u[interior, None] * ab[interior])
     d_in = float(d_vert.max())
-    if extra:
-        cand = np.vstack(extra)
-        if len(cand):
-            d_in = max(d_in, float(distance_to_polysegment(cand, poly)[0].max()))
+    cand = np.vstack(extra)
+    if len(cand):
+        d_in = max(d_in, float(distance_to_polysegment(cand, poly)[0].max()))
 
-    # polysegment -> polyline.
-    cand_out = [foot, np.array([s.start for s in poly.segments] + [poly.end])]
+    # polysegment -> polyline: candidates anchored at the input vertex or edge they come from.
+    measure = PolylineDistance(verts)
+    cand, anchor = [foot], [np.arange(len(verts))]
     headings = np.arctan2(ab[:, 1], ab[:, 0])
     for j, seg in enumerate(poly.segments):
         if not isinstance(seg, Arc):
             continue
         near = np.flatnonzero((seg_of[:-1] == j) | (seg_of[1:] == j))
-        if not len(near):
-            continue
         ang = headings[near] - np.sign(seg.sweep) * np.pi / 2
         phi = np.mod(np.sign(seg.sweep) * (ang - seg.start_angle), 2 * np.pi)
         ok = phi <= abs(seg.sweep)
-        cand_out.append(np.asarray(seg.center) + seg.radius * np.column_stack((np.cos(ang[ok]), np.sin(ang[ok]))))
-    d_out = float(PolylineDistance(verts)(np.vstack(cand_out)).max())
+        cand.append(np.asarray(seg.center) + seg.radius * np.column_stack((np.cos(ang[ok]), np.sin(ang[ok]))))
+        anchor.append(near[ok])
+    points, quick = np.vstack(cand), measure.near(np.vstack(cand), np.concatenate(anchor))
+    # The windowed distance is an upper bound; where it would set a new maximum, measure
+    # against the whole polyline instead (the anchor may not be where the point is closest).
+    doubt = quick > max(d_in, float(np.median(quick)))
+    if doubt.any():
+        quick[doubt] = np.minimum(quick[doubt], measure(points[doubt]))
+    d_out = float(quick.max())
+    ends = np.array([s.start for s in poly.segments] + [poly.end])
+    d_out = max(d_out, float(measure(ends).max()))
     return Deviation(d_in, d_out)
