@@ -67,7 +67,7 @@ class Frame:
 # the same default cell).
 DEFAULT_FRAME = Frame(700.0, 0.0, 200.0, 0.0, 0.0, 0.0)
 # Spray gun TCP relative to the flange, written as the program's TOOL.
-DEFAULT_TOOL = Frame(0.0, 0.0, 200.0, 0.0, 0.0, 0.0)
+DEFAULT_TOOL = Frame(0.0, 0.0, 250.0, 0.0, 0.0, 0.0)  # the cell model's plasma gun: TCP 250 mm from the flange
 # An arc that bulges less than this from its chord is placed as the chord (far below the
 # 1e-7 mm a written coordinate carries).
 _MIN_SAGITTA_MM = 1e-8
