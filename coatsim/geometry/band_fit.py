@@ -22,6 +22,7 @@ from scipy.optimize import linprog
 N_END_CANDIDATES = 12
 N_CURVATURE_CANDIDATES = 5
 N_HEADING_CANDIDATES = 7
+LP_KNOTS = 400
 
 
 @dataclass(frozen=True, eq=False)
@@ -148,9 +149,11 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
     n = len(prob.s)
 
     def slope_range(b: int) -> tuple[float, float] | None:
-        u = prob.s[1 : b + 1] - prob.s[0]
+        # at most LP_KNOTS constraints: this only picks the start slopes to try
+        knots = np.unique(np.linspace(1, b, min(b, LP_KNOTS)).astype(int))
+        u = prob.s[knots] - prob.s[0]
         a_ub = np.vstack((np.column_stack((u, 0.5 * u * u)), -np.column_stack((u, 0.5 * u * u))))
-        rhs = prob.phi[1 : b + 1] - prob.phi[0]
+        rhs = prob.phi[knots] - prob.phi[0]
         b_ub = np.concatenate((rhs + band, band - rhs))
         out = []
         for c in (1.0, -1.0):

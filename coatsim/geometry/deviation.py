@@ -46,9 +46,16 @@ def distance_to_polysegment(points: np.ndarray, poly: Polysegment) -> tuple[np.n
     index = np.zeros(len(pts), dtype=int)
     foot = np.zeros_like(pts)
     for j, seg in enumerate(poly.segments):
-        d, f = _distance_to_segment(pts, seg)
-        better = d < best
-        best[better], index[better], foot[better] = d[better], j, f[better]
+        # Every point of a segment lies within half its length of its middle point: points
+        # farther than that from the middle plus their best distance so far cannot improve.
+        middle = seg.points(np.array([seg.length / 2]))[0]
+        cand = np.flatnonzero(np.linalg.norm(pts - middle, axis=1) - seg.length / 2 < best)
+        if not len(cand):
+            continue
+        d, f = _distance_to_segment(pts[cand], seg)
+        better = d < best[cand]
+        upd = cand[better]
+        best[upd], index[upd], foot[upd] = d[better], j, f[better]
     return best, index, foot
 
 

@@ -56,22 +56,34 @@ def _check(points: np.ndarray, params: ChainParams, end: np.ndarray) -> tuple[fl
     return hausdorff(points, Polysegment(segs)).hausdorff, segs
 
 
-def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Segment, ...]:
-    """G1 chain within ``tolerance`` of a run (start and end points kept exactly)."""
+def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
+    """Whether every point is within ``tolerance`` of the line through the end points."""
+    chord = pts[-1] - pts[0]
+    norm = float(np.linalg.norm(chord))
+    if norm == 0.0:
+        return False
+    offset = (pts - pts[0]) @ np.array([-chord[1], chord[0]]) / norm
+    return bool(np.abs(offset).max() <= tolerance)
+
+
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tuple[Segment, ...], float]:
+    """G1 chain within ``tolerance`` of a run (start and end points kept exactly), and its
+    verified deviation (mm)."""
     pts = np.asarray(points, dtype=float)
     end = pts[-1]
-    if not closed_loop:
+    if not closed_loop and _near_chord(pts, tolerance):
         line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
-        if len(pts) == 2 or hausdorff(pts, Polysegment(line)).hausdorff <= tolerance:
-            return line
+        dev = hausdorff(pts, Polysegment(line)).hausdorff
+        if dev <= tolerance:
+            return line, dev
     exact = recover_exact(pts, closed_loop, tolerance)
     if exact is not None:
-        return exact
+        return exact, hausdorff(pts, Polysegment(exact)).hausdorff
     turn = total_turn(pts) if closed_loop else None
     min_len = 1e-6 * float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     prob, ref = BandProblem.from_points(pts)
     band, target = tolerance, TARGET * tolerance
-    best: tuple[ChainParams, tuple[Segment, ...]] | None = None
+    best: tuple[tuple[Segment, ...], float] | None = None
     params: ChainParams | None = None
     for _ in range(MAX_ATTEMPTS):
         if params is None:
@@ -85,7 +97,7 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Se
         params = close_exactly(pts[0], params, end, turn)
         dev, segs = _check(pts, params, end)
         if dev <= tolerance:
-            best = (params, segs)
+            best = (segs, dev)
             break
         if sampled <= target:
             # The samples met the target but the exact check did not (chords of the input
@@ -101,5 +113,5 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[Se
             f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points; "
             "try a larger --tol or check the curve for noise larger than the tolerance"
         )
-    return best[1]
+    return best
 

@@ -19,6 +19,7 @@ from coatsim.geometry.primitives import Segment
 
 KAPPA_JUMP = 1e-3  # curvature change x run length that ends a stretch
 MIN_VERTICES = 4
+MAX_PRIMITIVES = 200
 
 
 def _curvature(points: np.ndarray) -> np.ndarray:
@@ -77,8 +78,11 @@ def recover_exact(points: np.ndarray, closed_loop: bool, tolerance: float) -> tu
     length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     slack = min(tolerance / 20, 1e-6 * length)
     kappa = _curvature(pts)
+    stretches = _stretches(kappa, length)
+    if not stretches or len(stretches) > MAX_PRIMITIVES:
+        return None  # a smooth free-form curve: many tiny stretches, not a few primitives
     prims = []
-    for a, b in _stretches(kappa, length):
+    for a, b in stretches:
         prim, res = _fit(pts[a - 1 : b + 2], float(kappa[a - 1 : b].mean()), length)
         if res > slack:
             return None

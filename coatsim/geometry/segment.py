@@ -118,10 +118,11 @@ def segment_curve(
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
-    pieces = [fit_run(run, tol, closed_loop) for run in runs]
+    fitted = [fit_run(run, tol, closed_loop) for run in runs]
+    pieces = [segs for segs, _ in fitted]
     segments = tuple(seg for piece in pieces for seg in piece)
     poly = Polysegment(segments, closed=curve.closed, corners=_corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0))
-    dev = hausdorff(rotated, poly).hausdorff
+    dev = fitted[0][1] if len(fitted) == 1 else hausdorff(rotated, poly).hausdorff
     return Segmentation(curve, poly, method, tol, dev, time.perf_counter() - started, theta)
 
 
