@@ -143,7 +143,7 @@ def test_a_scenario_that_cannot_execute_exits_3(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("workpiece", [
-    "{kind: cylinder, radius_mm: 150.0, length_mm: 130.0, axis: y}",
+    "{kind: cylinder, radius_mm: 80.0, length_mm: 80.0, axis: y}",
     "{kind: mesh, file: panel.stl}",
 ])
 def test_cylinder_and_mesh_workpieces_are_coated(tmp_path: Path, workpiece: str) -> None:
