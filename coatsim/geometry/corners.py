@@ -13,18 +13,18 @@ def _point_at(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
 
 def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, tolerance: float) -> np.ndarray:
     """Indices of the vertices where the curve turns by more than ``corner_deg`` within a
-    window w = max(2 median edge lengths, σ) on each side.
+    window w = max(3 median edge lengths, σ) on each side, and still does over 3w.
 
-    The turn is measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so noise
-    and fine sampling of a smooth bend do not count, while a sharp vertex does. Neighbouring
-    detections within 2w collapse to the vertex with the largest turn. End points of an open
-    curve are never corners.
+    The turn is measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so fine
+    sampling of a smooth bend does not count while a sharp vertex does; requiring the turn
+    over 3w too rejects digitising noise. Neighbouring detections within 2w collapse to the
+    vertex with the largest turn. End points of an open curve are never corners.
     """
     pts = np.asarray(points, dtype=float)
     edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     s = np.concatenate(([0.0], np.cumsum(edges)))
     total = s[-1]
-    w = max(2.0 * float(np.median(edges)), tolerance)
+    w = max(3.0 * float(np.median(edges)), tolerance)
     n = len(pts) - 1 if closed else len(pts)
     idx = np.arange(n)
     if closed:
@@ -32,15 +32,21 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
         ext_p = np.vstack((pts[:-1], pts, pts[1:]))
     else:
         ext_s, ext_p = s, pts
-        idx = idx[(s[:n] >= w) & (s[:n] <= total - w)]
-    if len(idx) == 0 or w >= total / 4:
+        idx = idx[(s[:n] >= 3 * w) & (s[:n] <= total - 3 * w)]
+    if len(idx) == 0 or 3 * w >= total / 4:
         return np.empty(0, dtype=int)
     here = pts[idx]
-    before = _point_at(ext_p, ext_s, s[idx] - w) - here
-    after = _point_at(ext_p, ext_s, s[idx] + w) - here
-    a_in = np.arctan2(-before[:, 1], -before[:, 0])
-    a_out = np.arctan2(after[:, 1], after[:, 0])
-    turn = np.abs(np.remainder(a_out - a_in + math.pi, 2 * math.pi) - math.pi)
+
+    def turn_within(width: float) -> np.ndarray:
+        before = _point_at(ext_p, ext_s, s[idx] - width) - here
+        after = _point_at(ext_p, ext_s, s[idx] + width) - here
+        a_in = np.arctan2(-before[:, 1], -before[:, 0])
+        a_out = np.arctan2(after[:, 1], after[:, 0])
+        return np.abs(np.remainder(a_out - a_in + math.pi, 2 * math.pi) - math.pi)
+
+    # A corner turns sharply at w and still at 3w: noise on single vertices does not persist
+    # over the wider chords, a smooth bend does not turn enough within w.
+    turn = np.minimum(turn_within(w), turn_within(3 * w))
     hits = np.flatnonzero(turn > math.radians(corner_deg))
     corners: list[int] = []
     for h in hits[np.argsort(-turn[hits], kind="stable")]:

@@ -23,8 +23,9 @@ from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.primitives import Arc, Line, Segment
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
-MAX_ATTEMPTS = 12
-SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint
+MAX_ATTEMPTS = 20
+SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
+MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
 
 
@@ -85,6 +86,7 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tu
     band, target = tolerance, TARGET * tolerance
     best: tuple[tuple[Segment, ...], float] | None = None
     params: ChainParams | None = None
+    splits = 0
     for _ in range(MAX_ATTEMPTS):
         if params is None:
             try:
@@ -103,10 +105,12 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tu
             # The samples met the target but the exact check did not (chords of the input
             # cut inside the chain): aim lower with the same segments.
             target *= 0.99 * tolerance / dev
-        elif sampled < SPLIT_BELOW * tolerance and len(params.kappa) < 2 * len(pts):
+        elif sampled < SPLIT_BELOW * tolerance and splits < MAX_SPLITS:
             params = split_segment(params, worst_segment(pts[0], params, pts))
+            splits += 1
         else:
-            band *= float(np.clip(0.97 * tolerance / dev, 0.5, 0.9))
+            splits = 0
+            band *= float(np.clip(0.97 * tolerance / dev, 0.85, 0.95))
             params = None
     if best is None:
         raise InputError(

@@ -54,7 +54,7 @@ def segmentation_figure_png(seg: Segmentation, dpi: int = 110) -> bytes:
     ax_theta.legend(loc="best", fontsize=8)
     ax_theta.grid(alpha=0.3)
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
+    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})  # no version stamp: same bytes everywhere
     plt.close(fig)
     return buf.getvalue()
 

@@ -154,8 +154,10 @@ def refine_chain(
     f = float(merit(z[None])[0])
     radius = 0.05
     min_len_z = min_length / unit[n + 1 :]
+    iteration = 0  # LP steps, shared by all exchange rounds
     for _ in range(EXCHANGE_ROUNDS):
-        for iteration in range(max_iter):
+        while iteration < max_iter:
+            iteration += 1
             if f <= target or (iteration >= 12 and f > 1.5 * target):
                 break
             r, jr = _jacobian(res, z)
