@@ -15,6 +15,8 @@ import numpy as np
 from coatsim.errors import ExecutionError
 from coatsim.robot.trajectory_log import TrajectoryLog
 
+END_TOLERANCE_MM = 0.1  # the curve proper counts as covered this close to its end
+
 AT_SPEED = 0.95  # fraction of the programmed speed that counts as "at speed"
 STOPPED = 0.05   # below this fraction of the programmed speed the tool counts as stopped
 
@@ -71,7 +73,8 @@ def motion_metrics(
     a, b = curve
     # the window opens at the last row not yet past the start (at rest there, if the tool stops)
     i0 = max(int(np.searchsorted(np.maximum.accumulate(log.progress), a, side="right")) - 1, 0)
-    reached = np.flatnonzero(log.progress[i0:] >= b - 1e-6)
+    # the servo may still trail the commanded end by a few hundredths of a millimetre
+    reached = np.flatnonzero(log.progress[i0:] >= b - END_TOLERANCE_MM)
     if i0 >= len(log) or not len(reached):
         raise ExecutionError(f"the simulated tool never covered the curve proper ({a:.1f} to {b:.1f} mm of the path)")
     i1 = i0 + int(reached[0])

@@ -121,7 +121,9 @@ def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
 
 
 def _uniform(length: float, step: float) -> np.ndarray:
-    n = max(1, int(math.ceil(length / step - 1e-9)))
+    """Samples every ``step`` or closer from 0 to ``length``, both ends included; at least
+    two intervals, so a short rest-to-rest move still has a point where it moves."""
+    n = max(2, int(math.ceil(length / step - 1e-9)))
     return np.linspace(0.0, length, n + 1)
 
 
@@ -201,12 +203,16 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
                 ref_offset + hi + frac * (sp.prim.length - hi + d))
         ref_offset += sp.prim.length
     p = np.vstack(cols["p"])
+    # Where the blends at both ends of a short move meet, a blend starts on the sample the
+    # previous one ended on: keep one of each pair of coincident samples.
+    keep = np.concatenate(([True], np.linalg.norm(np.diff(p, axis=0), axis=1) > 1e-9))
+    p = p[keep]
     s_exec = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
     return CartesianPiece(
-        s=s_exec, position=p, rotation=np.concatenate(cols["r"]), tangent=np.vstack(cols["t"]),
-        curvature=np.concatenate(cols["c"]), speed=np.concatenate(cols["v"]),
-        move=np.concatenate(cols["m"]).astype(int), spray=np.concatenate(cols["y"]).astype(bool),
-        ref_s=np.concatenate(cols["rs"]), reference=tuple(sp.prim for sp in spans),
+        s=s_exec, position=p, rotation=np.concatenate(cols["r"])[keep], tangent=np.vstack(cols["t"])[keep],
+        curvature=np.concatenate(cols["c"])[keep], speed=np.concatenate(cols["v"])[keep],
+        move=np.concatenate(cols["m"]).astype(int)[keep], spray=np.concatenate(cols["y"]).astype(bool)[keep],
+        ref_s=np.concatenate(cols["rs"])[keep], reference=tuple(sp.prim for sp in spans),
         reference_moves=tuple(sp.index for sp in spans),
     )
 

@@ -110,6 +110,8 @@ def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: f
     """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s)."""
     traj = ParametrizeConstAccel(path7, gridpoints, sd)
     duration = float(traj.duration)
+    if not math.isfinite(duration):
+        raise ExecutionError("timing: a path piece has no room to move (zero speed along it); sample it more finely")
     m = int(math.ceil(duration / dt - 1e-9))
     t = np.minimum(np.arange(m + 1) * dt, duration)
     x, xd, xdd = traj(t), traj(t, 1), traj(t, 2)
