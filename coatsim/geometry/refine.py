@@ -95,6 +95,38 @@ def _jacobian(f, z: np.ndarray, eps: float = 1e-7) -> tuple[np.ndarray, np.ndarr
     return out[0], ((out[1:] - out[0]) / eps).T
 
 
+def _minimax_step(
+    r: np.ndarray, jr: np.ndarray, lift_l: np.ndarray, lift_r: np.ndarray,
+    c: np.ndarray, jc: np.ndarray, lower: np.ndarray, radius: float, weight: float,
+) -> tuple[np.ndarray, float] | None:
+    """Solve the linearised step: minimise max_i(±(r_i + J_i dz) + lift_i) + weight·|c + J_c dz|∞
+    with |dz| <= radius (and dz >= ``lower``). Returns (dz, model value) or None."""
+    d = jr.shape[1]
+    # Inside the trust region a residual moves by at most `reach`; rows that cannot become
+    # the largest one are left out of the LP (same optimum, much smaller LP).
+    size = np.maximum(r + lift_l, -r + lift_r)
+    reach = np.abs(jr).sum(axis=1) * radius
+    active = size + reach >= float(np.max(size - reach))
+    r, jr, lift_l, lift_r = r[active], jr[active], lift_l[active], lift_r[active]
+    m, k = len(r), len(c)
+    # variables: dz (d), t (largest residual), e (largest end gap)
+    cost = np.concatenate((np.zeros(d), [1.0, weight]))
+    ones_m, ones_k = np.ones((m, 1)), np.ones((k, 1))
+    zeros_m, zeros_k = np.zeros((m, 1)), np.zeros((k, 1))
+    a_ub = np.vstack((
+        np.hstack((jr, -ones_m, zeros_m)),
+        np.hstack((-jr, -ones_m, zeros_m)),
+        np.hstack((jc, zeros_k, -ones_k)),
+        np.hstack((-jc, zeros_k, -ones_k)),
+    ))
+    b_ub = np.concatenate((-r - lift_l, r - lift_r, -c, c))
+    bounds = list(zip(lower, np.full(d, radius))) + [(0, None), (0, None)]
+    lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs-ds")
+    if lp.status != 0:
+        return None
+    return lp.x[:d], float(lp.x[d] + weight * lp.x[d + 1])
+
+
 def refine_chain(
     start: np.ndarray,
     params: ChainParams,
@@ -112,7 +144,7 @@ def refine_chain(
     penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
     at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
     Stops early once the sampled deviation is below ``target`` with the end gap closed, or
-    when it is still far above it after a few steps (a merge that cannot work).
+    when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
     seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
@@ -162,34 +194,13 @@ def refine_chain(
                 break
             r, jr = _jacobian(res, z)
             c, jc = _jacobian(clo, z)
-            # Inside the trust region a residual moves by at most `reach`; rows that cannot
-            # become the largest one are left out of the LP (same optimum, much smaller LP).
-            lift_l, lift_r = inset_left[pick], inset_right[pick]
-            size = excess(r, pick)
-            reach = np.abs(jr).sum(axis=1) * radius
-            floor = float(np.max(size - reach))
-            active = size + reach >= floor
-            r, jr, lift_l, lift_r = r[active], jr[active], lift_l[active], lift_r[active]
-            m, k = len(r), len(c)
-            # variables: dz (d), t, e ; minimise t + weight * e
-            cost = np.concatenate((np.zeros(d), [1.0, weight]))
-            ones_m, ones_k = np.ones((m, 1)), np.ones((k, 1))
-            zeros_m, zeros_k = np.zeros((m, 1)), np.zeros((k, 1))
-            a_ub = np.vstack((
-                np.hstack((jr, -ones_m, zeros_m)),
-                np.hstack((-jr, -ones_m, zeros_m)),
-                np.hstack((jc, zeros_k, -ones_k)),
-                np.hstack((-jc, zeros_k, -ones_k)),
-            ))
-            b_ub = np.concatenate((-r - lift_l, r - lift_r, -c, c))
             lower = np.full(d, -radius)
             lower[n + 1 :] = np.maximum(lower[n + 1 :], min_len_z - z[n + 1 :])
-            bounds = list(zip(lower, np.full(d, radius))) + [(0, None), (0, None)]
-            lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs-ds")
-            if lp.status != 0:
+            solved = _minimax_step(r, jr, inset_left[pick], inset_right[pick], c, jc, lower, radius, weight)
+            if solved is None:
                 break
-            step = lp.x[:d]
-            predicted = f - (lp.x[d] + weight * lp.x[d + 1])
+            step, model = solved
+            predicted = f - model
             if predicted <= 1e-4 * target:
                 break
             f_new = float(merit((z + step)[None])[0])
