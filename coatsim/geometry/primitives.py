@@ -121,19 +121,18 @@ Segment = Union[Line, Arc]
 def make_segment(start: Point, heading: float, curvature: float, length: float) -> Segment:
     """The line or arc that leaves ``start`` at ``heading`` with ``curvature`` for ``length``.
 
-    Zero curvature gives a line; otherwise the arc's centre lies on the left normal for
-    positive curvature (counter-clockwise turn).
+    A turn below 1e-12 rad over the length gives a line (no arc is measurably different);
+    otherwise the arc's centre lies on the left normal for positive curvature. The end point
+    comes from the chord (length · sinc), which stays accurate for nearly straight arcs.
     """
     p = np.asarray(start, dtype=float)
-    if curvature == 0.0:
+    sweep = curvature * length
+    if abs(sweep) < 1e-12:
         end = p + length * _unit(heading)
         return Line(tuple(map(float, p)), (float(end[0]), float(end[1])))
     radius = 1.0 / abs(curvature)
-    sweep = curvature * length
-    normal = _unit(heading + math.copysign(math.pi / 2, curvature))
-    center = p + radius * normal
-    phi_end = math.atan2(p[1] - center[1], p[0] - center[0]) + sweep
-    end = center + radius * _unit(phi_end)
+    center = p + radius * _unit(heading + math.copysign(math.pi / 2, curvature))
+    end = p + length * math.sin(sweep / 2) / (sweep / 2) * _unit(heading + sweep / 2)
     return Arc(
         tuple(map(float, p)),
         (float(end[0]), float(end[1])),
