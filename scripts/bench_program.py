@@ -17,7 +17,7 @@ from coatsim.program import interpret, parse_as
 from coatsim.program.build import VARIANTS, ProgramOptions, build_program, polyline_of
 from coatsim.program.placement import Placement, centering_offset
 
-CURVES = Path("/work/shared/bench/curves")
+CURVES = Path(__file__).resolve().parents[2] / "shared" / "bench" / "curves"
 TOL = 0.1
 REPEATS = 5
 

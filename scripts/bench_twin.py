@@ -22,7 +22,7 @@ from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 
 DOWN = np.diag([-1.0, 1.0, -1.0])
-SPIRAL = Path("/work/shared/bench/curves/spiral.csv")
+SPIRAL = Path(__file__).resolve().parents[2] / "shared" / "bench" / "curves" / "spiral.csv"
 
 
 def straight_metre(speed: float) -> ToolPath:

@@ -6,6 +6,7 @@ Positions within 1e-4 mm and tangents within 1e-6 rad, piece by piece, for both 
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +21,8 @@ from coatsim.program.placement import Frame, Placement, centering_offset
 
 from program_helpers import arc_spiral, path_errors, roundrect
 
-BENCH = Path("/work/shared/bench/curves")
+# The benchmark curves live beside the repository (../shared/bench, see the design notes).
+BENCH = Path(os.environ.get("COATSIM_BENCH_DIR", Path(__file__).resolve().parents[3] / "shared" / "bench")) / "curves"
 POSITION_MM, TANGENT_RAD, ROTATION_RAD = 1e-4, 1e-6, 1e-6
 
 
