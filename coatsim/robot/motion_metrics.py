@@ -19,6 +19,7 @@ END_TOLERANCE_MM = 0.1  # the curve proper counts as covered this close to its e
 
 AT_SPEED = 0.95  # fraction of the programmed speed that counts as "at speed"
 STOPPED = 0.05   # below this fraction of the programmed speed the tool counts as stopped
+MOVING = 0.2     # ... and moving again only above this fraction (hysteresis)
 
 
 @dataclass(frozen=True)
@@ -47,12 +48,22 @@ class MotionMetrics:
         return {k: (round(v, 6) if isinstance(v, float) else v) for k, v in asdict(self).items()}
 
 
-def _interior_runs(mask: np.ndarray) -> int:
-    """Number of maximal runs of True in ``mask`` that touch neither end (a program that
-    starts or ends its curve at rest has no stop there)."""
-    edges = np.diff(np.concatenate(([0], mask.astype(np.int8), [0])))
-    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # run = [start, end)
-    return int(np.count_nonzero((starts > 0) & (ends < len(mask))))
+def _stops(speed: np.ndarray, programmed: float) -> int:
+    """Number of times the tool comes to rest inside the window.
+
+    A stop is a run below STOPPED of the programmed speed; two runs are one stop unless the
+    tool got above MOVING in between (a servo settling around zero); runs touching either
+    end of the window do not count (a program that starts or ends its curve at rest).
+    """
+    slow, moving = speed < STOPPED * programmed, speed > MOVING * programmed
+    edges = np.diff(np.concatenate(([0], slow.astype(np.int8), [0])))
+    merged: list[list[int]] = []
+    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):  # run = [a, b)
+        if merged and not moving[merged[-1][1] : a].any():
+            merged[-1][1] = int(b)
+        else:
+            merged.append([int(a), int(b)])
+    return sum(1 for a, b in merged if a > 0 and b < len(speed))
 
 
 def motion_metrics(
@@ -101,7 +112,7 @@ def motion_metrics(
         fraction_at_speed=float(step[fast].sum() / travelled) if travelled > 0 else 0.0,
         fraction_at_speed_feasible=float(step[fast & feasible].sum() / step[feasible].sum())
         if step[feasible].sum() > 0 else 0.0,
-        stops=_interior_runs(speed < STOPPED * speed_mm_s),
+        stops=_stops(speed, speed_mm_s),
         max_path_error_mm=float(err.max()),
         rms_path_error_mm=float(np.sqrt(np.mean(err**2))),
         max_joint_speed_ratio=float(np.max(np.abs(qd) / v_max)),
