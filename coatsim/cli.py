@@ -211,7 +211,8 @@ def main() -> None:
         except ImportError:
             click_errors = (click.ClickException,)
         if isinstance(exc, click_errors):
-            exc.show()
+            # one line, like every other error; `coatsim COMMAND --help` shows the usage
+            typer.echo(f"coatsim: error: {exc.format_message()} (see --help)", err=True)
             sys.exit(exc.exit_code)
         raise
     sys.exit(code if isinstance(code, int) else 0)

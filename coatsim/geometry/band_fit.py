@@ -176,7 +176,8 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
         best = lo
     target = int(np.searchsorted(prob.s, 0.7 * prob.s[best]).clip(1, best))
     rng = slope_range(target)
-    assert rng is not None  # a shorter reach than a feasible one is feasible
+    if rng is None:  # the sampled LP can miss a feasible slope on very sparse runs
+        raise _Stuck(0)
     return rng
 
 

@@ -153,6 +153,12 @@ def raster(points: int = DEFAULT_POINTS, width: float = 200.0, pitch: float = 20
     return _sample_polysegment(Polysegment(segs), points)
 
 
+# parameters that are lengths, radii or counts: zero or negative values make no curve
+POSITIVE = {
+    "points", "width", "turns", "a", "b", "chord", "base_radius", "big_r", "small_r", "wavelength",
+    "length", "end_radius", "height", "radius", "sides", "stem", "pitch", "passes",
+}
+
 BUILTINS: dict[str, Callable[..., np.ndarray]] = {
     "paper-spiral": paper_spiral,
     "ellipse": ellipse,
@@ -173,11 +179,22 @@ def builtin_curve(name: str, **params: float | int | str) -> Curve:
     if name not in BUILTINS:
         raise InputError(f"builtin:{name}: unknown curve; choose one of {', '.join(sorted(BUILTINS))}")
     func = BUILTINS[name]
+    for key, value in params.items():
+        if isinstance(value, float) and not math.isfinite(value):
+            raise InputError(f"builtin:{name}: parameter {key} must be finite")
+        if key in POSITIVE and not (isinstance(value, (int, float)) and value > 0):
+            raise InputError(f"builtin:{name}: parameter {key} must be a positive number, got {value!r}")
+    if "points" in params and params["points"] < 3:
+        raise InputError(f"builtin:{name}: points must be at least 3")
     try:
         xy = func(**params)
-    except TypeError as exc:
+    except (TypeError, ValueError, ZeroDivisionError, OverflowError) as exc:
         raise InputError(f"builtin:{name}: bad parameter ({exc})") from None
     return make_curve(xy, f"builtin:{name}")
+
+
+TEXT_PARAMETERS = {"code"}
+INTEGER_PARAMETERS = {"points", "sides", "passes"}
 
 
 def parse_builtin_spec(spec: str) -> Curve:
@@ -189,10 +206,18 @@ def parse_builtin_spec(spec: str) -> Curve:
         key, sep, value = item.partition("=")
         if not sep:
             raise InputError(f"{spec}: parameter {item!r} must be key=value")
-        key = key.strip().replace("-", "_")
+        key, value = key.strip().replace("-", "_"), value.strip()
+        if key in TEXT_PARAMETERS:
+            params[key] = value
+            continue
         try:
             number = float(value)
-            params[key] = int(number) if key in ("points", "sides", "passes") else number
         except ValueError:
-            params[key] = value.strip()
+            raise InputError(f"{spec}: parameter {key} must be a number, got {value!r}") from None
+        if key in INTEGER_PARAMETERS:
+            if not number.is_integer():
+                raise InputError(f"{spec}: parameter {key} must be a whole number, got {value!r}")
+            params[key] = int(number)
+        else:
+            params[key] = number
     return builtin_curve(name.strip(), **params)

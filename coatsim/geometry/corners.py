@@ -18,10 +18,13 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
     The turn is measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so fine
     sampling of a smooth bend does not count while a sharp vertex does; requiring the turn
     over 3w too rejects digitising noise. Neighbouring detections within 2w collapse to the
-    vertex with the largest turn. End points of an open curve are never corners.
+    vertex with the largest turn. End points of an open curve are never corners. A sparse
+    polyline (median edge >= σ) has its sharp vertices as corners.
     """
     pts = np.asarray(points, dtype=float)
     edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    if float(np.median(edges)) >= tolerance:
+        return _vertex_corners(pts, closed, corner_deg)
     s = np.concatenate(([0.0], np.cumsum(edges)))
     total = s[-1]
     w = max(3.0 * float(np.median(edges)), tolerance)
@@ -54,6 +57,17 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
         if all(_arc_gap(s, v, c, total, closed) > 2 * w for c in corners):
             corners.append(v)
     return np.array(sorted(corners), dtype=int)
+
+
+def _vertex_corners(pts: np.ndarray, closed: bool, corner_deg: float) -> np.ndarray:
+    """Corners of a sparse polyline (edges longer than the tolerance): there is nothing
+    between its vertices to tell a bend from a corner, so each vertex turning by more than
+    ``corner_deg`` is one."""
+    d = np.diff(pts, axis=0)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.abs(np.remainder(heading - np.roll(heading, 1) + math.pi, 2 * math.pi) - math.pi)
+    hits = np.flatnonzero(turn > math.radians(corner_deg))  # hit i: vertex i, between edges i-1 and i
+    return hits if closed else hits[hits > 0]
 
 
 def _arc_gap(s: np.ndarray, i: int, j: int, total: float, closed: bool) -> float:

@@ -81,16 +81,21 @@ def _read_text_points(path: Path) -> np.ndarray:
     except UnicodeDecodeError:
         raise InputError(f"{path}: not a text file (expected x,y columns)") from None
     rows: list[tuple[float, float]] = []
+    header_seen = False
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
-        fields = [f for f in _SEPARATORS.split(line) if f]
+        if ";" in line:  # semicolon-separated files may use decimal commas
+            fields = [f.replace(",", ".") for f in re.split(r"[;\s]+", line) if f]
+        else:
+            fields = [f for f in _SEPARATORS.split(line) if f]
         try:
             values = [float(f) for f in fields]
         except ValueError:
-            if not rows and all(re.match(r"^[A-Za-z_\"']", f) for f in fields):
-                continue  # header row
+            if not rows and not header_seen and not _is_float(fields[0]):
+                header_seen = True
+                continue  # header row: its first field is a name such as "x" or "x (mm)"
             bad = next(f for f in fields if not _is_float(f))
             raise InputError(f"{path}:{number}: not a number: {bad!r} (expected x,y columns)") from None
         if len(values) < 2:

@@ -141,6 +141,47 @@ class PolylineDistance:
         return best
 
 
+SEGMENT_SAMPLES = 17  # points along each output segment checked besides the analytic candidates
+
+
+def _switch_candidates(a: np.ndarray, ab: np.ndarray, seg_of: np.ndarray, poly: Polysegment,
+                       is_arc: np.ndarray, centers: np.ndarray) -> list[np.ndarray]:
+    """Extra points on input edges whose two ends are nearest to different segments: where
+    the distances to the two segments are equal (a maximum of their minimum can sit there,
+    e.g. an edge passing under a corner), the feet of the centres of the arcs between them,
+    and points along such edges when they are long (sparse input)."""
+    edges = np.flatnonzero(seg_of[:-1] != seg_of[1:])
+    if not len(edges):
+        return []
+    out = []
+    lo, hi = np.zeros(len(edges)), np.ones(len(edges))
+    j1, j2 = seg_of[edges], seg_of[edges + 1]
+
+    def gap(u: np.ndarray) -> np.ndarray:
+        x = a[edges] + u[:, None] * ab[edges]
+        d1 = np.array([_distance_to_segment(x[i : i + 1], poly.segments[j])[0][0] for i, j in enumerate(j1)])
+        d2 = np.array([_distance_to_segment(x[i : i + 1], poly.segments[j])[0][0] for i, j in enumerate(j2)])
+        return d1 - d2
+
+    for _ in range(40):  # bisection: d1 - d2 goes from <= 0 at the edge's start to >= 0 at its end
+        mid = (lo + hi) / 2
+        right = gap(mid) > 0
+        hi, lo = np.where(right, mid, hi), np.where(right, lo, mid)
+    out.append(a[edges] + ((lo + hi) / 2)[:, None] * ab[edges])
+    length = np.linalg.norm(ab, axis=1)
+    step = float(np.median(length))
+    for e, first, last in zip(edges, np.minimum(j1, j2), np.maximum(j1, j2)):
+        between = np.arange(first, last + 1)
+        arcs = between[is_arc[between]]
+        if len(arcs):
+            u = np.clip((centers[arcs] - a[e]) @ ab[e] / (ab[e] @ ab[e]), 0.0, 1.0)
+            out.append(a[e] + u[:, None] * ab[e])
+        if length[e] > 4 * step:
+            u = np.linspace(0.0, 1.0, min(int(length[e] / step) + 1, 200))
+            out.append(a[e] + u[:, None] * ab[e])
+    return out
+
+
 def hausdorff(polyline: np.ndarray, poly: Polysegment) -> Deviation:
     """Exact two-sided Hausdorff distance between ``polyline`` (n, 2) and ``poly``."""
     verts = np.asarray(polyline, dtype=float)
@@ -157,6 +198,7 @@ def hausdorff(polyline: np.ndarray, poly: Polysegment) -> Deviation:
         u = np.einsum("ij,ij->i", centers[owner] - a, ab) / np.where(denom > 0, denom, 1.0)
         interior = is_arc[owner] & (u > 0) & (u < 1)
         extra.append(a[interior] + u[interior, None] * ab[interior])
+    extra += _switch_candidates(a, ab, seg_of, poly, is_arc, centers)
     d_in = float(d_vert.max())
     cand = np.vstack(extra)
     if len(cand):
@@ -175,6 +217,12 @@ def hausdorff(polyline: np.ndarray, poly: Polysegment) -> Deviation:
         ok = phi <= abs(seg.sweep)
         cand.append(np.asarray(seg.center) + seg.radius * np.column_stack((np.cos(ang[ok]), np.sin(ang[ok]))))
         anchor.append(near[ok])
+    # a few points along every segment, more along one no input vertex is nearest to
+    owned = np.bincount(seg_of, minlength=len(poly.segments)) > 0
+    for j, seg in enumerate(poly.segments):
+        along = seg.points(np.linspace(0.0, seg.length, SEGMENT_SAMPLES if owned[j] else 4 * SEGMENT_SAMPLES))
+        cand.append(along)
+        anchor.append(np.full(len(along), int(np.argmin(np.linalg.norm(verts - along[len(along) // 2], axis=1)))))
     points, quick = np.vstack(cand), measure.near(np.vstack(cand), np.concatenate(anchor))
     # The windowed distance is an upper bound; where it would set a new maximum, measure
     # against the whole polyline instead (the anchor may not be where the point is closest).

@@ -20,7 +20,8 @@ from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.recover import recover_exact
-from coatsim.geometry.primitives import Arc, Line, Segment
+from coatsim.geometry.fillet import fillet_chain
+from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 20
@@ -39,11 +40,7 @@ def total_turn(points: np.ndarray) -> float:
 
 def build_chain(start: np.ndarray, p: ChainParams, end: np.ndarray) -> tuple[Segment, ...]:
     """Segments of the chain with the last end point snapped exactly onto ``end``."""
-    segs = list(chain((float(start[0]), float(start[1])), p.heading, p.kappa, p.length))
-    last = segs[-1]
-    tip = (float(end[0]), float(end[1]))
-    segs[-1] = Arc(last.start, tip, last.center, last.radius, last.sweep) if isinstance(last, Arc) else Line(last.start, tip)
-    return tuple(segs)
+    return snap_end(chain((float(start[0]), float(start[1])), p.heading, p.kappa, p.length), end)
 
 
 def _params_from_band(prob: BandProblem, ref: float, slope: float, pieces) -> ChainParams:
@@ -113,9 +110,11 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tu
             band *= float(np.clip(0.97 * tolerance / dev, 0.85, 0.95))
             params = None
     if best is None:
-        raise InputError(
-            f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points; "
-            "try a larger --tol or check the curve for noise larger than the tolerance"
-        )
+        # Sparse or kinked input the band fit cannot follow: round every vertex instead.
+        segs = fillet_chain(pts, tolerance, closed_loop)
+        dev = hausdorff(pts, Polysegment(segs)).hausdorff
+        if dev > tolerance:
+            raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
+        best = (segs, dev)
     return best
 

@@ -7,6 +7,8 @@ import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from coatsim.errors import InputError
 from coatsim.fileio import write_text
 from coatsim.geometry.polysegment import Polysegment
@@ -84,7 +86,11 @@ def polysegment_from_document(doc: Any, source: str) -> Polysegment:
             off = abs(math.dist(p, center) - radius)
             if off > 1e-6 * max(1.0, radius):
                 raise InputError(f"{where}.{name}: lies {off:.3g} mm off the arc's circle")
-        segments.append(Arc(start, end, center, radius, sweep))
+        arc = Arc(start, end, center, radius, sweep)
+        reached = arc.points(np.array([arc.length]))[0]
+        if math.dist(reached, end) > 1e-6 * max(1.0, radius):
+            raise InputError(f"{where}.sweep: a sweep of {sweep:g} rad from start does not reach end")
+        segments.append(arc)
     closed = doc.get("closed", False)
     if not isinstance(closed, bool):
         raise InputError(f"{source}: closed: expected true or false")

@@ -140,3 +140,15 @@ def make_segment(start: Point, heading: float, curvature: float, length: float) 
         radius,
         sweep,
     )
+
+
+def snap_end(segments: tuple[Segment, ...], end: Point) -> tuple[Segment, ...]:
+    """The chain with its last end point set exactly to ``end`` (a round-off correction:
+    callers only pass points the chain already ends at within a tiny distance)."""
+    last = segments[-1]
+    tip = (float(end[0]), float(end[1]))
+    if isinstance(last, Arc):
+        moved = Arc(last.start, tip, last.center, last.radius, last.sweep)
+    else:
+        moved = Line(last.start, tip)
+    return segments[:-1] + (moved,)

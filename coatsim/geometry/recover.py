@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.geometry.polysegment import chain
-from coatsim.geometry.primitives import Segment
+from coatsim.geometry.primitives import Segment, snap_end
 
 KAPPA_JUMP = 1e-3  # curvature change x run length that ends a stretch
 MIN_VERTICES = 4
@@ -156,4 +156,5 @@ def _assemble(pts: np.ndarray, prims: list[_Prim], closed_loop: bool, slack: flo
         kappas.append(prim.kappa)
         lengths.append(seg_len)
     segs = chain((float(starts[0][0]), float(starts[0][1])), heading, kappas, lengths)
-    return segs if np.linalg.norm(np.asarray(segs[-1].end) - ends[-1]) <= slack else None
+    target = segs[0].start if closed_loop else (float(ends[-1][0]), float(ends[-1][1]))
+    return snap_end(segs, target) if np.linalg.norm(np.asarray(segs[-1].end) - target) <= slack else None

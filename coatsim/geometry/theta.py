@@ -97,7 +97,23 @@ def paper_polysegment(points: np.ndarray, theta_tolerance: float, closed: bool) 
     approx = simplify_theta(theta, theta_tolerance)
     unit = rebuild_unit(approx)
     poly = similarity_onto(unit, pts[0], None if closed else pts[-1], theta.length, theta.start_heading)
-    return Polysegment(poly.segments, closed=closed), theta, approx
+    segments = _closed_up(poly.segments) if closed else poly.segments
+    return Polysegment(segments, closed=closed), theta, approx
+
+
+def _closed_up(segments: tuple) -> tuple:
+    """Close a loop the paper's rebuild leaves slightly open: least-norm Newton steps on the
+    last segments make it end on its start with its start tangent (the paper has no step for
+    this; a closed polysegment must close)."""
+    from coatsim.geometry.refine import ChainParams, close_exactly
+    from coatsim.geometry.primitives import snap_end
+
+    kappa = np.array([s.curvature for s in segments])
+    length = np.array([s.length for s in segments])
+    turn = 2 * math.pi * round(float(np.sum(kappa * length)) / (2 * math.pi))
+    start = np.asarray(segments[0].start, dtype=float)
+    params = close_exactly(start, ChainParams(segments[0].start_heading, kappa, length), start, turn)
+    return snap_end(chain(segments[0].start, params.heading, params.kappa, params.length), segments[0].start)
 
 
 def theta_of_polysegment(poly: Polysegment) -> ThetaFunction:
