@@ -1,0 +1,177 @@
+"""Shared helpers for the geometry tests: benchmark curves, cached segmentations, independent
+geometric checks (computed here from the primitives, not with coatsim's own helpers) and
+brute-force distances."""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+from coatsim.geometry import Arc, Polysegment, load_curve, segment_curve
+
+# The benchmark lives beside the repository (../shared/bench, see DESIGN.md).
+BENCH = Path(os.environ.get("COATSIM_BENCH_DIR", Path(__file__).resolve().parents[3] / "shared" / "bench"))
+BENCH_NAMES = ("spiral", "ellipse", "naca0012", "roundrect", "sine")
+BENCH_CLOSED = {"spiral": False, "ellipse": True, "naca0012": True, "roundrect": True, "sine": False}
+TOLERANCES = (0.01, 0.05, 0.1, 0.5)
+
+needs_bench = pytest.mark.skipif(not (BENCH / "curves").is_dir(), reason=f"benchmark curves not found in {BENCH}")
+
+
+def bench_path(name: str) -> str:
+    return str(BENCH / "curves" / f"{name}.csv")
+
+
+def reference_counts() -> dict[str, dict[str, dict[float, int]]]:
+    """Segment counts of the bench README's reference table:
+    ``{"greedy": {curve: {σ: n}}, "paper": {curve: {σ: n}}}``."""
+    text = (BENCH / "README.md").read_text(encoding="utf-8")
+    out: dict[str, dict[str, dict[float, int]]] = {"greedy": {}, "paper": {}}
+    for line in text.splitlines():
+        m = re.match(r"^\|\s*(\w+), (greedy free-arc fitter|the paper's method literally)[^|]*\|(.*)$", line)
+        if not m:
+            continue
+        cells = [c.strip() for c in m.group(3).split("|")][:4]
+        kind = "greedy" if m.group(2).startswith("greedy") else "paper"
+        out[kind][m.group(1)] = {tol: int(c) for tol, c in zip(TOLERANCES, cells)}
+    return out
+
+
+@functools.lru_cache(maxsize=None)
+def curve(spec: str, closed: str = "auto"):
+    return load_curve(spec, closed)
+
+
+@functools.lru_cache(maxsize=None)
+def segmented(spec: str, tol: float, method: str = "optimal"):
+    """segment_curve on a curve spec, computed once per test session."""
+    return segment_curve(curve(spec), tol, method=method)
+
+
+# ---------------------------------------------------------------- independent geometry
+
+
+def end_tangent(seg) -> np.ndarray:
+    """Unit tangent at the end of a segment, from its end points (and centre)."""
+    if isinstance(seg, Arc):
+        r = np.subtract(seg.end, seg.center)
+        t = np.array([-r[1], r[0]]) * math.copysign(1.0, seg.sweep)
+    else:
+        t = np.subtract(seg.end, seg.start)
+    return t / np.linalg.norm(t)
+
+
+def start_tangent(seg) -> np.ndarray:
+    if isinstance(seg, Arc):
+        r = np.subtract(seg.start, seg.center)
+        t = np.array([-r[1], r[0]]) * math.copysign(1.0, seg.sweep)
+    else:
+        t = np.subtract(seg.end, seg.start)
+    return t / np.linalg.norm(t)
+
+
+def tangent_breaks(poly: Polysegment) -> list[tuple[int, float]]:
+    """(junction index, turn in rad) for every junction; the seam last for a closed chain."""
+    segs = poly.segments
+    pairs = list(zip(segs[:-1], segs[1:]))
+    if poly.closed:
+        pairs.append((segs[-1], segs[0]))
+    out = []
+    for k, (a, b) in enumerate(pairs):
+        ta, tb = end_tangent(a), start_tangent(b)
+        out.append((k, abs(math.atan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))))
+    return out
+
+
+def junction_gaps(poly: Polysegment) -> list[tuple[int, tuple, tuple]]:
+    """Junctions whose end and start points differ (exact comparison)."""
+    segs = poly.segments
+    return [(k, a.end, b.start) for k, (a, b) in enumerate(zip(segs[:-1], segs[1:])) if tuple(a.end) != tuple(b.start)]
+
+
+def arc_defects(poly: Polysegment, rel: float = 1e-9) -> list[str]:
+    """Arcs whose end points are off their circle or whose sweep disagrees with the end points."""
+    bad = []
+    for k, seg in enumerate(poly.segments):
+        if not isinstance(seg, Arc):
+            continue
+        for name, p in (("start", seg.start), ("end", seg.end)):
+            off = abs(math.dist(p, seg.center) - seg.radius)
+            if off > rel * max(1.0, seg.radius):
+                bad.append(f"segment {k}: {name} {off:.3g} mm off its circle")
+        a0 = math.atan2(seg.start[1] - seg.center[1], seg.start[0] - seg.center[0])
+        a1 = math.atan2(seg.end[1] - seg.center[1], seg.end[0] - seg.center[0])
+        miss = abs(math.remainder(a0 + seg.sweep - a1, 2 * math.pi))
+        if miss * seg.radius > rel * max(1.0, seg.radius) * 10:
+            bad.append(f"segment {k}: sweep misses the end point by {miss:.3g} rad")
+    return bad
+
+
+def junction_points(poly: Polysegment) -> np.ndarray:
+    return np.array([s.start for s in poly.segments] + [poly.end], dtype=float)
+
+
+# ---------------------------------------------------------------- brute force
+
+
+def point_at(seg, s: np.ndarray) -> np.ndarray:
+    """Points at arc lengths ``s`` along a primitive, from its own definition."""
+    s = np.asarray(s, dtype=float)
+    if isinstance(seg, Arc):
+        a0 = math.atan2(seg.start[1] - seg.center[1], seg.start[0] - seg.center[0])
+        phi = a0 + math.copysign(1.0, seg.sweep) * s / seg.radius
+        return np.asarray(seg.center) + seg.radius * np.column_stack((np.cos(phi), np.sin(phi)))
+    a, b = np.asarray(seg.start, float), np.asarray(seg.end, float)
+    return a + (s / seg.length)[:, None] * (b - a)
+
+
+def dense_polysegment(poly: Polysegment, step: float) -> np.ndarray:
+    """Points on the polysegment no farther than ``step`` apart along it (ends included)."""
+    out = []
+    for seg in poly.segments:
+        n = max(1, int(math.ceil(seg.length / step)))
+        out.append(point_at(seg, np.linspace(0.0, seg.length, n + 1)))
+    return np.vstack(out)
+
+
+def dense_polyline(points: np.ndarray, step: float) -> np.ndarray:
+    """Points on a polyline no farther than ``step`` apart (vertices included)."""
+    pts = np.asarray(points, dtype=float)
+    out = [pts[:1]]
+    for a, b in zip(pts[:-1], pts[1:]):
+        n = max(1, int(math.ceil(np.linalg.norm(b - a) / step)))
+        u = np.linspace(0.0, 1.0, n + 1)[1:]
+        out.append(a + u[:, None] * (b - a))
+    return np.vstack(out)
+
+
+def distance_to_polyline(points: np.ndarray, vertices: np.ndarray, chunk: int = 4000) -> np.ndarray:
+    """Exact distance from every point to a (small) polyline, all edges tried."""
+    a, b = vertices[:-1], vertices[1:]
+    ab = b - a
+    den = np.where((ab * ab).sum(axis=1) > 0, (ab * ab).sum(axis=1), 1.0)
+    out = np.empty(len(points))
+    for i in range(0, len(points), chunk):
+        q = points[i : i + chunk, None, :]
+        u = np.clip(((q - a) * ab).sum(axis=2) / den, 0.0, 1.0)
+        out[i : i + chunk] = np.linalg.norm(q - (a + u[..., None] * ab), axis=2).min(axis=1)
+    return out
+
+
+def brute_hausdorff(polyline: np.ndarray, poly: Polysegment, step: float) -> float:
+    """Two-sided Hausdorff distance by dense sampling of both curves with a KD-tree.
+
+    Within ``step`` of the true value: every point of either curve is within step / 2 of a
+    sample of that curve."""
+    a = dense_polyline(polyline, step)
+    b = dense_polysegment(poly, step)
+    d_ab = cKDTree(b).query(a)[0].max()
+    d_ba = cKDTree(a).query(b)[0].max()
+    return float(max(d_ab, d_ba))

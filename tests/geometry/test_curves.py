@@ -1,0 +1,443 @@
+"""Curve input: CSV/TXT/NPY reading, closure detection and forcing, duplicate points, every
+bad input as an InputError naming the file (and line), and the built-in curves."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from contextlib import contextmanager
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from coatsim.errors import InputError
+from coatsim.geometry import BUILTINS, builtin_curve, load_curve, make_curve, read_curve_file
+
+# Six points of a parabola, written with repr() so every reader must give them back exactly.
+POINTS = np.array([[0.0, 0.0], [1.5, 0.25], [3.0, 1.0], [4.5, 2.25], [6.0, 4.0], [7.25, 6.125], [-2.5e-3, 1e3]])
+
+
+def write_rows(path, rows, sep=",", header=None, newline="\n"):
+    lines = ([header] if header is not None else []) + [sep.join(repr(float(v)) for v in row) for row in rows]
+    path.write_text(newline.join(lines) + newline, encoding="utf-8")
+    return path
+
+
+def circle(n: int = 40, radius: float = 30.0) -> np.ndarray:
+    a = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    return np.column_stack((radius * np.cos(a), radius * np.sin(a)))
+
+
+@contextmanager
+def raises_naming(where: str, *fragments: str):
+    """An InputError whose one-line message contains ``where`` and every fragment."""
+    with pytest.raises(InputError) as info:
+        yield info
+    msg = str(info.value)
+    assert where in msg, f"message does not name {where!r}: {msg}"
+    for f in fragments:
+        assert f in msg, f"message lacks {f!r}: {msg}"
+    assert "\n" not in msg, "message must be one line"
+
+
+# ---------------------------------------------------------------- reading
+
+
+@pytest.mark.parametrize("sep", [",", ", ", " ", "   ", "\t", ";", "; "], ids=repr)
+@pytest.mark.parametrize("header", [False, True])
+@pytest.mark.parametrize("suffix", [".csv", ".txt"])
+def test_text_separators_and_header(tmp_path, sep, header, suffix):
+    head = sep.join(["x", "y"]) if header else None
+    path = write_rows(tmp_path / f"c{suffix}", POINTS, sep, head)
+    c = read_curve_file(path)
+    np.testing.assert_array_equal(c.points, POINTS)
+    assert c.closed is False and c.name == str(path)
+
+
+def test_comments_blank_lines_crlf_and_bom(tmp_path):
+    body = "\ufeff# exported by a CAD tool\r\n\"x\",\"y\"\r\n\r\n"
+    for k, (x, y) in enumerate(POINTS.tolist()):
+        body += f"{x!r},{y!r}" + ("   # a trailing note\r\n" if k % 2 else "\r\n")
+        if k == 3:
+            body += "   # an indented comment line\r\n\t\r\n"
+    path = tmp_path / "commented.csv"
+    path.write_bytes(body.encode("utf-8"))
+    np.testing.assert_array_equal(read_curve_file(path).points, POINTS)
+
+
+def test_quoted_header_and_extra_whitespace(tmp_path):
+    path = tmp_path / "q.txt"
+    path.write_text("  'x'\t'y'  \n" + "\n".join(f"  {x!r}\t {y!r}  " for x, y in POINTS.tolist()) + "\n")
+    np.testing.assert_array_equal(read_curve_file(path).points, POINTS)
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32, np.int64])
+def test_npy(tmp_path, dtype):
+    data = (POINTS * 8).astype(dtype)
+    path = tmp_path / "c.npy"
+    np.save(path, data)
+    c = load_curve(str(path))
+    np.testing.assert_array_equal(c.points, data.astype(float))
+    assert c.points.dtype == np.float64 and c.name == str(path)
+
+
+def test_load_curve_reads_files_and_builtins(tmp_path):
+    path = write_rows(tmp_path / "p.csv", POINTS)
+    np.testing.assert_array_equal(load_curve(str(path)).points, POINTS)
+    assert load_curve("builtin:ellipse:a=120,b=40,points=500").points[:, 0].max() == pytest.approx(120.0)
+
+
+# ---------------------------------------------------------------- closure
+
+
+def test_first_equal_last_is_closed(tmp_path):
+    pts = np.vstack((circle(), circle()[:1]))
+    c = read_curve_file(write_rows(tmp_path / "c.csv", pts))
+    assert c.closed is True
+    assert len(c.points) == len(pts)
+    np.testing.assert_array_equal(c.points, pts)
+
+
+def test_nearly_closed_within_tiny_fraction_snaps_onto_the_first_point(tmp_path):
+    pts = np.vstack((circle(), circle()[:1]))
+    length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    pts[-1] += [0.5e-4 * length, 0.2e-4 * length]  # gap ~5e-5 of the length
+    c = read_curve_file(write_rows(tmp_path / "c.csv", pts))
+    assert c.closed is True and len(c.points) == len(pts)
+    assert tuple(c.points[-1]) == tuple(c.points[0])
+    np.testing.assert_array_equal(c.points[:-1], pts[:-1])
+
+
+def test_a_visible_gap_is_open(tmp_path):
+    pts = np.vstack((circle(), circle()[:1]))
+    length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    pts[-1] += [5e-3 * length, 0.0]
+    c = read_curve_file(write_rows(tmp_path / "c.csv", pts))
+    assert c.closed is False
+    np.testing.assert_array_equal(c.points, pts)
+
+
+def test_closed_forcing(tmp_path):
+    open_path = write_rows(tmp_path / "open.csv", circle())
+    assert read_curve_file(open_path).closed is False
+    forced = load_curve(str(open_path), "yes")
+    assert forced.closed is True
+    assert len(forced.points) == len(circle()) + 1 and tuple(forced.points[-1]) == tuple(forced.points[0])
+
+    closed_path = write_rows(tmp_path / "closed.csv", np.vstack((circle(), circle()[:1])))
+    kept_open = load_curve(str(closed_path), "no")
+    assert kept_open.closed is False and len(kept_open.points) == len(circle()) + 1
+    assert load_curve(str(closed_path), "auto").closed is True
+
+
+def test_closed_forcing_on_builtins():
+    assert load_curve("builtin:sine:points=300").closed is False
+    forced = load_curve("builtin:sine:points=300", "yes")
+    assert forced.closed is True and tuple(forced.points[-1]) == tuple(forced.points[0])
+    assert load_curve("builtin:ellipse:points=300").closed is True
+    assert load_curve("builtin:ellipse:points=300", "no").closed is False
+
+
+def test_forcing_closed_needs_three_distinct_points():
+    with raises_naming("two.csv", "three"):
+        make_curve(np.array([[0.0, 0.0], [1.0, 0.0]]), "two.csv", "yes")
+
+
+# ---------------------------------------------------------------- duplicates
+
+
+def test_consecutive_duplicates_dropped_silently(tmp_path):
+    rows = [POINTS[0], POINTS[0], POINTS[1], POINTS[2], POINTS[2], POINTS[2], POINTS[3], POINTS[1], POINTS[4]]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        c = read_curve_file(write_rows(tmp_path / "d.csv", rows))
+    # Only consecutive repeats go; a point visited again later stays.
+    np.testing.assert_array_equal(c.points, np.array([POINTS[i] for i in (0, 1, 2, 3, 1, 4)]))
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.tuples(st.integers(-50, 50), st.integers(-50, 50)), min_size=2, max_size=30),
+    st.lists(st.integers(1, 4), min_size=30, max_size=30),
+)
+def test_dedup_matches_reference(raw, repeats):
+    pts = np.array(raw, dtype=float)
+    expanded = np.repeat(pts, repeats[: len(pts)], axis=0)
+    keep = np.ones(len(pts), bool)
+    keep[1:] = np.any(pts[1:] != pts[:-1], axis=1)
+    expected = pts[keep]
+    if len(expected) < 2:
+        with pytest.raises(InputError):
+            make_curve(expanded, "h.csv", "no")
+        return
+    c = make_curve(expanded, "h.csv", "no")
+    np.testing.assert_array_equal(c.points, expected)
+    assert not np.any(np.all(np.diff(c.points, axis=0) == 0, axis=1))
+
+
+# ---------------------------------------------------------------- bad files
+
+
+BAD_TEXT = {
+    "empty": ("", None, ()),
+    "blank lines only": ("\n\n   \n", None, ()),
+    "header only": ("x,y\n", None, ()),
+    "comments only": ("# nothing here\n# really\n", None, ()),
+    "one point": ("1.0,2.0\n", None, ("one point",)),
+    "one point repeated": ("1.0,2.0\n1.0,2.0\n1.0,2.0\n", None, ("equal",)),
+    "nan": ("0,0\n1,1\nnan,2\n3,3\n", 3, ()),
+    "inf": ("0,0\n1,inf\n2,2\n", 2, ()),
+    "negative inf": ("0,0\n1,1\n2,2\n3,-inf\n", 4, ()),
+    "text in a numeric column": ("0,0\n1,1\n2,2\n3,abc\n", 4, ("abc",)),
+    "text in the x column": ("0;0\n1;1\n2mm;2\n", 3, ("2mm",)),
+    "header after data": ("0,0\nx,y\n1,1\n", 2, ()),
+    "one column": ("0,0\n1\n2,2\n", 2, ()),
+}
+
+
+@pytest.mark.parametrize("content,line,fragments", BAD_TEXT.values(), ids=list(BAD_TEXT))
+def test_bad_text_files(tmp_path, content, line, fragments):
+    path = tmp_path / "bad.csv"
+    path.write_text(content, encoding="utf-8")
+    where = f"{path}:{line}:" if line else str(path)
+    with raises_naming(where, *fragments):
+        read_curve_file(path)
+    with raises_naming(where, *fragments):
+        load_curve(str(path))
+
+
+def test_binary_file_named_csv(tmp_path):
+    path = tmp_path / "garbage.csv"
+    path.write_bytes(bytes(range(256)) * 4)
+    with raises_naming(str(path)):
+        read_curve_file(path)
+
+
+@pytest.mark.parametrize(
+    "data",
+    [
+        np.array([[0.0, 0.0], [np.nan, 1.0], [2.0, 2.0]]),
+        np.array([[0.0, 0.0], [1.0, np.inf], [2.0, 2.0]]),
+        np.zeros((0, 2)),
+        np.array([[1.0, 2.0]]),
+        np.ones((5, 2)),
+        np.arange(10.0),
+        np.array([["a", "b"], ["c", "d"]]),
+    ],
+    ids=["nan", "inf", "empty", "one point", "all equal", "1-d", "strings"],
+)
+def test_bad_npy(tmp_path, data):
+    path = tmp_path / "bad.npy"
+    np.save(path, data)
+    with raises_naming(str(path)):
+        read_curve_file(path)
+
+
+def test_npy_that_is_not_npy(tmp_path):
+    path = tmp_path / "fake.npy"
+    path.write_text("0,0\n1,1\n")
+    with raises_naming(str(path)):
+        read_curve_file(path)
+
+
+def test_unreadable_paths(tmp_path):
+    missing = tmp_path / "nowhere" / "missing.csv"
+    with raises_naming(str(missing)):
+        load_curve(str(missing))
+    with raises_naming(str(tmp_path)):
+        load_curve(str(tmp_path))
+    folder_npy = tmp_path / "folder.npy"
+    folder_npy.mkdir()
+    with raises_naming(str(folder_npy)):
+        read_curve_file(folder_npy)
+
+
+def test_nan_names_the_point_in_arrays():
+    with raises_naming("arr", "3"):
+        make_curve(np.array([[0.0, 0.0], [1.0, 1.0], [np.nan, 2.0]]), "arr")
+
+
+# ---------------------------------------------------------------- bad built-ins
+
+
+def test_unknown_builtin_lists_the_choices():
+    with raises_naming("builtin:hexagon", "ellipse", "paper-spiral"):
+        load_curve("builtin:hexagon")
+
+
+BAD_BUILTINS = [
+    "builtin:ellipse:foo=1",
+    "builtin:ellipse:a",
+    "builtin:ellipse:a=abc",
+    "builtin:ellipse:points=1",
+    "builtin:ellipse:points=0",
+    "builtin:ellipse:a=0,b=0",
+    "builtin:ellipse:a=nan",
+    "builtin:sine:wavelength=0",
+    "builtin:polygon:sides=2",
+    "builtin:raster:passes=0",
+    "builtin:raster:pitch=0",
+    "builtin:rounded-rectangle:radius=0",
+    "builtin:rounded-rectangle:radius=50",
+    "builtin:rounded-rectangle:radius=abc",
+    "builtin:naca:code=abcd",
+    "builtin:paper-spiral:width=0",
+]
+
+# Each of these once escaped as ValueError / ZeroDivisionError instead of an InputError.
+BAD_BUILTINS += [
+    "builtin:polygon:sides=abc",
+    "builtin:raster:passes=x",
+    "builtin:ellipse:points=-3",
+    "builtin:paper-spiral:points=0",
+    "builtin:clothoid:end_radius=-1",
+    "builtin:clothoid:length=0",
+    "builtin:d-shape:radius=0",
+    "builtin:polygon:radius=0",
+    "builtin:epitrochoid:small_r=0",
+]
+
+
+@pytest.mark.parametrize("spec", BAD_BUILTINS)
+def test_bad_builtin_parameter_is_an_input_error(spec):
+    name = spec.split(":")[1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        with raises_naming(f"builtin:{name}"):
+            load_curve(spec)
+
+
+def test_naca_code_from_a_spec_string():
+    """Regression: the spec parser once turned code=2412 into 2412.0, which naca() rejected."""
+    c = load_curve("builtin:naca:code=2412,points=800")
+    assert c.closed and c.points[:, 1].max() > -c.points[:, 1].min() + 1.0  # cambered: upper side higher
+    np.testing.assert_array_equal(load_curve("builtin:naca:code=0012,points=800").points,
+                                  builtin_curve("naca", code="0012", points=800).points)
+
+
+def test_naca_code_keyword_works():
+    c = builtin_curve("naca", code="2412", points=800)
+    sym = builtin_curve("naca", code="0012", points=800)
+    assert abs(sym.points[:, 1].max() + sym.points[:, 1].min()) < 1e-9
+    assert c.points[:, 1].max() > -c.points[:, 1].min() + 1.0
+
+
+# ---------------------------------------------------------------- built-in curves
+
+EXPECTED_CLOSED = {
+    "paper-spiral": False, "ellipse": True, "naca": True, "cam": True, "epitrochoid": True, "sine": False,
+    "clothoid": False, "rounded-rectangle": True, "polygon": True, "d-shape": True, "raster": False,
+}
+EXACT_PRIMITIVE = {"rounded-rectangle", "polygon", "d-shape", "raster"}
+
+
+def test_the_builtin_list_is_the_documented_one():
+    assert set(BUILTINS) == set(EXPECTED_CLOSED)
+
+
+@pytest.mark.parametrize("name", sorted(BUILTINS))
+def test_builtin_loads_uniformly_sampled(name):
+    c = load_curve(f"builtin:{name}")
+    assert c.name == f"builtin:{name}"
+    assert c.closed is EXPECTED_CLOSED[name]
+    assert np.isfinite(c.points).all()
+    if c.closed:
+        assert tuple(c.points[-1]) == tuple(c.points[0])
+    edges = np.linalg.norm(np.diff(c.points, axis=0), axis=1)
+    assert edges.min() > 0
+    step = c.length / (3000 - 1)
+    if name in EXACT_PRIMITIVE:
+        # Every segment is cut into equal pieces no longer than the nominal step.
+        assert 3000 <= len(c.points) <= 3000 + 12
+        assert edges.max() <= step * (1 + 1e-9)
+        assert edges.min() >= 0.98 * step
+    else:
+        assert len(c.points) == 3000
+        med = np.median(edges)
+        assert np.abs(edges - med).max() <= 1e-3 * med
+        assert med == pytest.approx(step, rel=1e-3)
+
+
+@pytest.mark.parametrize("points", [200, 1234])
+def test_builtin_point_count_parameter(points):
+    assert len(load_curve(f"builtin:ellipse:points={points}").points) == points
+    assert len(builtin_curve("sine", points=points).points) == points
+
+
+SEGMENT_ENDS = {
+    "rounded-rectangle": [(0, -40), (65, -40), (75, -30), (75, 30), (65, 40), (-65, 40), (-75, 30), (-75, -30), (-65, -40)],
+    "polygon": [(60 * math.cos(a), 60 * math.sin(a)) for a in math.pi / 2 + 2 * math.pi * np.arange(5) / 5],
+    "d-shape": [(0, -50), (40, -50), (40, 50), (0, 50)],
+    "raster": [(x, 20 * k) for k in range(6) for x in (-100, 100)],
+}
+
+
+@pytest.mark.parametrize("name", sorted(SEGMENT_ENDS))
+def test_exact_primitive_shapes_include_their_segment_ends(name):
+    pts = load_curve(f"builtin:{name}").points
+    for p in SEGMENT_ENDS[name]:
+        assert np.linalg.norm(pts - np.asarray(p, float), axis=1).min() < 1e-9, p
+
+
+@pytest.mark.parametrize("name", ["paper-spiral", "ellipse", "sine", "clothoid", "epitrochoid", "cam", "naca"])
+def test_builtin_samples_lie_on_the_curve(name):
+    """Spot-check the samples against the defining equation (not just the sampling)."""
+    p = load_curve(f"builtin:{name}:points=2000").points
+    x, y = p[:, 0], p[:, 1]
+    if name == "ellipse":
+        assert np.abs((x / 100) ** 2 + (y / 50) ** 2 - 1).max() < 1e-6
+    elif name == "sine":
+        assert np.abs(y - 20 * np.sin(2 * np.pi * x / 100)).max() < 1e-3
+        assert x[0] == 0 and x[-1] == pytest.approx(200)
+    elif name == "clothoid":
+        # curvature grows linearly from 0 to 1/40 over 200 mm
+        d = np.diff(p, axis=0)
+        h = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+        assert h[-1] - h[0] == pytest.approx(200 / (2 * 40), rel=1e-3)
+    elif name == "paper-spiral":
+        assert np.ptp(x) == pytest.approx(200.0)
+    elif name == "epitrochoid":
+        r = np.hypot(x, y)
+        assert r.max() == pytest.approx(90.0, abs=1e-3) and r.min() == pytest.approx(70.0, abs=1e-2)
+    elif name == "cam":
+        r = np.hypot(x, y)
+        assert r.max() == pytest.approx(52.0, abs=1e-3) and r.min() == pytest.approx(40.0, abs=1e-6)
+    elif name == "naca":
+        assert x.max() == pytest.approx(200.0, abs=1e-9) and x.min() == pytest.approx(0.0, abs=1e-2)
+        assert np.ptp(y) == pytest.approx(0.12 * 200, rel=2e-3)
+
+
+# ---------------------------------------------------------------- regressions
+
+
+def test_decimal_comma_rows_are_not_misread(tmp_path):
+    """A decimal-comma file ('1,5;2,5') was once read as (1, 5) without any error."""
+    path = tmp_path / "eu.csv"
+    path.write_text("0;0\n1,5;2,5\n3;4\n")
+    try:
+        c = read_curve_file(path)
+    except InputError as exc:
+        assert f"{path}:2" in str(exc)
+        return
+    assert tuple(c.points[1]) == (1.5, 2.5)
+
+
+@pytest.mark.parametrize("header", ["x (mm),y (mm)", "X [mm];Y [mm]", "x_mm\ty_mm"])
+def test_header_with_units(tmp_path, header):
+    """A header naming units was once reported as 'not a number: (mm)'."""
+    sep = ";" if ";" in header else ("\t" if "\t" in header else ",")
+    path = write_rows(tmp_path / "units.csv", POINTS, sep, header)
+    np.testing.assert_array_equal(read_curve_file(path).points, POINTS)
+
+
+def test_rows_with_more_than_two_columns_are_rejected_or_read_consistently(tmp_path):
+    path = tmp_path / "xyz.csv"
+    path.write_text("0,0,0\n1,1,5\n2,4,9\n")
+    try:
+        c = read_curve_file(path)
+    except InputError as exc:
+        assert str(path) in str(exc)
+        return
+    np.testing.assert_array_equal(c.points, [[0, 0], [1, 1], [2, 4]])
