@@ -7,6 +7,9 @@ import math
 import numpy as np
 
 
+SPARSE = 10.0  # a polyline whose median edge is this many σ long has only its vertices to go by
+
+
 def _point_at(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
     return np.column_stack((np.interp(at, s, points[:, 0]), np.interp(at, s, points[:, 1])))
 
@@ -19,11 +22,11 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
     sampling of a smooth bend does not count while a sharp vertex does; requiring the turn
     over 3w too rejects digitising noise. Neighbouring detections within 2w collapse to the
     vertex with the largest turn. End points of an open curve are never corners. A sparse
-    polyline (median edge >= σ) has its sharp vertices as corners.
+    polyline (median edge >= 10 σ) has its sharp vertices as corners.
     """
     pts = np.asarray(points, dtype=float)
     edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
-    if float(np.median(edges)) >= tolerance:
+    if float(np.median(edges)) >= SPARSE * tolerance:
         return _vertex_corners(pts, closed, corner_deg)
     s = np.concatenate(([0.0], np.cumsum(edges)))
     total = s[-1]
@@ -60,7 +63,7 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
 
 
 def _vertex_corners(pts: np.ndarray, closed: bool, corner_deg: float) -> np.ndarray:
-    """Corners of a sparse polyline (edges longer than the tolerance): there is nothing
+    """Corners of a sparse polyline (edges much longer than the tolerance): there is nothing
     between its vertices to tell a bend from a corner, so each vertex turning by more than
     ``corner_deg`` is one."""
     d = np.diff(pts, axis=0)
