@@ -97,24 +97,33 @@ def paper_polysegment(points: np.ndarray, theta_tolerance: float, closed: bool) 
     approx = simplify_theta(theta, theta_tolerance)
     unit = rebuild_unit(approx)
     poly = similarity_onto(unit, pts[0], None if closed else pts[-1], theta.length, theta.start_heading)
-    segments = _closed_up(poly.segments) if closed else poly.segments
-    return Polysegment(segments, closed=closed), theta, approx
+    if not closed:
+        return Polysegment(poly.segments), theta, approx
+    segments, corners = _closed_up(poly.segments)
+    return Polysegment(segments, closed=True, corners=corners), theta, approx
 
 
-def _closed_up(segments: tuple) -> tuple:
-    """Close a loop the paper's rebuild leaves slightly open: least-norm Newton steps on the
-    last segments make it end on its start with its start tangent (the paper has no step for
-    this; a closed polysegment must close)."""
+def _closed_up(segments: tuple) -> tuple[tuple, tuple[int, ...]]:
+    """Close a loop the paper's rebuild leaves slightly open (the paper has no step for this;
+    a closed polysegment must end on its start). Least-norm Newton steps on the last
+    segments first try to close it with the start tangent, then with the position only (the
+    seam becomes a listed corner); if neither converges, a closing line is appended and both
+    of its junctions are corners."""
+    from coatsim.geometry.primitives import Line, snap_end
     from coatsim.geometry.refine import ChainParams, close_exactly
-    from coatsim.geometry.primitives import snap_end
 
     kappa = np.array([s.curvature for s in segments])
     length = np.array([s.length for s in segments])
-    turn = 2 * math.pi * round(float(np.sum(kappa * length)) / (2 * math.pi))
     start = np.asarray(segments[0].start, dtype=float)
-    params = close_exactly(start, ChainParams(segments[0].start_heading, kappa, length), start, turn)
-    return snap_end(chain(segments[0].start, params.heading, params.kappa, params.length), segments[0].start)
-
+    params = ChainParams(segments[0].start_heading, kappa, length)
+    n = len(segments)
+    for turn in (2 * math.pi * round(float(np.sum(kappa * length)) / (2 * math.pi)), None):
+        closed = close_exactly(start, params, start, turn)
+        chained = chain(segments[0].start, closed.heading, closed.kappa, closed.length)
+        if math.dist(chained[-1].end, segments[0].start) <= 1e-9 * float(length.sum()):
+            return snap_end(chained, segments[0].start), (() if turn is not None else (n - 1,))
+    closing = Line(segments[-1].end, segments[0].start)
+    return tuple(segments) + (closing,), (n - 1, n)
 
 def theta_of_polysegment(poly: Polysegment) -> ThetaFunction:
     """θ of a polysegment: linear on every segment, with a knot at every junction and a jump

@@ -213,10 +213,8 @@ def test_paper_method_closes_a_closed_curve(theta_tolerance):
 
 
 @needs_bench
-@pytest.mark.xfail(strict=True, reason="closing the paper chain on the bench ellipse at sigma 0.01 (the theta "
-                   "tolerance 2.42e-5 the bisection picks) leaves the last two junctions bent by 0.0045 and "
-                   "0.273 deg, neither listed as a corner")
 def test_paper_method_closed_chain_is_tangent_at_fine_tolerance():
+    """Closing the paper chain must not bend junctions that are not listed as corners."""
     c = curve(bench_path("ellipse"))
     poly = segment_curve(c, 0.01, method="paper", theta_tolerance=2.4202696943778445e-05).polysegment
     assert poly.closed and poly.end == poly.start
