@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
+from typing import Callable
 
 import pytest
+
+from coatsim import cli
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 
@@ -22,3 +26,21 @@ def readme_metric_names() -> list[str]:
         if line.lstrip().startswith("|") and cells[0].startswith("`"):
             names.append(cells[0].strip("`"))
     return names
+
+
+@pytest.fixture
+def run_cli(capsys) -> Callable[[list[str]], tuple[int, str, str]]:
+    """Run the console entry point in-process: (exit code, stdout, stderr)."""
+
+    def run(argv: list[str]) -> tuple[int, str, str]:
+        old = sys.argv
+        sys.argv = ["coatsim", *argv]
+        try:
+            with pytest.raises(SystemExit) as info:
+                cli.main()
+        finally:
+            sys.argv = old
+        out, err = capsys.readouterr()
+        return info.value.code, out, err
+
+    return run

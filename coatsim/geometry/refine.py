@@ -9,7 +9,6 @@ point (open runs) or closing onto its start with the start heading (closed curve
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np

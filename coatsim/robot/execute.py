@@ -20,7 +20,7 @@ from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reference import ReferencePath, build_reference
-from coatsim.robot.sampling import CartesianPiece, JointPiece, plan_pieces, step_label
+from coatsim.robot.sampling import JointPiece, plan_pieces, step_label
 from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.trajectory_log import TrajectoryLog
 

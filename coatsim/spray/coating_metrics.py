@@ -37,7 +37,7 @@ def _footprint_radius(surface: Surface, deposit: Deposit, model: SprayModel, ste
     """Reference-plane radius (mm) of every vertex seen from sub-step ``step`` (inf if unseen)."""
     steps = deposit.steps
     d = surface.vertices - steps.position[step]
-    a, e1 = steps.axis[step], steps.e1[step]
+    a = steps.axis[step]
     da = d @ a
     seen = (da > 1e-9) & (-np.einsum("ij,ij->i", d, surface.normals) > 0)
     lateral = np.linalg.norm(d - da[:, None] * a, axis=1)

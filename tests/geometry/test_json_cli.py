@@ -17,7 +17,6 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coatsim import cli
 from coatsim.errors import InputError
 from coatsim.geometry import Polysegment, Segmentation, chain, make_curve, read_polysegment_json, write_polysegment_json
 from coatsim.geometry.theta import theta_of_polyline
@@ -255,18 +254,6 @@ def run_module(args: list[str], cwd: Path, timeout: float = 300) -> subprocess.C
                           timeout=timeout, env={**os.environ, "PYTHONWARNINGS": "ignore"})
 
 
-def run_inprocess(argv: list[str], capsys) -> tuple[int, str, str]:
-    old = sys.argv
-    sys.argv = ["coatsim", *argv]
-    try:
-        with pytest.raises(SystemExit) as info:
-            cli.main()
-    finally:
-        sys.argv = old
-    out, err = capsys.readouterr()
-    return info.value.code, out, err
-
-
 def assert_one_line_error(code, err, fragment=""):
     assert code == 2, err
     lines = err.strip().splitlines()
@@ -303,9 +290,9 @@ def test_console_script(tmp_path):
     assert_one_line_error(proc.returncode, proc.stderr, "missing.csv")
 
 
-def test_cli_paper_method(tmp_path, capsys):
-    code, out, err = run_inprocess(["segment", "builtin:sine:points=800", "--method", "paper", "--tol", "0.5",
-                                    "-o", str(tmp_path / "p.json")], capsys)
+def test_cli_paper_method(tmp_path, run_cli):
+    code, out, err = run_cli(["segment", "builtin:sine:points=800", "--method", "paper", "--tol", "0.5",
+                                    "-o", str(tmp_path / "p.json")])
     assert code == 0, err
     assert "method paper" in out and "θ tolerance" in out
     assert read_polysegment_json(tmp_path / "p.json").n_segments >= 2
@@ -352,9 +339,9 @@ BAD_INPROCESS = ["tol zero", "tol nan", "unknown method", "bad closed", "corner 
 
 
 @pytest.mark.parametrize("case", BAD_INPROCESS)
-def test_cli_bad_inputs(tmp_path, capsys, case):
+def test_cli_bad_inputs(tmp_path, run_cli, case):
     args, fragment = _bad_inprocess_cases(tmp_path)[case]
-    code, out, err = run_inprocess(["segment", *args], capsys)
+    code, out, err = run_cli(["segment", *args])
     assert_one_line_error(code, err, fragment)
     assert not list(tmp_path.glob("**/*.json")) and not list(tmp_path.glob("**/.*.tmp"))
 
@@ -381,18 +368,18 @@ def test_cli_output_onto_a_folder(tmp_path):
 
 @pytest.mark.parametrize("args", [["segment", "builtin:ellipse", "--tol", "abc"], ["segment", "builtin:ellipse", "--bogus"],
                                   ["segment"]], ids=["tol text", "unknown option", "missing input"])
-def test_cli_usage_errors_are_one_line(capsys, args):
+def test_cli_usage_errors_are_one_line(run_cli, args):
     """Regression: click usage errors once printed a three-line 'Usage: ... Error: ...' block."""
-    code, _, err = run_inprocess(args, capsys)
+    code, _, err = run_cli(args)
     assert_one_line_error(code, err)
 
 
 @pytest.mark.parametrize("umask,mode", [(0o022, 0o644), (0o077, 0o600)])
-def test_outputs_get_the_usual_permissions(tmp_path, capsys, umask, mode):
+def test_outputs_get_the_usual_permissions(tmp_path, run_cli, umask, mode):
     old = os.umask(umask)
     try:
-        code, _, err = run_inprocess(["segment", "builtin:polygon", "-o", str(tmp_path / "p.json"),
-                                      "--plot", str(tmp_path / "p.png")], capsys)
+        code, _, err = run_cli(["segment", "builtin:polygon", "-o", str(tmp_path / "p.json"),
+                                      "--plot", str(tmp_path / "p.png")])
     finally:
         os.umask(old)
     assert code == 0, err
