@@ -188,6 +188,25 @@ def check_program(
     typer.echo(check_summary(check(path, gun_signal=gun)))
 
 
+def _click_errors() -> tuple[type, ...]:
+    """Usage-error classes: recent typer raises those of its own bundled click, older typer
+    (or a separately installed click) the standalone package's."""
+    found: list[type] = []
+    try:
+        from typer._click import exceptions as bundled
+
+        found.append(bundled.ClickException)
+    except ImportError:
+        pass
+    try:
+        import click
+
+        found.append(click.ClickException)
+    except ImportError:
+        pass
+    return tuple(found)
+
+
 def main() -> None:
     """Console entry point: run the app, turning CoatsimError into a one-line error."""
     try:
@@ -202,15 +221,7 @@ def main() -> None:
         typer.echo("coatsim: aborted", err=True)
         sys.exit(130)
     except Exception as exc:  # click usage errors and the like
-        import click
-
-        try:  # recent typer raises the errors of its own vendored copy of click
-            from typer._click import exceptions as vendored
-
-            click_errors: tuple[type, ...] = (click.ClickException, vendored.ClickException)
-        except ImportError:
-            click_errors = (click.ClickException,)
-        if isinstance(exc, click_errors):
+        if isinstance(exc, _click_errors()):
             # one line, like every other error; `coatsim COMMAND --help` shows the usage
             typer.echo(f"coatsim: error: {exc.format_message()} (see --help)", err=True)
             sys.exit(exc.exit_code)
