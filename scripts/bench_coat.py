@@ -87,7 +87,7 @@ def validation() -> None:
     row("4 beta 1.5 pass (R 10): peak", beta.thickness_um[np.abs(fine.vertices[:, 0]) < 1e-9].max(), 6.0, "um")
     for pitch in (10.0, 12.5, 15.0):
         n = 9
-        pts, legs = [], []
+        pts = []
         for k in range(n):
             y = (k - n // 2) * pitch
             pts += [[-100, y, H0], [100, y, H0]] if k % 2 == 0 else [[100, y, H0], [-100, y, H0]]

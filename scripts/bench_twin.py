@@ -59,14 +59,10 @@ def bench_speed(cell, speed: float) -> None:
 
 
 def bench_spiral(cell, curve: Path, tol: float, speed: float) -> None:
-    try:
-        from coatsim.program import read_toolpath
-        from coatsim.program.build import ProgramOptions
-        from coatsim.program.run import run_program
-        from coatsim.geometry import segment_curve  # noqa: F401  (the programs stage needs it)
-    except ImportError as exc:
-        print(f"spiral: skipped ({exc})")
-        return
+    from coatsim.program import read_toolpath
+    from coatsim.program.build import ProgramOptions
+    from coatsim.program.run import run_program
+
     print(f"\nspiral {curve.name}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
           f"{cell.tool_accel_mm_s2 / 1000:g} m/s^2")
     header = ("variant", "moves", "cycle_s", "ideal_s", "min_v", "cv", "at_speed", "feasible", "stops",

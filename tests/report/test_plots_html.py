@@ -3,14 +3,11 @@
 from __future__ import annotations
 
 import base64
-import math
 import re
 
 import numpy as np
-import pytest
 
 from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.geometry.primitives import Line
 from coatsim.report import plots
 from coatsim.report.catalogue import METRICS, names
 from coatsim.report.html import Figure, Section, gates_table, metrics_table, render_html
