@@ -24,6 +24,7 @@ from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, 
 from coatsim.geometry.segment import Segmentation
 from coatsim.program import read_toolpath
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
+from coatsim.program.as_writer import program_name
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
 from coatsim.report.catalogue import METRICS
@@ -187,7 +188,7 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     spec, out = job.loaded.spec, job.outdir
     poly, points = job.segmentation.polysegment, job.segmentation.curve.points
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, name=spec.name)
+                             gun_signal=spec.gun.signal, name=program_name(spec.name))
     program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                             source=f"scenario:{spec.name}", points=points)
     program_path = out / f"{name}.as"
@@ -211,19 +212,50 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     return VariantRun(name, program, execution, result, groups)
 
 
+def output_names(spec: Scenario) -> list[str]:
+    """The files a run of ``spec`` writes into its output folder, in writing order."""
+    per_variant = [f"{v}.{kind}" for v in spec.variants for kind in ("as", "trajectory.csv", "thickness.ply")]
+    return ["polysegment.json", *per_variant, "metrics.json", "report.html"]
+
+
+def input_files(loaded: ScenarioFile) -> list[tuple[str, Optional[Path]]]:
+    """Every file the scenario reads, labelled by its key (None where the key names no file)."""
+    spec = loaded.spec
+    table = spec.gun.footprint.strip()
+    return [
+        ("the scenario", loaded.path),
+        ("curve.file", loaded.resolve(spec.curve.file) if spec.curve.file else None),
+        ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece.kind == "mesh" else None),
+        ("gun.footprint", loaded.resolve(table.split(":", 1)[1].strip()) if table.lower().startswith("table:") else None),
+        ("robot.model", None if spec.robot.model == "default" else loaded.resolve(spec.robot.model)),
+    ]
+
+
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None) -> RunResult:
+                 progress: Optional[bool] = None, force: bool = False) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
-    ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
-    settings; ``progress`` defaults to showing a bar when stderr is a terminal.
+    ``outdir`` defaults to ``runs/<name>`` and is held for the run (coatsim.outputs_guard): no
+    output may be an input, and files there that coatsim did not write are replaced only with
+    ``force``. ``fast`` uses the scenario's coarser ``fast`` settings; ``progress`` defaults to
+    showing a bar when stderr is a terminal.
     """
-    from coatsim.report.document import write_report
+    from coatsim.outputs_guard import check_distinct, output_folder
 
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
+    out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
+    names = output_names(loaded.spec)
+    check_distinct(input_files(loaded), [("output", out / name) for name in names])
+    with output_folder(out, names, "coatsim run", force):
+        return _run_in(loaded, out, fast, progress)
+
+
+def _run_in(loaded: ScenarioFile, out: Path, fast: bool, progress: Optional[bool]) -> RunResult:
+    """Every stage of a loaded scenario, writing into the held folder ``out``."""
+    from coatsim.report.document import write_report
+
     spec = loaded.spec
-    out = Path(outdir) if outdir is not None else Path("runs") / spec.name
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
     sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
@@ -255,8 +287,4 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full")
         write_text(out / "metrics.json", to_json(document))
         write_report(out / "report.html", loaded, curve, segmentation, runs, document)
-    files = [out / "polysegment.json"]
-    for r in runs:
-        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
-    files += [out / "metrics.json", out / "report.html"]
-    return RunResult(out, tuple(runs), document, tuple(files))
+    return RunResult(out, tuple(runs), document, tuple(out / name for name in output_names(spec)))

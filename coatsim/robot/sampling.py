@@ -20,7 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from coatsim.errors import ExecutionError
+from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.errors import ExecutionError, InputError
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
@@ -218,11 +219,28 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
 
 def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
-    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm."""
-    if not step > 0:
-        raise ExecutionError(f"sampling step must be positive, got {step}")
+    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm.
+
+    The number of samples is checked against MAX_PATH_SAMPLES before any is made."""
+    if not (math.isfinite(step) and step > 0):
+        raise InputError(f"sampling step (--step-mm) must be a positive number of mm, got {step}")
     if not toolpath.moves:
         raise ExecutionError(f"{toolpath.name}: the program has no motion")
+    items: list[JointPiece | _Span] = []
+    for index, move in enumerate(toolpath.moves):
+        if isinstance(move, JointMove):
+            items.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index))
+            continue
+        if not isinstance(move, (LinearMove, CircularMove)):
+            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
+        span = _span(toolpath, index)
+        if span.prim.length > MIN_MOVE_MM:  # else a move to where the tool already is: nothing to execute
+            items.append(span)
+    spans = [item for item in items if isinstance(item, _Span)]
+    length = sum(sp.prim.length for sp in spans)
+    check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
+                 length / step + 10 * len(spans), MAX_PATH_SAMPLES,
+                 "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
     pieces: list[Piece] = []
     chain: list[_Span] = []
 
@@ -231,18 +249,13 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             pieces.append(_chain_piece(chain, step))
             chain.clear()
 
-    for index, move in enumerate(toolpath.moves):
-        if isinstance(move, JointMove):
+    for item in items:
+        if isinstance(item, JointPiece):
             flush()
-            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index))
+            pieces.append(item)
             continue
-        if not isinstance(move, (LinearMove, CircularMove)):
-            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
-        span = _span(toolpath, index)
-        if span.prim.length <= MIN_MOVE_MM:
-            continue  # a move to where the tool already is: nothing to execute
-        chain.append(span)
-        if span.stop:
+        chain.append(item)
+        if item.stop:
             flush()
     flush()
     if not pieces:
@@ -252,3 +265,20 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
         m = toolpath.moves[int(first.move[0])]
         pieces.insert(0, JointPiece(m.start, float(m.settings.speed_mm_s), False, None))
     return tuple(pieces)
+
+
+def min_motion_time_s(pieces: tuple[Piece, ...], start_mm: np.ndarray) -> float:
+    """A lower bound on the time the pieces take from ``start_mm`` (3,): every path length at
+    its programmed speed, joint moves by their straight TCP distance (the budget of simulation
+    steps is checked with it before any timing)."""
+    total, here = 0.0, np.asarray(start_mm, float)
+    for piece in pieces:
+        if isinstance(piece, JointPiece):
+            target = np.asarray(piece.target.position, float)
+            distance = float(np.linalg.norm(target - here))
+            total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
+            here = target
+        else:
+            total += float(np.sum(np.diff(piece.s) / piece.speed[1:]))
+            here = piece.position[-1]
+    return total

@@ -22,6 +22,7 @@ import toppra.constraint as tc
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
 from toppra.parametrizer import ParametrizeConstAccel
 
+from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 
@@ -106,12 +107,16 @@ def _parametrize(cell: Cell, path, extra: list, gridpoints: np.ndarray, label: s
     return data.gridpoints, np.maximum(data.sd_vec, 0.0)
 
 
-def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float) -> TimedPiece:
-    """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s)."""
+def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
+            max_steps: int) -> TimedPiece:
+    """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s); at most
+    ``max_steps`` steps (checked before they are allocated)."""
     traj = ParametrizeConstAccel(path7, gridpoints, sd)
     duration = float(traj.duration)
     if not math.isfinite(duration):
         raise ExecutionError("timing: a path piece has no room to move (zero speed along it); sample it more finely")
+    check_budget(f"{label}: simulation steps of {dt * 1e3:g} ms ({duration:.4g} s of motion under the joint limits)",
+                 duration / dt, max_steps, "raise the programmed SPEED or shorten the program")
     m = int(math.ceil(duration / dt - 1e-9))
     t = np.minimum(np.arange(m + 1) * dt, duration)
     x, xd, xdd = traj(t), traj(t, 1), traj(t, 2)
@@ -119,18 +124,18 @@ def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: f
 
 
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
-                   curvature_per_mm: np.ndarray, label: str) -> TimedPiece:
+                   curvature_per_mm: np.ndarray, label: str, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
     s = s_mm * MM
     path = toppra.SplineInterpolator(s, q)
     path7 = toppra.SplineInterpolator(s, np.column_stack((q, s)))
     extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
     grid, sd = _parametrize(cell, path, extra, s, label)
-    return _sample(path7, grid, sd, cell.timestep, 1.0 / MM)
+    return _sample(path7, grid, sd, cell.timestep, 1.0 / MM, label, max_steps)
 
 
 def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
-               n_grid: int = 60) -> TimedPiece:
+               n_grid: int = 60, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
     """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
     u = np.linspace(0.0, 1.0, n_grid)
     qs = q0 + u[:, None] * (q1 - q0)
@@ -141,4 +146,4 @@ def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, la
     path = toppra.SplineInterpolator(u, qs)
     path7 = toppra.SplineInterpolator(u, np.column_stack((qs, u)))
     grid, sd = _parametrize(cell, path, [_PathSpeedBound(u, bound)], u, label)
-    return _sample(path7, grid, sd, cell.timestep, 1.0)
+    return _sample(path7, grid, sd, cell.timestep, 1.0, label, max_steps)

@@ -17,10 +17,11 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
+from coatsim.budgets import MAX_MESH_VERTICES, check_budget
 from coatsim.errors import InputError
 
-#: refinement refuses to build meshes with more triangles than this (memory, run time)
-MAX_TRIANGLES = 4_000_000
+#: refinement refuses to build meshes with more triangles than this (about two per vertex)
+MAX_TRIANGLES = 2 * MAX_MESH_VERTICES
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
 
 
@@ -58,6 +59,16 @@ def _check_spacing(spacing: float) -> None:
         raise InputError(f"surface spacing must be a positive number of mm, found {spacing:g}")
 
 
+def _grid_size(what: str, extent_u: float, extent_v: float, spacing: float, min_u: int = 1) -> tuple[int, int]:
+    """Cells along u and v of a structured grid at ``spacing``; its vertex count is checked
+    against MAX_MESH_VERTICES before anything is allocated."""
+    nu = max(min_u, math.ceil(extent_u / spacing - 1e-9))
+    nv = max(1, math.ceil(extent_v / spacing - 1e-9))
+    check_budget(f"{what} meshed every {spacing:g} mm: vertices", (nu + 1) * (nv + 1), MAX_MESH_VERTICES,
+                 "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
+    return nu, nv
+
+
 def _grid_faces(nu: int, nv: int) -> np.ndarray:
     """Two counter-clockwise triangles per cell of an (nu+1) x (nv+1) node grid, u fastest."""
     i, j = np.meshgrid(np.arange(nu), np.arange(nv))
@@ -85,7 +96,7 @@ def plate(width: float, height: float, spacing: float, pose: np.ndarray | None =
     if not (width > 0 and height > 0):
         raise InputError(f"plate size must be positive, found {width:g} x {height:g} mm")
     pose = _pose(pose)
-    nu, nv = max(1, math.ceil(width / spacing - 1e-9)), max(1, math.ceil(height / spacing - 1e-9))
+    nu, nv = _grid_size(f"plate {width:g} x {height:g} mm", width, height, spacing)
     x = np.linspace(-width / 2, width / 2, nu + 1)
     y = np.linspace(-height / 2, height / 2, nv + 1)
     xx, yy = np.meshgrid(x, y)
@@ -116,8 +127,7 @@ def cylinder(radius: float, length: float, spacing: float, axis: str = "x",
         raise InputError(f"cylinder axis must be x, y or z, found {axis!r}")
     pose = _pose(pose)
     ax, r0, r90 = (np.array(v) for v in _CYLINDER_FRAMES[axis])
-    n_phi = max(3, math.ceil(2 * math.pi * radius / spacing - 1e-9))
-    n_len = max(1, math.ceil(length / spacing - 1e-9))
+    n_phi, n_len = _grid_size(f"cylinder R {radius:g} x {length:g} mm", 2 * math.pi * radius, length, spacing, 3)
     phi = np.linspace(-math.pi, math.pi, n_phi + 1)
     s = np.linspace(-length / 2, length / 2, n_len + 1)
     ss, pp = np.meshgrid(s, phi)  # rows: phi, columns: along the axis
@@ -153,9 +163,9 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     mesh.update_faces(mesh.nondegenerate_faces())
     if len(mesh.faces) == 0:
         raise InputError(f"{path}: every triangle of the mesh is degenerate (zero area)")
-    estimate = mesh.area / (math.sqrt(3) / 4 * spacing**2)
-    if estimate > MAX_TRIANGLES:
-        raise InputError(f"{path}: spacing {spacing:g} mm would need ~{estimate:.2g} triangles; use a larger --spacing")
+    estimate = max(len(mesh.faces), mesh.area / (math.sqrt(3) / 4 * spacing**2))
+    check_budget(f"{path} refined to edges of {spacing:g} mm: triangles", estimate, MAX_TRIANGLES,
+                 "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
     vertices, faces = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=spacing, max_iter=20)
     refined = trimesh.Trimesh(vertices, faces, process=True)
     refined.remove_unreferenced_vertices()

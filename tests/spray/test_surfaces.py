@@ -131,5 +131,5 @@ def test_empty_and_unreadable_meshes(tmp_path):
         mesh_file(garbage, 2.0)
     big = tmp_path / "big.stl"
     trimesh.creation.box((1000, 1000, 1000)).export(big)
-    with pytest.raises(InputError, match="larger --spacing"):
+    with pytest.raises(InputError, match="larger spacing"):
         mesh_file(big, 0.001)
