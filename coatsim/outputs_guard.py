@@ -114,7 +114,7 @@ class _Lock:
 
     def _refuse(self, info: dict) -> None:
         raise FolderInUse(f"{self.path.parent}: output folder in use by {_owner_text(info)}; wait for it to "
-                          f"finish or choose another output folder (a lock no process holds is in {self.path})")
+                          "finish or choose another output folder")
 
     def _stale(self, info: dict) -> None:
         if info:

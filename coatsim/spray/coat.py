@@ -26,7 +26,7 @@ from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import (
     Profile, default_section, heatmap_png, panel, profile_png, section_profile, write_thickness_ply,
 )
-from coatsim.spray.surfaces import Surface, parse_surface_spec
+from coatsim.spray.surfaces import Surface, parse_surface_spec, surface_file
 
 COATING_FORMAT = "coatsim.coating/1"
 COATING_FILES = ("thickness.ply", "coating.json", "heatmap.png", "section.png")
@@ -120,12 +120,12 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
     if edge_band_mm is not None and not (math.isfinite(edge_band_mm) and edge_band_mm >= 0):
         raise InputError(f"--edge-band {edge_band_mm}: must be a finite number of mm >= 0")
     line = parse_section(section) if section is not None else None
-    surface = parse_surface_spec(surface_spec, spacing)
-    log = read_trajectory_csv(trajectory)
     outdir = Path(outdir)
-    inputs = [("the trajectory", trajectory), ("the surface mesh", surface.name if surface.kind == "mesh" else None),
+    inputs = [("the trajectory", trajectory), ("the surface mesh", surface_file(surface_spec)),
               ("the footprint table", getattr(fp, "path", None))]
     check_distinct(inputs, [("output", outdir / name) for name in COATING_FILES])
+    surface = parse_surface_spec(surface_spec, spacing)
+    log = read_trajectory_csv(trajectory)
     with output_folder(outdir, COATING_FILES, "coatsim coat", force):
         with _progress("coating") as progress:
             result = coat(log, surface, model, roi, target_um, edge_band_mm, spacing=spacing, progress=progress)

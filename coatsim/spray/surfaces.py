@@ -202,6 +202,22 @@ def _placement(text: str | None, spec: str, allow_axis: bool) -> tuple[np.ndarra
     return pose, axis
 
 
+def _mesh_spec(spec: str) -> tuple[str, str | None]:
+    """A mesh file spec split into its path and the text after '@' (None without one)."""
+    path, at, place = spec.rpartition("@") if "@" in spec else (spec, "", "")
+    if at and Path(spec).suffix.lower() not in MESH_SUFFIXES:
+        return path, place
+    return spec, None
+
+
+def surface_file(spec: str) -> Path | None:
+    """The mesh file a surface spec reads (None for ``plate:`` and ``cylinder:``)."""
+    spec = spec.strip()
+    if spec.split(":", 1)[0].lower() in ("plate", "cylinder"):
+        return None
+    return Path(_mesh_spec(spec)[0])
+
+
 def parse_surface_spec(spec: str, spacing: float) -> Surface:
     """Surface from ``plate:WxH@x,y,z`` (normal +z), ``cylinder:RxL@x,y,z[,axis]`` (axis x by
     default) or a mesh file path with an optional ``@x,y,z`` translation; all in mm."""
@@ -216,13 +232,13 @@ def parse_surface_spec(spec: str, spacing: float) -> Surface:
             surface = cylinder(float(a), float(b), spacing, axis, pose)
         return Surface(spec, surface.kind, surface.vertices, surface.faces, surface.normals,
                        surface.areas, surface.view, surface.view_labels)
-    if spec.split(":", 1)[0].lower() in ("plate", "cylinder"):
+    if surface_file(spec) is None:
         raise InputError(f"surface {spec!r}: expected plate:WxH@x,y,z or cylinder:RxL@x,y,z[,axis] (mm)")
-    path, at, place = spec.rpartition("@") if "@" in spec else (spec, "", "")
-    if at and Path(spec).suffix.lower() not in MESH_SUFFIXES:
+    path, place = _mesh_spec(spec)
+    if place is not None:
         pose, _ = _placement(place, spec, allow_axis=False)
         return mesh_file(path, spacing, pose)
-    return mesh_file(spec, spacing)
+    return mesh_file(path, spacing)
 
 
 def border_distance(surface: Surface, spacing: float | None = None) -> np.ndarray:
