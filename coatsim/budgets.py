@@ -42,7 +42,11 @@ MAX_YAML_NODES = 100_000
 
 
 def check_budget(what: str, needed: float, budget: int, fix: str) -> None:
-    """Raise an InputError when ``needed`` (a count, may be inf or nan) exceeds ``budget``."""
+    """Raise an InputError when ``needed`` (a count: any int, or a float that may be inf or
+    nan) exceeds ``budget``."""
     if not needed <= budget:
-        amount = "an unbounded number" if not math.isfinite(needed) else f"{needed:.3g}"
+        try:
+            amount = f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"
+        except OverflowError:  # an int beyond float range
+            amount = "an unbounded number"
         raise InputError(f"{what}: {amount} needed, over the budget of {budget:,}; {fix}")

@@ -10,6 +10,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -208,3 +209,27 @@ def test_unreachable_speed_and_accuracy_are_warned(tmp_path):
     assert cli("program", "builtin:ellipse:a=40,b=20", "--tol", "0.2", "-o", ordinary)[0] == 0
     code, out, err = cli("execute", ordinary, "-o", tmp_path / "y", "--step-mm", "2")
     assert code == 0 and "beyond the arm" not in out and "ACCURACY" not in out
+
+
+@pytest.mark.parametrize(("args", "words"), [
+    (["--spacing", "1e-300"], "vertices: an unbounded number needed"),
+    (["--footprint", "gaussian:sigma=1e-300"], "over the budget"),
+    (["--footprint", "beta:radius=1e-300,beta=2"], "over the budget"),
+    (["--section", "0,0,1e300,1"], "--section must be x0,y0,x1,y1"),
+    (["--rate", "1e154"], "spray rate must be positive and at most 1e+12"),
+    (["--standoff", "1e154"], "spray stand-off must be positive and at most 1e+09"),
+    (["--surface", "plate:1e-9x300@700,0,100"], "plate size must be between 0.001 and 1e+09 mm"),
+    (["--surface", "cylinder:1e-300x300@700,0,100"], "cylinder size must be between"),
+])
+def test_extreme_coat_values_are_input_errors_without_warnings(tmp_path, args, words):
+    """Found by fuzzing every numeric option with nan, inf, 0, -1, 1e-300, 1e300, 1e154 and 1e-9."""
+    base = ["coat", _trajectory(tmp_path), "--surface", "plate:300x300@700,0,100", "-o", tmp_path / "o"]
+    if args[0] == "--surface":
+        base = base[:2] + base[4:]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a numpy RuntimeWarning would fail the test
+        one_line(cli(*base, *args), 2, words)
+
+
+def test_a_curve_of_no_size_is_an_input_error():
+    one_line(cli("segment", "builtin:polygon:radius=1e-300", "--tol", "0.1"), 2, "the curve is", "at least 1e-06 mm")

@@ -15,6 +15,7 @@ from coatsim.errors import InputError, shown
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
+MIN_LENGTH_MM = 1e-6  # a shorter curve is no curve to spray (and leaves no room for float round-off)
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,6 +64,8 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
         what = "one point" if keep.size == 1 else "all points are equal"
         raise InputError(f"{name}: a curve needs at least two distinct points ({what})")
     length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    if not length >= MIN_LENGTH_MM:
+        raise InputError(f"{name}: the curve is {length:.3g} mm long; give at least {MIN_LENGTH_MM:g} mm (coordinates in mm)")
     gap = float(np.linalg.norm(pts[-1] - pts[0]))
     if closed == "auto":
         is_closed = len(pts) >= 4 and gap <= CLOSE_FRACTION * length

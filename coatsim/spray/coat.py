@@ -17,6 +17,7 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from coatsim.budgets import MAX_ABS_COORDINATE_MM
 from coatsim.errors import InputError
 from coatsim.fileio import write_text
 from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
@@ -65,8 +66,9 @@ def parse_section(text: str) -> tuple[np.ndarray, np.ndarray]:
         values = [float(v) for v in text.split(",")]
     except ValueError:
         values = []
-    if len(values) != 4 or not all(map(math.isfinite, values)) or values[:2] == values[2:]:
-        raise InputError(f"--section must be x0,y0,x1,y1 in mm (two distinct points), found {text!r}")
+    if len(values) != 4 or not all(abs(v) <= MAX_ABS_COORDINATE_MM for v in values) or values[:2] == values[2:]:
+        raise InputError(f"--section must be x0,y0,x1,y1 in mm (two distinct points within "
+                         f"{MAX_ABS_COORDINATE_MM:g} mm of the origin), found {text!r}")
     return np.array(values[:2]), np.array(values[2:])
 
 

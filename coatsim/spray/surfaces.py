@@ -17,11 +17,12 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.budgets import MAX_MESH_VERTICES, check_budget
+from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
 from coatsim.errors import InputError
 
 #: refinement refuses to build meshes with more triangles than this (about two per vertex)
 MAX_TRIANGLES = 2 * MAX_MESH_VERTICES
+MIN_PART_MM = 1e-3  # smallest plate or cylinder dimension (a micrometre)
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
 
 
@@ -62,11 +63,10 @@ def _check_spacing(spacing: float) -> None:
 def _grid_size(what: str, extent_u: float, extent_v: float, spacing: float, min_u: int = 1) -> tuple[int, int]:
     """Cells along u and v of a structured grid at ``spacing``; its vertex count is checked
     against MAX_MESH_VERTICES before anything is allocated."""
-    nu = max(min_u, math.ceil(extent_u / spacing - 1e-9))
-    nv = max(1, math.ceil(extent_v / spacing - 1e-9))
-    check_budget(f"{what} meshed every {spacing:g} mm: vertices", (nu + 1) * (nv + 1), MAX_MESH_VERTICES,
+    cells_u, cells_v = max(min_u, extent_u / spacing), max(1.0, extent_v / spacing)
+    check_budget(f"{what} meshed every {spacing:g} mm: vertices", (cells_u + 1) * (cells_v + 1), MAX_MESH_VERTICES,
                  "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
-    return nu, nv
+    return max(min_u, math.ceil(extent_u / spacing - 1e-9)), max(1, math.ceil(extent_v / spacing - 1e-9))
 
 
 def _grid_faces(nu: int, nv: int) -> np.ndarray:
@@ -93,8 +93,9 @@ def _pose(pose: np.ndarray | None) -> np.ndarray:
 def plate(width: float, height: float, spacing: float, pose: np.ndarray | None = None) -> Surface:
     """Flat W x H plate centred on the pose origin, normal +z of the pose, structured grid."""
     _check_spacing(spacing)
-    if not (width > 0 and height > 0):
-        raise InputError(f"plate size must be positive, found {width:g} x {height:g} mm")
+    if not (MIN_PART_MM <= width <= MAX_ABS_COORDINATE_MM and MIN_PART_MM <= height <= MAX_ABS_COORDINATE_MM):
+        raise InputError(f"plate size must be between {MIN_PART_MM:g} and {MAX_ABS_COORDINATE_MM:g} mm, "
+                         f"found {width:g} x {height:g} mm")
     pose = _pose(pose)
     nu, nv = _grid_size(f"plate {width:g} x {height:g} mm", width, height, spacing)
     x = np.linspace(-width / 2, width / 2, nu + 1)
@@ -121,8 +122,9 @@ def cylinder(radius: float, length: float, spacing: float, axis: str = "x",
     ``axis``; angle 0 is +z (+x for a z axis). The seam at ±180° carries duplicated vertices
     so the unrolled view (along-axis, R·angle) has no wrap-around."""
     _check_spacing(spacing)
-    if not (radius > 0 and length > 0):
-        raise InputError(f"cylinder size must be positive, found R={radius:g} x L={length:g} mm")
+    if not (MIN_PART_MM <= radius <= MAX_ABS_COORDINATE_MM and MIN_PART_MM <= length <= MAX_ABS_COORDINATE_MM):
+        raise InputError(f"cylinder size must be between {MIN_PART_MM:g} and {MAX_ABS_COORDINATE_MM:g} mm, "
+                         f"found R={radius:g} x L={length:g} mm")
     if axis not in _CYLINDER_FRAMES:
         raise InputError(f"cylinder axis must be x, y or z, found {axis!r}")
     pose = _pose(pose)
