@@ -23,8 +23,8 @@ from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
 from coatsim.geometry.segment import Segmentation
 from coatsim.program import read_toolpath
-from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.as_writer import program_name
+from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
 from coatsim.report.catalogue import METRICS
