@@ -127,7 +127,13 @@ class _Lock:
         except ImportError:  # no flock on this platform
             return self._acquire_by_pid()
         for _ in range(100):
-            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+            try:
+                fd, created = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o644), True
+            except FileExistsError:
+                try:
+                    fd, created = os.open(self.path, os.O_RDWR), False
+                except FileNotFoundError:
+                    continue
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:
@@ -135,6 +141,8 @@ class _Lock:
                 self._refuse(_read_info(self.path))
             except OSError:  # the file system has no flock
                 os.close(fd)
+                if created:
+                    self.path.unlink(missing_ok=True)
                 return self._acquire_by_pid()
             try:  # the holder may have removed the file between our open and flock
                 same = os.path.samestat(os.fstat(fd), os.stat(self.path))

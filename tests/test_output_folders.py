@@ -132,6 +132,12 @@ def test_without_flock_a_live_pid_holds_and_a_dead_one_is_stale(tmp_path, no_flo
     folder = tmp_path / "out"
     folder.mkdir()
     lock = folder / LOCK_NAME
+    with output_folder(folder, ["a.txt"], "first"):
+        assert json.loads(lock.read_text())["pid"] == os.getpid()
+        with pytest.raises(FolderInUse, match=f"in use by first \\(pid {os.getpid()}"):
+            with output_folder(folder, ["a.txt"], "second"):
+                pass
+    assert not lock.exists()
     with subprocess.Popen([sys.executable, "-c", "import sys; sys.stdin.read()"], stdin=subprocess.PIPE) as alive:
         lock.write_text(json.dumps({"pid": alive.pid, "host": socket.gethostname(), "command": "coatsim coat"}))
         with pytest.raises(FolderInUse, match=f"in use by coatsim coat \\(pid {alive.pid}"):
