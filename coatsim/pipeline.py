@@ -93,7 +93,12 @@ def load_input_curve(loaded: ScenarioFile) -> Curve:
         raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
     angle = math.radians(spec.rotate_deg)
     rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
-    return curve.transformed(rotation, np.zeros(2), spec.scale)
+    try:  # checked again: a scale can push a valid curve out of range
+        with np.errstate(all="ignore"):
+            placed = curve.transformed(rotation, np.zeros(2), spec.scale)
+            return make_curve(placed.points, curve.name, "yes" if curve.closed else "no")
+    except InputError as exc:
+        raise InputError(f"{loaded.where('curve', 'scale')}: curve (scaled by {spec.scale:g}): {exc}") from None
 
 
 def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:

@@ -5,6 +5,7 @@ Controller semantics modelled here (see the README's robot section):
 - a joint move (JMOVE) starts and ends at rest;
 - where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the
   tool runs straight through;
+- a reversal (a turn within 1e-3 rad of 180 degrees) stops the tool, blended or not;
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
@@ -26,6 +27,9 @@ from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, 
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
 TANGENT_TOL_RAD = math.radians(0.5)
+# A turn this close to 180 degrees cannot be rounded (a blend would run out and back along the
+# same line through a cusp): the tool stops there as at an exact stop.
+REVERSAL_RAD = math.pi - 1e-3
 MIN_MOVE_MM = 1e-6
 
 
@@ -254,6 +258,8 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             flush()
             pieces.append(item)
             continue
+        if chain and _heading_change(chain[-1].prim, item.prim) > REVERSAL_RAD:
+            flush()
         chain.append(item)
         if item.stop:
             flush()
