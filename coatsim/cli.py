@@ -155,22 +155,28 @@ def program(
 
 @app.command()
 def execute(
-    program: Path = typer.Argument(..., help="Kawasaki AS program file."),
+    program: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF [default: models/coating_cell.xml]."),
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics."""
+    from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.robot.execute import execute_program
 
-    result, files = execute_program(program, model, output, gun, step)
+    result, files = execute_program(program, model, output, gun, step, main,
+                                    parse_inputs(inputs) if inputs is not None else None)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
                f"CV {m.speed_cv:.4f}, {m.fraction_at_speed:.1%} at speed, {m.stops} stops; path error max "
                f"{m.max_path_error_mm:.3f} rms {m.rms_path_error_mm:.3f} mm; joint speed/accel "
                f"{m.max_joint_speed_ratio:.2f}/{m.max_joint_accel_ratio:.2f} of limits")
+    for warning in result.warnings:
+        typer.echo(f"warning: {warning}")
     for event in result.events:
         typer.echo(f"warning: {event}")
     typer.echo(f"wrote {', '.join(str(f) for f in files)}")
@@ -178,14 +184,23 @@ def execute(
 
 @app.command("check-program")
 def check_program(
-    path: Path = typer.Argument(..., help="Kawasaki AS program file."),
+    paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: models/coating_cell.xml]."),
 ) -> None:
-    """Parse and interpret an AS program; report steps, poses, path length and problems."""
+    """Parse and interpret AS programs; report steps, poses, signals, sprayed path and problems."""
+    from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.check import check_program as check
     from coatsim.program.run import check_summary
+    from coatsim.robot.kinematics import LazyKinematics
+    from coatsim.robot.sampling import plan_pieces
 
-    typer.echo(check_summary(check(path, gun_signal=gun)))
+    result = check(paths, gun_signal=gun, program=main, inputs=parse_inputs(inputs) if inputs is not None else None,
+                   kinematics=LazyKinematics(model))
+    plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
+    typer.echo(check_summary(result))
 
 
 def _click_errors() -> tuple[type, ...]:

@@ -23,6 +23,7 @@ from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
 from coatsim.geometry.segment import Segmentation
 from coatsim.program import read_toolpath
+from coatsim.program.as_lang.names import program_name
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
@@ -31,6 +32,7 @@ from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
+from coatsim.robot.kinematics import CellKinematics
 from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
 from coatsim.spray.coat import CoatingResult, coat
 from coatsim.spray.deposition import SprayModel
@@ -187,12 +189,12 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     spec, out = job.loaded.spec, job.outdir
     poly, points = job.segmentation.polysegment, job.segmentation.curve.points
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, name=spec.name)
+                             gun_signal=spec.gun.signal, name=program_name(spec.name))
     program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                             source=f"scenario:{spec.name}", points=points)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
-    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal)
+    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
     step(f"{name}: simulating the arm")
     execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
     execution.log.write_csv(out / f"{name}.trajectory.csv")

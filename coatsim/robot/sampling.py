@@ -57,13 +57,15 @@ class CartesianPiece:
 
 @dataclass(frozen=True, eq=False)
 class JointPiece:
-    """A joint-interpolated move to ``target`` (rest to rest); ``move`` is None for the
-    implicit move from home to the start of the first Cartesian move."""
+    """A joint-interpolated move to ``target`` (rest to rest), to the configuration
+    ``joints_rad`` when the program gives one; ``move`` is None for the implicit move from home
+    to the start of the first Cartesian move."""
 
     target: Pose
     speed_mm_s: float
     spray: bool
     move: int | None
+    joints_rad: np.ndarray | None = None
 
 
 Piece = CartesianPiece | JointPiece
@@ -234,13 +236,16 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
     for index, move in enumerate(toolpath.moves):
         if isinstance(move, JointMove):
             flush()
-            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index))
+            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index,
+                                     move.joints_rad))
             continue
         if not isinstance(move, (LinearMove, CircularMove)):
             raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
         span = _span(toolpath, index)
         if span.prim.length <= MIN_MOVE_MM:
-            continue  # a move to where the tool already is: nothing to execute
+            if span.stop:
+                flush()  # nothing to execute, but the tool comes to rest here (a dwell may follow)
+            continue  # a move to where the tool already is
         chain.append(span)
         if span.stop:
             flush()

@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from coatsim.errors import InputError
-from coatsim.program import as_ast as ast
-from coatsim.program.as_lexer import AsSyntaxError
-from coatsim.program.as_parser import parse_as, parse_as_bytes
+from coatsim.program.as_lang import ast
+from coatsim.program.as_lang.source import AsSyntaxError
+from coatsim.program.as_lang.parser import parse_as, parse_as_bytes
 
 REFERENCE_B = """\
 .PROGRAM sq_named()

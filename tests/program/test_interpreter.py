@@ -10,7 +10,7 @@ import pytest
 from coatsim.errors import InputError
 from coatsim.program import interpret, parse_as, read_toolpath
 from coatsim.program.arcs import circle_through, move_length
-from coatsim.program.interpreter import FULL_SPEED_MM_S
+from coatsim.program.as_lang.motion import FULL_SPEED_MM_S
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove
 
