@@ -182,6 +182,43 @@ def execute(
     typer.echo(f"wrote {', '.join(str(f) for f in files)}")
 
 
+@app.command()
+def convert(
+    paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
+    tol: float = typer.Option(..., "--tol", help="Tolerance sigma: largest deviation from the original path, mm."),
+    output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    gun: int = typer.Option(1, "--gun", help="Gun output signal number: its sprayed moves are the process path."),
+    standalone: bool = typer.Option(False, "--standalone", help="A clean program of the path alone instead of the edited original."),
+    lines: Optional[str] = typer.Option(None, "--lines", help="FIRST-LAST: the moves of these source lines instead of the sprayed ones."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: models/coating_cell.xml]."),
+    corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
+    name: Optional[str] = typer.Option(None, "--name", help="Program name of a --standalone program [default: the original's]."),
+) -> None:
+    """Rewrite the process path of an existing AS program with arcs within a tolerance."""
+    from coatsim.fileio import write_text
+    from coatsim.program.as_lang.io_model import parse_inputs
+    from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
+    from coatsim.robot.kinematics import LazyKinematics
+
+    line_range = None
+    if lines is not None:
+        first, sep, last = lines.partition("-")
+        if not (sep and first.strip().isdigit() and last.strip().isdigit() and int(first) <= int(last)):
+            fail(f"--lines {lines!r}: expected FIRST-LAST source line numbers, as in 12-1911")
+        line_range = (int(first), int(last))
+    options = ConvertOptions(tolerance_mm=tol, gun_signal=gun, program=main, lines=line_range, standalone=standalone,
+                             corner_deg=corner_deg, name=name)
+    result = convert_program(paths, options, inputs=parse_inputs(inputs) if inputs is not None else None,
+                             kinematics=LazyKinematics(model))
+    if output is not None:
+        write_text(output, result.text)
+    else:
+        typer.echo(result.text, nl=False)
+    typer.echo(conversion_summary(result) + (f"\nwrote {output}" if output else ""), err=output is None)
+
+
 @app.command("check-program")
 def check_program(
     paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
