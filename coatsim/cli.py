@@ -74,7 +74,7 @@ def run(
     result = run_scenario(scenario, outdir, fast=fast)
     typer.echo(summary_text(result.document))
     for variant in result.variants:
-        for event in variant.execution.events:
+        for event in (*variant.execution.warnings, *variant.execution.events):
             typer.echo(f"warning: {variant.name}: {event}")
     typer.echo(f"wrote {len(result.files)} files to {result.outdir} in {time.perf_counter() - started:.1f} s "
                f"(report: {result.outdir / 'report.html'})")

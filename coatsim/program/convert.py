@@ -100,7 +100,7 @@ class Conversion:
 def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
     if options.lines is not None:
         return [moves_in_lines(run, *options.lines)]
-    runs = [r for r in spray_runs(run) if len(r) >= 2]
+    runs = [r for r in spray_runs(run.toolpath) if len(r) >= 2]
     if not runs:
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
                          "consecutive LMOVE/C1MOVE/C2MOVE moves; name the moves with --lines FIRST-LAST")

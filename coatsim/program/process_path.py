@@ -18,7 +18,7 @@ from scipy.spatial.transform import Rotation, Slerp
 from coatsim.errors import InputError
 from coatsim.program.arcs import move_length, sample_move
 from coatsim.program.as_lang.interpreter import Run
-from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Move
+from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Move, ToolPath
 
 _ARC_SAMPLES_PER_MM = 2.0
 
@@ -87,10 +87,10 @@ def path_of(run: Run, moves: tuple[int, ...], spacing_mm: float) -> ProcessPath:
     return ProcessPath(moves, np.vstack(pts), np.concatenate(rots), np.array(verts, dtype=float))
 
 
-def spray_runs(run: Run) -> list[tuple[int, ...]]:
+def spray_runs(toolpath: ToolPath) -> list[tuple[int, ...]]:
     """Maximal stretches of consecutive sprayed Cartesian moves (a joint move ends one)."""
     runs, current = [], []
-    for i, m in enumerate(run.toolpath.moves):
+    for i, m in enumerate(toolpath.moves):
         if m.spray and isinstance(m, (LinearMove, CircularMove)):
             current.append(i)
             continue
