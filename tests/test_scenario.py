@@ -75,7 +75,7 @@ MALFORMED = [
     ("not-a-number", BASE + "gun:\n  standoff_mm: .nan\n", 9, ["gun.standoff_mm", "finite"]),
     ("unknown workpiece kind", BASE.replace("kind: plate", "kind: cube"), 5, ["workpiece", "plate, cylinder, mesh".replace(", ", "', '"), "'cube'"]),
     ("workpiece without kind", BASE.replace("  kind: plate\n", ""), 5, ["workpiece", "missing key 'kind'", "plate, cylinder, mesh"]),
-    ("missing curve", "name: demo\nworkpiece:\n  kind: plate\n  size_mm: [300, 200]\n", 1, ["curve", "required key is missing"]),
+    ("missing curve", "name: demo\nworkpiece:\n  kind: plate\n  size_mm: [300, 200]\n", 1, ["curve", "program variant"]),
     ("key of another workpiece kind", BASE + "  radius_mm: 4\n", 8, ["workpiece.radius_mm", "unknown key"]),
     ("short vector", BASE.replace("[300, 200]", "[300]"), 7, ["workpiece.size_mm", "at least 2 items"]),
     ("unknown variant", BASE + "variants: [polysegment, spline]\n", 8, ["variants[1]", "'spline'"]),
@@ -150,9 +150,9 @@ def test_json_schema_is_strict_and_lists_the_choices() -> None:
     schema = json.loads(json_schema())
     assert schema["additionalProperties"] is False
     assert all(d.get("additionalProperties") is False for d in schema["$defs"].values() if d.get("type") == "object")
-    assert set(schema["required"]) == {"name", "curve", "workpiece"}
-    variants = schema["properties"]["variants"]["items"]["enum"]
-    assert variants == list(VARIANTS)
+    assert set(schema["required"]) == {"name", "workpiece"}
+    choices = schema["properties"]["variants"]["items"]["anyOf"]
+    assert choices[0]["enum"] == list(VARIANTS) and choices[1]["$ref"].endswith("ProgramVariantSpec")
     assert "raster" in schema["$defs"]["CurveSpec"]["properties"]["builtin"]["anyOf"][0]["enum"]
 
 
