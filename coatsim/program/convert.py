@@ -73,7 +73,8 @@ class Fitted:
 
 @dataclass(frozen=True)
 class PathReport:
-    """Figures of one converted path (``deviation_mm``: measured on the program written)."""
+    """Figures of one converted path: the source lines replaced (in place) or the path came
+    from (standalone); ``deviation_mm`` measured on the program written."""
 
     first_line: int
     last_line: int
@@ -201,10 +202,10 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     fitted = [fit_path(run, c, options) for c in _candidates(run, options)]
     notes = [n for f in fitted for n in f.notes]
     if options.standalone:
-        text, replaces, counts = _standalone(run, fitted, options), None, None
+        text, replaces, counts, ranges = _standalone(run, fitted, options), None, None, [f.lines for f in fitted]
         new_files = (parse_as_bytes(text.encode("ascii"), "converted.as"),)
     else:
-        replaces, data, counts = edit_in_place(items, files, run, fitted, options)
+        replaces, data, counts, ranges = edit_in_place(items, files, run, fitted, options)
         text = data.decode("utf-8" if _is_utf8(data) else "latin-1")
         new_files = tuple(parse_as_bytes(data, f.source) if f.source == replaces else f for f in files)
     try:
@@ -212,7 +213,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
                                 inputs=inputs, kinematics=kinematics)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
-    reports = _verify(run, new_run, fitted, counts, options.tolerance_mm / 20.0)
+    reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0)
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm)
 
 
@@ -230,7 +231,8 @@ def _same(a, b) -> bool:
     return a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.position, end_b.position, atol=1e-6)
 
 
-def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[int]], step: float) -> list[PathReport]:
+def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[int]], ranges: list[tuple[int, int]],
+            step: float) -> list[PathReport]:
     """Each new process path against its original, measured both ways on the programs' paths;
     in place, every other move must be the same as before."""
     old, new = run.toolpath.moves, new_run.toolpath.moves
@@ -256,11 +258,11 @@ def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[
             raise InputError("the converted program moves differently from the original after the process path; "
                              "use --standalone")
     reports = []
-    for f, block in zip(fitted, blocks):
+    for f, block, (first, last) in zip(fitted, blocks, ranges):
         old_moves = [old[i] for i in f.path.moves]
         a, b = dense_points(old_moves, step), dense_points(block, step)
         deviation = max(path_distance(a, b), path_distance(b, a))
-        reports.append(PathReport(f.lines[0], f.lines[1], len(old_moves), len(block), f.n_arcs, f.n_lines,
+        reports.append(PathReport(first, last, len(old_moves), len(block), f.n_arcs, f.n_lines,
                                   f.plane.deviation_mm, deviation, f.path.length_mm))
     return reports
 

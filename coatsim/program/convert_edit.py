@@ -58,8 +58,9 @@ def _names_taken(files) -> set[str]:
     return {k.split("[")[0] for f in files for table in (f.trans, f.reals, f.joints) for k in table}
 
 
-def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, list[int]]:
-    """(the file edited, its new bytes, the number of moves each path becomes)."""
+def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, list[int], list[tuple[int, int]]]:
+    """(the file edited, its new bytes, the number of moves each path becomes, the lines each
+    replaces)."""
     programs = {run.move_origins[i][0] for f in fitted for i in f.path.moves}
     program_objs = [run.programs[name.lower()] for name in programs]
     sources = {p.source for p in program_objs}
@@ -70,7 +71,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
     data = read_program_bytes(path)
     taken = _names_taken(files)
     prefix = next(p for p in ("cv", "cva", "cvb", "cvc", "cvz") if not any(t.startswith(p) for t in taken))
-    replacements, trans, counts = [], [], []
+    replacements, trans, counts, ranges = [], [], [], []
     for k, f in enumerate(fitted, start=1):
         origins = [run.move_origins[i] for i in f.path.moves]
         names = {o[0] for o in origins}
@@ -110,11 +111,13 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         indent = indentation(data, first_line)
         block = [f"{indent}; coatsim convert: lines {first_line}-{last_line}, {len(moves)} moves -> "
                  f"{f.n_lines} lines + {f.n_arcs} arcs within {fmt_short(options.tolerance_mm)} mm"]
-        for j, (statement, comment) in enumerate(statements):
+        for statement, comment in statements:
             block.append(f"{indent}{statement}".ljust(30) + f" ; {sanitize_comment(comment)}")
-            if j == 0 and switch:
+            if switch and not statement.startswith("C1MOVE"):  # after the first complete move, as before
                 block.append(f"{indent}SIGNAL {options.gun_signal}".ljust(30) + " ; gun on (as in the original)")
+                switch = False
         replacements.append((first_line, last_line, block))
+        ranges.append((first_line, last_line))
         counts.append(sum(1 for s, _ in statements if not s.startswith("C1MOVE")))
     new = edit_lines(data, replacements, [".TRANS", *trans, ".END"])
-    return source, new, counts
+    return source, new, counts, ranges
