@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, ValidationError, field_validator, model_validator
 
 from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
@@ -176,9 +176,14 @@ class ProgramVariantSpec(_Strict):
     the first), and the input signals the cell sets (e.g. ``{1001: true}``)."""
 
     name: VariantLabel
-    program: Union[str, Annotated[list[str], Field(min_length=1)]]
+    program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
     main: Optional[str] = None
     inputs: dict[int, bool] = Field(default_factory=dict)
+
+    @field_validator("program", mode="before")
+    @classmethod
+    def _one_file(cls, value: Any) -> Any:
+        return [value] if isinstance(value, str) else value
 
     @field_validator("name")
     @classmethod
@@ -189,10 +194,16 @@ class ProgramVariantSpec(_Strict):
 
     @property
     def files(self) -> list[str]:
-        return [self.program] if isinstance(self.program, str) else list(self.program)
+        return list(self.program)
 
 
-VariantEntry = Union[VariantName, ProgramVariantSpec]
+def _variant_kind(value: Any) -> str:
+    return "builtin" if isinstance(value, str) else "program"
+
+
+# A built-in variant by name, or a user's program (a mapping): errors speak of the one meant.
+VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated[ProgramVariantSpec, Tag("program")]],
+                         Discriminator(_variant_kind)]
 
 
 class GateSpec(_Strict):

@@ -151,7 +151,8 @@ def test_json_schema_is_strict_and_lists_the_choices() -> None:
     assert schema["additionalProperties"] is False
     assert all(d.get("additionalProperties") is False for d in schema["$defs"].values() if d.get("type") == "object")
     assert set(schema["required"]) == {"name", "workpiece"}
-    choices = schema["properties"]["variants"]["items"]["anyOf"]
+    items = schema["properties"]["variants"]["items"]
+    choices = items.get("anyOf") or items["oneOf"]
     assert choices[0]["enum"] == list(VARIANTS) and choices[1]["$ref"].endswith("ProgramVariantSpec")
     assert "raster" in schema["$defs"]["CurveSpec"]["properties"]["builtin"]["anyOf"][0]["enum"]
 
@@ -162,3 +163,36 @@ def test_shipped_scenarios_load() -> None:
     assert files, "no shipped scenarios"
     for path in files:
         assert load_scenario(path).spec.name == path.stem
+
+
+PROGRAM_VARIANT = """\
+name: mine
+workpiece: {kind: plate, size_mm: [300, 200]}
+variants:
+  - {name: mine, program: cell.as, main: trace, inputs: {1001: true}}
+  - polysegment
+  - name: split
+    program: [prog.as, poses.as]
+gates:
+  - {metric: motion.stops, variant: mine, op: "<=", compare_to: polysegment, factor: 2}
+"""
+
+
+def test_program_variants(tmp_path: Path) -> None:
+    spec = load_scenario(write(tmp_path, PROGRAM_VARIANT)).spec
+    assert spec.curve is None and spec.variant_names == ["mine", "polysegment", "split"]
+    mine, split = spec.programs
+    assert mine.files == ["cell.as"] and mine.main == "trace" and mine.inputs == {1001: True}
+    assert split.files == ["prog.as", "poses.as"] and spec.gates[0].variant == "mine"
+
+
+@pytest.mark.parametrize("change,words", [
+    (("{name: mine, program: cell.as, main: trace, inputs: {1001: true}}", "{name: polysegment, program: cell.as}"),
+     "name of a built-in variant"),
+    (("name: split", "name: mine"), "listed twice"),
+    (("name: split", "name: 9lives"), "variants[2]"),
+    (("program: [prog.as, poses.as]", "program: []"), "at least 1 item"),
+    (("variant: mine", "variant: yours"), "variant 'yours' is not run"),
+])
+def test_program_variant_errors(tmp_path: Path, change, words) -> None:
+    assert words in load_error(tmp_path, PROGRAM_VARIANT.replace(*change))
