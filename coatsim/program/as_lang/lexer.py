@@ -29,6 +29,7 @@ _TOKEN = re.compile(
     """,
     re.VERBOSE,
 )
+_SCAN = re.compile(_TOKEN.pattern + r"|(?P<comment>;.*)|(?P<bad>.)", re.VERBOSE | re.DOTALL)
 
 
 class Token:
@@ -51,23 +52,24 @@ class Token:
 def tokenize(text: str, source: str, line: int) -> list[Token]:
     """Tokens of ``text`` up to a comment; raises AsSyntaxError on a stray character."""
     tokens: list[Token] = []
-    pos, end = 0, len(text)
-    match = _TOKEN.match
-    while pos < end:
-        if text[pos] == ";":
-            break
-        m = match(text, pos)
-        if m is None:
-            raise _stray(text, pos, source, line)
+    append = tokens.append
+    for m in _SCAN.finditer(text):
         kind = m.lastgroup
-        word = m.group()
-        if kind == "num" or kind == "hex":
-            tokens.append(Token("num", word, pos + 1, _number(word, source, line, pos)))
+        if kind == "ws":
+            continue
+        pos = m.start()
+        if kind == "name" or kind == "op":
+            append(Token(kind, m.group(), pos + 1))
+        elif kind == "num" or kind == "hex":
+            word = m.group()
+            append(Token("num", word, pos + 1, _number(word, source, line, pos)))
         elif kind == "str":
-            tokens.append(Token("str", word, pos + 1, word[1:-1]))
-        elif kind != "ws":
-            tokens.append(Token(kind, word, pos + 1))
-        pos = m.end()
+            word = m.group()
+            append(Token("str", word, pos + 1, word[1:-1]))
+        elif kind == "comment":
+            break
+        else:
+            raise _stray(text, pos, source, line)
     return tokens
 
 

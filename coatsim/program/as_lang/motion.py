@@ -111,7 +111,8 @@ class Controller:
               joints: Optional[np.ndarray] = None, first_line: Optional[int] = None) -> None:
         if len(self.moves) >= MAX_MOTIONS:
             raise self.failure(line, f"the program issues more than {MAX_MOTIONS} motions; coatsim stops it")
-        if not (np.isfinite(end.position).all() and np.abs(end.position).max() <= 1e9):
+        x, y, z = (float(v) for v in end.position)
+        if not max(abs(x), abs(y), abs(z)) <= 1e9:  # (NaN fails too)
             raise self.failure(line, "the target pose is out of range (|x| <= 1e9 mm)")
         fine = self.fine_once or self.fine_always
         move = _Pending(kind, self.current, end, via, self.speed_once or self.speed_always,

@@ -17,7 +17,7 @@ from typing import Optional
 from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.blocks import BlockBuilder
 from coatsim.program.as_lang.expressions import Cursor
-from coatsim.program.as_lang.lexer import tokenize
+from coatsim.program.as_lang.lexer import MAX_LITERAL, tokenize
 from coatsim.program.as_lang.source import AsSyntaxError, decode, split_lines, syntax_error
 from coatsim.program.as_lang.statements import parse_line
 
@@ -26,6 +26,7 @@ _PROGRAM_NAME = re.compile(r"[ \t]+([A-Za-z][A-Za-z0-9_.]*)")
 _METADATA = re.compile(r"[ \t]*(?:\d+[ \t]+)?;[ \t]*coatsim:[ \t]*([A-Za-z0-9_.]+)[ \t]*=(.*)$")
 _DATA = ("TRANS", "JOINTS", "REALS", "STRINGS")
 MAX_JOINTS = 18
+_SIMPLE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*(\[\d+(,\d+)?\])?\Z")
 
 
 def _is_end(stripped: str) -> bool:
@@ -165,6 +166,8 @@ class _Reader:
 
     # --- data sections -------------------------------------------------------------------
     def _data_line(self, line: int, text: str) -> None:
+        if self.section == "TRANS" and ";" not in text and self._fast_trans(text, line):
+            return
         tokens = tokenize(text, self.source, line)
         if not tokens:
             return
@@ -204,6 +207,22 @@ class _Reader:
         if k in table:
             raise self.error(line, col, f"{what} '{name}' is defined twice (first at line {table[k].line})")
         table[k] = value
+
+    def _fast_trans(self, text: str, line: int) -> bool:
+        """The common ``name x y z o a t`` line without the tokenizer; False to take the slow path."""
+        parts = text.replace(",", " ").split()
+        if not 7 <= len(parts) <= 10 or not _SIMPLE_NAME.match(parts[0]) or "_" in text.split(None, 1)[1]:
+            return False
+        try:
+            values = [float(v) for v in parts[1:]]
+        except ValueError:
+            return False
+        if not all(abs(v) <= MAX_LITERAL for v in values):  # (also rejects nan)
+            return False
+        name = parts[0]
+        col = len(text) - len(text.lstrip(" \t")) + 1
+        self._store("TRANS", name, ast.TransDef(name, tuple(values[:6]), tuple(values[6:]), line), line, col, "pose")
+        return True
 
     def _trans(self, c: Cursor, line: int) -> None:
         name, col = self._name(c, "a pose name")

@@ -9,7 +9,7 @@ import numpy as np
 from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.instructions import CONFIGURATION, DISPLAY, GRIPPER, HOUSEKEEPING, NETWORK, TASKS, \
     UNSIMULATED_MOTION
-from coatsim.program.as_lang.values import Frame
+from coatsim.program.as_lang.values import IDENTITY, Frame
 from coatsim.program.toolpath import Pose
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -20,7 +20,7 @@ _COMPONENTS = {"X": (0,), "Y": (1,), "Z": (2,), "O": (3,), "A": (4,), "T": (5,),
 
 
 def _target(run: Interpreter, frame: Frame) -> Pose:
-    out = run.base * frame
+    out = frame if run.base is IDENTITY else run.base * frame
     if not out.is_finite():
         raise run.failure("the target pose is not finite")
     return out.pose()
