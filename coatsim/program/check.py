@@ -88,15 +88,23 @@ def _names(e) -> Iterator[str]:
                 yield from _names(value)
 
 
-def _signal_line(st: ast.Statement, gun: int, source: str) -> Optional[str]:
+def _constant(e, reals: Mapping[str, float]) -> Optional[float]:
+    """The value of a signal number written as a number or a .REALS variable (with a sign)."""
+    if isinstance(e, ast.Num):
+        return e.value
+    if isinstance(e, ast.Name) and not e.index and not e.is_local:
+        return reals.get(e.name.lower())
+    if isinstance(e, ast.Unary) and e.op == "-":
+        inner = _constant(e.operand, reals)
+        return None if inner is None else -inner
+    return None
+
+
+def _signal_line(st: ast.Statement, gun: int, source: str, reals: Mapping[str, float]) -> Optional[str]:
     if isinstance(st, ast.Signal):
         text = "SIGNAL " + ", ".join(expr_text(e) for e in st.outputs)
-        gun_parts = []
-        for e in st.outputs:
-            value = e.value if isinstance(e, ast.Num) else -e.operand.value if (
-                isinstance(e, ast.Unary) and e.op == "-" and isinstance(e.operand, ast.Num)) else None
-            if value is not None and abs(value) == gun:
-                gun_parts.append("gun on" if value > 0 else "gun off")
+        values = [_constant(e, reals) for e in st.outputs]
+        gun_parts = ["gun on" if v > 0 else "gun off" for v in values if v is not None and abs(v) == gun]
         return f"{source}:{st.line}: {text}" + (f" ({', '.join(gun_parts)})" if gun_parts else "")
     if isinstance(st, ast.Pulse):
         return f"{source}:{st.line}: {st.op} {expr_text(st.signal)}" + \
@@ -130,10 +138,11 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     problems: list[str] = []
     used: set[str] = set()
     signals: list[str] = []
+    reals = {k: d.value for f in files for k, d in f.reals.items()}
     for p in run.programs.values():
         for st in walk(p.body):
             used.update(_names(st))
-            line = _signal_line(st, gun_signal, p.source)
+            line = _signal_line(st, gun_signal, p.source, reals)
             if line is not None:
                 signals.append(line)
             if isinstance(st, ast.Speed) and st.unit == "%":
