@@ -62,6 +62,4 @@ class LazyKinematics:
         return self._get().forward(joints_rad)
 
     def home(self, number: int) -> np.ndarray:
-        if number == 1 and self._loaded is None and self.model is None:
-            return self._get().home(1)
         return self._get().home(number)

@@ -42,7 +42,7 @@ class _Compiler:
         for st in statements:
             self.statement(st)
 
-    def statement(self, st: ast.Statement) -> None:  # noqa: C901 - one branch per block kind
+    def statement(self, st: ast.Statement) -> None:
         t = type(st)
         if t is ast.Label:
             if st.name in self.labels:

@@ -23,7 +23,7 @@ import numpy as np
 
 from coatsim.errors import CoatsimError, ExecutionError, InputError
 from coatsim.program.as_lang import ast
-from coatsim.program.as_lang.compile import CASE, EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
+from coatsim.program.as_lang.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
 from coatsim.program.as_lang.evaluate import Evaluator
 from coatsim.program.as_lang.io_model import Signals, Warnings, is_input
@@ -94,11 +94,7 @@ class Interpreter:
         self.origins: list[tuple[str, int, int]] = []
         self.bases: list[Frame] = []
         self.executions: Counter = Counter()
-        start_joints = start = None
-        if kinematics is not None:
-            start_joints = kinematics.home(1)
-            start = kinematics.forward(start_joints)
-        self.controller = Controller(full_speed_mm_s, self.where, start, start_joints)
+        self.controller = Controller(full_speed_mm_s, self.where, self.home_pose if kinematics is not None else None)
 
     # --- messages ------------------------------------------------------------------------
     @property
@@ -203,6 +199,11 @@ class Interpreter:
         except CoatsimError as exc:
             raise type(exc)(f"{self.where()}: {exc}") from None
 
+    def home_pose(self):
+        """The pose and joints every program starts from: the cell's home."""
+        q = self.home_joints(1)
+        return self.fk(q, "the start pose"), q
+
     def joints_rad(self, values: tuple[float, ...]) -> np.ndarray:
         if len(values) < 6:
             raise self.error(f"a joint value for this six-axis arm needs 6 values, found {len(values)}")
@@ -216,12 +217,14 @@ class Interpreter:
         return self.base.inverse() * Frame.from_pose(pose)
 
     def here(self) -> Frame:
-        current = self.controller.current
-        if current is None:
+        if self.controller.current is None and self.kinematics is None:
             raise self.failure("HERE before the first motion needs the cell's kinematics (the home pose)")
+        current = self.controller.need_current("HERE", self.line)
         return self.base.inverse() * Frame.from_pose(current)
 
     def here_joints(self) -> tuple[float, ...]:
+        if self.controller.current is None and self.kinematics is not None:
+            self.controller.need_current("#HERE", self.line)
         q = self.controller.current_joints
         if q is None:
             raise self.failure("the joint angles after a Cartesian motion need the inverse kinematics of the arm, "
@@ -315,7 +318,7 @@ class Interpreter:
             code = self.code[program.name.lower()] = compile_program(program)
         return code
 
-    def execute(self, code: Code) -> None:  # noqa: C901 - the dispatch loop
+    def execute(self, code: Code) -> None:
         ops, n, pc = code.ops, len(code.ops), 0
         frame = self.stack[-1]
         name = frame.program.name

@@ -75,15 +75,16 @@ class Controller:
     """
 
     def __init__(self, full_speed_mm_s: float, where: Callable[[int], str],
-                 start: Optional[Pose] = None, start_joints: Optional[np.ndarray] = None) -> None:
-        self.full_speed, self.where = full_speed_mm_s, where
+                 start: Optional[Callable[[], tuple[Pose, np.ndarray]]] = None) -> None:
+        self.full_speed, self.where, self.start = full_speed_mm_s, where, start
         self.tool: Optional[str] = None
         self.speed_always: tuple[float, str] = DEFAULT_SPEED
         self.speed_once: Optional[tuple[float, str]] = None
         self.acc_always, self.acc_once = DEFAULT_ACCURACY_MM, None
         self.fine_always, self.fine_once = False, False
         self.cp = True
-        self.current, self.current_joints = start, start_joints
+        self.current: Optional[Pose] = None
+        self.current_joints: Optional[np.ndarray] = None
         self.gun_on = False
         self.moves: list[_Pending] = []
         self.dwells: list[_PendingDwell] = []
@@ -99,6 +100,9 @@ class Controller:
 
     # --- motions ------------------------------------------------------------------------
     def need_current(self, op: str, line: int) -> Pose:
+        """Where the tool is: the last target, or before any motion the start (home) pose."""
+        if self.current is None and not self.moves and self.start is not None:
+            self.current, self.current_joints = self.start()
         if self.current is None:
             raise self.error(line, f"{op} needs a known start pose; begin the program with JMOVE or JAPPRO")
         return self.current
