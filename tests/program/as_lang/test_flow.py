@@ -193,3 +193,14 @@ def test_backup_file():
     assert [m.kind for m in tp.moves] == ["joint", "line"] and [m.spray for m in tp.moves] == [True, False]
     assert interpret(f).moves == ()
     assert isinstance(tp.moves[0], JointMove)
+
+
+def test_pose_statements_evaluate():
+    extra = ".TRANS\nb 10 20 30 90 180 0\n.END\n"
+    get, _ = globals_after("JMOVE b\nHERE h\nDECOMPOSE d[1] = h\nPOINT/X q = TRANS(5, 6, 7)\nPOINT/Z q2 = b\n"
+                           "POINT/OAT r = b\nPOINT s = -b + b\nx = DISTANCE(h, b)", extra)
+    assert [get("real", f"d[{i}]") for i in range(1, 7)] == pytest.approx([10, 20, 30, 90, 180, 0])
+    assert np.allclose(get("pose", "q").p, [5, 0, 0]) and np.allclose(get("pose", "q2").p, [0, 0, 30])
+    assert np.allclose(get("pose", "r").p, [0, 0, 0]) and np.allclose(get("pose", "r").r, get("pose", "b").r)
+    assert np.allclose(get("pose", "s").p, 0) and np.allclose(get("pose", "s").r, np.eye(3))
+    assert get("real", "x") == 0.0
