@@ -46,13 +46,11 @@ class PlaneFrame:
 @dataclass(frozen=True, eq=False)
 class ProcessPath:
     """Consecutive Cartesian moves (indices into the ToolPath) and their geometry: ``points``
-    (n, 3) along the path (move ends, arcs sampled), ``rotations`` (n, 3, 3) there, and
-    ``vertices`` (m, 3) the programmed points alone (starts and ends of moves)."""
+    (n, 3) along the path (move ends, arcs sampled) and ``rotations`` (n, 3, 3) there."""
 
     moves: tuple[int, ...]
     points: np.ndarray
     rotations: np.ndarray
-    vertices: np.ndarray
 
     @property
     def length_mm(self) -> float:
@@ -77,14 +75,12 @@ def path_of(run: Run, moves: tuple[int, ...], spacing_mm: float) -> ProcessPath:
     """The geometry of consecutive Cartesian moves."""
     tp = run.toolpath.moves
     first = tp[moves[0]]
-    pts, rots, verts = [np.asarray(first.start.position, float)[None]], [np.asarray(first.start.rotation)[None]], \
-        [first.start.position]
+    pts, rots = [np.asarray(first.start.position, float)[None]], [np.asarray(first.start.rotation)[None]]
     for i in moves:
         p, r = _move_points(tp[i], spacing_mm)
         pts.append(p)
         rots.append(r)
-        verts.append(tp[i].end.position)
-    return ProcessPath(moves, np.vstack(pts), np.concatenate(rots), np.array(verts, dtype=float))
+    return ProcessPath(moves, np.vstack(pts), np.concatenate(rots))
 
 
 def spray_runs(toolpath: ToolPath) -> list[tuple[int, ...]]:

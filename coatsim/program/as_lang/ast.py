@@ -181,7 +181,7 @@ class Depart(Stmt):
 
 @dataclass(frozen=True)
 class Draw(Stmt):
-    """DRAW (base axes) / TDRAW (tool axes) dx, dy, dz [, rx, ry, rz]; empty parts None."""
+    """DRAW (base axes) / TDRAW (tool axes) dx, dy, dz [, rx, ry, rz [, speed]]; empty parts None."""
 
     op: str
     deltas: tuple[Optional[Expr], ...]

@@ -30,20 +30,12 @@ from coatsim.program.as_lang.io_model import Signals, Warnings, is_input
 from coatsim.program.as_lang.motion import FULL_SPEED_MM_S, Controller
 from coatsim.program.as_lang.parser import key as norm
 from coatsim.program.as_lang.scope import Scope
-from coatsim.program.as_lang.statements_exec import execute_statement
+from coatsim.program.as_lang.statements_exec import ReturnFromProgram, StopProgram, execute_statement
 from coatsim.program.as_lang.values import IDENTITY, Frame
 from coatsim.program.toolpath import Kinematics, ToolPath
 
 MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
-
-
-class _Return(Exception):
-    pass
-
-
-class _Stop(Exception):
-    pass
 
 
 @dataclass(frozen=True, eq=False)
@@ -301,7 +293,7 @@ class Interpreter:
         self.stack.append(_Frame(program, scope, {}))
         try:
             self.execute(self.compiled(program))
-        except _Return:
+        except ReturnFromProgram:
             pass
         finally:
             frame = self.stack.pop()
@@ -391,7 +383,7 @@ class Interpreter:
             self.warn("main-params", f"program '{main.name}' takes parameters; run as the main program they are unset")
         try:
             self.call(main, ())
-        except _Stop:
+        except StopProgram:
             pass
         self.line = main.end_line
         self.stack.append(_Frame(main, Scope(), {}))

@@ -3,7 +3,7 @@ variables of each program invocation, by kind (reals, strings, poses, joint valu
 
 from __future__ import annotations
 
-from typing import Iterable, Optional
+from typing import Iterable
 
 from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.values import Frame
@@ -56,7 +56,3 @@ class Scope:
                     self.trans[k] = value
                 else:
                     self.tables[kind][k] = value
-
-    def names(self, kind: str) -> Optional[set[str]]:
-        found = set(self.tables[kind])
-        return found | set(self.trans) if kind == "pose" else found

@@ -321,7 +321,7 @@ PARSERS: dict[str, Parser] = {
     **dict.fromkeys(("JMOVE", "LMOVE", "C1MOVE", "C2MOVE", "XMOVE"), _move),
     **dict.fromkeys(("JAPPRO", "LAPPRO"), _appro),
     **dict.fromkeys(("JDEPART", "LDEPART"), lambda c, op, line: ast.Depart(line, op, c.expr("a distance in mm"))),
-    **dict.fromkeys(("DRAW", "TDRAW"), lambda c, op, line: ast.Draw(line, op, c.optional_list(f"{op} value", 6))),
+    **dict.fromkeys(("DRAW", "TDRAW"), lambda c, op, line: ast.Draw(line, op, c.optional_list(f"{op} value", 7))),
     "HOME": lambda c, op, line: ast.Home(line, None if c.at_end() else c.expr("a home number")),
     "HOME2": _simple(lambda line: ast.Home(line, ast.Num(2.0))),
     **dict.fromkeys(("DELAY", "STABLE"), lambda c, op, line: ast.Delay(line, op, c.expr("a time in s"))),

@@ -15,6 +15,14 @@ from coatsim.program.toolpath import Pose
 if TYPE_CHECKING:  # pragma: no cover
     from coatsim.program.as_lang.interpreter import Interpreter
 
+class ReturnFromProgram(Exception):
+    """RETURN: back to the calling program."""
+
+
+class StopProgram(Exception):
+    """STOP / HALT: the run ends."""
+
+
 _SILENT_SWITCHES = {"ABS.SPEED"}  # no effect at monitor speed 100 %
 _COMPONENTS = {"X": (0,), "Y": (1,), "Z": (2,), "O": (3,), "A": (4,), "T": (5,), "OAT": (3, 4, 5)}
 
@@ -81,7 +89,9 @@ def _depart(run: Interpreter, st: ast.Depart) -> None:
 def _draw(run: Interpreter, st: ast.Draw) -> None:
     here = run.controller.need_current(st.op, st.line)
     d = [0.0 if v is None else run.eval.real(v) for v in st.deltas] + [0.0] * (6 - len(st.deltas))
-    if any(v != 0.0 for v in d[3:]):
+    if len(st.deltas) == 7 and st.deltas[6] is not None:
+        raise run.failure(f"{st.op} with its own speed is not simulated; set SPEED before it")
+    if any(v != 0.0 for v in d[3:6]):
         raise run.failure(f"{st.op} with a rotation is not simulated; use LMOVE to a pose")
     axes = here.rotation if st.op == "TDRAW" else run.base.r
     run.controller.linear(st.op, Pose(here.position + axes @ np.array(d[:3]), here.rotation), st.line)
@@ -192,18 +202,14 @@ def _call(run: Interpreter, st: ast.CallProgram) -> None:
 
 
 def _stop(run: Interpreter, st: ast.Stop) -> None:
-    from coatsim.program.as_lang.interpreter import _Stop
-
     if st.op == "PAUSE":
         run.warn("pause", "PAUSE: the simulation goes on at once")
         return
-    raise _Stop()
+    raise StopProgram()
 
 
 def _return(run: Interpreter, st: ast.Return) -> None:
-    from coatsim.program.as_lang.interpreter import _Return
-
-    raise _Return()
+    raise ReturnFromProgram()
 
 
 def _switch(run: Interpreter, st: ast.Switch) -> None:
