@@ -57,3 +57,20 @@ def test_tiny_joint_moves_are_timed_within_the_limits(travel):
     timed = time_joint(cell, cell.home, q1, 500.0, "tiny")
     assert np.allclose(timed.q[0], cell.home) and np.allclose(timed.q[-1], q1, atol=1e-15)
     assert np.all(np.abs(timed.qdd) <= cell.a_max + 1e-9) and np.all(np.abs(timed.qd) <= cell.v_max)
+
+
+def test_a_reversal_stops_instead_of_folding_a_blend():
+    """a -> b -> a with CP ON: no blend can turn the tool round; it stops at b."""
+    import warnings
+
+    from coatsim.program.toolpath import LinearMove
+    from robot_helpers import pose, settings
+
+    toolpath = ToolPath("reverse", (approach((700.0, -50.0)),
+                                    LinearMove(pose(700.0, -50.0), pose(700.0, 50.0), settings(accuracy=5.0), True, 10),
+                                    LinearMove(pose(700.0, 50.0), pose(700.0, -50.0), settings(stop=True), True, 11)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pieces = plan_pieces(toolpath)
+    assert [type(p).__name__ for p in pieces] == ["JointPiece", "CartesianPiece", "CartesianPiece"]
+    assert all(np.isfinite(p.curvature).all() for p in pieces[1:])
