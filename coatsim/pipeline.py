@@ -218,8 +218,11 @@ def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> Vari
     and ``name.thickness.ply``."""
     toolpath, text = read_user_program(job.loaded, entry, job.cell)
     write_text(job.outdir / f"{entry.name}.as", text)
-    program = user_program(toolpath, curve_frame(job.loaded.spec), text)
-    return simulate_variant(entry.name, program, toolpath, job, step, None)
+    try:
+        program = user_program(toolpath, curve_frame(job.loaded.spec), text)
+        return simulate_variant(entry.name, program, toolpath, job, step, None)
+    except CoatsimError as exc:
+        raise type(exc)(f"{entry.name}: {exc}") from None
 
 
 def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: ToolPath, job: Job, step: Step,
@@ -285,8 +288,11 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         for entry in spec.variants:
             name = entry if isinstance(entry, str) else entry.name
             step(f"{name}: writing and reading the program")
+            if not isinstance(entry, str):
+                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
+                continue
             try:
-                runs.append(run_variant(name, job, step) if isinstance(entry, str) else run_program_variant(entry, job, step))
+                runs.append(run_variant(name, job, step))
             except CoatsimError as exc:
                 raise type(exc)(f"{name}: {exc}") from None
         step("metrics, gates and report")

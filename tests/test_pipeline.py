@@ -233,3 +233,13 @@ def test_a_users_program_against_coatsims(tmp_path):
     assert mine["motion"]["curve_length_mm"] == pytest.approx(arcs["segmentation"]["curve_length_mm"], rel=0.01)
     assert (tmp_path / "out" / "mine.as").read_text().startswith(".PROGRAM trace()")
     assert "sprayed path of program variant mine" in (tmp_path / "out" / "report.html").read_text()
+
+
+def test_a_users_program_with_a_defect_is_one_line(tmp_path):
+    (tmp_path / "bad.as").write_text(".PROGRAM x()\n  JMOVE a\n  LMOVE nowhere\n.END\n.TRANS\na 700 0 300 0 180 0\n.END\n")
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("name: s\nworkpiece: {kind: plate, size_mm: [100, 100]}\n"
+                        "variants:\n  - {name: mine, program: bad.as}\n  - polysegment\n")
+    result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
+    assert result.code == 2 and result.err.count("\n") == 1
+    assert f"{scenario}:3: variant mine: {tmp_path / 'bad.as'}:3: pose 'nowhere' is not defined" in result.err

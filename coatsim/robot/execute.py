@@ -220,7 +220,8 @@ def execute_program(program: str | Path | Sequence[str | Path], model: str | Pat
     result.log.write_csv(files[0])
     doc = {
         "format": "coatsim.motion/1",
-        "program": str(program) if isinstance(program, (str, Path)) else [str(p) for p in program],
+        "program": str(program) if isinstance(program, (str, Path)) else
+        str(program[0]) if len(program) == 1 else [str(p) for p in program],
         "model": str(model) if model is not None else "default",
         "step_mm": step_mm,
         "motion": result.metrics.as_dict(),
