@@ -36,12 +36,14 @@ SUSTAINED_S = 0.02
 
 @dataclass(frozen=True)
 class Finding:
-    """One check's worst row: what, how much, the limit it is compared with, where."""
+    """One check's row: what, how much, the limit it is compared with, where (row, and the
+    joint for joint checks, 0-based; -1 for the tracking check)."""
 
     what: str
     value: float
     limit: float
     row: int
+    joint: int = -1
 
 
 def commanded_tcp(cell: Cell, q: np.ndarray) -> np.ndarray:
@@ -76,16 +78,15 @@ def tracking_error(simulated_mm: np.ndarray, commanded_mm: np.ndarray, window: i
 
 def joint_ratios(q: np.ndarray, dt: float, v_max: np.ndarray, a_max: np.ndarray,
                  sustained: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per row, the largest joint speed, acceleration and sustained acceleration (the velocity
-    change over 2 ``sustained`` rows) over their limits (finite differences)."""
+    """Joint speed, acceleration and sustained acceleration (the velocity change over 2
+    ``sustained`` rows) over their limits, (n, 6) each (finite differences of q)."""
     qd = np.gradient(q, dt, axis=0)
     qdd = np.gradient(qd, dt, axis=0)
     w = max(1, min(sustained, (len(q) - 1) // 2))
     mean = np.zeros_like(qd)
     if len(q) > 2 * w:
         mean[w:-w] = (qd[2 * w:] - qd[:-2 * w]) / (2 * w * dt)
-    ratio = lambda x, limit: np.max(np.abs(x) / limit, axis=1)  # noqa: E731
-    return ratio(qd, v_max), ratio(qdd, a_max), ratio(mean, a_max)
+    return np.abs(qd) / v_max, np.abs(qdd) / a_max, np.abs(mean) / a_max
 
 
 def contacts(cell: Cell, q: np.ndarray) -> list[str]:
@@ -107,18 +108,25 @@ def check_playback(cell: Cell, t: np.ndarray, q_sim: np.ndarray, tcp_sim_mm: np.
     dt = float(np.median(np.diff(t))) if len(t) > 1 else cell.timestep
     error = tracking_error(tcp_sim_mm, commanded_tcp(cell, q_cmd), max(1, int(round(WINDOW_S / dt))))
     speed, accel, sustained = joint_ratios(q_sim, dt, cell.v_max, cell.a_max, max(1, int(round(SUSTAINED_S / dt / 2))))
-    checks = (("tracking", error, TRACKING_FAIL_MM, TRACKING_WARN_MM), ("joint speed", speed, LIMIT_FAIL_RATIO, LIMIT_WARN_RATIO),
+    checks = (("tracking", error[:, None], TRACKING_FAIL_MM, TRACKING_WARN_MM),
+              ("joint speed", speed, LIMIT_FAIL_RATIO, LIMIT_WARN_RATIO),
               ("joint acceleration", accel, math.inf, LIMIT_WARN_RATIO),
               ("sustained joint acceleration", sustained, LIMIT_FAIL_RATIO, math.inf))
-    fail = [Finding(name, float(values[i]), limit, int(i)) for name, values, limit, _ in checks
-            for i in np.flatnonzero(values > limit)[:1]]
+
+    def finding(name: str, values: np.ndarray, limit: float, row: int) -> Finding:
+        joint = int(np.argmax(values[row])) if values.shape[1] > 1 else -1
+        return Finding(name, float(values[row].max()), limit, row, joint)
+
+    fail = [finding(name, values, limit, int(rows[0])) for name, values, limit, _ in checks
+            for rows in [np.flatnonzero(values.max(axis=1) > limit)] if len(rows)]
     if fail:
         raise ExecutionError(_failure(cell, min(fail, key=lambda f: f.row), t, q_sim, tcp_sim_mm, label))
     warnings = []
     for name, values, _, limit in checks:
-        if np.any(values > limit):
-            i = int(np.argmax(values))
-            warnings.append(f"{label(i)}: {_measure(Finding(name, float(values[i]), limit, i))} at t = {t[i]:.3f} s")
+        worst = values.max(axis=1)
+        if np.any(worst > limit):
+            f = finding(name, values, limit, int(np.argmax(worst)))
+            warnings.append(f"{label(f.row)}: {_measure(f)} at t = {t[f.row]:.3f} s")
     return warnings
 
 
@@ -126,7 +134,8 @@ def _measure(f: Finding) -> str:
     if f.what == "tracking":
         return f"the simulated tool is {f.value:.3f} mm off the commanded path (more than {f.limit:g} mm)"
     mean = f" (mean over {1000 * SUSTAINED_S:g} ms)" if f.what.startswith("sustained") else ""
-    return f"{f.what.removeprefix('sustained ')}{mean} at {100 * f.value:.1f} % of the joint's limit (more than {100 * f.limit:.0f} %)"
+    return (f"JT{f.joint + 1} {f.what.removeprefix('sustained ')}{mean} at {100 * f.value:.1f} % of its limit "
+            f"(more than {100 * f.limit:.0f} %)")
 
 
 def _failure(cell: Cell, f: Finding, t: np.ndarray, q: np.ndarray, tcp_mm: np.ndarray, label: Callable[[int], str]) -> str:
