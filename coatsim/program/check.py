@@ -2,7 +2,8 @@
 
 A program that does not parse, or moves to a pose it never defines, raises InputError
 (exit 2); one the twin cannot run raises ExecutionError (exit 3). Anything legal but suspicious
-is listed in ``problems``; what the interpreter does not simulate in ``warnings``. Every
+is listed in ``problems`` (the ones that make the program useless for coating, the gun never
+opening, also in ``errors``); what the interpreter does not simulate in ``warnings``. Every
 statement that switches outputs is listed with its line, and every stretch the gun sprays with
 its lines and length.
 """
@@ -20,6 +21,7 @@ from coatsim.program.arcs import circle_through, move_length
 from coatsim.program.as_lang import ast, interpret_run
 from coatsim.program.as_lang.names import MAX_NAME_LENGTH
 from coatsim.program.as_lang.printer import expr_text
+from coatsim.program.tool_frames import tool_mismatches
 from coatsim.program.toolpath import CircularMove, JointMove, Kinematics, LinearMove, ToolPath
 
 _LISTED = 5  # unused poses named before "and N more"
@@ -54,6 +56,7 @@ class ProgramCheck:
     spray_runs: tuple[SprayRun, ...]
     warnings: tuple[str, ...]
     toolpath: ToolPath
+    errors: tuple[str, ...] = ()
 
 
 def walk(body: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
@@ -129,8 +132,11 @@ def spray_runs(toolpath: ToolPath) -> tuple[SprayRun, ...]:
 
 
 def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,
-                  inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None) -> ProgramCheck:
-    """Parse, interpret and inspect the main program of AS files loaded together."""
+                  inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
+                  gun_tcp: tuple[np.ndarray, np.ndarray] | None = None) -> ProgramCheck:
+    """Parse, interpret and inspect the main program of AS files loaded together; ``gun_tcp``
+    (rotation, offset mm of the physical gun's TCP in the flange frame) makes every TOOL that
+    differs from it a problem."""
     files = parse_files(paths)
     run = interpret_run(files, gun_signal, program, inputs=inputs, kinematics=kinematics)
     toolpath = run.toolpath
@@ -170,8 +176,12 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
             if sweep >= math.pi:
                 problems.append(f"line {move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
                                 "pair below 180 deg")
+    if gun_tcp is not None:
+        problems += [f"{main.source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]
+    errors: list[str] = []
     if not toolpath.spray_moves:
-        problems.append(f"the gun (output {gun_signal}) is never on during a motion")
+        errors.append(f"{files[0].source}: the gun (output {gun_signal}) is never on during a motion")
+        problems.append(errors[-1])
     elif toolpath.moves[-1].spray:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
     cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
@@ -191,4 +201,5 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         spray_runs=spray_runs(toolpath),
         warnings=toolpath.warnings,
         toolpath=toolpath,
+        errors=tuple(errors),
     )

@@ -9,7 +9,8 @@ from typing import Optional
 import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
-from coatsim.program.toolpath import Pose
+from coatsim.program.tool_frames import gun_in_tcp
+from coatsim.program.toolpath import Pose, ToolFrame
 
 
 class CellKinematics:
@@ -21,7 +22,9 @@ class CellKinematics:
         self.cell = cell
         self._data = mujoco.MjData(cell.model)
 
-    def forward(self, joints_rad: np.ndarray) -> Pose:
+    def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
+        """The controller's TCP for ``joints_rad``: the gun's pose, or with a TOOL the flange
+        times that TOOL (the gun's pose times M^-1, M = TOOL^-1 GUN)."""
         q = np.asarray(joints_rad, dtype=float)
         cell = self.cell
         outside = np.flatnonzero((q < cell.q_min - 1e-9) | (q > cell.q_max + 1e-9))
@@ -30,7 +33,11 @@ class CellKinematics:
             raise ExecutionError(f"joint {j + 1} at {np.degrees(q[j]):.3f} deg is outside the cell's range "
                                  f"{np.degrees(cell.q_min[j]):.1f}..{np.degrees(cell.q_max[j]):.1f} deg")
         position, rotation = cell.forward(self._data, q)
-        return Pose(position, rotation)
+        if tool is None:
+            return Pose(position, rotation)
+        m_rotation, m_offset = gun_in_tcp(tool, cell.gun_rotation, cell.gun_offset_mm)
+        tcp_rotation = rotation @ m_rotation.T
+        return Pose(position - tcp_rotation @ m_offset, tcp_rotation)
 
     def home(self, number: int) -> np.ndarray:
         import mujoco
@@ -58,8 +65,8 @@ class LazyKinematics:
             self._loaded = CellKinematics(load_cell(self.model))
         return self._loaded
 
-    def forward(self, joints_rad: np.ndarray) -> Pose:
-        return self._get().forward(joints_rad)
+    def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
+        return self._get().forward(joints_rad, tool)
 
     def home(self, number: int) -> np.ndarray:
         return self._get().home(number)

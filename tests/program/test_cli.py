@@ -120,7 +120,7 @@ def test_nearly_collinear_arcs_check_and_execute_agree(tmp_path, run_cli, offset
     from coatsim.robot.sampling import plan_pieces
 
     prog = tmp_path / "arc.as"
-    prog.write_text(".PROGRAM arc()\n  JMOVE a\n  C1MOVE v\n  C2MOVE b\n.END\n.TRANS\na 600 0 300 0 180 0\n"
+    prog.write_text(".PROGRAM arc()\n  JMOVE a\n  SIGNAL 1\n  C1MOVE v\n  C2MOVE b\n.END\n.TRANS\na 600 0 300 0 180 0\n"
                     f"v 650 {offset!r} 300 0 180 0\nb 700 0 300 0 180 0\n.END\n")
     code, _, err = run_cli(["check-program", str(prog)])
     try:

@@ -180,7 +180,7 @@ class Interpreter:
         """Forward kinematics of ``q`` (rad): the TCP pose in the robot base frame."""
         kin = self.need_kinematics(what)
         try:
-            return kin.forward(q)
+            return kin.forward(q, self.controller.tool)
         except CoatsimError as exc:
             raise type(exc)(f"{self.where()}: {exc}") from None
 

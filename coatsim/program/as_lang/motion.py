@@ -19,8 +19,11 @@ reference; the parts marked there as unconfirmed are modelled as stated here):
   motion in progress: the robot rests t minus the motion's nominal time (length / speed) at its
   end if that is positive (after a BREAK the full t), and a gun switch after it happens when
   the rest is over.
-- ``TOOL`` is reported as metadata ``tool`` = "x,y,z,o,a,t"; it may not change once the robot
-  has moved.
+- ``TOOL`` (at any point) sets the controller's TCP in the flange frame for the motions after
+  it (``MotionSettings.tool``; the robot stage puts the flange where that TCP reaches the
+  programmed poses). A TOOL after motion ends that motion at rest (like BREAK) and re-expresses
+  the current pose with the new TCP, the flange staying put (when the previous TOOL is known).
+  The last TOOL is also metadata ``tool`` = "x,y,z,o,a,t".
 """
 
 from __future__ import annotations
@@ -32,7 +35,10 @@ import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
 from coatsim.program.arcs import DegenerateArc, circle_through
-from coatsim.program.toolpath import CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, Pose, ToolPath
+from coatsim.program.as_lang.values import Frame
+from coatsim.program.oat import matrix_to_oat
+from coatsim.program.toolpath import (CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, Pose, ToolFrame,
+                                      ToolPath)
 
 # What SPEED 100 (percent) means in mm/s; the controller's true maximum is robot-specific.
 FULL_SPEED_MM_S = 1000.0
@@ -58,6 +64,7 @@ class _Pending:
     line: int
     joints: Optional[np.ndarray]
     first_line: int  # the C1MOVE's line for an arc, else ``line``
+    tool: Optional[ToolFrame]
 
 
 @dataclass
@@ -77,7 +84,7 @@ class Controller:
     def __init__(self, full_speed_mm_s: float, where: Callable[[int], str],
                  start: Optional[Callable[[], tuple[Pose, np.ndarray]]] = None) -> None:
         self.full_speed, self.where, self.start = full_speed_mm_s, where, start
-        self.tool: Optional[str] = None
+        self.tool: Optional[ToolFrame] = None
         self.speed_always: tuple[float, str] = DEFAULT_SPEED
         self.speed_once: Optional[tuple[float, str]] = None
         self.acc_always, self.acc_once = DEFAULT_ACCURACY_MM, None
@@ -121,7 +128,8 @@ class Controller:
         fine = self.fine_once or self.fine_always
         move = _Pending(kind, self.current, end, via, self.speed_once or self.speed_always,
                         self.acc_always if self.acc_once is None else self.acc_once,
-                        self.cp, (not self.cp) or fine, self.gun_on, line, joints, line if first_line is None else first_line)
+                        self.cp, (not self.cp) or fine, self.gun_on, line, joints,
+                        line if first_line is None else first_line, self.tool)
         self.moves.append(move)
         self.speed_once, self.acc_once, self.fine_once = None, None, False
         self.current = end
@@ -205,11 +213,15 @@ class Controller:
         else:
             self.acc_once, self.fine_once = value, fine
 
-    def set_tool(self, text: str, line: int) -> None:
+    def set_tool(self, frame: Frame, line: int) -> None:
+        self._check_no_arc(line)
         if self.moves:
-            raise self.error(line, "TOOL changes after the robot has moved are not supported; set TOOL before the "
-                             "first motion")
-        self.tool = text
+            self.stop_previous()
+        if self.current is not None and self.tool is not None:
+            # the flange stays where it is; the pose now names the new TCP
+            flange = Frame.from_pose(self.current) * Frame(self.tool.rotation, self.tool.offset_mm).inverse()
+            self.current = (flange * frame).pose()
+        self.tool = ToolFrame(frame.r.copy(), frame.p.copy(), line)
 
     def switch_gun(self, on: bool) -> None:
         """The gun output changes as the program pointer reaches the switch (forward processing)."""
@@ -244,7 +256,7 @@ class Controller:
             self.moves[-1].stop = True
         moves: list[Move] = []
         for m in self.moves:
-            settings = MotionSettings(self.speed_mm_s(m), m.accuracy, m.cp, m.stop)
+            settings = MotionSettings(self.speed_mm_s(m), m.accuracy, m.cp, m.stop, m.tool)
             if m.kind == "joint":
                 moves.append(JointMove(m.start, m.end, settings, m.spray, m.line, joints_rad=m.joints))
             elif m.kind == "line":
@@ -252,6 +264,7 @@ class Controller:
             else:
                 moves.append(CircularMove(m.start, m.via, m.end, settings, m.spray, m.line))
         if self.tool is not None:
-            metadata = {**metadata, "tool": self.tool}
+            values = (*self.tool.offset_mm, *matrix_to_oat(self.tool.rotation))
+            metadata = {**metadata, "tool": ",".join(f"{v:.6g}" for v in values)}
         dwells = tuple(Dwell(d.after, d.seconds, d.spray, d.line) for d in self.dwells)
         return ToolPath(name, tuple(moves), metadata, dwells, warnings)

@@ -254,8 +254,7 @@ def _command(run: Interpreter, st: ast.Command) -> None:
 
 
 def _tool(run: Interpreter, st: ast.Tool) -> None:
-    f = run.eval.pose(st.pose)
-    run.controller.set_tool(",".join(f"{v:.6g}" for v in f.xyzoat()), st.line)
+    run.controller.set_tool(run.eval.pose(st.pose), st.line)
 
 
 def _base(run: Interpreter, st: ast.Base) -> None:
