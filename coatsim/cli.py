@@ -222,7 +222,7 @@ def convert(
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
-    name: Optional[str] = typer.Option(None, "--name", help="Program name of a --standalone program [default: the original's]."),
+    name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
 ) -> None:
     """Rewrite the process path of an existing AS program with arcs within a tolerance."""
     from coatsim.fileio import write_text

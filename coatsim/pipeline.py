@@ -215,7 +215,7 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
     """The ToolPath of a program variant and its text (the files one after the other)."""
     files = [loaded.resolve(f) for f in entry.files]
     try:
-        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.inputs,
+        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
                                  kinematics=CellKinematics(cell))
     except CoatsimError as exc:
         raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None

@@ -173,12 +173,13 @@ class FastSpec(_Strict):
 class ProgramVariantSpec(_Strict):
     """A program of the user's own run as a variant beside coatsim's: its AS file(s) relative
     to the scenario (data files such as poses after the program), the main program (default:
-    the first), and the input signals the cell sets (e.g. ``{1001: true}``)."""
+    the first), and the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off)."""
 
     name: VariantLabel
     program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
     main: Optional[str] = None
-    inputs: dict[int, bool] = Field(default_factory=dict)
+    inputs: list[Annotated[int, Field(ge=-9999, le=9999)]] = Field(
+        default_factory=list, description="input signals the cell sets: n on, -n off")
 
     @field_validator("program", mode="before")
     @classmethod
@@ -192,9 +193,20 @@ class ProgramVariantSpec(_Strict):
             raise ValueError(f"{name!r} is the name of a built-in variant; give the program another name")
         return name
 
+    @field_validator("inputs")
+    @classmethod
+    def _signals(cls, inputs: list[int]) -> list[int]:
+        if 0 in inputs:
+            raise ValueError("signal 0 does not exist; give n (on) or -n (off)")
+        return inputs
+
     @property
     def files(self) -> list[str]:
         return list(self.program)
+
+    @property
+    def input_states(self) -> dict[int, bool]:
+        return {abs(n): n > 0 for n in self.inputs}
 
 
 def _variant_kind(value: Any) -> str:

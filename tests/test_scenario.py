@@ -206,7 +206,7 @@ PROGRAM_VARIANT = """\
 name: mine
 workpiece: {kind: plate, size_mm: [300, 200]}
 variants:
-  - {name: mine, program: cell.as, main: trace, inputs: {1001: true}}
+  - {name: mine, program: cell.as, main: trace, inputs: [1001, -1002]}
   - polysegment
   - name: split
     program: [prog.as, poses.as]
@@ -219,17 +219,18 @@ def test_program_variants(tmp_path: Path) -> None:
     spec = load_scenario(write(tmp_path, PROGRAM_VARIANT)).spec
     assert spec.curve is None and spec.variant_names == ["mine", "polysegment", "split"]
     mine, split = spec.programs
-    assert mine.files == ["cell.as"] and mine.main == "trace" and mine.inputs == {1001: True}
+    assert mine.files == ["cell.as"] and mine.main == "trace" and mine.input_states == {1001: True, 1002: False}
     assert split.files == ["prog.as", "poses.as"] and spec.gates[0].variant == "mine"
 
 
 @pytest.mark.parametrize("change,words", [
-    (("{name: mine, program: cell.as, main: trace, inputs: {1001: true}}", "{name: polysegment, program: cell.as}"),
+    (("{name: mine, program: cell.as, main: trace, inputs: [1001, -1002]}", "{name: polysegment, program: cell.as}"),
      "name of a built-in variant"),
     (("name: split", "name: mine"), "listed twice"),
     (("name: split", "name: 9lives"), "variants[2]"),
     (("program: [prog.as, poses.as]", "program: []"), "at least 1 item"),
     (("variant: mine", "variant: yours"), "variant 'yours' is not run"),
+    (("inputs: [1001, -1002]", "inputs: [0]"), "signal 0 does not exist"),
 ])
 def test_program_variant_errors(tmp_path: Path, change, words) -> None:
     assert words in load_error(tmp_path, PROGRAM_VARIANT.replace(*change))

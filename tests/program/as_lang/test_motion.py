@@ -297,3 +297,14 @@ def test_speed_units_and_xmove():
 def test_draw_with_empty_components_and_tdraw_in_tool_axes():
     tp = run("  JMOVE a\n  DRAW , 10\n  TDRAW ,,5\n")
     assert np.allclose(tp.moves[1].end.position, [0, 10, 0]) and np.allclose(tp.moves[2].end.position, [0, 10, -5])
+
+
+def test_joint_poses_are_read_with_the_tool_in_force(kin):
+    """The controller's TCP for a joint value is the flange times the TOOL: a TOOL 50 mm longer
+    than the gun puts it 50 mm further along the tool axis."""
+    trans = TRANS + ".JOINTS\n#j 10 0 35 0 55 0\n.END\n"
+    gun = run("  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
+    same = run("  TOOL TRANS(0, 0, 250)\n  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
+    longer = run("  TOOL TRANS(0, 0, 300)\n  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
+    assert np.allclose(same.position, gun.position) and np.allclose(same.rotation, gun.rotation)
+    assert np.allclose(longer.position, gun.position + 50.0 * gun.rotation[:, 2])
