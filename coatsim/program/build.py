@@ -5,6 +5,11 @@ Variants:
 - ``polyline-stop``: the curve simplified to a polyline within the same tolerance (RDP on
   positions), one LMOVE per vertex, exact stop at every vertex (CP OFF).
 - ``polyline-blend``: the same polyline, blended (CP ON, ACCURACY d).
+
+Every variant switches the gun the same way: on a closed contour the lead-in runs with the gun
+closed, the gun opens on the fly at the seam and closes on the fly as the lead-out starts,
+after exactly one lap; on an open contour it is open from the start of the lead-in (at rest)
+to the end of the lead-out (at rest). See :mod:`coatsim.program.as_writer` for the timing.
 """
 
 from __future__ import annotations
@@ -23,8 +28,10 @@ from coatsim.program.as_dialect import KAWASAKI_AS
 from coatsim.program.as_writer import fmt_short, program_name
 from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
+from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS
 
 VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
+
 # Densest sampling of a polysegment when no input points are given for the polyline variant.
 _MAX_SAMPLES = 200_000
 
@@ -113,6 +120,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         ("gun_signal", str(options.gun_signal)),
         ("frame", str(placement.frame)),
         ("closed", "yes" if curve.closed else "no"),
+        ("sprayed", SPRAYED_CURVE if curve.closed else SPRAYED_WITH_LEADS),
         ("n_segments", str(curve.n_segments)),
         ("n_lines", str(curve.n_lines)),
         ("n_arcs", str(curve.n_arcs)),
@@ -126,6 +134,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         approach_mm=options.approach_mm,
         gun_signal=options.gun_signal,
         tool=options.tool,
+        spray_leads=not curve.closed,
         metadata=metadata,
         comments=(f"coatsim {options.variant} program: {summary}, tolerance {fmt_short(tolerance_mm)} mm",),
     )

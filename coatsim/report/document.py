@@ -76,16 +76,20 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     return rows
 
 
-def _speed_profiles(runs: Sequence, lead_in_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
-    """Speed against path length while the gun is on, from where it opens (the run-in start);
-    the curve proper follows the run-in."""
+def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
+    """Speed against path length from the start of the run-in to the end of the run-out (the
+    curve proper in between), whether or not the gun is open on the run-in and run-out."""
     profiles, span = {}, (0.0, 0.0)
     for r in runs:
-        log = r.execution.log
-        on = log.spray
-        origin = float(log.progress[np.argmax(on)])
-        profiles[r.name] = SpeedProfile(log.progress[on] - origin, log.speed[on])
-        span = (lead_in_mm, lead_in_mm + r.program.path.curve_length_mm)
+        log, (a, b) = r.execution.log, r.execution.curve
+        # the log's progress is monotonic up to servo jitter: take the rows between the first
+        # one at the run-in start and the first one past the run-out end
+        reach = np.maximum.accumulate(log.progress)
+        i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
+        i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
+        rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
+        profiles[r.name] = SpeedProfile(log.progress[rows] - (a - lead_in_mm), log.speed[rows])
+        span = (lead_in_mm, lead_in_mm + (b - a))
     return profiles, span
 
 
@@ -94,7 +98,7 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     spec = loaded.spec
     polyline = next((r.program.curve for r in runs if r.name != "polysegment"), None)
     polyline_xy = None if polyline is None else np.array([s.start for s in polyline.segments] + [polyline.end])
-    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm)
+    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
     surface = runs[0].coating.surface
     top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
     line = default_section(surface)
@@ -116,8 +120,9 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
             "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
         Section("speed", SECTION_TITLES["speed"], figures=(Figure(
             "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
-            "Simulated tool-centre-point speed while the gun is on, from the trajectory logs; the shaded ends are "
-            "the run-in and run-out, outside the curve proper."),)),
+            "Simulated tool-centre-point speed along the run-in, the curve proper and the run-out, from the "
+            "trajectory logs; the shaded ends are the run-in and run-out (on a closed contour the gun is closed "
+            "there: it sprays exactly one lap, from the seam to the seam)."),)),
         Section("thickness", SECTION_TITLES["thickness"], figures=(Figure(
             "Thickness maps on one colour scale", heat,
             f"Per-vertex coating thickness of each variant, same scale 0 to {top:.3g} µm (the largest 99.5th "

@@ -13,7 +13,7 @@ import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
-from coatsim.program.toolpath import ToolPath
+from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
 from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
@@ -64,14 +64,25 @@ def _metadata_mm(toolpath: ToolPath, key: str) -> float:
     return value
 
 
+def _leads_sprayed(toolpath: ToolPath) -> bool:
+    """Whether the gun covers the lead-in and lead-out (header ``sprayed``, default yes)."""
+    raw = toolpath.metadata.get("sprayed", SPRAYED_WITH_LEADS)
+    if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
+        raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
+    return raw == SPRAYED_WITH_LEADS
+
+
 def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float, float]:
-    """Progress interval of the curve proper and its programmed speed."""
+    """Progress interval of the curve proper and its programmed speed: the sprayed moves
+    (every Cartesian move if none sprays), without the lead-in and lead-out when the gun
+    covers them."""
     cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
     chosen = [i for i in cartesian if toolpath.moves[i].spray] or cartesian
     if not chosen:
         raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
-    a = ref.move_span(chosen[0])[0] + _metadata_mm(toolpath, "lead_in_mm")
-    b = ref.move_span(chosen[-1])[1] - _metadata_mm(toolpath, "lead_out_mm")
+    leads = _leads_sprayed(toolpath)
+    a = ref.move_span(chosen[0])[0] + (_metadata_mm(toolpath, "lead_in_mm") if leads else 0.0)
+    b = ref.move_span(chosen[-1])[1] - (_metadata_mm(toolpath, "lead_out_mm") if leads else 0.0)
     if b <= a:
         raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
     inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]

@@ -1,7 +1,8 @@
 """Motion metrics of one executed program, from the logged trajectory over the curve proper.
 
 The curve proper is the progress interval of the spray-on moves (all Cartesian moves when none
-sprays) without the lead-in and lead-out lengths named in the program header. Its window in
+sprays) without the lead-in and lead-out lengths named in the program header when the gun
+covers them (header ``sprayed``; a closed contour is sprayed only along the curve). Its window in
 time runs from the last log row not yet past its start to the first row at or past its end;
 rest at either end of the window is not counted as a stop.
 """

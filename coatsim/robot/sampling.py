@@ -8,7 +8,9 @@ Controller semantics modelled here (see the README's robot section):
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
-  cubic blend tangent to both moves (for two lines: the classic parabolic blend).
+  cubic blend tangent to both moves (for two lines: the classic parabolic blend). The blend
+  belongs to the outgoing move as far as the gun is concerned: a signal that switches as a
+  move starts switches where the tool enters the accuracy zone of the corner before it.
 Samples are at most ``step`` mm apart and include every primitive's (trimmed) end points exactly.
 """
 
@@ -199,7 +201,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
             first = frac <= 0.5
             add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
-                np.where(first, sp.index, nxt.index), np.where(first, sp.spray, nxt.spray),
+                np.where(first, sp.index, nxt.index), np.full(len(pts), nxt.spray),
                 ref_offset + hi + frac * (sp.prim.length - hi + d))
         ref_offset += sp.prim.length
     p = np.vstack(cols["p"])
