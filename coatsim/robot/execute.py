@@ -13,10 +13,11 @@ import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
 from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
-from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
+from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reference import ReferencePath, build_reference
@@ -88,6 +89,16 @@ def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float,
     inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
     speed = max(toolpath.moves[i].settings.speed_mm_s for i in inside)
     return a, b, float(speed)
+
+
+def _allowance(toolpath: ToolPath) -> CurveAllowance:
+    """Where the program header says the curve allows the programmed speed (no header: everywhere
+    but near the rest points at the ends)."""
+    raw = toolpath.metadata.get(SPEED_LIMITS_KEY)
+    limits = () if raw is None else parse_limits(raw, toolpath.name)
+    return CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits),
+                          toolpath.metadata.get("closed") == "yes", _metadata_mm(toolpath, "lead_in_mm"),
+                          _metadata_mm(toolpath, "lead_out_mm"))
 
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
@@ -162,7 +173,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
                         progress=progress, path_error=dist, q=run.q)
     a, b, speed = _curve_proper(toolpath, ref)
     metrics = motion_metrics(log, (a, b), speed, curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max,
-                             (worst[0], worst[1]))
+                             (worst[0], worst[1]), _allowance(toolpath))
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,

@@ -16,6 +16,7 @@
   ; coatsim: n_segments=8
   ; coatsim: n_lines=4
   ; coatsim: n_arcs=4
+  ; coatsim: speed_limits=none
   BASE NULL                    ; poses are in the robot base frame
   TOOL TRANS(0.00000000,0.00000000,250.00000000,0.000000,0.000000,0.000000) ; spray gun TCP
   SPEED 500 MM/S ALWAYS
