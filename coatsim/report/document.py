@@ -1,6 +1,7 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
-Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
+Sections: scenario summary with the verdict (what the polysegment wins and loses against each
+polyline, :mod:`coatsim.report.verdict`) and the headline metrics, curve and polysegment, θ, speed
 profiles, thickness maps, cross-section, all metrics with ratios, gates.
 """
 
@@ -17,6 +18,7 @@ from coatsim.fileio import write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
 from coatsim.report.summary import headline_rows
+from coatsim.report.verdict import Verdict, change_text, verdict
 from coatsim.geometry.plots import segmentation_figure_png
 from coatsim.report.plots import SpeedProfile, polyline_figure, speed_figure
 from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
@@ -42,6 +44,30 @@ def headline_table(document: Mapping[str, Any]) -> str:
         for key, values in headline_rows(document)
     )
     return f"<table>{head}{body}</table>"
+
+
+def verdict_html(result: Verdict) -> str:
+    """Per polyline variant: the headline sentence, then the five metrics with both values, the
+    change and the outcome."""
+    if not result.comparisons:
+        return '<p class="muted">No polysegment and polyline variants to compare in this run.</p>'
+    out = []
+    for c in result.comparisons:
+        head = (f'<tr><th class="l">metric</th><th>{esc(c.against)}</th><th>polysegment</th>'
+                f'<th>change</th><th class="l">polysegment</th></tr>')
+        rows = "".join(
+            f'<tr><td class="l" title="{esc(METRICS[o.criterion.key].meaning)}">{esc(o.criterion.label)}</td>'
+            f"<td>{fmt(o.polyline)}</td><td>{fmt(o.polysegment)}</td>"
+            f"<td>{esc(change_text(o))}</td>"
+            f'<td class="l">{_OUTCOME_HTML[o.outcome]}</td></tr>'
+            for o in c.outcomes
+        )
+        out.append(f"<h3>Polysegment against {esc(c.against)}</h3><p>{esc(c.headline)}</p><table>{head}{rows}</table>")
+    return "".join(out)
+
+
+_OUTCOME_HTML = {"win": '<span class="pass">wins</span>', "loss": '<span class="fail">loses</span>',
+                 "tie": "ties", "undefined": '<span class="muted">undefined</span>'}
 
 
 def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
@@ -108,7 +134,8 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     baseline = "polysegment" if "polysegment" in document["variants"] else None
     return [
         Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, runs, document))
-                + "<h3>What arcs buy</h3>" + headline_table(document)),
+                + verdict_html(verdict(document))
+                + "<h3>Every variant, headline metrics</h3>" + headline_table(document)),
         Section("curve", SECTION_TITLES["curve"], figures=(Figure(
             "Input curve, polysegment and θ", segmentation_figure_png(segmentation),
             "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
