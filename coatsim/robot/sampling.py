@@ -28,6 +28,7 @@ from coatsim.robot.primitives3d import Primitive, arc_through, line
 
 TANGENT_TOL_RAD = math.radians(0.5)
 MIN_MOVE_MM = 1e-6
+MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 
 
 @dataclass(frozen=True, eq=False)
@@ -182,9 +183,15 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
     for k, sp in enumerate(spans):
         lo, hi = trims[k], sp.prim.length - trims[k + 1]
-        s = lo + _uniform(max(hi - lo, 0.0), step)
-        if k > 0:
-            s = s[1:]  # the first point is the previous blend's (or span's) last sample
+        if k == 0:
+            s = lo + _uniform(max(hi - lo, 0.0), step)
+        elif hi - lo > MERGE_MM or k == n - 1:
+            # the first point is the previous blend's (or span's) last sample
+            s = lo + np.linspace(0.0, hi - lo, max(1, int(math.ceil((hi - lo) / step - 1e-9))) + 1)[1:]
+        else:
+            # blends that meet mid-move leave (almost) nothing of it: samples a fraction of a
+            # micrometre apart would make the joint spline through them swing
+            s = np.zeros(0)
         if len(s):
             m = len(s)
             frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
