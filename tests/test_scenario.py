@@ -166,3 +166,19 @@ def test_shipped_scenarios_load() -> None:
     assert files, "no shipped scenarios"
     for path in files:
         assert load_scenario(path).spec.name == path.stem
+
+
+def test_every_shipped_scenario_gates_the_polysegment_against_both_polylines() -> None:
+    """Thickness CV and lowest speed, each against the best of the two polylines, within a small
+    margin (at most 5 %); a shipped scenario at process speed closes on itself."""
+    folder = Path(__file__).resolve().parents[1] / "scenarios"
+    fast = []
+    for path in sorted(folder.glob("*.yaml")):
+        spec = load_scenario(path).spec
+        against = {(g.metric, g.op): g for g in spec.gates if set(g.compared) == {"polyline-stop", "polyline-blend"}}
+        cv, speed = against[("coating.thickness_cv", "<=")], against[("motion.min_speed_ratio", ">=")]
+        assert cv.variant == speed.variant == "polysegment", path.name
+        assert 1.0 <= cv.factor <= 1.05 and 0.95 <= speed.factor <= 1.0, path.name
+        if spec.motion.speed_mm_s >= 300.0:
+            fast.append(spec)
+    assert any(s.curve.builtin not in ("raster", "paper-spiral", "sine", "clothoid") for s in fast)
