@@ -18,16 +18,18 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
+from coatsim.geometry.fillet import fillet_chain
 from coatsim.geometry.limits import FitLimits, arc_excess
 from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.geometry.recover import recover_exact
-from coatsim.geometry.fillet import fillet_chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
+from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 20
+SLACK = 0.02  # caps and minimum length hold to this share (the stretch a segment covers is mapped by length)
 RELAX = (1.0, 1.5, 3.0)  # caps loosened by these factors, in turn, where the fit fails under them
 RELAXED_ATTEMPTS = 8  # attempts granted to each loosened try
+QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its first point)
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
@@ -70,9 +72,9 @@ def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
 def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:
     """Whether every curvature is under its stretch's cap and every length at least the
     minimum (a run of one segment may be shorter)."""
-    if len(params.length) > 1 and params.length.min() < (1 - 1e-9) * limits.min_length_mm:
+    if len(params.length) > 1 and params.length.min() < (1 - SLACK) * limits.min_length_mm:
         return False
-    return arc_excess(params.kappa, params.length, limits, total) <= 1 + 1e-6
+    return arc_excess(params.kappa, params.length, limits, total) <= 1 + SLACK
 
 
 def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
@@ -124,16 +126,9 @@ def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool
     return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
 
 
-def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
-            limits: FitLimits) -> tuple[tuple[Segment, ...], float]:
-    """G1 chain within ``tolerance`` of a run (start and end points kept exactly), and its
-    verified deviation (mm).
-
-    Exact chains of lines and arcs are recovered as they are; otherwise the fit keeps the
-    curvature caps and minimum length of ``limits``. Where no chain within the tolerance
-    keeps them, they are loosened step by step, and as the last resort every vertex of the
-    input is rounded (fillet_chain).
-    """
+def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tuple[Segment, ...], float] | None:
+    """A run that is one line within ``tolerance`` (open runs), or exactly a chain of lines
+    and arcs, as that chain with its verified deviation; else None."""
     pts = np.asarray(points, dtype=float)
     end = pts[-1]
     if not closed_loop and _near_chord(pts, tolerance):
@@ -144,6 +139,21 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
     exact = recover_exact(pts, closed_loop, tolerance)
     if exact is not None:
         return exact, hausdorff(pts, Polysegment(exact)).hausdorff
+    return None
+
+
+def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+             quick: bool = False) -> tuple[tuple[Segment, ...], float] | None:
+    """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
+    under the curvature caps and minimum length of ``limits``, and its verified deviation.
+
+    Where no such chain is found, the caps are loosened step by step, and as the last resort
+    every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
+    caps as they are, None if those fail.
+    """
+    pts = np.asarray(points, dtype=float)
+    if quick:
+        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS])
     budget = [MAX_ATTEMPTS]
     for factor in RELAX:
         found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), budget)
@@ -156,3 +166,10 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
     if dev > tolerance:
         raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
     return segs, dev
+
+
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
+            limits: FitLimits) -> tuple[tuple[Segment, ...], float]:
+    """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
+    else fit_free."""
+    return fit_simple(points, tolerance, closed_loop) or fit_free(points, tolerance, closed_loop, limits)
