@@ -162,8 +162,8 @@ def program(
     frame: str = typer.Option("700,0,200,0,0,0", "--frame", help="Workpiece frame x,y,z,o,a,t in the robot base frame (mm, deg O-A-T)."),
     variant: str = typer.Option("polysegment", "--variant", help="polysegment | polyline-stop | polyline-blend."),
     accuracy: float = typer.Option(1.0, "--accuracy", help="ACCURACY (blend zone radius), mm."),
-    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed)."),
-    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed)."),
+    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed on an open curve; a closed one is sprayed exactly once around)."),
+    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed on an open curve)."),
     approach: float = typer.Option(50.0, "--approach", help="Approach and depart distance along the tool axis, mm."),
     roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
     follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it)."),
@@ -171,16 +171,27 @@ def program(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit the curve is segmented for at --speed, m/s² [default: the cell model's]."),
 ) -> None:
     """Write the Kawasaki AS program (polysegment or polyline variant) of a curve."""
+    import math
+
     from coatsim.program.build import ProgramOptions
     from coatsim.program.run import program_summary, run_program
 
     options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
                              gun_signal=gun, name=name)
+    if tool_accel is None:
+        from coatsim.robot.cell import load_cell
+
+        accel_mm_s2 = load_cell().tool_accel_mm_s2
+    elif math.isfinite(tool_accel) and tool_accel > 0:
+        accel_mm_s2 = tool_accel * 1000.0
+    else:
+        fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
     built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                         lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                        output=output)
+                        output=output, tool_accel_mm_s2=accel_mm_s2)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)

@@ -244,9 +244,13 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants), show) as step:
         step("segmenting the curve")
+        cell = load_arm(loaded)
         curve = load_input_curve(loaded)
+        # the fitter knows the programmed speed and the arm's tool acceleration limit: no arc
+        # tighter than v² / a where the curve allows the speed, the rest listed as speed-limited
         segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
-                                     corner_deg=spec.segmentation.corner_deg)
+                                     corner_deg=spec.segmentation.corner_deg, speed_mm_s=spec.motion.speed_mm_s,
+                                     tool_accel_mm_s2=cell.tool_accel_mm_s2)
         poly = segmentation.polysegment
         write_polysegment_json(out / "polysegment.json", segmentation)
         offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
@@ -254,7 +258,6 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
-        cell = load_arm(loaded)
         job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
         runs = []

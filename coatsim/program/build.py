@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional, Sequence
+from typing import Optional
 
 import numpy as np
 
@@ -89,16 +89,14 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS,
-                  speed_limited: Sequence[Sequence[float]] = ()) -> BuiltProgram:
+                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS) -> BuiltProgram:
     """Write the ``options.variant`` program of a curve in ``dialect``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
-    curve, (n, 2)) or, without them, dense samples of ``poly``. ``speed_limited`` lists the
-    fitter's stretches [s0_mm, s1_mm, v_max_mm_s] along ``poly`` where the input curve does not
-    allow the programmed speed; with the true corners of ``poly`` they go into the header
-    (``speed_limits``), scaled to the variant's own curve length, so that every variant is
-    measured over the same stretches.
+    curve, (n, 2)) or, without them, dense samples of ``poly``. The stretches where the curve
+    does not allow the programmed speed (``poly.speed_limited`` from the fitter, and its true
+    corners) go into the header (``speed_limits``), scaled to the variant's own curve length,
+    so that every variant is measured over the same stretches.
     """
     if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
         raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
@@ -109,7 +107,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         raw = points if points is not None else dense_points(poly, tolerance_mm)
         curve = polyline_of(raw, poly.closed, tolerance_mm)
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
-    limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly, speed_limited))
+    limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly))
     path = place(curve, placement)
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
     if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_ABS_NUMBER):

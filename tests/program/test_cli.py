@@ -85,3 +85,27 @@ def test_program_rejects_bad_options(tmp_path, run_cli, args, words):
     src = polysegment_json(tmp_path / "rr.json")
     code, _, err = run_cli(["program", str(src), *args])
     assert code == 2 and words in err and err.count("\n") == 1
+
+
+def test_program_segments_a_curve_for_its_speed(tmp_path, run_cli):
+    """--speed and the tool acceleration (the cell's, or --tool-accel) reach the fitter: the NACA
+    leading edge (radius ~3 mm) is listed as speed-limited at 300 mm/s, and with a laxer tool
+    limit it is not; the trailing edge is a true corner either way."""
+    out_file = tmp_path / "naca.as"
+    code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--speed", "300", "-o", str(out_file)])
+    assert code == 0, err
+    limits = read_toolpath(out_file).metadata["speed_limits"].split()
+    assert len(limits) == 2 and limits[-1].endswith(":0.0000") and 0.0 < float(limits[0].split(":")[2]) < 300.0
+    code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--speed", "300", "--tool-accel", "50",
+                            "-o", str(out_file)])
+    assert code == 0, err
+    assert len(read_toolpath(out_file).metadata["speed_limits"].split()) == 1
+    code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--tool-accel", "0"])
+    assert code == 2 and "--tool-accel" in err
+    # a polysegment JSON gets its stretches listed again for the program's speed
+    src = polysegment_json(tmp_path / "rr.json")
+    code, _, err = run_cli(["program", str(src), "--speed", "300", "-o", str(out_file)])
+    assert code == 0, err
+    assert len(read_toolpath(out_file).metadata["speed_limits"].split()) == 4  # the 10 mm corner arcs
+    code, _, err = run_cli(["program", str(src), "--speed", "200", "-o", str(out_file)])
+    assert read_toolpath(out_file).metadata["speed_limits"] == "none"
