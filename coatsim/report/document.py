@@ -54,7 +54,7 @@ def verdict_html(result: Verdict) -> str:
     out = []
     for c in result.comparisons:
         head = (f'<tr><th class="l">metric</th><th>{esc(c.against)}</th><th>polysegment</th>'
-                f'<th>change</th><th class="l">polysegment</th></tr>')
+                f'<th>change</th><th class="l">result</th></tr>')
         rows = "".join(
             f'<tr><td class="l" title="{esc(METRICS[o.criterion.key].meaning)}">{esc(o.criterion.label)}</td>'
             f"<td>{fmt(o.polyline)}</td><td>{fmt(o.polysegment)}</td>"
