@@ -12,7 +12,7 @@ import difflib
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
@@ -22,18 +22,23 @@ from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
 from coatsim.geometry.segment import Segmentation
-from coatsim.program import read_toolpath
-from coatsim.program.as_writer import program_name
+from coatsim.program import read_program_bytes, read_toolpath
+from coatsim.program.as_lang.source import decode
+from coatsim.program.as_lang.names import program_name
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
+from coatsim.program.toolpath import ToolPath
+from coatsim.program.user import UserProgram, user_program
 from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
-from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
-from coatsim.spray.coat import CoatingResult, coat
+from coatsim.robot.kinematics import CellKinematics
+from coatsim.robot.tooling import gun_tool
+from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, load_scenario
+from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import write_thickness_ply
@@ -48,7 +53,7 @@ class VariantRun:
     """One program variant carried through every stage."""
 
     name: str
-    program: BuiltProgram
+    program: BuiltProgram | UserProgram
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
@@ -62,6 +67,7 @@ class RunResult:
     variants: tuple[VariantRun, ...]
     document: dict
     files: tuple[Path, ...]
+    segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
 
     @property
     def passed(self) -> bool:
@@ -143,8 +149,15 @@ def spray_model(loaded: ScenarioFile) -> SprayModel:
         raise InputError(f"{loaded.where('gun')}: gun: {exc}") from None
 
 
-def load_arm(loaded: ScenarioFile) -> Cell:
-    """The robot cell: the project's default arm or the scenario's MJCF file."""
+def load_arm(loaded: ScenarioFile, override: Optional[str | Path] = None) -> Cell:
+    """The robot cell: ``override`` (a model file, relative to the working folder) if given,
+    else the scenario's ``robot.model`` (the shipped cell for ``default``, otherwise an MJCF
+    file relative to the scenario)."""
+    if override is not None:
+        try:
+            return load_cell(override)
+        except InputError as exc:
+            raise InputError(f"--model: {exc}") from None
     model = loaded.spec.robot.model
     try:
         return load_cell(None if model == "default" else loaded.resolve(model))
@@ -193,12 +206,43 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     spec, out = job.loaded.spec, job.outdir
     poly, points = job.segmentation.polysegment, job.segmentation.curve.points
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, name=program_name(spec.name))
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name(spec.name))
     program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                             source=f"scenario:{spec.name}", points=points)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
-    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal)
+    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
+    deviation = job.segmentation.max_deviation_mm if program.curve is poly else None
+    return simulate_variant(name, program, toolpath, job, step, deviation)
+
+
+def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
+    """The ToolPath of a program variant and its text (the files one after the other)."""
+    files = [loaded.resolve(f) for f in entry.files]
+    try:
+        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
+                                 kinematics=CellKinematics(cell))
+    except CoatsimError as exc:
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+    return toolpath, "\n".join(decode(read_program_bytes(f)) for f in files)
+
+
+def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> VariantRun:
+    """Execute and coat a user's program; writes ``name.as`` (a copy), ``name.trajectory.csv``
+    and ``name.thickness.ply``."""
+    toolpath, text = read_user_program(job.loaded, entry, job.cell)
+    write_text(job.outdir / f"{entry.name}.as", text)
+    try:
+        program = user_program(toolpath, curve_frame(job.loaded.spec), text)
+        return simulate_variant(entry.name, program, toolpath, job, step, None)
+    except CoatsimError as exc:
+        raise type(exc)(f"{entry.name}: {exc}") from None
+
+
+def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: ToolPath, job: Job, step: Step,
+                     deviation_mm: Optional[float]) -> VariantRun:
+    """Execute and coat one variant's program; its metrics against the scenario's curve."""
+    spec, out = job.loaded.spec, job.outdir
     step(f"{name}: simulating the arm")
     execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
     execution.log.write_csv(out / f"{name}.trajectory.csv")
@@ -206,44 +250,71 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                   spacing=job.spacing_mm)
-    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um)
+    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um, 0.0,
+                        float(result.thickness_um.max()), result.deposit.exposure_s)  # as `coatsim coat` writes it
     groups = {
         "segmentation": segmentation_group(
-            points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
-            job.segmentation.max_deviation_mm if program.curve is poly else None),
+            job.segmentation.curve.points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
+            deviation_mm),
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
     }
     return VariantRun(name, program, execution, result, groups)
 
 
+def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
+    """Every variant's coating measured over the same region of interest: the vertices inside
+    every variant's band. Each band follows its own sprayed track, and the tracks differ within
+    the tolerance and the corner blends, so a vertex near a band's edge may fall in one and not
+    in another; the variants are compared on the same area instead."""
+    common = np.logical_and.reduce([r.coating.roi for r in runs])
+    if not common.any():
+        raise InputError("the variants' regions of interest share no vertex; check coating.band_halfwidth_mm")
+    measured = []
+    for r in runs:
+        coating = remeasured(r.coating, common, target_um)
+        measured.append(replace(r, coating=coating, groups={**r.groups, "coating": coating_group(coating.metrics)}))
+    return measured
+
+
+def variant_names(spec: Scenario) -> list[str]:
+    """The names of the scenario's variants (built-in variants and program variants)."""
+    return [entry if isinstance(entry, str) else entry.name for entry in spec.variants]
+
+
 def output_names(spec: Scenario) -> list[str]:
     """The files a run of ``spec`` writes into its output folder, in writing order."""
-    per_variant = [f"{v}.{kind}" for v in spec.variants for kind in ("as", "trajectory.csv", "thickness.ply")]
+    per_variant = [f"{v}.{kind}" for v in variant_names(spec) for kind in ("as", "trajectory.csv", "thickness.ply")]
     return ["polysegment.json", *per_variant, "metrics.json", "report.html"]
 
 
-def input_files(loaded: ScenarioFile) -> list[tuple[str, Optional[Path]]]:
+def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
     """Every file the scenario reads, labelled by its key (None where the key names no file)."""
     spec = loaded.spec
     table = spec.gun.footprint.strip()
-    return [
+    scenario_model = None if spec.robot.model == "default" else loaded.resolve(spec.robot.model)
+    robot = Path(model) if model is not None else scenario_model
+    files: list[tuple[str, Optional[Path]]] = [
         ("the scenario", loaded.path),
-        ("curve.file", loaded.resolve(spec.curve.file) if spec.curve.file else None),
+        ("curve.file", loaded.resolve(spec.curve.file) if spec.curve is not None and spec.curve.file else None),
         ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece.kind == "mesh" else None),
         ("gun.footprint", loaded.resolve(table.split(":", 1)[1].strip()) if table.lower().startswith("table:") else None),
-        ("robot.model", None if spec.robot.model == "default" else loaded.resolve(spec.robot.model)),
+        ("--model" if model is not None else "robot.model", robot),
     ]
+    for entry in spec.variants:
+        if not isinstance(entry, str):
+            files += [(f"the program of variant {entry.name}", loaded.resolve(f)) for f in entry.files]
+    return files
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None, force: bool = False) -> RunResult:
+                 progress: Optional[bool] = None, model: Optional[str | Path] = None, force: bool = False) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
     ``outdir`` defaults to ``runs/<name>`` and is held for the run (coatsim.outputs_guard): no
     output may be an input, and files there that coatsim did not write are replaced only with
     ``force``. ``fast`` uses the scenario's coarser ``fast`` settings; ``progress`` defaults to
-    showing a bar when stderr is a terminal.
+    showing a bar when stderr is a terminal; ``model`` replaces the scenario's robot model.
     """
     from coatsim.outputs_guard import check_distinct, output_folder
 
@@ -251,12 +322,13 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     check_gate_metrics(loaded)
     out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
     names = output_names(loaded.spec)
-    check_distinct(input_files(loaded), [("output", out / name) for name in names])
+    check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
+    cell = load_arm(loaded, model)
     with output_folder(out, names, "coatsim run", force):
-        return _run_in(loaded, out, fast, progress)
+        return _run_in(loaded, cell, out, fast, progress)
 
 
-def _run_in(loaded: ScenarioFile, out: Path, fast: bool, progress: Optional[bool]) -> RunResult:
+def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool]) -> RunResult:
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
     from coatsim.report.document import write_report
 
@@ -266,30 +338,45 @@ def _run_in(loaded: ScenarioFile, out: Path, fast: bool, progress: Optional[bool
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants), show) as step:
         step("segmenting the curve")
-        curve = load_input_curve(loaded)
+        if spec.curve is None:  # the sprayed path of the first program variant
+            entry = spec.programs[0]
+            user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
+            curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
+        else:
+            curve = load_input_curve(loaded)
+        # the fitter knows the programmed speed and the arm's tool acceleration limit: no arc
+        # tighter than v² / a where the curve allows the speed, the rest listed as speed-limited
         segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
-                                     corner_deg=spec.segmentation.corner_deg)
+                                     corner_deg=spec.segmentation.corner_deg, speed_mm_s=spec.motion.speed_mm_s,
+                                     tool_accel_mm_s2=cell.tool_accel_mm_s2)
         poly = segmentation.polysegment
         write_polysegment_json(out / "polysegment.json", segmentation)
-        offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        if spec.curve is not None:
+            offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
         placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
-        cell = load_arm(loaded)
         job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
         runs = []
-        for name in spec.variants:
+        for entry in spec.variants:
+            name = entry if isinstance(entry, str) else entry.name
             step(f"{name}: writing and reading the program")
+            if not isinstance(entry, str):
+                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
+                continue
             try:
                 runs.append(run_variant(name, job, step))
             except CoatsimError as exc:
                 raise type(exc)(f"{name}: {exc}") from None
         step("metrics, gates and report")
+        runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates(spec.gates, variants)
-        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full")
+        warnings = [{"variant": r.name, "message": event} for r in runs
+                    for event in (*r.execution.warnings, *r.execution.events)]
+        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
         write_text(out / "metrics.json", to_json(document))
         write_report(out / "report.html", loaded, curve, segmentation, runs, document)
-    return RunResult(out, tuple(runs), document, tuple(out / name for name in output_names(spec)))
+    return RunResult(out, tuple(runs), document, tuple(out / name for name in output_names(spec)), segmentation.seconds)

@@ -1,7 +1,8 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
-Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
-profiles, thickness maps, cross-section, all metrics with ratios, gates.
+Sections: scenario summary with the verdict (what the polysegment wins and loses against each
+polyline, :mod:`coatsim.report.verdict`) and the headline metrics, curve and polysegment, θ, speed
+profiles, thickness maps, cross-section, warnings, all metrics with ratios, gates.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from coatsim.fileio import write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
 from coatsim.report.summary import headline_rows
+from coatsim.report.verdict import Verdict, change_text, verdict
 from coatsim.geometry.plots import segmentation_figure_png
 from coatsim.report.plots import SpeedProfile, polyline_figure, speed_figure
 from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
@@ -28,6 +30,7 @@ SECTION_TITLES = {
     "speed": "Tool speed",
     "thickness": "Coating thickness",
     "section": "Thickness cross-section",
+    "warnings": "Warnings",
     "metrics": "All metrics",
     "gates": "Gates",
 }
@@ -44,10 +47,38 @@ def headline_table(document: Mapping[str, Any]) -> str:
     return f"<table>{head}{body}</table>"
 
 
+def verdict_html(result: Verdict) -> str:
+    """Per polyline variant: the headline sentence, then the five metrics with both values, the
+    change and the outcome."""
+    if not result.comparisons:
+        return '<p class="muted">No polysegment and polyline variants to compare in this run.</p>'
+    out = []
+    for c in result.comparisons:
+        head = (f'<tr><th class="l">metric</th><th>{esc(c.against)}</th><th>polysegment</th>'
+                f'<th>change</th><th class="l">result</th></tr>')
+        rows = "".join(
+            f'<tr><td class="l" title="{esc(METRICS[o.criterion.key].meaning)}">{esc(o.criterion.label)}</td>'
+            f"<td>{fmt(o.polyline)}</td><td>{fmt(o.polysegment)}</td>"
+            f"<td>{esc(change_text(o))}</td>"
+            f'<td class="l">{_OUTCOME_HTML[o.outcome]}</td></tr>'
+            for o in c.outcomes
+        )
+        out.append(f"<h3>Polysegment against {esc(c.against)}</h3><p>{esc(c.headline)}</p><table>{head}{rows}</table>")
+    return "".join(out)
+
+
+_OUTCOME_HTML = {"win": '<span class="pass">wins</span>', "loss": '<span class="fail">loses</span>',
+                 "tie": "ties", "undefined": '<span class="muted">undefined</span>'}
+
+
 def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
     spec = loaded.spec
     c = spec.curve
-    source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    if c is None:
+        source = f"the sprayed path of program variant {spec.programs[0].name}"
+    else:
+        source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    placed = "" if c is None else f"; scale {c.scale:g}, rotated {c.rotate_deg:g} deg"
     wp = spec.workpiece
     size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
             "cylinder": lambda: f"cylinder R {wp.radius_mm:g} x L {wp.length_mm:g} mm, axis {wp.axis}",
@@ -56,7 +87,7 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}; scale {c.scale:g}, rotated {c.rotate_deg:g} deg; {'closed' if curve.closed else 'open'}, "
+        ("curve", f"{source}{placed}; {'closed' if curve.closed else 'open'}, "
                   f"{len(curve.points)} points, {curve.length:.1f} mm"),
         ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
                          f"corners above {spec.segmentation.corner_deg:g} deg"),
@@ -66,26 +97,29 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
                 f"target {spec.gun.target_thickness_um:g} µm"),
         ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
                    f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
-        ("variants", ", ".join(spec.variants)),
+        ("variants", ", ".join(spec.variant_names)),
         ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
     ]
-    rows += [(f"arm warnings ({r.name})", "; ".join(r.execution.events)) for r in runs if r.execution.events]
     if seg is not None:
         rows.insert(4, ("polysegment", f"{seg['n_lines']} lines + {seg['n_arcs']} arcs, deviation "
                                        f"{seg['max_deviation_mm']:.4g} mm"))
     return rows
 
 
-def _speed_profiles(runs: Sequence, lead_in_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
-    """Speed against path length while the gun is on, from where it opens (the run-in start);
-    the curve proper follows the run-in."""
+def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
+    """Speed against path length from the start of the run-in to the end of the run-out (the
+    curve proper in between), whether or not the gun is open on the run-in and run-out."""
     profiles, span = {}, (0.0, 0.0)
     for r in runs:
-        log = r.execution.log
-        on = log.spray
-        origin = float(log.progress[np.argmax(on)])
-        profiles[r.name] = SpeedProfile(log.progress[on] - origin, log.speed[on])
-        span = (lead_in_mm, lead_in_mm + r.program.path.curve_length_mm)
+        log, (a, b) = r.execution.log, r.execution.curve
+        # the log's progress is monotonic up to servo jitter: take the rows between the first
+        # one at the run-in start and the first one past the run-out end
+        reach = np.maximum.accumulate(log.progress)
+        i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
+        i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
+        rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
+        profiles[r.name] = SpeedProfile(log.progress[rows] - (a - lead_in_mm), log.speed[rows])
+        span = (lead_in_mm, lead_in_mm + (b - a))
     return profiles, span
 
 
@@ -94,7 +128,7 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     spec = loaded.spec
     polyline = next((r.program.curve for r in runs if r.name != "polysegment"), None)
     polyline_xy = None if polyline is None else np.array([s.start for s in polyline.segments] + [polyline.end])
-    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm)
+    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
     surface = runs[0].coating.surface
     top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
     line = default_section(surface)
@@ -104,7 +138,8 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     baseline = "polysegment" if "polysegment" in document["variants"] else None
     return [
         Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, runs, document))
-                + "<h3>What arcs buy</h3>" + headline_table(document)),
+                + verdict_html(verdict(document))
+                + "<h3>Every variant, headline metrics</h3>" + headline_table(document)),
         Section("curve", SECTION_TITLES["curve"], figures=(Figure(
             "Input curve, polysegment and θ", segmentation_figure_png(segmentation),
             "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
@@ -116,8 +151,9 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
             "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
         Section("speed", SECTION_TITLES["speed"], figures=(Figure(
             "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
-            "Simulated tool-centre-point speed while the gun is on, from the trajectory logs; the shaded ends are "
-            "the run-in and run-out, outside the curve proper."),)),
+            "Simulated tool-centre-point speed along the run-in, the curve proper and the run-out, from the "
+            "trajectory logs; the shaded ends are the run-in and run-out (on a closed contour the gun is closed "
+            "there: it sprays exactly one lap, from the seam to the seam)."),)),
         Section("thickness", SECTION_TITLES["thickness"], figures=(Figure(
             "Thickness maps on one colour scale", heat,
             f"Per-vertex coating thickness of each variant, same scale 0 to {top:.3g} µm (the largest 99.5th "
@@ -125,11 +161,21 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
         Section("section", SECTION_TITLES["section"], figures=(Figure(
             "Thickness cross-section", profile_png(cuts, title=f"section {where}"),
             f"Thickness along the dashed line of the maps, {where}, every variant."),)),
+        Section("warnings", SECTION_TITLES["warnings"], warnings_list(document["warnings"])),
         Section("metrics", SECTION_TITLES["metrics"],
                 metrics_table(document["variants"], baseline)
                 + '<p class="muted">Hover a metric name for its meaning; units and meanings are in the README.</p>'),
         Section("gates", SECTION_TITLES["gates"], gates_table(document["gates"]) + _overall(document["passed"])),
     ]
+
+
+def warnings_list(warnings: Sequence[Mapping[str, str]]) -> str:
+    """The run's warnings (metrics.json ``warnings``), one item each, naming variant and program line."""
+    if not warnings:
+        return '<p class="muted">No warnings: TOOL as the cell\'s gun, joints within their limits and away from '\
+               "singularities, the simulated tool on its commanded path.</p>"
+    items = "".join(f"<li><b>{esc(w['variant'])}</b>: {esc(w['message'])}</li>" for w in warnings)
+    return f"<ul>{items}</ul>"
 
 
 def _overall(passed: bool) -> str:

@@ -7,6 +7,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Mapping, Sequence
 
 import mujoco
 import numpy as np
@@ -14,16 +15,19 @@ import numpy as np
 from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
-from coatsim.program.toolpath import ToolPath
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
+from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
+from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
-from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
+from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import JointPiece, min_motion_time_s, plan_pieces, step_label
 from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
+from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 _WINDOW_MM = 10.0  # progress search window around the commanded point (plus blend radii)
@@ -31,9 +35,10 @@ _WINDOW_MM = 10.0  # progress search window around the commanded point (plus ble
 
 @dataclass(frozen=True, eq=False)
 class Execution:
-    """Result of executing one program: the log, its metrics, the joint-limit and singularity
-    warnings by program step, the largest IK residual, the programmed reference path, the
-    curve-proper progress interval (mm), and wall time per phase (s)."""
+    """Result of executing one program: the log, its metrics, the warnings by program step (TOOL
+    mismatch, joint-limit approach, singularity, small tracking or limit excesses), the largest
+    IK residual, the programmed reference path, the curve-proper progress interval (mm), and
+    wall time per phase (s)."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
@@ -42,6 +47,7 @@ class Execution:
     reference: ReferencePath
     curve: tuple[float, float]
     wall: dict[str, float] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass
@@ -51,6 +57,7 @@ class _Segment:
     timed: TimedPiece
     progress: np.ndarray  # commanded progress (mm) per row
     spray: np.ndarray     # commanded spray flag per row
+    move: np.ndarray      # program move per row (-1: the implicit move from home)
 
 
 def _metadata_mm(toolpath: ToolPath, key: str) -> float:
@@ -66,19 +73,75 @@ def _metadata_mm(toolpath: ToolPath, key: str) -> float:
     return value
 
 
+def _leads_sprayed(toolpath: ToolPath) -> bool:
+    """Whether the gun covers the lead-in and lead-out (header ``sprayed``, default yes)."""
+    raw = toolpath.metadata.get("sprayed", SPRAYED_WITH_LEADS)
+    if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
+        raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
+    return raw == SPRAYED_WITH_LEADS
+
+
 def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float, float]:
-    """Progress interval of the curve proper and its programmed speed."""
+    """Progress interval of the curve proper and its programmed speed: the sprayed moves
+    (every Cartesian move if none sprays), without the lead-in and lead-out when the gun
+    covers them."""
     cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
     chosen = [i for i in cartesian if toolpath.moves[i].spray] or cartesian
     if not chosen:
         raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
-    a = ref.move_span(chosen[0])[0] + _metadata_mm(toolpath, "lead_in_mm")
-    b = ref.move_span(chosen[-1])[1] - _metadata_mm(toolpath, "lead_out_mm")
+    leads = _leads_sprayed(toolpath)
+    a = ref.move_span(chosen[0])[0] + (_metadata_mm(toolpath, "lead_in_mm") if leads else 0.0)
+    b = ref.move_span(chosen[-1])[1] - (_metadata_mm(toolpath, "lead_out_mm") if leads else 0.0)
     if b <= a:
         raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
     inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
     speed = max(toolpath.moves[i].settings.speed_mm_s for i in inside)
     return a, b, float(speed)
+
+
+def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
+    """A configuration the program gives, checked against the joint ranges."""
+    q = np.asarray(q, dtype=float)
+    outside = np.flatnonzero((q < cell.q_min - 1e-9) | (q > cell.q_max + 1e-9))
+    if len(outside):
+        j = int(outside[0])
+        raise ExecutionError(f"{label}: joint {j + 1} at {math.degrees(q[j]):.3f} deg is outside its range "
+                             f"{math.degrees(cell.q_min[j]):.1f}..{math.degrees(cell.q_max[j]):.1f} deg")
+    return q.copy()
+
+
+def _rest(cell: Cell, q: np.ndarray, dwell: Dwell, offset: float) -> _Segment | None:
+    """The arm standing still at ``q`` for the dwell (None if shorter than half a time step)."""
+    m = int(round(dwell.seconds / cell.timestep))
+    if m == 0:
+        return None
+    zeros = np.zeros((m + 1, 6))
+    timed = TimedPiece(t=np.arange(m + 1) * cell.timestep, q=np.tile(q, (m + 1, 1)), qd=zeros, qdd=zeros,
+                       s=np.zeros(m + 1), sd=np.zeros(m + 1))
+    return _Segment(timed, np.full(m + 1, offset), np.full(m + 1, dwell.spray), np.full(m + 1, dwell.after))
+
+
+def _first_move(piece) -> float:
+    """Index of the program move a piece starts with (the implicit move from home: before all)."""
+    if isinstance(piece, JointPiece):
+        return -0.5 if piece.move is None else float(piece.move)
+    return float(piece.move[0])
+
+
+def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
+    """Per move, where the gun sits in the frame of the controller's TCP: (M, 3, 3), (M, 3) mm."""
+    pairs = [mount(m.settings.tool, cell) for m in toolpath.moves]
+    return np.array([r for r, _ in pairs]), np.array([p for _, p in pairs])
+
+
+def _allowance(toolpath: ToolPath) -> CurveAllowance:
+    """Where the program header says the curve allows the programmed speed (no header: everywhere
+    but near the rest points at the ends)."""
+    raw = toolpath.metadata.get(SPEED_LIMITS_KEY)
+    limits = () if raw is None else parse_limits(raw, toolpath.name)
+    return CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits),
+                          toolpath.metadata.get("closed") == "yes", _metadata_mm(toolpath, "lead_in_mm"),
+                          _metadata_mm(toolpath, "lead_out_mm"))
 
 
 def steps_left(segments: list[_Segment]) -> int:
@@ -87,30 +150,54 @@ def steps_left(segments: list[_Segment]) -> int:
 
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
-    """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration."""
+    """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration.
+
+    The controller computes every pose with the program's TOOL; the IK puts the cell's gun
+    where that puts it (see :mod:`coatsim.robot.tooling`). After playback the simulated arm is
+    checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
+    ExecutionError when it diverged, warnings for small excesses.
+    """
     cell = cell or load_cell()
     wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
     t_start = time.perf_counter()
+    toolpath = with_tool_changes(toolpath, cell)
     pieces = plan_pieces(toolpath, step_mm)
-    fk = mujoco.MjData(cell.model)
-    least_s = min_motion_time_s(pieces, cell.forward(fk, cell.home)[0])
+    least_s = min_motion_time_s(toolpath, pieces)
     check_budget(f"{toolpath.name}: simulation steps of {cell.timestep * 1e3:g} ms (at least {least_s:.4g} s of "
-                 "motion at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
-                 "raise the programmed SPEED (coatsim program --speed, the scenario's motion.speed_mm_s)")
+                 "motion and dwells at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
+                 "raise the programmed SPEED (coatsim program --speed, the scenario's motion.speed_mm_s) or "
+                 "shorten the dwells")
+    mount_r, mount_p = _mounts(toolpath, cell)
     tracker = Tracker(cell)
+    fk = mujoco.MjData(cell.model)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
     chunks: list = []
-    events: list[str] = [e for e in (accuracy_event(toolpath, pieces),) if e]
+    events: list[str] = tool_mismatches(toolpath, cell) + [e for e in (accuracy_event(toolpath, pieces),) if e]
     too_fast: list[str] = []
     worst = [0.0, 0.0, 0]
     offset = 0.0
     max_blend = 0.0
-    for piece in pieces:
+    dwells = list(toolpath.dwells)
+
+    def rest_until(before: float) -> None:
+        while dwells and dwells[0].after < before:
+            segment = _rest(cell, q_now, dwells.pop(0), offset)
+            if segment is not None:
+                segments.append(segment)
+
+    for k, piece in enumerate(pieces):
+        rest_until(_first_move(piece))
         if isinstance(piece, JointPiece):
             label = step_label(toolpath, piece.move)
+            # the implicit first move goes to the start of the first Cartesian move, with its TOOL
+            tool_move = piece.move if piece.move is not None else int(pieces[k + 1].move[0])
+            p_gun, r_gun = to_gun(piece.target.position, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
             t0 = time.perf_counter()
-            q_goal = tracker.solve_pose(q_now, piece.target.position, piece.target.rotation, label)
+            if piece.joints_rad is not None:
+                q_goal = _joint_target(cell, piece.joints_rad, label)
+            else:
+                q_goal = tracker.solve_pose(q_now, p_gun, r_gun, label)
             wall["ik_s"] += time.perf_counter() - t0
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
@@ -122,15 +209,18 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             owner = -1 if piece.move is None else piece.move
             chunks.append((chords, (owner,) * len(chords)))
             along = np.concatenate(([0.0], np.cumsum([c.length for c in chords])))
-            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray)))
+            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray),
+                                     np.full(len(timed.t), owner)))
             offset += float(along[-1])
             q_now = q_goal
             continue
         labels = [step_label(toolpath, int(m)) for m in piece.move]
         step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
+        m = piece.move
+        p_gun = piece.position + np.einsum("nij,nj->ni", piece.rotation, mount_p[m])
+        r_gun = piece.rotation @ mount_r[m]
         t0 = time.perf_counter()
-        qs, wrist, res = tracker.track(q_now, piece.s, piece.position, piece.rotation, step_time,
-                                       lambda i: labels[i])
+        qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
         wall["ik_s"] += time.perf_counter() - t0
         worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
         events.extend(e for e in joint_path_events(cell, qs, wrist, labels) if e not in events)
@@ -140,11 +230,13 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
                                max_steps=steps_left(segments))
         wall["timing_s"] += time.perf_counter() - t0
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
-        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx]))
+        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
+                                 piece.move[idx]))
         chunks.append((piece.reference, piece.reference_moves))
         offset += float(sum(p.length for p in piece.reference))
         max_blend = max(max_blend, max(toolpath.moves[m].settings.accuracy_mm for m in piece.reference_moves))
         q_now = qs[-1]
+    rest_until(float("inf"))
     if not segments:
         raise ExecutionError(f"{toolpath.name}: the program moves the tool nowhere")
     if too_fast:
@@ -156,10 +248,15 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     q, qd, qdd = cat("q"), cat("qd"), cat("qdd")
     hint = np.maximum.accumulate(np.concatenate([s.progress[k] for s, k in zip(segments, keep)]))
     spray = np.concatenate([s.spray[k] for s, k in zip(segments, keep)])
+    row_move = np.concatenate([s.move[k] for s, k in zip(segments, keep)])
 
     t0 = time.perf_counter()
     run = play(cell, q, qd, qdd)
     wall["playback_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    events += check_playback(cell, run.t, run.q, run.tcp, q,
+                             lambda i: step_label(toolpath, None if row_move[i] < 0 else int(row_move[i])))
+    wall["checks_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     ref = build_reference(chunks)
     dist, progress, curvature = ref.project(run.tcp, hint, _WINDOW_MM + 2 * max_blend)
@@ -167,37 +264,43 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
                         progress=progress, path_error=dist, q=run.q)
     a, b, speed = _curve_proper(toolpath, ref)
     metrics = motion_metrics(log, (a, b), speed, curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max,
-                             (worst[0], worst[1]))
+                             (worst[0], worst[1]), _allowance(toolpath))
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
-                     curve=(a, b), wall=wall)
+                     curve=(a, b), wall=wall, warnings=toolpath.warnings)
 
 
-def execute_program(program: str | Path, model: str | Path | None, outdir: str | Path, gun_signal: int = 1,
-                    step_mm: float = 1.0, force: bool = False) -> tuple[Execution, list[Path]]:
-    """``coatsim execute``: read an AS program, run it, write trajectory.csv, motion.json and
-    speed.png into ``outdir`` (held for the run; see coatsim.outputs_guard)."""
+def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
+                    gun_signal: int = 1, step_mm: float = 1.0, main: str | None = None,
+                    inputs: Mapping[int, bool] | None = None, force: bool = False) -> tuple[Execution, list[Path]]:
+    """``coatsim execute``: read AS program files, run the main program (``main``, default the
+    first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
+    see coatsim.outputs_guard)."""
     from coatsim.outputs_guard import check_distinct, output_folder
     from coatsim.program import read_toolpath
+    from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.plots import plot_speed
 
+    sources = [program] if isinstance(program, (str, Path)) else list(program)
     out = Path(outdir)
     names = ["trajectory.csv", "motion.json", "speed.png"]
     files = [out / name for name in names]
-    check_distinct([("the program", program), ("--model", model)], [("output", f) for f in files])
-    toolpath = read_toolpath(program, gun_signal=gun_signal)
+    check_distinct([*(("the program", p) for p in sources), ("--model", model)], [("output", f) for f in files])
     cell = load_cell(model)
+    toolpath = read_toolpath(program, gun_signal=gun_signal, program=main, inputs=inputs,
+                             kinematics=CellKinematics(cell))
     with output_folder(out, names, "coatsim execute", force):
         result = execute(toolpath, cell, step_mm)
         result.log.write_csv(files[0])
         doc = {
             "format": "coatsim.motion/1",
-            "program": str(program),
+            "program": str(sources[0]) if len(sources) == 1 else [str(p) for p in sources],
             "model": str(model) if model is not None else "default",
             "step_mm": step_mm,
             "motion": result.metrics.as_dict(),
             "events": list(result.events),
+            "warnings": list(result.warnings),
         }
         write_text(files[1], json.dumps(doc, indent=2) + "\n")
         plot_speed(result.log, result.metrics, result.curve, files[2],

@@ -5,11 +5,13 @@ Controller semantics modelled here (see the README's robot section):
 - a joint move (JMOVE) starts and ends at rest;
 - where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the
   tool runs straight through;
-- a reversal (a turn within 1e-3 rad of 180 degrees) stops the tool, blended or not;
+- where a move turns back on the previous one (more than 179.5 deg) the tool stops and reverses;
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
-  cubic blend tangent to both moves (for two lines: the classic parabolic blend).
+  cubic blend tangent to both moves (for two lines: the classic parabolic blend). The blend
+  belongs to the outgoing move as far as the gun is concerned: a signal that switches as a
+  move starts switches where the tool enters the accuracy zone of the corner before it.
 Samples are at most ``step`` mm apart and include every primitive's (trimmed) end points exactly.
 """
 
@@ -27,10 +29,11 @@ from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, 
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
 TANGENT_TOL_RAD = math.radians(0.5)
-# A turn this close to 180 degrees cannot be rounded (a blend would run out and back along the
-# same line through a cusp): the tool stops there as at an exact stop.
-REVERSAL_RAD = math.pi - 1e-3
+# A junction turning back by more than this is a reversal: the tool stops there (no blend can
+# turn it round; the blend curve would fold onto itself).
+REVERSAL_RAD = math.radians(179.5)
 MIN_MOVE_MM = 1e-6
+MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,13 +65,15 @@ class CartesianPiece:
 
 @dataclass(frozen=True, eq=False)
 class JointPiece:
-    """A joint-interpolated move to ``target`` (rest to rest); ``move`` is None for the
-    implicit move from home to the start of the first Cartesian move."""
+    """A joint-interpolated move to ``target`` (rest to rest), to the configuration
+    ``joints_rad`` when the program gives one; ``move`` is None for the implicit move from home
+    to the start of the first Cartesian move."""
 
     target: Pose
     speed_mm_s: float
     spray: bool
     move: int | None
+    joints_rad: np.ndarray | None = None
 
 
 Piece = CartesianPiece | JointPiece
@@ -185,9 +190,15 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
     for k, sp in enumerate(spans):
         lo, hi = trims[k], sp.prim.length - trims[k + 1]
-        s = lo + _uniform(max(hi - lo, 0.0), step)
-        if k > 0:
-            s = s[1:]  # the first point is the previous blend's (or span's) last sample
+        if k == 0:
+            s = lo + _uniform(max(hi - lo, 0.0), step)
+        elif hi - lo > MERGE_MM or k == n - 1:
+            # the first point is the previous blend's (or span's) last sample
+            s = lo + np.linspace(0.0, hi - lo, max(1, int(math.ceil((hi - lo) / step - 1e-9))) + 1)[1:]
+        else:
+            # blends that meet mid-move leave (almost) nothing of it: samples a fraction of a
+            # micrometre apart would make the joint spline through them swing
+            s = np.zeros(0)
         if len(s):
             m = len(s)
             frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
@@ -204,7 +215,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
             first = frac <= 0.5
             add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
-                np.where(first, sp.index, nxt.index), np.where(first, sp.spray, nxt.spray),
+                np.where(first, sp.index, nxt.index), np.full(len(pts), nxt.spray),
                 ref_offset + hi + frac * (sp.prim.length - hi + d))
         ref_offset += sp.prim.length
     p = np.vstack(cols["p"])
@@ -230,18 +241,13 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
         raise InputError(f"sampling step (--step-mm) must be a positive number of mm, got {step}")
     if not toolpath.moves:
         raise ExecutionError(f"{toolpath.name}: the program has no motion")
-    items: list[JointPiece | _Span] = []
+    spans: dict[int, _Span] = {}
     for index, move in enumerate(toolpath.moves):
-        if isinstance(move, JointMove):
-            items.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index))
-            continue
-        if not isinstance(move, (LinearMove, CircularMove)):
+        if not isinstance(move, (JointMove, LinearMove, CircularMove)):
             raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
-        span = _span(toolpath, index)
-        if span.prim.length > MIN_MOVE_MM:  # else a move to where the tool already is: nothing to execute
-            items.append(span)
-    spans = [item for item in items if isinstance(item, _Span)]
-    length = sum(sp.prim.length for sp in spans)
+        if not isinstance(move, JointMove):
+            spans[index] = _span(toolpath, index)
+    length = sum(sp.prim.length for sp in spans.values())
     check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
                  length / step + 10 * len(spans), MAX_PATH_SAMPLES,
                  "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
@@ -253,15 +259,21 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             pieces.append(_chain_piece(chain, step))
             chain.clear()
 
-    for item in items:
-        if isinstance(item, JointPiece):
+    for index, move in enumerate(toolpath.moves):
+        if isinstance(move, JointMove):
             flush()
-            pieces.append(item)
+            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index,
+                                     move.joints_rad))
             continue
-        if chain and _heading_change(chain[-1].prim, item.prim) > REVERSAL_RAD:
+        span = spans[index]
+        if span.prim.length <= MIN_MOVE_MM:
+            if span.stop:
+                flush()  # nothing to execute, but the tool comes to rest here (a dwell may follow)
+            continue  # a move to where the tool already is
+        if chain and _heading_change(chain[-1].prim, span.prim) > REVERSAL_RAD:
             flush()
-        chain.append(item)
-        if item.stop:
+        chain.append(span)
+        if span.stop:
             flush()
     flush()
     if not pieces:
@@ -273,15 +285,15 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
     return tuple(pieces)
 
 
-def min_motion_time_s(pieces: tuple[Piece, ...], start_mm: np.ndarray) -> float:
-    """A lower bound on the time the pieces take from ``start_mm`` (3,): every path length at
-    its programmed speed, joint moves by their straight TCP distance (the budget of simulation
-    steps is checked with it before any timing)."""
-    total, here = 0.0, np.asarray(start_mm, float)
+def min_motion_time_s(toolpath: ToolPath, pieces: tuple[Piece, ...]) -> float:
+    """A lower bound on the time the program takes: every path length at its programmed speed,
+    joint moves by the straight distance between their end points, every dwell (the budget of
+    simulation steps is checked with it before any timing)."""
+    total, here = sum(d.seconds for d in toolpath.dwells), None
     for piece in pieces:
         if isinstance(piece, JointPiece):
             target = np.asarray(piece.target.position, float)
-            distance = float(np.linalg.norm(target - here))
+            distance = 0.0 if here is None else float(np.linalg.norm(target - here))
             total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
             here = target
         else:
