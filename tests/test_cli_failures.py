@@ -203,12 +203,12 @@ def test_unreachable_speed_and_accuracy_are_warned(tmp_path):
     assert "coatsim: warning: --accuracy 1e+06 mm is longer than every move" in err
     code, out, err = cli("execute", prog, "-o", tmp_path / "x", "--step-mm", "2")
     assert code == 0, err
-    assert "warning: a_40_b_20: ACCURACY 1e+06 mm is longer than every move (the longest is 50 mm)" in out
-    assert "SPEED 1e+06 mm/s is beyond the arm, whose joint speed and tool acceleration limits allow at most" in out
+    assert "warning: a_40_b_20: ACCURACY 1e+06 mm is longer than every move (the longest is 50 mm)" in err
+    assert "SPEED 1e+06 mm/s is beyond the arm, whose joint speed and tool acceleration limits allow at most" in err
     ordinary = tmp_path / "ok.as"
     assert cli("program", "builtin:ellipse:a=40,b=20", "--tol", "0.2", "-o", ordinary)[0] == 0
     code, out, err = cli("execute", ordinary, "-o", tmp_path / "y", "--step-mm", "2")
-    assert code == 0 and "beyond the arm" not in out and "ACCURACY" not in out
+    assert code == 0 and "beyond the arm" not in err and "ACCURACY" not in err, err
 
 
 @pytest.mark.parametrize(("args", "words"), [
