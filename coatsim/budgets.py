@@ -3,8 +3,8 @@
 Each budget bounds one quantity that a small input can blow up (a tiny step, a tiny spacing, a
 slow speed, a YAML alias). Past a budget the stage raises an InputError (exit 2) that names the
 quantity, the amount asked for, the budget and the option that would fix it. The values are
-sized for a workstation: at each budget a stage needs roughly 1 GB and well under two minutes
-(figures measured on the project's 2-core reference machine; see the README).
+sized for a workstation: at each budget a stage needs about 1 to 2.5 GB and a few minutes
+(``python scripts/bench_budgets.py`` measures the cost per unit; figures in the README).
 """
 
 from __future__ import annotations
@@ -13,16 +13,16 @@ import math
 
 from coatsim.errors import InputError
 
-#: Cartesian IK samples of one program (path length / --step-mm, blends included); the twin
-#: keeps ~4 kB per sample through IK and timing (~0.8 GB, ~15 s of IK at the budget).
+#: Cartesian IK samples of one program (path length / --step-mm, blends included); ~5 kB each
+#: through IK and timing.
 MAX_PATH_SAMPLES = 200_000
-#: MuJoCo steps of one program (motion time / 2 ms); ~1.2 kB per step through playback,
-#: projection and the log (~0.6 GB at the budget, i.e. 1000 s of motion).
+#: MuJoCo steps of one program (motion time / 2 ms: 1000 s of motion); ~1.7 kB each through
+#: timing, playback, projection and the log.
 MAX_SIM_STEPS = 500_000
 #: Size of a trajectory CSV read by ``coat``: 256 bytes per row at the step budget (rows that
 #: coatsim writes take ~170 bytes).
 MAX_TRAJECTORY_BYTES = 256 * MAX_SIM_STEPS
-#: Vertices of a coated surface mesh (~0.9 GB and ~45 s of deposition per million).
+#: Vertices of a coated surface mesh (~0.8 kB each through deposition, metrics and the files).
 MAX_MESH_VERTICES = 2_000_000
 #: Integration sub-steps of the coating stage (sprayed path / footprint sub-step, sigma/2 by
 #: default); ~0.2 kB each before the deposition kernel runs over them.
