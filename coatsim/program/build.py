@@ -81,11 +81,13 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS) -> BuiltProgram:
+                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS,
+                  polyline: Optional[Polysegment] = None) -> BuiltProgram:
     """Write the ``options.variant`` program of a curve in ``dialect``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
-    curve, (n, 2)) or, without them, dense samples of ``poly``.
+    curve, (n, 2)) or, without them, dense samples of ``poly``, unless ``polyline`` (that
+    simplification, computed once for both polyline variants) is given.
     """
     if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
         raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
@@ -94,7 +96,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         summary = f"{poly.n_segments} segments ({poly.n_lines} lines, {poly.n_arcs} arcs)"
     else:
         raw = points if points is not None else dense_points(poly, tolerance_mm)
-        curve = polyline_of(raw, poly.closed, tolerance_mm)
+        curve = polyline if polyline is not None else polyline_of(raw, poly.closed, tolerance_mm)
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
     path = place(curve, placement)
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
