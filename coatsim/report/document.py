@@ -1,7 +1,7 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
 Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
-profiles, thickness maps, cross-section, all metrics with ratios, gates.
+profiles, thickness maps, cross-section, warnings, all metrics with ratios, gates.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ SECTION_TITLES = {
     "speed": "Tool speed",
     "thickness": "Coating thickness",
     "section": "Thickness cross-section",
+    "warnings": "Warnings",
     "metrics": "All metrics",
     "gates": "Gates",
 }
@@ -47,7 +48,11 @@ def headline_table(document: Mapping[str, Any]) -> str:
 def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
     spec = loaded.spec
     c = spec.curve
-    source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    if c is None:
+        source = f"the sprayed path of program variant {spec.programs[0].name}"
+    else:
+        source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    placed = "" if c is None else f"; scale {c.scale:g}, rotated {c.rotate_deg:g} deg"
     wp = spec.workpiece
     size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
             "cylinder": lambda: f"cylinder R {wp.radius_mm:g} x L {wp.length_mm:g} mm, axis {wp.axis}",
@@ -56,7 +61,7 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}; scale {c.scale:g}, rotated {c.rotate_deg:g} deg; {'closed' if curve.closed else 'open'}, "
+        ("curve", f"{source}{placed}; {'closed' if curve.closed else 'open'}, "
                   f"{len(curve.points)} points, {curve.length:.1f} mm"),
         ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
                          f"corners above {spec.segmentation.corner_deg:g} deg"),
@@ -66,10 +71,9 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
                 f"target {spec.gun.target_thickness_um:g} µm"),
         ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
                    f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
-        ("variants", ", ".join(spec.variants)),
+        ("variants", ", ".join(spec.variant_names)),
         ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
     ]
-    rows += [(f"arm warnings ({r.name})", "; ".join(r.execution.events)) for r in runs if r.execution.events]
     if seg is not None:
         rows.insert(4, ("polysegment", f"{seg['n_lines']} lines + {seg['n_arcs']} arcs, deviation "
                                        f"{seg['max_deviation_mm']:.4g} mm"))
@@ -125,11 +129,21 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
         Section("section", SECTION_TITLES["section"], figures=(Figure(
             "Thickness cross-section", profile_png(cuts, title=f"section {where}"),
             f"Thickness along the dashed line of the maps, {where}, every variant."),)),
+        Section("warnings", SECTION_TITLES["warnings"], warnings_list(document["warnings"])),
         Section("metrics", SECTION_TITLES["metrics"],
                 metrics_table(document["variants"], baseline)
                 + '<p class="muted">Hover a metric name for its meaning; units and meanings are in the README.</p>'),
         Section("gates", SECTION_TITLES["gates"], gates_table(document["gates"]) + _overall(document["passed"])),
     ]
+
+
+def warnings_list(warnings: Sequence[Mapping[str, str]]) -> str:
+    """The run's warnings (metrics.json ``warnings``), one item each, naming variant and program line."""
+    if not warnings:
+        return '<p class="muted">No warnings: TOOL as the cell\'s gun, joints within their limits and away from '\
+               "singularities, the simulated tool on its commanded path.</p>"
+    items = "".join(f"<li><b>{esc(w['variant'])}</b>: {esc(w['message'])}</li>" for w in warnings)
+    return f"<ul>{items}</ul>"
 
 
 def _overall(passed: bool) -> str:

@@ -1,12 +1,12 @@
 """Time-optimal timing of one rest-to-rest piece with toppra.
 
-Constraints: joint speed and acceleration limits of the cell, the programmed tool speed (a
+Constraints: joint speed and acceleration limits of the cell (``PLANNING_FRACTION`` of them), the programmed tool speed (a
 first-order bound on the path speed, not a post-hoc scale) and, on Cartesian pieces, the tool
 acceleration limit applied to the combined tangential and centripetal acceleration. The path is
 a cubic spline through the IK samples, parametrised by the TCP arc length (m); gridpoints are the
 samples; the piecewise-constant path acceleration between gridpoints (toppra's
-``ParametrizeConstAccel``) is integrated exactly, so the joint limits hold at every instant,
-not only at gridpoints.
+``ParametrizeConstAccel``) is integrated exactly, and where the sampled command still exceeds a
+joint bound between gridpoints, those intervals are refined until it does not.
 
 A program with exact stops has hundreds of short pieces, so the per-piece overhead counts: the
 joint-limit constraints are built once per cell (toppra formats every limit into a string when
@@ -39,6 +39,17 @@ from coatsim.robot.cell import MM, Cell
 logging.getLogger("toppra").setLevel(logging.ERROR)
 
 _FACETS = 8  # the tool-acceleration disc is approximated by an inscribed 16-gon
+# The planner commands at most this fraction of each joint's speed and acceleration limit: the
+# servo's transients at an acceleration step overshoot the commanded acceleration by 1.5 % to 5 %
+# (more on some wrist configurations), and the simulated arm must stay within the limits, not
+# only its command.
+PLANNING_FRACTION = 0.95
+# toppra bounds the joint accelerations at the gridpoints; between them q'(s) sdd + q''(s) sd^2
+# can exceed the bound where q''(s) changes fast (a tool that turns with a path whose curvature
+# jumps). Intervals where the sampled command exceeds the bound are halved and the piece
+# re-timed, at most this many times.
+_MAX_REFINEMENTS = 8
+_EXCESS = 1e-3  # relative excess of the command over the planning bound that triggers refinement
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,9 +115,11 @@ class _ToolAcceleration(tc.LinearConstraint):
 
 @functools.lru_cache(maxsize=8)
 def _joint_limits(cell: Cell) -> tuple[tc.LinearConstraint, tc.LinearConstraint]:
-    """The cell's joint speed and acceleration constraints (they hold no path state)."""
-    return (tc.JointVelocityConstraint(cell.v_max),
-            tc.JointAccelerationConstraint(cell.a_max, discretization_scheme=tc.DiscretizationType.Interpolation))
+    """The cell's joint speed and acceleration constraints at the planning fraction (they hold
+    no path state)."""
+    return (tc.JointVelocityConstraint(PLANNING_FRACTION * cell.v_max),
+            tc.JointAccelerationConstraint(PLANNING_FRACTION * cell.a_max,
+                                           discretization_scheme=tc.DiscretizationType.Interpolation))
 
 
 class _Spline(AbstractGeometricPath):
@@ -179,25 +192,64 @@ def _sample(path: _Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_
                       s=s * s_scale, sd=v * s_scale)
 
 
+def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
+    """Rows whose commanded joint speed or acceleration exceeds the planning bound."""
+    limit = PLANNING_FRACTION * (1 + _EXCESS)
+    return np.any(np.abs(piece.qd) > limit * cell.v_max, axis=1) | np.any(np.abs(piece.qdd) > limit * cell.a_max, axis=1)
+
+
+def _timed(cell: Cell, path: _Spline, extra: list, grid: np.ndarray, s_scale: float, label: str) -> TimedPiece:
+    """Parametrise and sample, halving the grid intervals where the command exceeds a joint bound."""
+    for _ in range(_MAX_REFINEMENTS):
+        grid_out, sd = _parametrize(cell, path, extra, grid, label)
+        piece = _sample(path, grid_out, sd, cell.timestep, s_scale)
+        bad = _over_bound(cell, piece)
+        if not bad.any():
+            return piece
+        k = np.searchsorted(grid_out, piece.s[bad] / s_scale, side="right") - 1
+        k = np.unique(np.clip(np.concatenate((k - 1, k, k + 1)), 0, len(grid_out) - 2))
+        grid = np.union1d(grid_out, (grid_out[k] + grid_out[k + 1]) / 2)
+    return _sample(path, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale)
+
+
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
                    curvature_per_mm: np.ndarray, label: str) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
     s = s_mm * MM
-    path = _Spline(s, q)
     extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
-    grid, sd = _parametrize(cell, path, extra, s, label)
-    return _sample(path, grid, sd, cell.timestep, 1.0 / MM)
+    return _timed(cell, _Spline(s, q), extra, s, 1.0 / MM, label)
+
+
+# Below this joint travel (rad) a move is timed by a bang-bang profile: toppra's solver fails
+# on such short paths (measured: 2e-7 to 1e-5 rad), and the TCP speed limit cannot bind there.
+TINY_JOINT_MOVE_RAD = 1e-4
+
+
+def _bang_bang(cell: Cell, q0: np.ndarray, q1: np.ndarray) -> TimedPiece:
+    """Constant acceleration then deceleration, as fast as the joint limits allow."""
+    dq = q1 - q0
+    duration = max(float(np.max(2.0 * np.sqrt(np.abs(dq) / cell.a_max))), float(np.max(2.0 * np.abs(dq) / cell.v_max)),
+                   cell.timestep)
+    m = int(math.ceil(duration / cell.timestep - 1e-9))
+    t = np.minimum(np.arange(m + 1) * cell.timestep, duration)
+    x = t / duration
+    first = x <= 0.5
+    s = np.where(first, 2.0 * x**2, 1.0 - 2.0 * (1.0 - x) ** 2)
+    sd = np.where(first, 4.0 * x, 4.0 * (1.0 - x)) / duration
+    sdd = np.where(first, 4.0, -4.0) / duration**2
+    sdd[-1] = 0.0
+    return TimedPiece(t=t, q=q0 + s[:, None] * dq, qd=sd[:, None] * dq, qdd=sdd[:, None] * dq, s=s, sd=sd)
 
 
 def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
                n_grid: int = 60) -> TimedPiece:
     """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
+    if float(np.max(np.abs(q1 - q0))) < TINY_JOINT_MOVE_RAD:
+        return _bang_bang(cell, np.asarray(q0, float), np.asarray(q1, float))
     u = np.linspace(0.0, 1.0, n_grid)
     qs = q0 + u[:, None] * (q1 - q0)
     data = mujoco.MjData(cell.model)
     tcp = np.array([cell.forward(data, qk)[0] for qk in qs]) * MM
     dp_du = np.linalg.norm(np.gradient(tcp, u, axis=0), axis=1)
     bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
-    path = _Spline(u, qs)
-    grid, sd = _parametrize(cell, path, [_PathSpeedBound(u, bound)], u, label)
-    return _sample(path, grid, sd, cell.timestep, 1.0)
+    return _timed(cell, _Spline(u, qs), [_PathSpeedBound(u, bound)], u, 1.0, label)
