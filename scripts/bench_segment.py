@@ -7,7 +7,8 @@ For every curve and σ in SIGMAS, per method: segments (arcs, lines), the deviat
 by segment_curve, an independent check of it by dense sampling of both curves (KD-tree,
 step σ/20, within step/2 of the true value), the largest tangent break at a junction that is
 not a listed corner, and the wall time. Then the time to segment 100 000-point curves at
-σ = 0.05 mm. Prints only; never asserts.
+σ = 0.05 mm, and the scaling exponent of the built-in curves, the exact deviation check and the
+whole fit from 100 000 to 1 000 000 points (scripts/scaling.py). Prints only; never asserts.
 
     python scripts/bench_segment.py [--no-paper] [--sigmas 0.05,0.5] [--curves DIR]
 """
@@ -147,6 +148,9 @@ def main() -> None:
         poly = seg.polysegment
         print(f"{spec}: {len(curve.points)} points -> {poly.n_segments} segments ({poly.n_arcs} arcs), "
               f"deviation {seg.max_deviation_mm:.5f} mm, {seconds:.2f} s", flush=True)
+    import scaling  # scripts/scaling.py: the exponent of every geometry stage
+
+    scaling.segment()
 
 
 if __name__ == "__main__":

@@ -237,11 +237,13 @@ def border_distance(surface: Surface, spacing: float | None = None, within_mm: f
     faces = merged[surface.faces]
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     key = edges[:, 0] * (int(merged.max()) + 1) + edges[:, 1]
-    _, first, counts = np.unique(key, return_index=True, return_counts=True)
-    if not np.any(counts == 1):
+    values, counts = np.unique(key, return_counts=True)
+    once = values[counts == 1]  # an edge of one triangle only
+    if not len(once):
         return np.full(surface.n_vertices, np.inf)
+    slot = np.minimum(np.searchsorted(once, key), len(once) - 1)
     all_edges = np.concatenate([surface.faces[:, [0, 1]], surface.faces[:, [1, 2]], surface.faces[:, [2, 0]]])
-    border = all_edges[np.sort(first[counts == 1])]
+    border = all_edges[once[slot] == key]
     a, b = surface.vertices[border[:, 0]], surface.vertices[border[:, 1]]
     lengths = np.linalg.norm(b - a, axis=1)
     step = (spacing if spacing else float(np.median(lengths))) / 8
@@ -255,7 +257,7 @@ def border_distance(surface: Surface, spacing: float | None = None, within_mm: f
     # A search from far inside the part is slow (the tree's boxes hold the interior); one sample
     # per cell of a coarse grid bounds every distance from below, so only vertices that may lie
     # within the band go to the fine samples.
-    cell = max(within_mm / 4, step)
+    cell = max(within_mm / 16, step)
     _, keep = np.unique(np.floor(samples / cell).astype(np.int64), axis=0, return_index=True)
     coarse = cKDTree(samples[np.sort(keep)]).query(surface.vertices)[0]
     near = np.flatnonzero(coarse - (cell * math.sqrt(3) + step / 2) < bound)
