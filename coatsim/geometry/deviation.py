@@ -230,13 +230,14 @@ def _bisector_points(verts: np.ndarray, table: SegmentTable, seg_of: np.ndarray,
     closed = len(verts) > 3 and np.array_equal(verts[0], verts[-1])
     v = np.arange(len(verts) - 1) if closed else np.arange(1, len(verts) - 1)
     v = v[wanted[v] | (where[v] != 0)]
-    if not len(v):
-        return np.zeros((0, 2)), np.zeros(0)
     prev = np.where(v == 0, len(verts) - 2, v - 1)
-    u1 = verts[prev] - verts[v]
-    u2 = verts[v + 1] - verts[v]
-    u1 /= np.hypot(u1[:, 0], u1[:, 1])[:, None]
-    u2 /= np.hypot(u2[:, 0], u2[:, 1])[:, None]
+    u1, u2 = verts[prev] - verts[v], verts[v + 1] - verts[v]
+    n1, n2 = np.hypot(u1[:, 0], u1[:, 1]), np.hypot(u2[:, 0], u2[:, 1])
+    turning = (n1 > 0) & (n2 > 0)  # a repeated vertex has no bisector
+    if not turning.any():
+        return np.zeros((0, 2)), np.zeros(0)
+    v, prev = v[turning], prev[turning]
+    u1, u2 = u1[turning] / n1[turning, None], u2[turning] / n2[turning, None]
     plus, minus = u1 + u2, u2 - u1
     across = np.column_stack((-minus[:, 1], minus[:, 0]))
     direction = np.where((np.hypot(*plus.T) > np.hypot(*across.T))[:, None], plus, across)

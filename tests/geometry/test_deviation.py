@@ -392,3 +392,18 @@ def test_hausdorff_at_200k_points_matches_dense_sampling():
     # every vertex's exact distance is at most the reported maximum, and one reaches it
     vertex = distance_to_polysegment(pts, poly)[0]
     assert vertex.max() <= dev.input_to_output + 1e-12
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("pts", [
+    [[0, 0], [0, 0], [5, 0.1], [5, 0.1], [10, 0.2], [30, 5]],  # repeated vertices
+    [[0, 0], [20, 0], [0, 0], [20, 0]],  # back and forth over itself
+    [[100, 100], [100, 100.0000001]],  # far away, one tiny edge
+], ids=["repeated", "back-and-forth", "far"])
+def test_degenerate_polylines_match_dense_sampling_without_warnings(pts):
+    poly = Polysegment(chain((0.0, 0.0), 0.0, [0.0, 0.1, 0.0], [10.0, 10.0, 10.0]))
+    pts = np.asarray(pts, dtype=float)
+    dev = hausdorff(pts, poly)
+    a, b = dense_polyline(pts, 1e-3), dense_polysegment(poly, 1e-3)
+    assert dev.input_to_output == pytest.approx(cKDTree(b).query(a)[0].max(), abs=5e-4)
+    assert dev.output_to_input == pytest.approx(cKDTree(a).query(b)[0].max(), abs=5e-4)
