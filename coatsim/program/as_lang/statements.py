@@ -391,6 +391,8 @@ def parse_line(tokens: list[Token], source: str, line: int, text: str) -> list[I
         items.append(ast.BlockStep(line, word, c.rest_text()))
         return items
     parser = PARSERS.get(word)
+    if parser is None and _is_switch_line(c):
+        parser = _switch  # any system switch: `DISP.EXESTEP ON`, `autostart.pc ON`
     if parser is None:
         raise c.error(f"{keyword.show()} is not an AS instruction coatsim knows", keyword)
     c.take()
@@ -398,6 +400,13 @@ def parse_line(tokens: list[Token], source: str, line: int, text: str) -> list[I
     c.end(f"{word} statement")
     items.append(statement)
     return items
+
+
+def _is_switch_line(c: StatementParser) -> bool:
+    """``NAME ON`` / ``NAME OFF`` and nothing else: a system switch set by the program."""
+    rest = c.tokens[c.pos + 1:]
+    return len(rest) == 1 and rest[0].kind == "name" and rest[0].upper in ("ON", "OFF") \
+        and c.tokens[c.pos].text[:1].isalpha()
 
 
 def _assignment(c: StatementParser, line: int) -> ast.Assign:

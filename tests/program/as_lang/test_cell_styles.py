@@ -1,0 +1,37 @@
+"""Regressions found by running programs written the way cells write them (plain
+``$DECODE($s, ...)``, any system switch set by name, ...): each parses and means what it says."""
+
+from __future__ import annotations
+
+import pytest
+
+from coatsim.program.as_lang import ast
+from coatsim.program.as_lang.interpreter import Interpreter
+from coatsim.program.as_lang.parser import parse_as
+
+
+def run_globals(body: str) -> Interpreter:
+    """Interpret a program body without a cell model; the interpreter with its globals."""
+    f = parse_as(".PROGRAM t()\n" + body + "\n.END\n", "t.as")
+    run = Interpreter((f,), 1, {}, None, 1000.0, 100_000)
+    run.run(f.programs[0])
+    return run
+
+
+def test_decode_of_a_plain_string_variable_takes_the_text_off_it():
+    run = run_globals('  $ids = "12;7,3"\n  a = VAL($DECODE($ids, ";,", 0))\n  $sep = $DECODE($ids, ";,", 1)\n'
+                      '  b = VAL($DECODE($ids, ";,"))\n  .$l = "x y"\n  $w = $DECODE(.$l, " ")')
+    g = run.globals
+    assert (g.get("real", "a"), g.get("string", "$sep"), g.get("real", "b")) == (12.0, ";", 7.0)
+    assert g.get("string", "$ids") == ",3" and g.get("string", "$w") == "x"
+
+
+@pytest.mark.parametrize("line,name,on", [
+    ("DISP.EXESTEP ON", "DISP.EXESTEP", True), ("PROG.DATE ON", "PROG.DATE", True),
+    ("autostart.pc ON", "AUTOSTART.PC", True), ("errstart.pc OFF  ;", "ERRSTART.PC", False),
+    ("ZREPEAT on", "ZREPEAT", True), ("SWITCH DISPIO_01 = OFF", "DISPIO_01", False),
+])
+def test_any_system_switch_set_by_name_parses(line, name, on):
+    st = [s for s in parse_as(f".PROGRAM t()\n  {line}\n.END\n", "t.as").programs[0].body][0]
+    assert st == ast.Switch(2, name, on)
+    assert run_globals("  " + line).switches == {name: on}
