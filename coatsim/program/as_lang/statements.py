@@ -238,14 +238,16 @@ def _if(c: StatementParser, op: str, line: int) -> Item:
         label = c.label()
         c.end("IF ... GOTO statement")
         return ast.Goto(line, label, condition)
-    c.expect_word("THEN", "after the IF condition (or GOTO label)")
+    if not c.at_end():  # THEN may be left out, as controllers save some blocks
+        c.expect_word("THEN", "after the IF condition (or GOTO label)")
     c.end("IF ... THEN")
     return Open("IF", line, (condition,))
 
 
 def _elseif(c: StatementParser, op: str, line: int) -> Item:
     condition = c.condition()
-    c.expect_word("THEN", "after the ELSEIF condition")
+    if not c.at_end():
+        c.expect_word("THEN", "after the ELSEIF condition")
     c.end("ELSEIF ... THEN")
     return Marker("ELSEIF", line, (condition,))
 
