@@ -182,7 +182,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     if not toolpath.spray_moves:
         errors.append(f"{files[0].source}: the gun (output {gun_signal}) is never on during a motion")
         problems.append(errors[-1])
-    elif toolpath.moves[-1].spray:
+    elif run.gun_on_at_end:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
     cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
     return ProgramCheck(

@@ -42,13 +42,15 @@ MAX_CALL_DEPTH = 50
 class Run:
     """An interpreted program: its ToolPath, where each move comes from ((program, first line,
     line): an arc's first line is its C1MOVE) and the BASE it was given in, how often each
-    (program, line) ran, and the programs loaded."""
+    (program, line) ran, the programs loaded, and whether the gun output is still on when
+    the program ends (a switch after the last motion counts)."""
 
     toolpath: ToolPath
     move_origins: tuple[tuple[str, int, int], ...]
     move_bases: tuple[Frame, ...]
     executions: Mapping[tuple[str, int], int]
     programs: Mapping[str, ast.Program]
+    gun_on_at_end: bool = False
 
 
 @dataclass
@@ -413,7 +415,8 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
             names = ", ".join(p.name for p in all_programs)
             raise InputError(f"{files[0].source}: no program named '{program}' (loaded: {names})")
     toolpath = run.run(main)
-    return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs))
+    return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs),
+               run.controller.gun_on)
 
 
 def interpret(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

@@ -35,3 +35,27 @@ def test_any_system_switch_set_by_name_parses(line, name, on):
     st = [s for s in parse_as(f".PROGRAM t()\n  {line}\n.END\n", "t.as").programs[0].body][0]
     assert st == ast.Switch(2, name, on)
     assert run_globals("  " + line).switches == {name: on}
+
+
+def _check(tmp_path, text: str):
+    from coatsim.program.check import check_program
+
+    path = tmp_path / "cell.as"
+    path.write_text(text)
+    return check_program(path)
+
+
+POSES = ".TRANS\na 600 0 300 0 180 0\nb 700 0 300 0 180 0\nc 700 100 300 0 180 0\n.END\n"
+
+
+def test_gun_switched_off_after_the_last_motion_is_off_at_the_end(tmp_path):
+    done = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  BREAK\n  SIGNAL -1\n.END\n" + POSES)
+    assert done.toolpath.moves[-1].spray and not any("still on" in p for p in done.problems)
+    left_on = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n.END\n" + POSES)
+    assert any("the gun (output 1) is still on at the end" in p for p in left_on.problems)
+
+
+def test_block_if_and_elseif_without_then():
+    run = run_globals('  $ids = "4,5"\n  IF INSTR($ids, ",")\n    a = 1\n  ELSEIF 1\n    a = 2\n  ELSE\n    a = 3\n  END\n'
+                      '  IF 0\n    b = 1\n  ELSEIF 1 == 1\n    b = 2\n  END')
+    assert (run.globals.get("real", "a"), run.globals.get("real", "b")) == (1.0, 2.0)
