@@ -170,11 +170,11 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     sections = [f".{s.name} (line {s.line})" for f in files for s in f.sections]
     if sections:
         problems.append(f"sections not read (controller data): {', '.join(sections)}")
-    for move in toolpath.moves:
+    for move, (name, _, _) in zip(toolpath.moves, run.move_origins):
         if isinstance(move, CircularMove):
             sweep = circle_through(move.start.position, move.via.position, move.end.position).sweep
             if sweep >= math.pi:
-                problems.append(f"line {move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
+                problems.append(f"{run.programs[name.lower()].source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
                                 "pair below 180 deg")
     if gun_tcp is not None:
         problems += [f"{main.source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]

@@ -59,3 +59,9 @@ def test_block_if_and_elseif_without_then():
     run = run_globals('  $ids = "4,5"\n  IF INSTR($ids, ",")\n    a = 1\n  ELSEIF 1\n    a = 2\n  ELSE\n    a = 3\n  END\n'
                       '  IF 0\n    b = 1\n  ELSEIF 1 == 1\n    b = 2\n  END')
     assert (run.globals.get("real", "a"), run.globals.get("real", "b")) == (1.0, 2.0)
+
+
+def test_a_half_circle_arc_problem_names_its_file_and_line(tmp_path):
+    done = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  C1MOVE b\n  C2MOVE c\n.END\n"
+                  ".TRANS\na 600 0 300 0 180 0\nb 650 50 300 0 180 0\nc 600 100 300 0 180 0\n.END\n")
+    assert f"{tmp_path / 'cell.as'}:4: arc sweeps 180.0 deg" in " ".join(done.problems)
