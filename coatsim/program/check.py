@@ -16,6 +16,7 @@ from typing import Iterator, Mapping, Optional
 
 import numpy as np
 
+from coatsim.errors import ExecutionError
 from coatsim.program import parse_files, Paths
 from coatsim.program.arcs import circle_through, move_length
 from coatsim.program.as_lang import ast, interpret_run
@@ -141,6 +142,10 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     run = interpret_run(files, gun_signal, program, inputs=inputs, kinematics=kinematics)
     toolpath = run.toolpath
     main = run.programs[toolpath.name.lower()]
+    if not toolpath.moves:
+        ended = f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}"
+        raise ExecutionError(f"{main.source}:{main.line}: program {main.name} has no motion ({ended} before any "
+                             "motion)")
     problems: list[str] = []
     used: set[str] = set()
     signals: list[str] = []

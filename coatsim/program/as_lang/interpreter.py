@@ -42,8 +42,9 @@ MAX_CALL_DEPTH = 50
 class Run:
     """An interpreted program: its ToolPath, where each move comes from ((program, first line,
     line): an arc's first line is its C1MOVE) and the BASE it was given in, how often each
-    (program, line) ran, the programs loaded, and whether the gun output is still on when
-    the program ends (a switch after the last motion counts)."""
+    (program, line) ran, the programs loaded, whether the gun output is still on when the
+    program ends (a switch after the last motion counts), and the STOP / HALT that ended it
+    ("file:line: HALT"; empty when it ran to its end)."""
 
     toolpath: ToolPath
     move_origins: tuple[tuple[str, int, int], ...]
@@ -51,6 +52,7 @@ class Run:
     executions: Mapping[tuple[str, int], int]
     programs: Mapping[str, ast.Program]
     gun_on_at_end: bool = False
+    stopped: str = ""
 
 
 @dataclass
@@ -84,6 +86,7 @@ class Interpreter:
         self.stack: list[_Frame] = []
         self.code: dict[str, Code] = {}
         self.steps, self.line, self.last_loop = 0, 0, None
+        self.stopped = ""  # "file:line: HALT" of the STOP / HALT that ended the run
         self.rng: Optional[_random.Random] = None
         self.origins: list[tuple[str, int, int]] = []
         self.bases: list[Frame] = []
@@ -416,7 +419,7 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
             raise InputError(f"{files[0].source}: no program named '{program}' (loaded: {names})")
     toolpath = run.run(main)
     return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs),
-               run.controller.gun_on)
+               run.controller.gun_on, run.stopped)
 
 
 def interpret(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

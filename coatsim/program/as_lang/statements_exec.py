@@ -205,6 +205,8 @@ def _stop(run: Interpreter, st: ast.Stop) -> None:
     if st.op == "PAUSE":
         run.warn("pause", "PAUSE: the simulation goes on at once")
         return
+    run.stopped = f"{run.where()}: {st.op}"
+    run.warn("stop", f"{st.op} ends the program here")
     raise StopProgram()
 
 

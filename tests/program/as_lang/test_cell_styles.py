@@ -65,3 +65,13 @@ def test_a_half_circle_arc_problem_names_its_file_and_line(tmp_path):
     done = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  C1MOVE b\n  C2MOVE c\n.END\n"
                   ".TRANS\na 600 0 300 0 180 0\nb 650 50 300 0 180 0\nc 600 100 300 0 180 0\n.END\n")
     assert f"{tmp_path / 'cell.as'}:4: arc sweeps 180.0 deg" in " ".join(done.problems)
+
+
+def test_a_halt_that_ends_the_program_is_reported(tmp_path):
+    from coatsim.errors import ExecutionError
+
+    guard = ".PROGRAM t()\n  IF NOT SIG(1001) THEN\n    HALT\n  END\n  JMOVE a\n.END\n" + POSES
+    with pytest.raises(ExecutionError, match=r"cell.as:1: program t has no motion \(.*cell.as:3: HALT ends it"):
+        _check(tmp_path, guard)
+    late = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  STOP\n  LMOVE b\n.END\n" + POSES)
+    assert len(late.toolpath.moves) == 1 and any("cell.as:3: STOP ends the program here" in w for w in late.warnings)
