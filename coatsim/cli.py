@@ -225,7 +225,7 @@ def convert(
     name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
 ) -> None:
     """Rewrite the process path of an existing AS program with arcs within a tolerance."""
-    from coatsim.fileio import write_text
+    from coatsim.fileio import write_bytes
     from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
     from coatsim.robot.kinematics import LazyKinematics
@@ -236,14 +236,18 @@ def convert(
         if not (sep and first.strip().isdigit() and last.strip().isdigit() and int(first) <= int(last)):
             fail(f"--lines {lines!r}: expected FIRST-LAST source line numbers, as in 12-1911")
         line_range = (int(first), int(last))
+    if output is not None and any(output.resolve() == p.resolve() for p in paths):
+        fail(f"-o {output}: is one of the input files; write the converted program to another file")
     options = ConvertOptions(tolerance_mm=tol, gun_signal=gun, program=main, lines=line_range, standalone=standalone,
                              corner_deg=corner_deg, name=name)
     result = convert_program(paths, options, inputs=parse_inputs(inputs) if inputs is not None else None,
                              kinematics=LazyKinematics(model))
     if output is not None:
-        write_text(output, result.text)
+        write_bytes(output, result.data)  # the original's bytes: encoding and line ends kept
     else:
-        typer.echo(result.text, nl=False)
+        sys.stdout.flush()
+        sys.stdout.buffer.write(result.data)
+        sys.stdout.buffer.flush()
     typer.echo(conversion_summary(result) + (f"\nwrote {output}" if output else ""), err=output is None)
 
 

@@ -89,13 +89,15 @@ class PathReport:
 
 @dataclass(frozen=True, eq=False)
 class Conversion:
-    """The written program text, the input file it replaces (None: standalone), the figures."""
+    """The written program text, the input file it replaces (None: standalone), the figures;
+    ``data`` the bytes to write (the original's encoding and line ends kept)."""
 
     text: str
     replaces: Optional[str]
     paths: tuple[PathReport, ...]
     notes: tuple[str, ...]
     tolerance_mm: float
+    data: bytes
 
 
 def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
@@ -203,7 +205,8 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     notes = [n for f in fitted for n in f.notes]
     if options.standalone:
         text, replaces, counts, ranges = _standalone(run, fitted, options), None, None, [f.lines for f in fitted]
-        new_files = (parse_as_bytes(text.encode("ascii"), "converted.as"),)
+        data = text.encode("ascii")
+        new_files = (parse_as_bytes(data, "converted.as"),)
     else:
         replaces, data, counts, ranges = edit_in_place(items, files, run, fitted, options)
         text = data.decode("utf-8" if _is_utf8(data) else "latin-1")
@@ -214,7 +217,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
     reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0)
-    return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm)
+    return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
 
 
 def _is_utf8(data: bytes) -> bool:
@@ -276,6 +279,7 @@ def conversion_summary(c: Conversion) -> str:
                    f"(tolerance {c.tolerance_mm:g} mm; out of plane {r.plane_deviation_mm:.4f} mm)")
     before, after = sum(r.moves_before for r in c.paths), sum(r.moves_after for r in c.paths)
     out.append(f"moves on the process path: {before} -> {after}; "
-               + (f"edited in place: {c.replaces}" if c.replaces else "standalone program"))
+               + (f"path replaced in a copy of {c.replaces} (every other line as it was)" if c.replaces
+                  else "standalone program"))
     out += [f"note: {n}" for n in c.notes]
     return "\n".join(out)

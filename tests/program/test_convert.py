@@ -165,7 +165,13 @@ def test_cli(tmp_path, run_cli):
     assert code == 0, err
     m = re.search(r"(\d+) moves -> (\d+) \((\d+) lines \+ (\d+) arcs\).*deviation ([0-9.]+) mm", text)
     assert m and int(m.group(2)) < int(m.group(1)) / 10 and float(m.group(5)) <= 0.1
-    assert f"wrote {out}" in text and out.read_text().startswith(".PROGRAM trace()")
+    assert f"wrote {out}" in text and out.read_bytes().startswith(b".PROGRAM trace()")
+    # the file written keeps the original's bytes (a Windows code page comment), not re-encoded
+    assert out.read_bytes().split(b"\n")[:5] == src.read_bytes().split(b"\n")[:5]
+    assert "\xe9paisseur".encode("latin-1") in out.read_bytes()
+    before = src.read_bytes()
+    code, _, err = run_cli(["convert", str(src), "--tol", "0.1", "-o", str(tmp_path / "." / src.name)])
+    assert code == 2 and "is one of the input files" in err and src.read_bytes() == before
     code, text, err = run_cli(["convert", str(src), "--tol", "0.1", "--standalone"])
     assert code == 0 and text.startswith(".PROGRAM trace()") and "standalone program" in err
     for args, words in ((["--tol", "0"], "--tol"), (["--tol", "0.1", "--lines", "9-x"], "--lines"),
