@@ -33,21 +33,44 @@ def _gun_on(st: ast.Signal, gun: int) -> bool:
     return all(isinstance(e, ast.Num) and e.value == gun for e in st.outputs)
 
 
+def _goto_loops(body: Sequence[ast.Statement], lo: int, hi: int) -> tuple[int, int]:
+    """``lo``..``hi`` (indices into ``body``) widened to every loop made of a label and a GOTO
+    back to it (``loop:`` ... ``IF .i < n GOTO loop``) that overlaps it: such a loop is replaced
+    whole, like a FOR loop."""
+    labels = {st.name: i for i, st in enumerate(body) if isinstance(st, ast.Label)}
+    jumps = [(labels[g.label], j) for j, st in enumerate(body) for g in walk((st,))
+             if isinstance(g, ast.Goto) and labels.get(g.label, j + 1) <= j]
+    changed = True
+    while changed:
+        changed = False
+        for i, j in jumps:
+            if i <= hi and j >= lo and (i < lo or j > hi):
+                lo, hi, changed = min(lo, i), max(hi, j), True
+    return lo, hi
+
+
 def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: int) -> bool:
-    """Whether the replaced statements hold the gun's switch; InputError on one that cannot go."""
-    gotos = {st.label for st in walk(program.body) if isinstance(st, ast.Goto)}
+    """Whether the replaced statements hold the gun's switch; InputError on one that cannot go
+    (a GOTO in or out of them among them)."""
+    inside = list(walk(tuple(body)))
+    ids = {id(st) for st in inside}
+    labels = {st.name for st in inside if isinstance(st, ast.Label)}
+    gotos = {st.label for st in walk(program.body) if isinstance(st, ast.Goto) and id(st) not in ids}
     switch = False
-    for st in walk(tuple(body)):
+    for st in inside:
         where = f"{program.source}:{st.line}"
         if isinstance(st, ast.Label):
             if st.name in gotos:
                 raise InputError(f"{where}: label {st.name} inside the process path is a GOTO target{_HINT}")
+        elif isinstance(st, ast.Goto):
+            if st.label not in labels:
+                raise InputError(f"{where}: GOTO {st.label} leaves the process path{_HINT}")
         elif isinstance(st, ast.Move):
             if st.op not in ("LMOVE", "C1MOVE", "C2MOVE"):
                 raise InputError(f"{where}: {st.op} inside the process path{_HINT}")
         elif isinstance(st, ast.Signal) and _gun_on(st, gun) and not switch:
             switch = True
-        elif not isinstance(st, (ast.Assign, ast.PointAssign, ast.For, ast.While, ast.DoUntil)):
+        elif not isinstance(st, (ast.Assign, ast.PointAssign, ast.For, ast.While, ast.DoUntil, ast.If)):
             kind = type(st).__name__ if not isinstance(st, ast.Command) else st.name
             raise InputError(f"{where}: the process path holds a {kind.upper()} statement that an arc program "
                              f"cannot keep in place{_HINT}")
@@ -82,7 +105,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         body = program.body
         touched = [i for i, st in enumerate(body)
                    if any(_span(st)[0] <= a <= _span(st)[1] or _span(st)[0] <= b <= _span(st)[1] for _, a, b in origins)]
-        lo, hi = touched[0], touched[-1]
+        lo, hi = _goto_loops(body, touched[0], touched[-1])
         first_line, last_line = _span(body[lo])[0], _span(body[hi])[1]
         made = [i for i, (name, a, b) in enumerate(run.move_origins)
                 if name.lower() == program.name.lower() and first_line <= a and b <= last_line]

@@ -199,3 +199,29 @@ def test_the_twin_runs_both(tmp_path):
     sprayed = {k: float(np.linalg.norm(np.diff(ex.log.position[ex.log.spray], axis=0), axis=1).sum())
                for k, ex in runs.items()}
     assert sprayed["arcs"] == pytest.approx(sprayed["user"], rel=0.01)
+
+
+def _goto_loop_program(points, *, jump_in: bool = False) -> bytes:
+    """A contour traced by a label and an IF ... GOTO back to it over a pose array, step
+    numbers, the gun switched in CALLed routines (``jump_in``: a GOTO from before the loop into it)."""
+    lines = [".PROGRAM loop_trace()", "1 TOOL TRANS(0, 0, 250)", "2 SPEED 150 MM/S ALWAYS", "3 JMOVE c[0] + TRANS(, , -40)",
+             "4 LMOVE c[0]", "5 CALL gun_on", *(["  IF last < 0 GOTO again"] if jump_in else []), "6 .i = 1",
+             "again:", "7 LMOVE c[.i]", "8 .i = .i + 1", "9 IF .i <= last GOTO again", "10 CALL gun_off",
+             "11 LDEPART 40", ".END", ".PROGRAM gun_on()", "  BREAK", "  SIGNAL 1", ".END", ".PROGRAM gun_off()",
+             "  BREAK", "  SIGNAL -1", ".END", ".REALS", f"last = {len(points) - 1}", ".END", ".TRANS"]
+    lines += [f"c[{i}] {700 + x:.4f} {y:.4f} 300 0 180 0" for i, (x, y) in enumerate(points)] + [".END"]
+    return ("\n".join(lines) + "\n").encode()
+
+
+def test_a_goto_loop_is_replaced_whole(tmp_path, kin):
+    points = rounded_rectangle_points()
+    src = write(tmp_path, _goto_loop_program(points))
+    result = convert_program(src, ConvertOptions(TOL), kinematics=kin)
+    (report,) = result.paths
+    assert (report.first_line, report.last_line) == (8, 11) and report.deviation_mm <= TOL
+    assert report.moves_before == len(points) - 1 and report.moves_after <= 12
+    lines = split_lines(result.text)
+    assert lines[6] == "6 .i = 1" and lines[7].startswith("; coatsim convert: lines 8-11")
+    assert not any("GOTO again" in line or line == "again:" for line in lines)
+    with pytest.raises(InputError, match=r"user.as:9: label again inside the process path is a GOTO target"):
+        convert_program(write(tmp_path, _goto_loop_program(points, jump_in=True)), ConvertOptions(TOL), kinematics=kin)
