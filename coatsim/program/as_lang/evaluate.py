@@ -375,9 +375,11 @@ class Evaluator:
     def pose_call(self, e: ast.Call) -> Frame:
         name = e.name
         if name == "TRANS":
-            if len(e.args) > 6:
-                raise self.error(f"TRANS takes x, y, z, o, a, t; found {len(e.args)} values")
-            values = [0.0 if a is None else self.real(a) for a in e.args] + [0.0] * (6 - len(e.args))
+            if len(e.args) > ast.MAX_AXES:
+                raise self.error(f"TRANS takes x, y, z, o, a, t and external axes; found {len(e.args)} values")
+            if any(a is not None for a in e.args[6:]):
+                self.run.warn("trans-external-axes", "TRANS values beyond the 6th (external axes) are ignored")
+            values = [0.0 if a is None else self.real(a) for a in e.args[:6]] + [0.0] * (6 - len(e.args[:6]))
             return Frame.from_xyzoat(*values)
         if name in ("RX", "RY", "RZ"):
             self.arity(e, 1)

@@ -167,9 +167,14 @@ def _point(c: StatementParser, op: str, line: int) -> Item:
     component = None
     if c.is_op("/"):
         c.take()
-        component = c.word(*_POINT_PARTS)
+        tok = c.peek()
+        if tok is not None and tok.kind == "num" and tok.text.isdigit() and 7 <= int(tok.text) <= ast.MAX_AXES:
+            component = str(int(c.take().text))  # an external axis: POINT/7 p = TRANS(,,,,,,1200)
+        else:
+            component = c.word(*_POINT_PARTS)
         if component is None:
-            raise c.error(f"expected one of {', '.join(_POINT_PARTS)} after 'POINT/', found {c.found(c.peek())}", c.peek())
+            raise c.error(f"expected one of {', '.join(_POINT_PARTS)} or an external axis 7..{ast.MAX_AXES} after "
+                          f"'POINT/', found {c.found(c.peek())}", c.peek())
     target = c.target_name("a pose or joint variable")
     if target.kind == "string":
         raise c.error(f"POINT assigns poses and joint values; assign the string {target.name} with '='")

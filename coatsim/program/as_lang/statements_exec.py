@@ -108,6 +108,12 @@ def _point(run: Interpreter, st: ast.PointAssign) -> None:
         run.set("joint", st.target, run.eval.joints(st.value))
         return
     value = run.eval.pose(st.value)
+    if st.component is not None and st.component.isdigit():
+        run.warn(f"point/{st.component}", f"POINT/{st.component}: external axes are not simulated; {st.target.name} keeps "
+                 "its x, y, z, o, a, t")
+        old = run.scope_of(st.target).get("pose", run.key(st.target))
+        run.set("pose", st.target, old if old is not None else Frame(np.eye(3), np.zeros(3)))
+        return
     if st.component is not None:
         old = run.scope_of(st.target).get("pose", run.key(st.target))
         parts = list((old if old is not None else Frame(np.eye(3), np.zeros(3))).xyzoat())

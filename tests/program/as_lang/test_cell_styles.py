@@ -75,3 +75,17 @@ def test_a_halt_that_ends_the_program_is_reported(tmp_path):
         _check(tmp_path, guard)
     late = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  STOP\n  LMOVE b\n.END\n" + POSES)
     assert len(late.toolpath.moves) == 1 and any("cell.as:3: STOP ends the program here" in w for w in late.warnings)
+
+
+def test_external_axes_in_poses_are_read_and_ignored_with_a_warning():
+    """A 7th axis (a rail, a positioner): POINT/7, TRANS with 7 values, 8-axis .TRANS lines, GROUP."""
+    f = parse_as(".PROGRAM t()\n  GROUP -1\n  POINT .c = p\n  POINT/7 .c = TRANS(,,,,,,1200)\n"
+                 "  POINT q = TRANS(1, 2, 3, 0, 180, 0, 500, 20)\n  x = DX(.c) + DX(q) + DX(r)\n  JMOVE .c\n.END\n"
+                 ".TRANS\np 600 0 300 0 180 0 1500\nr 10 0 0 0 0 0 1 2 3 4 5 6\n.END\n", "t.as")
+    run = Interpreter((f,), 1, {}, None, 1000.0, 100_000)
+    tp = run.run(f.programs[0])
+    assert run.globals.get("real", "x") == 611.0 and len(tp.moves) == 1
+    assert tp.moves[0].target.position.tolist() == [600.0, 0.0, 300.0]
+    text = "\n".join(tp.warnings)
+    assert "POINT/7: external axes are not simulated" in text and "TRANS values beyond the 6th" in text
+    assert "GROUP" in text
