@@ -1,8 +1,9 @@
 """Replace the statements that make a process path with its arc moves, in the program's own file.
 
 The statements replaced are the smallest run of consecutive statements of one program (blocks
-whole) that make exactly the path's moves. They may hold motions, assignments, loops, labels no
-GOTO names and the gun's own switch (forward processing: it is written again after the first
+whole) that make exactly the path's moves. They may hold linear and arc motions (LMOVE, C1MOVE,
+C2MOVE, LAPPRO, LDEPART, DRAW, TDRAW), assignments, loops (a label and the GOTO back to it too),
+labels no other GOTO names and the gun's own switch (forward processing: it is written again after the first
 new move); anything else there (other signals, waits, calls, setting changes) would change
 meaning and is refused with its line, as are moves given in different BASEs or settings.
 """
@@ -65,8 +66,8 @@ def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: 
         elif isinstance(st, ast.Goto):
             if st.label not in labels:
                 raise InputError(f"{where}: GOTO {st.label} leaves the process path{_HINT}")
-        elif isinstance(st, ast.Move):
-            if st.op not in ("LMOVE", "C1MOVE", "C2MOVE"):
+        elif isinstance(st, (ast.Move, ast.Appro, ast.Depart, ast.Draw)):
+            if st.op not in ("LMOVE", "C1MOVE", "C2MOVE", "LAPPRO", "LDEPART", "DRAW", "TDRAW"):
                 raise InputError(f"{where}: {st.op} inside the process path{_HINT}")
         elif isinstance(st, ast.Signal) and _gun_on(st, gun) and not switch:
             switch = True

@@ -225,3 +225,19 @@ def test_a_goto_loop_is_replaced_whole(tmp_path, kin):
     assert not any("GOTO again" in line or line == "again:" for line in lines)
     with pytest.raises(InputError, match=r"user.as:9: label again inside the process path is a GOTO target"):
         convert_program(write(tmp_path, _goto_loop_program(points, jump_in=True)), ConvertOptions(TOL), kinematics=kin)
+
+
+def test_a_drawing_robot_s_draw_steps_become_arcs(tmp_path, kin):
+    """A pen plotter tracing a circle by relative DRAW steps (and TDRAW) in a FOR loop."""
+    n, r = 180, 40.0
+    steps = [(r * (math.cos(2 * math.pi * (i + 1) / n) - math.cos(2 * math.pi * i / n)),
+              r * (math.sin(2 * math.pi * (i + 1) / n) - math.sin(2 * math.pi * i / n))) for i in range(n)]
+    text = "\n".join([".PROGRAM plot()", "  TOOL TRANS(0, 0, 250)", "  SPEED 120 MM/S ALWAYS", "  JMOVE start + TRANS(, , -30)",
+                      "  LMOVE start", "  BREAK", "  SIGNAL 1", "  FOR .i = 0 TO 179", "    DRAW stx[.i], sty[.i]", "  END",
+                      "  TDRAW 0, 20", "  BREAK", "  SIGNAL -1", "  LDEPART 30", ".END", ".TRANS", "start 740 0 300 0 180 0",
+                      ".END", ".REALS", *[f"stx[{i}] = {x:.6f}\nsty[{i}] = {y:.6f}" for i, (x, y) in enumerate(steps)],
+                      ".END"]) + "\n"
+    result = convert_program(write(tmp_path, text.encode()), ConvertOptions(TOL), kinematics=kin)
+    (report,) = result.paths
+    assert (report.first_line, report.last_line) == (8, 11) and report.moves_before == n + 1
+    assert report.moves_after <= 6 and report.n_arcs >= 1 and report.deviation_mm <= TOL
