@@ -24,7 +24,7 @@ from coatsim.program.as_lang import interpret_run
 from coatsim.program.as_lang.interpreter import Run
 from coatsim.program.as_lang.names import check_name
 from coatsim.program.as_lang.parser import parse_as_bytes
-from coatsim.program.as_lang.writer import fmt_short, write_as
+from coatsim.program.as_lang.writer import MAX_ARC_SWEEP_DEG, fmt_short, write_as
 from coatsim.program.dialect import ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedArc, PlacedLine, PlacedPath
 from coatsim.program.process_path import ProcessPath, PlaneFrame, dense_points, moves_in_lines, path_distance, \
@@ -217,6 +217,9 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
     reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0)
+    notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
+              f"{r.moves_before}; an arc sweeping more than {MAX_ARC_SWEEP_DEG:g} deg is written in pieces)"
+              for r in reports if r.moves_after >= r.moves_before]
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
 
 
