@@ -164,30 +164,41 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
                   _line_span(run, moves), tuple(notes))
 
 
-def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
-    if len(fitted) != 1:
-        lines = ", ".join(f"{f.lines[0]}-{f.lines[1]}" for f in fitted)
-        raise InputError(f"{len(fitted)} process paths (lines {lines}); --standalone writes one: choose it with "
-                         "--lines FIRST-LAST")
-    f = fitted[0]
+def _settings(run: Run, f: Fitted) -> tuple[float, float, bool]:
+    """Speed (of the longest move), accuracy and CP a path was sprayed with."""
     moves = [run.toolpath.moves[i] for i in f.path.moves]
     lengths = np.array([float(np.linalg.norm(m.end.position - m.start.position)) for m in moves])
-    speeds = np.array([m.settings.speed_mm_s for m in moves])
-    speed = float(speeds[int(np.argmax(lengths))])
+    first = moves[0].settings
+    return float(moves[int(np.argmax(lengths))].settings.speed_mm_s), float(first.accuracy_mm), first.cp
+
+
+def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
+    """One clean program spraying every path in turn (each approached and departed alike)."""
+    spans = ", ".join(f"{f.lines[0]}-{f.lines[1]}" for f in fitted)
+    settings = {_settings(run, f) for f in fitted}
+    if len(settings) != 1:
+        raise InputError(f"{len(fitted)} process paths (lines {spans}) sprayed with different speeds or accuracies; "
+                         "--standalone writes them with one: choose a path with --lines FIRST-LAST")
+    speed, accuracy, cp = settings.pop()
     tool = run.toolpath.metadata.get("tool")
     tool_frame = Frame.parse(tool, "TOOL") if tool else DEFAULT_TOOL
-    path = PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
+    paths = [PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
+             for f in fitted]
     name = options.name or run.toolpath.name[:15]
+    n_moves = sum(len(f.path.moves) for f in fitted)
+    n_segments = sum(len(f.segments) for f in fitted)
     plan = ProgramPlan(
-        name=check_name(name, "program name"), path=path, speed_mm_s=speed,
-        accuracy_mm=float(moves[0].settings.accuracy_mm), exact_stop=not moves[0].settings.cp,
-        approach_mm=options.approach_mm, gun_signal=options.gun_signal, tool=tool_frame,
-        metadata=(("variant", "convert"), ("source", f"{run.toolpath.name} lines {f.lines[0]}-{f.lines[1]}"),
-                  ("tolerance_mm", fmt_short(options.tolerance_mm)), ("curve_length_mm", fmt_short(path.length)),
+        name=check_name(name, "program name"), path=paths[0], more_paths=tuple(paths[1:]), speed_mm_s=speed,
+        accuracy_mm=accuracy, exact_stop=not cp, approach_mm=options.approach_mm, gun_signal=options.gun_signal,
+        tool=tool_frame,
+        metadata=(("variant", "convert"), ("source", f"{run.toolpath.name} lines {spans}"),
+                  ("tolerance_mm", fmt_short(options.tolerance_mm)),
+                  ("curve_length_mm", fmt_short(sum(p.length for p in paths))),
                   ("lead_in_mm", "0"), ("lead_out_mm", "0"), ("gun_signal", str(options.gun_signal)),
-                  ("n_segments", str(len(f.segments))), ("n_lines", str(f.n_lines)), ("n_arcs", str(f.n_arcs))),
-        comments=(f"coatsim convert: lines {f.lines[0]}-{f.lines[1]} of {run.toolpath.name}, {len(moves)} moves -> "
-                  f"{len(f.segments)} lines and arcs within {fmt_short(options.tolerance_mm)} mm",),
+                  ("n_segments", str(n_segments)), ("n_lines", str(sum(f.n_lines for f in fitted))),
+                  ("n_arcs", str(sum(f.n_arcs for f in fitted)))),
+        comments=(f"coatsim convert: lines {spans} of {run.toolpath.name}, {n_moves} moves -> "
+                  f"{n_segments} lines and arcs within {fmt_short(options.tolerance_mm)} mm",),
     )
     return write_as(plan)
 
@@ -244,7 +255,9 @@ def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[
     old, new = run.toolpath.moves, new_run.toolpath.moves
     blocks = []
     if counts is None:
-        blocks.append([m for m in new if m.spray and m.kind != "joint"])
+        blocks = [[new[i] for i in r] for r in spray_runs(new_run.toolpath)]
+        if len(blocks) != len(fitted):
+            raise InputError(f"the standalone program sprays {len(blocks)} paths, not the {len(fitted)} converted")
     else:
         if len(new) != len(old) + sum(c - len(f.path.moves) for f, c in zip(fitted, counts)):
             raise InputError("the converted program moves differently from the original outside the process path; "

@@ -22,7 +22,8 @@ class ProgramPlan:
     ``approach_mm`` back along the tool axis and departs the same distance after its end.
     ``exact_stop`` asks for a stop at every programmed point (no blending).
     ``metadata`` pairs are written as machine-readable header comments and come back in
-    ``ToolPath.metadata``; ``comments`` are free header lines for people.
+    ``ToolPath.metadata``; ``comments`` are free header lines for people. ``more_paths`` are
+    sprayed after ``path`` in turn, each approached and departed the same way.
     """
 
     name: str
@@ -35,6 +36,7 @@ class ProgramPlan:
     tool: Frame
     metadata: tuple[tuple[str, str], ...] = ()
     comments: tuple[str, ...] = ()
+    more_paths: tuple[PlacedPath, ...] = ()
 
 
 class Dialect(Protocol):

@@ -251,3 +251,25 @@ def test_a_program_already_in_arcs_is_not_made_longer_silently(tmp_path, kin):
     (report,) = result.paths
     assert report.moves_before == 2 and report.moves_after == 3 and report.deviation_mm < 0.01
     assert any("no fewer moves (3 against 2" in n for n in result.notes)
+
+
+def test_standalone_sprays_every_pass_of_a_loop(tmp_path, kin):
+    """Two passes of one FOR loop (the same lines make both): the standalone program sprays each
+    in turn; in place the loop cannot be kept."""
+    pts = rounded_rectangle_points()
+    lines = [".PROGRAM passes()", "  TOOL TRANS(0, 0, 250)", "  SPEED 150 MM/S ALWAYS", "  JMOVE c[0] + TRANS(, , -40)",
+             "  FOR .pass = 0 TO 1", "    LMOVE c[0] + TRANS(, , -10 * .pass)", "    BREAK", "    SIGNAL 1",
+             f"    FOR .i = 1 TO {len(pts) - 1}", "      LMOVE c[.i] + TRANS(, , -10 * .pass)", "    END", "    BREAK",
+             "    SIGNAL -1", "  END", ".END", ".TRANS", *[f"c[{i}] {700 + x:.4f} {y:.4f} 300 0 180 0"
+                                                       for i, (x, y) in enumerate(pts)], ".END"]
+    src = write(tmp_path, ("\n".join(lines) + "\n").encode())
+    with pytest.raises(InputError, match="run more than once"):
+        convert_program(src, ConvertOptions(TOL), kinematics=kin)
+    result = convert_program(src, ConvertOptions(TOL, standalone=True), kinematics=kin)
+    assert [(r.first_line, r.last_line) for r in result.paths] == [(10, 10), (10, 10)]
+    assert all(r.deviation_mm <= TOL and r.moves_after <= 12 for r in result.paths)
+    out = tmp_path / "arcs.as"
+    out.write_bytes(result.data)
+    tp = read_toolpath(out)
+    runs = [m.end.position[2] for m in tp.spray_moves]
+    assert sorted({round(z) for z in runs}) == [300, 310] and result.text.count("SIGNAL 1 ") == 2

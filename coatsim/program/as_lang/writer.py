@@ -1,6 +1,6 @@
 """Kawasaki AS writer: a ProgramPlan becomes a complete, loadable .as file.
 
-Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly,
+Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly, per path:
 a joint approach above the start, ``BREAK`` + ``SIGNAL gun`` (the gun opens with the robot at
 the start of the lead-in), one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end)
 pair per arc, ``BREAK`` + ``SIGNAL -gun``, a linear depart, ``.END``, then every pose in a
@@ -122,8 +122,9 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
         poses.append(pose)
         return f"p{len(poses) - 1:0{width}d}"
 
-    n_points = 1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
-                       for s in plan.path.segments)
+    paths = (plan.path, *plan.more_paths)
+    n_points = sum(1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
+                           for s in path.segments) for path in paths)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:
         raise InputError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names; split the path")
@@ -138,16 +139,17 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
     out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
     out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
-    start = name(plan.path.start)
-    out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
-    out.add(f"LMOVE {start}", "down to the stand-off")
-    out.add("BREAK", "at rest before the gun opens")
-    out.add(f"SIGNAL {plan.gun_signal}", "gun on")
-    for statement, comment in path_moves(plan.path.segments, name, max_arc_sweep_deg):
-        out.add(statement, comment)
-    out.add("BREAK", "at rest before the gun closes")
-    out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
-    out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+    for path in paths:
+        start = name(path.start)
+        out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
+        out.add(f"LMOVE {start}", "down to the stand-off")
+        out.add("BREAK", "at rest before the gun opens")
+        out.add(f"SIGNAL {plan.gun_signal}", "gun on")
+        for statement, comment in path_moves(path.segments, name, max_arc_sweep_deg):
+            out.add(statement, comment)
+        out.add("BREAK", "at rest before the gun closes")
+        out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
+        out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):
