@@ -12,7 +12,7 @@ import difflib
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
@@ -229,6 +229,7 @@ def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> Vari
     write_text(job.outdir / f"{entry.name}.as", text)
     try:
         program = user_program(toolpath, curve_frame(job.loaded.spec), text)
+        toolpath = replace(toolpath, warnings=(*toolpath.warnings, *program.notes))  # they reach metrics.json
         return simulate_variant(entry.name, program, toolpath, job, step, None)
     except CoatsimError as exc:
         raise type(exc)(f"{entry.name}: {exc}") from None
