@@ -280,7 +280,11 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         step("segmenting the curve")
         if spec.curve is None:  # the sprayed path of the first program variant
             entry = spec.programs[0]
-            user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
+            toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
+            try:
+                user = user_program(toolpath, curve_frame(spec), "")
+            except CoatsimError as exc:
+                raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
             curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
         else:
             curve = load_input_curve(loaded)
