@@ -57,6 +57,10 @@ def _move(run: Interpreter, st: ast.Move) -> None:
         c.joint(target, st.line)
     elif op in ("LMOVE", "XMOVE"):
         if op == "XMOVE":
+            number = run.eval.integer(st.till, "the XMOVE ... TILL signal")
+            if number != 0 and run.signals.state(abs(number)) == (number > 0, True):
+                raise run.failure(f"XMOVE ... TILL {number}: the signal is already in that state, so the controller "
+                                  "ends the move at once; coatsim does not simulate that")
             run.warn(f"xmove:{st.line}", "XMOVE ... TILL: the signal never comes in the simulation; the move runs to "
                      "its end")
         c.linear(op, target, st.line)

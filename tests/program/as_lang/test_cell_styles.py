@@ -102,3 +102,13 @@ def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compare
     assert user.curve.length == pytest.approx(200.0)
     assert user.notes == ("t sprays 2 stretches (300.0 mm in all); its path here is the longest, lines 5-6 "
                           "(200.0 mm), which the other variants spray alone",)
+
+
+def test_xmove_till_a_signal_already_on_is_not_run_to_its_end():
+    from coatsim.errors import ExecutionError
+
+    f = parse_as(".PROGRAM t()\n  JMOVE a\n  XMOVE b TILL 1005\n.END\n" + POSES, "t.as")
+    with pytest.raises(ExecutionError, match=r"t.as:3: XMOVE \.\.\. TILL 1005: the signal is already in that state"):
+        Interpreter((f,), 1, {1005: True}, None, 1000.0, 100_000).run(f.programs[0])
+    tp = Interpreter((f,), 1, {1005: False}, None, 1000.0, 100_000).run(f.programs[0])
+    assert len(tp.moves) == 2 and any("runs to its end" in w for w in tp.warnings)
