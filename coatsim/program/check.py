@@ -76,20 +76,20 @@ def walk(body: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
             yield from walk(st.default or ())
 
 
-def _names(e) -> Iterator[str]:
+def used_names(e) -> Iterator[str]:
     """Base names (lower case, no index) of the variables an expression or statement uses."""
     if isinstance(e, ast.Name):
         yield e.name.lower()
         for i in e.index:
-            yield from _names(i)
+            yield from used_names(i)
     elif isinstance(e, tuple):
         for item in e:
-            yield from _names(item)
+            yield from used_names(item)
     elif e is not None and hasattr(e, "__dataclass_fields__") and not isinstance(e, (ast.Num, ast.Str)):
         for name in e.__dataclass_fields__:
             value = getattr(e, name)
             if isinstance(value, (tuple, ast.Name)) or hasattr(value, "__dataclass_fields__"):
-                yield from _names(value)
+                yield from used_names(value)
 
 
 def _constant(e, reals: Mapping[str, float]) -> Optional[float]:
@@ -152,7 +152,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     reals = {k: d.value for f in files for k, d in f.reals.items()}
     for p in run.programs.values():
         for st in walk(p.body):
-            used.update(_names(st))
+            used.update(used_names(st))
             line = _signal_line(st, gun_signal, p.source, reals)
             if line is not None:
                 signals.append(line)

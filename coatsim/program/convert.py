@@ -218,6 +218,9 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
         text, replaces, counts, ranges = _standalone(run, fitted, options), None, None, [f.lines for f in fitted]
         data = text.encode("ascii")
         new_files = (parse_as_bytes(data, "converted.as"),)
+        if any(d.extra for f in files for d in f.trans.values()):
+            notes.append("the original's poses hold external axis values (a rail, a positioner); the standalone "
+                         "program's poses have none: add them before loading it on such a cell")
     else:
         replaces, data, counts, ranges = edit_in_place(items, files, run, fitted, options)
         text = data.decode("utf-8" if _is_utf8(data) else "latin-1")

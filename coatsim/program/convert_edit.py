@@ -18,9 +18,9 @@ from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.edit import edit_lines, indentation
 from coatsim.program.as_lang.interpreter import Run
 from coatsim.program.as_lang.names import sanitize_comment
-from coatsim.program.as_lang.writer import fmt_short, path_moves, pose_values
+from coatsim.program.as_lang.writer import fmt, fmt_short, path_moves, pose_values
 from coatsim.program.as_lang.values import Frame
-from coatsim.program.check import walk
+from coatsim.program.check import used_names, walk
 from coatsim.program.toolpath import Pose
 
 _HINT = "; use --standalone"
@@ -78,6 +78,17 @@ def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: 
     return switch
 
 
+def _external_axes(files, body: Sequence[ast.Statement], where: str) -> tuple[str, ...]:
+    """The external axis values (rail, positioner) of the ``.TRANS`` poses the replaced
+    statements name, written after each new pose: they must be one set along the path."""
+    used = {name for st in walk(tuple(body)) for name in used_names(st)}
+    found = {d.extra for f in files for k, d in f.trans.items() if k.split("[")[0] in used}
+    if len(found) > 1:
+        raise InputError(f"{where}: the poses of the process path hold different external axis values; coatsim "
+                         "does not move external axes along an arc path")
+    return tuple(fmt(v, 3) for v in (found.pop() if found else ()))
+
+
 def _names_taken(files) -> set[str]:
     return {k.split("[")[0] for f in files for table in (f.trans, f.reals, f.joints) for k in table}
 
@@ -114,6 +125,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
             raise InputError(f"{source}:{first_line}: lines {first_line}-{last_line} make other moves than the process "
                              f"path (they run more than once, or hold other motions){_HINT}")
         switch = _check_statements(body[lo:hi + 1], program, options.gun_signal)
+        extra = _external_axes(files, body[lo:hi + 1], f"{source}:{first_line}")
         moves = [run.toolpath.moves[i] for i in f.path.moves]
         settings = {(m.settings.speed_mm_s, m.settings.accuracy_mm, m.settings.cp) for m in moves}
         if len(settings) != 1:
@@ -128,7 +140,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
             label = f"{prefix}{_k}_{len(trans):04d}"
             if len(label) > 15:
                 raise InputError(f"too many new poses for 15-character names{_HINT}")
-            trans.append(" ".join((label, *pose_values(user.pose()))))
+            trans.append(" ".join((label, *pose_values(user.pose()), *extra)))
             return label
 
         statements = path_moves(f.segments, name)

@@ -273,3 +273,20 @@ def test_standalone_sprays_every_pass_of_a_loop(tmp_path, kin):
     tp = read_toolpath(out)
     runs = [m.end.position[2] for m in tp.spray_moves]
     assert sorted({round(z) for z in runs}) == [300, 310] and result.text.count("SIGNAL 1 ") == 2
+
+
+def test_poses_with_an_external_axis_keep_it(tmp_path, kin):
+    """A cell with a rail (a 7th axis in every pose): the new poses carry the rail's value; poses
+    along the path with different rail values are refused."""
+    pts = rounded_rectangle_points()
+    def program(rail):
+        lines = [".PROGRAM rail()", "  TOOL TRANS(0, 0, 250)", "  SPEED 150 MM/S ALWAYS", "  JMOVE c[0]", "  BREAK",
+                 "  SIGNAL 1", f"  FOR .i = 1 TO {len(pts) - 1}", "    LMOVE c[.i]", "  END", "  BREAK", "  SIGNAL -1",
+                 ".END", ".TRANS", *[f"c[{i}] {700 + x:.4f} {y:.4f} 300 0 180 0 {rail(i):.3f}" for i, (x, y) in
+                                     enumerate(pts)], ".END"]
+        return write(tmp_path, ("\n".join(lines) + "\n").encode())
+    result = convert_program(program(lambda i: 1250.0), ConvertOptions(TOL), kinematics=kin)
+    new = [line for line in split_lines(result.text) if line.startswith("cv1_")]
+    assert new and all(line.endswith(" 180.000000 0.000000 1250.000") for line in new)
+    with pytest.raises(InputError, match="different external axis values"):
+        convert_program(program(lambda i: 1250.0 + i), ConvertOptions(TOL), kinematics=kin)
