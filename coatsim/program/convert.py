@@ -230,7 +230,8 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
                                 inputs=inputs, kinematics=kinematics)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
-    reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0)
+    reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0,
+                      replaces or "the standalone program")
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
               f"{r.moves_before}; an arc sweeping more than {MAX_ARC_SWEEP_DEG:g} deg is written in pieces)"
               for r in reports if r.moves_after >= r.moves_before]
@@ -252,9 +253,9 @@ def _same(a, b) -> bool:
 
 
 def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[int]], ranges: list[tuple[int, int]],
-            step: float) -> list[PathReport]:
+            step: float, where: str) -> list[PathReport]:
     """Each new process path against its original, measured both ways on the programs' paths;
-    in place, every other move must be the same as before."""
+    in place, every other move must be the same as before (``where`` names the file edited)."""
     old, new = run.toolpath.moves, new_run.toolpath.moves
     blocks = []
     if counts is None:
@@ -263,22 +264,23 @@ def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[
             raise InputError(f"the standalone program sprays {len(blocks)} paths, not the {len(fitted)} converted")
     else:
         if len(new) != len(old) + sum(c - len(f.path.moves) for f, c in zip(fitted, counts)):
-            raise InputError("the converted program moves differently from the original outside the process path; "
-                             "use --standalone")
+            raise InputError(f"{where}: the converted program moves differently from the original outside the "
+                             "process path; use --standalone")
         offset, done = 0, 0
         for f, c in zip(fitted, counts):
             first, n = f.path.moves[0], len(f.path.moves)
             if not all(_same(old[i], new[i + offset]) for i in range(done, first)):
-                raise InputError("the converted program moves differently from the original before the process path; "
-                                 "use --standalone")
+                raise InputError(f"{where}: the converted program moves differently from the original before the "
+                                 "process path; use --standalone")
             block = list(new[first + offset:first + offset + c])
             if any(m.spray != old[first].spray for m in block):
-                raise InputError("the gun does not spray the converted path as it sprayed the original; use --standalone")
+                raise InputError(f"{where}: the gun does not spray the converted path as it sprayed the original; "
+                                 "use --standalone")
             blocks.append(block)
             offset, done = offset + c - n, first + n
         if not all(_same(old[i], new[i + offset]) for i in range(done, len(old))):
-            raise InputError("the converted program moves differently from the original after the process path; "
-                             "use --standalone")
+            raise InputError(f"{where}: the converted program moves differently from the original after the "
+                             "process path; use --standalone")
     reports = []
     for f, block, (first, last) in zip(fitted, blocks, ranges):
         old_moves = [old[i] for i in f.path.moves]
