@@ -184,7 +184,7 @@ def execute(
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
 ) -> None:
@@ -218,7 +218,7 @@ def convert(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number: its sprayed moves are the process path."),
     standalone: bool = typer.Option(False, "--standalone", help="A clean program of the path alone instead of the edited original."),
     lines: Optional[str] = typer.Option(None, "--lines", help="FIRST-LAST: the moves of these source lines instead of the sprayed ones."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
@@ -255,7 +255,7 @@ def convert(
 def check_program(
     paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
 ) -> None:

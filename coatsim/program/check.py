@@ -144,8 +144,10 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     main = run.programs[toolpath.name.lower()]
     if not toolpath.moves:
         ended = f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}"
+        others = [p.name for p in run.programs.values() if p is not main]
+        hint = f"; choose another main program (loaded: {', '.join(others)})" if others else ""
         raise ExecutionError(f"{main.source}:{main.line}: program {main.name} has no motion ({ended} before any "
-                             "motion)")
+                             f"motion){hint}")
     problems: list[str] = []
     used: set[str] = set()
     signals: list[str] = []

@@ -91,3 +91,8 @@ def test_expressions_evaluate_as_written():
     assert (text("$c"), text("$d"), text("$e2"), text("$e3"), text("$g"), text("$h"), text("$i"), text("$f")) == \
         ("world", "Helld", "  3.14", "x=1.5 y=-2", "12.5", ";", "7", "")
     assert (real("r30"), real("r34"), text("$names[1]"), text("$k")) == (12, 8, "ab", "   |")
+
+
+def test_a_backup_s_main_program_is_not_its_autostart_pc(cell):
+    done = check_program(DATA / "backup_cp1252.as", kinematics=cell[0], inputs={1001: True})
+    assert done.program == "peinture" and done.spray_length_mm == pytest.approx(240.0)
