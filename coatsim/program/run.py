@@ -16,15 +16,18 @@ from coatsim.program.placement import Frame, Placement, centering_offset
 
 def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
                 lead_in_mm: float, lead_out_mm: float, roll_deg: float = 0.0, follow_tangent: bool = False,
-                center: Optional[bool] = None, output: Optional[Path] = None) -> BuiltProgram:
+                center: Optional[bool] = None, output: Optional[Path] = None,
+                tool_accel_mm_s2: Optional[float] = None) -> BuiltProgram:
     """Load ``spec``, place it, write the program (to ``output`` if given).
 
     ``center`` None centres built-in curves on the frame origin and leaves file curves where
-    their coordinates put them.
+    their coordinates put them. With ``tool_accel_mm_s2`` the curve is segmented for the
+    programmed speed (see :func:`load_program_input`).
     """
     placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
-    inp = load_program_input(spec, tol)
+    speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
+    inp = load_program_input(spec, tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
     if inp.builtin if center is None else center:
         placement = replace(placement, offset_xy=centering_offset(inp.polysegment))
     built = build_program(inp.polysegment, placement, options, tolerance_mm=inp.tolerance_mm,

@@ -249,8 +249,8 @@ def test_a_program_already_in_arcs_is_not_made_longer_silently(tmp_path, kin):
             "a 700 -40 300 0 180 0\nb 740 0 300 0 180 0\nc 700 40 300 0 180 0\nd 660 0 300 0 180 0\n.END\n")
     result = convert_program(write(tmp_path, text.encode()), ConvertOptions(TOL), kinematics=kin)
     (report,) = result.paths
-    assert report.moves_before == 2 and report.moves_after == 3 and report.deviation_mm < 0.01
-    assert any("no fewer moves (3 against 2" in n for n in result.notes)
+    assert report.moves_before == 2 and report.moves_after > 2 and report.deviation_mm < 0.01
+    assert any(f"no fewer moves ({report.moves_after} against 2" in n for n in result.notes)
 
 
 def test_standalone_sprays_every_pass_of_a_loop(tmp_path, kin):
