@@ -171,7 +171,7 @@ def test_cli(tmp_path, run_cli):
     assert "\xe9paisseur".encode("latin-1") in out.read_bytes()
     before = src.read_bytes()
     code, _, err = run_cli(["convert", str(src), "--tol", "0.1", "-o", str(tmp_path / "." / src.name)])
-    assert code == 2 and "is one of the input files" in err and src.read_bytes() == before
+    assert code == 2 and "is the same file as the program" in err and src.read_bytes() == before
     code, text, err = run_cli(["convert", str(src), "--tol", "0.1", "--standalone"])
     assert code == 0 and text.startswith(".PROGRAM trace()") and "standalone program" in err
     for args, words in ((["--tol", "0"], "--tol"), (["--tol", "0.1", "--lines", "9-x"], "--lines"),
