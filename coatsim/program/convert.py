@@ -102,7 +102,13 @@ class Conversion:
 
 def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
     if options.lines is not None:
-        return [moves_in_lines(run, *options.lines)]
+        moves = moves_in_lines(run, *options.lines)
+        sprayed = {run.toolpath.moves[i].spray for i in moves}
+        if len(sprayed) > 1:
+            off = next(run.toolpath.moves[i].line for i in moves if not run.toolpath.moves[i].spray)
+            raise InputError(f"--lines {options.lines[0]}-{options.lines[1]}: the gun sprays some of these moves and "
+                             f"not others (line {off}); choose lines the gun sprays throughout, or none of")
+        return [moves]
     runs = [r for r in spray_runs(run.toolpath) if len(r) >= 2]
     if not runs:
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
