@@ -30,12 +30,14 @@ _LISTED = 5  # unused poses named before "and N more"
 
 @dataclass(frozen=True)
 class SprayRun:
-    """Consecutive moves with the gun on: source lines of the first and last, length in mm."""
+    """Consecutive moves with the gun on: source lines of the first and last (in ``source``,
+    the file of the first), length in mm."""
 
     first_line: int
     last_line: int
     length_mm: float
     moves: int
+    source: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,16 +120,17 @@ def _signal_line(st: ast.Statement, gun: int, source: str, reals: Mapping[str, f
     return None
 
 
-def spray_runs(toolpath: ToolPath) -> tuple[SprayRun, ...]:
-    """The stretches of consecutive moves the gun is on for."""
+def spray_runs(toolpath: ToolPath, sources: list[str]) -> tuple[SprayRun, ...]:
+    """The stretches of consecutive moves the gun is on for; ``sources`` the file of each move."""
     runs, current = [], []
-    for m in (*toolpath.moves, None):
+    for i, m in enumerate((*toolpath.moves, None)):
         if m is not None and m.spray:
-            current.append(m)
+            current.append(i)
             continue
         if current:
-            runs.append(SprayRun(current[0].line, current[-1].line, float(sum(move_length(x) for x in current)),
-                                 len(current)))
+            moves = [toolpath.moves[k] for k in current]
+            runs.append(SprayRun(moves[0].line, moves[-1].line, float(sum(move_length(x) for x in moves)),
+                                 len(moves), sources[current[0]]))
             current = []
     return tuple(runs)
 
@@ -205,7 +208,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         metadata=tuple(toolpath.metadata.items()),
         problems=tuple(problems),
         signals=tuple(signals),
-        spray_runs=spray_runs(toolpath),
+        spray_runs=spray_runs(toolpath, [run.programs[name.lower()].source for name, _, _ in run.move_origins]),
         warnings=toolpath.warnings,
         toolpath=toolpath,
         errors=tuple(errors),

@@ -112,3 +112,13 @@ def test_xmove_till_a_signal_already_on_is_not_run_to_its_end():
         Interpreter((f,), 1, {1005: True}, None, 1000.0, 100_000).run(f.programs[0])
     tp = Interpreter((f,), 1, {1005: False}, None, 1000.0, 100_000).run(f.programs[0])
     assert len(tp.moves) == 2 and any("runs to its end" in w for w in tp.warnings)
+
+
+def test_a_sprayed_stretch_names_the_file_its_lines_are_in(tmp_path):
+    from coatsim.program.check import check_program
+
+    (tmp_path / "main.as").write_text(".PROGRAM m()\n  JMOVE a\n  CALL sprayit\n.END\n")
+    (tmp_path / "sub.as").write_text(".PROGRAM sprayit()\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n"
+                                     "  SIGNAL -1\n.END\n" + POSES)
+    (run,) = check_program([tmp_path / "main.as", tmp_path / "sub.as"]).spray_runs
+    assert (run.source, run.first_line, run.last_line, run.moves) == (str(tmp_path / "sub.as"), 4, 5, 2)
