@@ -237,7 +237,7 @@ def execute(
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
@@ -272,14 +272,14 @@ def convert(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number: its sprayed moves are the process path."),
     standalone: bool = typer.Option(False, "--standalone", help="A clean program of the path alone instead of the edited original."),
     lines: Optional[str] = typer.Option(None, "--lines", help="FIRST-LAST: the moves of these source lines instead of the sprayed ones."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
     name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
 ) -> None:
     """Rewrite the process path of an existing AS program with arcs within a tolerance."""
-    from coatsim.fileio import write_text
+    from coatsim.fileio import write_bytes
     from coatsim.outputs_guard import check_distinct
     from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
@@ -297,9 +297,11 @@ def convert(
     result = convert_program(paths, options, inputs=parse_inputs(inputs) if inputs is not None else None,
                              kinematics=LazyKinematics(model))
     if output is not None:
-        write_text(output, result.text)
+        write_bytes(output, result.data)  # the original's bytes: encoding and line ends kept
     else:
-        typer.echo(result.text, nl=False)
+        sys.stdout.flush()
+        sys.stdout.buffer.write(result.data)
+        sys.stdout.buffer.flush()
     typer.echo(conversion_summary(result) + (f"\nwrote {output}" if output else ""), err=output is None)
 
 
@@ -307,7 +309,7 @@ def convert(
 def check_program(
     paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
 ) -> None:

@@ -240,6 +240,7 @@ def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> Vari
     write_text(job.outdir / f"{entry.name}.as", text)
     try:
         program = user_program(toolpath, curve_frame(job.loaded.spec), text)
+        toolpath = replace(toolpath, warnings=(*toolpath.warnings, *program.notes))  # they reach metrics.json
         return simulate_variant(entry.name, program, toolpath, job, step, None)
     except CoatsimError as exc:
         raise type(exc)(f"{entry.name}: {exc}") from None
@@ -346,7 +347,11 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
         step("segmenting the curve")
         if spec.curve is None:  # the sprayed path of the first program variant
             entry = spec.programs[0]
-            user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
+            toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
+            try:
+                user = user_program(toolpath, curve_frame(spec), "")
+            except CoatsimError as exc:
+                raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
             curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
         else:
             curve = load_input_curve(loaded)

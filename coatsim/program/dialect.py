@@ -24,7 +24,8 @@ class ProgramPlan:
     ``curve`` part (one lap of a closed contour: no double coat at the seam).
     ``exact_stop`` asks for a stop at every programmed point (no blending).
     ``metadata`` pairs are written as machine-readable header comments and come back in
-    ``ToolPath.metadata``; ``comments`` are free header lines for people.
+    ``ToolPath.metadata``; ``comments`` are free header lines for people. ``more_paths`` are
+    sprayed after ``path`` in turn, each approached and departed the same way.
     """
 
     name: str
@@ -38,6 +39,7 @@ class ProgramPlan:
     spray_leads: bool = True
     metadata: tuple[tuple[str, str], ...] = ()
     comments: tuple[str, ...] = ()
+    more_paths: tuple[PlacedPath, ...] = ()
 
 
 class Dialect(Protocol):

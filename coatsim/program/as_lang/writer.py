@@ -1,11 +1,12 @@
 """Kawasaki AS writer: a ProgramPlan becomes a complete, loadable .as file.
 
 Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly,
-a joint approach above the start, a linear move down to the stand-off and ``BREAK`` (at rest at
-the start of the lead-in), one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end)
-pair per arc, ``BREAK``, a linear depart, ``.END``, then every pose in a ``.TRANS`` section.
-Only straight-line code between the first and last sprayed move: loops and calls there make a
-Kawasaki controller slow down.
+then per path (the plan's path and its ``more_paths`` in turn): a joint approach above the
+start, a linear move down to the stand-off and ``BREAK`` (at rest at the start of the lead-in),
+one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end) pair per arc, ``BREAK``, a
+linear depart; ``.END``, then every pose in a ``.TRANS`` section. Only straight-line code
+between the first and last sprayed move: loops and calls there make a Kawasaki controller slow
+down.
 
 Gun timing (AS forward processing, as the interpreter models it): a ``SIGNAL`` written after a
 motion, with no ``BREAK`` in between, switches as that motion starts. So:
@@ -144,8 +145,9 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
         poses.append(pose)
         return f"p{len(poses) - 1:0{width}d}"
 
-    n_points = 1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
-                       for s in plan.path.segments)
+    paths = (plan.path, *plan.more_paths)
+    n_points = sum(1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc)
+                           else 1 for s in path.segments) for path in paths)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:
         raise InputError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names; split the path")
@@ -160,33 +162,34 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
     out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
     out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
-    start = name(plan.path.start)
-    out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
-    out.add(f"LMOVE {start}", "down to the stand-off")
-    gun_on = False
-    for index, (seg, label) in enumerate(zip(plan.path.segments, _labels(plan.path.segments))):
-        sprayed = plan.spray_leads or seg.part == "curve"
-        if index == 0:
-            out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
-            if sprayed:
-                out.add(f"SIGNAL {plan.gun_signal}", "gun on")
-                gun_on = True
-        moves = _segment_moves(seg, label, name, max_arc_sweep_deg)
-        first = 1 if moves[0][0].startswith("LMOVE") else 2  # the segment's first motion (C1MOVE + C2MOVE)
-        for move in moves[:first]:
-            out.add(*move)
-        if sprayed != gun_on:
-            out.add(f"SIGNAL {plan.gun_signal if sprayed else -plan.gun_signal}",
-                    f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
-            gun_on = sprayed
-        for move in moves[first:]:
-            out.add(*move)
-    if gun_on:
-        out.add("BREAK", "at rest before the gun closes")
-        out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
-    else:
-        out.add("BREAK", "at rest at the end of the path")
-    out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+    for path in paths:
+        start = name(path.start)
+        out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
+        out.add(f"LMOVE {start}", "down to the stand-off")
+        gun_on = False
+        for index, (seg, label) in enumerate(zip(path.segments, _labels(path.segments))):
+            sprayed = plan.spray_leads or seg.part == "curve"
+            if index == 0:
+                out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
+                if sprayed:
+                    out.add(f"SIGNAL {plan.gun_signal}", "gun on")
+                    gun_on = True
+            moves = _segment_moves(seg, label, name, max_arc_sweep_deg)
+            first = 1 if moves[0][0].startswith("LMOVE") else 2  # the segment's first motion (C1MOVE + C2MOVE)
+            for move in moves[:first]:
+                out.add(*move)
+            if sprayed != gun_on:
+                out.add(f"SIGNAL {plan.gun_signal if sprayed else -plan.gun_signal}",
+                        f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
+                gun_on = sprayed
+            for move in moves[first:]:
+                out.add(*move)
+        if gun_on:
+            out.add("BREAK", "at rest before the gun closes")
+            out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
+        else:
+            out.add("BREAK", "at rest at the end of the path")
+        out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):
