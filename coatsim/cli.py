@@ -29,7 +29,7 @@ def fail(message: str, code: int = 2) -> None:
 
 @app.command()
 def segment(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns) or builtin:NAME[:key=value,...]."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
     tol: float = typer.Option(0.1, "--tol", help="Tolerance sigma: max two-sided deviation, mm."),
     method: str = typer.Option("optimal", "--method", help="optimal (guaranteed tolerance, few segments) | paper (literal RDP on θ)."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
@@ -37,9 +37,21 @@ def segment(
     theta_tol: Optional[float] = typer.Option(None, "--theta-tol", help="paper method: fixed RDP tolerance on θ instead of searching for tol."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
+    layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
+    join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
 ) -> None:
-    """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
+    """Approximate a curve by tangent-continuous arcs and lines within a tolerance; a drawing
+    gives one polysegment per contour (a part JSON when there are several)."""
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
+    from coatsim.geometry.cad.drawing import is_drawing
+
+    if is_drawing(input):
+        from coatsim.geometry.cad.command import segment_drawing_command
+
+        typer.echo(segment_drawing_command(input, tol, layer, join_tol, method, closed, theta_tol, output, plot))
+        return
+    if layer or join_tol is not None:
+        fail("--layer and --join-tol apply to drawings (DXF, SVG)")
 
     if closed not in ("auto", "yes", "no"):
         fail(f"--closed: expected auto, yes or no, got {closed!r}")

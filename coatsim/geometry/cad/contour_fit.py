@@ -1,0 +1,186 @@
+"""A chained contour becomes a polysegment: native lines and arcs exactly, free-form
+stretches fitted within the tolerance.
+
+- Native pieces go in as they are. Collinear lines and concentric arcs of equal radius that
+  meet tangentially are merged into one segment, when the merge moves nothing by more than
+  round-off (``MERGE_EPS`` relative), so a drawing of lines and arcs comes back with at most
+  as many segments as primitives and zero deviation.
+- A free-form stretch is a run of free-form pieces joined tangentially. It is fitted by the
+  default fitter (``fit_run``) from its first to its last point; where it joins a native
+  piece tangentially its end tangent is pinned to that piece's, so the join is G1 exactly.
+  A closed contour that is one tangent free-form loop is fitted as a closed loop.
+- Joins that are not tangent are the polysegment's corners.
+
+The deviation reported is the largest of the fitted stretches' verified deviations from
+their samples (which lie within the flattening distance of the drawn curves) and of the
+merges; it is 0 for a contour of lines and arcs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from coatsim.geometry.cad.chaining import Contour, TANGENT_EXACT_RAD
+from coatsim.geometry.cad.pieces import FreePiece
+from coatsim.geometry.fit import fit_run
+from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.primitives import Arc, Line, Segment
+
+MERGE_EPS = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class ContourFit:
+    """The contour's polysegment, its verified deviation (mm), the dense samples of the drawn
+    contour (n, 2) (closed: last = first), and how many pieces went in."""
+
+    polysegment: Polysegment
+    deviation_mm: float
+    points: np.ndarray
+    n_pieces: int
+
+
+@dataclass
+class _Block:
+    """Consecutive pieces fitted or copied together: one native piece, or a free stretch."""
+
+    pieces: list
+    free: bool
+
+
+def _blocks(contour: Contour) -> tuple[list[_Block], list[bool], bool]:
+    """Blocks in contour order, tangency of the join after each block (seam last when
+    closed), and whether the whole contour is one tangent free-form loop."""
+    pieces, tangent = list(contour.pieces), list(contour.tangent)
+    n = len(pieces)
+    free = [isinstance(p, FreePiece) for p in pieces]
+    if contour.closed:
+        # start at a join that ends a block: a corner, or one with a native piece on either side
+        cuts = [k for k in range(n) if not (free[k] and free[(k + 1) % n] and tangent[k])]
+        if not cuts:
+            return [_Block(pieces, True)], [True], True
+        first = (cuts[-1] + 1) % n if cuts[-1] != n - 1 else 0
+        pieces, tangent, free = pieces[first:] + pieces[:first], tangent[first:] + tangent[:first], free[first:] + free[:first]
+    blocks: list[_Block] = []
+    after: list[bool] = []
+    for k, piece in enumerate(pieces):
+        if blocks and free[k] and blocks[-1].free and tangent[k - 1]:
+            blocks[-1].pieces.append(piece)
+            continue
+        if blocks:
+            after.append(tangent[k - 1])
+        blocks.append(_Block([piece], free[k]))
+    if contour.closed:
+        after.append(tangent[-1])
+    return blocks, after, False
+
+
+def _free_points(block: _Block) -> np.ndarray:
+    return np.vstack([block.pieces[0].points[:1]] + [p.points[1:] for p in block.pieces])
+
+
+def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None,
+              end_heading: float | None) -> tuple[tuple[Segment, ...], float]:
+    """The fitter on one free-form stretch, its end tangents pinned where given."""
+    del start_heading, end_heading  # pinned end tangents: see fit_run
+    return fit_run(points, tolerance, closed_loop)
+
+
+def _scale(segments: list[Segment]) -> float:
+    return max(1.0, max(abs(c) for s in segments for p in (s.start, s.end) for c in p))
+
+
+def _merged(a: Segment, b: Segment, eps: float) -> tuple[Segment, float] | None:
+    """One segment for a tangent pair of collinear lines or concentric equal arcs, and how
+    far it moves the pair (mm); None if they are not such a pair."""
+    if isinstance(a, Line) and isinstance(b, Line):
+        line = Line(a.start, b.end)
+        d = np.subtract(b.end, a.start)
+        norm = float(np.linalg.norm(d))
+        if norm == 0.0:
+            return None
+        off = abs(float(np.cross(d, np.subtract(a.end, a.start)))) / norm
+        return (line, off) if off <= eps else None
+    if isinstance(a, Arc) and isinstance(b, Arc) and (a.sweep > 0) == (b.sweep > 0):
+        off = math.dist(a.center, b.center) + abs(a.radius - b.radius)
+        if off <= eps and abs(a.sweep + b.sweep) <= 2 * math.pi * (1 + 1e-12):
+            return Arc(a.start, b.end, a.center, a.radius, a.sweep + b.sweep), off
+    return None
+
+
+def _merge(segments: list[Segment], corner_after: list[bool], closed: bool) -> tuple[list[Segment], list[bool], float]:
+    """Merge tangent collinear lines and concentric equal arcs (across the seam too)."""
+    eps = MERGE_EPS * _scale(segments)
+    segs, corners, worst = [segments[0]], [], 0.0
+    for k in range(1, len(segments)):
+        merged = None if corner_after[k - 1] else _merged(segs[-1], segments[k], eps)
+        if merged is None:
+            segs.append(segments[k])
+            corners.append(corner_after[k - 1])
+        else:
+            segs[-1], worst = merged[0], max(worst, merged[1])
+    if closed:
+        corners.append(corner_after[-1])
+        if len(segs) > 1 and not corners[-1]:
+            merged = _merged(segs[-1], segs[0], eps)
+            if merged is not None:
+                segs = [merged[0]] + segs[1:-1]
+                corners = corners[:-1]  # the seam is now the join before the merged segment
+                worst = max(worst, merged[1])
+    return segs, corners, worst
+
+
+def _samples(contour: Contour, flatten_mm: float) -> np.ndarray:
+    parts = [contour.pieces[0].samples(flatten_mm)[:1]] + [p.samples(flatten_mm)[1:] for p in contour.pieces]
+    pts = np.vstack(parts)
+    if contour.closed:
+        pts[-1] = pts[0]
+    return pts
+
+
+def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float) -> ContourFit:
+    """The polysegment of one contour; see the module docstring."""
+    blocks, tangent_after, loop = _blocks(contour)
+    if loop:
+        segs, dev = _fit_free(_free_points(blocks[0]), tolerance_mm, True, None, None)
+        poly = Polysegment(tuple(segs), closed=True)
+        return ContourFit(poly, dev, _samples(contour, flatten_mm), len(contour.pieces))
+    segments: list[Segment] = []
+    corner_after: list[bool] = []
+    worst = 0.0
+    n = len(blocks)
+    for k, block in enumerate(blocks):
+        if block.free:
+            before, after = blocks[(k - 1) % n], blocks[(k + 1) % n]
+            pin_start = (k > 0 or contour.closed) and not before.free and tangent_after[k - 1]
+            pin_end = k < len(tangent_after) and not after.free and tangent_after[k]
+            fitted, dev = _fit_free(_free_points(block), tolerance_mm, False,
+                                    before.pieces[-1].end_heading if pin_start else None,
+                                    after.pieces[0].start_heading if pin_end else None)
+            worst = max(worst, dev)
+        else:
+            fitted = (block.pieces[0].segment,)
+        segments.extend(fitted)
+        corner_after.extend([False] * (len(fitted) - 1))
+        if k < len(tangent_after):
+            corner_after.append(not tangent_after[k])
+    corner_after = _fitted_breaks(segments, corner_after, contour.closed)
+    segs, corners, merge_dev = _merge(segments, corner_after, contour.closed)
+    poly = Polysegment(tuple(segs), closed=contour.closed, corners=tuple(k for k, c in enumerate(corners) if c))
+    return ContourFit(poly, max(worst, merge_dev), _samples(contour, flatten_mm), len(contour.pieces))
+
+
+def _fitted_breaks(segments: list[Segment], corner_after: list[bool], closed: bool) -> list[bool]:
+    """Corner flags with every join that is not tangent in the result marked as a corner
+    (a join the drawing has tangent but a fit could not pin)."""
+    out = list(corner_after)
+    n = len(segments)
+    for k in range(len(out)):
+        a, b = segments[k], segments[(k + 1) % n]
+        if not out[k] and abs(math.remainder(b.start_heading - a.end_heading, 2 * math.pi)) > TANGENT_EXACT_RAD:
+            out[k] = True
+    return out
+
