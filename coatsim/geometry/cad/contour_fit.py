@@ -98,11 +98,11 @@ def _merged(a: Segment, b: Segment, eps: float) -> tuple[Segment, float] | None:
     far it moves the pair (mm); None if they are not such a pair."""
     if isinstance(a, Line) and isinstance(b, Line):
         line = Line(a.start, b.end)
-        d = np.subtract(b.end, a.start)
+        d, e = np.subtract(b.end, a.start), np.subtract(a.end, a.start)
         norm = float(np.linalg.norm(d))
         if norm == 0.0:
             return None
-        off = abs(float(np.cross(d, np.subtract(a.end, a.start)))) / norm
+        off = abs(float(d[0] * e[1] - d[1] * e[0])) / norm
         return (line, off) if off <= eps else None
     if isinstance(a, Arc) and isinstance(b, Arc) and (a.sweep > 0) == (b.sweep > 0):
         off = math.dist(a.center, b.center) + abs(a.radius - b.radius)

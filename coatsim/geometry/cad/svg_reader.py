@@ -31,6 +31,9 @@ from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
 from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, flatten, line_piece, tangent_heading
 
 MM_PER_USER_UNIT = 25.4 / 96.0
+# svgelements converts mm and cm with 0.0393701 inch per mm (rounded); its px of a document
+# sized in mm or cm are converted back with the same constant, so the user's mm stay exact.
+_SVGELEMENTS_INCH_PER_MM = 0.0393701
 _INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _ARITY = {"m": 2, "l": 2, "t": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "a": 7, "z": 0}
@@ -123,11 +126,11 @@ def _name(el, index: int) -> str:
     return f"<{tag} id={el.id!r}>" if el.id else f"<{tag}> #{index} (no id)"
 
 
-_FLIP = np.array([MM_PER_USER_UNIT, -MM_PER_USER_UNIT])
-
-
-def _to_mm(p) -> np.ndarray:
-    return np.array([float(p[0]) * MM_PER_USER_UNIT, -float(p[1]) * MM_PER_USER_UNIT])
+def mm_per_px(svg) -> float:
+    """Millimetres per svgelements pixel for this document (see _SVGELEMENTS_INCH_PER_MM)."""
+    own = svg.values.get("attributes", {})
+    size = f"{own.get('width', '')} {own.get('height', '')}".lower()
+    return 1.0 / (96.0 * _SVGELEMENTS_INCH_PER_MM) if re.search(r"\d\s*(mm|cm)\b", size) else MM_PER_USER_UNIT
 
 
 def _circular(arc) -> bool:
@@ -136,13 +139,16 @@ def _circular(arc) -> bool:
     return abs(rx - ry) <= 1e-9 * max(rx, ry) and rx > 0 and abs(float(arc.sweep)) > 0
 
 
-def _shape_pieces(shape, label: str, flatten_mm: float) -> list[Piece]:
-    """The pieces of one shape (every subpath, Close as a line back to its start)."""
+def _shape_pieces(shape, label: str, flatten_mm: float, mm_px: float) -> list[Piece]:
+    """The pieces of one shape (every subpath, Close as a line back to its start), with
+    ``mm_px`` mm per pixel."""
     import svgelements as se
 
+    flip = np.array([mm_px, -mm_px])
+    _to_mm = lambda p: np.array([float(p[0]), float(p[1])]) * flip  # noqa: E731
     pieces: list[Piece] = []
-    for k, seg in enumerate(se.Path(shape).segments()):
-        sub = f"{label} segment {k}"
+    for index, seg in enumerate(se.Path(shape).segments()):
+        sub = f"{label} segment {index}"
         if isinstance(seg, se.Move) or seg.start is None or seg.end is None:
             continue
         a, b = _to_mm(seg.start), _to_mm(seg.end)
@@ -152,9 +158,9 @@ def _shape_pieces(shape, label: str, flatten_mm: float) -> list[Piece]:
             pieces.append(line_piece(a, b, sub))
         elif isinstance(seg, se.Arc) and _circular(seg):
             # y flips, so the sense of rotation does too
-            pieces.append(arc_piece(_to_mm(seg.center), (float(seg.rx) + float(seg.ry)) / 2 * MM_PER_USER_UNIT, a, b, -float(seg.sweep), sub))
+            pieces.append(arc_piece(_to_mm(seg.center), (float(seg.rx) + float(seg.ry)) / 2 * mm_px, a, b, -float(seg.sweep), sub))
         else:
-            at = lambda t, seg=seg: np.asarray(seg.npoint(t), float) * _FLIP  # noqa: E731
+            at = lambda t, seg=seg: np.asarray(seg.npoint(t), float) * flip  # noqa: E731
             pts = flatten(at, flatten_mm)
             pts[0], pts[-1] = a, b
             pieces.append(FreePiece(pts, tangent_heading(at, False), tangent_heading(at, True), sub))
@@ -166,6 +172,7 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     import svgelements as se
 
     svg = _parse(path)
+    k = mm_per_px(svg)
     elements = list(_walk(svg, ()))
     known = sorted({label for _, labels in elements for label in labels})
     wanted = check_layers(str(path), layers, known)
@@ -187,7 +194,7 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
             problem = path_data_error(str(el.values.get("d", "")))
             if problem is not None:
                 raise InputError(f"{path}: {label}: {problem}")
-        pieces.extend(_shape_pieces(el, label, flatten_mm))
+        pieces.extend(_shape_pieces(el, label, flatten_mm, k))
     notes = []
     if ignored:
         notes.append(count_note("ignored", ignored, "not contour geometry"))
@@ -201,5 +208,5 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         else:
             why = "no geometry to spray (no path, rect, circle, ellipse, line, polyline or polygon with a length)"
         raise InputError(f"{path}: {why}")
-    return Drawing(str(path), tuple(pieces), f"SVG user units (1 = {MM_PER_USER_UNIT:.6g} mm, y flipped)", tuple(notes))
+    return Drawing(str(path), tuple(pieces), f"SVG px (1 = {k:.9g} mm, y flipped)", tuple(notes))
 
