@@ -134,7 +134,7 @@ def coat(
 
 @app.command()
 def program(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY), builtin:NAME, or a polysegment JSON (coatsim segment -o)."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY), builtin:NAME, a drawing (DXF/SVG), or a polysegment or part JSON (coatsim segment -o)."),
     tol: Optional[float] = typer.Option(None, "--tol", help="Tolerance sigma, mm (required for a curve; default for a JSON: its tolerance_mm)."),
     speed: float = typer.Option(500.0, "--speed", help="Programmed tool speed, mm/s."),
     standoff: float = typer.Option(100.0, "--standoff", help="Stand-off of the TCP above the surface, mm."),
@@ -150,8 +150,12 @@ def program(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
+    join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
+    order: str = typer.Option("as-drawn", "--order", help="Parts: spray the contours as-drawn | nearest (next start closest to the last end)."),
 ) -> None:
-    """Write the Kawasaki AS program (polysegment or polyline variant) of a curve."""
+    """Write the Kawasaki AS program (polysegment or polyline variant) of a curve, or of every
+    contour of a drawing one after the other (gun off between them)."""
     from coatsim.program.build import ProgramOptions
     from coatsim.program.run import program_summary, run_program
 
@@ -159,7 +163,7 @@ def program(
                              gun_signal=gun, name=name)
     built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                         lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                        output=output)
+                        output=output, layers=layer, join_tol=join_tol, order=order)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)

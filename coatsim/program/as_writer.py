@@ -107,8 +107,8 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
         poses.append(pose)
         return f"p{len(poses) - 1:0{width}d}"
 
-    n_points = 1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
-                       for s in plan.path.segments)
+    n_points = sum(1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
+                           for s in path.segments) for path in plan.paths)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:
         raise ValueError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names")
@@ -123,29 +123,34 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
     out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
     out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
-    start = name(plan.path.start)
-    out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
-    out.add(f"LMOVE {start}", "down to the stand-off")
-    out.add("BREAK", "at rest before the gun opens")
-    out.add(f"SIGNAL {plan.gun_signal}", "gun on")
-    counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
-    for seg in plan.path.segments:
-        counters[seg.part] += 1
-        label = seg.part.replace("_", "-") if seg.part != "curve" else f"segment {counters['curve']}"
-        if isinstance(seg, PlacedLine):
-            out.add(f"LMOVE {name(seg.end)}", label)
-            continue
-        pieces = seg.split(math.radians(max_arc_sweep_deg))
-        for k, piece in enumerate(pieces):
-            part_label = label if len(pieces) == 1 else f"{label} ({k + 1}/{len(pieces)})"
-            if _arc_is_writable(piece.start, piece.via, piece.end):
-                out.add(f"C1MOVE {name(piece.via)}", f"{part_label}, arc via")
-                out.add(f"C2MOVE {name(piece.end)}", "arc end")
-            else:
-                out.add(f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution")
-    out.add("BREAK", "at rest before the gun closes")
-    out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
-    out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+    for index, path in enumerate(plan.paths):
+        start = name(path.start)
+        which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
+        if index == 0:
+            out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", f"above the start{which}")
+        else:
+            out.add(f"LAPPRO {start}, {fmt_short(plan.approach_mm)}", f"gun off: travel above the start{which}")
+        out.add(f"LMOVE {start}", "down to the stand-off")
+        out.add("BREAK", "at rest before the gun opens")
+        out.add(f"SIGNAL {plan.gun_signal}", "gun on")
+        counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
+        for seg in path.segments:
+            counters[seg.part] += 1
+            label = seg.part.replace("_", "-") if seg.part != "curve" else f"segment {counters['curve']}"
+            if isinstance(seg, PlacedLine):
+                out.add(f"LMOVE {name(seg.end)}", label)
+                continue
+            pieces = seg.split(math.radians(max_arc_sweep_deg))
+            for k, piece in enumerate(pieces):
+                part_label = label if len(pieces) == 1 else f"{label} ({k + 1}/{len(pieces)})"
+                if _arc_is_writable(piece.start, piece.via, piece.end):
+                    out.add(f"C1MOVE {name(piece.via)}", f"{part_label}, arc via")
+                    out.add(f"C2MOVE {name(piece.end)}", "arc end")
+                else:
+                    out.add(f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution")
+        out.add("BREAK", "at rest before the gun closes")
+        out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
+        out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):

@@ -20,6 +20,8 @@ class ProgramPlan:
 
     ``path`` is sprayed from its start to its end; the program approaches its start from
     ``approach_mm`` back along the tool axis and departs the same distance after its end.
+    ``further_paths`` (the other contours of a part) are sprayed after it in order, each
+    reached with the gun off by a straight travel at that clearance.
     ``exact_stop`` asks for a stop at every programmed point (no blending).
     ``metadata`` pairs are written as machine-readable header comments and come back in
     ``ToolPath.metadata``; ``comments`` are free header lines for people.
@@ -35,6 +37,12 @@ class ProgramPlan:
     tool: Frame
     metadata: tuple[tuple[str, str], ...] = ()
     comments: tuple[str, ...] = ()
+    further_paths: tuple[PlacedPath, ...] = ()
+
+    @property
+    def paths(self) -> tuple[PlacedPath, ...]:
+        """Every sprayed path, in spray order."""
+        return (self.path, *self.further_paths)
 
 
 class Dialect(Protocol):

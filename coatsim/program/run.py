@@ -8,42 +8,53 @@ from typing import Optional
 
 from coatsim.fileio import write_text
 from coatsim.program.as_parser import parse_as
-from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
+from coatsim.program.build import BuiltProgram, ProgramOptions
 from coatsim.program.check import ProgramCheck
-from coatsim.program.inputs import load_program_input
-from coatsim.program.placement import Frame, Placement, centering_offset
+from coatsim.program.inputs import load_part_input
+from coatsim.program.part_program import PartProgram, build_part_program, part_centering_offset
+from coatsim.program.placement import Frame, Placement
 
 
 def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
                 lead_in_mm: float, lead_out_mm: float, roll_deg: float = 0.0, follow_tangent: bool = False,
-                center: Optional[bool] = None, output: Optional[Path] = None) -> BuiltProgram:
-    """Load ``spec``, place it, write the program (to ``output`` if given).
+                center: Optional[bool] = None, output: Optional[Path] = None, layers: Optional[list[str]] = None,
+                join_tol: Optional[float] = None, order: str = "as-drawn") -> PartProgram:
+    """Load ``spec`` (a curve, a drawing or a polysegment/part JSON), place it, write the
+    program (to ``output`` if given); a part's contours are sprayed in ``order``.
 
     ``center`` None centres built-in curves on the frame origin and leaves file curves where
     their coordinates put them.
     """
     placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
-    inp = load_program_input(spec, tol)
+    inp = load_part_input(spec, tol, layers, join_tol)
     if inp.builtin if center is None else center:
-        placement = replace(placement, offset_xy=centering_offset(inp.polysegment))
-    built = build_program(inp.polysegment, placement, options, tolerance_mm=inp.tolerance_mm,
-                          source=inp.source, points=inp.points)
+        placement = replace(placement, offset_xy=part_centering_offset(inp.contours))
+    built = build_part_program(inp.contours, placement, options, tolerance_mm=inp.tolerance_mm, source=inp.source,
+                               points=inp.points, order=order)
     if output is not None:
         write_text(output, built.text)
     return built
 
 
-def program_summary(built: BuiltProgram) -> str:
-    """Two lines describing a written program."""
-    plan, curve = built.plan, built.curve
+def program_summary(built: BuiltProgram | PartProgram) -> str:
+    """Two lines (and one per contour of a part) describing a written program."""
+    plan = built.plan
+    curves = getattr(built, "curves", None) or (built.curve,)
     n_steps = len(parse_as(built.text).programs[0].statements)
-    return (
-        f"program {plan.name}: {dict(plan.metadata)['variant']}, {curve.n_lines} lines + {curve.n_arcs} arcs, "
-        f"{n_steps} steps, {built.text.count(chr(10))} lines of text\n"
-        f"path: curve {plan.path.curve_length_mm:.3f} mm + lead-in {plan.path.lead_in_mm:g} + lead-out "
-        f"{plan.path.lead_out_mm:g} mm at stand-off {plan.path.standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s"
-    )
+    n_lines, n_arcs = sum(c.n_lines for c in curves), sum(c.n_arcs for c in curves)
+    length = sum(p.curve_length_mm for p in plan.paths)
+    lines = [
+        f"program {plan.name}: {dict(plan.metadata)['variant']}, {n_lines} lines + {n_arcs} arcs, "
+        f"{n_steps} steps, {built.text.count(chr(10))} lines of text",
+        f"path: curve {length:.3f} mm + lead-in {plan.path.lead_in_mm:g} + lead-out "
+        f"{plan.path.lead_out_mm:g} mm at stand-off {plan.path.standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s",
+    ]
+    if len(curves) > 1:
+        lines[1] += f"; {len(curves)} contours, lead-in and lead-out on each, gun off between them"
+        lines += [f"  contour {k + 1} (drawn {i + 1}): {c.n_segments} segments, {p.curve_length_mm:.3f} mm"
+                  for k, (i, c, p) in enumerate(zip(built.order, curves, plan.paths))]
+    return "\n".join(lines)
 
 
 def check_summary(check: ProgramCheck) -> str:

@@ -31,7 +31,8 @@ _WINDOW_MM = 10.0  # progress search window around the commanded point (plus ble
 class Execution:
     """Result of executing one program: the log, its metrics, the joint-limit and singularity
     warnings by program step, the largest IK residual, the programmed reference path, the
-    curve-proper progress interval (mm), and wall time per phase (s)."""
+    curve-proper progress interval (mm; from the first contour's start to the last one's end),
+    wall time per phase (s), and for a part each contour's interval and metrics."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
@@ -40,6 +41,8 @@ class Execution:
     reference: ReferencePath
     curve: tuple[float, float]
     wall: dict[str, float] = field(default_factory=dict)
+    curves: tuple[tuple[float, float], ...] = ()
+    contour_metrics: tuple[MotionMetrics, ...] = ()
 
 
 @dataclass
@@ -64,19 +67,31 @@ def _metadata_mm(toolpath: ToolPath, key: str) -> float:
     return value
 
 
-def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float, float]:
-    """Progress interval of the curve proper and its programmed speed."""
+def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[float, float]], float]:
+    """Progress interval of each curve proper (one per unbroken run of spray-on moves: the
+    contours of a part) and the programmed speed."""
     cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
-    chosen = [i for i in cartesian if toolpath.moves[i].spray] or cartesian
-    if not chosen:
+    if not cartesian:
         raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
-    a = ref.move_span(chosen[0])[0] + _metadata_mm(toolpath, "lead_in_mm")
-    b = ref.move_span(chosen[-1])[1] - _metadata_mm(toolpath, "lead_out_mm")
-    if b <= a:
-        raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
-    inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
+    runs: list[list[int]] = [[]]
+    members = set(cartesian)
+    for i, move in enumerate(toolpath.moves):  # a move with the gun off ends a run
+        if move.spray and i in members:
+            runs[-1].append(i)
+        elif not move.spray and runs[-1]:
+            runs.append([])
+    runs = [r for r in runs if r] or [cartesian]
+    lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
+    spans, inside = [], []
+    for run in runs:
+        a = ref.move_span(run[0])[0] + lead_in
+        b = ref.move_span(run[-1])[1] - lead_out
+        if b <= a:
+            raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
+        spans.append((a, b))
+        inside += [i for i in run if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
     speed = max(toolpath.moves[i].settings.speed_mm_s for i in inside)
-    return a, b, float(speed)
+    return spans, float(speed)
 
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
@@ -149,13 +164,14 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     dist, progress, curvature = ref.project(run.tcp, hint, _WINDOW_MM + 2 * max_blend)
     log = TrajectoryLog(t=run.t, position=run.tcp, axis=run.axis, speed=run.speed, spray=spray,
                         progress=progress, path_error=dist, q=run.q)
-    a, b, speed = _curve_proper(toolpath, ref)
-    metrics = motion_metrics(log, (a, b), speed, curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max,
-                             (worst[0], worst[1]))
+    spans, speed = _curves_proper(toolpath, ref)
+    limits = (curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max, (worst[0], worst[1]))
+    metrics = motion_metrics(log, spans, speed, *limits)
+    per_contour = tuple(motion_metrics(log, span, speed, *limits) for span in spans) if len(spans) > 1 else (metrics,)
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
-                     curve=(a, b), wall=wall)
+                     curve=(spans[0][0], spans[-1][1]), wall=wall, curves=tuple(spans), contour_metrics=per_contour)
 
 
 def execute_program(program: str | Path, model: str | Path | None, outdir: str | Path, gun_signal: int = 1,
@@ -179,5 +195,5 @@ def execute_program(program: str | Path, model: str | Path | None, outdir: str |
         "events": list(result.events),
     }
     write_text(files[1], json.dumps(doc, indent=2) + "\n")
-    plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{toolpath.name}: tool speed along the path")
+    plot_speed(result.log, result.metrics, result.curves, files[2], title=f"{toolpath.name}: tool speed along the path")
     return result, files
