@@ -21,14 +21,17 @@ import numpy as np
 from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
+from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
+from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.segment import Segmentation
 from coatsim.program import read_toolpath
-from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
+from coatsim.program.build import ProgramOptions
+from coatsim.program.part_program import PartProgram, build_part_program, part_centering_offset
 from coatsim.program.oat import oat_to_matrix
-from coatsim.program.placement import Frame, Placement, centering_offset
+from coatsim.program.placement import Frame, Placement
 from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
-from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
+from coatsim.report.metrics import assemble, coating_group, combine_segmentation, contours_section, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
 from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
@@ -47,10 +50,11 @@ class VariantRun:
     """One program variant carried through every stage."""
 
     name: str
-    program: BuiltProgram
+    program: PartProgram
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
+    contour_groups: tuple[dict[str, dict[str, float | int | None]], ...] = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +79,27 @@ def check_gate_metrics(loaded: ScenarioFile) -> None:
             group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
             hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
             raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
+
+
+def segment_input(loaded: ScenarioFile) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation]]:
+    """The scenario's contours segmented: one for a curve; a drawing's every contour (and the
+    part they make)."""
+    spec, seg = loaded.spec.curve, loaded.spec.segmentation
+    if spec.file is None or not is_drawing(spec.file):
+        return (segment_curve(load_input_curve(loaded), seg.tolerance_mm, method=seg.method,
+                              corner_deg=seg.corner_deg),), None
+    if seg.method != "optimal":
+        raise InputError(f"{loaded.where('segmentation', 'method')}: segmentation.method: a drawing keeps its lines "
+                         "and arcs exactly; 'paper' applies to point curves")
+    layers = [spec.layer] if isinstance(spec.layer, str) else spec.layer
+    angle = math.radians(spec.rotate_deg)
+    rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
+    try:
+        part = segment_drawing(loaded.resolve(spec.file), seg.tolerance_mm, layers=layers,
+                               join_tolerance_mm=spec.join_tolerance_mm, rotation=rotation, scale=spec.scale)
+    except InputError as exc:
+        raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
+    return part.contours, part
 
 
 def load_input_curve(loaded: ScenarioFile) -> Curve:
@@ -171,7 +196,7 @@ class Job:
     """What every variant of a run shares: inputs, placement, part, gun, arm, numerics."""
 
     loaded: ScenarioFile
-    segmentation: Segmentation
+    contours: tuple[Segmentation, ...]
     placement: Placement
     surface: Surface
     model: SprayModel
@@ -185,11 +210,12 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     """Program, execute and coat one variant; writes ``name.as``, ``name.trajectory.csv`` and
     ``name.thickness.ply``."""
     spec, out = job.loaded.spec, job.outdir
-    poly, points = job.segmentation.polysegment, job.segmentation.curve.points
+    polys = [c.polysegment for c in job.contours]
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
                              gun_signal=spec.gun.signal, name=spec.name)
-    program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
-                            source=f"scenario:{spec.name}", points=points)
+    program = build_part_program(polys, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
+                                 source=f"scenario:{spec.name}", points=[c.curve.points for c in job.contours],
+                                 order=spec.motion.contour_order)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
     toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal)
@@ -201,14 +227,21 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                   spacing=job.spacing_mm)
     write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um)
+    per_contour = [None] * len(polys)
+    for place, (k, curve) in enumerate(zip(program.order, program.curves)):
+        c = job.contours[k]
+        per_contour[k] = {
+            "segmentation": segmentation_group(c.curve.points, curve, spec.segmentation.tolerance_mm,
+                                               spec.segmentation.corner_deg,
+                                               c.max_deviation_mm if curve is polys[k] else None),
+            "motion": execution.contour_metrics[place].as_dict(),
+        }
     groups = {
-        "segmentation": segmentation_group(
-            points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
-            job.segmentation.max_deviation_mm if program.curve is poly else None),
+        "segmentation": combine_segmentation([g["segmentation"] for g in per_contour]),
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
     }
-    return VariantRun(name, program, execution, result, groups)
+    return VariantRun(name, program, execution, result, groups, tuple(per_contour) if len(polys) > 1 else ())
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
@@ -229,18 +262,20 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants), show) as step:
         step("segmenting the curve")
-        curve = load_input_curve(loaded)
-        segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
-                                     corner_deg=spec.segmentation.corner_deg)
-        poly = segmentation.polysegment
-        write_polysegment_json(out / "polysegment.json", segmentation)
-        offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        contours, part = segment_input(loaded)
+        polys = [c.polysegment for c in contours]
+        segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
+        if part is None:
+            write_polysegment_json(segmentation_file, contours[0])
+        else:
+            write_part_json(segmentation_file, part)
+        offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
         placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
         cell = load_arm(loaded)
-        job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
+        job = Job(loaded, contours, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
         runs = []
         for name in spec.variants:
@@ -253,9 +288,11 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates(spec.gates, variants)
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full")
+        if len(contours) > 1:
+            document["contours"] = contours_section(contours, runs[0].program.order, {r.name: r.contour_groups for r in runs})
         write_text(out / "metrics.json", to_json(document))
-        write_report(out / "report.html", loaded, curve, segmentation, runs, document)
-    files = [out / "polysegment.json"]
+        write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else ())
+    files = [segmentation_file]
     for r in runs:
         files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
     files += [out / "metrics.json", out / "report.html"]

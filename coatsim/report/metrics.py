@@ -2,7 +2,9 @@
 
 ``{"format": "coatsim.metrics/1", "mode": "full" | "fast", "scenario": {...}, "variants": {V: {"segmentation": {...},
 "motion": {...}, "coating": {...}}}, "gates": [...], "passed": bool}``; the metric names are
-those of :mod:`coatsim.report.catalogue`, values are plain numbers (null where undefined).
+those of :mod:`coatsim.report.catalogue`, values are plain numbers (null where undefined). A
+part of several contours adds "contours": one entry per contour with its segmentation and
+motion groups per variant (the variant groups sum or take the extremes over the part).
 """
 
 from __future__ import annotations
@@ -57,6 +59,43 @@ def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm
         "max_tangent_break_deg": float(smooth.max()) if len(smooth) else 0.0,
         "curve_length_mm": programmed.length,
     }
+
+
+def combine_segmentation(groups: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """The segmentation group of a part from its contours' groups: counts and the curve
+    length add up, deviation and tangent break are the largest."""
+    if len(groups) == 1:
+        return dict(groups[0])
+    total = lambda key: sum(g[key] for g in groups)  # noqa: E731
+    return {
+        "n_segments": total("n_segments"),
+        "n_arcs": total("n_arcs"),
+        "n_lines": total("n_lines"),
+        "n_corners": total("n_corners"),
+        "max_deviation_mm": max(g["max_deviation_mm"] for g in groups),
+        "tolerance_mm": groups[0]["tolerance_mm"],
+        "max_tangent_break_deg": max(g["max_tangent_break_deg"] for g in groups),
+        "curve_length_mm": total("curve_length_mm"),
+    }
+
+
+def contours_section(contours: Sequence[Any], order: Sequence[int],
+                     per_variant: Mapping[str, Sequence[Mapping[str, Mapping[str, Any]]]]) -> list[dict[str, Any]]:
+    """``metrics.json`` "contours" of a part: for every contour in drawing order its number,
+    its place in the spray order, whether it is closed, where the drawing starts it, and per
+    variant its segmentation and motion groups (the catalogue's names)."""
+    place = {k: i for i, k in enumerate(order)}
+    rows = []
+    for k, c in enumerate(contours):
+        rows.append({
+            "contour": k + 1,
+            "spray_order": place[k] + 1,
+            "closed": bool(c.curve.closed),
+            "source": getattr(c, "origin", "") or c.curve.name,
+            "variants": {v: {g: {n: plain(groups[k][g][n]) for n in names(g)} for g in ("segmentation", "motion")}
+                         for v, groups in per_variant.items()},
+        })
+    return rows
 
 
 def coating_group(coating: Mapping[str, float]) -> dict[str, Any]:
