@@ -135,7 +135,6 @@ def build_sections(loaded, contours: Sequence, runs: Sequence, document: Mapping
                    notes: Sequence[str] = ()) -> list[Section]:
     """Every section of the report, in order."""
     spec = loaded.spec
-    curve = contours[0].curve
     polyline = next((r.program.curves for r in runs if r.name != "polysegment"), None)
     polyline_xy = None if polyline is None else _vertices(polyline)
     curve_xy = _stacked([c.curve.points for c in contours])

@@ -66,8 +66,8 @@ class PartSegmentation:
     def summary(self) -> str:
         st = self.stats()
         lines = [
-            f"{self.source}: {st['n_contours']} contours ({st['n_closed']} closed) from {st['input_primitives']} "
-            f"pieces; units {self.units}",
+            f"{self.source}: {st['n_contours']} contour{'s' if st['n_contours'] != 1 else ''} ({st['n_closed']} "
+            f"closed) from {st['input_primitives']} pieces; units {self.units}",
             f"tolerance {self.tolerance_mm:g} mm, join tolerance {self.join_tolerance_mm:g} mm",
             f"segments {st['n_segments']} ({st['n_arcs']} arcs, {st['n_lines']} lines), corners {st['n_corners']}",
             f"max deviation {st['max_deviation_mm']:.6f} mm, max tangent break {st['max_tangent_break_deg']:.3g} deg "
