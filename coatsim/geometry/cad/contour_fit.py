@@ -11,9 +11,10 @@ stretches fitted within the tolerance.
   A closed contour that is one tangent free-form loop is fitted as a closed loop.
 - Joins that are not tangent are the polysegment's corners.
 
-The deviation reported is the largest of the fitted stretches' verified deviations from
-their samples (which lie within the flattening distance of the drawn curves) and of the
-merges; it is 0 for a contour of lines and arcs.
+The deviation reported is the largest of the merges' and of the fitted stretches' bounds:
+each stretch is fitted within σ minus the flattening distance to samples that lie within
+that distance of the drawn curves, and reports its verified deviation from the samples plus
+the flattening distance. It is 0 for a contour of lines and arcs.
 """
 
 from __future__ import annotations
@@ -142,12 +143,18 @@ def _samples(contour: Contour, flatten_mm: float) -> np.ndarray:
 
 
 def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float) -> ContourFit:
-    """The polysegment of one contour; see the module docstring."""
+    """The polysegment of one contour; see the module docstring. Free-form samples lie
+    within ``flatten_mm`` of the drawn curves, so stretches are fitted to them within
+    ``tolerance_mm - flatten_mm`` and their deviation is reported plus ``flatten_mm``: an
+    upper bound of the distance to the drawn curve, at most ``tolerance_mm``."""
+    if not 0 < flatten_mm < tolerance_mm:
+        raise ValueError("flatten_mm must be between 0 and the tolerance")
+    fit_tol = tolerance_mm - flatten_mm
     blocks, tangent_after, loop = _blocks(contour)
     if loop:
-        segs, dev = _fit_free(_free_points(blocks[0]), tolerance_mm, True, None, None)
+        segs, dev = _fit_free(_free_points(blocks[0]), fit_tol, True, None, None)
         poly = Polysegment(tuple(segs), closed=True)
-        return ContourFit(poly, dev, _samples(contour, flatten_mm), len(contour.pieces))
+        return ContourFit(poly, dev + flatten_mm, _samples(contour, flatten_mm), len(contour.pieces))
     segments: list[Segment] = []
     corner_after: list[bool] = []
     worst = 0.0
@@ -157,10 +164,10 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float) -> Con
             before, after = blocks[(k - 1) % n], blocks[(k + 1) % n]
             pin_start = (k > 0 or contour.closed) and not before.free and tangent_after[k - 1]
             pin_end = k < len(tangent_after) and not after.free and tangent_after[k]
-            fitted, dev = _fit_free(_free_points(block), tolerance_mm, False,
+            fitted, dev = _fit_free(_free_points(block), fit_tol, False,
                                     before.pieces[-1].end_heading if pin_start else None,
                                     after.pieces[0].start_heading if pin_end else None)
-            worst = max(worst, dev)
+            worst = max(worst, dev + flatten_mm)
         else:
             fitted = (block.pieces[0].segment,)
         segments.extend(fitted)

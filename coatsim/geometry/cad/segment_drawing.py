@@ -19,7 +19,7 @@ from coatsim.geometry.curves import Curve
 from coatsim.geometry.segment import Segmentation
 from coatsim.geometry.theta import theta_of_polyline
 
-FLATTEN_FRACTION = 0.02  # free-form curves are sampled within this fraction of σ
+FLATTEN_FRACTION = 0.05  # free-form curves are sampled within this fraction of σ
 JOIN_FRACTION = 0.01  # default join tolerance, as a fraction of σ
 SUMMARY_CONTOURS = 30  # contours listed one per line in the summary
 
