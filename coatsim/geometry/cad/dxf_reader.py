@@ -2,7 +2,8 @@
 
 Read: LINE, ARC, CIRCLE, ELLIPSE, LWPOLYLINE and 2-D/3-D POLYLINE (bulges become arcs),
 SPLINE, and INSERT/MINSERT with nested blocks and their transforms. Entities must lie in a
-plane parallel to XY (their z is dropped); others are left out with a note. Annotation,
+plane parallel to XY (their z is dropped); others are left out with a note, except that a
+drawing lying wholly in one tilted plane (a UCS) is read in that plane's own coordinates. Annotation,
 fills, views and meshes (DIMENSION, TEXT, HATCH, VIEWPORT, MESH, ...) are ignored with a
 note. Layers: by default every layer that is neither off nor frozen; ``--layer`` names them
 (also hidden ones). Entities on layer 0 inside a block take the layer of the INSERT, as CAD
@@ -47,6 +48,41 @@ MAX_BLOCK_DEPTH = 32
 _FLAT = 1e-9  # relative: z differences and tilts below this are round-off
 
 
+class _Plane:
+    """The drawing plane: WCS points to 2-D plane coordinates (its OCS), and the sense of an
+    entity's extrusion relative to its normal. The XY plane unless the drawing lies wholly in
+    one tilted plane."""
+
+    def __init__(self, normal=(0.0, 0.0, 1.0)) -> None:
+        from ezdxf.math import OCS, Vec3
+
+        self.normal = Vec3(normal).normalize()
+        self.ocs = None if self.normal.isclose((0.0, 0.0, 1.0), abs_tol=_FLAT) else OCS(self.normal)
+
+    def xyz(self, p) -> tuple[np.ndarray, float]:
+        """Plane coordinates (2,) of a WCS point (or direction), and its height above the plane."""
+        q = p if self.ocs is None else self.ocs.from_wcs(p)
+        return np.array([float(q[0]), float(q[1])]), float(q[2])
+
+    def xy(self, p) -> np.ndarray:
+        return self.xyz(p)[0]
+
+    def flat(self, points: Iterable) -> bool:
+        """Whether WCS points lie in one plane parallel to the drawing plane."""
+        pts = list(points)
+        zs = [self.xyz(p)[1] for p in pts]
+        scale = max((abs(float(c)) for p in pts for c in p), default=1.0)
+        return not zs or max(zs) - min(zs) <= _FLAT * max(1.0, scale)
+
+    def sense(self, entity) -> Optional[float]:
+        """+1 / -1 for an extrusion along / against the normal; None for a tilted one."""
+        n = entity.dxf.get("extrusion", (0.0, 0.0, 1.0))
+        dot = float(np.dot(n, self.normal)) / max(float(np.linalg.norm(n)), 1e-300)
+        if abs(abs(dot) - 1.0) > _FLAT:
+            return None
+        return 1.0 if dot > 0 else -1.0
+
+
 @dataclass
 class _Walk:
     """What the walk through the modelspace collects."""
@@ -54,11 +90,13 @@ class _Walk:
     doc: object
     wanted: Optional[tuple[str, ...]]
     flatten: float
+    plane: _Plane = field(default_factory=_Plane)
     pieces: list[Piece] = field(default_factory=list)
     ignored: Counter = field(default_factory=Counter)
     hidden: Counter = field(default_factory=Counter)
     other_layers: Counter = field(default_factory=Counter)
     tilted: list[str] = field(default_factory=list)
+    tilts: Counter = field(default_factory=Counter)
 
     def layer_state(self, name: str) -> tuple[bool, bool]:
         """(off, frozen) of a layer; a layer missing from the table is visible."""
@@ -67,24 +105,17 @@ class _Walk:
             return False, False
         return bool(layer.is_off()), bool(layer.is_frozen())
 
+    def tilt(self, entity, label: str) -> None:
+        """Note an entity not parallel to the drawing plane (and its extrusion, if it has one)."""
+        self.tilted.append(label)
+        if entity.dxf.is_supported("extrusion"):
+            self.tilts[tuple(round(float(c), 12) for c in entity.dxf.get("extrusion", (0.0, 0.0, 1.0)))] += 1
+
 
 def _label(entity, where: str) -> str:
     handle = entity.dxf.get("handle")
     own = f"{entity.dxftype()} #{handle}" if handle else entity.dxftype()
     return f"{own} {where}".rstrip()
-
-
-def _flat_z(values: Iterable[float], scale: float) -> bool:
-    zs = list(values)
-    return not zs or max(zs) - min(zs) <= _FLAT * max(1.0, scale)
-
-
-def _sense(entity) -> Optional[float]:
-    """+1 / -1 for an extrusion along +z / -z; None for a tilted one."""
-    n = entity.dxf.get("extrusion", (0.0, 0.0, 1.0))
-    if abs(n[0]) > _FLAT or abs(n[1]) > _FLAT or n[2] == 0:
-        return None
-    return 1.0 if n[2] > 0 else -1.0
 
 
 def _span(start_deg: float, end_deg: float) -> float:
@@ -93,15 +124,11 @@ def _span(start_deg: float, end_deg: float) -> float:
     return math.radians(span if span > 1e-12 else 360.0)
 
 
-def _xy(v) -> np.ndarray:
-    return np.array([float(v[0]), float(v[1])])
-
-
 def _circle_or_arc(entity, label: str, walk: _Walk) -> None:
-    sense = _sense(entity)
+    sense = walk.plane.sense(entity)
     radius = float(entity.dxf.radius)
     if sense is None:
-        walk.tilted.append(label)
+        walk.tilt(entity, label)
         return
     if not radius > 0:
         return  # a zero-size circle has no length; dropped like any zero-length piece
@@ -113,32 +140,32 @@ def _circle_or_arc(entity, label: str, walk: _Walk) -> None:
     else:
         start, end = entity.start_point, entity.end_point
         sweep = _span(entity.dxf.start_angle, entity.dxf.end_angle)
-    walk.pieces.append(arc_piece(_xy(center), radius, _xy(start), _xy(end), sense * sweep, label))
+    xy = walk.plane.xy
+    walk.pieces.append(arc_piece(xy(center), radius, xy(start), xy(end), sense * sweep, label))
 
 
 def _ellipse(entity, label: str, walk: _Walk) -> None:
-    if _sense(entity) is None:
-        walk.tilted.append(label)
+    sense = walk.plane.sense(entity)
+    if sense is None:
+        walk.tilt(entity, label)
         return
     tool = entity.construction_tool()
     span = (tool.end_param - tool.start_param) % (2 * math.pi) or 2 * math.pi
+    xy = walk.plane.xy
     if abs(tool.ratio - 1.0) <= 1e-12:  # a circle drawn as an ellipse: a native arc
-        sense = 1.0 if tool.extrusion.z > 0 else -1.0
-        walk.pieces.append(arc_piece(_xy(tool.center), tool.major_axis.magnitude, _xy(tool.start_point),
-                                     _xy(tool.end_point), sense * span, label))
+        walk.pieces.append(arc_piece(xy(tool.center), tool.major_axis.magnitude, xy(tool.start_point),
+                                     xy(tool.end_point), sense * span, label))
         return
-    pts = np.array([_xy(v) for v in entity.flattening(walk.flatten, segments=16)])
+    pts = np.array([xy(v) for v in entity.flattening(walk.flatten, segments=16)])
     t0, t1 = tool.tangents([tool.start_param, tool.start_param + span])
-    walk.pieces.append(FreePiece(pts, heading_of(_xy(t0)), heading_of(_xy(t1)), label))
+    walk.pieces.append(FreePiece(pts, heading_of(xy(t0)), heading_of(xy(t1)), label))
 
 
 def _spline(entity, label: str, walk: _Walk) -> None:
     """A spline, split where it is only C0 (a knot repeated degree times), so its kinks are
     joins with exact tangents on either side."""
-    defining = list(entity.control_points) or list(entity.fit_points)
-    scale = max((abs(c) for p in defining for c in p), default=1.0)
-    if not _flat_z((p[2] for p in defining), scale):
-        walk.tilted.append(label)
+    if not walk.plane.flat(list(entity.control_points) or list(entity.fit_points)):
+        walk.tilt(entity, label)
         return
     try:
         curve = entity.construction_tool()
@@ -150,9 +177,10 @@ def _spline(entity, label: str, walk: _Walk) -> None:
     values, counts = np.unique(knots, return_counts=True)
     breaks = [float(v) for v, c in zip(values, counts) if c >= degree and lo < v < hi]
     spans = list(zip([lo] + breaks, breaks + [hi]))
+    xy = walk.plane.xy
     for k, (a, b) in enumerate(spans):
         def at(t: np.ndarray, a: float = a, b: float = b) -> np.ndarray:
-            return np.array([(v.x, v.y) for v in curve.points(a + np.asarray(t, float) * (b - a))])
+            return np.array([xy(v) for v in curve.points(a + np.asarray(t, float) * (b - a))])
 
         pts = flatten(at, walk.flatten)
         sub = label if len(spans) == 1 else f"{label} span {k + 1}"
@@ -161,28 +189,27 @@ def _spline(entity, label: str, walk: _Walk) -> None:
 
 def _line(entity, label: str, walk: _Walk) -> None:
     a, b = entity.dxf.start, entity.dxf.end
-    if not _flat_z((a[2], b[2]), max(abs(c) for c in (*a, *b))):
-        walk.tilted.append(label)
+    if not walk.plane.flat((a, b)):
+        walk.tilt(entity, label)
         return
-    walk.pieces.append(line_piece(_xy(a), _xy(b), label))
+    walk.pieces.append(line_piece(walk.plane.xy(a), walk.plane.xy(b), label))
 
 
 def _polyline(entity, label: str, walk: _Walk) -> None:
     if entity.dxftype() == "POLYLINE" and not (entity.is_2d_polyline or entity.is_3d_polyline):
-        walk.ignored[entity.get_mode().replace("AcDb", "POLYLINE ")] += 1  # polyface or polygon mesh
+        walk.ignored["POLYFACE" if entity.is_poly_face_mesh else "POLYMESH"] += 1
         return
     if entity.dxftype() == "POLYLINE" and entity.is_3d_polyline:
-        zs = [v.dxf.location[2] for v in entity.vertices]
-        if not _flat_z(zs, max((abs(c) for v in entity.vertices for c in v.dxf.location), default=1.0)):
-            walk.tilted.append(label)
+        if not walk.plane.flat([v.dxf.location for v in entity.vertices]):
+            walk.tilt(entity, label)
             return
-    elif _sense(entity) is None:
-        walk.tilted.append(label)
+    elif walk.plane.sense(entity) is None:
+        walk.tilt(entity, label)
         return
     for k, part in enumerate(entity.virtual_entities()):
         sub = f"{label} segment {k + 1}"
         if part.dxftype() == "LINE":
-            walk.pieces.append(line_piece(_xy(part.dxf.start), _xy(part.dxf.end), sub))
+            walk.pieces.append(line_piece(walk.plane.xy(part.dxf.start), walk.plane.xy(part.dxf.end), sub))
         elif part.dxftype() == "ARC":
             _circle_or_arc(part, sub, walk)
 
@@ -262,12 +289,19 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     unit, factor = UNITS_MM.get(code, ("unitless", 1.0))
     _walk(entities, walk, None, "", 0)
     notes = []
+    if not walk.pieces and len(walk.tilts) == 1:
+        # everything lies in one tilted plane (a UCS): read the drawing in that plane
+        normal = next(iter(walk.tilts))
+        walk = _Walk(doc, walk.wanted, flatten_mm, _Plane(normal))
+        _walk(entities, walk, None, "", 0)
+        notes.append(f"the drawing lies in a plane tilted from XY (normal {', '.join(f'{c:.6g}' for c in normal)}): "
+                     "read in that plane's own coordinates (its OCS)")
     if code == 0:
         notes.append("no $INSUNITS in the header: coordinates taken as mm")
     if walk.ignored:
-        notes.append(count_note("ignored", Counter({f"{k}": n for k, n in walk.ignored.items()}), "not contour geometry"))
+        notes.append(_ignored_note("ignored", walk.ignored))
     if walk.tilted:
-        notes.append(f"ignored {len(walk.tilted)} entities not parallel to the XY plane (first: {walk.tilted[0]})")
+        notes.append(f"ignored {len(walk.tilted)} entities not parallel to the drawing plane (first: {walk.tilted[0]})")
     if sum(walk.hidden.values()):
         notes.append(f"left out {sum(walk.hidden.values())} entities on layers that are off or frozen "
                      f"({', '.join(sorted(walk.hidden))}; name them with --layer to read them)")
@@ -287,7 +321,17 @@ def _nothing(walk: _Walk, layers: Sequence[str] | None) -> str:
     if sum(walk.hidden.values()):
         return f"no visible geometry: it is on layers that are off or frozen ({', '.join(sorted(walk.hidden))}); name them with --layer"
     if walk.tilted:
-        return f"no geometry in the XY plane ({len(walk.tilted)} entities are tilted, first: {walk.tilted[0]})"
+        return (f"no geometry in the XY plane or in one common plane ({len(walk.tilted)} entities are tilted, "
+                f"first: {walk.tilted[0]})")
     if walk.ignored:
-        return count_note("no geometry to spray: only", walk.ignored, f"coatsim reads {read}")
+        return f"{_ignored_note('no geometry to spray: only', walk.ignored)}; coatsim reads {read}"
     return f"no geometry to spray (coatsim reads {read})"
+
+
+def _ignored_note(what: str, ignored: Counter) -> str:
+    """"ignored 1 MTEXT, 2 TEXT (annotation); 1 HATCH (fill)" by reason."""
+    by_reason: dict[str, Counter] = {}
+    for kind, n in ignored.items():
+        by_reason.setdefault(_REASON.get(kind, "not read"), Counter())[kind] = n
+    parts = [count_note("", counts, reason).strip() for reason, counts in sorted(by_reason.items())]
+    return f"{what} {'; '.join(parts)}"

@@ -354,7 +354,23 @@ def test_tilted_entities_are_left_out_with_a_note(tmp_path):
 
     part = segment_drawing(write_dxf(tmp_path, draw), TOL)
     assert len(part.contours) == 1
-    assert any("not parallel to the XY plane" in n for n in part.notes)
+    assert any("not parallel to the drawing plane" in n for n in part.notes)
+
+
+def test_drawing_wholly_in_a_tilted_plane_is_read_in_that_plane(tmp_path):
+    """A flat part drawn in a tilted UCS: every entity shares one extrusion."""
+    normal = (0.0, 0.6, 0.8)
+
+    def draw(msp, doc):
+        msp.add_lwpolyline([(0, 0), (40, 0), (40, 20), (0, 20)], close=True, dxfattribs={"extrusion": normal})
+        msp.add_circle((20, 10), 5, dxfattribs={"extrusion": normal})
+
+    part = segment_drawing(write_dxf(tmp_path, draw), TOL)
+    outline, hole = (c.polysegment for c in part.contours)
+    assert any("tilted from XY" in n for n in part.notes)
+    corners = sorted((round(s.start[0], 9), round(s.start[1], 9)) for s in outline.segments)
+    assert corners == [(0.0, 0.0), (0.0, 20.0), (40.0, 0.0), (40.0, 20.0)]
+    assert math.dist(hole.segments[0].center, (20.0, 10.0)) < EXACT and hole.segments[0].radius == 5.0
 
 
 # ---------------------------------------------------------------- bad drawings
