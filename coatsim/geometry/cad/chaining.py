@@ -238,7 +238,7 @@ def _near_misses(contours: list[tuple[list[Piece], bool]], tol: float, near_mm: 
     what = "its own start" if owners[i][0] == owners[j][0] else owners[j][1].source
     raise InputError(
         f"{source}: cannot chain {owners[i][1].source}: its end at ({pts[i][0]:.6g}, {pts[i][1]:.6g}) is "
-        f"{gap:.3g} mm from {what}, more than the join tolerance {tol:g} mm (raise --join-tol to join them)"
+        f"{gap:.3g} mm from {what}, more than the join tolerance {tol:g} mm (raise the join tolerance, --join-tol, to join them)"
     )
 
 
@@ -246,7 +246,7 @@ def chain_pieces(pieces: Sequence[Piece], join_tol_mm: float, source: str = "dra
                  near_mm: Optional[float] = None) -> Chaining:
     """Contours of ``pieces`` joined within ``join_tol_mm``; see the module docstring."""
     if not (math.isfinite(join_tol_mm) and join_tol_mm > 0):
-        raise InputError(f"--join-tol {join_tol_mm}: must be a finite number of mm > 0")
+        raise InputError(f"join tolerance {join_tol_mm} mm (--join-tol): must be a finite number > 0")
     notes: list[str] = []
     kept = _drop_degenerate(pieces, join_tol_mm, notes)
     if not kept:

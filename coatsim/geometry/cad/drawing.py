@@ -44,7 +44,7 @@ def check_layers(source: str, wanted: Sequence[str] | None, known: Sequence[str]
     for name in wanted:
         if name.lower() not in lower:
             listed = ", ".join(repr(k) for k in known) or "none"
-            raise InputError(f"{source}: --layer {name!r}: no such layer (layers: {listed})")
+            raise InputError(f"{source}: layer {name!r} (--layer): no such layer (layers: {listed})")
     return tuple(name.lower() for name in wanted)
 
 

@@ -304,7 +304,7 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         notes.append(f"ignored {len(walk.tilted)} entities not parallel to the drawing plane (first: {walk.tilted[0]})")
     if sum(walk.hidden.values()):
         notes.append(f"left out {sum(walk.hidden.values())} entities on layers that are off or frozen "
-                     f"({', '.join(sorted(walk.hidden))}; name them with --layer to read them)")
+                     f"({', '.join(sorted(walk.hidden))}; name those layers (--layer) to read them)")
     if not walk.pieces:
         raise InputError(f"{path}: {_nothing(walk, layers)}")
     pieces = tuple(p.transformed(np.eye(2), np.zeros(2), factor) for p in walk.pieces) if factor != 1.0 else tuple(walk.pieces)
@@ -319,7 +319,7 @@ def _nothing(walk: _Walk, layers: Sequence[str] | None) -> str:
         return (f"no geometry on layer(s) {', '.join(repr(x) for x in layers)} (geometry is on "
                 f"{', '.join(repr(x) for x in sorted(walk.other_layers))})")
     if sum(walk.hidden.values()):
-        return f"no visible geometry: it is on layers that are off or frozen ({', '.join(sorted(walk.hidden))}); name them with --layer"
+        return f"no visible geometry: it is on layers that are off or frozen ({', '.join(sorted(walk.hidden))}); name those layers (--layer) to read them"
     if walk.tilted:
         return (f"no geometry in the XY plane or in one common plane ({len(walk.tilted)} entities are tilted, "
                 f"first: {walk.tilted[0]})")

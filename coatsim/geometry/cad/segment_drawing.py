@@ -108,7 +108,7 @@ def segment_drawing(
         raise InputError(f"--tol: the tolerance must be a positive number of mm, got {tolerance_mm}")
     join = default_join_tolerance(tolerance_mm) if join_tolerance_mm is None else join_tolerance_mm
     if not (math.isfinite(join) and 0 < join < tolerance_mm):
-        raise InputError(f"--join-tol {join}: must be a number of mm > 0 and below the tolerance {tolerance_mm:g}")
+        raise InputError(f"join tolerance {join:g} mm (--join-tol): must be > 0 and below the tolerance {tolerance_mm:g} mm")
     started = time.perf_counter()
     flatten_mm = FLATTEN_FRACTION * tolerance_mm / max(scale, 1e-300)
     drawing = read_drawing(path, layers, flatten_mm)

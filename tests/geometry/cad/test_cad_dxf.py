@@ -263,7 +263,7 @@ def test_layers_default_visible_and_selected_by_name(tmp_path):
     assert any("off or frozen" in n for n in default.notes)
     assert centers(segment_drawing(path, TOL, layers=["cut"])) == [(0, 0), (0, 30)]
     assert centers(segment_drawing(path, TOL, layers=["HIDDEN", "ICE"])) == [(0, 60), (40, 0), (60, 0)]
-    with pytest.raises(InputError, match=r"--layer 'WOOD': no such layer .*'CUT'"):
+    with pytest.raises(InputError, match=r"layer 'WOOD' \(--layer\): no such layer .*'CUT'"):
         segment_drawing(path, TOL, layers=["WOOD"])
 
 

@@ -122,7 +122,7 @@ def test_inkscape_layers(tmp_path):
     assert sorted(round(p.segments[0].radius) for p in cut) == [3, 10]
     assert [round(p.segments[0].radius) for p in segments_of(path, layers=["holes"])] == [3]
     assert [p.n_lines for p in segments_of(path, layers=["Marks"])] == [1]
-    with pytest.raises(InputError, match=r"--layer 'Wood': no such layer"):
+    with pytest.raises(InputError, match=r"layer 'Wood' \(--layer\): no such layer"):
         segment_drawing(path, TOL, layers=["Wood"])
 
 
