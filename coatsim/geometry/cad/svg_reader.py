@@ -107,7 +107,9 @@ def _walk(node, labels: tuple[str, ...]) -> Iterator[tuple[object, tuple[str, ..
     import svgelements as se
 
     for el in node:
-        if isinstance(el, se.Group):
+        if isinstance(el, se.Use):  # a <use>: the referenced shapes, placed
+            yield from _walk(el, labels)
+        elif isinstance(el, se.Group):
             own = el.values.get("attributes", {})
             inner = labels
             if own.get(f"{_INKSCAPE}groupmode") == "layer":

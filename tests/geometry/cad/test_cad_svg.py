@@ -77,6 +77,21 @@ def test_basic_shapes(tmp_path):
     assert rect.closed and rect.n_segments == 4 and len(rect.corners) == 4
 
 
+def test_use_of_symbols_and_paths(tmp_path):
+    body = """<defs><symbol id="hole"><circle cx="5" cy="5" r="4"/></symbol>
+      <path id="tick" d="M 0 0 L 10 0"/></defs>
+    <use xlink:href="#hole" x="10" y="10"/>
+    <use href="#hole" transform="translate(50,10) scale(2)"/>
+    <use xlink:href="#tick" x="100" y="50"/>"""
+    attrs = MM + ' xmlns:xlink="http://www.w3.org/1999/xlink"'
+    polys = segments_of(write_svg(tmp_path, body, attrs=attrs))
+    assert len(polys) == 3
+    small, large, tick = polys
+    assert math.dist(small.segments[0].center, (15.0, -15.0)) < 1e-9 and abs(small.segments[0].radius - 4) < 1e-9
+    assert math.dist(large.segments[0].center, (60.0, -20.0)) < 1e-9 and abs(large.segments[0].radius - 8) < 1e-9
+    assert same_segment(tick.segments[0], Line((100.0, -50.0), (110.0, -50.0)), 1e-9)
+
+
 def test_nested_transforms_and_viewbox_in_mm(tmp_path):
     body = """<g transform="translate(20,10)"><g transform="rotate(90)"><g transform="scale(2)">
       <line x1="0" y1="0" x2="10" y2="0"/></g></g></g>"""
