@@ -4,7 +4,9 @@ The chain starts at a fixed point; every parameter vector is a tangent-continuou
 optimising in this space keeps G1 by construction. We minimise the largest lateral distance
 of the input samples to the chain (each sample measured against the carrier circle of the
 segment at the same normalised arc length), subject to the chain ending at the run's end
-point (open runs) or closing onto its start with the start heading (closed curves).
+point (open runs) or closing onto its start with the start heading (closed curves), every
+curvature staying under the cap of the stretch its segment covers and every length above
+the minimum (FitLimits).
 """
 
 from __future__ import annotations
@@ -14,9 +16,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linprog
 
+from coatsim.geometry.limits import FitLimits
+
 MAX_SAMPLES = 400
 EXCHANGE = 60  # worst points added to the samples per exchange round
 EXCHANGE_ROUNDS = 6
+EARLY = 12
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,15 +101,15 @@ def _jacobian(f, z: np.ndarray, eps: float = 1e-7) -> tuple[np.ndarray, np.ndarr
 
 def _minimax_step(
     r: np.ndarray, jr: np.ndarray, lift_l: np.ndarray, lift_r: np.ndarray,
-    c: np.ndarray, jc: np.ndarray, lower: np.ndarray, radius: float, weight: float,
+    c: np.ndarray, jc: np.ndarray, lower: np.ndarray, upper: np.ndarray, weight: float,
 ) -> tuple[np.ndarray, float] | None:
     """Solve the linearised step: minimise max_i(±(r_i + J_i dz) + lift_i) + weight·|c + J_c dz|∞
-    with |dz| <= radius (and dz >= ``lower``). Returns (dz, model value) or None."""
+    with ``lower`` <= dz <= ``upper``. Returns (dz, model value) or None."""
     d = jr.shape[1]
-    # Inside the trust region a residual moves by at most `reach`; rows that cannot become
-    # the largest one are left out of the LP (same optimum, much smaller LP).
+    # Inside the bounds a residual moves by at most `reach`; rows that cannot become the
+    # largest one are left out of the LP (same optimum, much smaller LP).
     size = np.maximum(r + lift_l, -r + lift_r)
-    reach = np.abs(jr).sum(axis=1) * radius
+    reach = np.abs(jr) @ np.maximum(np.abs(lower), np.abs(upper))
     active = size + reach >= float(np.max(size - reach))
     r, jr, lift_l, lift_r = r[active], jr[active], lift_l[active], lift_r[active]
     m, k = len(r), len(c)
@@ -119,8 +124,8 @@ def _minimax_step(
         np.hstack((-jc, zeros_k, -ones_k)),
     ))
     b_ub = np.concatenate((-r - lift_l, r - lift_r, -c, c))
-    bounds = list(zip(lower, np.full(d, radius))) + [(0, None), (0, None)]
-    lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs-ds")
+    box = list(zip(lower, upper)) + [(0, None), (0, None)]
+    lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=box, method="highs-ds")
     if lp.status != 0:
         return None
     return lp.x[:d], float(lp.x[d] + weight * lp.x[d + 1])
@@ -132,7 +137,7 @@ def refine_chain(
     points: np.ndarray,
     end: np.ndarray,
     turn: float | None,
-    min_length: float,
+    limits: FitLimits,
     target: float,
     max_iter: int = 40,
 ) -> tuple[ChainParams, float]:
@@ -142,8 +147,9 @@ def refine_chain(
     end conditions are linearised and the LP "minimise the largest residual plus a heavy
     penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
     at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
-    Stops early once the sampled deviation is below ``target`` with the end gap closed, or
-    when it is still far above it after a few steps.
+    Curvatures stay under the caps of ``limits`` for the stretches their segments cover now,
+    lengths above its minimum. Stops early once the sampled deviation is below ``target``
+    with the end gap closed, or when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
     seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
@@ -181,21 +187,33 @@ def refine_chain(
     def merit(zb: np.ndarray) -> np.ndarray:
         return excess(res(zb), pick).max(axis=1) + weight * np.abs(clo(zb)).max(axis=1)
 
+    def bounds(z: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+        """Step bounds: the trust region, the curvature caps of the segments' present
+        stretches and the minimum length (a bound already crossed pulls back at most
+        ``radius`` per step)."""
+        x = z * unit
+        ends = np.concatenate(([0.0], np.cumsum(x[n + 1 :])))
+        cap_z = limits.over(ends[:-1] / ends[-1] * total, ends[1:] / ends[-1] * total) / unit[1 : n + 1]
+        lower, upper = np.full(d, -radius), np.full(d, radius)
+        lower[1 : n + 1] = np.clip(-cap_z - z[1 : n + 1], -radius, radius)
+        upper[1 : n + 1] = np.clip(cap_z - z[1 : n + 1], -radius, radius)
+        lower[n + 1 :] = np.clip(min_len_z - z[n + 1 :], -radius, radius)
+        return lower, upper
+
     z = params.vector() / unit
     f = float(merit(z[None])[0])
     radius = 0.05
-    min_len_z = min_length / unit[n + 1 :]
+    min_len_z = max(limits.min_length_mm if n > 1 else 0.0, 1e-6 * total) / unit[n + 1 :]
     iteration = 0  # LP steps, shared by all exchange rounds
     for _ in range(EXCHANGE_ROUNDS):
         while iteration < max_iter:
             iteration += 1
-            if f <= target or (iteration >= 12 and f > 1.5 * target):
+            if f <= target or (iteration >= EARLY and f > 1.5 * target):
                 break
             r, jr = _jacobian(res, z)
             c, jc = _jacobian(clo, z)
-            lower = np.full(d, -radius)
-            lower[n + 1 :] = np.maximum(lower[n + 1 :], min_len_z - z[n + 1 :])
-            solved = _minimax_step(r, jr, inset_left[pick], inset_right[pick], c, jc, lower, radius, weight)
+            lower, upper = bounds(z, radius)
+            solved = _minimax_step(r, jr, inset_left[pick], inset_right[pick], c, jc, lower, upper, weight)
             if solved is None:
                 break
             step, model = solved

@@ -14,6 +14,7 @@ from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fit import fit_run
+from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
@@ -118,7 +119,7 @@ def segment_curve(
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
-    fitted = [fit_run(run, tol, closed_loop) for run in runs]
+    fitted = [fit_run(run, tol, closed_loop, fit_limits(run, closed_loop, tol, None, None)) for run in runs]
     pieces = [segs for segs, _ in fitted]
     segments = tuple(seg for piece in pieces for seg in piece)
     poly = Polysegment(segments, closed=curve.closed, corners=_corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0))
