@@ -26,6 +26,7 @@ from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 20
+PIN_RAD = 1e-9  # a pinned end tangent is kept to this (rad)
 RELAX = (1.0, 1.5, 3.0)  # caps loosened by these factors, in turn, where the fit fails under them
 RELAXED_ATTEMPTS = 8  # attempts granted to each loosened try
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
@@ -75,14 +76,34 @@ def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:
     return arc_excess(params.kappa, params.length, limits, total) <= 1 + 1e-6
 
 
+def _pinned_turn(pts: np.ndarray, start_heading: float, end_heading: float) -> float:
+    """The turning (rad) from ``start_heading`` to ``end_heading`` nearest the polyline's own."""
+    d = np.diff(pts, axis=0)
+    h = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    own = float(h[-1] - h[0]) + math.remainder(float(h[0]) - start_heading, 2 * math.pi) \
+        + math.remainder(end_heading - float(h[-1]), 2 * math.pi)
+    return own
+
+
+def _pins_kept(segs: tuple[Segment, ...], start_heading: float | None, end_heading: float | None) -> bool:
+    """Whether a chain starts and ends on the pinned tangents (to round-off)."""
+    ok = start_heading is None or abs(math.remainder(segs[0].start_heading - start_heading, 2 * math.pi)) <= PIN_RAD
+    return ok and (end_heading is None or abs(math.remainder(segs[-1].end_heading - end_heading, 2 * math.pi)) <= PIN_RAD)
+
+
 def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-                 budget: list[int]) -> tuple[tuple[Segment, ...], float] | None:
+                 budget: list[int], start_heading: float | None = None,
+                 end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
     """Band fit, refinement and the exact check under ``limits``; None if no chain within
-    ``tolerance`` is found within the attempt ``budget`` (a shared one-element counter)."""
+    ``tolerance`` is found within the attempt ``budget`` (a shared one-element counter).
+    ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents."""
     end = pts[-1]
     total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     turn = total_turn(pts) if closed_loop else None
+    if start_heading is not None and end_heading is not None:
+        turn = _pinned_turn(pts, start_heading, end_heading)
     prob, ref = BandProblem.from_points(pts, limits)
+    pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
     splits, landed = 0, False
@@ -90,16 +111,17 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
         budget[0] -= 1
         if params is None:
             try:
-                slope, pieces = fit_band(prob, ref, band, end_turn=turn, landed=landed)
+                slope, pieces = fit_band(prob, ref, band, start_slope=pinned_slope, end_turn=turn, landed=landed)
             except BandStuck:
                 band *= 0.9 if landed else 0.7
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
-        params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target)
+        params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target,
+                                       fixed_heading=start_heading is not None)
         params = close_exactly(pts[0], params, end, turn)
         dev, segs = _check(pts, params, end)
-        honest = _honest(params, limits, total)
+        honest = _honest(params, limits, total) and _pins_kept(segs, start_heading, end_heading)
         if dev <= tolerance and honest:
             return segs, dev
         if honest and sampled <= target:
@@ -124,8 +146,8 @@ def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool
     return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
 
 
-def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
-            limits: FitLimits) -> tuple[tuple[Segment, ...], float]:
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+            start_heading: float | None = None, end_heading: float | None = None) -> tuple[tuple[Segment, ...], float]:
     """G1 chain within ``tolerance`` of a run (start and end points kept exactly), and its
     verified deviation (mm).
 
@@ -133,20 +155,28 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
     curvature caps and minimum length of ``limits``. Where no chain within the tolerance
     keeps them, they are loosened step by step, and as the last resort every vertex of the
     input is rounded (fillet_chain).
+
+    ``start_heading`` (rad, open runs), and with it ``end_heading``, pin the chain's end
+    tangents, e.g. to fixed neighbours it must join G1 (to pin only the end, fit the reversed
+    run with its start pinned). The last resort (fillets) does not keep them, so a caller
+    checks the result's end headings.
     """
+    if end_heading is not None and start_heading is None:
+        raise ValueError("end_heading needs start_heading; pin the start of the reversed run instead")
     pts = np.asarray(points, dtype=float)
     end = pts[-1]
+    pins = (start_heading, end_heading) if not closed_loop else (None, None)
     if not closed_loop and _near_chord(pts, tolerance):
         line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
         dev = hausdorff(pts, Polysegment(line)).hausdorff
-        if dev <= tolerance:
+        if dev <= tolerance and _pins_kept(line, *pins):
             return line, dev
     exact = recover_exact(pts, closed_loop, tolerance)
-    if exact is not None:
+    if exact is not None and _pins_kept(exact, *pins):
         return exact, hausdorff(pts, Polysegment(exact)).hausdorff
     budget = [MAX_ATTEMPTS]
     for factor in RELAX:
-        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), budget)
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), budget, *pins)
         if found is not None:
             return found
         budget[0] = max(budget[0], RELAXED_ATTEMPTS)

@@ -140,6 +140,7 @@ def refine_chain(
     limits: FitLimits,
     target: float,
     max_iter: int = 40,
+    fixed_heading: bool = False,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -148,7 +149,7 @@ def refine_chain(
     penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
     at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
     Curvatures stay under the caps of ``limits`` for the stretches their segments cover now,
-    lengths above its minimum. Stops early once the sampled deviation is below ``target``
+    lengths above its minimum; ``fixed_heading`` keeps the start heading as it is. Stops early once the sampled deviation is below ``target``
     with the end gap closed, or when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
@@ -198,6 +199,8 @@ def refine_chain(
         lower[1 : n + 1] = np.clip(-cap_z - z[1 : n + 1], -radius, radius)
         upper[1 : n + 1] = np.clip(cap_z - z[1 : n + 1], -radius, radius)
         lower[n + 1 :] = np.clip(min_len_z - z[n + 1 :], -radius, radius)
+        if fixed_heading:  # a start tangent pinned by the caller
+            lower[0] = upper[0] = 0.0
         return lower, upper
 
     z = params.vector() / unit

@@ -27,6 +27,7 @@ import numpy as np
 from coatsim.geometry.cad.chaining import Contour, TANGENT_EXACT_RAD
 from coatsim.geometry.cad.pieces import FreePiece
 from coatsim.geometry.fit import fit_run
+from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 
@@ -85,9 +86,15 @@ def _free_points(block: _Block) -> np.ndarray:
 
 def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None,
               end_heading: float | None) -> tuple[tuple[Segment, ...], float]:
-    """The fitter on one free-form stretch, its end tangents pinned where given."""
-    del start_heading, end_heading  # pinned end tangents: see fit_run
-    return fit_run(points, tolerance, closed_loop)
+    """The fitter on one free-form stretch, its end tangents pinned where given (a stretch
+    pinned at its end only is fitted backwards with its start pinned)."""
+    if start_heading is None and end_heading is not None:
+        back = points[::-1]
+        segs, dev = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, None),
+                            start_heading=end_heading + math.pi)
+        return tuple(s.reversed() for s in reversed(segs)), dev
+    return fit_run(points, tolerance, closed_loop, fit_limits(points, closed_loop, tolerance, None, None),
+                   start_heading=start_heading, end_heading=end_heading)
 
 
 def _scale(segments: list[Segment]) -> float:

@@ -332,6 +332,27 @@ def test_spline_within_tolerance_and_g1_to_its_lines(tmp_path):
         assert math.dist(c.polysegment.start, (0, 0)) < 1e-9 and math.dist(c.polysegment.end, (80, 0)) < 1e-9
 
 
+def test_free_form_pieces_join_tangent_neighbours_g1(tmp_path):
+    """A spline tangent to a line at each end, and half an ellipse tangent to a line: the
+    fitted chains are G1 to the native lines, exactly; the lines stay exact."""
+
+    def draw(msp, doc):
+        msp.add_line((0, 0), (10, 0))
+        msp.add_open_spline([(10, 0), (20, 0), (30, 10), (30, 20)])
+        msp.add_line((30, 40), (30, 20))  # drawn backwards
+        msp.add_line((100, 0), (120, 0))
+        msp.add_ellipse((120, 5), major_axis=(0, -5), ratio=0.6, start_param=0, end_param=math.pi)
+        msp.add_line((120, 10), (90, 10))
+
+    part = segment_drawing(write_dxf(tmp_path, draw), TOL)
+    for c in part.contours:
+        poly = c.polysegment
+        assert poly.corners == () and max(g1_breaks(poly)) < 1e-9 and c.max_deviation_mm <= TOL
+    first, second = (c.polysegment.segments for c in part.contours)
+    assert same_segment(first[0], Line((0.0, 0.0), (10.0, 0.0))) and same_segment(first[-1], Line((30.0, 20.0), (30.0, 40.0)))
+    assert same_segment(second[0], Line((100.0, 0.0), (120.0, 0.0))) and same_segment(second[-1], Line((120.0, 10.0), (90.0, 10.0)))
+
+
 def test_full_ellipse_is_a_closed_g1_loop(tmp_path):
     path = write_dxf(tmp_path, lambda msp, doc: msp.add_ellipse((5, 5), major_axis=(40, 10), ratio=0.4))
     c = segment_drawing(path, TOL).contours[0]

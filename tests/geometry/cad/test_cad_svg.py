@@ -48,6 +48,13 @@ def test_arc_command_is_a_native_arc_with_y_up(tmp_path):
     assert math.dist(top, (30, -30)) < 1e-9
 
 
+def test_bezier_between_lines_is_g1_to_them(tmp_path):
+    path = write_svg(tmp_path, '<path d="M 0 0 L 10 0 C 20 0 30 10 30 20 L 30 40 Q 30 50 40 50"/>', attrs=MM)
+    (poly,) = segments_of(path)
+    assert poly.corners == () and max(g1_breaks(poly)) < 1e-9
+    assert same_segment(poly.segments[0], Line((0.0, 0.0), (10.0, 0.0)))
+
+
 def test_rounded_rect_is_four_lines_and_four_arcs(tmp_path):
     poly = segments_of(write_svg(tmp_path, '<rect x="10" y="10" width="80" height="40" rx="5"/>', attrs=MM))[0]
     assert poly.closed and poly.n_lines == 4 and poly.n_arcs == 4 and poly.corners == ()
