@@ -102,6 +102,17 @@ def _parse(path: Path):
     return svg
 
 
+def hidden_layers(path: Path) -> list[str]:
+    """Labels of Inkscape layers hidden with ``display:none`` (svgelements drops them whole)."""
+    hidden = []
+    for el in ET.parse(path).iter():
+        if el.get(f"{_INKSCAPE}groupmode") == "layer":
+            style = (el.get("style") or "").replace(" ", "").lower()
+            if "display:none" in style or el.get("display") == "none":
+                hidden.append(str(el.get(f"{_INKSCAPE}label") or el.get("id") or "layer"))
+    return hidden
+
+
 def _walk(node, labels: tuple[str, ...]) -> Iterator[tuple[object, tuple[str, ...]]]:
     """Every non-group element with the labels of the layers it lies in (outermost first)."""
     import svgelements as se
@@ -177,6 +188,11 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     k = mm_per_px(svg)
     elements = list(_walk(svg, ()))
     known = sorted({label for _, labels in elements for label in labels})
+    hidden_names = hidden_layers(path)
+    for name in layers or ():
+        if name.lower() in {h.lower() for h in hidden_names} and name.lower() not in {k.lower() for k in known}:
+            raise InputError(f"{path}: layer {name!r} (--layer) is hidden in the drawing (display:none); "
+                             "show it in the drawing to spray it")
     wanted = check_layers(str(path), layers, known)
     pieces: list[Piece] = []
     ignored, hidden, elsewhere = Counter(), 0, 0
@@ -202,6 +218,8 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         notes.append(count_note("ignored", ignored, "not contour geometry"))
     if hidden:
         notes.append(f"left out {hidden} hidden elements")
+    if hidden_names and wanted is None:
+        notes.append(f"left out {len(hidden_names)} hidden layers ({', '.join(hidden_names)})")
     if not pieces:
         if wanted is not None and elsewhere:
             why = f"no geometry on layer(s) {', '.join(repr(x) for x in layers)}"

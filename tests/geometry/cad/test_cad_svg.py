@@ -146,6 +146,9 @@ def test_inkscape_layers(tmp_path):
     assert [p.n_lines for p in segments_of(path, layers=["Marks"])] == [1]
     with pytest.raises(InputError, match=r"layer 'Wood' \(--layer\): no such layer"):
         segment_drawing(path, TOL, layers=["Wood"])
+    with pytest.raises(InputError, match=r"layer 'Hidden' \(--layer\) is hidden in the drawing"):
+        segment_drawing(path, TOL, layers=["Hidden"])
+    assert any("hidden layers (Hidden)" in n for n in segment_drawing(path, TOL).notes)
 
 
 @pytest.mark.parametrize("d", ["M 0 0 C 30 60 70 -60 100 0", "M 0 0 Q 50 80 100 0 T 200 0",
