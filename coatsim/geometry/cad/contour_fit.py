@@ -64,7 +64,7 @@ def _blocks(contour: Contour) -> tuple[list[_Block], list[bool], bool]:
         cuts = [k for k in range(n) if not (free[k] and free[(k + 1) % n] and tangent[k])]
         if not cuts:
             return [_Block(pieces, True)], [True], True
-        first = (cuts[-1] + 1) % n if cuts[-1] != n - 1 else 0
+        first = (cuts[-1] + 1) % n
         pieces, tangent, free = pieces[first:] + pieces[:first], tangent[first:] + tangent[:first], free[first:] + free[:first]
     blocks: list[_Block] = []
     after: list[bool] = []
