@@ -48,7 +48,8 @@ def segment(
     if is_drawing(input):
         from coatsim.geometry.cad.command import segment_drawing_command
 
-        typer.echo(segment_drawing_command(input, tol, layer, join_tol, method, closed, theta_tol, output, plot))
+        typer.echo(segment_drawing_command(input, tol, layer, join_tol, method, closed, theta_tol, output, plot,
+                                           corner_deg))
         return
     if layer or join_tol is not None:
         fail("--layer and --join-tol apply to drawings (DXF, SVG)")

@@ -96,7 +96,8 @@ def segment_input(loaded: ScenarioFile) -> tuple[tuple[Segmentation, ...], Optio
     rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
     try:
         part = segment_drawing(loaded.resolve(spec.file), seg.tolerance_mm, layers=layers,
-                               join_tolerance_mm=spec.join_tolerance_mm, rotation=rotation, scale=spec.scale)
+                               join_tolerance_mm=spec.join_tolerance_mm, rotation=rotation, scale=spec.scale,
+                               corner_deg=seg.corner_deg)
     except InputError as exc:
         raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
     return part.contours, part

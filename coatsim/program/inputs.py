@@ -83,7 +83,7 @@ def load_part_input(spec: str, tol: Optional[float], layers: Optional[list[str]]
             raise InputError(f"{spec}: --tol MM is required to segment a drawing")
         from coatsim.geometry.cad.segment_drawing import segment_drawing
 
-        part = segment_drawing(spec, tol, layers=layers or None, join_tolerance_mm=join_tol)
+        part = segment_drawing(spec, tol, layers=layers or None, join_tolerance_mm=join_tol, corner_deg=corner_deg)
         return PartInput(tuple(c.polysegment for c in part.contours), tuple(c.curve.points for c in part.contours),
                          tol, spec, False, part.notes)
     if spec.lower().endswith(".json"):

@@ -11,7 +11,7 @@ from coatsim.errors import InputError
 
 def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str]], join_tol: Optional[float],
                             method: str, closed: str, theta_tol: Optional[float], output: Optional[Path],
-                            plot: Optional[Path]) -> str:
+                            plot: Optional[Path], corner_deg: float = 20.0) -> str:
     """Run ``coatsim segment`` on a DXF or SVG file; flags that apply to point curves only
     are refused rather than ignored."""
     from coatsim.geometry.cad.segment_drawing import segment_drawing
@@ -22,7 +22,7 @@ def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str
                          "lines and arcs exactly and fits only its free-form pieces")
     if closed != "auto":
         raise InputError(f"{path}: --closed applies to point curves; a drawn contour is closed where its ends meet")
-    part = segment_drawing(path, tol, layers=layers or None, join_tolerance_mm=join_tol)
+    part = segment_drawing(path, tol, layers=layers or None, join_tolerance_mm=join_tol, corner_deg=corner_deg)
     if output is not None:
         write_part_json(output, part)
     if plot is not None:

@@ -5,10 +5,11 @@ stretches fitted within the tolerance.
   meet tangentially are merged into one segment, when the merge moves nothing by more than
   round-off (``MERGE_EPS`` relative), so a drawing of lines and arcs comes back with at most
   as many segments as primitives and zero deviation.
-- A free-form stretch is a run of free-form pieces joined tangentially. It is fitted by the
+- A free-form stretch is a run of free-form pieces joined tangentially. It is split at its
+  true corners (cusps inside a piece, found by the rule of point curves) and fitted by the
   default fitter (``fit_run``) from its first to its last point; where it joins a native
   piece tangentially its end tangent is pinned to that piece's, so the join is G1 exactly.
-  A closed contour that is one tangent free-form loop is fitted as a closed loop.
+  A closed contour that is one tangent free-form loop is fitted as a closed point curve.
 - Joins that are not tangent are the polysegment's corners.
 
 The deviation reported is the largest of the merges' and of the fitted stretches' bounds:
@@ -26,6 +27,7 @@ import numpy as np
 
 from coatsim.geometry.cad.chaining import Contour, TANGENT_EXACT_RAD
 from coatsim.geometry.cad.pieces import FreePiece
+from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.fit import fit_run
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
@@ -97,6 +99,36 @@ def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_hea
                    start_heading=start_heading, end_heading=end_heading)
 
 
+def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float, start_heading: float | None,
+                 end_heading: float | None) -> tuple[list[Segment], list[bool], float]:
+    """An open free-form stretch split at its true corners (cusps inside a piece; the rule of
+    point curves, see detect_corners), each run fitted, the stretch's ends pinned where
+    given. Returns the segments, the corner flag of every join between them, the deviation."""
+    cuts = [0, *(int(c) for c in detect_corners(points, False, corner_deg, tolerance)), len(points) - 1]
+    segments: list[Segment] = []
+    corner_after: list[bool] = []
+    worst = 0.0
+    for k, (a, b) in enumerate(zip(cuts[:-1], cuts[1:])):
+        fitted, dev = _fit_free(points[a:b + 1], tolerance, False, start_heading if k == 0 else None,
+                                end_heading if b == len(points) - 1 else None)
+        if segments:
+            corner_after.append(True)
+        segments.extend(fitted)
+        corner_after.extend([False] * (len(fitted) - 1))
+        worst = max(worst, dev)
+    return segments, corner_after, worst
+
+
+def _free_loop(points: np.ndarray, tolerance: float, corner_deg: float) -> tuple[Polysegment, float]:
+    """A closed contour that is one free-form loop: fitted as a closed point curve (its true
+    corners found as for point curves)."""
+    from coatsim.geometry.curves import make_curve
+    from coatsim.geometry.segment import segment_curve
+
+    seg = segment_curve(make_curve(points, "free-form loop", "yes"), tolerance, corner_deg=corner_deg)
+    return seg.polysegment, seg.max_deviation_mm
+
+
 def _scale(segments: list[Segment]) -> float:
     return max(1.0, max(abs(c) for s in segments for p in (s.start, s.end) for c in p))
 
@@ -149,7 +181,7 @@ def _samples(contour: Contour, flatten_mm: float) -> np.ndarray:
     return pts
 
 
-def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float) -> ContourFit:
+def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner_deg: float = 20.0) -> ContourFit:
     """The polysegment of one contour; see the module docstring. Free-form samples lie
     within ``flatten_mm`` of the drawn curves, so stretches are fitted to them within
     ``tolerance_mm - flatten_mm`` and their deviation is reported plus ``flatten_mm``: an
@@ -159,8 +191,7 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float) -> Con
     fit_tol = tolerance_mm - flatten_mm
     blocks, tangent_after, loop = _blocks(contour)
     if loop:
-        segs, dev = _fit_free(_free_points(blocks[0]), fit_tol, True, None, None)
-        poly = Polysegment(tuple(segs), closed=True)
+        poly, dev = _free_loop(_free_points(blocks[0]), fit_tol, corner_deg)
         return ContourFit(poly, dev + flatten_mm, _samples(contour, flatten_mm), len(contour.pieces))
     segments: list[Segment] = []
     corner_after: list[bool] = []
@@ -171,14 +202,14 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float) -> Con
             before, after = blocks[(k - 1) % n], blocks[(k + 1) % n]
             pin_start = (k > 0 or contour.closed) and not before.free and tangent_after[k - 1]
             pin_end = k < len(tangent_after) and not after.free and tangent_after[k]
-            fitted, dev = _fit_free(_free_points(block), fit_tol, False,
-                                    before.pieces[-1].end_heading if pin_start else None,
-                                    after.pieces[0].start_heading if pin_end else None)
+            fitted, inner, dev = _fit_stretch(_free_points(block), fit_tol, corner_deg,
+                                              before.pieces[-1].end_heading if pin_start else None,
+                                              after.pieces[0].start_heading if pin_end else None)
             worst = max(worst, dev + flatten_mm)
         else:
-            fitted = (block.pieces[0].segment,)
+            fitted, inner = [block.pieces[0].segment], []
         segments.extend(fitted)
-        corner_after.extend([False] * (len(fitted) - 1))
+        corner_after.extend(inner)
         if k < len(tangent_after):
             corner_after.append(not tangent_after[k])
     corner_after = _fitted_breaks(segments, corner_after, contour.closed)

@@ -97,16 +97,20 @@ def segment_drawing(
     join_tolerance_mm: Optional[float] = None,
     rotation: Optional[np.ndarray] = None,
     scale: float = 1.0,
+    corner_deg: float = 20.0,
 ) -> PartSegmentation:
     """Read, chain and fit a drawing within ``tolerance_mm``.
 
     ``layers`` selects layers (default: every visible one); ``join_tolerance_mm`` defaults
     to σ/100; the drawing is scaled by ``scale`` and turned by ``rotation`` (2 x 2) about
-    its origin before it is chained and fitted.
+    its origin before it is chained and fitted; ``corner_deg`` is the corner rule inside
+    free-form stretches (as for point curves).
     """
     if not (isinstance(tolerance_mm, (int, float)) and math.isfinite(tolerance_mm) and tolerance_mm > 0):
         raise InputError(f"--tol: the tolerance must be a positive number of mm, got {tolerance_mm}")
     join = default_join_tolerance(tolerance_mm) if join_tolerance_mm is None else join_tolerance_mm
+    if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
+        raise InputError(f"--corner-deg: must be between 0 and 180 degrees, got {corner_deg}")
     if not (math.isfinite(join) and 0 < join < tolerance_mm):
         raise InputError(f"join tolerance {join:g} mm (--join-tol): must be > 0 and below the tolerance {tolerance_mm:g} mm")
     started = time.perf_counter()
@@ -120,7 +124,7 @@ def segment_drawing(
     contours = []
     for k, contour in enumerate(chaining.contours):
         t0 = time.perf_counter()
-        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm)
+        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm, corner_deg)
         curve = Curve(_distinct(fit.points), contour.closed, f"{drawing.source} contour {k + 1} ({contour.name})")
         contours.append(ContourSegmentation(curve, fit.polysegment, "drawing", tolerance_mm, fit.deviation_mm,
                                             time.perf_counter() - t0, theta_of_polyline(curve.points),
