@@ -99,12 +99,41 @@ def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_hea
                    start_heading=start_heading, end_heading=end_heading)
 
 
-def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float, start_heading: float | None,
-                 end_heading: float | None) -> tuple[list[Segment], list[bool], float]:
+def _corner_vertices(points: np.ndarray, tolerance: float, corner_deg: float, closed: bool = False) -> list[int]:
+    """Sample indices of the true corners of a stretch (a closed loop repeats its first
+    sample last). The samples are denser where the curve bends (flattening), which the corner
+    rule (made for evenly sampled input) would read as corners, so it runs on an even
+    resampling at σ/2; each corner found is the sample with the sharpest turn within σ."""
+    ell = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    s = np.concatenate(([0.0], np.cumsum(ell)))
+    n = int(np.clip(np.ceil(s[-1] / (tolerance / 2)), 8, 200_000))
+    u = np.linspace(0.0, s[-1], n + 1)
+    even = np.column_stack((np.interp(u, s, points[:, 0]), np.interp(u, s, points[:, 1])))
+    heading = np.arctan2(np.diff(points[:, 1]), np.diff(points[:, 0]))
+    wrap = lambda a: np.abs(np.remainder(a + math.pi, 2 * math.pi) - math.pi)  # noqa: E731
+    turn = np.concatenate(([wrap(heading[0] - heading[-1]) if closed else 0.0], wrap(np.diff(heading)), [0.0]))
+    inner = np.arange(len(s)) < len(s) - 1
+    if not closed:
+        inner &= np.arange(len(s)) > 0
+    found = []
+    for c in detect_corners(even, closed, corner_deg, tolerance):
+        gap = np.abs(s - u[int(c)])
+        if closed:
+            gap = np.minimum(gap, s[-1] - gap)
+        near = np.flatnonzero((gap <= tolerance) & inner)
+        if len(near):
+            found.append(int(near[np.argmax(turn[near])]))
+    return sorted(set(found))
+
+
+def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None, start_heading: float | None,
+                 end_heading: float | None, cuts: list[int] | None = None) -> tuple[list[Segment], list[bool], float]:
     """An open free-form stretch split at its true corners (cusps inside a piece; the rule of
-    point curves, see detect_corners), each run fitted, the stretch's ends pinned where
-    given. Returns the segments, the corner flag of every join between them, the deviation."""
-    cuts = [0, *(int(c) for c in detect_corners(points, False, corner_deg, tolerance)), len(points) - 1]
+    point curves, see detect_corners; or at ``cuts``), each run fitted, the stretch's ends
+    pinned where given. Returns the segments, the corner flag of every join between them,
+    the deviation."""
+    inner = _corner_vertices(points, tolerance, corner_deg) if cuts is None else sorted(cuts)
+    cuts = [0, *inner, len(points) - 1]
     segments: list[Segment] = []
     corner_after: list[bool] = []
     worst = 0.0
@@ -120,13 +149,18 @@ def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float, start_
 
 
 def _free_loop(points: np.ndarray, tolerance: float, corner_deg: float) -> tuple[Polysegment, float]:
-    """A closed contour that is one free-form loop: fitted as a closed point curve (its true
-    corners found as for point curves)."""
-    from coatsim.geometry.curves import make_curve
-    from coatsim.geometry.segment import segment_curve
-
-    seg = segment_curve(make_curve(points, "free-form loop", "yes"), tolerance, corner_deg=corner_deg)
-    return seg.polysegment, seg.max_deviation_mm
+    """A closed contour that is one free-form loop: fitted as a closed loop, or, where it has
+    true corners, from its first corner on, run by run between them."""
+    corners = _corner_vertices(points, tolerance, corner_deg, closed=True)
+    if not corners:
+        segs, dev = _fit_free(points, tolerance, True, None, None)
+        return Polysegment(tuple(segs), closed=True), dev
+    body, first = points[:-1], corners[0]
+    rotated = np.vstack((body[first:], body[:first], body[first:first + 1]))
+    segs, inner, dev = _fit_stretch(rotated, tolerance, None, None, None,
+                                    cuts=[(c - first) % len(body) for c in corners[1:]])
+    flags = inner + [True]  # the seam is the first corner
+    return Polysegment(tuple(segs), closed=True, corners=tuple(k for k, c in enumerate(flags) if c)), dev
 
 
 def _scale(segments: list[Segment]) -> float:

@@ -353,6 +353,17 @@ def test_free_form_pieces_join_tangent_neighbours_g1(tmp_path):
     assert same_segment(second[0], Line((100.0, 0.0), (120.0, 0.0))) and same_segment(second[-1], Line((120.0, 10.0), (90.0, 10.0)))
 
 
+def test_cusp_inside_a_spline_is_a_corner(tmp_path):
+    """A triple control point makes a kink inside a span: a corner there, not a pile of
+    fillets; a smooth ellipse and spline get none."""
+    path = write_dxf(tmp_path, lambda msp, doc: msp.add_open_spline(
+        [(0, 0), (10, 0), (20, 10), (20, 10), (20, 10), (30, 0), (40, 0)]))
+    c = segment_drawing(path, TOL).contours[0]
+    poly = c.polysegment
+    assert [tuple(round(v, 9) for v in poly.segments[k].end) for k in poly.corners] == [(20.0, 10.0)]
+    assert c.max_deviation_mm <= TOL and poly.n_segments <= 6
+
+
 def test_full_ellipse_is_a_closed_g1_loop(tmp_path):
     path = write_dxf(tmp_path, lambda msp, doc: msp.add_ellipse((5, 5), major_axis=(40, 10), ratio=0.4))
     c = segment_drawing(path, TOL).contours[0]
