@@ -1,6 +1,6 @@
-"""Benchmark of the geometry stage: segment the five bench curves, the built-ins and curves the
-fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts of
-../shared/bench/README.md.
+"""Benchmark of the geometry stage: segment the five benchmark curves (generated from their
+formulas, coatsim.geometry.benchmark, next to its reference counts), the built-ins and curves
+the fitter was not tuned on (scripts/heldout_curves.py).
 
 For every curve and σ, per method: segments (arcs, lines), the deviation reported by
 segment_curve, an independent check of it by dense sampling of both curves (KD-tree, step σ/20,
@@ -18,43 +18,24 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
-import re
 import time
-from pathlib import Path
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from coatsim.errors import CoatsimError
 from coatsim.geometry import load_curve, make_curve, segment_curve
+from coatsim.geometry.benchmark import NAMES, TOLERANCES_MM, bench_curve, reference_count
 
 from heldout_curves import CURVES, heldout_points, tightest_radius_mm
 
-BENCH = Path(os.environ.get("COATSIM_BENCH_DIR", Path(__file__).resolve().parents[2] / "shared" / "bench"))
-NAMES = ("spiral", "ellipse", "naca0012", "roundrect", "sine")
-SIGMAS = (0.01, 0.05, 0.1, 0.5)
+SIGMAS = TOLERANCES_MM
 BUILTINS = ("paper-spiral", "ellipse", "ellipse:a=80,b=50", "naca", "cam", "epitrochoid", "sine", "clothoid",
             "rounded-rectangle", "polygon", "d-shape", "raster")
 BUILTIN_SIGMAS = (0.05, 0.5)
 HELDOUT_SIGMAS = (0.05, 0.1, 0.5)
 LARGE = ("builtin:paper-spiral:points=100000", "builtin:ellipse:points=100000")
 LARGE_SIGMA = 0.05
-
-
-def reference_counts() -> dict[str, dict[str, dict[float, int]]]:
-    """{"greedy" | "paper": {curve: {σ: segments}}} from the bench README's table."""
-    out: dict[str, dict[str, dict[float, int]]] = {"greedy": {}, "paper": {}}
-    readme = BENCH / "README.md"
-    if not readme.is_file():
-        return out
-    for line in readme.read_text(encoding="utf-8").splitlines():
-        m = re.match(r"^\|\s*(\w+), (greedy free-arc fitter|the paper's method literally)[^|]*\|(.*)$", line)
-        if m:
-            cells = [c.strip() for c in m.group(3).split("|")][:4]
-            kind = "greedy" if m.group(2).startswith("greedy") else "paper"
-            out[kind][m.group(1)] = {s: int(c) for s, c in zip(SIGMAS, cells) if c.isdigit()}
-    return out
 
 
 def dense(points: np.ndarray, step: float) -> np.ndarray:
@@ -168,19 +149,14 @@ def measure(curve, sigma: float, method: str, tightest: float | None) -> str:
 
 
 def bench_table(sigmas, methods) -> None:
-    refs = reference_counts()
-    print(f"\nbench curves ({BENCH / 'curves'}); refs = greedy free-arc / paper literally (bench README)")
+    print("\nbenchmark curves; refs = greedy free-arc / paper literally (coatsim.geometry.benchmark)")
     print(f"{'curve':10} {'sigma':>6} {'method':8} {HEAD} {'greedy':>6} {'paper':>6}")
     for name in NAMES:
-        path = BENCH / "curves" / f"{name}.csv"
-        if not path.is_file():
-            print(f"{name:10} missing: {path}")
-            continue
-        curve = load_curve(str(path))
+        curve = bench_curve(name)
         for sigma in sigmas:
             for method in methods:
-                greedy = refs["greedy"].get(name, {}).get(sigma, "")
-                literal = refs["paper"].get(name, {}).get(sigma, "")
+                greedy = (reference_count("greedy", name, sigma) or "") if sigma in TOLERANCES_MM else ""
+                literal = (reference_count("paper", name, sigma) or "") if sigma in TOLERANCES_MM else ""
                 print(f"{name:10} {sigma:6g} {method:8} {measure(curve, sigma, method, None)} {greedy!s:>6} {literal!s:>6}",
                       flush=True)
 

@@ -11,9 +11,9 @@ from coatsim.errors import InputError
 
 def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str]], join_tol: Optional[float],
                             method: str, closed: str, theta_tol: Optional[float], output: Optional[Path],
-                            plot: Optional[Path], corner_deg: float = 20.0) -> str:
-    """Run ``coatsim segment`` on a DXF or SVG file; flags that apply to point curves only
-    are refused rather than ignored."""
+                            plot: Optional[Path], corner_deg: float = 20.0) -> tuple[str, float]:
+    """Run ``coatsim segment`` on a DXF or SVG file: the summary text and the seconds it
+    took; flags that apply to point curves only are refused rather than ignored."""
     from coatsim.geometry.cad.segment_drawing import segment_drawing
     from coatsim.geometry.part_json import write_part_json
 
@@ -36,4 +36,4 @@ def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str
             write_part_plot([c.polysegment for c in part.contours], Path(part.source).name, plot,
                             [c.curve.points for c in part.contours])
     lines = [part.summary()] + [f"wrote {p}" for p in (output, plot) if p is not None]
-    return "\n".join(lines)
+    return "\n".join(lines), part.seconds

@@ -38,7 +38,8 @@ class ContourSegmentation(Segmentation):
 
 @dataclass(frozen=True, eq=False)
 class PartSegmentation:
-    """Every contour of a drawing, in drawing order, with what reading it noted."""
+    """Every contour of a drawing, in drawing order, with what reading it noted; ``seconds``
+    is the wall time (reported on request, never written to a file)."""
 
     source: str
     contours: tuple[ContourSegmentation, ...]
@@ -60,7 +61,6 @@ class PartSegmentation:
             "input_primitives": sum(c.n_pieces for c in self.contours),
             "max_deviation_mm": max(c.max_deviation_mm for c in self.contours),
             "max_tangent_break_deg": max(math.degrees(p.max_tangent_break()) for p in polys),
-            "seconds": self.seconds,
         }
 
     def summary(self) -> str:
@@ -72,7 +72,6 @@ class PartSegmentation:
             f"segments {st['n_segments']} ({st['n_arcs']} arcs, {st['n_lines']} lines), corners {st['n_corners']}",
             f"max deviation {st['max_deviation_mm']:.6f} mm, max tangent break {st['max_tangent_break_deg']:.3g} deg "
             f"(outside corners)",
-            f"time {st['seconds']:.3f} s",
         ]
         for k, c in enumerate(self.contours[:SUMMARY_CONTOURS]):
             p = c.polysegment
