@@ -66,6 +66,27 @@ def generated_splines(folder: Path, n: int = 200) -> Path:
     return path
 
 
+def generated_mixed(folder: Path, n: int = 20) -> Path:
+    """``n`` closed outlines mixing native and free-form pieces joined tangentially: a line, a
+    spline leaving and meeting lines along their directions, half an ellipse, a closing half circle."""
+    import ezdxf
+
+    doc = ezdxf.new("R2010")
+    doc.header["$INSUNITS"] = 4
+    msp = doc.modelspace()
+    for k in range(n):
+        x, y = 120.0 * (k % 5), 80.0 * (k // 5)
+        msp.add_line((x + 10, y), (x + 20, y))
+        msp.add_open_spline([(x + 20, y), (x + 35, y), (x + 45, y + 15 + k % 4), (x + 60, y + 10), (x + 75, y + 10)])
+        msp.add_line((x + 75, y + 10), (x + 90, y + 10))
+        msp.add_ellipse((x + 90, y + 25), major_axis=(0, -15), ratio=0.5, start_param=0, end_param=math.pi)
+        msp.add_line((x + 90, y + 40), (x + 10, y + 40))
+        msp.add_arc((x + 10, y + 20), 20, 90, 270)
+    path = folder / f"generated_{n}_mixed_parts.dxf"
+    doc.saveas(path)
+    return path
+
+
 def drawings(paths: list[str]) -> list[Path]:
     found: list[Path] = []
     for item in paths:
@@ -103,7 +124,7 @@ def main() -> None:
         print(row(path, args.tol), flush=True)
     if not args.no_generated:
         with tempfile.TemporaryDirectory() as tmp:
-            for path in (generated_native(Path(tmp)), generated_splines(Path(tmp))):
+            for path in (generated_native(Path(tmp)), generated_mixed(Path(tmp)), generated_splines(Path(tmp))):
                 print(row(path, args.tol), flush=True)
 
 
