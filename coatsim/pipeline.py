@@ -21,21 +21,27 @@ import numpy as np
 from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
+from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
 from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.segment import Segmentation
-from coatsim.program import read_toolpath
+from coatsim.program import read_program_bytes, read_toolpath
+from coatsim.program.as_lang.source import decode
+from coatsim.program.as_lang.names import program_name
 from coatsim.program.build import ProgramOptions
-from coatsim.program.part_program import PartProgram, build_part_program, part_centering_offset
 from coatsim.program.oat import oat_to_matrix
+from coatsim.program.part_program import PartProgram, build_part_program, part_centering_offset
 from coatsim.program.placement import Frame, Placement
+from coatsim.program.toolpath import ToolPath
+from coatsim.program.user import UserProgram, user_program
 from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, combine_segmentation, contours_section, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
+from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
-from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
+from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, load_scenario
 from coatsim.spray.coat import CoatingResult, coat
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
@@ -51,7 +57,7 @@ class VariantRun:
     """One program variant carried through every stage."""
 
     name: str
-    program: PartProgram
+    program: PartProgram | UserProgram
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
@@ -222,13 +228,66 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     spec, out = job.loaded.spec, job.outdir
     polys = [c.polysegment for c in job.contours]
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=spec.name)
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name(spec.name))
     program = build_part_program(polys, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                                  source=f"scenario:{spec.name}", points=[c.curve.points for c in job.contours],
                                  order=spec.motion.contour_order)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
-    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal)
+    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
+    return simulate_variant(name, program, toolpath, job, step)
+
+
+def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
+    """The ToolPath of a program variant and its text (the files one after the other)."""
+    files = [loaded.resolve(f) for f in entry.files]
+    try:
+        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
+                                 kinematics=CellKinematics(cell))
+    except CoatsimError as exc:
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+    return toolpath, "\n".join(decode(read_program_bytes(f)) for f in files)
+
+
+def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> VariantRun:
+    """Execute and coat a user's program; writes ``name.as`` (a copy), ``name.trajectory.csv``
+    and ``name.thickness.ply``."""
+    toolpath, text = read_user_program(job.loaded, entry, job.cell)
+    write_text(job.outdir / f"{entry.name}.as", text)
+    try:
+        program = user_program(toolpath, curve_frame(job.loaded.spec), text)
+        return simulate_variant(entry.name, program, toolpath, job, step)
+    except CoatsimError as exc:
+        raise type(exc)(f"{entry.name}: {exc}") from None
+
+
+def _user_contour(job: Job, program: UserProgram) -> Segmentation:
+    """The contour a user's program sprays: of a part's, the one nearest to its path."""
+    if len(job.contours) == 1:
+        return job.contours[0]
+    return min(job.contours, key=lambda c: hausdorff(c.curve.points, program.curve).hausdorff)
+
+
+def _segmentation_groups(job: Job, program: PartProgram | UserProgram) -> list[dict]:
+    """Each contour's segmentation group (drawing order) for coatsim's programs; for a user's
+    program, that of the contour it sprays."""
+    spec = job.loaded.spec.segmentation
+    if isinstance(program, UserProgram):
+        c = _user_contour(job, program)
+        return [segmentation_group(c.curve.points, program.curve, spec.tolerance_mm, spec.corner_deg, None)]
+    groups: list = [None] * len(job.contours)
+    for k, curve in zip(program.order, program.curves):
+        c = job.contours[k]
+        known = c.max_deviation_mm if curve is c.polysegment else None
+        groups[k] = segmentation_group(c.curve.points, curve, spec.tolerance_mm, spec.corner_deg, known)
+    return groups
+
+
+def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: ToolPath, job: Job,
+                     step: Step) -> VariantRun:
+    """Execute and coat one variant's program; its metrics against the scenario's curve (each
+    contour of a part, and the part as a whole)."""
+    spec, out = job.loaded.spec, job.outdir
     step(f"{name}: simulating the arm")
     execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
     execution.log.write_csv(out / f"{name}.trajectory.csv")
@@ -238,21 +297,19 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
                   spacing=job.spacing_mm)
     write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um, 0.0,
                         float(result.thickness_um.max()), result.deposit.exposure_s)  # as `coatsim coat` writes it
-    per_contour = [None] * len(polys)
-    for place, (k, curve) in enumerate(zip(program.order, program.curves)):
-        c = job.contours[k]
-        per_contour[k] = {
-            "segmentation": segmentation_group(c.curve.points, curve, spec.segmentation.tolerance_mm,
-                                               spec.segmentation.corner_deg,
-                                               c.max_deviation_mm if curve is polys[k] else None),
-            "motion": execution.contour_metrics[place].as_dict(),
-        }
+    segmentation = _segmentation_groups(job, program)
     groups = {
-        "segmentation": combine_segmentation([g["segmentation"] for g in per_contour]),
+        "segmentation": combine_segmentation(segmentation),
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
     }
-    return VariantRun(name, program, execution, result, groups, tuple(per_contour) if len(polys) > 1 else ())
+    per_contour: tuple = ()
+    if len(job.contours) > 1 and isinstance(program, PartProgram):
+        motion = [None] * len(job.contours)
+        for place, k in enumerate(program.order):
+            motion[k] = execution.contour_metrics[place].as_dict()
+        per_contour = tuple({"segmentation": s, "motion": m} for s, m in zip(segmentation, motion))
+    return VariantRun(name, program, execution, result, groups, per_contour)
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
@@ -275,14 +332,22 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants), show) as step:
         step("segmenting the curve")
-        contours, part = segment_input(loaded)
-        polys = [c.polysegment for c in contours]
+        part = None
+        if spec.curve is None:  # the sprayed path of the first program variant
+            entry = spec.programs[0]
+            user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
+            contours = (segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
+                                      method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg),)
+            offset = (0.0, 0.0)
+        else:
+            contours, part = segment_input(loaded)
+            polys = [c.polysegment for c in contours]
+            offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
         segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
         if part is None:
             write_polysegment_json(segmentation_file, contours[0])
         else:
             write_part_json(segmentation_file, part)
-        offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
         placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
@@ -290,8 +355,12 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         job = Job(loaded, contours, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
         runs = []
-        for name in spec.variants:
+        for entry in spec.variants:
+            name = entry if isinstance(entry, str) else entry.name
             step(f"{name}: writing and reading the program")
+            if not isinstance(entry, str):
+                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
+                continue
             try:
                 runs.append(run_variant(name, job, step))
             except CoatsimError as exc:
@@ -299,10 +368,13 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         step("metrics, gates and report")
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates(spec.gates, variants)
-        warnings = [{"variant": r.name, "message": event} for r in runs for event in r.execution.events]
+        warnings = [{"variant": r.name, "message": event} for r in runs
+                    for event in (*r.execution.warnings, *r.execution.events)]
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
         if len(contours) > 1:
-            document["contours"] = contours_section(contours, runs[0].program.order, {r.name: r.contour_groups for r in runs})
+            order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
+            document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
+                                                                       if r.contour_groups})
         write_text(out / "metrics.json", to_json(document))
         write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else ())
     files = [segmentation_file]

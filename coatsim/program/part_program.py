@@ -17,8 +17,8 @@ import numpy as np
 
 from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
-from coatsim.program.as_dialect import KAWASAKI_AS
-from coatsim.program.as_writer import fmt_short
+from coatsim.program.as_lang.dialect import KAWASAKI_AS
+from coatsim.program.as_lang.writer import fmt_short
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import PlacedPath, Placement, centering_offset

@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Optional
 
 from coatsim.fileio import write_text
-from coatsim.program.as_parser import parse_as
+from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import BuiltProgram, ProgramOptions
 from coatsim.program.check import ProgramCheck
 from coatsim.program.inputs import load_part_input
@@ -41,7 +41,7 @@ def program_summary(built: BuiltProgram | PartProgram) -> str:
     """Two lines (and one per contour of a part) describing a written program."""
     plan = built.plan
     curves = getattr(built, "curves", None) or (built.curve,)
-    n_steps = len(parse_as(built.text).programs[0].statements)
+    n_steps = len(parse_as(built.text).programs[0].body)
     n_lines, n_arcs = sum(c.n_lines for c in curves), sum(c.n_arcs for c in curves)
     length = sum(p.curve_length_mm for p in plan.paths)
     lines = [
@@ -64,5 +64,9 @@ def check_summary(check: ProgramCheck) -> str:
         f"{check.n_joint_moves} joint, {check.n_linear_moves} linear, {check.n_arc_moves} arc",
         f"path length {check.path_length_mm:.3f} mm (sprayed {check.spray_length_mm:.3f} mm)",
     ]
+    lines += [f"signal: {s}" for s in check.signals]
+    lines += [f"sprayed: lines {r.first_line}-{r.last_line}, {r.moves} moves, {r.length_mm:.3f} mm"
+              for r in check.spray_runs]
+    lines += [f"warning: {w}" for w in check.warnings]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
     return "\n".join(lines)

@@ -49,7 +49,11 @@ def headline_table(document: Mapping[str, Any]) -> str:
 def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
     spec = loaded.spec
     c = spec.curve
-    source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    if c is None:
+        source = f"the sprayed path of program variant {spec.programs[0].name}"
+    else:
+        source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    placed = "" if c is None else f"; scale {c.scale:g}, rotated {c.rotate_deg:g} deg"
     wp = spec.workpiece
     size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
             "cylinder": lambda: f"cylinder R {wp.radius_mm:g} x L {wp.length_mm:g} mm, axis {wp.axis}",
@@ -58,7 +62,7 @@ def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}; scale {c.scale:g}, rotated {c.rotate_deg:g} deg; " + (
+        ("curve", f"{source}{placed}; " + (
             part_summary(contours) if len(contours) > 1 else
             f"{'closed' if contours[0].curve.closed else 'open'}, {len(contours[0].curve.points)} points, "
             f"{contours[0].curve.length:.1f} mm")),
@@ -70,7 +74,7 @@ def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[
                 f"target {spec.gun.target_thickness_um:g} µm"),
         ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
                    f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
-        ("variants", ", ".join(spec.variants)),
+        ("variants", ", ".join(spec.variant_names)),
         ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
     ]
     if seg is not None:
@@ -89,9 +93,10 @@ def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tu
         step = np.diff(log.progress, prepend=log.progress[0]) * (on & np.roll(on, 1))
         profiles[r.name] = SpeedProfile(np.cumsum(step)[on], log.speed[on])
         spans, at = [], 0.0
-        for path in r.program.plan.paths:
-            spans.append((at + lead_in_mm, at + lead_in_mm + path.curve_length_mm))
-            at += lead_in_mm + path.curve_length_mm + lead_out_mm
+        plan = getattr(r.program, "plan", None)  # a user's program has no plan: one path
+        for length in ([p.curve_length_mm for p in plan.paths] if plan is not None else [r.program.path.curve_length_mm]):
+            spans.append((at + lead_in_mm, at + lead_in_mm + length))
+            at += lead_in_mm + length + lead_out_mm
     return profiles, spans
 
 
@@ -121,7 +126,7 @@ def _curve_section(contours: Sequence, runs: Sequence, document: Mapping[str, An
     from coatsim.report.part_section import contours_table
 
     png = part_figure_png([c.polysegment for c in contours], "part", [c.curve.points for c in contours],
-                          order=runs[0].program.order)
+                          order=next((r.program.order for r in runs if hasattr(r.program, "order")), None))
     body = contours_table(document["contours"]) + "".join(f'<p class="muted">{esc(n)}</p>' for n in notes)
     return Section("curve", "Part: contours and polysegments", body, figures=(Figure(
         "The part's contours and their polysegments", png,
@@ -135,7 +140,7 @@ def build_sections(loaded, contours: Sequence, runs: Sequence, document: Mapping
                    notes: Sequence[str] = ()) -> list[Section]:
     """Every section of the report, in order."""
     spec = loaded.spec
-    polyline = next((r.program.curves for r in runs if r.name != "polysegment"), None)
+    polyline = next((getattr(r.program, "curves", None) or (r.program.curve,) for r in runs if r.name != "polysegment"), None)
     polyline_xy = None if polyline is None else _vertices(polyline)
     curve_xy = _stacked([c.curve.points for c in contours])
     profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm, spec.motion.lead_out_mm)

@@ -12,9 +12,9 @@ import pytest
 
 from coatsim.errors import InputError
 from coatsim.geometry import Arc, Line, Polysegment
-from coatsim.program.as_parser import parse_as
+from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import ProgramOptions, build_program
-from coatsim.program.interpreter import interpret
+from coatsim.program.as_lang.interpreter import interpret
 from coatsim.program.part_program import build_part_program, contour_order, part_centering_offset
 from coatsim.program.placement import Frame, Placement
 

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from coatsim.geometry import Arc, Polysegment, chain
-from coatsim.program.as_parser import parse_as
+from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import ProgramOptions
-from coatsim.program.interpreter import interpret
+from coatsim.program.as_lang.interpreter import interpret
 from coatsim.program.part_program import build_part_program
 from coatsim.program.placement import Frame, Placement
 from coatsim.robot.cell import load_cell
