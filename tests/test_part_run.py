@@ -81,3 +81,36 @@ def test_run_on_a_drawn_part(tmp_path, run_cli, order):
     assert np.count_nonzero(np.diff(log.spray.astype(int)) == 1) == 3
     html = (out / "report.html").read_text(encoding="utf-8")
     assert "The part&#x27;s contours and their polysegments" in html and "ignored 1 TEXT" in html
+
+
+USER = """\
+name: drawn_part_user
+curve: {file: plate.dxf, layer: CUT}
+segmentation: {tolerance_mm: 0.05}
+workpiece: {kind: plate, size_mm: [200.0, 150.0]}
+gun: {footprint: "gaussian:sigma=5", target_thickness_um: 16.0}
+motion: {speed_mm_s: 200.0, accuracy_mm: 0.5, lead_in_mm: 10.0, lead_out_mm: 10.0}
+coating: {spacing_mm: 2.5, band_halfwidth_mm: 2.5}
+fast: {coating_spacing_mm: 3.0, sample_step_mm: 2.0}
+variants: [polysegment, {name: mine, program: mine.as}]
+"""
+
+
+@pytest.mark.slow
+def test_user_program_variant_on_a_drawn_part(tmp_path, run_cli):
+    """A user's program of the part (here coatsim's own, written with `coatsim program`) runs
+    beside coatsim's; its segmentation is measured against the contour it sprays longest."""
+    _plate(tmp_path / "plate.dxf")
+    code, _, err = run_cli(["program", str(tmp_path / "plate.dxf"), "--tol", "0.05", "--layer", "CUT", "--center",
+                            "--speed", "200", "--lead-in", "10", "--lead-out", "10", "-o", str(tmp_path / "mine.as")])
+    assert code == 0, err
+    (tmp_path / "user.yaml").write_text(USER, encoding="utf-8")
+    code, _, err = run_cli(["run", str(tmp_path / "user.yaml"), "--fast", "-o", str(tmp_path / "run")])
+    assert code == 0, err
+    doc = json.loads((tmp_path / "run" / "metrics.json").read_text(encoding="utf-8"))
+    mine = doc["variants"]["mine"]["segmentation"]
+    outline = doc["contours"][0]["variants"]["polysegment"]["segmentation"]
+    # its sprayed stretch is the outline with its 10 mm lead-in and lead-out (tangent lines)
+    assert mine["curve_length_mm"] == pytest.approx(outline["curve_length_mm"] + 20.0, rel=1e-6)
+    assert mine["max_deviation_mm"] < 10 * (math.sqrt(2) - 1) + 1e-6  # the lead-in's start off the rounded corner
+    assert [r["contour"] for r in doc["contours"]] == [1, 2, 3] and "mine" not in doc["contours"][0]["variants"]
