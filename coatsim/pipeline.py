@@ -261,11 +261,13 @@ def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> Vari
         raise type(exc)(f"{entry.name}: {exc}") from None
 
 
-def _user_contour(job: Job, program: UserProgram) -> Segmentation:
-    """The contour a user's program sprays: of a part's, the one nearest to its path."""
-    if len(job.contours) == 1:
-        return job.contours[0]
-    return min(job.contours, key=lambda c: hausdorff(c.curve.points, program.curve).hausdorff)
+def _user_contour(job: Job, program: UserProgram) -> np.ndarray:
+    """The points of the contour a user's program sprays (of a part's, the one nearest to its
+    path), placed as coatsim's programs place them (the user's path is in the frame's plane)."""
+    placed = [c.curve.points + np.asarray(job.placement.offset_xy, dtype=float) for c in job.contours]
+    if len(placed) == 1:
+        return placed[0]
+    return min(placed, key=lambda pts: hausdorff(pts, program.curve).hausdorff)
 
 
 def _segmentation_groups(job: Job, program: PartProgram | UserProgram) -> list[dict]:
@@ -273,8 +275,8 @@ def _segmentation_groups(job: Job, program: PartProgram | UserProgram) -> list[d
     program, that of the contour it sprays."""
     spec = job.loaded.spec.segmentation
     if isinstance(program, UserProgram):
-        c = _user_contour(job, program)
-        return [segmentation_group(c.curve.points, program.curve, spec.tolerance_mm, spec.corner_deg, None)]
+        points = _user_contour(job, program)
+        return [segmentation_group(points, program.curve, spec.tolerance_mm, spec.corner_deg, None)]
     groups: list = [None] * len(job.contours)
     for k, curve in zip(program.order, program.curves):
         c = job.contours[k]
