@@ -43,6 +43,16 @@ def fail(message: str, code: int = 2) -> None:
     raise typer.Exit(code)
 
 
+SEGMENT_FLAGS = {"min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
+
+
+def _segment_flags(message: str) -> str:
+    """A segment_curve error with its parameter names as the command's flags."""
+    for name, flag in SEGMENT_FLAGS.items():
+        message = message.replace(name, flag)
+    return message
+
+
 @app.command()
 def segment(
     input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
@@ -54,29 +64,53 @@ def segment(
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
     timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
+    min_segment: Optional[float] = typer.Option(None, "--min-segment", help="Shortest fitted segment, mm [default: 5 x --tol]."),
+    speed: Optional[float] = typer.Option(None, "--speed", help="Programmed speed, mm/s: no arc tighter than speed²/tool-accel where the curve allows; the rest is listed as speed-limited."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit with --speed, m/s² [default: the cell model's]."),
     layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
     join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
 ) -> None:
     """Approximate a curve by tangent-continuous arcs and lines within a tolerance; a drawing
     gives one polysegment per contour (a part JSON when there are several)."""
+    import math
+
+    from coatsim.errors import InputError
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
     from coatsim.geometry.cad.drawing import is_drawing
 
+    if closed not in ("auto", "yes", "no"):
+        fail(f"--closed: expected auto, yes or no, got {closed!r}")
+    if tool_accel is not None and speed is None:
+        fail("--tool-accel: needs --speed")
+    accel_mm_s2 = None
+    if speed is not None:
+        if tool_accel is None:
+            from coatsim.robot.cell import load_cell
+
+            accel_mm_s2 = load_cell().tool_accel_mm_s2
+        elif math.isfinite(tool_accel) and tool_accel > 0:
+            accel_mm_s2 = tool_accel * 1000.0
+        else:
+            fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
     if is_drawing(input):
         from coatsim.geometry.cad.command import segment_drawing_command
 
+        if min_segment is not None:
+            fail("--min-segment applies to point curves; a drawing keeps its lines and arcs as drawn")
         text, seconds = segment_drawing_command(input, tol, layer, join_tol, method, closed, theta_tol, output, plot,
-                                                corner_deg)
+                                                corner_deg, speed, accel_mm_s2)
         typer.echo(text)
         if timings:
             typer.echo(f"timings: reading, chaining and fitting {seconds:.3f} s", err=True)
         return
     if layer or join_tol is not None:
         fail("--layer and --join-tol apply to drawings (DXF, SVG)")
-
-    if closed not in ("auto", "yes", "no"):
-        fail(f"--closed: expected auto, yes or no, got {closed!r}")
-    seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg, theta_tolerance=theta_tol)
+    try:
+        seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
+                            theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
+                            tool_accel_mm_s2=accel_mm_s2)
+    except InputError as exc:
+        fail(_segment_flags(str(exc)))
     if output is not None:
         write_polysegment_json(output, seg)
     if plot is not None:
@@ -169,8 +203,8 @@ def program(
     frame: str = typer.Option("700,0,200,0,0,0", "--frame", help="Workpiece frame x,y,z,o,a,t in the robot base frame (mm, deg O-A-T)."),
     variant: str = typer.Option("polysegment", "--variant", help="polysegment | polyline-stop | polyline-blend."),
     accuracy: float = typer.Option(1.0, "--accuracy", help="ACCURACY (blend zone radius), mm."),
-    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed)."),
-    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed)."),
+    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed on an open curve; a closed one is sprayed exactly once around)."),
+    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed on an open curve)."),
     approach: float = typer.Option(50.0, "--approach", help="Approach and depart distance along the tool axis, mm."),
     roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
     follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it)."),
@@ -178,20 +212,31 @@ def program(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit the curve is segmented for at --speed, m/s² [default: the cell model's]."),
     layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
     join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
     order: str = typer.Option("as-drawn", "--order", help="Parts: spray the contours as-drawn | nearest (next start closest to the last end)."),
 ) -> None:
     """Write the Kawasaki AS program (polysegment or polyline variant) of a curve, or of every
     contour of a drawing one after the other (gun off between them)."""
+    import math
+
     from coatsim.program.build import ProgramOptions
     from coatsim.program.run import program_summary, run_program
 
     options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
                              gun_signal=gun, name=name)
+    if tool_accel is None:
+        from coatsim.robot.cell import load_cell
+
+        accel_mm_s2 = load_cell().tool_accel_mm_s2
+    elif math.isfinite(tool_accel) and tool_accel > 0:
+        accel_mm_s2 = tool_accel * 1000.0
+    else:
+        fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
     built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                         lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                        output=output, layers=layer, join_tol=join_tol, order=order)
+                        output=output, layers=layer, join_tol=join_tol, order=order, tool_accel_mm_s2=accel_mm_s2)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)

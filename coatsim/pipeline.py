@@ -12,7 +12,7 @@ import difflib
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
@@ -42,7 +42,7 @@ from coatsim.robot.execute import Execution, execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, load_scenario
-from coatsim.spray.coat import CoatingResult, coat
+from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import write_thickness_ply
@@ -89,13 +89,16 @@ def check_gate_metrics(loaded: ScenarioFile) -> None:
             raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
 
 
-def segment_input(loaded: ScenarioFile) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation]]:
+def segment_input(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation]]:
     """The scenario's contours segmented: one for a curve; a drawing's every contour (and the
-    part they make)."""
+    part they make). The fitter knows the programmed speed and the arm's tool acceleration
+    limit: no arc tighter than v² / a where the curve allows the speed, the rest listed as
+    speed-limited."""
     spec, seg = loaded.spec.curve, loaded.spec.segmentation
+    speed = {"speed_mm_s": loaded.spec.motion.speed_mm_s, "tool_accel_mm_s2": cell.tool_accel_mm_s2}
     if spec.file is None or not is_drawing(spec.file):
         return (segment_curve(load_input_curve(loaded), seg.tolerance_mm, method=seg.method,
-                              corner_deg=seg.corner_deg),), None
+                              corner_deg=seg.corner_deg, **speed),), None
     if seg.method != "optimal":
         raise InputError(f"{loaded.where('segmentation', 'method')}: segmentation.method: a drawing keeps its lines "
                          "and arcs exactly; 'paper' applies to point curves")
@@ -105,7 +108,7 @@ def segment_input(loaded: ScenarioFile) -> tuple[tuple[Segmentation, ...], Optio
     try:
         part = segment_drawing(loaded.resolve(spec.file), seg.tolerance_mm, layers=layers,
                                join_tolerance_mm=spec.join_tolerance_mm, rotation=rotation, scale=spec.scale,
-                               corner_deg=seg.corner_deg)
+                               corner_deg=seg.corner_deg, **speed)
     except InputError as exc:
         raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
     return part.contours, part
@@ -314,6 +317,21 @@ def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: To
     return VariantRun(name, program, execution, result, groups, per_contour)
 
 
+def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
+    """Every variant's coating measured over the same region of interest: the vertices inside
+    every variant's band. Each band follows its own sprayed track, and the tracks differ within
+    the tolerance and the corner blends, so a vertex near a band's edge may fall in one and not
+    in another; the variants are compared on the same area instead."""
+    common = np.logical_and.reduce([r.coating.roi for r in runs])
+    if not common.any():
+        raise InputError("the variants' regions of interest share no vertex; check coating.band_halfwidth_mm")
+    measured = []
+    for r in runs:
+        coating = remeasured(r.coating, common, target_um)
+        measured.append(replace(r, coating=coating, groups={**r.groups, "coating": coating_group(coating.metrics)}))
+    return measured
+
+
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
                  progress: Optional[bool] = None, model: Optional[str | Path] = None) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
@@ -339,10 +357,11 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
             entry = spec.programs[0]
             user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
             contours = (segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
-                                      method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg),)
+                                      method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
+                                      speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2),)
             offset = (0.0, 0.0)
         else:
-            contours, part = segment_input(loaded)
+            contours, part = segment_input(loaded, cell)
             polys = [c.polysegment for c in contours]
             offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
         segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
@@ -368,6 +387,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
             except CoatsimError as exc:
                 raise type(exc)(f"{name}: {exc}") from None
         step("metrics, gates and report")
+        runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates(spec.gates, variants)
         warnings = [{"variant": r.name, "message": event} for r in runs

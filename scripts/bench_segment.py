@@ -1,6 +1,6 @@
-"""Benchmark of the geometry stage: segment the five benchmark curves (generated from their
-formulas, coatsim.geometry.benchmark, next to its reference counts), the built-ins and curves
-the fitter was not tuned on (scripts/heldout_curves.py).
+"""Benchmark of the geometry stage: segment the five bench curves, the built-ins and curves the
+fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts of
+../shared/bench/README.md.
 
 For every curve and σ, per method: segments (arcs, lines), the deviation reported by
 segment_curve, an independent check of it by dense sampling of both curves (KD-tree, step σ/20,
@@ -11,14 +11,16 @@ tangent junction (1/mm) and the wall time. Then the time to segment 100 000-poin
 σ = 0.05 mm. Prints only; never asserts. The figures come from the polysegment alone, so the
 script also measures older versions of the fitter (PYTHONPATH=<their checkout>).
 
-    python scripts/bench_segment.py [--paper] [--sigmas 0.05,0.5] [--only bench,builtin,heldout,large]
+    python scripts/bench_segment.py [--paper] [--sigmas 0.05,0.5] [--only bench,builtin,heldout,large] [--curves DIR]
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -148,15 +150,27 @@ def measure(curve, sigma: float, method: str, tightest: float | None) -> str:
             f"{max_curvature_jump(poly):9.4f} {seconds:7.2f}{gap}")
 
 
-def bench_table(sigmas, methods) -> None:
-    print("\nbenchmark curves; refs = greedy free-arc / paper literally (coatsim.geometry.benchmark)")
-    print(f"{'curve':10} {'sigma':>6} {'method':8} {HEAD} {'greedy':>6} {'paper':>6}")
+def bench_curves(folder: Path | None) -> dict:
+    """The five bench curves: generated, or read from ``folder``/NAME.csv (exit if one is missing)."""
+    if folder is None:
+        return {name: bench_curve(name) for name in NAMES}
+    curves = {}
     for name in NAMES:
-        curve = bench_curve(name)
+        path = folder / f"{name}.csv"
+        if not path.is_file():
+            sys.exit(f"bench_segment: benchmark curve {path} not found")
+        curves[name] = load_curve(str(path))
+    return curves
+
+
+def bench_table(curves: dict, sigmas, methods) -> None:
+    print("\nbench curves; refs = greedy free-arc / paper literally (coatsim.geometry.benchmark)")
+    print(f"{'curve':10} {'sigma':>6} {'method':8} {HEAD} {'greedy':>6} {'paper':>6}")
+    for name, curve in curves.items():
         for sigma in sigmas:
             for method in methods:
-                greedy = (reference_count("greedy", name, sigma) or "") if sigma in TOLERANCES_MM else ""
-                literal = (reference_count("paper", name, sigma) or "") if sigma in TOLERANCES_MM else ""
+                greedy = reference_count("greedy", name, sigma) or ""
+                literal = reference_count("paper", name, sigma) or ""
                 print(f"{name:10} {sigma:6g} {method:8} {measure(curve, sigma, method, None)} {greedy!s:>6} {literal!s:>6}",
                       flush=True)
 
@@ -203,13 +217,14 @@ def main() -> None:
     parser.add_argument("--paper", action="store_true", help="also the paper's method on the bench curves")
     parser.add_argument("--sigmas", default=",".join(map(str, SIGMAS)), help="bench-curve tolerances, mm")
     parser.add_argument("--only", default="bench,builtin,heldout,large", help="tables to print")
+    parser.add_argument("--curves", type=Path, help="read the bench curves from DIR/NAME.csv")
     args = parser.parse_args()
     tables = set(args.only.split(","))
     print("dev = reported by segment_curve; check = dense-sampling Hausdorff (step sigma/20; '!' above 1.025 sigma);")
     print("break = largest tangent break at a non-corner junction; R ratio = tightest arc / tightest radius of the "
           "input; short = shortest segment; jump = largest curvature change at a tangent junction")
     if "bench" in tables:
-        bench_table(tuple(float(s) for s in args.sigmas.split(",")), ("paper", "optimal") if args.paper else ("optimal",))
+        bench_table(bench_curves(args.curves), tuple(float(s) for s in args.sigmas.split(",")), ("paper", "optimal") if args.paper else ("optimal",))
     if "builtin" in tables:
         builtin_table()
     if "heldout" in tables:

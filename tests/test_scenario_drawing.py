@@ -11,6 +11,7 @@ import pytest
 
 from coatsim.errors import InputError
 from coatsim.pipeline import segment_input
+from coatsim.robot.cell import load_cell
 from coatsim.scenario import load_scenario
 
 BASE = """\
@@ -43,7 +44,7 @@ def test_drawing_keys_load_and_the_part_is_scaled_and_rotated(tmp_path):
     loaded = load_scenario(_write(tmp_path, "{file: part.dxf, layer: [CUT], join_tolerance_mm: 0.0005, scale: 2.0, "
                                             "rotate_deg: 90}", "nearest"))
     assert loaded.spec.curve.layer == ["CUT"] and loaded.spec.motion.contour_order == "nearest"
-    contours, part = segment_input(loaded)
+    contours, part = segment_input(loaded, load_cell())
     assert part is not None and len(contours) == 1
     arc = contours[0].polysegment.segments[0]
     assert arc.radius == pytest.approx(10.0) and math.dist(arc.center, (0.0, 20.0)) < 1e-9
@@ -66,4 +67,4 @@ def test_bad_order_and_missing_layer(tmp_path):
         load_scenario(_write(tmp_path, "{file: part.dxf}", "random"))
     loaded = load_scenario(_write(tmp_path, "{file: part.dxf, layer: WOOD}"))
     with pytest.raises(InputError, match=r"s\.yaml:2: curve: .*layer 'WOOD' \(--layer\): no such layer"):
-        segment_input(loaded)
+        segment_input(loaded, load_cell())

@@ -28,6 +28,7 @@ N_END_CANDIDATES = 12
 N_CURVATURE_CANDIDATES = 5
 N_HEADING_CANDIDATES = 7
 LP_KNOTS = 400
+TIE = 0.0  # look-ahead reaches within this share of the best count as equal
 LANDED_BAND = 0.9  # a re-measured state keeps its offset within this share of the band
 
 
@@ -179,9 +180,13 @@ def _end_candidates(prob: BandProblem, a: int, lo: np.ndarray, hi: np.ndarray) -
     return np.unique(ends[np.searchsorted(s_end, targets).clip(0, len(ends) - 1)])
 
 
-def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: float) -> tuple[Piece, float, float, float]:
+def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: float,
+               previous: float | None = None) -> tuple[Piece, float, float, float]:
     """Choose the next piece from a state by one step of look-ahead.
 
+    Among the choices whose following piece reaches within ``TIE`` of the farthest, the one
+    with the smallest curvature jump from the ``previous`` piece's curvature wins (a tool at
+    speed feels a jump as a step of its lateral acceleration), then the longer piece.
     Returns (piece, next value, next slope, score), score = arc length the following piece
     reaches (infinity when this piece ends the run).
     """
@@ -195,20 +200,21 @@ def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: floa
         kappa = 0.0 if k_lo <= 0.0 <= k_hi and abs(ideal) * u * u < 0.2 * band else float(np.clip(ideal, k_lo, k_hi))
         v, t = _advance(prob, a, last, value, slope, kappa)
         return Piece(a, last, kappa, float(prob.s[last] - prob.s[a])), v, t, np.inf
-    best = None
+    options = []
     for b in _end_candidates(prob, a, lo, hi):
         for kappa in _curvature_candidates(lo[b - a - 1], hi[b - a - 1]):
             v, t = _advance(prob, a, b, value, slope, kappa)
             _, lo2, hi2 = _reach(prob, b, v, t, band)
             nxt = _farthest(prob, b, lo2, hi2)
-            score = np.inf if nxt == last else prob.s[nxt]
-            key = (score, prob.s[b], kappa == 0.0)
-            if best is None or key > best[0]:
-                best = (key, Piece(a, int(b), float(kappa), float(prob.s[b] - prob.s[a])), v, t)
-    if best is None:
+            score = np.inf if nxt == last else float(prob.s[nxt])
+            options.append((score, float(prob.s[b]), float(kappa), int(b), v, t))
+    if not options:
         raise _Stuck(a)
-    _, piece, v, t = best
-    return piece, v, t, best[0][0]
+    top = max(o[0] for o in options)
+    near = top if np.isinf(top) else top - TIE * (top - prob.s[a])
+    jump = (lambda k: 0.0) if previous is None else (lambda k: abs(k - previous))
+    score, _, kappa, b, v, t = max((o for o in options if o[0] >= near), key=lambda o: (-jump(o[2]), o[1], o[2] == 0.0))
+    return Piece(a, b, kappa, float(prob.s[b] - prob.s[a])), v, t, score
 
 
 class _Stuck(Exception):
@@ -325,7 +331,7 @@ def fit_band(
         if piece.b == last:
             break
         states.append((piece.b, v, t))
-        piece, v, t, _ = _best_step(prob, piece.b, v, t, band)
+        piece, v, t, _ = _best_step(prob, piece.b, v, t, band, piece.kappa)
     if end_turn is not None:
         # Re-end the loop from the start of the last piece, or of the one before it.
         for back in range(1, min(2, len(pieces)) + 1):

@@ -18,17 +18,20 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
-from coatsim.geometry.limits import FitLimits, arc_excess
-from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.fillet import fillet_chain
+from coatsim.geometry.limits import FitLimits, arc_excess, fit_limits
+from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
+from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 20
 PIN_RAD = 1e-9  # a pinned end tangent is kept to this (rad)
-RELAX = (1.0, 1.5, 3.0)  # caps loosened by these factors, in turn, where the fit fails under them
-RELAXED_ATTEMPTS = 8  # attempts granted to each loosened try
+SLACK = 0.02  # caps and minimum length hold to this share (the stretch a segment covers is mapped by length)
+NARROWER = (0.5, 0.25)  # then fits within these shares of the tolerance, under their own caps
+RELAX = (1.5, 3.0)  # then caps loosened by these factors
+RELAXED_ATTEMPTS = 8  # attempts granted to each of those tries
+QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its first point)
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
@@ -71,18 +74,17 @@ def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
 def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:
     """Whether every curvature is under its stretch's cap and every length at least the
     minimum (a run of one segment may be shorter)."""
-    if len(params.length) > 1 and params.length.min() < (1 - 1e-9) * limits.min_length_mm:
+    if len(params.length) > 1 and params.length.min() < (1 - SLACK) * limits.min_length_mm:
         return False
-    return arc_excess(params.kappa, params.length, limits, total) <= 1 + 1e-6
+    return arc_excess(params.kappa, params.length, limits, total) <= 1 + SLACK
 
 
 def _pinned_turn(pts: np.ndarray, start_heading: float, end_heading: float) -> float:
     """The turning (rad) from ``start_heading`` to ``end_heading`` nearest the polyline's own."""
     d = np.diff(pts, axis=0)
     h = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
-    own = float(h[-1] - h[0]) + math.remainder(float(h[0]) - start_heading, 2 * math.pi) \
+    return float(h[-1] - h[0]) + math.remainder(float(h[0]) - start_heading, 2 * math.pi) \
         + math.remainder(end_heading - float(h[-1]), 2 * math.pi)
-    return own
 
 
 def _pins_kept(segs: tuple[Segment, ...], start_heading: float | None, end_heading: float | None) -> bool:
@@ -106,14 +108,14 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
-    splits, landed = 0, False
+    splits, landed, shrink = 0, False, 0.9
     while budget[0] > 0:
         budget[0] -= 1
         if params is None:
             try:
                 slope, pieces = fit_band(prob, ref, band, start_slope=pinned_slope, end_turn=turn, landed=landed)
             except BandStuck:
-                band *= 0.9 if landed else 0.7
+                band *= shrink if landed else 0.7
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
@@ -134,9 +136,10 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
             splits += 1
         else:
             # A new band fit: the same band with states re-measured on the real arcs, then
-            # a narrower band.
+            # a band narrower by what the deviation asks for.
+            shrink = float(np.clip(0.97 * tolerance / dev, 0.5, 0.95)) if honest else 0.9
             if landed:
-                band *= float(np.clip(0.97 * tolerance / dev, 0.85, 0.95)) if honest else 0.9
+                band *= shrink
             splits, params, landed = 0, None, not landed
     return None
 
@@ -146,15 +149,65 @@ def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool
     return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
 
 
+def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None = None,
+               end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
+    """A run that is one line within ``tolerance`` (open runs), or exactly a chain of lines
+    and arcs, as that chain with its verified deviation (if it keeps the pinned end tangents
+    given); else None."""
+    pts = np.asarray(points, dtype=float)
+    end = pts[-1]
+    if not closed_loop and _near_chord(pts, tolerance):
+        line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
+        dev = hausdorff(pts, Polysegment(line)).hausdorff
+        if dev <= tolerance and _pins_kept(line, start_heading, end_heading):
+            return line, dev
+    exact = recover_exact(pts, closed_loop, tolerance)
+    if exact is not None and _pins_kept(exact, start_heading, end_heading):
+        return exact, hausdorff(pts, Polysegment(exact)).hausdorff
+    return None
+
+
+def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+             quick: bool = False, start_heading: float | None = None,
+             end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
+    """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
+    under the curvature caps and minimum length of ``limits``, and its verified deviation.
+
+    Where no such chain is found, chains within a fraction of the tolerance are tried, then
+    loosened caps, and as the last resort every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
+    caps as they are, None if those fail. ``start_heading`` / ``end_heading`` pin the end
+    tangents (see fit_run); the last resort does not keep them.
+    """
+    pts = np.asarray(points, dtype=float)
+    pins = (start_heading, end_heading) if not closed_loop else (None, None)
+    if quick:
+        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS], *pins)
+    found = _constrained(pts, tolerance, closed_loop, limits, [MAX_ATTEMPTS], *pins)
+    # A chain within a smaller tolerance is within this one too: where the band fit's
+    # linearisation misleads (a tolerance large against the curve's features), aim lower.
+    for share in NARROWER:
+        if found is not None:
+            return found
+        narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
+        found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
+    for factor in RELAX:
+        if found is not None:
+            return found
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
+    if found is not None:
+        return found
+    # Sparse or kinked input the band fit cannot follow: round every vertex instead.
+    segs = fillet_chain(pts, tolerance, closed_loop)
+    dev = hausdorff(pts, Polysegment(segs)).hausdorff
+    if dev > tolerance:
+        raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
+    return segs, dev
+
+
 def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
             start_heading: float | None = None, end_heading: float | None = None) -> tuple[tuple[Segment, ...], float]:
-    """G1 chain within ``tolerance`` of a run (start and end points kept exactly), and its
-    verified deviation (mm).
-
-    Exact chains of lines and arcs are recovered as they are; otherwise the fit keeps the
-    curvature caps and minimum length of ``limits``. Where no chain within the tolerance
-    keeps them, they are loosened step by step, and as the last resort every vertex of the
-    input is rounded (fillet_chain).
+    """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
+    else fit_free.
 
     ``start_heading`` (rad, open runs), and with it ``end_heading``, pin the chain's end
     tangents, e.g. to fixed neighbours it must join G1 (to pin only the end, fit the reversed
@@ -163,26 +216,6 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fit
     """
     if end_heading is not None and start_heading is None:
         raise ValueError("end_heading needs start_heading; pin the start of the reversed run instead")
-    pts = np.asarray(points, dtype=float)
-    end = pts[-1]
     pins = (start_heading, end_heading) if not closed_loop else (None, None)
-    if not closed_loop and _near_chord(pts, tolerance):
-        line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
-        dev = hausdorff(pts, Polysegment(line)).hausdorff
-        if dev <= tolerance and _pins_kept(line, *pins):
-            return line, dev
-    exact = recover_exact(pts, closed_loop, tolerance)
-    if exact is not None and _pins_kept(exact, *pins):
-        return exact, hausdorff(pts, Polysegment(exact)).hausdorff
-    budget = [MAX_ATTEMPTS]
-    for factor in RELAX:
-        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), budget, *pins)
-        if found is not None:
-            return found
-        budget[0] = max(budget[0], RELAXED_ATTEMPTS)
-    # Sparse or kinked input the band fit cannot follow: round every vertex instead.
-    segs = fillet_chain(pts, tolerance, closed_loop)
-    dev = hausdorff(pts, Polysegment(segs)).hausdorff
-    if dev > tolerance:
-        raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
-    return segs, dev
+    return (fit_simple(points, tolerance, closed_loop, *pins)
+            or fit_free(points, tolerance, closed_loop, limits, start_heading=pins[0], end_heading=pins[1]))

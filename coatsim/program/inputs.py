@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Optional
 
@@ -34,15 +34,22 @@ def _json_tolerance(path: str) -> Optional[float]:
     return float(value) if isinstance(value, (int, float)) and math.isfinite(value) and value > 0 else None
 
 
-def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0) -> ProgramInput:
+def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0, speed_mm_s: Optional[float] = None,
+                       tool_accel_mm_s2: Optional[float] = None) -> ProgramInput:
     """Read ``spec``; a curve is segmented within ``tol`` mm (required), a polysegment JSON is
-    taken as is (``tol`` defaults to the file's ``tolerance_mm``)."""
+    taken as is (``tol`` defaults to the file's ``tolerance_mm``). With the programmed speed and
+    the tool acceleration limit, a curve is segmented for them (no arc tighter than v² / a where
+    the curve allows v), and the speed-limited stretches of a JSON are listed again for them."""
     if tol is not None and not (math.isfinite(tol) and tol > 0.0):
         raise InputError(f"--tol {tol}: must be a finite number > 0 (mm)")
     if spec.lower().endswith(".json"):
         from coatsim.geometry import read_polysegment_json
 
         poly = read_polysegment_json(spec)
+        if speed_mm_s is not None and tool_accel_mm_s2 is not None:
+            from coatsim.geometry.dynamics import speed_limited
+
+            poly = replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))
         tolerance = tol if tol is not None else _json_tolerance(spec)
         if tolerance is None:
             raise InputError(f"{spec}: no tolerance_mm in the file; give --tol MM")
@@ -52,7 +59,7 @@ def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0
     from coatsim.geometry import load_curve, segment_curve
 
     curve = load_curve(spec)
-    seg = segment_curve(curve, tol, corner_deg=corner_deg)
+    seg = segment_curve(curve, tol, corner_deg=corner_deg, speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
     return ProgramInput(seg.polysegment, curve.points, tol, spec, spec.startswith("builtin:"))
 
 
@@ -70,9 +77,10 @@ class PartInput:
 
 
 def load_part_input(spec: str, tol: Optional[float], layers: Optional[list[str]] = None,
-                    join_tol: Optional[float] = None, corner_deg: float = 20.0) -> PartInput:
+                    join_tol: Optional[float] = None, corner_deg: float = 20.0, speed_mm_s: Optional[float] = None,
+                    tool_accel_mm_s2: Optional[float] = None) -> PartInput:
     """Read ``spec``: a drawing (DXF/SVG, segmented here within ``tol``), a part or
-    polysegment JSON, or a curve (as :func:`load_program_input`)."""
+    polysegment JSON, or a curve (as :func:`load_program_input`, also for the speed)."""
     from coatsim.geometry.cad.drawing import is_drawing
 
     drawing = is_drawing(spec)
@@ -83,7 +91,8 @@ def load_part_input(spec: str, tol: Optional[float], layers: Optional[list[str]]
             raise InputError(f"{spec}: --tol MM is required to segment a drawing")
         from coatsim.geometry.cad.segment_drawing import segment_drawing
 
-        part = segment_drawing(spec, tol, layers=layers or None, join_tolerance_mm=join_tol, corner_deg=corner_deg)
+        part = segment_drawing(spec, tol, layers=layers or None, join_tolerance_mm=join_tol, corner_deg=corner_deg,
+                               speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
         return PartInput(tuple(c.polysegment for c in part.contours), tuple(c.curve.points for c in part.contours),
                          tol, spec, False, part.notes)
     if spec.lower().endswith(".json"):
@@ -95,6 +104,11 @@ def load_part_input(spec: str, tol: Optional[float], layers: Optional[list[str]]
         tolerance = tol if tol is not None else part_file.tolerance_mm
         if tolerance is None:
             raise InputError(f"{spec}: no tolerance_mm in the file; give --tol MM")
-        return PartInput(part_file.contours, (None,) * len(part_file.contours), tolerance, spec, False)
-    single = load_program_input(spec, tol, corner_deg)
+        contours = part_file.contours
+        if speed_mm_s is not None and tool_accel_mm_s2 is not None:
+            from coatsim.geometry.dynamics import speed_limited
+
+            contours = tuple(replace(c, speed_limited=speed_limited(c, speed_mm_s, tool_accel_mm_s2)) for c in contours)
+        return PartInput(contours, (None,) * len(contours), tolerance, spec, False)
+    single = load_program_input(spec, tol, corner_deg, speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
     return PartInput((single.polysegment,), (single.points,), single.tolerance_mm, spec, single.builtin)

@@ -4,8 +4,10 @@ Each contour is built by the single-contour builder (:func:`build_program`: its 
 curve, placement, lead-in and lead-out); the program sprays them in order — as drawn, or
 ``nearest`` (greedy: each next contour is the one whose start is closest to where the
 previous one ended) — with the gun off between them: depart along the tool axis by the
-approach distance, straight travel at that clearance above the next start, down, gun on.
-A part of one contour gives exactly the single-contour program.
+approach distance, straight travel at that clearance above the next start, down, gun on
+(over the whole path of an open contour, over exactly one lap of a closed one). The header
+fields of one contour (``closed``, ``sprayed``, ``speed_limits``) hold one value per contour,
+in spray order, joined by " | ". A part of one contour gives exactly the single-contour program.
 """
 
 from __future__ import annotations
@@ -22,8 +24,13 @@ from coatsim.program.as_lang.writer import fmt_short
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import PlacedPath, Placement, centering_offset
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
+from coatsim.program.toolpath import PART_SEPARATOR
 
 ORDERS = ("as-drawn", "nearest")
+# header fields that hold one value per contour in a part program, in spray order, joined by
+# PART_SEPARATOR (a value may itself hold commas and spaces)
+PER_CONTOUR = ("closed", "sprayed", SPEED_LIMITS_KEY)
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,18 +100,19 @@ def build_part_program(contours: Sequence[Polysegment], placement: Placement, op
     first = built[0].plan
     totals = {
         "curve_length_mm": fmt_short(sum(b.plan.path.curve_length_mm for b in built)),
-        "closed": ",".join("yes" if c.closed else "no" for c in curves),
         "n_segments": str(sum(c.n_segments for c in curves)),
         "n_lines": str(sum(c.n_lines for c in curves)),
         "n_arcs": str(sum(c.n_arcs for c in curves)),
     }
-    metadata = tuple((k, totals.get(k, v)) for k, v in first.metadata) + (
+    each = [dict(b.plan.metadata) for b in built]
+    per_contour = {k: PART_SEPARATOR.join(m[k] for m in each) for k in PER_CONTOUR if all(k in m for m in each)}
+    metadata = tuple((k, per_contour.get(k, totals.get(k, v))) for k, v in first.metadata) + (
         ("n_contours", str(len(curves))), ("contour_order", ",".join(str(k + 1) for k in sequence)))
     summary = ", ".join(f"{c.n_segments}" for c in curves)
     comment = (f"coatsim {options.variant} program of a part: {len(curves)} contours sprayed in order "
                f"{','.join(str(k + 1) for k in sequence)} ({order}), segments per contour {summary}; "
                f"gun off between contours, travel {fmt_short(options.approach_mm)} mm above the stand-off")
     plan = replace(first, metadata=metadata, comments=(comment,),
-                   further_paths=tuple(b.plan.path for b in built[1:]))
+                   further_paths=tuple((b.plan.path, b.plan.spray_leads) for b in built[1:]))
     return PartProgram(dialect.write(plan), plan, curves, sequence)
 

@@ -18,16 +18,19 @@ from coatsim.program.placement import Frame, Placement
 def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
                 lead_in_mm: float, lead_out_mm: float, roll_deg: float = 0.0, follow_tangent: bool = False,
                 center: Optional[bool] = None, output: Optional[Path] = None, layers: Optional[list[str]] = None,
-                join_tol: Optional[float] = None, order: str = "as-drawn") -> PartProgram:
+                join_tol: Optional[float] = None, order: str = "as-drawn",
+                tool_accel_mm_s2: Optional[float] = None) -> PartProgram:
     """Load ``spec`` (a curve, a drawing or a polysegment/part JSON), place it, write the
     program (to ``output`` if given); a part's contours are sprayed in ``order``.
 
     ``center`` None centres built-in curves on the frame origin and leaves file curves where
-    their coordinates put them.
+    their coordinates put them. With ``tool_accel_mm_s2`` the curve is segmented for the
+    programmed speed (see :func:`load_program_input`).
     """
     placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
-    inp = load_part_input(spec, tol, layers, join_tol)
+    speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
+    inp = load_part_input(spec, tol, layers, join_tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
     if inp.builtin if center is None else center:
         placement = replace(placement, offset_xy=part_centering_offset(inp.contours))
     built = build_part_program(inp.contours, placement, options, tolerance_mm=inp.tolerance_mm, source=inp.source,

@@ -1,6 +1,7 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
-Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
+Sections: scenario summary with the verdict (what the polysegment wins and loses against each
+polyline, :mod:`coatsim.report.verdict`) and the headline metrics, curve and polysegment, θ, speed
 profiles, thickness maps, cross-section, warnings, all metrics with ratios, gates.
 """
 
@@ -18,6 +19,7 @@ from coatsim.report.catalogue import METRICS
 from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
 from coatsim.report.part_section import part_summary
 from coatsim.report.summary import headline_rows
+from coatsim.report.verdict import Verdict, change_text, verdict
 from coatsim.geometry.plots import segmentation_figure_png
 from coatsim.report.plots import SpeedProfile, polyline_figure, speed_figure
 from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
@@ -44,6 +46,30 @@ def headline_table(document: Mapping[str, Any]) -> str:
         for key, values in headline_rows(document)
     )
     return f"<table>{head}{body}</table>"
+
+
+def verdict_html(result: Verdict) -> str:
+    """Per polyline variant: the headline sentence, then the five metrics with both values, the
+    change and the outcome."""
+    if not result.comparisons:
+        return '<p class="muted">No polysegment and polyline variants to compare in this run.</p>'
+    out = []
+    for c in result.comparisons:
+        head = (f'<tr><th class="l">metric</th><th>{esc(c.against)}</th><th>polysegment</th>'
+                f'<th>change</th><th class="l">result</th></tr>')
+        rows = "".join(
+            f'<tr><td class="l" title="{esc(METRICS[o.criterion.key].meaning)}">{esc(o.criterion.label)}</td>'
+            f"<td>{fmt(o.polyline)}</td><td>{fmt(o.polysegment)}</td>"
+            f"<td>{esc(change_text(o))}</td>"
+            f'<td class="l">{_OUTCOME_HTML[o.outcome]}</td></tr>'
+            for o in c.outcomes
+        )
+        out.append(f"<h3>Polysegment against {esc(c.against)}</h3><p>{esc(c.headline)}</p><table>{head}{rows}</table>")
+    return "".join(out)
+
+
+_OUTCOME_HTML = {"win": '<span class="pass">wins</span>', "loss": '<span class="fail">loses</span>',
+                 "tie": "ties", "undefined": '<span class="muted">undefined</span>'}
 
 
 def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
@@ -84,19 +110,28 @@ def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[
 
 
 def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], list[tuple[float, float]]]:
-    """Speed against path length while the gun is on (travel between the contours of a part
-    left out), from where it first opens; each curve proper follows its run-in."""
+    """Speed against path length from the start of the run-in to the end of the run-out (the
+    curve proper in between), whether or not the gun is open on the run-in and run-out; the
+    contours of a part one after the other (the travel between them left out)."""
     profiles, spans = {}, []
     for r in runs:
         log = r.execution.log
-        on = log.spray
-        step = np.diff(log.progress, prepend=log.progress[0]) * (on & np.roll(on, 1))
-        profiles[r.name] = SpeedProfile(np.cumsum(step)[on], log.speed[on])
-        spans, at = [], 0.0
-        plan = getattr(r.program, "plan", None)  # a user's program has no plan: one path
-        for length in ([p.curve_length_mm for p in plan.paths] if plan is not None else [r.program.path.curve_length_mm]):
-            spans.append((at + lead_in_mm, at + lead_in_mm + length))
-            at += lead_in_mm + length + lead_out_mm
+        # the log's progress is monotonic up to servo jitter: take the rows between the first
+        # one at the run-in start and the first one past the run-out end
+        reach = np.maximum.accumulate(log.progress)
+        xs, vs, spans, at = [], [], [], 0.0
+        for a, b in r.execution.curves or (r.execution.curve,):
+            i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
+            i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
+            rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
+            if xs:  # a break in the line between contours
+                xs.append(np.array([at]))
+                vs.append(np.array([np.nan]))
+            xs.append(log.progress[rows] - (a - lead_in_mm) + at)
+            vs.append(log.speed[rows])
+            spans.append((at + lead_in_mm, at + lead_in_mm + (b - a)))
+            at += lead_in_mm + (b - a) + lead_out_mm
+        profiles[r.name] = SpeedProfile(np.concatenate(xs), np.concatenate(vs))
     return profiles, spans
 
 
@@ -153,15 +188,17 @@ def build_sections(loaded, contours: Sequence, runs: Sequence, document: Mapping
     baseline = "polysegment" if "polysegment" in document["variants"] else None
     return [
         Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, contours, runs, document))
-                + "<h3>What arcs buy</h3>" + headline_table(document)),
+                + verdict_html(verdict(document))
+                + "<h3>Every variant, headline metrics</h3>" + headline_table(document)),
         _curve_section(contours, runs, document, notes),
         *([] if polyline_xy is None else [Section("polyline", SECTION_TITLES["polyline"], figures=(Figure(
             "Polyline program", polyline_figure(curve_xy, polyline_xy),
             "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
         Section("speed", SECTION_TITLES["speed"], figures=(Figure(
             "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
-            "Simulated tool-centre-point speed while the gun is on, from the trajectory logs; the shaded ends are "
-            "the run-in and run-out, outside the curve proper."),)),
+            "Simulated tool-centre-point speed along the run-in, the curve proper and the run-out, from the "
+            "trajectory logs; the shaded ends are the run-in and run-out (on a closed contour the gun is closed "
+            "there: it sprays exactly one lap, from the seam to the seam)."),)),
         Section("thickness", SECTION_TITLES["thickness"], figures=(Figure(
             "Thickness maps on one colour scale", heat,
             f"Per-vertex coating thickness of each variant, same scale 0 to {top:.3g} µm (the largest 99.5th "

@@ -51,6 +51,8 @@ def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm
     breaks = np.degrees(programmed.junction_breaks())
     corner = breaks > corner_deg
     smooth = breaks[~corner]
+    kappa = np.array([s.curvature for s in programmed.segments])
+    jumps = np.abs(np.roll(kappa, -1) - kappa)[: len(breaks)][~corner]
     return {
         "n_segments": programmed.n_segments,
         "n_arcs": programmed.n_arcs,
@@ -60,25 +62,30 @@ def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm
         "tolerance_mm": tolerance_mm,
         "max_tangent_break_deg": float(smooth.max()) if len(smooth) else 0.0,
         "curve_length_mm": programmed.length,
+        "max_curvature_jump_per_mm": float(jumps.max()) if len(jumps) else 0.0,
     }
+
+
+_SUMMED = ("n_segments", "n_arcs", "n_lines", "n_corners", "curve_length_mm")
 
 
 def combine_segmentation(groups: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
     """The segmentation group of a part from its contours' groups: counts and the curve
-    length add up, deviation and tangent break are the largest."""
+    length add up, the tolerance is the one they share, every other figure (deviation,
+    tangent break, curvature jump) is the largest."""
     if len(groups) == 1:
         return dict(groups[0])
-    total = lambda key: sum(g[key] for g in groups)  # noqa: E731
-    return {
-        "n_segments": total("n_segments"),
-        "n_arcs": total("n_arcs"),
-        "n_lines": total("n_lines"),
-        "n_corners": total("n_corners"),
-        "max_deviation_mm": max(g["max_deviation_mm"] for g in groups),
-        "tolerance_mm": groups[0]["tolerance_mm"],
-        "max_tangent_break_deg": max(g["max_tangent_break_deg"] for g in groups),
-        "curve_length_mm": total("curve_length_mm"),
-    }
+    out: dict[str, Any] = {}
+    for name in groups[0]:
+        values = [g[name] for g in groups]
+        if name in _SUMMED:
+            out[name] = sum(values)
+        elif name == "tolerance_mm":
+            out[name] = values[0]
+        else:
+            known = [v for v in values if v is not None]
+            out[name] = max(known) if known else None
+    return out
 
 
 def contours_section(contours: Sequence[Any], order: Sequence[int],

@@ -14,11 +14,12 @@ import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
-from coatsim.program.toolpath import Dwell, ToolPath
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
+from coatsim.program.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
-from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
+from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reference import ReferencePath, build_reference
@@ -73,12 +74,32 @@ def _metadata_mm(toolpath: ToolPath, key: str) -> float:
     return value
 
 
-def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[float, float]], float]:
-    """Progress interval of each curve proper (one per unbroken run of spray-on moves: the
-    contours of a part) and the programmed speed."""
-    cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
-    if not cartesian:
-        raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
+def _per_contour(toolpath: ToolPath, key: str, default: str, n: int) -> list[str]:
+    """A header field per curve proper: a part program holds one value per contour, joined by
+    PART_SEPARATOR; a single value holds for every one."""
+    raw = toolpath.metadata.get(key, default)
+    values = [v.strip() for v in raw.split(PART_SEPARATOR.strip())] if PART_SEPARATOR.strip() in raw else [raw]
+    if len(values) == 1:
+        return values * n
+    if len(values) != n:
+        raise InputError(f"{toolpath.name}: header field {key} holds {len(values)} values for {n} sprayed contours")
+    return values
+
+
+def _leads_sprayed(toolpath: ToolPath, n: int) -> list[bool]:
+    """Whether the gun covers the lead-in and lead-out of each curve proper (header
+    ``sprayed``, default yes)."""
+    out = []
+    for raw in _per_contour(toolpath, "sprayed", SPRAYED_WITH_LEADS, n):
+        if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
+            raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
+        out.append(raw == SPRAYED_WITH_LEADS)
+    return out
+
+
+def _spray_runs(toolpath: ToolPath, cartesian: list[int]) -> list[list[int]]:
+    """Indices of the Cartesian moves of each unbroken run of spray-on moves (the contours of a
+    part); every Cartesian move as one run if none sprays."""
     runs: list[list[int]] = [[]]
     members = set(cartesian)
     for i, move in enumerate(toolpath.moves):  # a move with the gun off ends a run
@@ -86,12 +107,21 @@ def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[f
             runs[-1].append(i)
         elif not move.spray and runs[-1]:
             runs.append([])
-    runs = [r for r in runs if r] or [cartesian]
+    return [r for r in runs if r] or [cartesian]
+
+
+def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[float, float]], float]:
+    """Progress interval of each curve proper and the programmed speed: the sprayed moves of
+    each contour, without the lead-in and lead-out where the gun covers them."""
+    cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
+    if not cartesian:
+        raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
+    runs = _spray_runs(toolpath, cartesian)
     lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
     spans, inside = [], []
-    for run in runs:
-        a = ref.move_span(run[0])[0] + lead_in
-        b = ref.move_span(run[-1])[1] - lead_out
+    for run, leads in zip(runs, _leads_sprayed(toolpath, len(runs))):
+        a = ref.move_span(run[0])[0] + (lead_in if leads else 0.0)
+        b = ref.move_span(run[-1])[1] - (lead_out if leads else 0.0)
         if b <= a:
             raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
         spans.append((a, b))
@@ -133,6 +163,18 @@ def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
     """Per move, where the gun sits in the frame of the controller's TCP: (M, 3, 3), (M, 3) mm."""
     pairs = [mount(m.settings.tool, cell) for m in toolpath.moves]
     return np.array([r for r, _ in pairs]), np.array([p for _, p in pairs])
+
+
+def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
+    """Where the program header says each curve proper allows the programmed speed (no header:
+    everywhere but near the rest points at the ends)."""
+    lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
+    out = []
+    for raw, closed in zip(_per_contour(toolpath, SPEED_LIMITS_KEY, "none", n), _per_contour(toolpath, "closed", "no", n)):
+        limits = parse_limits(raw, toolpath.name)
+        out.append(CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits), closed == "yes",
+                                  lead_in, lead_out))
+    return out
 
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
@@ -239,9 +281,11 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     log = TrajectoryLog(t=run.t, position=run.tcp, axis=run.axis, speed=run.speed, spray=spray,
                         progress=progress, path_error=dist, q=run.q)
     spans, speed = _curves_proper(toolpath, ref)
+    allowances = _allowances(toolpath, len(spans))
     limits = (curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max, (worst[0], worst[1]))
-    metrics = motion_metrics(log, spans, speed, *limits)
-    per_contour = tuple(motion_metrics(log, span, speed, *limits) for span in spans) if len(spans) > 1 else (metrics,)
+    metrics = motion_metrics(log, spans, speed, *limits, allowances)
+    per_contour = tuple(motion_metrics(log, span, speed, *limits, allowance) for span, allowance in zip(spans, allowances)) \
+        if len(spans) > 1 else (metrics,)
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,

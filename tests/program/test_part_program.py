@@ -54,8 +54,8 @@ def test_part_program_sprays_each_contour_with_the_gun_off_between():
     for run, poly in zip(runs, PART):
         start = run[0].start.position
         expected = np.array([700.0 + poly.start[0], poly.start[1], 300.0])
-        # each run starts at its lead-in, 10 mm back along the start tangent
-        assert abs(np.linalg.norm(start - expected) - 10.0) < 1e-6
+        # a closed contour is sprayed once around: the gun opens at its seam, after the lead-in
+        assert np.linalg.norm(start - expected) < 1e-6
         assert all(abs(m.end.position[2] - 300.0) < 1e-6 for m in run)
     travel = [m for m in tp.moves if not m.spray and m.kind == "line" and m.start is not None
               and abs(m.start.position[2] - 340.0) < 1e-6 and abs(m.end.position[2] - 340.0) < 1e-6]
@@ -140,3 +140,16 @@ def test_program_command_errors_on_drawings(tmp_path, run_cli):
     assert code == 2 and "apply to drawings" in err
     code, _, err = run_cli(["program", str(dxf), "--tol", "0.1", "--layer", "NOPE"])
     assert code == 2 and "no such layer" in err
+
+
+def test_per_contour_header_fields_of_a_mixed_part():
+    """A closed contour is sprayed once around, an open one with its leads; the header says so
+    per contour, in spray order."""
+    stroke = Polysegment((Line((-60.0, 30.0), (60.0, 30.0)),))
+    built = build_part_program([PART[1], stroke], PLACEMENT, ProgramOptions(), tolerance_mm=0.1, source="part")
+    meta = toolpath_of(built.text).metadata
+    assert meta["closed"] == "yes | no"
+    assert meta["sprayed"] == "curve | lead-in,curve,lead-out"
+    assert len(meta["speed_limits"].split(" | ")) == 2
+    runs = spray_runs(toolpath_of(built.text))
+    assert [len(r) for r in runs][1] == 3  # lead-in, line, lead-out

@@ -1,5 +1,6 @@
-"""A part program on the simulated arm: one curve proper per contour, metrics per contour
-that add up to the part's."""
+"""A part program on the simulated arm: one curve proper per contour (closed ones sprayed once
+around, an open one with its lead-in and lead-out), metrics per contour that add up to the
+part's."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from coatsim.geometry import Arc, Polysegment, chain
+from coatsim.geometry import Arc, Line, Polysegment, chain
 from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import ProgramOptions
 from coatsim.program.as_lang.interpreter import interpret
@@ -26,7 +27,8 @@ def circle(cx: float, cy: float, r: float) -> Polysegment:
 def run():
     outline = Polysegment(chain((-60.0, -40.0), 0.0, [0, 0.1, 0, 0.1, 0, 0.1, 0, 0.1],
                                 [100, 5 * math.pi, 60, 5 * math.pi] * 2), closed=True)
-    part = [outline, circle(-25.0, 10.0, 8.0), circle(25.0, 10.0, 10.0)]
+    stroke = Polysegment((Line((-40.0, -20.0), (40.0, -20.0)),))  # open: sprayed with its lead-in and lead-out
+    part = [outline, circle(-25.0, 10.0, 8.0), circle(25.0, 10.0, 10.0), stroke]
     placement = Placement(frame=Frame(700, 0, 200, 0, 0, 0), standoff_mm=100.0, lead_in_mm=10.0, lead_out_mm=10.0)
     built = build_part_program(part, placement, ProgramOptions(speed_mm_s=200.0, accuracy_mm=0.5), tolerance_mm=0.1,
                                source="part")
@@ -35,12 +37,12 @@ def run():
 
 def test_one_curve_proper_per_contour(run):
     part, ex = run
-    assert len(ex.curves) == 3 and len(ex.contour_metrics) == 3
+    assert len(ex.curves) == 4 and len(ex.contour_metrics) == 4
     for (a, b), poly in zip(ex.curves, part):
         assert b - a == pytest.approx(poly.length, abs=1e-6)
     assert all(b1 < a2 for (_, b1), (a2, _) in zip(ex.curves[:-1], ex.curves[1:]))
     on = ex.log.spray.astype(int)
-    assert np.count_nonzero(np.diff(on) == 1) == 3  # the gun opens once per contour
+    assert np.count_nonzero(np.diff(on) == 1) == 4  # the gun opens once per contour
 
 
 def test_part_metrics_add_up(run):

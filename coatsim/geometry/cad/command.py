@@ -11,7 +11,8 @@ from coatsim.errors import InputError
 
 def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str]], join_tol: Optional[float],
                             method: str, closed: str, theta_tol: Optional[float], output: Optional[Path],
-                            plot: Optional[Path], corner_deg: float = 20.0) -> tuple[str, float]:
+                            plot: Optional[Path], corner_deg: float = 20.0, speed_mm_s: Optional[float] = None,
+                            tool_accel_mm_s2: Optional[float] = None) -> tuple[str, float]:
     """Run ``coatsim segment`` on a DXF or SVG file: the summary text and the seconds it
     took; flags that apply to point curves only are refused rather than ignored."""
     from coatsim.geometry.cad.segment_drawing import segment_drawing
@@ -22,7 +23,8 @@ def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str
                          "lines and arcs exactly and fits only its free-form pieces")
     if closed != "auto":
         raise InputError(f"{path}: --closed applies to point curves; a drawn contour is closed where its ends meet")
-    part = segment_drawing(path, tol, layers=layers or None, join_tolerance_mm=join_tol, corner_deg=corner_deg)
+    part = segment_drawing(path, tol, layers=layers or None, join_tolerance_mm=join_tol, corner_deg=corner_deg,
+                           speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
     if output is not None:
         write_part_json(output, part)
     if plot is not None:

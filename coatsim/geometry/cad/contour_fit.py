@@ -87,15 +87,16 @@ def _free_points(block: _Block) -> np.ndarray:
 
 
 def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None,
-              end_heading: float | None) -> tuple[tuple[Segment, ...], float]:
+              end_heading: float | None, speed_kappa: float | None = None) -> tuple[tuple[Segment, ...], float]:
     """The fitter on one free-form stretch, its end tangents pinned where given (a stretch
-    pinned at its end only is fitted backwards with its start pinned)."""
+    pinned at its end only is fitted backwards with its start pinned); ``speed_kappa`` = a / v²
+    caps its arcs for the programmed speed."""
     if start_heading is None and end_heading is not None:
         back = points[::-1]
-        segs, dev = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, None),
+        segs, dev = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, speed_kappa),
                             start_heading=end_heading + math.pi)
         return tuple(s.reversed() for s in reversed(segs)), dev
-    return fit_run(points, tolerance, closed_loop, fit_limits(points, closed_loop, tolerance, None, None),
+    return fit_run(points, tolerance, closed_loop, fit_limits(points, closed_loop, tolerance, None, speed_kappa),
                    start_heading=start_heading, end_heading=end_heading)
 
 
@@ -127,7 +128,8 @@ def _corner_vertices(points: np.ndarray, tolerance: float, corner_deg: float, cl
 
 
 def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None, start_heading: float | None,
-                 end_heading: float | None, cuts: list[int] | None = None) -> tuple[list[Segment], list[bool], float]:
+                 end_heading: float | None, cuts: list[int] | None = None,
+                 speed_kappa: float | None = None) -> tuple[list[Segment], list[bool], float]:
     """An open free-form stretch split at its true corners (cusps inside a piece; the rule of
     point curves, see detect_corners; or at ``cuts``), each run fitted, the stretch's ends
     pinned where given. Returns the segments, the corner flag of every join between them,
@@ -139,7 +141,7 @@ def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None,
     worst = 0.0
     for k, (a, b) in enumerate(zip(cuts[:-1], cuts[1:])):
         fitted, dev = _fit_free(points[a:b + 1], tolerance, False, start_heading if k == 0 else None,
-                                end_heading if b == len(points) - 1 else None)
+                                end_heading if b == len(points) - 1 else None, speed_kappa)
         if segments:
             corner_after.append(True)
         segments.extend(fitted)
@@ -148,17 +150,18 @@ def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None,
     return segments, corner_after, worst
 
 
-def _free_loop(points: np.ndarray, tolerance: float, corner_deg: float) -> tuple[Polysegment, float]:
+def _free_loop(points: np.ndarray, tolerance: float, corner_deg: float,
+               speed_kappa: float | None) -> tuple[Polysegment, float]:
     """A closed contour that is one free-form loop: fitted as a closed loop, or, where it has
     true corners, from its first corner on, run by run between them."""
     corners = _corner_vertices(points, tolerance, corner_deg, closed=True)
     if not corners:
-        segs, dev = _fit_free(points, tolerance, True, None, None)
+        segs, dev = _fit_free(points, tolerance, True, None, None, speed_kappa)
         return Polysegment(tuple(segs), closed=True), dev
     body, first = points[:-1], corners[0]
     rotated = np.vstack((body[first:], body[:first], body[first:first + 1]))
     segs, inner, dev = _fit_stretch(rotated, tolerance, None, None, None,
-                                    cuts=[(c - first) % len(body) for c in corners[1:]])
+                                    cuts=[(c - first) % len(body) for c in corners[1:]], speed_kappa=speed_kappa)
     flags = inner + [True]  # the seam is the first corner
     return Polysegment(tuple(segs), closed=True, corners=tuple(k for k, c in enumerate(flags) if c)), dev
 
@@ -215,17 +218,20 @@ def _samples(contour: Contour, flatten_mm: float) -> np.ndarray:
     return pts
 
 
-def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner_deg: float = 20.0) -> ContourFit:
+def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner_deg: float = 20.0,
+                speed_kappa: float | None = None) -> ContourFit:
     """The polysegment of one contour; see the module docstring. Free-form samples lie
     within ``flatten_mm`` of the drawn curves, so stretches are fitted to them within
     ``tolerance_mm - flatten_mm`` and their deviation is reported plus ``flatten_mm``: an
-    upper bound of the distance to the drawn curve, at most ``tolerance_mm``."""
+    upper bound of the distance to the drawn curve, at most ``tolerance_mm``. ``speed_kappa``
+    = a / v² keeps fitted arcs no tighter than the programmed speed allows where the drawn
+    curve allows it."""
     if not 0 < flatten_mm < tolerance_mm:
         raise ValueError("flatten_mm must be between 0 and the tolerance")
     fit_tol = tolerance_mm - flatten_mm
     blocks, tangent_after, loop = _blocks(contour)
     if loop:
-        poly, dev = _free_loop(_free_points(blocks[0]), fit_tol, corner_deg)
+        poly, dev = _free_loop(_free_points(blocks[0]), fit_tol, corner_deg, speed_kappa)
         return ContourFit(poly, dev + flatten_mm, _samples(contour, flatten_mm), len(contour.pieces))
     segments: list[Segment] = []
     corner_after: list[bool] = []
@@ -238,7 +244,8 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner
             pin_end = k < len(tangent_after) and not after.free and tangent_after[k]
             fitted, inner, dev = _fit_stretch(_free_points(block), fit_tol, corner_deg,
                                               before.pieces[-1].end_heading if pin_start else None,
-                                              after.pieces[0].start_heading if pin_end else None)
+                                              after.pieces[0].start_heading if pin_end else None,
+                                              speed_kappa=speed_kappa)
             worst = max(worst, dev + flatten_mm)
         else:
             fitted, inner = [block.pieces[0].segment], []

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Optional, Sequence
 
@@ -16,6 +16,7 @@ from coatsim.geometry.cad.chaining import chain_pieces
 from coatsim.geometry.cad.contour_fit import fit_contour
 from coatsim.geometry.cad.drawing import read_drawing
 from coatsim.geometry.curves import Curve
+from coatsim.geometry.dynamics import speed_limited
 from coatsim.geometry.segment import Segmentation
 from coatsim.geometry.theta import theta_of_polyline
 
@@ -97,13 +98,17 @@ def segment_drawing(
     rotation: Optional[np.ndarray] = None,
     scale: float = 1.0,
     corner_deg: float = 20.0,
+    speed_mm_s: Optional[float] = None,
+    tool_accel_mm_s2: Optional[float] = None,
 ) -> PartSegmentation:
     """Read, chain and fit a drawing within ``tolerance_mm``.
 
     ``layers`` selects layers (default: every visible one); ``join_tolerance_mm`` defaults
     to σ/100; the drawing is scaled by ``scale`` and turned by ``rotation`` (2 x 2) about
     its origin before it is chained and fitted; ``corner_deg`` is the corner rule inside
-    free-form stretches (as for point curves).
+    free-form stretches (as for point curves). With ``speed_mm_s`` and ``tool_accel_mm_s2``
+    (both or neither) fitted arcs are no tighter than v² / a where the drawing allows that
+    speed, and each polysegment lists its speed-limited stretches (as segment_curve does).
     """
     if not (isinstance(tolerance_mm, (int, float)) and math.isfinite(tolerance_mm) and tolerance_mm > 0):
         raise InputError(f"--tol: the tolerance must be a positive number of mm, got {tolerance_mm}")
@@ -112,6 +117,9 @@ def segment_drawing(
         raise InputError(f"--corner-deg: must be between 0 and 180 degrees, got {corner_deg}")
     if not (math.isfinite(join) and 0 < join < tolerance_mm):
         raise InputError(f"join tolerance {join:g} mm (--join-tol): must be > 0 and below the tolerance {tolerance_mm:g} mm")
+    if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
+        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither")
+    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
     started = time.perf_counter()
     flatten_mm = FLATTEN_FRACTION * tolerance_mm / max(scale, 1e-300)
     drawing = read_drawing(path, layers, flatten_mm)
@@ -123,10 +131,14 @@ def segment_drawing(
     contours = []
     for k, contour in enumerate(chaining.contours):
         t0 = time.perf_counter()
-        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm, corner_deg)
+        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm, corner_deg, speed_kappa)
+        poly = fit.polysegment
+        if speed_mm_s is not None:
+            poly = replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))
         curve = Curve(_distinct(fit.points), contour.closed, f"{drawing.source} contour {k + 1} ({contour.name})")
-        contours.append(ContourSegmentation(curve, fit.polysegment, "drawing", tolerance_mm, fit.deviation_mm,
+        contours.append(ContourSegmentation(curve, poly, "drawing", tolerance_mm, fit.deviation_mm,
                                             time.perf_counter() - t0, theta_of_polyline(curve.points),
+                                            speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2,
                                             n_pieces=len(contour.pieces), origin=contour.name))
     return PartSegmentation(drawing.source, tuple(contours), drawing.units, tolerance_mm, join,
                             drawing.notes + chaining.notes, time.perf_counter() - started)

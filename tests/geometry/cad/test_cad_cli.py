@@ -13,7 +13,7 @@ from coatsim.geometry.polysegment_json import polysegment_from_document
 
 from cad_helpers import write_dxf, write_svg
 
-POLY_KEYS = {"format", "units", "closed", "tolerance_mm", "segments", "corners", "stats"}
+POLY_KEYS = {"format", "units", "closed", "tolerance_mm", "segments", "corners", "speed_limited", "stats"}
 
 
 def plate(msp, doc) -> None:
