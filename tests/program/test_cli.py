@@ -90,9 +90,10 @@ def test_program_rejects_bad_options(tmp_path, run_cli, args, words):
 def test_check_program_lists_signals_and_sprayed_stretches(run_cli):
     code, out, err = run_cli(["check-program", str(GOLDEN)])
     assert code == 0, err
-    assert f"signal: {GOLDEN}:26: SIGNAL 1 (gun on)" in out and f"signal: {GOLDEN}:42: SIGNAL -1 (gun off)" in out
-    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10 + 60
-    assert f"sprayed: lines 27-40, 10 moves, {length:.3f} mm" in out
+    # a closed contour: the gun opens on the fly at the seam and closes after exactly one lap
+    assert f"signal: {GOLDEN}:30: SIGNAL 1 (gun on)" in out and f"signal: {GOLDEN}:43: SIGNAL -1 (gun off)" in out
+    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10
+    assert f"sprayed: lines 29-41, 8 moves, {length:.3f} mm" in out
 
 
 def test_check_program_accepts_a_bom_and_several_files(tmp_path, run_cli):
