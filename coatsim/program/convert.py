@@ -194,7 +194,7 @@ def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
     n_moves = sum(len(f.path.moves) for f in fitted)
     n_segments = sum(len(f.segments) for f in fitted)
     plan = ProgramPlan(
-        name=check_name(name, "program name"), path=paths[0], more_paths=tuple(paths[1:]), speed_mm_s=speed,
+        name=check_name(name, "program name"), path=paths[0], further_paths=tuple((p, True) for p in paths[1:]), speed_mm_s=speed,
         accuracy_mm=accuracy, exact_stop=not cp, approach_mm=options.approach_mm, gun_signal=options.gun_signal,
         tool=tool_frame,
         metadata=(("variant", "convert"), ("source", f"{run.toolpath.name} lines {spans}"),

@@ -17,6 +17,7 @@ from coatsim import __version__
 from coatsim.fileio import write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
+from coatsim.report.part_section import part_summary
 from coatsim.report.summary import headline_rows
 from coatsim.report.verdict import Verdict, change_text, verdict
 from coatsim.geometry.plots import segmentation_figure_png
@@ -71,7 +72,7 @@ _OUTCOME_HTML = {"win": '<span class="pass">wins</span>', "loss": '<span class="
                  "tie": "ties", "undefined": '<span class="muted">undefined</span>'}
 
 
-def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
+def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
     spec = loaded.spec
     c = spec.curve
     if c is None:
@@ -87,8 +88,10 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}{placed}; {'closed' if curve.closed else 'open'}, "
-                  f"{len(curve.points)} points, {curve.length:.1f} mm"),
+        ("curve", f"{source}{placed}; " + (
+            part_summary(contours) if len(contours) > 1 else
+            f"{'closed' if contours[0].curve.closed else 'open'}, {len(contours[0].curve.points)} points, "
+            f"{contours[0].curve.length:.1f} mm")),
         ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
                          f"corners above {spec.segmentation.corner_deg:g} deg"),
         ("workpiece", f"{size} at {wp.pose.position_mm} mm, O-A-T {wp.pose.oat_deg} deg"),
@@ -106,28 +109,75 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     return rows
 
 
-def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
+def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], list[tuple[float, float]]]:
     """Speed against path length from the start of the run-in to the end of the run-out (the
-    curve proper in between), whether or not the gun is open on the run-in and run-out."""
-    profiles, span = {}, (0.0, 0.0)
+    curve proper in between), whether or not the gun is open on the run-in and run-out; the
+    contours of a part one after the other (the travel between them left out)."""
+    profiles, spans = {}, []
     for r in runs:
-        log, (a, b) = r.execution.log, r.execution.curve
+        log = r.execution.log
         # the log's progress is monotonic up to servo jitter: take the rows between the first
         # one at the run-in start and the first one past the run-out end
         reach = np.maximum.accumulate(log.progress)
-        i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
-        i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
-        rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
-        profiles[r.name] = SpeedProfile(log.progress[rows] - (a - lead_in_mm), log.speed[rows])
-        span = (lead_in_mm, lead_in_mm + (b - a))
-    return profiles, span
+        xs, vs, spans, at = [], [], [], 0.0
+        for a, b in r.execution.curves or (r.execution.curve,):
+            i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
+            i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
+            rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
+            if xs:  # a break in the line between contours
+                xs.append(np.array([at]))
+                vs.append(np.array([np.nan]))
+            xs.append(log.progress[rows] - (a - lead_in_mm) + at)
+            vs.append(log.speed[rows])
+            spans.append((at + lead_in_mm, at + lead_in_mm + (b - a)))
+            at += lead_in_mm + (b - a) + lead_out_mm
+        profiles[r.name] = SpeedProfile(np.concatenate(xs), np.concatenate(vs))
+    return profiles, spans
 
 
-def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mapping[str, Any]) -> list[Section]:
+def _stacked(arrays: Sequence[np.ndarray]) -> np.ndarray:
+    """Point arrays (n, 2) one after the other, a NaN row between them (lines break there)."""
+    parts = []
+    for pts in arrays:
+        parts += [np.asarray(pts, dtype=float), np.full((1, 2), np.nan)]
+    return np.vstack(parts[:-1])
+
+
+def _vertices(curves: Sequence) -> np.ndarray:
+    """Vertices of programmed polylines, contour after contour."""
+    return _stacked([np.array([s.start for s in poly.segments] + [poly.end]) for poly in curves])
+
+
+def _curve_section(contours: Sequence, runs: Sequence, document: Mapping[str, Any], notes: Sequence[str]) -> Section:
+    """The curve, its polysegment and θ; for a part every contour and a row per contour."""
+    if len(contours) == 1:
+        return Section("curve", SECTION_TITLES["curve"], figures=(Figure(
+            "Input curve, polysegment and θ", segmentation_figure_png(contours[0]),
+            "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
+            "true corners as crosses. Right: the angular function θ(t) (cumulative turning angle against "
+            "normalised arc length) of the input and of the polysegment, piecewise linear: each slope is an arc, "
+            "each flat piece a line."),))
+    from coatsim.geometry.part_plots import part_figure_png
+    from coatsim.report.part_section import contours_table
+
+    png = part_figure_png([c.polysegment for c in contours], "part", [c.curve.points for c in contours],
+                          order=next((r.program.order for r in runs if hasattr(r.program, "order")), None))
+    body = contours_table(document["contours"]) + "".join(f'<p class="muted">{esc(n)}</p>' for n in notes)
+    return Section("curve", "Part: contours and polysegments", body, figures=(Figure(
+        "The part's contours and their polysegments", png,
+        "Every contour of the drawing (grey) with its polysegment: arcs and lines in their own colours, true corners "
+        "as crosses, the start of each contour as a dot with an arrow along the direction of travel, numbered in "
+        "spray order. The gun is off between contours. The table lists each contour's figures per variant; the "
+        "metrics of the part sum the counts, lengths and times and take the largest deviation."),))
+
+
+def build_sections(loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any],
+                   notes: Sequence[str] = ()) -> list[Section]:
     """Every section of the report, in order."""
     spec = loaded.spec
-    polyline = next((r.program.curve for r in runs if r.name != "polysegment"), None)
-    polyline_xy = None if polyline is None else np.array([s.start for s in polyline.segments] + [polyline.end])
+    polyline = next((getattr(r.program, "curves", None) or (r.program.curve,) for r in runs if r.name != "polysegment"), None)
+    polyline_xy = None if polyline is None else _vertices(polyline)
+    curve_xy = _stacked([c.curve.points for c in contours])
     profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
     surface = runs[0].coating.surface
     top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
@@ -137,17 +187,12 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     where = f"({line[0][0]:g}, {line[0][1]:g}) -> ({line[1][0]:g}, {line[1][1]:g}) mm"
     baseline = "polysegment" if "polysegment" in document["variants"] else None
     return [
-        Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, runs, document))
+        Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, contours, runs, document))
                 + verdict_html(verdict(document))
                 + "<h3>Every variant, headline metrics</h3>" + headline_table(document)),
-        Section("curve", SECTION_TITLES["curve"], figures=(Figure(
-            "Input curve, polysegment and θ", segmentation_figure_png(segmentation),
-            "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
-            "true corners as crosses. Right: the angular function θ(t) (cumulative turning angle against "
-            "normalised arc length) of the input and of the polysegment, piecewise linear: each slope is an arc, "
-            "each flat piece a line."),)),
+        _curve_section(contours, runs, document, notes),
         *([] if polyline_xy is None else [Section("polyline", SECTION_TITLES["polyline"], figures=(Figure(
-            "Polyline program", polyline_figure(curve.points, polyline_xy),
+            "Polyline program", polyline_figure(curve_xy, polyline_xy),
             "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
         Section("speed", SECTION_TITLES["speed"], figures=(Figure(
             "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
@@ -183,8 +228,10 @@ def _overall(passed: bool) -> str:
     return f"<p>Overall: {verdict}</p>"
 
 
-def write_report(path: Path, loaded, curve, segmentation, runs: Sequence, document: Mapping[str, Any]) -> None:
-    """Write the self-contained report.html of a run."""
-    sections = build_sections(loaded, curve, segmentation, runs, document)
+def write_report(path: Path, loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any],
+                 notes: Sequence[str] = ()) -> None:
+    """Write the self-contained report.html of a run: ``contours`` are the segmentations of
+    the curve (one) or of the contours of a part, ``notes`` what reading a drawing noted."""
+    sections = build_sections(loaded, contours, runs, document, notes)
     subtitle = f"coatsim {__version__}, scenario {loaded.path.name}, {document['mode']} mode"
     write_text(path, render_html(f"coatsim report: {loaded.spec.name}", subtitle, sections))

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import io
 from dataclasses import dataclass
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -64,14 +64,19 @@ class SpeedProfile:
     speed_mm_s: np.ndarray
 
 
-def speed_figure(profiles: Mapping[str, SpeedProfile], commanded_mm_s: float, curve_span_mm: tuple[float, float]) -> bytes:
-    """Speed against path length for every variant on one plot; the curve proper between
-    the shaded run-in and run-out."""
+def speed_figure(profiles: Mapping[str, SpeedProfile], commanded_mm_s: float,
+                 curve_span_mm: tuple[float, float] | Sequence[tuple[float, float]]) -> bytes:
+    """Speed against path length for every variant on one plot; the curve proper (of each
+    contour of a part) between the shaded run-in and run-out."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(11, 4.6))
-    lo, hi = curve_span_mm
-    ax.axvspan(min(p.progress_mm.min() for p in profiles.values()), lo, color="#f0f0f0", lw=0)
-    ax.axvspan(hi, max(p.progress_mm.max() for p in profiles.values()), color="#f0f0f0", lw=0)
+    spans = [curve_span_mm] if np.ndim(curve_span_mm) == 1 else list(curve_span_mm)
+    edges = [min(p.progress_mm.min() for p in profiles.values())]
+    for lo, hi in spans:
+        edges += [lo, hi]
+    edges.append(max(p.progress_mm.max() for p in profiles.values()))
+    for a, b in zip(edges[::2], edges[1::2]):
+        ax.axvspan(a, b, color="#f0f0f0", lw=0)
     ax.axhline(commanded_mm_s, color="black", ls="--", lw=0.8, label=f"programmed {commanded_mm_s:g} mm/s")
     for name, p in profiles.items():
         ax.plot(p.progress_mm, p.speed_mm_s, color=_colour(name), lw=1.1, label=name)

@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
+from typing import Sequence
+
+import numpy as np
 
 from coatsim.fileio import write_bytes
 from coatsim.robot.motion_metrics import AT_SPEED, MotionMetrics
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 
-def plot_speed(log: TrajectoryLog, metrics: MotionMetrics, curve: tuple[float, float], path: str | Path,
-               title: str = "") -> None:
+def plot_speed(log: TrajectoryLog, metrics: MotionMetrics, curve: tuple[float, float] | Sequence[tuple[float, float]],
+               path: str | Path, title: str = "") -> None:
     """Write a PNG: tool speed (top) and path error (bottom) against progress along the path."""
     import matplotlib
 
@@ -20,8 +23,10 @@ def plot_speed(log: TrajectoryLog, metrics: MotionMetrics, curve: tuple[float, f
 
     v = metrics.programmed_speed_mm_s
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 5.5), sharex=True, height_ratios=(3, 1.4))
+    spans = [curve] if np.ndim(curve) == 1 else list(curve)
     for ax in (top, bottom):
-        ax.axvspan(*curve, color="0.93", zorder=0, label="curve proper" if ax is top else None)
+        for k, span in enumerate(spans):
+            ax.axvspan(*span, color="0.93", zorder=0, label="curve proper" if ax is top and k == 0 else None)
         ax.grid(True, lw=0.4, color="0.8")
     top.plot(log.progress, log.speed, lw=1.0, color="C0", label="simulated tool speed")
     top.axhline(v, color="C2", lw=0.9, ls="--", label=f"programmed {v:g} mm/s")
