@@ -206,6 +206,8 @@ def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: floa
             v, t = _advance(prob, a, b, value, slope, kappa)
             _, lo2, hi2 = _reach(prob, b, v, t, band)
             nxt = _farthest(prob, b, lo2, hi2)
+            if nxt != last and prob.s[nxt] - prob.s[b] < prob.min_length:
+                continue  # the next piece could not be long enough: a dead end
             score = np.inf if nxt == last else float(prob.s[nxt])
             options.append((score, float(prob.s[b]), float(kappa), int(b), v, t))
     if not options:

@@ -88,13 +88,16 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     prob, ref = BandProblem.from_points(pts, limits)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
-    splits, landed, shrink = 0, False, 0.9
+    splits, landed, shrink, at_start = 0, False, 0.9, 0
     while budget[0] > 0:
         budget[0] -= 1
         if params is None:
             try:
                 slope, pieces = fit_band(prob, ref, band, end_turn=turn, landed=landed)
-            except BandStuck:
+            except BandStuck as stuck:
+                at_start = at_start + 1 if stuck.knot == 0 else 0
+                if at_start >= 3:
+                    return None  # no first piece fits these bands: narrower ones fit none either
                 band *= shrink if landed else 0.7
                 landed = False
                 continue
@@ -145,13 +148,14 @@ def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple
 
 
 def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-             quick: bool = False) -> tuple[tuple[Segment, ...], float] | None:
+             quick: bool = False, fillet: bool = True) -> tuple[tuple[Segment, ...], float] | None:
     """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
     under the curvature caps and minimum length of ``limits``, and its verified deviation.
 
     Where no such chain is found, chains within a fraction of the tolerance are tried, then
     loosened caps, and as the last resort every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
-    caps as they are, None if those fail.
+    caps as they are, None if those fail. Without ``fillet`` (a minimum length the caller
+    insists on), no chain found is an InputError instead of the fillets.
     """
     pts = np.asarray(points, dtype=float)
     if quick:
@@ -170,6 +174,9 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
         found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS])
     if found is not None:
         return found
+    if not fillet:
+        raise InputError(f"no chain within {tolerance:g} mm keeps every segment at least "
+                         f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one")
     # Sparse or kinked input the band fit cannot follow: round every vertex instead.
     segs = fillet_chain(pts, tolerance, closed_loop)
     dev = hausdorff(pts, Polysegment(segs)).hausdorff
@@ -178,8 +185,8 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     return segs, dev
 
 
-def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
-            limits: FitLimits) -> tuple[tuple[Segment, ...], float]:
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+            fillet: bool = True) -> tuple[tuple[Segment, ...], float]:
     """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
     else fit_free."""
-    return fit_simple(points, tolerance, closed_loop) or fit_free(points, tolerance, closed_loop, limits)
+    return fit_simple(points, tolerance, closed_loop) or fit_free(points, tolerance, closed_loop, limits, fillet=fillet)

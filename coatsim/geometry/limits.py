@@ -17,7 +17,7 @@ import numpy as np
 
 from coatsim.geometry.envelope import CurvatureProfile, curvature_profile
 
-TIGHTER = 1.25  # an arc may be this much tighter than the input near it
+TIGHTER = 1.22  # an arc may be this much tighter than the input near it (1.25 with the fit's 2 % slack)
 MIN_LENGTH_SIGMAS = 5.0  # the default shortest segment, in σ
 NEIGHBOURHOOD_WINDOWS = 2.0  # the neighbourhood of a stretch: this many curvature windows
 

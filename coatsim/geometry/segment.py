@@ -23,6 +23,7 @@ from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
 Method = Literal["optimal", "paper"]
+HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 METHODS = ("optimal", "paper")
 
 
@@ -172,7 +173,10 @@ def segment_curve(
     if poly is not None:
         dev = hausdorff(pts, poly).hausdorff
     else:
-        poly, dev, input_radius = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+        try:
+            poly, dev, input_radius = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+        except InputError as exc:
+            raise InputError(f"{curve.name}: {exc}") from None
     check_chain(poly, extent_mm(pts))
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
@@ -202,7 +206,7 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
     deviations, radii = [], []
     for run in runs:
         limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-        segs, dev = fit_run(run, tol, False, limits)
+        segs, dev = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
         pieces.append(split_long_arcs(segs))
         deviations.append(dev)
         radii.append(limits.profile.tightest_radius_mm)
@@ -213,15 +217,31 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
     return poly, dev, _finite(min(radii))
 
 
+def _hooked(segments: tuple[Segment, ...]) -> bool:
+    """Whether a closed chain closes with a hook: a segment at the seam much shorter than
+    the chain's typical one, or a curvature jump around the seam larger than any elsewhere."""
+    if len(segments) < 4:
+        return False
+    length = np.array([s.length for s in segments])
+    if min(length[0], length[-1]) < HOOK_SHARE * float(np.median(length)):
+        return True
+    jump = np.abs(np.diff(np.array([s.curvature for s in segments + segments[:1]])))  # jump[k]: after segment k
+    around = jump[[-3, -2, -1]]
+    return bool(around.max() > jump[:-3].max() * (1 + 1e-9))
+
+
 def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
               speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
     """A free-form closed loop without corners: a quick fit from the first point, else a fit
     from the loop's calmest point, started again at the first point."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     found = fit_free(pts, tol, True, limits, quick=True)
+    if found is not None and _hooked(found[0]):
+        found = None
     if found is None:
         run = rotated_loop(pts, calm_start(pts))
-        segs, dev = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa))
+        segs, dev = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa),
+                             fillet=min_segment_mm is None)
         found = reseat(segs, pts[0], limits.min_length_mm), dev
     segs, dev = found
     poly = Polysegment(split_long_arcs(segs), closed=True)
