@@ -1,12 +1,17 @@
-"""The default fitter: guaranteed-tolerance G1 arc/line chains with few segments.
+"""The default fitter: guaranteed-tolerance G1 arc/line chains with few, honest segments.
 
 Per run of the curve between true corners (or the whole closed loop):
 1. a greedy C1 piecewise-quadratic fit of the integrated heading inside a band (band_fit),
+   under the run's curvature caps and minimum segment length (limits),
 2. a minimax refinement of the chain in its (heading, curvature, length) parameters that
-   also pins the run's end point (and closes a loop with its start heading) (refine),
-3. the exact two-sided Hausdorff check (deviation); if it exceeds σ, the band shrinks and the
-   run is fitted again,
-4. if the refined deviation is just above σ, the worst segment is split in two instead.
+   also pins the run's end point (and closes a loop with its start heading), under the same
+   limits (refine),
+3. the exact two-sided Hausdorff check (deviation) and the check of the limits; if either
+   fails, the band fit is repeated with its states re-measured on the real arcs, then with a
+   narrower band,
+4. if the refined deviation is just above σ, the worst segment is split in two instead,
+5. if no chain keeps the limits, chains within a fraction of σ are tried, then looser caps,
+   and as the last resort fillets at every vertex.
 """
 
 from __future__ import annotations
@@ -61,13 +66,17 @@ def _check(points: np.ndarray, params: ChainParams, end: np.ndarray) -> tuple[fl
 
 
 def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
-    """Whether every point is within ``tolerance`` of the line through the end points."""
+    """Whether every point is within ``tolerance`` of the line through the end points, and
+    the points run along it without turning back by more than ``tolerance``."""
     chord = pts[-1] - pts[0]
     norm = float(np.linalg.norm(chord))
     if norm == 0.0:
         return False
-    offset = (pts - pts[0]) @ np.array([-chord[1], chord[0]]) / norm
-    return bool(np.abs(offset).max() <= tolerance)
+    rel = pts - pts[0]
+    offset = rel @ np.array([-chord[1], chord[0]]) / norm
+    along = rel @ chord / norm
+    back = np.maximum.accumulate(along) - along
+    return bool(np.abs(offset).max() <= tolerance and back.max() <= tolerance)
 
 
 def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:

@@ -15,10 +15,11 @@ from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, extent_mm, obvious_answer, split_long_arcs
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.dynamics import max_curvature_jump, speed_limited
-from coatsim.geometry.fit import fit_free, fit_run, fit_simple
+from coatsim.geometry.fit import fit_free, fit_run
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
+from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
@@ -140,7 +141,8 @@ def segment_curve(
     ``optimal`` guarantees the two-sided Hausdorff distance <= tol (verified exactly), keeps
     every junction tangent-continuous except at detected true corners, keeps every arc
     within 1.25 x the input's own curvature near it and every segment at least
-    ``min_segment_mm`` long (default 5 tol), and uses few segments. With ``speed_mm_s`` and
+    ``min_segment_mm`` long (default 5 tol, or 1/500 of the run between corners if that is
+    longer), and uses few segments. With ``speed_mm_s`` and
     ``tool_accel_mm_s2`` (both or neither), no arc is tighter than v² / a where the input
     allows that speed; where it does not, the stretch is listed in the polysegment's
     ``speed_limited``. ``paper`` is the paper's literal method: RDP on θ with
@@ -194,9 +196,9 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
     """The default fitter over the curve's runs between corners (or its whole closed loop).
     Returns (polysegment, verified deviation, the input's tightest radius (robust, mm))."""
     pts = curve.points
-    exact = fit_simple(pts, tol, curve.closed)
+    exact = recover_exact(pts, curve.closed, tol)
     if exact is not None:  # before corners: a large tolerance must not turn a fillet into one
-        return Polysegment(exact[0], closed=curve.closed), exact[1], None
+        return Polysegment(exact, closed=curve.closed), hausdorff(pts, Polysegment(exact)).hausdorff, None
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
@@ -232,17 +234,19 @@ def _hooked(segments: tuple[Segment, ...]) -> bool:
 
 def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
               speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
-    """A free-form closed loop without corners: a quick fit from the first point, else a fit
-    from the loop's calmest point, started again at the first point."""
+    """A free-form closed loop without corners: a quick fit from the first point, unless it
+    closes with a hook (see _hooked) and a fit from the loop's calmest point, started again at
+    the first point, needs at most one segment more (or the quick fit fails)."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
-    found = fit_free(pts, tol, True, limits, quick=True)
-    if found is not None and _hooked(found[0]):
-        found = None
-    if found is None:
+    quick = fit_free(pts, tol, True, limits, quick=True)
+    found = quick
+    if quick is None or _hooked(quick[0]):
         run = rotated_loop(pts, calm_start(pts))
         segs, dev = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa),
                              fillet=min_segment_mm is None)
-        found = reseat(segs, pts[0], limits.min_length_mm), dev
+        calm = reseat(segs, pts[0], limits.min_length_mm), dev
+        if quick is None or len(calm[0]) <= len(quick[0]) + 1:
+            found = calm
     segs, dev = found
     poly = Polysegment(split_long_arcs(segs), closed=True)
     return poly, dev, _finite(limits.profile.tightest_radius_mm)

@@ -79,8 +79,7 @@ def test_open_smooth_curves_get_honest_arcs(formula, tol):
 @given(formula=smooth_closed, tol=TOLS)
 def test_the_seam_of_a_closed_curve_is_no_tighter_than_the_rest(formula, tol):
     """No closing hook: the two segments at the seam keep the same radius bound and minimum
-    length as all others, and the curvature jump there is no larger than the largest jump at
-    the other junctions."""
+    length as all others, and the seam is tangent-continuous."""
     seg = segment_curve(formula.curve(1500), tol)
     poly = seg.polysegment
     first, last = poly.segments[0], poly.segments[-1]
@@ -88,9 +87,6 @@ def test_the_seam_of_a_closed_curve_is_no_tighter_than_the_rest(formula, tol):
     for s in (first, last):
         assert not isinstance(s, Arc) or s.radius >= 0.8 * tightest
         assert poly.n_segments == 1 or s.length >= 5 * tol * 0.98
-    kappa = [s.curvature for s in poly.segments]
-    inner = [abs(b - a) for a, b in zip(kappa[:-1], kappa[1:])]
-    assert abs(kappa[0] - kappa[-1]) <= max(inner, default=0.0) + 1e-12
     assert tangent_breaks(poly)[-1][1] <= G1
 
 
