@@ -17,6 +17,7 @@ Per run of the curve between true corners (or the whole closed loop):
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -39,6 +40,16 @@ QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its fir
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
+
+
+@dataclass(frozen=True)
+class RunFit:
+    """A run's chain, its verified deviation (mm), and whether it keeps the run's curvature
+    caps and minimum length (False: loosened caps or the fillet fallback)."""
+
+    segments: tuple[Segment, ...]
+    deviation_mm: float
+    limits_kept: bool = True
 
 
 def total_turn(points: np.ndarray) -> float:
@@ -140,7 +151,7 @@ def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool
     return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
 
 
-def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tuple[Segment, ...], float] | None:
+def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> RunFit | None:
     """A run that is one line within ``tolerance`` (open runs), or exactly a chain of lines
     and arcs, as that chain with its verified deviation; else None."""
     pts = np.asarray(points, dtype=float)
@@ -149,40 +160,41 @@ def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple
         line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
         dev = hausdorff(pts, Polysegment(line)).hausdorff
         if dev <= tolerance:
-            return line, dev
+            return RunFit(line, dev)
     exact = recover_exact(pts, closed_loop, tolerance)
     if exact is not None:
-        return exact, hausdorff(pts, Polysegment(exact)).hausdorff
+        return RunFit(exact, hausdorff(pts, Polysegment(exact)).hausdorff)
     return None
 
 
 def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-             quick: bool = False, fillet: bool = True) -> tuple[tuple[Segment, ...], float] | None:
+             quick: bool = False, fillet: bool = True) -> RunFit | None:
     """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
     under the curvature caps and minimum length of ``limits``, and its verified deviation.
 
     Where no such chain is found, chains within a fraction of the tolerance are tried, then
-    loosened caps, and as the last resort every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
-    caps as they are, None if those fail. Without ``fillet`` (a minimum length the caller
-    insists on), no chain found is an InputError instead of the fillets.
+    loosened caps, and as the last resort every vertex of the input is rounded
+    (fillet_chain). ``quick``: a few attempts under the caps as they are, None if those
+    fail. Without ``fillet`` (a minimum length the caller insists on), no chain found is an
+    InputError instead of the fillets.
     """
     pts = np.asarray(points, dtype=float)
     if quick:
-        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS])
+        found = _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS])
+        return None if found is None else RunFit(*found)
     found = _constrained(pts, tolerance, closed_loop, limits, [MAX_ATTEMPTS])
     # A chain within a smaller tolerance is within this one too: where the band fit's
     # linearisation misleads (a tolerance large against the curve's features), aim lower.
     for share in NARROWER:
-        if found is not None:
-            return found
-        narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
-        found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS])
-    for factor in RELAX:
-        if found is not None:
-            return found
-        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS])
+        if found is None:
+            narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
+            found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS])
     if found is not None:
-        return found
+        return RunFit(*found)
+    for factor in RELAX:
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS])
+        if found is not None:
+            return RunFit(*found, limits_kept=False)
     if not fillet:
         raise InputError(f"no chain within {tolerance:g} mm keeps every segment at least "
                          f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one")
@@ -191,11 +203,11 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     dev = hausdorff(pts, Polysegment(segs)).hausdorff
     if dev > tolerance:
         raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
-    return segs, dev
+    return RunFit(segs, dev, limits_kept=False)
 
 
 def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-            fillet: bool = True) -> tuple[tuple[Segment, ...], float]:
+            fillet: bool = True) -> RunFit:
     """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
     else fit_free."""
     return fit_simple(points, tolerance, closed_loop) or fit_free(points, tolerance, closed_loop, limits, fillet=fillet)

@@ -46,6 +46,7 @@ def assert_faithful(seg, tol, tightest):
     """Every arc at least 0.8 x the input's tightest radius; no segment shorter than the
     default minimum (5 tol) but where the whole fit is one segment."""
     poly = seg.polysegment
+    assert seg.stats()["limits_kept"] is True
     for s in arcs(poly):
         assert s.radius >= 0.8 * tightest, f"arc of radius {s.radius:.3f} mm on a curve whose tightest is {tightest:.3f}"
     if poly.n_segments > 1:

@@ -26,7 +26,8 @@ from geometry_helpers import bench_path, needs_bench, segmented
 DESIGN = Path(os.environ.get("COATSIM_DESIGN", Path(__file__).resolve().parents[3] / "shared" / "DESIGN.md"))
 TOP_KEYS = {"format", "units", "closed", "tolerance_mm", "segments", "corners", "speed_limited", "stats"}
 STATS_KEYS = {"n_segments", "n_arcs", "n_lines", "max_deviation_mm", "max_tangent_break_deg", "min_radius_mm",
-              "input_min_radius_mm", "min_segment_mm", "max_curvature_jump_per_mm", "speed_mm_s", "tool_accel_mm_s2",
+              "input_min_radius_mm", "min_segment_mm", "max_curvature_jump_per_mm", "limits_kept", "speed_mm_s",
+              "tool_accel_mm_s2",
               "input_points", "seconds"}
 LINE_KEYS = {"kind", "start", "end"}
 ARC_KEYS = {"kind", "start", "end", "center", "radius", "sweep"}
