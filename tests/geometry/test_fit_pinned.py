@@ -26,7 +26,8 @@ def wave(amplitude: float, length: float, periods: float, n: int = 600) -> tuple
 
 
 def check(pts: np.ndarray, tol: float, start: float | None, end: float | None):
-    segs, dev = fit_run(pts, tol, False, fit_limits(pts, False, tol, None, None), start_heading=start, end_heading=end)
+    fit = fit_run(pts, tol, False, fit_limits(pts, False, tol, None, None), start_heading=start, end_heading=end)
+    segs, dev = fit.segments, fit.deviation_mm
     poly = Polysegment(segs)
     assert dev <= tol and hausdorff(pts, poly).hausdorff <= tol
     assert segs[0].start == tuple(pts[0]) and segs[-1].end == tuple(pts[-1])
@@ -50,7 +51,7 @@ def test_pinned_tangents_are_kept_within_tolerance(amplitude, length, periods, t
 
 def test_pins_hold_where_the_unpinned_fit_would_turn_elsewhere():
     pts, h0, h1 = wave(8.0, 100.0, 0.75)
-    free, _ = fit_run(pts, 0.1, False, fit_limits(pts, False, 0.1, None, None))
+    free = fit_run(pts, 0.1, False, fit_limits(pts, False, 0.1, None, None)).segments
     pinned = check(pts, 0.1, h0, h1)
     assert len(pinned) <= len(free) + 2
 
