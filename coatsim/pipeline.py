@@ -12,9 +12,9 @@ import difflib
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterator, Optional
+from typing import Callable, Iterator, Mapping, Optional
 
 import numpy as np
 
@@ -55,12 +55,14 @@ class VariantRun:
 
 @dataclass(frozen=True, eq=False)
 class RunResult:
-    """A finished run: every variant, the metrics document and the files written."""
+    """A finished run: every variant, the metrics document and the files written; with
+    ``keep_going``, ``failures`` holds the one-line error of each variant that could not run."""
 
     outdir: Path
     variants: tuple[VariantRun, ...]
     document: dict
     files: tuple[Path, ...]
+    failures: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
@@ -212,11 +214,14 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None) -> RunResult:
+                 progress: Optional[bool] = None, *, keep_going: bool = False, report: bool = True) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
     ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
-    settings; ``progress`` defaults to showing a bar when stderr is a terminal.
+    settings; ``progress`` defaults to showing a bar when stderr is a terminal. With
+    ``keep_going`` a variant that cannot run is recorded in ``failures`` (and in the metrics
+    document's ``failed``, which then does not pass; gates on it are left out) while the others
+    run. ``report=False`` skips report.html (so does a run where no variant ran).
     """
     from coatsim.report.document import write_report
 
@@ -242,21 +247,27 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         cell = load_arm(loaded)
         job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
-        runs = []
+        runs, failures = [], {}
         for name in spec.variants:
             step(f"{name}: writing and reading the program")
             try:
                 runs.append(run_variant(name, job, step))
             except CoatsimError as exc:
-                raise type(exc)(f"{name}: {exc}") from None
+                if not keep_going:
+                    raise type(exc)(f"{name}: {exc}") from None
+                failures[name] = str(exc)
         step("metrics, gates and report")
         variants = {r.name: r.groups for r in runs}
-        gates = evaluate_gates(spec.gates, variants)
+        gates = evaluate_gates([g for g in spec.gates if {g.variant, g.compare_to or g.variant} <= set(variants)],
+                               variants)
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full")
+        if failures:
+            document.update(failed=failures, passed=False)
         write_text(out / "metrics.json", to_json(document))
-        write_report(out / "report.html", loaded, curve, segmentation, runs, document)
+        if report and runs:
+            write_report(out / "report.html", loaded, curve, segmentation, runs, document)
     files = [out / "polysegment.json"]
     for r in runs:
         files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
-    files += [out / "metrics.json", out / "report.html"]
-    return RunResult(out, tuple(runs), document, tuple(files))
+    files += [out / "metrics.json"] + ([out / "report.html"] if report and runs else [])
+    return RunResult(out, tuple(runs), document, tuple(files), failures)

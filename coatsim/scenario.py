@@ -237,7 +237,7 @@ class ScenarioFile:
         return p if p.is_absolute() else self.path.parent / p
 
 
-def _check_references(spec: Scenario, where: ScenarioFile) -> None:
+def check_references(spec: Scenario, where: ScenarioFile) -> None:
     """Gates may only name variants the scenario runs."""
     for i, gate in enumerate(spec.gates):
         for key in ("variant", "compare_to"):
@@ -260,7 +260,7 @@ def load_scenario(path: str | Path) -> ScenarioFile:
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, path, data, lines, Scenario)) from None
     loaded = ScenarioFile(spec, path, lines)
-    _check_references(spec, loaded)
+    check_references(spec, loaded)
     return loaded
 
 

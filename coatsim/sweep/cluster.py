@@ -1,0 +1,131 @@
+"""Running sweep points on Dask distributed: a LocalCluster, or an existing scheduler.
+
+Without an address a ``LocalCluster`` of worker processes (one thread each, one per core by
+default) runs on this machine; with ``tcp://host:port`` the points go to that scheduler's
+workers, wherever they run (started by hand with ``dask scheduler`` / ``dask worker``, or by
+dask-jobqueue on SLURM/PBS, dask-kubernetes on Kubernetes). Input files are scattered once and
+shared by the points that read them. A worker that dies is replaced and its point rescheduled by
+Dask (``distributed.scheduler.allowed-failures`` times); a point that still cannot finish comes
+back as a failed outcome, never as an exception.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import sys
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Callable, Iterator, Optional, Sequence
+
+from coatsim.errors import InputError
+from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point
+
+
+def default_workers() -> int:
+    """One worker per core this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+@contextmanager
+def dask_client(scheduler: Optional[str], workers: Optional[int], n_tasks: int) -> Iterator:
+    """A connected ``distributed.Client``: to ``scheduler``, or to a LocalCluster of
+    ``workers`` processes (at most one per task) shut down on exit."""
+    from distributed import Client, LocalCluster
+
+    if scheduler is None:
+        n = max(1, min(workers or default_workers(), n_tasks))
+        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                          silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+            yield client
+        return
+    try:
+        client = Client(scheduler, timeout="20s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise InputError(f"--scheduler {scheduler}: cannot connect ({one_line(str(exc)) or type(exc).__name__}); "
+                         "start one with `dask scheduler` and `dask worker ADDRESS`") from None
+    with client:
+        _check_workers(client, scheduler)
+        yield client
+
+
+def _check_workers(client, scheduler: str) -> None:
+    """Every worker already connected runs the same coatsim as this client."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        mine = version("coatsim")
+    except PackageNotFoundError:  # running from a source tree that is not installed
+        return
+    found = client.run(version, "coatsim", on_error="return")
+    wrong = {w: v for w, v in found.items() if v != mine}
+    if wrong:
+        worker, got = sorted(wrong.items())[0]
+        what = "no coatsim" if isinstance(got, Exception) else f"coatsim {got}"
+        raise InputError(f"--scheduler {scheduler}: worker {worker} has {what}, this client coatsim {mine} "
+                         f"({len(wrong)} of {len(found)} workers differ); install the same coatsim on every worker")
+    if not found:
+        print(f"coatsim: the scheduler at {scheduler} has no workers yet; waiting for some to join", file=sys.stderr)
+
+
+def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_outcome: Callable[[PointOutcome], None],
+              progress: bool) -> None:
+    """Submit every task (with its input files) and hand each outcome to ``on_outcome`` as it
+    arrives."""
+    from distributed import as_completed
+
+    scattered: dict[Path, object] = {}
+    futures = {}
+    for task, files in tasks:
+        inputs = {}
+        for name, path in files.items():
+            if path not in scattered:
+                scattered[path] = client.scatter(path.read_bytes(), hash=True)
+            inputs[name] = scattered[path]
+        future = client.submit(run_point, task, inputs, key=f"coatsim-point-{task.point}-{task.key[:16]}", pure=False)
+        futures[future] = task
+    with _progress(len(futures), progress) as advance:
+        for future in as_completed(list(futures)):
+            task = futures.pop(future)
+            try:
+                outcome = future.result()
+            except Exception as exc:  # the worker died too often, or cannot load the task
+                outcome = failed(task, tuple(task.scenario.get("variants", ())), _lost(exc))
+            future.release()
+            on_outcome(outcome)
+            advance(outcome)
+
+
+def _lost(exc: Exception) -> str:
+    from distributed import KilledWorker
+
+    if isinstance(exc, KilledWorker):
+        return (f"the workers running this point died {exc.allowed_failures + 1} times (out of memory or killed); "
+                "it was not finished")
+    return f"the worker could not run this point: {type(exc).__name__}: {one_line(str(exc))}"
+
+
+@contextmanager
+def _progress(total: int, enabled: bool) -> Iterator[Callable[[PointOutcome], None]]:
+    """A rich progress bar of finished points on stderr, or nothing."""
+    if not enabled:
+        yield lambda outcome: None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    bad = 0
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+               TextColumn("eta"), TimeRemainingColumn())
+    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
+        job = bar.add_task("points", total=total)
+
+        def advance(outcome: PointOutcome) -> None:
+            nonlocal bad
+            bad += outcome.status != "ok"
+            bar.update(job, advance=1, description=f"points ({bad} failed)" if bad else "points")
+
+        yield advance
