@@ -35,16 +35,17 @@ def metric_figure(table: Table, axes: Sequence[str], variants: Sequence[str], me
 
     rows = [dict(zip(table.columns, r)) for r in table.rows]
     axes = [axis_column(a) for a in axes]
-    fig = MplFigure(figsize=(5.0 * min(len(axes), 3), 3.4 * ((len(axes) + 2) // 3)), dpi=90)
+    fig = MplFigure(figsize=(5.0 * min(len(axes), 3), 4.4 * ((len(axes) + 2) // 3)), dpi=90)
     panels = fig.subplots((len(axes) + 2) // 3, min(len(axes), 3), squeeze=False).ravel()
     styles = ("-", "--", ":", "-.")
     markers = ("o", "s", "^", "D", "v", "P", "X", "*")
     for ax, axis in zip(panels, axes):
-        others = [a for a in axes if a != axis]
         xs_all = [r[axis] for r in rows]
         numeric = _numeric(xs_all)
         order = list(dict.fromkeys(_key(x) for x in xs_all if x is not None))
         done = [r for r in rows if r["status"] == "ok" and r[metric] is not None and r[axis] is not None]
+        # the other axes that vary among the finished rows tell the lines apart
+        others = [a for a in axes if a != axis and len({_key(r[a]) for r in done}) > 1]
         combos = list(dict.fromkeys(", ".join(f"{a}={_key(r[a])}" for a in others) for r in done))
         connect = len(combos) <= _MAX_LINES
         for variant in variants:
@@ -66,7 +67,7 @@ def metric_figure(table: Table, axes: Sequence[str], variants: Sequence[str], me
         ax.tick_params(labelsize=7)
         ax.grid(alpha=0.3)
         if done:
-            ax.legend(fontsize=6)
+            ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.28 if numeric else -0.42), frameon=False)
         else:
             ax.text(0.5, 0.5, "no finished point", ha="center", va="center", transform=ax.transAxes, color="#999")
     for ax in panels[len(axes):]:
