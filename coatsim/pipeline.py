@@ -8,7 +8,6 @@ never the in-memory polysegment: the twin runs what the robot would run.
 
 from __future__ import annotations
 
-import difflib
 import math
 import sys
 from contextlib import contextmanager
@@ -26,12 +25,11 @@ from coatsim.program import read_toolpath
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
-from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
-from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
+from coatsim.scenario import Scenario, ScenarioFile, as_dict, check_gate_metrics, load_scenario
 from coatsim.spray.coat import CoatingResult, coat
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
@@ -67,16 +65,6 @@ class RunResult:
     @property
     def passed(self) -> bool:
         return bool(self.document["passed"])
-
-
-def check_gate_metrics(loaded: ScenarioFile) -> None:
-    """Every gate names a metric of the catalogue (checked before anything runs)."""
-    for i, gate in enumerate(loaded.spec.gates):
-        if gate.metric not in METRICS:
-            close = difflib.get_close_matches(gate.metric, list(METRICS), n=1)
-            group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
-            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
-            raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
 
 
 def load_input_curve(loaded: ScenarioFile) -> Curve:

@@ -9,6 +9,7 @@ line and the key path, e.g. ``job.yaml:12: gun.standoff_mm: Input should be grea
 
 from __future__ import annotations
 
+import difflib
 import inspect
 import json
 from dataclasses import dataclass
@@ -20,6 +21,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
 from coatsim.program.build import VARIANTS
+from coatsim.report.catalogue import METRICS
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
 
@@ -247,6 +249,16 @@ def check_references(spec: Scenario, where: ScenarioFile) -> None:
                     f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
                     f"(add it to 'variants': {', '.join(spec.variants)})"
                 )
+
+
+def check_gate_metrics(loaded: ScenarioFile) -> None:
+    """Every gate names a metric of the catalogue (checked before anything runs)."""
+    for i, gate in enumerate(loaded.spec.gates):
+        if gate.metric not in METRICS:
+            close = difflib.get_close_matches(gate.metric, list(METRICS), n=1)
+            group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
+            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
+            raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
 
 
 def load_scenario(path: str | Path) -> ScenarioFile:

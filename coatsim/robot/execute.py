@@ -7,6 +7,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -21,8 +22,10 @@ from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import JointPiece, plan_pieces, step_label
-from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.trajectory_log import TrajectoryLog
+
+if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads only when a program is timed
+    from coatsim.robot.timing import TimedPiece
 
 _WINDOW_MM = 10.0  # progress search window around the commanded point (plus blend radii)
 
@@ -81,6 +84,8 @@ def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float,
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
     """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration."""
+    from coatsim.robot.timing import time_cartesian, time_joint
+
     cell = cell or load_cell()
     wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
     t_start = time.perf_counter()

@@ -22,8 +22,7 @@ from typing import Any, Mapping, Optional
 from pydantic import ValidationError
 
 from coatsim.errors import CoatsimError, InputError
-from coatsim.pipeline import check_gate_metrics
-from coatsim.scenario import Scenario, ScenarioFile, check_references, load_scenario
+from coatsim.scenario import Scenario, ScenarioFile, check_gate_metrics, check_references, load_scenario
 from coatsim.sweep.spec import SweepFile, parse_key
 from coatsim.yamlsource import allowed_keys, data_path
 
