@@ -39,7 +39,7 @@ def dask_client(scheduler: Optional[str], workers: Optional[int], n_tasks: int) 
     if scheduler is None:
         n = max(1, min(workers or default_workers(), n_tasks))
         with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                          silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+                          silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
             yield client
         return
     try:
