@@ -244,6 +244,9 @@ def _click_errors() -> tuple[type, ...]:
 
 def main() -> None:
     """Console entry point: run the app, turning CoatsimError into a one-line error."""
+    from coatsim.runtime import single_threaded_numerics
+
+    single_threaded_numerics()
     try:
         # Without standalone mode click returns typer.Exit's code instead of raising it.
         code = app(standalone_mode=False)

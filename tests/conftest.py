@@ -8,7 +8,11 @@ from typing import Callable
 
 import pytest
 
-from coatsim import cli
+from coatsim.runtime import single_threaded_numerics
+
+single_threaded_numerics()  # as the console entry point does, before numerical libraries load
+
+from coatsim import cli  # noqa: E402
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 

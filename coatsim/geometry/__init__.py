@@ -19,7 +19,7 @@ _EXPORTS = {
 }
 
 if TYPE_CHECKING:
-    from coatsim.geometry.builtin_curves import BUILTINS, builtin_curve, parse_builtin_spec
+    from coatsim.geometry.builtin_curves import BUILTINS, builtin_curve
     from coatsim.geometry.curves import ClosedMode, Curve, make_curve, read_curve_file
     from coatsim.geometry.polysegment import Polysegment, chain
     from coatsim.geometry.polysegment_json import read_polysegment_json, write_polysegment_json

@@ -9,6 +9,7 @@ names the program step, the pose and the residual.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Callable, Sequence
@@ -16,7 +17,6 @@ from typing import Callable, Sequence
 import mink
 import mujoco
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, MM, M_TO_MM, Cell
@@ -31,6 +31,7 @@ _MAX_TRACK_ITERS = 8   # ... or this many QP steps per sample
 _MAX_POSE_ITERS = 400  # for isolated targets (joint-move end points)
 _PREDICTOR_POINTS = 2  # linear extrapolation of the previous solutions
 KNOT_MM = 20.0         # spacing of the samples mink solves where the path is smooth
+_MIN_KNOT_SAMPLES = 8  # on shorter pieces solving every sample costs less
 _MAX_NEWTON_ITERS = 6  # batched Newton steps on the samples between the knots ...
 _POLISH_MM = 1e-6      # ... until this close
 _POLISH_DEG = 1e-6
@@ -119,13 +120,14 @@ class Tracker:
         joint velocity limit into a per-step bound (a joint move that would need more is a
         singularity symptom and shows up as a residual).
 
-        Where the arm's kinematics are available vectorised, mink solves only knots about
+        On pieces of 8 samples or more, where the arm's kinematics are available vectorised,
+        mink solves only knots about
         ``KNOT_MM`` apart; the samples between start from a cubic through the knot solutions and
         batched Newton steps bring every sample to 10^-6 mm / 10^-6 deg. The result is kept when
         every sample converged, stays inside the joint limits and within one speed-bounded QP
         step of the per-sample prediction; otherwise every sample is solved as above.
         """
-        if self.chain is not None and len(s_mm) > 2:
+        if self.chain is not None and len(s_mm) >= _MIN_KNOT_SAMPLES:
             fast = self._track_knots(q_start, s_mm, positions_mm, rotations, step_time)
             if fast is not None:
                 return fast
@@ -181,13 +183,13 @@ class Tracker:
         guess[knots] = q_knots
         # every sample, the knots too, polished well below the QP's convergence: a joint path
         # without residual noise between neighbouring samples
-        q, dp, dr = refine(chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS)
+        q, dp, dr, wrist = refine(chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS,
+                                  cell.wrist_site)
         margin = 1e-3  # as the QP's ConfigurationLimit
         if dp.max() > _CONVERGED_MM or dr.max() > _CONVERGED_DEG \
                 or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \
                 or not continuity_ok(s_mm, q, step_time, cell.v_max):
             return None
-        wrist = chain.poses(q).sites[cell.wrist_site] * M_TO_MM
         return q, wrist, Residual(float(dp.max()), float(dr.max()), knot_residual.iterations)
 
 
@@ -202,8 +204,9 @@ def _knots(s_mm: np.ndarray, spacing_mm: float) -> np.ndarray:
 
 
 def _interpolate(s_knots: np.ndarray, q_knots: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """Joint configurations at ``s`` from the knot solutions: a cubic spline (linear for two)."""
-    if len(s_knots) < 3:
+    """Joint configurations at ``s`` from the knot solutions: a cubic spline (linear for fewer
+    than four knots, where scipy would solve a dense system)."""
+    if len(s_knots) < 4:
         return np.column_stack([np.interp(s, s_knots, q_knots[:, j]) for j in range(q_knots.shape[1])])
     from scipy.interpolate import CubicSpline
 
@@ -224,8 +227,22 @@ def _extrapolate(s: np.ndarray, q: np.ndarray, x: float) -> np.ndarray:
 
 def _quat(rotations: np.ndarray) -> np.ndarray:
     """wxyz quaternions (n, 4) of rotation matrices (n, 3, 3) (mink and MuJoCo order)."""
-    xyzw = Rotation.from_matrix(np.asarray(rotations, float)).as_quat()
-    return np.column_stack((xyzw[:, 3], xyzw[:, :3]))
+    out = np.empty((len(rotations), 4))
+    for k, r in enumerate(np.asarray(rotations, float).reshape(-1, 9)):
+        mujoco.mju_mat2Quat(out[k], r)
+    return out
+
+
+@functools.lru_cache(maxsize=4)
+def _arm_dimensions(cell: Cell) -> tuple[np.ndarray, float, float]:
+    """Joint anchors (3, 3) mm of JT1-JT3 at the zero configuration, the upper-arm and the
+    shoulder-to-wrist forearm lengths (mm)."""
+    data = mujoco.MjData(cell.model)
+    data.qpos[:] = 0.0
+    mujoco.mj_kinematics(cell.model, data)
+    anchors = data.xanchor[:3] * M_TO_MM
+    upper = float(np.linalg.norm(anchors[2] - anchors[1]))
+    return anchors, upper, float(np.linalg.norm(data.site_xpos[cell.wrist_site] * M_TO_MM - anchors[2]))
 
 
 def joint_path_events(cell: Cell, q: np.ndarray, wrist_mm: np.ndarray, labels: Sequence[str],
@@ -236,12 +253,7 @@ def joint_path_events(cell: Cell, q: np.ndarray, wrist_mm: np.ndarray, labels: S
     (arm stretched to 99 % of its shoulder-to-wrist reach) and shoulder (wrist centre within
     100 mm of the JT1 axis).
     """
-    data = mujoco.MjData(cell.model)
-    data.qpos[:] = 0.0
-    mujoco.mj_kinematics(cell.model, data)
-    anchors = data.xanchor[:3] * M_TO_MM
-    upper = np.linalg.norm(anchors[2] - anchors[1])
-    fore = np.linalg.norm(data.site_xpos[cell.wrist_site] * M_TO_MM - anchors[2])
+    anchors, upper, fore = _arm_dimensions(cell)
     reach = np.linalg.norm(wrist_mm - anchors[1], axis=1) / (upper + fore)
     axis_dist = np.linalg.norm(wrist_mm[:, :2] - anchors[0, :2], axis=1)
     margin = math.radians(limit_margin_deg)

@@ -38,28 +38,32 @@ def pose_errors(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray) ->
 
 
 def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converged_mm: float, converged_deg: float,
-           max_iters: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+           max_iters: int, site: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """Newton steps on every configuration of ``q`` (N, 6) until its TCP is within
     ``converged_mm`` / ``converged_deg`` of its target (or ``max_iters`` steps); returns the
-    configurations and their final position (mm) and rotation (deg) errors."""
+    configurations, their final position (mm) and rotation (deg) errors, and the positions (mm)
+    of the chain's extra ``site`` at them (None without a site)."""
     q = np.array(q, float)
     target_m = p_mm * MM
     todo = np.arange(len(q))
     dp = np.zeros(len(q))
     dr = np.zeros(len(q))
+    at_site = None if site is None else np.empty((len(q), 3))
     for it in range(max_iters + 1):
-        poses = chain.poses(q[todo], jacobian=it < max_iters)
-        e_p = target_m[todo] - poses.tcp
-        e_r = rotation_vectors(r[todo], poses.rotation)
-        dp[todo] = np.linalg.norm(e_p, axis=1) * M_TO_MM
-        dr[todo] = np.degrees(np.linalg.norm(e_r, axis=1))
+        poses = chain.poses(q[todo])
+        e = np.hstack((target_m[todo] - poses.tcp, rotation_vectors(r[todo], poses.rotation)))
+        dp[todo] = np.linalg.norm(e[:, :3], axis=1) * M_TO_MM
+        dr[todo] = np.degrees(np.linalg.norm(e[:, 3:], axis=1))
+        if at_site is not None:
+            at_site[todo] = poses.sites[site] * M_TO_MM
         open_ = (dp[todo] > converged_mm) | (dr[todo] > converged_deg)
         if it == max_iters or not open_.any():
             break
-        todo, jac, e = todo[open_], poses.jacobian[open_], np.hstack((e_p, e_r))[open_]
+        jac = poses.jacobian(open_)
+        todo, e = todo[open_], e[open_]
         jjt = jac @ np.swapaxes(jac, 1, 2) + _DAMPING * np.eye(6)
         q[todo] += np.einsum("nji,nj->ni", jac, np.linalg.solve(jjt, e[..., None])[..., 0])
-    return q, dp, dr
+    return q, dp, dr, at_site
 
 
 def continuity_ok(s_mm: np.ndarray, q: np.ndarray, step_time: np.ndarray, v_max: np.ndarray) -> bool:

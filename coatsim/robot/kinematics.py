@@ -24,36 +24,46 @@ def _quat_matrix(quat_wxyz: np.ndarray) -> np.ndarray:
     return out.reshape(3, 3)
 
 
-def axis_rotations(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
-    """Rotation matrices (N, 3, 3) about the unit ``axis`` (3,) by ``angle`` (N,) rad (Rodrigues)."""
-    x, y, z = axis
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
-    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
-
-
 @dataclass(frozen=True)
 class _Link:
-    """One body on the way to the TCP: its offset from the parent body, and its hinge (if any)."""
+    """One hinge on the way to the TCP: the fixed transform (pos, rot) from the previous hinge's
+    frame to its body (jointless bodies between folded in), and its rotation by q - zero about
+    ``axis`` through ``anchor``; with Rodrigues' turn I + sin K + (1 - cos) K^2, the body's
+    rotation is rot + sin A + (1 - cos) B and its anchor shift sin a + (1 - cos) b."""
 
     pos: np.ndarray
     rot: np.ndarray
-    joint: int          # index into q, -1 for a body without a joint
+    joint: int
     axis: np.ndarray
     anchor: np.ndarray
-    zero: float         # qpos0 of the joint (MuJoCo rotates by q - qpos0)
+    zero: float
+
+    def products(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        x, y, z = self.axis
+        k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+        a, b = self.rot @ k, self.rot @ k @ k
+        return a, b, a @ self.anchor, b @ self.anchor, self.rot @ self.axis
 
 
 @dataclass(frozen=True)
 class Poses:
     """Site poses of N configurations, metres: TCP position (N, 3), rotation (N, 3, 3), the
-    Jacobian of the TCP position and rotation (N, 6, 6) when asked for, and the positions (N, 3)
-    of the extra sites."""
+    positions (N, 3) of the extra sites, and the world joint axes and anchors (N, nq, 3) from
+    which ``jacobian`` builds the TCP's geometric Jacobian."""
 
     tcp: np.ndarray
     rotation: np.ndarray
-    jacobian: np.ndarray | None
     sites: dict[int, np.ndarray]
+    axes: np.ndarray
+    anchors: np.ndarray
+
+    def jacobian(self, rows: np.ndarray | slice = slice(None)) -> np.ndarray:
+        """(n, 6, nq): TCP linear velocity (m/rad) over orientation rate, for the ``rows`` asked."""
+        z, lever = self.axes[rows], self.tcp[rows][:, None, :] - self.anchors[rows]
+        linear = np.stack((z[..., 1] * lever[..., 2] - z[..., 2] * lever[..., 1],
+                           z[..., 2] * lever[..., 0] - z[..., 0] * lever[..., 2],
+                           z[..., 0] * lever[..., 1] - z[..., 1] * lever[..., 0]), axis=1)
+        return np.concatenate((linear, np.swapaxes(z, 1, 2)), axis=1)
 
 
 class Chain:
@@ -62,6 +72,9 @@ class Chain:
     def __init__(self, links: tuple[_Link, ...], site_pos: np.ndarray, site_rot: np.ndarray,
                  extra: dict[int, tuple[int, np.ndarray]]):
         self._links, self._site_pos, self._site_rot, self._extra = links, site_pos, site_rot, extra
+        self._products = [link.products() for link in links]
+        self._joints = np.array([link.joint for link in links])
+        self._zeros = np.array([link.zero for link in links])
 
     @classmethod
     def build(cls, model: mujoco.MjModel, site: int, extra_sites: tuple[int, ...] = ()) -> Chain | None:
@@ -73,25 +86,27 @@ class Chain:
             path.append(body)
             body = int(model.body_parentid[body])
         path.reverse()
-        links = []
+        links: list[_Link] = []
+        extra: dict[int, tuple[int, np.ndarray]] = {}
+        fixed_p, fixed_r = np.zeros(3), np.eye(3)  # from the last hinge's frame to the current body
         for b in path:
             start, count = int(model.body_jntadr[b]), int(model.body_jntnum[b])
             if count > 1 or (count == 1 and model.jnt_type[start] != mujoco.mjtJoint.mjJNT_HINGE):
                 return None
-            j = start if count == 1 else -1
-            links.append(_Link(model.body_pos[b].copy(), _quat_matrix(model.body_quat[b]),
-                               int(model.jnt_qposadr[j]) if j >= 0 else -1,
-                               model.jnt_axis[j].copy() if j >= 0 else np.zeros(3),
-                               model.jnt_pos[j].copy() if j >= 0 else np.zeros(3),
-                               float(model.qpos0[model.jnt_qposadr[j]]) if j >= 0 else 0.0))
-        if sorted(link.joint for link in links if link.joint >= 0) != list(range(model.nq)):
+            fixed_p, fixed_r = fixed_p + fixed_r @ model.body_pos[b], fixed_r @ _quat_matrix(model.body_quat[b])
+            if count == 1:
+                adr = int(model.jnt_qposadr[start])
+                links.append(_Link(fixed_p, fixed_r, adr, model.jnt_axis[start].copy(), model.jnt_pos[start].copy(),
+                                   float(model.qpos0[adr])))
+                fixed_p, fixed_r = np.zeros(3), np.eye(3)
+            for s in extra_sites:
+                if int(model.site_bodyid[s]) == b:
+                    extra[s] = (len(links) - 1, fixed_p + fixed_r @ model.site_pos[s])
+        if sorted(link.joint for link in links) != list(range(model.nq)) or len(extra) != len(extra_sites):
             return None
-        extra = {}
-        for s in extra_sites:
-            if int(model.site_bodyid[s]) not in path:
-                return None
-            extra[s] = (path.index(int(model.site_bodyid[s])), model.site_pos[s].copy())
-        chain = cls(tuple(links), model.site_pos[site].copy(), _quat_matrix(model.site_quat[site]), extra)
+        site_pos = fixed_p + fixed_r @ model.site_pos[site]
+        site_rot = fixed_r @ _quat_matrix(model.site_quat[site])
+        chain = cls(tuple(links), site_pos, site_rot, extra)
         return chain if chain._agrees(model, site) else None
 
     def _agrees(self, model: mujoco.MjModel, site: int) -> bool:
@@ -111,29 +126,23 @@ class Chain:
                 return False
         return True
 
-    def poses(self, q: np.ndarray, jacobian: bool = False) -> Poses:
-        """Site poses (and the TCP Jacobian) for configurations q (N, nq), rad; metres out."""
+    def poses(self, q: np.ndarray) -> Poses:
+        """Site poses (and what the TCP Jacobian needs) for configurations q (N, nq), rad; metres."""
         q = np.atleast_2d(np.asarray(q, float))
-        n = len(q)
+        n, nq = q.shape
+        angle = q[:, self._joints] - self._zeros
+        sin, vers = np.sin(angle), 1.0 - np.cos(angle)
         p = np.zeros((n, 3))
         r = np.broadcast_to(np.eye(3), (n, 3, 3))
-        axes, anchors, frames = [], [], []
-        for link in self._links:
-            p = p + r @ link.pos
-            r = r @ link.rot
-            if link.joint >= 0:
-                turn = axis_rotations(link.axis, q[:, link.joint] - link.zero)
-                p = p + r @ link.anchor - (r @ turn) @ link.anchor
-                r = r @ turn
-                axes.append((link.joint, r @ link.axis))
-                anchors.append(p + r @ link.anchor)
+        axes, anchors = np.empty((n, nq, 3)), np.empty((n, nq, 3))
+        frames = []
+        for k, (link, (a, b, a_anchor, b_anchor, rot_axis)) in enumerate(zip(self._links, self._products)):
+            s, v = sin[:, k, None], vers[:, k, None]
+            axes[:, link.joint] = r @ rot_axis
+            p = p + np.einsum("nij,nj->ni", r, link.pos - s * a_anchor - v * b_anchor)
+            r = r @ (link.rot + s[..., None] * a + v[..., None] * b)
+            anchors[:, link.joint] = p + r @ link.anchor
             frames.append((p, r))
-        tcp = p + r @ self._site_pos
-        sites = {s: frames[i][0] + frames[i][1] @ offset for s, (i, offset) in self._extra.items()}
-        jac = None
-        if jacobian:
-            jac = np.zeros((n, 6, len(axes)))
-            for (j, z), a in zip(axes, anchors):
-                jac[:, :3, j] = np.cross(z, tcp - a)
-                jac[:, 3:, j] = z
-        return Poses(tcp, r @ self._site_rot, jac, sites)
+        sites = {i: (frames[k][0] + frames[k][1] @ offset) if k >= 0 else np.broadcast_to(offset, (n, 3))
+                 for i, (k, offset) in self._extra.items()}
+        return Poses(p + r @ self._site_pos, r @ self._site_rot, sites, axes, anchors)

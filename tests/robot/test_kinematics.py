@@ -16,7 +16,7 @@ from coatsim.errors import ExecutionError
 from coatsim.robot import ik
 from coatsim.robot.cell import M_TO_MM, load_cell
 from coatsim.robot.ik_batch import continuity_ok, refine, rotation_vectors
-from coatsim.robot.kinematics import Chain, axis_rotations
+from coatsim.robot.kinematics import Chain
 
 DOWN = np.diag([-1.0, 1.0, -1.0])
 CELL = load_cell()
@@ -46,11 +46,12 @@ def test_poses_and_jacobian_equal_mujoco(q):
     mujoco.mj_comPos(CELL.model, data)
     jp, jr = np.zeros((3, 6)), np.zeros((3, 6))
     mujoco.mj_jacSite(CELL.model, data, jp, jr, CELL.tcp_site)
-    poses = CHAIN.poses(np.vstack((q, q)), jacobian=True)
+    poses = CHAIN.poses(np.vstack((q, q)))
     np.testing.assert_allclose(poses.tcp[1], data.site_xpos[CELL.tcp_site], atol=1e-12)
     np.testing.assert_allclose(poses.rotation[1], data.site_xmat[CELL.tcp_site].reshape(3, 3), atol=1e-12)
     np.testing.assert_allclose(poses.sites[CELL.wrist_site][0], data.site_xpos[CELL.wrist_site], atol=1e-12)
-    np.testing.assert_allclose(poses.jacobian[0], np.vstack((jp, jr)), atol=1e-12)
+    np.testing.assert_allclose(poses.jacobian()[0], np.vstack((jp, jr)), atol=1e-12)
+    np.testing.assert_allclose(poses.jacobian(np.array([False, True]))[0], np.vstack((jp, jr)), atol=1e-12)
 
 
 def test_a_chain_with_a_slide_joint_is_not_built(tmp_path):
@@ -68,19 +69,22 @@ def test_a_chain_with_a_slide_joint_is_not_built(tmp_path):
 @given(st.floats(-3.0, 3.0), st.lists(st.floats(-1, 1), min_size=3, max_size=3).filter(lambda v: np.linalg.norm(v) > 0.1))
 def test_rotation_vectors_invert_axis_rotations(angle, axis):
     axis = np.asarray(axis) / np.linalg.norm(axis)
-    turn = axis_rotations(axis, np.array([angle]))
-    np.testing.assert_allclose(rotation_vectors(turn, np.eye(3)[None]), [angle * axis], atol=1e-9)
+    quat, turn = np.empty(4), np.empty(9)
+    mujoco.mju_axisAngle2Quat(quat, axis, angle)
+    mujoco.mju_quat2Mat(turn, quat)
+    np.testing.assert_allclose(rotation_vectors(turn.reshape(1, 3, 3), np.eye(3)[None]), [angle * axis], atol=1e-9)
 
 
 @HYP
 @given(configurations(away_from_wrist_singularity=True), st.integers(0, 2**32 - 1))
 def test_newton_refines_a_perturbed_guess_to_the_target(q_true, seed):
-    poses = CHAIN.poses(q_true[None], jacobian=True)
-    assume(np.linalg.cond(poses.jacobian[0]) < 200.0)  # near a singularity another solution is as close
+    poses = CHAIN.poses(q_true[None])
+    assume(np.linalg.cond(poses.jacobian()[0]) < 200.0)  # near a singularity another solution is as close
     guess = q_true + np.random.default_rng(seed).uniform(-0.01, 0.01, 6)
-    q, dp, dr = refine(CHAIN, guess[None], poses.tcp * M_TO_MM, poses.rotation, 1e-6, 1e-6, 8)
+    q, dp, dr, wrist = refine(CHAIN, guess[None], poses.tcp * M_TO_MM, poses.rotation, 1e-6, 1e-6, 8, CELL.wrist_site)
     assert dp[0] <= 1e-6 and dr[0] <= 1e-6
     assert np.abs(q[0] - q_true).max() < 1e-6
+    np.testing.assert_allclose(wrist, poses.sites[CELL.wrist_site] * M_TO_MM, atol=1e-6)
 
 
 def test_continuity_flags_a_jump_no_speed_bounded_step_makes():
@@ -140,3 +144,28 @@ def test_out_of_reach_midway_gives_the_sample_by_sample_error():
             tracker.track(start_on(tracker, p[0], r[0]), s, p, r, dt, lambda i: f"sample {i}")
         messages.append(str(info.value))
     assert messages[0] == messages[1] and "cannot follow the path" in messages[0]
+
+
+@HYP
+@given(st.integers(0, 2**32 - 1), st.floats(0.0, 3.1))
+def test_slerp_turns_at_a_constant_rate_from_one_orientation_to_the_other(seed, angle):
+    from coatsim.robot.sampling import _slerp
+
+    rng = np.random.default_rng(seed)
+    axis = rng.normal(size=3)
+    axis /= np.linalg.norm(axis)
+    quat, turn = np.empty(4), np.empty(9)
+    mujoco.mju_axisAngle2Quat(quat, axis, angle)
+    mujoco.mju_quat2Mat(turn, quat)
+    mujoco.mju_axisAngle2Quat(quat, rng.normal(size=3) / 2.0, 1.0)
+    r0 = np.empty(9)
+    mujoco.mju_quat2Mat(r0, quat / np.linalg.norm(quat))
+    r0 = r0.reshape(3, 3)
+    r1 = r0 @ turn.reshape(3, 3)
+    f = np.linspace(0.0, 1.0, 5)
+    out = _slerp(r0, r1, f)
+    np.testing.assert_allclose(out[0], r0, atol=1e-12)
+    np.testing.assert_allclose(out[-1], r1, atol=1e-9)
+    np.testing.assert_allclose(out @ np.swapaxes(out, 1, 2), np.broadcast_to(np.eye(3), (5, 3, 3)), atol=1e-12)
+    steps = rotation_vectors(out[1:], out[:-1])
+    np.testing.assert_allclose(np.linalg.norm(steps, axis=1), angle / 4.0, atol=1e-9)
