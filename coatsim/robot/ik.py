@@ -20,7 +20,7 @@ import numpy as np
 
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, MM, M_TO_MM, Cell
-from coatsim.robot.ik_batch import continuity_ok, refine
+from coatsim.robot.ik_batch import continuity_ok, first_order, refine
 from coatsim.robot.kinematics import Chain
 
 POS_TOL_MM = 0.05
@@ -31,7 +31,7 @@ _MAX_TRACK_ITERS = 8   # ... or this many QP steps per sample
 _MAX_POSE_ITERS = 400  # for isolated targets (joint-move end points)
 _PREDICTOR_POINTS = 2  # linear extrapolation of the previous solutions
 KNOT_MM = 20.0         # spacing of the samples mink solves where the path is smooth
-_MIN_KNOT_SAMPLES = 8  # on shorter pieces solving every sample costs less
+_MIN_KNOT_SAMPLES = 8  # shorter pieces start from the first-order prediction, without knots
 _MAX_NEWTON_ITERS = 6  # batched Newton steps on the samples between the knots ...
 _POLISH_MM = 1e-6      # ... until this close
 _POLISH_DEG = 1e-6
@@ -120,15 +120,16 @@ class Tracker:
         joint velocity limit into a per-step bound (a joint move that would need more is a
         singularity symptom and shows up as a residual).
 
-        On pieces of 8 samples or more, where the arm's kinematics are available vectorised,
-        mink solves only knots about
-        ``KNOT_MM`` apart; the samples between start from a cubic through the knot solutions and
-        batched Newton steps bring every sample to 10^-6 mm / 10^-6 deg. The result is kept when
-        every sample converged, stays inside the joint limits and within one speed-bounded QP
-        step of the per-sample prediction; otherwise every sample is solved as above.
+        Where the arm's kinematics are available vectorised, mink solves only knots about
+        ``KNOT_MM`` apart (none on pieces under 8 samples, which start from the first-order
+        prediction at ``q_start``); the samples between start from a cubic through the knot
+        solutions, and batched Newton steps bring every sample to 10^-6 mm / 10^-6 deg. The
+        result is kept when every sample converged, stays inside the joint limits and within one
+        speed-bounded QP step of the per-sample prediction; otherwise every sample is solved as
+        above.
         """
-        if self.chain is not None and len(s_mm) >= _MIN_KNOT_SAMPLES:
-            fast = self._track_knots(q_start, s_mm, positions_mm, rotations, step_time)
+        if self.chain is not None and len(s_mm) >= 2:
+            fast = self._track_fast(q_start, s_mm, positions_mm, rotations, step_time)
             if fast is not None:
                 return fast
         return self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, label, range(len(s_mm)))
@@ -170,17 +171,23 @@ class Tracker:
             wrist[k] = cfg.data.site_xpos[cell.wrist_site] * M_TO_MM
         return qs, wrist, Residual(worst[0], worst[1], int(worst[2]))
 
-    def _track_knots(self, q_start, s_mm, positions_mm, rotations, step_time) -> tuple | None:
-        """Knots with mink, the samples between by batched Newton; None where that is not the
-        path the per-sample tracker would follow."""
+    def _track_fast(self, q_start, s_mm, positions_mm, rotations, step_time) -> tuple | None:
+        """Knots with mink (or the first-order prediction on a short piece), every sample
+        polished by batched Newton; None where that is not the path the per-sample tracker
+        would follow."""
         cell, chain = self.cell, self.chain
-        knots = _knots(s_mm, KNOT_MM)
-        solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots, strict=False)
-        if solved is None:
-            return None
-        q_knots, _, knot_residual = solved
-        guess = _interpolate(s_mm[knots], q_knots, s_mm)
-        guess[knots] = q_knots
+        if len(s_mm) >= _MIN_KNOT_SAMPLES:
+            knots = _knots(s_mm, KNOT_MM)
+            solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots,
+                                         strict=False)
+            if solved is None:
+                return None
+            q_knots, _, knot_residual = solved
+            guess = _interpolate(s_mm[knots], q_knots, s_mm)
+            guess[knots] = q_knots
+            qp_iterations = knot_residual.iterations
+        else:
+            guess, qp_iterations = first_order(chain, np.asarray(q_start, float), positions_mm, rotations), 0
         # every sample, the knots too, polished well below the QP's convergence: a joint path
         # without residual noise between neighbouring samples
         q, dp, dr, wrist = refine(chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS,
@@ -190,7 +197,7 @@ class Tracker:
                 or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \
                 or not continuity_ok(s_mm, q, step_time, cell.v_max):
             return None
-        return q, wrist, Residual(float(dp.max()), float(dr.max()), knot_residual.iterations)
+        return q, wrist, Residual(float(dp.max()), float(dr.max()), qp_iterations)
 
 
 def _knots(s_mm: np.ndarray, spacing_mm: float) -> np.ndarray:

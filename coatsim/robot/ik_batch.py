@@ -37,6 +37,14 @@ def pose_errors(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray) ->
     return dp, np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
 
 
+def first_order(chain: Chain, q0: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Configurations (N, 6) predicted for the targets from q0 (6,) by the Jacobian at q0."""
+    poses = chain.poses(q0[None])
+    jac = poses.jacobian()[0]
+    e = np.hstack((p_mm * MM - poses.tcp, rotation_vectors(r, np.broadcast_to(poses.rotation, r.shape))))
+    return q0 + np.linalg.solve(jac @ jac.T + _DAMPING * np.eye(6), e.T).T @ jac
+
+
 def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converged_mm: float, converged_deg: float,
            max_iters: int, site: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """Newton steps on every configuration of ``q`` (N, 6) until its TCP is within

@@ -169,3 +169,19 @@ def test_slerp_turns_at_a_constant_rate_from_one_orientation_to_the_other(seed, 
     np.testing.assert_allclose(out @ np.swapaxes(out, 1, 2), np.broadcast_to(np.eye(3), (5, 3, 3)), atol=1e-12)
     steps = rotation_vectors(out[1:], out[:-1])
     np.testing.assert_allclose(np.linalg.norm(steps, axis=1), angle / 4.0, atol=1e-9)
+
+
+@HYP
+@given(configurations(away_from_wrist_singularity=True), st.integers(0, 2**32 - 1))
+def test_first_order_prediction_errs_by_the_square_of_the_step(q0, seed):
+    from coatsim.robot.ik_batch import first_order
+
+    poses = CHAIN.poses(q0[None])
+    assume(np.linalg.cond(poses.jacobian()[0]) < 200.0)
+    direction = np.random.default_rng(seed).uniform(-1.0, 1.0, 6)
+    errors = []
+    for h in (1e-3, 2e-3):
+        target = CHAIN.poses((q0 + h * direction)[None])
+        guess = first_order(CHAIN, q0, target.tcp * M_TO_MM, target.rotation)
+        errors.append(np.abs(guess[0] - (q0 + h * direction)).max())
+    assert errors[0] < 1e-4 and errors[1] / max(errors[0], 1e-15) == pytest.approx(4.0, rel=0.2)
