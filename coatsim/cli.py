@@ -17,8 +17,24 @@ app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
     pretty_exceptions_enable=False,
+    rich_markup_mode=None,  # help texts are plain: "[default: ...]" must not be read as markup
     help="coatsim: curves -> tangent-continuous arc/line robot programs -> simulated arm -> coating.",
 )
+
+
+def _version(value: bool) -> None:
+    if value:
+        from coatsim import __version__
+
+        typer.echo(f"coatsim {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _main(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
+) -> None:
+    """coatsim: curves -> tangent-continuous arc/line robot programs -> simulated arm -> coating."""
 
 
 def fail(message: str, code: int = 2) -> None:
@@ -37,6 +53,7 @@ def segment(
     theta_tol: Optional[float] = typer.Option(None, "--theta-tol", help="paper method: fixed RDP tolerance on θ instead of searching for tol."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
+    timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
 ) -> None:
     """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
@@ -54,6 +71,8 @@ def segment(
     for path in (output, plot):
         if path is not None:
             typer.echo(f"wrote {path}")
+    if timings:
+        typer.echo(f"timings: fitter {seg.seconds:.3f} s", err=True)
 
 
 @app.command()
@@ -61,9 +80,11 @@ def run(
     scenario: Path = typer.Argument(..., help="scenario YAML file (see `coatsim schema`)"),
     outdir: Optional[Path] = typer.Option(None, "-o", "--outdir", help="output folder [default: runs/NAME]"),
     fast: bool = typer.Option(False, "--fast", help="the scenario's coarser mesh and path sampling (for CI)"),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF replacing the scenario's robot.model [default: the scenario's]."),
+    timings: bool = typer.Option(False, "--timings", help="Print wall times per stage on stderr."),
 ) -> None:
     """Run a scenario: programs, simulated arm, coating, metrics.json and report.html for every
-    variant; exit 1 if a gate fails."""
+    variant; exit 1 if a gate fails, 3 if the simulated arm diverges."""
     import time
 
     from coatsim.errors import GateFailure
@@ -71,13 +92,16 @@ def run(
     from coatsim.report.summary import summary_text
 
     started = time.perf_counter()
-    result = run_scenario(scenario, outdir, fast=fast)
+    result = run_scenario(scenario, outdir, fast=fast, model=model)
     typer.echo(summary_text(result.document))
-    for variant in result.variants:
-        for event in variant.execution.events:
-            typer.echo(f"warning: {variant.name}: {event}")
-    typer.echo(f"wrote {len(result.files)} files to {result.outdir} in {time.perf_counter() - started:.1f} s "
-               f"(report: {result.outdir / 'report.html'})")
+    for warning in result.document["warnings"]:
+        typer.echo(f"warning: {warning['variant']}: {warning['message']}", err=True)
+    typer.echo(f"wrote {len(result.files)} files to {result.outdir} (report: {result.outdir / 'report.html'})")
+    if timings:
+        parts = [f"segmentation {result.segmentation_s:.2f} s"]
+        parts += [f"{v.name} " + ", ".join(f"{k.removesuffix('_s')} {t:.2f} s" for k, t in v.execution.wall.items())
+                  for v in result.variants]
+        typer.echo(f"timings: {'; '.join(parts)}; total {time.perf_counter() - started:.1f} s", err=True)
     failed = [g["label"] for g in result.document["gates"] if not g["passed"]]
     if failed:
         raise GateFailure(f"{len(failed)} gate(s) failed: {'; '.join(failed)}")
@@ -191,12 +215,14 @@ def program(
 @app.command()
 def execute(
     program: Path = typer.Argument(..., help="Kawasaki AS program file."),
-    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF [default: models/coating_cell.xml]."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF [default: the shipped coating_cell.xml]."),
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
+    timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
 ) -> None:
-    """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics."""
+    """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
+    if it cannot be executed or the simulated arm diverges."""
     from coatsim.robot.execute import execute_program
 
     result, files = execute_program(program, model, output, gun, step)
@@ -207,20 +233,30 @@ def execute(
                f"{m.max_path_error_mm:.3f} rms {m.rms_path_error_mm:.3f} mm; joint speed/accel "
                f"{m.max_joint_speed_ratio:.2f}/{m.max_joint_accel_ratio:.2f} of limits")
     for event in result.events:
-        typer.echo(f"warning: {event}")
+        typer.echo(f"warning: {event}", err=True)
     typer.echo(f"wrote {', '.join(str(f) for f in files)}")
+    if timings:
+        typer.echo("timings: " + ", ".join(f"{k.removesuffix('_s')} {t:.2f} s" for k, t in result.wall.items()), err=True)
 
 
 @app.command("check-program")
 def check_program(
     path: Path = typer.Argument(..., help="Kawasaki AS program file."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF whose gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
 ) -> None:
-    """Parse and interpret an AS program; report steps, poses, path length and problems."""
+    """Parse and interpret an AS program; report steps, poses, path length and problems; exit 2
+    if the gun never opens."""
+    from coatsim.errors import InputError
     from coatsim.program.check import check_program as check
     from coatsim.program.run import check_summary
+    from coatsim.robot.cell import load_cell
 
-    typer.echo(check_summary(check(path, gun_signal=gun)))
+    cell = load_cell(model)
+    result = check(path, gun_signal=gun, gun_tcp=(cell.gun_rotation, cell.gun_offset_mm))
+    typer.echo(check_summary(result))
+    if result.errors:
+        raise InputError(result.errors[0])
 
 
 def _click_errors() -> tuple[type, ...]:

@@ -29,6 +29,7 @@ from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
+from coatsim.robot.tooling import gun_tool
 from coatsim.scenario import Scenario, ScenarioFile, as_dict, check_gate_metrics, load_scenario
 from coatsim.spray.coat import CoatingResult, coat
 from coatsim.spray.deposition import SprayModel
@@ -61,6 +62,7 @@ class RunResult:
     document: dict
     files: tuple[Path, ...]
     failures: Mapping[str, str] = field(default_factory=dict)
+    segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
 
     @property
     def passed(self) -> bool:
@@ -127,8 +129,15 @@ def spray_model(loaded: ScenarioFile) -> SprayModel:
         raise InputError(f"{loaded.where('gun')}: gun: {exc}") from None
 
 
-def load_arm(loaded: ScenarioFile) -> Cell:
-    """The robot cell: the project's default arm or the scenario's MJCF file."""
+def load_arm(loaded: ScenarioFile, override: Optional[str | Path] = None) -> Cell:
+    """The robot cell: ``override`` (a model file, relative to the working folder) if given,
+    else the scenario's ``robot.model`` (the shipped cell for ``default``, otherwise an MJCF
+    file relative to the scenario)."""
+    if override is not None:
+        try:
+            return load_cell(override)
+        except InputError as exc:
+            raise InputError(f"--model: {exc}") from None
     model = loaded.spec.robot.model
     try:
         return load_cell(None if model == "default" else loaded.resolve(model))
@@ -177,7 +186,7 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     spec, out = job.loaded.spec, job.outdir
     poly, points = job.segmentation.polysegment, job.segmentation.curve.points
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, name=spec.name)
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=spec.name)
     program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                             source=f"scenario:{spec.name}", points=points)
     program_path = out / f"{name}.as"
@@ -190,7 +199,8 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                   spacing=job.spacing_mm)
-    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um)
+    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um, 0.0,
+                        float(result.thickness_um.max()), result.deposit.exposure_s)  # as `coatsim coat` writes it
     groups = {
         "segmentation": segmentation_group(
             points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
@@ -202,19 +212,22 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None, *, keep_going: bool = False, report: bool = True) -> RunResult:
+                 progress: Optional[bool] = None, model: Optional[str | Path] = None, *, keep_going: bool = False,
+                 report: bool = True) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
     ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
-    settings; ``progress`` defaults to showing a bar when stderr is a terminal. With
-    ``keep_going`` a variant that cannot run is recorded in ``failures`` (and in the metrics
-    document's ``failed``, which then does not pass; gates on it are left out) while the others
-    run. ``report=False`` skips report.html (so does a run where no variant ran).
+    settings; ``progress`` defaults to showing a bar when stderr is a terminal; ``model``
+    replaces the scenario's robot model. With ``keep_going`` a variant that cannot run is
+    recorded in ``failures`` (and in the metrics document's ``failed``, which then does not
+    pass; gates on it are left out) while the others run. ``report=False`` skips report.html
+    (so does a run where no variant ran).
     """
     from coatsim.report.document import write_report
 
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
+    cell = load_arm(loaded, model)
     spec = loaded.spec
     out = Path(outdir) if outdir is not None else Path("runs") / spec.name
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
@@ -232,7 +245,6 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
-        cell = load_arm(loaded)
         job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
         runs, failures = [], {}
@@ -248,7 +260,8 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates([g for g in spec.gates if {g.variant, g.compare_to or g.variant} <= set(variants)],
                                variants)
-        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full")
+        warnings = [{"variant": r.name, "message": event} for r in runs for event in r.execution.events]
+        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
         if failures:
             document.update(failed=failures, passed=False)
         write_text(out / "metrics.json", to_json(document))
@@ -258,4 +271,4 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     for r in runs:
         files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
     files += [out / "metrics.json"] + ([out / "report.html"] if report and runs else [])
-    return RunResult(out, tuple(runs), document, tuple(files), failures)
+    return RunResult(out, tuple(runs), document, tuple(files), failures, segmentation.seconds)

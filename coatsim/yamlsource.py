@@ -38,14 +38,34 @@ _Loader.yaml_implicit_resolvers = {
 _Loader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT, list("-+0123456789."))
 
 
+def _key_name(node: yaml.Node, where: str) -> str:
+    """A mapping key as written. A plain key that YAML reads as something other than text
+    (YAML 1.1 reads on, off, yes, no, true and false as booleans, ~ as null, 12 as a
+    number) is an error at its own line, with the fix: quote it."""
+    if not isinstance(node, yaml.ScalarNode):
+        kind = "list" if isinstance(node, yaml.SequenceNode) else "mapping"
+        raise InputError(f"{where}: a key must be a plain name, not a {kind}")
+    if node.tag == "tag:yaml.org,2002:str":
+        return node.value
+    value = _Loader("").construct_object(node)
+    if isinstance(value, bool):
+        what = f"the boolean {str(value).lower()} (YAML 1.1 reads on, off, yes, no as booleans)"
+    elif value is None:
+        what = "null"
+    else:
+        what = f"the number {value!r}"
+    raise InputError(f"{where}: key {node.value!r} is read by YAML as {what}, not as a name; "
+                     f"quote it: '{node.value}':")
+
+
 def _record_lines(node: yaml.Node, loc: Loc, lines: dict[Loc, int], path: Path) -> None:
     """Fill ``lines`` with the 1-based line of every key path below ``node``; reject
     duplicate keys, which YAML would otherwise resolve silently to the last one."""
     if isinstance(node, yaml.MappingNode):
         seen: dict[Any, int] = {}
         for key_node, value_node in node.value:
-            key = key_node.value if isinstance(key_node, yaml.ScalarNode) else str(key_node.value)
             line = key_node.start_mark.line + 1
+            key = _key_name(key_node, f"{path}:{line}")
             if key in seen:
                 raise InputError(f"{path}:{line}: duplicate key {key!r} (first given on line {seen[key]})")
             seen[key] = line

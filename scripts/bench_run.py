@@ -1,12 +1,13 @@
 """Benchmark of `coatsim run`: every shipped scenario, its comparison table and wall time.
 
 Usage: python scripts/bench_run.py [--fast] [--outdir runs/bench] [SCENARIO.yaml ...]
-Prints figures only; never asserts.
+Prints figures only; never asserts. Exits non-zero when a scenario file is missing or a run fails.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
@@ -28,6 +29,9 @@ def main() -> None:
     parser.add_argument("--outdir", type=Path, default=ROOT / "runs" / "bench")
     args = parser.parse_args()
     files = args.scenarios or sorted((ROOT / "scenarios").glob("*.yaml"))
+    missing = [str(p) for p in files if not p.is_file()]
+    if missing or not files:
+        sys.exit(f"bench_run: scenario file(s) not found: {', '.join(missing) or 'scenarios/*.yaml'}")
     totals = []
     for path in files:
         started = time.perf_counter()
@@ -46,6 +50,8 @@ def main() -> None:
     for name, wall, verdict in totals:
         print(f"{name:<18} {wall:>9.1f}  {verdict}")
     print(f"{'total':<18} {sum(w for _, w, _ in totals):>9.1f}")
+    if any(verdict.startswith("error") for _, _, verdict in totals):
+        sys.exit(1)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,7 @@
-"""Benchmark of the geometry stage: segment the five bench curves with the paper's method and
-the default fitter, next to the reference counts of ../shared/bench/README.md.
+"""Benchmark of the geometry stage: segment the five benchmark curves with the paper's method and
+the default fitter, next to the reference counts (coatsim.geometry.benchmark: the curves are
+generated from their formulas; ``--curves DIR`` reads NAME.csv files instead and exits non-zero
+when one is missing).
 
 For every curve and σ in SIGMAS, per method: segments (arcs, lines), the deviation reported
 by segment_curve, an independent check of it by dense sampling of both curves (KD-tree,
@@ -7,15 +9,14 @@ step σ/20, within step/2 of the true value), the largest tangent break at a jun
 not a listed corner, and the wall time. Then the time to segment 100 000-point curves at
 σ = 0.05 mm. Prints only; never asserts.
 
-    python scripts/bench_segment.py [--no-paper] [--sigmas 0.05,0.5]
+    python scripts/bench_segment.py [--no-paper] [--sigmas 0.05,0.5] [--curves DIR]
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import os
-import re
+import sys
 import time
 from pathlib import Path
 
@@ -24,27 +25,11 @@ from scipy.spatial import cKDTree
 
 from coatsim.errors import CoatsimError
 from coatsim.geometry import load_curve, segment_curve
+from coatsim.geometry.benchmark import NAMES, TOLERANCES_MM, bench_curve, reference_count
 
-BENCH = Path(os.environ.get("COATSIM_BENCH_DIR", Path(__file__).resolve().parents[2] / "shared" / "bench"))
-NAMES = ("spiral", "ellipse", "naca0012", "roundrect", "sine")
-SIGMAS = (0.01, 0.05, 0.1, 0.5)
+SIGMAS = TOLERANCES_MM
 LARGE = ("builtin:paper-spiral:points=100000", "builtin:ellipse:points=100000")
 LARGE_SIGMA = 0.05
-
-
-def reference_counts() -> dict[str, dict[str, dict[float, int]]]:
-    """{"greedy" | "paper": {curve: {σ: segments}}} from the bench README's table."""
-    out: dict[str, dict[str, dict[float, int]]] = {"greedy": {}, "paper": {}}
-    readme = BENCH / "README.md"
-    if not readme.is_file():
-        return out
-    for line in readme.read_text(encoding="utf-8").splitlines():
-        m = re.match(r"^\|\s*(\w+), (greedy free-arc fitter|the paper's method literally)[^|]*\|(.*)$", line)
-        if m:
-            cells = [c.strip() for c in m.group(3).split("|")][:4]
-            kind = "greedy" if m.group(2).startswith("greedy") else "paper"
-            out[kind][m.group(1)] = {s: int(c) for s, c in zip(SIGMAS, cells) if c.isdigit()}
-    return out
 
 
 def dense(points: np.ndarray, step: float) -> np.ndarray:
@@ -98,9 +83,12 @@ def max_break_deg(poly) -> float:
     return math.degrees(worst)
 
 
-def row(name: str, sigma: float, method: str, curve, refs) -> str:
-    greedy = refs["greedy"].get(name, {}).get(sigma, "")
-    literal = refs["paper"].get(name, {}).get(sigma, "")
+def reference(kind: str, name: str, sigma: float) -> int | str:
+    return (reference_count(kind, name, sigma) or "") if sigma in TOLERANCES_MM else ""
+
+
+def row(name: str, sigma: float, method: str, curve) -> str:
+    greedy, literal = reference("greedy", name, sigma), reference("paper", name, sigma)
     head = f"{name:10} {sigma:6g} {method:8}"
     tail = f"{greedy!s:>7} {literal!s:>7}"
     t0 = time.perf_counter()
@@ -122,25 +110,28 @@ def main() -> None:
     parser.add_argument("--no-paper", action="store_true", help="skip the paper's method")
     parser.add_argument("--sigmas", default=",".join(map(str, SIGMAS)), help="comma-separated tolerances, mm")
     parser.add_argument("--no-large", action="store_true", help="skip the 100 000-point timings")
+    parser.add_argument("--curves", type=Path, help="read the benchmark curves from DIR/NAME.csv")
     args = parser.parse_args()
     sigmas = tuple(float(s) for s in args.sigmas.split(","))
     methods = ("optimal",) if args.no_paper else ("paper", "optimal")
-    refs = reference_counts()
-    print(f"bench curves: {BENCH / 'curves'}")
+    curves = {}
+    for name in NAMES:
+        if args.curves is None:
+            curves[name] = bench_curve(name)
+            continue
+        path = args.curves / f"{name}.csv"
+        if not path.is_file():
+            sys.exit(f"bench_segment: benchmark curve {path} not found")
+        curves[name] = load_curve(str(path))
+    print(f"bench curves: {args.curves or 'generated from their formulas (coatsim.geometry.benchmark)'}")
     print("dev = reported by segment_curve; check = dense-sampling Hausdorff (step sigma/20; '!' above 1.025 sigma);")
-    print("break = largest tangent break at a non-corner junction; refs = greedy free-arc / paper literally "
-          "(bench README)")
+    print("break = largest tangent break at a non-corner junction; refs = greedy free-arc / paper literally")
     print(f"{'curve':10} {'sigma':>6} {'method':8} {'segs':>5} {'arcs':>5} {'lines':>5} {'dev mm':>10} "
           f"{'check mm':>10}   {'break deg':>9} {'seconds':>8} {'greedy':>7} {'paper':>7}")
-    for name in NAMES:
-        path = BENCH / "curves" / f"{name}.csv"
-        if not path.is_file():
-            print(f"{name:10} missing: {path}")
-            continue
-        curve = load_curve(str(path))
+    for name, curve in curves.items():
         for sigma in sigmas:
             for method in methods:
-                print(row(name, sigma, method, curve, refs), flush=True)
+                print(row(name, sigma, method, curve), flush=True)
     if args.no_large:
         return
     print(f"\nlarge inputs at sigma = {LARGE_SIGMA} mm (default method)")

@@ -2,7 +2,8 @@
 
 1. Speed: a 1 m straight LMOVE at 200 mm/s (5 s of robot time) through IK, timing, playback
    and logging, best of 3 (interpreter start-up and imports excluded).
-2. The paper's spiral (shared bench curve, sigma = 0.1 mm, 200 mm/s) as a polysegment program,
+2. The paper's spiral (the benchmark curve of coatsim.geometry.benchmark, or a curve file given with
+   --curve, which must exist; sigma = 0.1 mm, 200 mm/s) as a polysegment program,
    an exact-stop polyline program and a blended polyline program (ACCURACY 1 mm), each written
    as AS text, parsed back and executed.
 Usage: python scripts/bench_twin.py [--curve PATH] [--tol MM] [--speed MM_S]
@@ -11,6 +12,7 @@ Usage: python scripts/bench_twin.py [--curve PATH] [--tol MM] [--speed MM_S]
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -26,7 +28,6 @@ from coatsim.robot.cell import load_cell  # noqa: E402
 from coatsim.robot.execute import execute  # noqa: E402
 
 DOWN = np.diag([-1.0, 1.0, -1.0])
-SPIRAL = Path(__file__).resolve().parents[2] / "shared" / "bench" / "curves" / "spiral.csv"
 
 
 def straight_metre(speed: float) -> ToolPath:
@@ -62,17 +63,21 @@ def bench_speed(cell, speed: float) -> None:
           f"/ {m.max_ik_residual_deg:.2e} deg; path error max {m.max_path_error_mm:.4f} mm")
 
 
-def bench_spiral(cell, curve: Path, tol: float, speed: float) -> None:
+def bench_spiral(cell, curve: Path | None, tol: float, speed: float) -> None:
+    from coatsim.geometry.benchmark import bench_points
     from coatsim.program import read_toolpath
     from coatsim.program.build import ProgramOptions
     from coatsim.program.run import run_program
 
-    print(f"\nspiral {curve.name}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
+    print(f"\nspiral {curve.name if curve else 'benchmark spiral'}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
           f"{cell.tool_accel_mm_s2 / 1000:g} m/s^2")
     header = ("variant", "moves", "cycle_s", "ideal_s", "min_v", "cv", "at_speed", "feasible", "stops",
               "max_err", "rms_err", "jacc", "wall_s")
     print(" ".join(f"{h:>10}" for h in header))
     with tempfile.TemporaryDirectory() as tmp:
+        if curve is None:
+            curve = Path(tmp) / "spiral.csv"
+            np.savetxt(curve, bench_points("spiral"), delimiter=",", fmt="%.9f")
         for variant in ("polysegment", "polyline-stop", "polyline-blend"):
             path = Path(tmp) / f"{variant}.as"
             options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=1.0)
@@ -92,10 +97,12 @@ def bench_spiral(cell, curve: Path, tol: float, speed: float) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--curve", type=Path, default=SPIRAL)
+    parser.add_argument("--curve", type=Path, help="curve file [default: the benchmark spiral]")
     parser.add_argument("--tol", type=float, default=0.1)
     parser.add_argument("--speed", type=float, default=200.0)
     args = parser.parse_args()
+    if args.curve is not None and not args.curve.is_file():
+        sys.exit(f"bench_twin: curve file {args.curve} not found")
     cell = load_cell()
     bench_speed(cell, args.speed)
     bench_spiral(cell, args.curve, args.tol, args.speed)

@@ -7,12 +7,20 @@ from pathlib import Path
 from typing import Callable
 
 import pytest
+from hypothesis import settings
 
 from coatsim.runtime import single_threaded_numerics
 
 single_threaded_numerics()  # as the console entry point does, before numerical libraries load
 
 from coatsim import cli  # noqa: E402
+
+# Property tests are reproducible by default (and in CI): derandomised, no example database, so a
+# run never replays a failure found by an earlier one. `--hypothesis-profile=explore` searches
+# with fresh random examples (and remembers failures) when hunting for bugs.
+settings.register_profile("ci", derandomize=True, database=None, print_blob=True)
+settings.register_profile("explore", derandomize=False, print_blob=True)
+settings.load_profile("ci")
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 

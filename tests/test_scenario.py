@@ -128,7 +128,42 @@ def test_any_unknown_key_is_named_with_its_line(tmp_path: Path, section: str, ke
         return
     text = BASE + "#\n" * padding + f"{section}:\n  {key}: 1\n"
     message = load_error(tmp_path, text)
-    assert message.startswith(f"{tmp_path / 'job.yaml'}:{8 + padding + 1}: {section}.{key}: unknown key"), message
+    where = f"{tmp_path / 'job.yaml'}:{8 + padding + 1}: "
+    if not isinstance(next(iter(yaml.safe_load(f"{key}: 1"))), str):
+        assert message.startswith(f"{where}key {key!r} is read by YAML as"), message  # on, no, null, ...
+    else:
+        assert message.startswith(f"{where}{section}.{key}: unknown key"), message
+
+
+YAML11_KEYS = ["on", "off", "yes", "no", "true", "false", "On", "OFF", "Yes", "NO", "True", "FALSE"]
+
+
+@pytest.mark.parametrize("key", YAML11_KEYS)
+@pytest.mark.parametrize("where", ["top", "nested", "flow", "list"])
+def test_keys_yaml_reads_as_booleans_are_named_at_their_line(tmp_path: Path, key: str, where: str) -> None:
+    snippet, line = {
+        "top": (f"{key}: 1\n", 8),
+        "nested": (f"gun:\n  standoff_mm: 90\n  {key}: 2\n", 10),
+        "flow": (f"motion: {{speed_mm_s: 100, {key}: 3}}\n", 8),
+        "list": (f"gates:\n  - metric: motion.stops\n    op: '=='\n    threshold: 0\n  - op: '<'\n    {key}: 1\n", 13),
+    }[where]
+    message = load_error(tmp_path, BASE + snippet)
+    value = str(next(iter(yaml.safe_load(f"{key}: 1")))).lower()
+    assert message.startswith(f"{tmp_path / 'job.yaml'}:{line}: key {key!r} is read by YAML as the boolean {value}"), message
+    assert f"quote it: '{key}':" in message
+
+
+@pytest.mark.parametrize("key, what", [("~", "null"), ("null", "null"), ("12", "the number 12"), ("1.5", "the number 1.5")])
+def test_keys_yaml_reads_as_null_or_numbers_are_named_at_their_line(tmp_path: Path, key: str, what: str) -> None:
+    message = load_error(tmp_path, BASE + f"coating:\n  {key}: 1\n")
+    assert message.startswith(f"{tmp_path / 'job.yaml'}:9: key {key!r} is read by YAML as {what}, not as a name"), message
+
+
+def test_quoted_yaml11_words_are_ordinary_keys(tmp_path: Path) -> None:
+    message = load_error(tmp_path, BASE + "gun:\n  'on': 1\n")
+    assert message.startswith(f"{tmp_path / 'job.yaml'}:9: gun.on: unknown key"), message
+    spec = load_scenario(write(tmp_path, BASE + "gun:\n  follow_tangent: yes\n")).spec
+    assert spec.gun.follow_tangent is True  # YAML 1.1 boolean values stay as they are
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])

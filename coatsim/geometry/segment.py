@@ -23,7 +23,9 @@ METHODS = ("optimal", "paper")
 
 @dataclass(frozen=True, eq=False)
 class Segmentation:
-    """A fitted polysegment with its verified deviation and provenance."""
+    """A fitted polysegment with its verified deviation and provenance; ``seconds`` is the
+    fitter's wall time (reported on request, never written to a file: outputs depend on the
+    inputs alone)."""
 
     curve: Curve
     polysegment: Polysegment
@@ -36,7 +38,7 @@ class Segmentation:
     theta_tolerance: float | None = None
 
     def summary(self) -> str:
-        """One screen of text: counts, verified deviation, tangency, time."""
+        """One screen of text: counts, verified deviation, tangency."""
         st = self.stats()
         lines = [
             f"{self.curve.name}: {st['input_points']} points, length {self.curve.length:.3f} mm, "
@@ -47,7 +49,6 @@ class Segmentation:
             f"corners {len(self.polysegment.corners)}",
             f"max deviation {st['max_deviation_mm']:.6f} mm (exact two-sided Hausdorff), "
             f"max tangent break {st['max_tangent_break_deg']:.3g} deg",
-            f"time {st['seconds']:.3f} s",
         ]
         return "\n".join(lines)
 
@@ -60,7 +61,6 @@ class Segmentation:
             "max_deviation_mm": self.max_deviation_mm,
             "max_tangent_break_deg": math.degrees(poly.max_tangent_break()),
             "input_points": len(self.curve.points),
-            "seconds": self.seconds,
         }
 
 

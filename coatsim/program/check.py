@@ -1,7 +1,8 @@
 """``coatsim check-program``: parse and interpret an AS file and report what it does.
 
 A program that does not parse, or moves to a pose it never defines, raises InputError
-(exit 2). Anything legal but suspicious is listed in ``problems``.
+(exit 2). Anything legal but suspicious is listed in ``problems``; the ones that make the
+program useless for coating (the gun never opens) are also in ``errors``.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from coatsim.program.arcs import circle_through, move_length
 from coatsim.program.as_parser import parse_as_bytes
 from coatsim.program.as_writer import MAX_NAME_LENGTH
 from coatsim.program.interpreter import interpret
+from coatsim.program.tool_frames import tool_mismatches
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove
 from coatsim.program import read_program_bytes
 
@@ -36,6 +38,7 @@ class ProgramCheck:
     spray_length_mm: float
     metadata: tuple[tuple[str, str], ...]
     problems: tuple[str, ...]
+    errors: tuple[str, ...] = ()
 
 
 def _used_names(expr: ast.PoseExpr) -> set[str]:
@@ -48,8 +51,11 @@ def _used_names(expr: ast.PoseExpr) -> set[str]:
     return set()
 
 
-def check_program(path: str | Path, gun_signal: int = 1) -> ProgramCheck:
-    """Parse, interpret and inspect the first program of an AS file."""
+def check_program(path: str | Path, gun_signal: int = 1,
+                  gun_tcp: tuple[np.ndarray, np.ndarray] | None = None) -> ProgramCheck:
+    """Parse, interpret and inspect the first program of an AS file; ``gun_tcp`` (rotation,
+    offset mm of the physical gun's TCP in the flange frame) makes every TOOL that differs from
+    it a problem."""
     source = str(path)
     file = parse_as_bytes(read_program_bytes(path), source)
     toolpath = interpret(file, gun_signal=gun_signal)
@@ -76,8 +82,13 @@ def check_program(path: str | Path, gun_signal: int = 1) -> ProgramCheck:
             sweep = circle_through(move.start.position, move.via.position, move.end.position).sweep
             if sweep >= math.pi:
                 problems.append(f"{source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE pair below 180 deg")
+    if gun_tcp is not None:
+        for line, text in tool_mismatches(toolpath, *gun_tcp):
+            problems.append(f"{source}:{line}: {text}")
+    errors: list[str] = []
     if not toolpath.spray_moves:
-        problems.append(f"{source}: the gun (output {gun_signal}) is never on during a motion")
+        errors.append(f"{source}: the gun (output {gun_signal}) is never on during a motion")
+        problems.append(errors[-1])
     elif toolpath.moves[-1].spray:
         problems.append(f"{source}: the gun (output {gun_signal}) is still on at the end of the program")
     cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
@@ -93,4 +104,5 @@ def check_program(path: str | Path, gun_signal: int = 1) -> ProgramCheck:
         spray_length_mm=float(np.sum([move_length(m) for m in cartesian if m.spray])) if cartesian else 0.0,
         metadata=tuple(toolpath.metadata.items()),
         problems=tuple(problems),
+        errors=tuple(errors),
     )

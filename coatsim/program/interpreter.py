@@ -19,8 +19,12 @@ reference; the parts marked there as unconfirmed are modelled as stated here):
   starts; after a BREAK it switches when motion k has ended, i.e. as motion k+1 starts. A
   move's ``spray`` is the gun state from its start to its end. Other outputs, TWAIT, ACCEL and
   DECEL do not change the path and are not represented.
-- ``TOOL`` is reported as metadata ``tool`` = "x,y,z,o,a,t"; it may not change once the robot
-  has moved. ``; coatsim: key=value`` comments become ToolPath metadata.
+- ``TOOL`` (at any point) sets the controller's TCP in the flange frame for the motions after
+  it (``MotionSettings.tool``; the robot stage puts the flange where that TCP reaches the
+  programmed poses, wherever the physical gun is). A TOOL after motion ends that motion at rest
+  (like BREAK) and re-expresses the current pose with the new TCP, the flange staying put
+  (when the previous TOOL is known). The last TOOL is also metadata ``tool`` = "x,y,z,o,a,t".
+  ``; coatsim: key=value`` comments become ToolPath metadata.
 """
 
 from __future__ import annotations
@@ -34,7 +38,8 @@ from coatsim.errors import InputError
 from coatsim.program import as_ast as ast
 from coatsim.program.arcs import DegenerateArc, circle_through
 from coatsim.program.oat import matrix_to_oat, oat_to_matrix
-from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, Move, Pose, ToolPath
+from coatsim.program.toolpath import (CircularMove, JointMove, LinearMove, MotionSettings, Move, Pose, ToolFrame,
+                                      ToolPath)
 
 # What SPEED 100 (percent) means in mm/s; the controller's true maximum is robot-specific.
 FULL_SPEED_MM_S = 1000.0
@@ -59,6 +64,10 @@ class _Frame:
 _IDENTITY = _Frame(np.eye(3), np.zeros(3))
 
 
+def _inverse(f: _Frame) -> _Frame:
+    return _Frame(f.r.T, -(f.r.T @ f.p))
+
+
 @dataclass
 class _Pending:
     """A motion issued but not yet final (its stop and spray may still change)."""
@@ -73,6 +82,7 @@ class _Pending:
     stop: bool
     spray: bool
     line: int
+    tool: Optional[ToolFrame]
 
 
 class _Machine:
@@ -82,7 +92,7 @@ class _Machine:
         self.file, self.program, self.gun, self.full_speed = file, program, gun, full_speed
         self.base = _IDENTITY
         self.points: dict[str, _Frame] = {}
-        self.tool: Optional[str] = None
+        self.tool: Optional[ToolFrame] = None
         self.speed_always, self.speed_once = DEFAULT_SPEED, None
         self.acc_always, self.acc_once = DEFAULT_ACCURACY_MM, None
         self.fine_always, self.fine_once = False, False
@@ -141,7 +151,7 @@ class _Machine:
         self.moves.append(_Pending(
             kind, self.current, end, via, self.speed_once or self.speed_always,
             self.acc_always if self.acc_once is None else self.acc_once,
-            self.cp, (not self.cp) or fine, False, line,
+            self.cp, (not self.cp) or fine, False, line, self.tool,
         ))
         self.moves[-1].spray = self.gun_on
         self.speed_once, self.acc_once, self.fine_once = None, None, False
@@ -242,10 +252,15 @@ class _Machine:
                     if self.moves and not self.break_since_move:
                         self.moves[-1].spray = self.gun_on
         elif isinstance(st, ast.Tool):
-            if self.moves:
-                raise self.error(st.line, "TOOL changes after the robot has moved are not supported; set TOOL before the first motion")
             f = self.frame(st.pose, st.line)
-            self.tool = ",".join(f"{v:.6g}" for v in (*f.p, *matrix_to_oat(f.r)))
+            if self.moves:
+                self.stop_previous()
+            if self.current is not None and self.tool is not None:
+                # the flange stays where it is; the pose now names the new TCP
+                old = _Frame(self.tool.rotation, self.tool.offset_mm)
+                flange = _Frame(self.current.rotation, self.current.position) * _inverse(old)
+                self.current = (flange * f).pose()
+            self.tool = ToolFrame(f.r.copy(), f.p.copy(), st.line)
         elif isinstance(st, ast.Base):
             self.base = self.frame(st.pose, st.line)
         elif isinstance(st, ast.Point):
@@ -274,7 +289,7 @@ class _Machine:
             self.moves[-1].stop = True
         moves: list[Move] = []
         for m in self.moves:
-            settings = MotionSettings(self.speed_mm_s(m), m.accuracy, m.cp, m.stop)
+            settings = MotionSettings(self.speed_mm_s(m), m.accuracy, m.cp, m.stop, m.tool)
             if m.kind == "joint":
                 moves.append(JointMove(m.start, m.end, settings, m.spray, m.line))
             elif m.kind == "line":
@@ -283,7 +298,7 @@ class _Machine:
                 moves.append(CircularMove(m.start, m.via, m.end, settings, m.spray, m.line))
         metadata = dict(self.program.metadata)
         if self.tool is not None:
-            metadata["tool"] = self.tool
+            metadata["tool"] = ",".join(f"{v:.6g}" for v in (*self.tool.offset_mm, *matrix_to_oat(self.tool.rotation)))
         return ToolPath(self.program.name, tuple(moves), metadata)
 
 

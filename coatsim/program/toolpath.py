@@ -21,19 +21,32 @@ class Pose:
     rotation: np.ndarray
 
 
+@dataclass(frozen=True, eq=False)
+class ToolFrame:
+    """A TOOL in force: the controller's TCP in the flange frame, ``rotation`` (3, 3) and
+    ``offset_mm`` (3,), set by the TOOL statement on source ``line``."""
+
+    rotation: np.ndarray
+    offset_mm: np.ndarray
+    line: int
+
+
 @dataclass(frozen=True)
 class MotionSettings:
     """Controller settings in force for one motion.
 
     ``stop_at_end``: the controller brings the tool to rest at the end of this motion
     (CP OFF, ACCURACY ... FINE, or a BREAK before the next step); otherwise it blends into
-    the next motion within ``accuracy_mm``.
+    the next motion within ``accuracy_mm``. ``tool``: the TOOL the controller computes this
+    motion's poses with; None when the program sets none (the controller's own, which the
+    twin takes to be the cell's gun).
     """
 
     speed_mm_s: float
     accuracy_mm: float
     cp: bool
     stop_at_end: bool
+    tool: ToolFrame | None = None
 
 
 @dataclass(frozen=True, eq=False)

@@ -42,8 +42,8 @@ METRICS: dict[str, MetricInfo] = {
     "motion.stops": MetricInfo("count", "times the tool comes to rest on the curve proper (speed < 5 % of the programmed speed)"),
     "motion.max_path_error_mm": MetricInfo("mm", "largest distance from the simulated tool centre point to the programmed path over the curve proper"),
     "motion.rms_path_error_mm": MetricInfo("mm", "root-mean-square of that distance"),
-    "motion.max_joint_speed_ratio": MetricInfo("1", "largest joint speed over its limit (<= 1 within limits)"),
-    "motion.max_joint_accel_ratio": MetricInfo("1", "largest joint acceleration over its limit (<= 1 within limits)"),
+    "motion.max_joint_speed_ratio": MetricInfo("1", "largest joint speed of the simulated arm over its limit (<= 1 within limits)"),
+    "motion.max_joint_accel_ratio": MetricInfo("1", "largest joint acceleration of the simulated arm over its limit (<= 1 within limits)"),
     "motion.max_ik_residual_mm": MetricInfo("mm", "largest inverse-kinematics position residual over the path samples"),
     "motion.max_ik_residual_deg": MetricInfo("deg", "largest inverse-kinematics orientation residual over the path samples"),
     # coating: thickness on the region of interest (the coated band, edges excluded)

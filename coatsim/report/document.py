@@ -1,7 +1,7 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
 Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
-profiles, thickness maps, cross-section, all metrics with ratios, gates.
+profiles, thickness maps, cross-section, warnings, all metrics with ratios, gates.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ SECTION_TITLES = {
     "speed": "Tool speed",
     "thickness": "Coating thickness",
     "section": "Thickness cross-section",
+    "warnings": "Warnings",
     "metrics": "All metrics",
     "gates": "Gates",
 }
@@ -69,7 +70,6 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
         ("variants", ", ".join(spec.variants)),
         ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
     ]
-    rows += [(f"arm warnings ({r.name})", "; ".join(r.execution.events)) for r in runs if r.execution.events]
     if seg is not None:
         rows.insert(4, ("polysegment", f"{seg['n_lines']} lines + {seg['n_arcs']} arcs, deviation "
                                        f"{seg['max_deviation_mm']:.4g} mm"))
@@ -125,11 +125,21 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
         Section("section", SECTION_TITLES["section"], figures=(Figure(
             "Thickness cross-section", profile_png(cuts, title=f"section {where}"),
             f"Thickness along the dashed line of the maps, {where}, every variant."),)),
+        Section("warnings", SECTION_TITLES["warnings"], warnings_list(document["warnings"])),
         Section("metrics", SECTION_TITLES["metrics"],
                 metrics_table(document["variants"], baseline)
                 + '<p class="muted">Hover a metric name for its meaning; units and meanings are in the README.</p>'),
         Section("gates", SECTION_TITLES["gates"], gates_table(document["gates"]) + _overall(document["passed"])),
     ]
+
+
+def warnings_list(warnings: Sequence[Mapping[str, str]]) -> str:
+    """The run's warnings (metrics.json ``warnings``), one item each, naming variant and program line."""
+    if not warnings:
+        return '<p class="muted">No warnings: TOOL as the cell\'s gun, joints within their limits and away from '\
+               "singularities, the simulated tool on its commanded path.</p>"
+    items = "".join(f"<li><b>{esc(w['variant'])}</b>: {esc(w['message'])}</li>" for w in warnings)
+    return f"<ul>{items}</ul>"
 
 
 def _overall(passed: bool) -> str:

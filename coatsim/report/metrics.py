@@ -1,8 +1,10 @@
 """metrics.json: the one file every figure of a run comes from.
 
 ``{"format": "coatsim.metrics/1", "mode": "full" | "fast", "scenario": {...}, "variants": {V: {"segmentation": {...},
-"motion": {...}, "coating": {...}}}, "gates": [...], "passed": bool}``; the metric names are
-those of :mod:`coatsim.report.catalogue`, values are plain numbers (null where undefined).
+"motion": {...}, "coating": {...}}}, "warnings": [{"variant": V, "message": ...}], "gates": [...], "passed": bool}``;
+the metric names are those of :mod:`coatsim.report.catalogue`, values are plain numbers (null where undefined);
+``warnings`` lists what the simulated run warned about (TOOL mismatch, joint-limit approach, singularity,
+small tracking or joint-limit excesses), each naming its program line.
 """
 
 from __future__ import annotations
@@ -80,9 +82,10 @@ def assemble(
     variants: Mapping[str, Mapping[str, Mapping[str, Any]]],
     gates: Sequence[GateResult],
     mode: str = "full",
+    warnings: Sequence[Mapping[str, str]] = (),
 ) -> dict[str, Any]:
     """The metrics document; groups are ordered as in the catalogue; ``mode`` says whether
-    the run used the scenario's full or fast settings."""
+    the run used the scenario's full or fast settings; ``warnings`` are ``{"variant", "message"}``."""
     ordered = {}
     for variant, groups in variants.items():
         check_groups(variant, groups)
@@ -93,6 +96,7 @@ def assemble(
         "mode": mode,
         "scenario": plain(scenario),
         "variants": ordered,
+        "warnings": [{"variant": str(w["variant"]), "message": str(w["message"])} for w in warnings],
         "gates": gate_rows,
         "passed": all(g.passed for g in gates),
     }

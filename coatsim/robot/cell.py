@@ -7,6 +7,7 @@ robot modules hand in or out of the model goes through ``MM`` / ``M_TO_MM``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from importlib.resources import as_file, files
 from pathlib import Path
 
 import mujoco
@@ -17,10 +18,14 @@ from coatsim.errors import InputError
 MM = 1e-3  # metres per millimetre
 M_TO_MM = 1e3
 
-DEFAULT_MODEL = Path(__file__).resolve().parents[2] / "models" / "coating_cell.xml"
+# The shipped models are package data (the repository's top-level models/ links to this folder).
+MODELS = files("coatsim") / "models"
+DEFAULT_MODEL_NAME = "coating_cell.xml"
+DEFAULT_MODEL = MODELS / DEFAULT_MODEL_NAME
 JOINTS = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
 TCP_SITE = "tcp"
 WRIST_SITE = "wrist_centre"
+FLANGE_SITE = "flange"
 
 
 @dataclass(frozen=True, eq=False)
@@ -28,7 +33,10 @@ class Cell:
     """A loaded cell model with everything the robot stage needs to know about the arm.
 
     Joint arrays are (6,) in joint order; limits in rad, rad/s, rad/s^2; the tool acceleration
-    limit in mm/s^2; ``home`` is the start configuration of every program (rad).
+    limit in mm/s^2; ``home`` is the start configuration of every program (rad). The physical
+    gun's TCP (the ``tcp`` site) in the flange frame (the ``flange`` site, z out of the flange, as
+    a controller's TOOL frame is given) is ``gun_rotation`` (3, 3) and ``gun_offset_mm`` (3,):
+    what a TOOL statement must say for the controller's TCP to be the gun's.
     """
 
     path: Path
@@ -41,6 +49,8 @@ class Cell:
     home: np.ndarray
     tcp_site: int
     wrist_site: int
+    gun_rotation: np.ndarray
+    gun_offset_mm: np.ndarray
 
     @property
     def timestep(self) -> float:
@@ -65,16 +75,33 @@ def _numeric(model: mujoco.MjModel, name: str, size: int, path: Path) -> np.ndar
 
 
 def load_cell(path: str | Path | None = None) -> Cell:
-    """Load and check a cell model (default: ``models/coating_cell.xml``).
+    """Load and check a cell model (default: the shipped ``coating_cell.xml``, package data).
 
     The model must define joints ``joint1``..``joint6`` (hinge, limited) as its only degrees of
-    freedom, a ``tcp`` and a ``wrist_centre`` site, a ``home`` keyframe, and the custom numerics
+    freedom, ``tcp``, ``flange`` and ``wrist_centre`` sites, a ``home`` keyframe, and the custom numerics
     ``joint_speed_limit``, ``joint_accel_limit`` and ``tool_accel_limit``, site sensors ``tcp_pos``,
     ``tcp_axis``, ``tcp_vel``, and one ``pid`` actuator per joint with inputs "pos vel ff".
     """
-    path = Path(path) if path is not None else DEFAULT_MODEL
+    if path is None:
+        with as_file(MODELS) as folder:
+            return _load(Path(folder) / DEFAULT_MODEL_NAME)
+    path = Path(path)
     if not path.is_file():
-        raise InputError(f"{path}: model file not found (pass --model with an MJCF file)")
+        raise InputError(f"{path}: model file not found (give an MJCF cell model, or leave it out for the shipped one)")
+    return _load(path)
+
+
+def _gun_frame(model: mujoco.MjModel, tcp: int, flange: int) -> tuple[np.ndarray, np.ndarray]:
+    """The tcp site's pose in the flange site's frame (rotation, offset in mm)."""
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    r_flange = data.site_xmat[flange].reshape(3, 3)
+    rotation = r_flange.T @ data.site_xmat[tcp].reshape(3, 3)
+    offset = r_flange.T @ (data.site_xpos[tcp] - data.site_xpos[flange]) * M_TO_MM
+    return rotation, offset
+
+
+def _load(path: Path) -> Cell:
     try:
         model = mujoco.MjModel.from_xml_path(str(path))
     except ValueError as exc:
@@ -89,7 +116,7 @@ def load_cell(path: str | Path | None = None) -> Cell:
         if not model.jnt_limited[jid]:
             raise InputError(f"{path}: joint {name!r} needs a range")
     sites = {}
-    for name in (TCP_SITE, WRIST_SITE):
+    for name in (TCP_SITE, WRIST_SITE, FLANGE_SITE):
         sites[name] = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name)
         if sites[name] < 0:
             raise InputError(f"{path}: model lacks the site {name!r}")
@@ -106,6 +133,7 @@ def load_cell(path: str | Path | None = None) -> Cell:
     home = model.key_qpos[key].copy()
     if np.any(home < q_min) or np.any(home > q_max):
         raise InputError(f"{path}: keyframe 'home' lies outside the joint ranges")
+    gun_rotation, gun_offset = _gun_frame(model, sites[TCP_SITE], sites[FLANGE_SITE])
     return Cell(
         path=path,
         model=model,
@@ -117,4 +145,6 @@ def load_cell(path: str | Path | None = None) -> Cell:
         home=home,
         tcp_site=sites[TCP_SITE],
         wrist_site=sites[WRIST_SITE],
+        gun_rotation=gun_rotation,
+        gun_offset_mm=gun_offset,
     )

@@ -16,12 +16,14 @@ from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
 from coatsim.program.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
+from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
 from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import JointPiece, plan_pieces, step_label
+from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads only when a program is timed
@@ -32,9 +34,10 @@ _WINDOW_MM = 10.0  # progress search window around the commanded point (plus ble
 
 @dataclass(frozen=True, eq=False)
 class Execution:
-    """Result of executing one program: the log, its metrics, the joint-limit and singularity
-    warnings by program step, the largest IK residual, the programmed reference path, the
-    curve-proper progress interval (mm), and wall time per phase (s)."""
+    """Result of executing one program: the log, its metrics, the warnings by program step (TOOL
+    mismatch, joint-limit approach, singularity, small tracking or limit excesses), the largest
+    IK residual, the programmed reference path, the curve-proper progress interval (mm), and
+    wall time per phase (s)."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
@@ -52,6 +55,7 @@ class _Segment:
     timed: TimedPiece
     progress: np.ndarray  # commanded progress (mm) per row
     spray: np.ndarray     # commanded spray flag per row
+    move: np.ndarray      # program move per row (-1: the implicit move from home)
 
 
 def _metadata_mm(toolpath: ToolPath, key: str) -> float:
@@ -82,28 +86,45 @@ def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float,
     return a, b, float(speed)
 
 
+def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
+    """Per move, where the gun sits in the frame of the controller's TCP: (M, 3, 3), (M, 3) mm."""
+    pairs = [mount(m.settings.tool, cell) for m in toolpath.moves]
+    return np.array([r for r, _ in pairs]), np.array([p for _, p in pairs])
+
+
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
-    """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration."""
+    """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration.
+
+    The controller computes every pose with the program's TOOL; the IK puts the cell's gun
+    where that puts it (see :mod:`coatsim.robot.tooling`). After playback the simulated arm is
+    checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
+    ExecutionError when it diverged, warnings for small excesses.
+    """
     from coatsim.robot.timing import time_cartesian, time_joint
 
     cell = cell or load_cell()
     wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
     t_start = time.perf_counter()
+    toolpath = with_tool_changes(toolpath, cell)
     pieces = plan_pieces(toolpath, step_mm)
+    mount_r, mount_p = _mounts(toolpath, cell)
     tracker = Tracker(cell)
     fk = mujoco.MjData(cell.model)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
     chunks: list = []
-    events: list[str] = []
+    events: list[str] = tool_mismatches(toolpath, cell)
     worst = [0.0, 0.0, 0]
     offset = 0.0
     max_blend = 0.0
-    for piece in pieces:
+    for k, piece in enumerate(pieces):
         if isinstance(piece, JointPiece):
             label = step_label(toolpath, piece.move)
+            # the implicit first move goes to the start of the first Cartesian move, with its TOOL
+            tool_move = piece.move if piece.move is not None else int(pieces[k + 1].move[0])
+            p_gun, r_gun = to_gun(piece.target.position, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
             t0 = time.perf_counter()
-            q_goal = tracker.solve_pose(q_now, piece.target.position, piece.target.rotation, label)
+            q_goal = tracker.solve_pose(q_now, p_gun, r_gun, label)
             wall["ik_s"] += time.perf_counter() - t0
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
@@ -115,15 +136,18 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             owner = -1 if piece.move is None else piece.move
             chunks.append((chords, (owner,) * len(chords)))
             along = np.concatenate(([0.0], np.cumsum([c.length for c in chords])))
-            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray)))
+            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray),
+                                     np.full(len(timed.t), owner)))
             offset += float(along[-1])
             q_now = q_goal
             continue
         labels = [step_label(toolpath, int(m)) for m in piece.move]
         step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
+        m = piece.move
+        p_gun = piece.position + np.einsum("nij,nj->ni", piece.rotation, mount_p[m])
+        r_gun = piece.rotation @ mount_r[m]
         t0 = time.perf_counter()
-        qs, wrist, res = tracker.track(q_now, piece.s, piece.position, piece.rotation, step_time,
-                                       lambda i: labels[i])
+        qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
         wall["ik_s"] += time.perf_counter() - t0
         worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
         events.extend(e for e in joint_path_events(cell, qs, wrist, labels) if e not in events)
@@ -131,7 +155,8 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
         timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0])
         wall["timing_s"] += time.perf_counter() - t0
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
-        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx]))
+        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
+                                 piece.move[idx]))
         chunks.append((piece.reference, piece.reference_moves))
         offset += float(sum(p.length for p in piece.reference))
         max_blend = max(max_blend, max(toolpath.moves[m].settings.accuracy_mm for m in piece.reference_moves))
@@ -145,10 +170,15 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     q, qd, qdd = cat("q"), cat("qd"), cat("qdd")
     hint = np.maximum.accumulate(np.concatenate([s.progress[k] for s, k in zip(segments, keep)]))
     spray = np.concatenate([s.spray[k] for s, k in zip(segments, keep)])
+    row_move = np.concatenate([s.move[k] for s, k in zip(segments, keep)])
 
     t0 = time.perf_counter()
     run = play(cell, q, qd, qdd)
     wall["playback_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    events += check_playback(cell, run.t, run.q, run.tcp, q,
+                             lambda i: step_label(toolpath, None if row_move[i] < 0 else int(row_move[i])))
+    wall["checks_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     ref = build_reference(chunks)
     dist, progress, curvature = ref.project(run.tcp, hint, _WINDOW_MM + 2 * max_blend)

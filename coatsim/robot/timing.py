@@ -1,11 +1,12 @@
 """Time-optimal timing of one rest-to-rest piece with toppra.
 
-Constraints: joint speed and acceleration limits of the cell, the programmed tool speed (a
+Constraints: joint speed and acceleration limits of the cell (``PLANNING_FRACTION`` of them), the programmed tool speed (a
 first-order bound on the path speed, not a post-hoc scale) and, on Cartesian pieces, the tool
 acceleration limit applied to the combined tangential and centripetal acceleration. The path is
 a cubic spline through the IK samples, parametrised by the TCP arc length (m); gridpoints are the
 samples; ``ParametrizeConstAccel`` integrates the piecewise-constant path acceleration exactly,
-so the joint limits hold at every instant, not only at gridpoints.
+and where the sampled command still exceeds a joint bound between gridpoints, those intervals are
+refined until it does not.
 """
 
 from __future__ import annotations
@@ -28,6 +29,17 @@ from coatsim.robot.cell import MM, Cell
 logging.getLogger("toppra").setLevel(logging.ERROR)
 
 _FACETS = 8  # the tool-acceleration disc is approximated by an inscribed 16-gon
+# The planner commands at most this fraction of each joint's speed and acceleration limit: the
+# servo's transients at an acceleration step overshoot the commanded acceleration by 1.5 % to 5 %
+# (more on some wrist configurations), and the simulated arm must stay within the limits, not
+# only its command.
+PLANNING_FRACTION = 0.95
+# toppra bounds the joint accelerations at the gridpoints; between them q'(s) sdd + q''(s) sd^2
+# can exceed the bound where q''(s) changes fast (a tool that turns with a path whose curvature
+# jumps). Intervals where the sampled command exceeds the bound are halved and the piece
+# re-timed, at most this many times.
+_MAX_REFINEMENTS = 8
+_EXCESS = 1e-3  # relative excess of the command over the planning bound that triggers refinement
 
 
 @dataclass(frozen=True, eq=False)
@@ -88,8 +100,9 @@ class _ToolAcceleration(tc.LinearConstraint):
 
 def _parametrize(cell: Cell, path, extra: list, gridpoints: np.ndarray, label: str):
     constraints = [
-        tc.JointVelocityConstraint(cell.v_max),
-        tc.JointAccelerationConstraint(cell.a_max, discretization_scheme=tc.DiscretizationType.Interpolation),
+        tc.JointVelocityConstraint(PLANNING_FRACTION * cell.v_max),
+        tc.JointAccelerationConstraint(PLANNING_FRACTION * cell.a_max,
+                                       discretization_scheme=tc.DiscretizationType.Interpolation),
         *extra,
     ]
     algo = toppra.algorithm.TOPPRA(constraints, path, gridpoints=gridpoints, solver_wrapper="seidel",
@@ -118,6 +131,26 @@ def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: f
     return TimedPiece(t=t, q=x[:, :6], qd=xd[:, :6], qdd=xdd[:, :6], s=x[:, 6] * s_scale, sd=xd[:, 6] * s_scale)
 
 
+def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
+    """Rows whose commanded joint speed or acceleration exceeds the planning bound."""
+    limit = PLANNING_FRACTION * (1 + _EXCESS)
+    return np.any(np.abs(piece.qd) > limit * cell.v_max, axis=1) | np.any(np.abs(piece.qdd) > limit * cell.a_max, axis=1)
+
+
+def _timed(cell: Cell, path, path7, extra: list, grid: np.ndarray, s_scale: float, label: str) -> TimedPiece:
+    """Parametrise and sample, halving the grid intervals where the command exceeds a joint bound."""
+    for _ in range(_MAX_REFINEMENTS):
+        grid_out, sd = _parametrize(cell, path, extra, grid, label)
+        piece = _sample(path7, grid_out, sd, cell.timestep, s_scale)
+        bad = _over_bound(cell, piece)
+        if not bad.any():
+            return piece
+        k = np.searchsorted(grid_out, piece.s[bad] / s_scale, side="right") - 1
+        k = np.unique(np.clip(np.concatenate((k - 1, k, k + 1)), 0, len(grid_out) - 2))
+        grid = np.union1d(grid_out, (grid_out[k] + grid_out[k + 1]) / 2)
+    return _sample(path7, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale)
+
+
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
                    curvature_per_mm: np.ndarray, label: str) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
@@ -125,8 +158,7 @@ def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.n
     path = toppra.SplineInterpolator(s, q)
     path7 = toppra.SplineInterpolator(s, np.column_stack((q, s)))
     extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
-    grid, sd = _parametrize(cell, path, extra, s, label)
-    return _sample(path7, grid, sd, cell.timestep, 1.0 / MM)
+    return _timed(cell, path, path7, extra, s, 1.0 / MM, label)
 
 
 def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
@@ -140,5 +172,4 @@ def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, la
     bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
     path = toppra.SplineInterpolator(u, qs)
     path7 = toppra.SplineInterpolator(u, np.column_stack((qs, u)))
-    grid, sd = _parametrize(cell, path, [_PathSpeedBound(u, bound)], u, label)
-    return _sample(path7, grid, sd, cell.timestep, 1.0)
+    return _timed(cell, path, path7, [_PathSpeedBound(u, bound)], u, 1.0, label)

@@ -1,4 +1,4 @@
-"""Shared helpers for the geometry tests: benchmark curves, cached segmentations, independent
+"""Shared helpers for the geometry tests: benchmark curves (coatsim.geometry.benchmark), cached segmentations, independent
 geometric checks (computed here from the primitives, not with coatsim's own helpers) and
 brute-force distances."""
 
@@ -6,46 +6,34 @@ from __future__ import annotations
 
 import functools
 import math
-import os
-import re
-from pathlib import Path
 
 import numpy as np
-import pytest
 from scipy.spatial import cKDTree
 
 from coatsim.geometry import Arc, Polysegment, load_curve, segment_curve
+from coatsim.geometry.benchmark import CURVES, NAMES, REFERENCE_COUNTS, TOLERANCES_MM, bench_curve
 
-# The benchmark lives beside the repository (../shared/bench, see DESIGN.md).
-BENCH = Path(os.environ.get("COATSIM_BENCH_DIR", Path(__file__).resolve().parents[3] / "shared" / "bench"))
-BENCH_NAMES = ("spiral", "ellipse", "naca0012", "roundrect", "sine")
-BENCH_CLOSED = {"spiral": False, "ellipse": True, "naca0012": True, "roundrect": True, "sine": False}
-TOLERANCES = (0.01, 0.05, 0.1, 0.5)
-
-needs_bench = pytest.mark.skipif(not (BENCH / "curves").is_dir(), reason=f"benchmark curves not found in {BENCH}")
+BENCH_NAMES = NAMES
+BENCH_CLOSED = {name: closed for name, (_, closed) in CURVES.items()}
+TOLERANCES = TOLERANCES_MM
 
 
-def bench_path(name: str) -> str:
-    return str(BENCH / "curves" / f"{name}.csv")
+def bench_spec(name: str) -> str:
+    """The curve spec of a benchmark curve (``bench:NAME``, read by ``curve``)."""
+    return f"bench:{name}"
 
 
 def reference_counts() -> dict[str, dict[str, dict[float, int]]]:
-    """Segment counts of the bench README's reference table:
-    ``{"greedy": {curve: {σ: n}}, "paper": {curve: {σ: n}}}``."""
-    text = (BENCH / "README.md").read_text(encoding="utf-8")
-    out: dict[str, dict[str, dict[float, int]]] = {"greedy": {}, "paper": {}}
-    for line in text.splitlines():
-        m = re.match(r"^\|\s*(\w+), (greedy free-arc fitter|the paper's method literally)[^|]*\|(.*)$", line)
-        if not m:
-            continue
-        cells = [c.strip() for c in m.group(3).split("|")][:4]
-        kind = "greedy" if m.group(2).startswith("greedy") else "paper"
-        out[kind][m.group(1)] = {tol: int(c) for tol, c in zip(TOLERANCES, cells)}
-    return out
+    """Reference segment counts: ``{"greedy": {curve: {σ: n}}, "paper": {curve: {σ: n}}}``."""
+    return {kind: {name: dict(zip(TOLERANCES, counts)) for name, counts in table.items()}
+            for kind, table in REFERENCE_COUNTS.items()}
 
 
 @functools.lru_cache(maxsize=None)
 def curve(spec: str, closed: str = "auto"):
+    """A curve spec as ``coatsim segment`` reads it, or ``bench:NAME`` for a benchmark curve."""
+    if spec.startswith("bench:"):
+        return bench_curve(spec.removeprefix("bench:"))
     return load_curve(spec, closed)
 
 

@@ -18,12 +18,11 @@ from geometry_helpers import (
     BENCH_CLOSED,
     BENCH_NAMES,
     arc_defects,
-    bench_path,
+    bench_spec,
     brute_hausdorff,
     curve,
     junction_gaps,
     junction_points,
-    needs_bench,
     reference_counts,
     segmented,
     tangent_breaks,
@@ -82,47 +81,41 @@ def refs():
     return reference_counts()
 
 
-@needs_bench
 @pytest.mark.parametrize("name,tol", BENCH_CASES)
 def test_bench_within_tolerance(name, tol):
-    assert_within_tolerance(segmented(bench_path(name), tol), tol)
+    assert_within_tolerance(segmented(bench_spec(name), tol), tol)
 
 
-@needs_bench
 @pytest.mark.parametrize("name,tol", BENCH_CASES)
 def test_bench_tangent_continuous_chain(name, tol):
-    assert_g1_chain(segmented(bench_path(name), tol).polysegment)
+    assert_g1_chain(segmented(bench_spec(name), tol).polysegment)
 
 
-@needs_bench
 @pytest.mark.parametrize("name,tol", BENCH_CASES)
 def test_bench_closed_curves_close_and_open_curves_keep_their_ends(name, tol):
-    seg = segmented(bench_path(name), tol)
+    seg = segmented(bench_spec(name), tol)
     assert seg.curve.closed is BENCH_CLOSED[name]
     assert_closed_or_open_ends(seg)
 
 
-@needs_bench
 @pytest.mark.parametrize("name,tol", BENCH_CASES)
 def test_bench_segment_count_against_the_greedy_reference(name, tol, refs):
     greedy = refs["greedy"][name][tol]
-    seg = segmented(bench_path(name), tol)
+    seg = segmented(bench_spec(name), tol)
     assert seg.polysegment.n_segments <= 2 * greedy
     st_ = seg.stats()
     assert st_["n_segments"] == seg.polysegment.n_segments == st_["n_arcs"] + st_["n_lines"]
 
 
-@needs_bench
 def test_reference_table_is_complete(refs):
     assert set(refs["greedy"]) == set(BENCH_NAMES)
     assert all(len(v) == 4 for v in refs["greedy"].values())
     assert refs["paper"]["spiral"][0.1] == 69
 
 
-@needs_bench
 @pytest.mark.parametrize("tol", DEFAULT_TOLS)
 def test_naca_lists_its_trailing_edge_corner(tol):
-    seg = segmented(bench_path("naca0012"), tol)
+    seg = segmented(bench_spec("naca0012"), tol)
     poly = seg.polysegment
     te = seg.curve.points[np.argmax(seg.curve.points[:, 0])]
     assert len(poly.corners) == 1
@@ -131,11 +124,10 @@ def test_naca_lists_its_trailing_edge_corner(tol):
     assert dict(tangent_breaks(poly))[k] > math.radians(90)
 
 
-@needs_bench
 @pytest.mark.slow
 @pytest.mark.parametrize("name,tol", [(n, t) for n in BENCH_NAMES for t in SLOW_TOLS])
 def test_bench_at_fine_and_medium_tolerances(name, tol, refs):
-    seg = segmented(bench_path(name), tol)
+    seg = segmented(bench_spec(name), tol)
     assert_within_tolerance(seg, tol)
     assert_g1_chain(seg.polysegment)
     assert seg.polysegment.n_segments <= 2 * refs["greedy"][name][tol]
@@ -144,7 +136,7 @@ def test_bench_at_fine_and_medium_tolerances(name, tol, refs):
 
 # ---------------------------------------------------------------- exact shapes
 
-ROUNDRECT_SPECS = [pytest.param(bench_path("roundrect"), id="bench-roundrect", marks=needs_bench),
+ROUNDRECT_SPECS = [pytest.param(bench_spec("roundrect"), id="bench-roundrect"),
                    pytest.param("builtin:rounded-rectangle", id="builtin")]
 
 
@@ -211,7 +203,7 @@ def test_raster_is_its_exact_primitives(tol):
 
 
 @pytest.mark.parametrize(
-    "spec", ["builtin:rounded-rectangle", bench_path("roundrect"), "builtin:d-shape", "builtin:raster", "builtin:polygon"])
+    "spec", ["builtin:rounded-rectangle", bench_spec("roundrect"), "builtin:d-shape", "builtin:raster", "builtin:polygon"])
 def test_exact_shapes_share_end_points_and_keep_the_input_ends(spec):
     """Regression: exact recovery once left the rounded rectangle's seam open by 3e-10 mm, a
     3e-14 mm gap at the d-shape's corner and the raster's end 3e-12 mm off the input's."""

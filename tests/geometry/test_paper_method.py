@@ -22,11 +22,10 @@ from coatsim.geometry.theta import (
 )
 
 from geometry_helpers import (
-    bench_path,
+    bench_spec,
     brute_hausdorff,
     curve,
     junction_points,
-    needs_bench,
     point_at,
     segmented,
     tangent_breaks,
@@ -167,12 +166,11 @@ def test_paper_polysegment_open_curve_maps_onto_the_end_points(name):
     np.testing.assert_allclose(junction_points(out)[1:-1], junction_points(poly)[1:-1], atol=2e-3 * poly.length)
 
 
-@needs_bench
 def test_paper_method_meets_the_tolerance_on_the_spiral_with_more_segments():
     tol = 0.5
-    paper = segmented(bench_path("spiral"), tol, "paper")
-    best = segmented(bench_path("spiral"), tol)
-    pts = curve(bench_path("spiral")).points
+    paper = segmented(bench_spec("spiral"), tol, "paper")
+    best = segmented(bench_spec("spiral"), tol)
+    pts = curve(bench_spec("spiral")).points
     poly = paper.polysegment
     assert paper.method == "paper"
     assert paper.max_deviation_mm <= tol
@@ -212,10 +210,9 @@ def test_paper_method_closes_a_closed_curve(theta_tolerance):
         assert seg.max_deviation_mm <= 0.5
 
 
-@needs_bench
 def test_paper_method_closed_chain_is_tangent_at_fine_tolerance():
     """Closing the paper chain must not bend junctions that are not listed as corners."""
-    c = curve(bench_path("ellipse"))
+    c = curve(bench_spec("ellipse"))
     poly = segment_curve(c, 0.01, method="paper", theta_tolerance=2.4202696943778445e-05).polysegment
     assert poly.closed and poly.end == poly.start
     bent = [(k, math.degrees(t)) for k, t in tangent_breaks(poly) if t > 1e-9 and k not in poly.corners]

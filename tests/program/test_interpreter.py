@@ -170,7 +170,6 @@ SEMANTIC_ERRORS = [
     ("  SPEED 0 MM/S\n", 2, "SPEED must be > 0"),
     ("  ACCURACY -1\n", 2, "ACCURACY must be >= 0"),
     ("  TWAIT -1\n", 2, "time must be >= 0"),
-    ("  JMOVE a\n  TOOL NULL\n", 3, "TOOL changes"),
 ]
 
 

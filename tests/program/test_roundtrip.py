@@ -6,14 +6,14 @@ Positions within 1e-4 mm and tangents within 1e-6 rad, piece by piece, for both 
 from __future__ import annotations
 
 import math
-import os
-from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from coatsim.geometry.benchmark import NAMES as BENCH_NAMES
+from coatsim.geometry.benchmark import bench_curve
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.program import interpret, parse_as
 from coatsim.program.build import VARIANTS, ProgramOptions, build_program
@@ -21,8 +21,6 @@ from coatsim.program.placement import Frame, Placement, centering_offset
 
 from program_helpers import arc_spiral, path_errors, roundrect
 
-# The benchmark curves live beside the repository (../shared/bench, see the design notes).
-BENCH = Path(os.environ.get("COATSIM_BENCH_DIR", Path(__file__).resolve().parents[3] / "shared" / "bench")) / "curves"
 POSITION_MM, TANGENT_RAD, ROTATION_RAD = 1e-4, 1e-6, 1e-6
 
 
@@ -84,13 +82,11 @@ def test_random_g1_chains(pieces, heading):
     assert_same_path(round_trip(poly, "polysegment")[2])
 
 
-@pytest.mark.parametrize("name", ["ellipse", "naca0012", "roundrect", "sine", "spiral"])
+@pytest.mark.parametrize("name", BENCH_NAMES)
 @pytest.mark.parametrize("variant", ["polyline-stop", "polyline-blend"])
 def test_benchmark_curves_polyline_variants(name, variant):
     """The polyline variants simplify the input points directly (no fitter needed)."""
-    from coatsim.geometry import load_curve
-
-    curve = load_curve(str(BENCH / f"{name}.csv"))
+    curve = bench_curve(name)
     # A stand-in polysegment only fixes closedness and centring here: the polyline comes from the points.
     anchor = Polysegment(chain(tuple(curve.points[0]), 0.0, [0.0], [1.0]), closed=curve.closed)
     built, _, errors = round_trip(anchor, variant, points=curve.points)
@@ -99,13 +95,13 @@ def test_benchmark_curves_polyline_variants(name, variant):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["ellipse", "naca0012", "roundrect", "sine", "spiral"])
+@pytest.mark.parametrize("name", BENCH_NAMES)
 @pytest.mark.parametrize("tol", [0.01, 0.1])
 def test_benchmark_curves_segmented(name, tol):
     """Every benchmark curve through the fitter, then both program variants."""
-    from coatsim.geometry import load_curve, segment_curve
+    from coatsim.geometry import segment_curve
 
-    curve = load_curve(str(BENCH / f"{name}.csv"))
+    curve = bench_curve(name)
     poly = segment_curve(curve, tol).polysegment
     placement = Placement(offset_xy=centering_offset(poly))
     for variant in VARIANTS:

@@ -35,7 +35,8 @@ def _groups(value: float) -> dict:
 
 def test_assemble_orders_groups_and_replaces_nan_by_null() -> None:
     doc = assemble({"name": "x"}, {"polysegment": _groups(float("nan")), "polyline-stop": _groups(np.float64(2.0))}, [])
-    assert list(doc) == ["format", "mode", "scenario", "variants", "gates", "passed"]
+    assert list(doc) == ["format", "mode", "scenario", "variants", "warnings", "gates", "passed"]
+    assert doc["warnings"] == []
     assert doc["variants"]["polysegment"]["coating"]["thickness_cv"] is None
     assert type(doc["variants"]["polyline-stop"]["motion"]["speed_cv"]) is float
     assert json.loads(to_json(doc)) == doc

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from coatsim.errors import InputError
-from coatsim.robot.cell import DEFAULT_MODEL, load_cell
+from coatsim.robot.cell import DEFAULT_MODEL, MODELS, load_cell
 
 
 def test_default_cell_limits_and_home():
@@ -38,7 +38,7 @@ def test_missing_model_is_input_error(tmp_path):
 def test_model_without_limits_is_input_error(tmp_path):
     text = DEFAULT_MODEL.read_text().replace('name="joint_accel_limit"', 'name="other"')
     for name in ("rs013n_arm.xml", "plasma_gun.xml"):
-        (tmp_path / name).write_text((DEFAULT_MODEL.parent / name).read_text())
+        (tmp_path / name).write_text((MODELS / name).read_text())
     (tmp_path / "cell.xml").write_text(text)
     with pytest.raises(InputError, match="joint_accel_limit"):
         load_cell(tmp_path / "cell.xml")
