@@ -3,8 +3,8 @@
 Without an address a ``LocalCluster`` of worker processes (one thread each, one per core by
 default) runs on this machine; with ``tcp://host:port`` the points go to that scheduler's
 workers, wherever they run (started by hand with ``dask scheduler`` / ``dask worker``, or by
-dask-jobqueue on SLURM/PBS, dask-kubernetes on Kubernetes). Input files are scattered once and
-shared by the points that read them. A worker that dies is replaced and its point rescheduled by
+dask-jobqueue on SLURM/PBS, dask-kubernetes on Kubernetes). Each input file travels once, as a
+task of its own that the points reading it depend on. A worker that dies is replaced and its point rescheduled by
 Dask (``distributed.scheduler.allowed-failures`` times); a point that still cannot finish comes
 back as a failed outcome, never as an exception.
 """
@@ -34,12 +34,16 @@ def default_workers() -> int:
 def dask_client(scheduler: Optional[str], workers: Optional[int], n_tasks: int) -> Iterator:
     """A connected ``distributed.Client``: to ``scheduler``, or to a LocalCluster of
     ``workers`` processes (at most one per task) shut down on exit."""
+    import dask
     from distributed import Client, LocalCluster
 
     if scheduler is None:
         n = max(1, min(workers or default_workers(), n_tasks))
-        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                          silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+        # one point per worker thread at a time (not Dask's default 1.1, which queues a second
+        # one): a worker that dies then takes down, and counts against, only the point it ran
+        with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}), \
+                LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                             silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
             yield client
         return
     try:
@@ -77,14 +81,16 @@ def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_out
     arrives."""
     from distributed import as_completed
 
-    scattered: dict[Path, object] = {}
+    shared: dict[Path, object] = {}
     futures = {}
     for task, files in tasks:
         inputs = {}
         for name, path in files.items():
-            if path not in scattered:
-                scattered[path] = client.scatter(path.read_bytes(), hash=True)
-            inputs[name] = scattered[path]
+            if path not in shared:
+                # a task that returns the bytes, not scattered data: if the worker holding them
+                # dies, the scheduler recomputes them from the task instead of losing the point
+                shared[path] = client.submit(file_bytes, path.read_bytes(), key=f"coatsim-input-{name}", pure=False)
+            inputs[name] = shared[path]
         future = client.submit(run_point, task, inputs, key=f"coatsim-point-{task.point}-{task.key[:16]}", pure=False)
         futures[future] = task
     with _progress(len(futures), progress) as advance:
@@ -97,6 +103,11 @@ def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_out
             future.release()
             on_outcome(outcome)
             advance(outcome)
+
+
+def file_bytes(data: bytes) -> bytes:
+    """An input file's bytes, as a task of their own (shared by the points that read the file)."""
+    return data
 
 
 def _lost(exc: Exception) -> str:

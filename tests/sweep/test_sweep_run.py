@@ -3,6 +3,7 @@ results from a LocalCluster and from a scheduler with workers started by the tes
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import json
 import os
@@ -11,6 +12,7 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 
 import pyarrow.parquet as pq
@@ -160,14 +162,14 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.fixture
-def scheduler_with_worker(tmp_path):
+@contextlib.contextmanager
+def dask_processes(folder, worker_args=(), scheduler_env=None):
     """A real `dask scheduler` and one `dask worker` process on 127.0.0.1 (stopped afterwards)."""
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
-    env = dict(os.environ, DASK_DISTRIBUTED__WORKER__DAEMON="False")
+    env = dict(os.environ, DASK_DISTRIBUTED__WORKER__DAEMON="False", **(scheduler_env or {}))
     dask = [sys.executable, "-m", "dask"]  # the `dask` command of this interpreter
-    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, cwd=tmp_path, start_new_session=True)
+    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, cwd=folder, start_new_session=True)
     procs = [subprocess.Popen([*dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
                               **quiet)]
     try:
@@ -181,7 +183,7 @@ def scheduler_with_worker(tmp_path):
                     raise RuntimeError("dask scheduler did not start")
                 time.sleep(0.2)
         procs.append(subprocess.Popen([*dask, "worker", address, "--nworkers", "1", "--nthreads", "1",
-                                       "--no-dashboard"], **quiet))
+                                       "--no-dashboard", *worker_args], **quiet))
         from distributed import Client
 
         with Client(address, timeout="60s") as client:
@@ -193,9 +195,63 @@ def scheduler_with_worker(tmp_path):
             proc.wait(timeout=20)
 
 
+@pytest.fixture
+def scheduler_with_worker(tmp_path):
+    with dask_processes(tmp_path) as address:
+        yield address
+
+
 def test_scheduler_gives_the_same_results_as_the_local_cluster(swept, scheduler_with_worker, tmp_path):
     path, local = swept
     remote = run_sweep(path, tmp_path / "remote", scheduler=scheduler_with_worker, progress=False)
     assert len(remote.ran) == 5
     assert remote.table == local.table
     assert (tmp_path / "remote" / "results.parquet").read_bytes() == (local.outdir / "results.parquet").read_bytes()
+
+
+HOG = """\
+base: scenario/base.yaml
+fast: true
+grid:
+  fast.coating_spacing_mm: [4.0, 3.0, 0.15]   # 0.15 mm on a 300 mm plate: 4 M vertices
+  workpiece.size_mm: [[300.0, 300.0]]
+"""
+
+
+@pytest.mark.slow
+def test_a_killed_worker_is_retried_and_a_point_that_kills_every_worker_fails(tmp_path):
+    """A worker killed under a running point: Dask reruns it and it finishes. A point that needs
+    more memory than a worker has: its workers die until Dask gives up; a failed row, the other
+    points done, and a rerun tries it again."""
+    from distributed import Client
+
+    path = write_case(tmp_path, HOG)
+    hog_id = next(p.id for p in expand(load_sweep(path))[1] if p.axes["fast.coating_spacing_mm"] == 0.15)
+    with dask_processes(tmp_path, ("--memory-limit", "700MB"),
+                        {"DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "1",
+                         "DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION": "1.0"}) as address, \
+            Client(address, timeout="60s") as spy:
+        done = {}
+        runner = threading.Thread(target=lambda: done.update(
+            result=run_sweep(path, tmp_path / "out", scheduler=address, progress=False)))
+        runner.start()
+        killed = False
+        deadline = time.monotonic() + 120
+        while runner.is_alive() and not killed and time.monotonic() < deadline:
+            busy = [w for w, keys in spy.processing().items()
+                    if any("coatsim-point-" in str(k) and hog_id not in str(k) for k in keys)]
+            if busy:
+                pid = spy.run(os.getpid, workers=busy[:1])[busy[0]]
+                os.kill(pid, signal.SIGKILL)
+                killed = True
+            time.sleep(0.05)
+        runner.join(timeout=600)
+    assert killed
+    result = done["result"]
+    rows = rows_of(result)
+    hog = [r for r in rows if r["fast.coating_spacing_mm"] == 0.15]
+    assert {r["status"] for r in hog} == {"failed"}
+    assert all("died 2 times" in r["error"] for r in hog)
+    assert {r["status"] for r in rows if r not in hog} == {"ok"}, [r["error"] for r in rows if r not in hog]
+    record = json.loads((tmp_path / "out" / "points" / hog[0]["point"] / "point.json").read_text())
+    assert record["reusable"] is False
