@@ -255,3 +255,32 @@ def test_a_killed_worker_is_retried_and_a_point_that_kills_every_worker_fails(tm
     assert {r["status"] for r in rows if r not in hog} == {"ok"}, [r["error"] for r in rows if r not in hog]
     record = json.loads((tmp_path / "out" / "points" / hog[0]["point"] / "point.json").read_text())
     assert record["reusable"] is False
+
+
+def test_a_points_scenario_reproduces_its_metrics_with_coatsim_run(swept, tmp_path, run_cli):
+    _, result = swept
+    point = result.points[0]
+    folder = result.outdir / "points" / point.id
+    code, _, _ = run_cli(["run", str(folder / "scenario.yaml"), "--fast", "-o", str(tmp_path / "again")])
+    assert code == 0
+    mine = json.loads((tmp_path / "again" / "metrics.json").read_text())
+    theirs = json.loads((folder / "metrics.json").read_text())
+    assert mine["variants"] == theirs["variants"] and mine["gates"] == theirs["gates"]
+
+
+@pytest.mark.slow
+def test_keep_outputs_keeps_every_output_and_reruns_points_stored_without(tmp_path):
+    path = write_case(tmp_path, "base: scenario/base.yaml\nfast: true\npoints:\n  - {motion.speed_mm_s: 180}\n")
+    out = tmp_path / "out"
+    first = run_sweep(path, out, workers=1, progress=False)
+    folder = out / "points" / first.points[0].id
+    assert sorted(p.name for p in folder.iterdir()) == ["metrics.json", "point.json", "scenario.yaml"]
+    kept = run_sweep(path, out, workers=1, progress=False, keep_outputs=True)
+    assert kept.ran == (first.points[0].id,)
+    names = {p.name for p in folder.iterdir()}
+    for variant in ("polysegment", "polyline-blend"):
+        assert {f"{variant}.as", f"{variant}.trajectory.csv", f"{variant}.thickness.ply"} <= names
+    assert {"report.html", "polysegment.json", "metrics.json", "point.json", "scenario.yaml"} <= names
+    assert run_sweep(path, out, workers=1, progress=False).ran == ()
+    assert run_sweep(path, out, workers=1, progress=False, keep_outputs=True).ran == ()
+    assert kept.table == first.table
