@@ -14,11 +14,12 @@ from __future__ import annotations
 import logging
 import os
 import sys
+import threading
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional, Sequence
 
-from coatsim.errors import InputError
+from coatsim.errors import ExecutionError, InputError
 from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point
 
 
@@ -30,30 +31,58 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-@contextmanager
-def dask_client(scheduler: Optional[str], workers: Optional[int], n_tasks: int) -> Iterator:
-    """A connected ``distributed.Client``: to ``scheduler``, or to a LocalCluster of
-    ``workers`` processes (at most one per task) shut down on exit."""
-    import dask
-    from distributed import Client, LocalCluster
+class DaskSession:
+    """A connected ``distributed.Client`` (``with DaskSession(...) as client``): to ``scheduler``,
+    or to a LocalCluster of ``workers`` processes (at most one per task). Leaving the block
+    closes the client; a local cluster then shuts down in the background (its workers take
+    seconds to stop) until ``wait_closed``."""
 
-    if scheduler is None:
-        n = max(1, min(workers or default_workers(), n_tasks))
-        # one point per worker thread at a time (not Dask's default 1.1, which queues a second
-        # one): a worker that dies then takes down, and counts against, only the point it ran
-        with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}), \
-                LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                             silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
-            yield client
-        return
-    try:
-        client = Client(scheduler, timeout="20s")
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise InputError(f"--scheduler {scheduler}: cannot connect ({one_line(str(exc)) or type(exc).__name__}); "
-                         "start one with `dask scheduler` and `dask worker ADDRESS`") from None
-    with client:
-        _check_workers(client, scheduler)
-        yield client
+    def __init__(self, scheduler: Optional[str], workers: Optional[int], n_tasks: int):
+        self.scheduler, self.n_workers = scheduler, max(1, min(workers or default_workers(), n_tasks))
+        self._cluster = self._client = self._closing = None
+
+    def __enter__(self):
+        import dask
+        from distributed import Client, LocalCluster
+
+        if self.scheduler is None:
+            # one point per worker thread at a time (not Dask's default 1.1, which queues a
+            # second one): a worker that dies then takes down, and counts against, only its point
+            with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
+                try:
+                    self._cluster = LocalCluster(n_workers=self.n_workers, threads_per_worker=1, processes=True,
+                                                 dashboard_address=None, silence_logs=logging.CRITICAL)
+                except (RuntimeError, OSError) as exc:
+                    raise ExecutionError(f"cannot start a local Dask cluster of {self.n_workers} worker(s): "
+                                         f"{one_line(str(exc))}; start one with `dask scheduler` / `dask worker` "
+                                         "and pass --scheduler") from None
+            self._client = Client(self._cluster)
+            return self._client
+        try:
+            self._client = Client(self.scheduler, timeout="20s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"--scheduler {self.scheduler}: cannot connect ({one_line(str(exc)) or type(exc).__name__}); "
+                             "start one with `dask scheduler` and `dask worker ADDRESS`") from None
+        try:
+            _check_workers(self._client, self.scheduler)
+        except BaseException:
+            self._client.close()
+            raise
+        return self._client
+
+    def __exit__(self, kind, value, trace) -> None:
+        self._client.close()
+        if self._cluster is None:
+            return
+        if kind is not None:  # interrupted or failed: stop now
+            self._cluster.close()
+            return
+        self._closing = threading.Thread(target=self._cluster.close, name="coatsim-cluster-close")
+        self._closing.start()
+
+    def wait_closed(self) -> None:
+        if self._closing is not None:
+            self._closing.join()
 
 
 def _check_workers(client, scheduler: str) -> None:
