@@ -59,7 +59,7 @@ class DaskSession:
             self._client = Client(self._cluster)
             return self._client
         try:
-            self._client = Client(self.scheduler, timeout="20s")
+            self._client = Client(self.scheduler)  # waits distributed.comm.timeouts.connect (30 s)
         except (OSError, TimeoutError, ValueError) as exc:
             raise InputError(f"--scheduler {self.scheduler}: cannot connect ({one_line(str(exc)) or type(exc).__name__}); "
                              "start one with `dask scheduler` and `dask worker ADDRESS`") from None

@@ -15,6 +15,7 @@ import sys
 import threading
 import time
 
+import dask
 import pyarrow.parquet as pq
 import pytest
 
@@ -284,3 +285,22 @@ def test_keep_outputs_keeps_every_output_and_reruns_points_stored_without(tmp_pa
     assert run_sweep(path, out, workers=1, progress=False).ran == ()
     assert run_sweep(path, out, workers=1, progress=False, keep_outputs=True).ran == ()
     assert kept.table == first.table
+
+
+def test_cli_metric_choice_and_option_errors(swept, run_cli, tmp_path):
+    path, first = swept
+    code, out, _ = run_cli(["sweep", str(path), "-o", str(first.outdir), "--metric", "motion.stops",
+                            "--metric", "coating.coverage_fraction"])
+    assert code == 1 and "(0 run, 5 reused)" in out
+    page = (first.outdir / "sweep.html").read_text(encoding="utf-8")
+    assert "motion.stops against every axis" in page and "coating.coverage_fraction against every axis" in page
+    assert "motion.cycle_time_s against every axis" not in page
+    for argv, message in (
+        (["--metric", "motion.stop"], "--metric 'motion.stop': unknown metric"),
+        (["--workers", "0"], "--workers 0: give at least 1"),
+        (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "--workers sizes the local cluster only"),
+        (["--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: cannot connect"),
+    ):
+        with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
+            code, _, err = run_cli(["sweep", str(path), "-o", str(tmp_path / "other"), *argv])
+        assert code == 2 and message in err and len(err.strip().splitlines()) == 1, err
