@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import tempfile
 import time
 from pathlib import Path
@@ -32,24 +31,33 @@ def main() -> None:
     from coatsim.sweep.run import run_sweep
 
     print(f"sweep {args.sweep.name}; {os.cpu_count()} cores")
-    print(f"{'workers':>7} {'points':>6} {'wall_s':>7} {'speedup':>7} {'point_s':>8} {'load_1m':>7}")
+    print(f"{'workers':>7} {'points':>6} {'wall_s':>7} {'speedup':>7} {'point_s':>8} {'pt_cpu_s':>8} {'client_cpu':>10} "
+          f"{'load_1m':>7}")
     first = None
     for n in args.workers:
         best = None
         for _ in range(max(1, args.repeat)):
             with tempfile.TemporaryDirectory() as tmp:
                 load = os.getloadavg()[0]
-                t0 = time.perf_counter()
+                t0, c0 = time.perf_counter(), time.process_time()
                 result = run_sweep(args.sweep, Path(tmp) / "out", workers=n, progress=False)
-                wall = time.perf_counter() - t0
+                wall, client = time.perf_counter() - t0, time.process_time() - c0
             if best is None or wall < best[0]:
-                best = (wall, result, load)
-        wall, result, load = best
+                best = (wall, result, load, client)
+        wall, result, load, client = best
         first = first or wall
-        per_point = sum(o.seconds for o in result.outcomes.values()) / max(1, len(result.ran))
-        print(f"{n:>7} {len(result.ran):>6} {wall:>7.1f} {first / wall:>7.2f} {per_point:>8.2f} {load:>7.2f}", flush=True)
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    print(f"client CPU {usage.ru_utime + usage.ru_stime:.1f} s; load average now {os.getloadavg()[0]:.2f}")
+        ran = [result.outcomes[p] for p in result.ran]
+        point_wall = sum(o.seconds for o in ran) / max(1, len(ran))
+        point_cpu = sum(o.cpu_seconds for o in ran) / max(1, len(ran))
+        print(f"{n:>7} {len(ran):>6} {wall:>7.1f} {first / wall:>7.2f} {point_wall:>8.2f} {point_cpu:>8.2f} {client:>10.2f} "
+              f"{load:>7.2f}", flush=True)
+        if n == 1:
+            # what two free cores would give: the points' CPU split over two workers, the rest serial
+            work = point_cpu * len(ran)
+            serial = wall - point_wall * len(ran)
+            print(f"        with free cores (estimate from CPU time): 1 worker {serial + work:.1f} s, "
+                  f"2 workers {serial + work / 2:.1f} s -> {(serial + work) / (serial + work / 2):.2f}x")
+    print(f"load average now {os.getloadavg()[0]:.2f}")
 
 
 if __name__ == "__main__":

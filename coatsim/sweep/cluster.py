@@ -134,6 +134,21 @@ def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_out
             advance(outcome)
 
 
+def draw_on_workers(client, table, axes: Sequence[str], variants: Sequence[str], metrics: Sequence[str]) -> dict:
+    """The sweep.html figures drawn on the cluster's workers (which have matplotlib loaded
+    already), by metric; those that could not be drawn there are left out."""
+    from coatsim.sweep.html import metric_figure
+
+    futures = {m: client.submit(metric_figure, table, tuple(axes), tuple(variants), m, pure=False) for m in metrics}
+    drawn = {}
+    for metric, future in futures.items():
+        try:
+            drawn[metric] = future.result()
+        except Exception:  # a worker lost: the client draws it
+            pass
+    return drawn
+
+
 def file_bytes(data: bytes) -> bytes:
     """An input file's bytes, as a task of their own (shared by the points that read the file)."""
     return data

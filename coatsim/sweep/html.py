@@ -115,9 +115,10 @@ def _gates_html(gate_failures: Mapping[str, Sequence[str]], labels: Mapping[str,
 
 def render_sweep_html(title: str, summary: Sequence[tuple[str, Any]], table: Table, axes: Sequence[str],
                       variants: Sequence[str], metrics: Sequence[str], labels: Mapping[str, str],
-                      gate_failures: Mapping[str, Sequence[str]]) -> str:
-    """The whole page."""
-    figures = tuple(Figure(f"{m} against every axis", metric_figure(table, axes, variants, m),
+                      gate_failures: Mapping[str, Sequence[str]], pngs: Mapping[str, bytes] | None = None) -> str:
+    """The whole page; ``pngs`` holds the metric figures already drawn (elsewhere), by metric."""
+    drawn = dict(pngs or {})
+    figures = tuple(Figure(f"{m} against every axis", drawn[m] if m in drawn else metric_figure(table, axes, variants, m),
                            f"{METRICS[m].meaning} ({METRICS[m].unit}), from the results table; failed rows are left "
                            "out; one panel per axis, one colour per variant.") for m in metrics)
     sections = [

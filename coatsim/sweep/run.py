@@ -105,6 +105,7 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
 
     base_variants = tuple(load_scenario(sweep.base_path).spec.variants)
     variants_of = {p.id: tuple(p.scenario["variants"]) if p.scenario else base_variants for p in points}
+    variants = list(dict.fromkeys(v for p in points for v in variants_of[p.id]))
     session = None
     with locked_outdir(out):
         write_manifest(out, _manifest(sweep, axes, points))
@@ -131,7 +132,7 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
             task = PointTask(point.id, key, bundled.scenario, sources, fast, keep_outputs, __version__)
             pending.append((task, dict(bundled.files), point, _user_scenario(point.scenario, bundled, base_dir)))
         if pending:
-            from coatsim.sweep.cluster import DaskSession, run_tasks
+            from coatsim.sweep.cluster import DaskSession, draw_on_workers, run_tasks
 
             by_id = {task.point: (point, scenario) for task, _, point, scenario in pending}
 
@@ -143,20 +144,22 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
             session = DaskSession(scheduler, workers, len(pending))
             with session as client:
                 run_tasks(client, [(t, files) for t, files, _, _ in pending], store, show)
+                table = build_table(axes, points, outcomes, variants_of)
+                pngs = draw_on_workers(client, table, axes, variants, plotted)
             # a local cluster shuts down while the results are written
         try:
-            table = build_table(axes, points, outcomes, variants_of)
+            if session is None:
+                table, pngs = build_table(axes, points, outcomes, variants_of), {}
             gates = {p.id: g for p in points if (g := _gate_failures(outcomes[p.id]))}
             files = (out / "results.parquet", out / "results.csv", out / "sweep.html")
             write_parquet(files[0], table)
             write_csv(files[1], table)
             ran = tuple(t.point for t, _, _, _ in pending)
             summary = _summary(sweep, axes, points, outcomes, ran, gates, time.perf_counter() - started)
-            variants = list(dict.fromkeys(v for p in points for v in variants_of[p.id]))
             from coatsim.sweep.html import render_sweep_html
 
             write_text(files[2], render_sweep_html(f"coatsim sweep: {sweep.path.stem}", summary, table, axes,
-                                                   variants, plotted, {p.id: p.label for p in points}, gates))
+                                                   variants, plotted, {p.id: p.label for p in points}, gates, pngs))
         finally:
             if session is not None:
                 session.wait_closed()

@@ -88,6 +88,7 @@ def save_point(outdir: Path, outcome: PointOutcome, params: Mapping[str, Any],
         "coatsim": outcome.version,
         "host": outcome.host,
         "seconds": round(outcome.seconds, 3),
+        "cpu_seconds": round(outcome.cpu_seconds, 3),
     }
     if outcome.traceback:
         record["traceback"] = outcome.traceback
@@ -116,6 +117,7 @@ def load_point(outdir: Path, point: str, key: str, keep_outputs: bool) -> Option
         return None
     return PointOutcome(point, key, variants, error=record.get("error"), exit_code=record.get("exit_code"),
                         reusable=True, metrics=metrics, seconds=float(record.get("seconds") or 0.0),
+                        cpu_seconds=float(record.get("cpu_seconds") or 0.0),
                         host=str(record.get("host", "")), version=str(record.get("coatsim", "")))
 
 

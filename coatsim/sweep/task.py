@@ -51,6 +51,7 @@ class PointOutcome:
     metrics: Optional[str] = None
     files: Mapping[str, bytes] = field(default_factory=dict)
     seconds: float = 0.0
+    cpu_seconds: float = 0.0
     host: str = ""
     version: str = ""
     traceback: Optional[str] = None
@@ -77,7 +78,7 @@ def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
     from coatsim import __version__
     from coatsim.errors import CoatsimError
 
-    started = time.perf_counter()
+    started, cpu_started = time.perf_counter(), time.process_time()
     variants = tuple(task.scenario.get("variants", ()))
     extra = {"host": socket.gethostname(), "version": __version__}
     if __version__ != task.version:
@@ -106,13 +107,16 @@ def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
                                   report=task.keep_outputs)
         except CoatsimError as exc:
             return failed(task, variants, clean(str(exc)), exit_code=exc.exit_code, reusable=True,
-                          seconds=time.perf_counter() - started, **extra)
+                          seconds=time.perf_counter() - started, cpu_seconds=time.process_time() - cpu_started,
+                          **extra)
         except Exception as exc:  # a bug or the machine (memory): reported, never reused
             return failed(task, variants, clean(f"internal error: {type(exc).__name__}: {exc}"),
-                          traceback=traceback.format_exc(), seconds=time.perf_counter() - started, **extra)
+                          traceback=traceback.format_exc(), seconds=time.perf_counter() - started,
+                          cpu_seconds=time.process_time() - cpu_started, **extra)
         files = {}
         if task.keep_outputs:
             files = {p.relative_to(out).as_posix(): p.read_bytes() for p in sorted(out.rglob("*")) if p.is_file()}
         status = {v: (clean(result.failures[v]) if v in result.failures else None) for v in variants}
         return PointOutcome(task.point, task.key, status, metrics=(out / "metrics.json").read_text(encoding="utf-8"),
-                            files=files, seconds=time.perf_counter() - started, **extra)
+                            files=files, seconds=time.perf_counter() - started,
+                            cpu_seconds=time.process_time() - cpu_started, **extra)
