@@ -18,9 +18,9 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
-from coatsim.program.as_lexer import MAX_ABS_NUMBER
-from coatsim.program.as_dialect import KAWASAKI_AS
-from coatsim.program.as_writer import fmt_short, program_name
+from coatsim.program.as_lang.dialect import KAWASAKI_AS
+from coatsim.program.as_lang.names import check_name, program_name
+from coatsim.program.as_lang.writer import MAX_COORDINATE_MM, fmt_short
 from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
 
@@ -50,6 +50,8 @@ class ProgramOptions:
                 raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}")
         if not 1 <= self.gun_signal <= 9999:
             raise InputError(f"--gun {self.gun_signal}: expected an output number from 1 to 9999")
+        if self.name is not None:
+            check_name(self.name, "--name")
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,8 +100,8 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
     path = place(curve, placement)
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
-    if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_ABS_NUMBER):
-        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_ABS_NUMBER:g} mm)")
+    if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_COORDINATE_MM):
+        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_COORDINATE_MM:g} mm)")
     metadata = (
         ("variant", options.variant),
         ("source", source),

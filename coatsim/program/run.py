@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Optional
 
 from coatsim.fileio import write_text
-from coatsim.program.as_parser import parse_as
+from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.check import ProgramCheck
 from coatsim.program.inputs import load_program_input
@@ -37,7 +37,7 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
 def program_summary(built: BuiltProgram) -> str:
     """Two lines describing a written program."""
     plan, curve = built.plan, built.curve
-    n_steps = len(parse_as(built.text).programs[0].statements)
+    n_steps = len(parse_as(built.text).programs[0].body)
     return (
         f"program {plan.name}: {dict(plan.metadata)['variant']}, {curve.n_lines} lines + {curve.n_arcs} arcs, "
         f"{n_steps} steps, {built.text.count(chr(10))} lines of text\n"
@@ -53,5 +53,9 @@ def check_summary(check: ProgramCheck) -> str:
         f"{check.n_joint_moves} joint, {check.n_linear_moves} linear, {check.n_arc_moves} arc",
         f"path length {check.path_length_mm:.3f} mm (sprayed {check.spray_length_mm:.3f} mm)",
     ]
+    lines += [f"signal: {s}" for s in check.signals]
+    lines += [f"sprayed: lines {r.first_line}-{r.last_line}, {r.moves} moves, {r.length_mm:.3f} mm"
+              for r in check.spray_runs]
+    lines += [f"warning: {w}" for w in check.warnings]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
     return "\n".join(lines)

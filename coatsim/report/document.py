@@ -48,7 +48,11 @@ def headline_table(document: Mapping[str, Any]) -> str:
 def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
     spec = loaded.spec
     c = spec.curve
-    source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    if c is None:
+        source = f"the sprayed path of program variant {spec.programs[0].name}"
+    else:
+        source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    placed = "" if c is None else f"; scale {c.scale:g}, rotated {c.rotate_deg:g} deg"
     wp = spec.workpiece
     size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
             "cylinder": lambda: f"cylinder R {wp.radius_mm:g} x L {wp.length_mm:g} mm, axis {wp.axis}",
@@ -57,7 +61,7 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}; scale {c.scale:g}, rotated {c.rotate_deg:g} deg; {'closed' if curve.closed else 'open'}, "
+        ("curve", f"{source}{placed}; {'closed' if curve.closed else 'open'}, "
                   f"{len(curve.points)} points, {curve.length:.1f} mm"),
         ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
                          f"corners above {spec.segmentation.corner_deg:g} deg"),
@@ -67,7 +71,7 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
                 f"target {spec.gun.target_thickness_um:g} µm"),
         ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
                    f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
-        ("variants", ", ".join(spec.variants)),
+        ("variants", ", ".join(spec.variant_names)),
         ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
     ]
     if seg is not None:

@@ -21,7 +21,7 @@ import numpy as np
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, MM, M_TO_MM, Cell
 from coatsim.robot.ik_batch import continuity_ok, first_order, refine
-from coatsim.robot.kinematics import Chain
+from coatsim.robot.chain import Chain
 
 POS_TOL_MM = 0.05
 ROT_TOL_DEG = 0.05

@@ -2,7 +2,7 @@
 
 Between the samples the tracker solves with mink (the knots), the joint path is smooth: a cubic
 through the knot solutions is already close, and a few Newton steps on the vectorised Jacobian
-(:mod:`coatsim.robot.kinematics`) bring every sample to the same convergence as a mink solve.
+(:mod:`coatsim.robot.chain`) bring every sample to the same convergence as a mink solve.
 ``refine`` does those steps for all samples together; ``continuity_ok`` checks that the result
 is a joint path the sample-by-sample tracker would have followed (no jump a QP step bounded by
 the joint speed limits could not make), so the caller can fall back to it where it is not.
@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from coatsim.robot.cell import M_TO_MM, MM
-from coatsim.robot.kinematics import Chain
+from coatsim.robot.chain import Chain
 
 _DAMPING = 1e-12  # Levenberg-Marquardt term (m^2): keeps the 6x6 solves finite at a singularity
 

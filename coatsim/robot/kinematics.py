@@ -1,148 +1,72 @@
-"""Vectorised forward kinematics and Jacobians of the arm, for many configurations at once.
-
-MuJoCo computes kinematics one configuration per call; checking or refining an IK solution at
-every path sample that way costs a Python round trip per sample. ``Chain`` reads the serial chain
-from the world to the TCP site out of the model (body offsets, hinge axes and anchors) and
-evaluates the site poses and the site's geometric Jacobian for (N, 6) configurations with numpy.
-It is checked against ``mj_kinematics`` when built; a model it does not reproduce (a joint that
-is not a hinge on the way to the TCP, say) gets no chain and the callers use MuJoCo alone.
-"""
+"""The cell's kinematics as the interpreter needs it: forward kinematics of joint values and
+the home configurations (HOME n is the model's keyframe ``home`` for n = 1, ``home<n>`` else)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from pathlib import Path
+from typing import Optional
 
-import mujoco
 import numpy as np
 
-_CHECK_M = 1e-9  # agreement with MuJoCo required at build time (m, and rad via the rotation)
+from coatsim.errors import ExecutionError, InputError
+from coatsim.program.tool_frames import gun_in_tcp
+from coatsim.program.toolpath import Pose, ToolFrame
 
 
-def _quat_matrix(quat_wxyz: np.ndarray) -> np.ndarray:
-    out = np.empty(9)
-    mujoco.mju_quat2Mat(out, np.asarray(quat_wxyz, float))
-    return out.reshape(3, 3)
+class CellKinematics:
+    """Forward kinematics and home poses of a loaded cell."""
+
+    def __init__(self, cell) -> None:
+        import mujoco
+
+        self.cell = cell
+        self._data = mujoco.MjData(cell.model)
+
+    def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
+        """The controller's TCP for ``joints_rad``: the gun's pose, or with a TOOL the flange
+        times that TOOL (the gun's pose times M^-1, M = TOOL^-1 GUN)."""
+        q = np.asarray(joints_rad, dtype=float)
+        cell = self.cell
+        outside = np.flatnonzero((q < cell.q_min - 1e-9) | (q > cell.q_max + 1e-9))
+        if len(outside):
+            j = int(outside[0])
+            raise ExecutionError(f"joint {j + 1} at {np.degrees(q[j]):.3f} deg is outside the cell's range "
+                                 f"{np.degrees(cell.q_min[j]):.1f}..{np.degrees(cell.q_max[j]):.1f} deg")
+        position, rotation = cell.forward(self._data, q)
+        if tool is None:
+            return Pose(position, rotation)
+        m_rotation, m_offset = gun_in_tcp(tool, cell.gun_rotation, cell.gun_offset_mm)
+        tcp_rotation = rotation @ m_rotation.T
+        return Pose(position - tcp_rotation @ m_offset, tcp_rotation)
+
+    def home(self, number: int) -> np.ndarray:
+        import mujoco
+
+        if number == 1:
+            return self.cell.home.copy()
+        name = f"home{number}"
+        key = mujoco.mj_name2id(self.cell.model, mujoco.mjtObj.mjOBJ_KEY, name)
+        if key < 0:
+            raise InputError(f"HOME {number}: the cell model {self.cell.path.name} has no keyframe '{name}'")
+        return self.cell.model.key_qpos[key][:6].copy()
 
 
-@dataclass(frozen=True)
-class _Link:
-    """One hinge on the way to the TCP: the fixed transform (pos, rot) from the previous hinge's
-    frame to its body (jointless bodies between folded in), and its rotation by q - zero about
-    ``axis`` through ``anchor``; with Rodrigues' turn I + sin K + (1 - cos) K^2, the body's
-    rotation is rot + sin A + (1 - cos) B and its anchor shift sin a + (1 - cos) b."""
+class LazyKinematics:
+    """CellKinematics of a model file, loaded the first time a program needs it."""
 
-    pos: np.ndarray
-    rot: np.ndarray
-    joint: int
-    axis: np.ndarray
-    anchor: np.ndarray
-    zero: float
+    def __init__(self, model: Optional[str | Path] = None) -> None:
+        self.model = model
+        self._loaded: Optional[CellKinematics] = None
 
-    def products(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        x, y, z = self.axis
-        k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-        a, b = self.rot @ k, self.rot @ k @ k
-        return a, b, a @ self.anchor, b @ self.anchor, self.rot @ self.axis
+    def _get(self) -> CellKinematics:
+        if self._loaded is None:
+            from coatsim.robot.cell import load_cell
 
+            self._loaded = CellKinematics(load_cell(self.model))
+        return self._loaded
 
-@dataclass(frozen=True)
-class Poses:
-    """Site poses of N configurations, metres: TCP position (N, 3), rotation (N, 3, 3), the
-    positions (N, 3) of the extra sites, and the world joint axes and anchors (N, nq, 3) from
-    which ``jacobian`` builds the TCP's geometric Jacobian."""
+    def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
+        return self._get().forward(joints_rad, tool)
 
-    tcp: np.ndarray
-    rotation: np.ndarray
-    sites: dict[int, np.ndarray]
-    axes: np.ndarray
-    anchors: np.ndarray
-
-    def jacobian(self, rows: np.ndarray | slice = slice(None)) -> np.ndarray:
-        """(n, 6, nq): TCP linear velocity (m/rad) over orientation rate, for the ``rows`` asked."""
-        z, lever = self.axes[rows], self.tcp[rows][:, None, :] - self.anchors[rows]
-        linear = np.stack((z[..., 1] * lever[..., 2] - z[..., 2] * lever[..., 1],
-                           z[..., 2] * lever[..., 0] - z[..., 0] * lever[..., 2],
-                           z[..., 0] * lever[..., 1] - z[..., 1] * lever[..., 0]), axis=1)
-        return np.concatenate((linear, np.swapaxes(z, 1, 2)), axis=1)
-
-
-class Chain:
-    """The serial chain from the world to one site (the TCP), evaluated for many configurations."""
-
-    def __init__(self, links: tuple[_Link, ...], site_pos: np.ndarray, site_rot: np.ndarray,
-                 extra: dict[int, tuple[int, np.ndarray]]):
-        self._links, self._site_pos, self._site_rot, self._extra = links, site_pos, site_rot, extra
-        self._products = [link.products() for link in links]
-        self._joints = np.array([link.joint for link in links])
-        self._zeros = np.array([link.zero for link in links])
-
-    @classmethod
-    def build(cls, model: mujoco.MjModel, site: int, extra_sites: tuple[int, ...] = ()) -> Chain | None:
-        """The chain of ``model`` to ``site`` (with the positions of ``extra_sites`` on it), or
-        None when the model is not a chain of hinges this class reproduces exactly."""
-        path = []
-        body = int(model.site_bodyid[site])
-        while body != 0:
-            path.append(body)
-            body = int(model.body_parentid[body])
-        path.reverse()
-        links: list[_Link] = []
-        extra: dict[int, tuple[int, np.ndarray]] = {}
-        fixed_p, fixed_r = np.zeros(3), np.eye(3)  # from the last hinge's frame to the current body
-        for b in path:
-            start, count = int(model.body_jntadr[b]), int(model.body_jntnum[b])
-            if count > 1 or (count == 1 and model.jnt_type[start] != mujoco.mjtJoint.mjJNT_HINGE):
-                return None
-            fixed_p, fixed_r = fixed_p + fixed_r @ model.body_pos[b], fixed_r @ _quat_matrix(model.body_quat[b])
-            if count == 1:
-                adr = int(model.jnt_qposadr[start])
-                links.append(_Link(fixed_p, fixed_r, adr, model.jnt_axis[start].copy(), model.jnt_pos[start].copy(),
-                                   float(model.qpos0[adr])))
-                fixed_p, fixed_r = np.zeros(3), np.eye(3)
-            for s in extra_sites:
-                if int(model.site_bodyid[s]) == b:
-                    extra[s] = (len(links) - 1, fixed_p + fixed_r @ model.site_pos[s])
-        if sorted(link.joint for link in links) != list(range(model.nq)) or len(extra) != len(extra_sites):
-            return None
-        site_pos = fixed_p + fixed_r @ model.site_pos[site]
-        site_rot = fixed_r @ _quat_matrix(model.site_quat[site])
-        chain = cls(tuple(links), site_pos, site_rot, extra)
-        return chain if chain._agrees(model, site) else None
-
-    def _agrees(self, model: mujoco.MjModel, site: int) -> bool:
-        rng = np.random.default_rng(0)
-        lo, hi = model.jnt_range[:model.nq, 0], model.jnt_range[:model.nq, 1]
-        qs = np.vstack((model.qpos0, rng.uniform(lo, hi, size=(4, model.nq))))
-        mine = self.poses(qs)
-        data = mujoco.MjData(model)
-        for k, q in enumerate(qs):
-            data.qpos[:] = q
-            mujoco.mj_kinematics(model, data)
-            if np.abs(data.site_xpos[site] - mine.tcp[k]).max() > _CHECK_M:
-                return False
-            if np.abs(data.site_xmat[site].reshape(3, 3) - mine.rotation[k]).max() > _CHECK_M:
-                return False
-            if any(np.abs(data.site_xpos[s] - mine.sites[s][k]).max() > _CHECK_M for s in self._extra):
-                return False
-        return True
-
-    def poses(self, q: np.ndarray) -> Poses:
-        """Site poses (and what the TCP Jacobian needs) for configurations q (N, nq), rad; metres."""
-        q = np.atleast_2d(np.asarray(q, float))
-        n, nq = q.shape
-        angle = q[:, self._joints] - self._zeros
-        sin, vers = np.sin(angle), 1.0 - np.cos(angle)
-        p = np.zeros((n, 3))
-        r = np.broadcast_to(np.eye(3), (n, 3, 3))
-        axes, anchors = np.empty((n, nq, 3)), np.empty((n, nq, 3))
-        frames = []
-        for k, (link, (a, b, a_anchor, b_anchor, rot_axis)) in enumerate(zip(self._links, self._products)):
-            s, v = sin[:, k, None], vers[:, k, None]
-            axes[:, link.joint] = r @ rot_axis
-            p = p + np.einsum("nij,nj->ni", r, link.pos - s * a_anchor - v * b_anchor)
-            r = r @ (link.rot + s[..., None] * a + v[..., None] * b)
-            anchors[:, link.joint] = p + r @ link.anchor
-            frames.append((p, r))
-        sites = {i: (frames[k][0] + frames[k][1] @ offset) if k >= 0 else np.broadcast_to(offset, (n, 3))
-                 for i, (k, offset) in self._extra.items()}
-        return Poses(p + r @ self._site_pos, r @ self._site_rot, sites, axes, anchors)
+    def home(self, number: int) -> np.ndarray:
+        return self._get().home(number)

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Callable, Iterator, Optional, Sequence
 
 from coatsim.errors import ExecutionError, InputError
-from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point
+from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point, variant_names
 
 
 def default_workers() -> int:
@@ -128,7 +128,7 @@ def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_out
             try:
                 outcome = future.result()
             except Exception as exc:  # the worker died too often, or cannot load the task
-                outcome = failed(task, tuple(task.scenario.get("variants", ())), _lost(exc))
+                outcome = failed(task, variant_names(task.scenario.get("variants", ())), _lost(exc))
             future.release()
             on_outcome(outcome)
             advance(outcome)

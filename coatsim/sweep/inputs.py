@@ -28,7 +28,7 @@ _FILE_ATTRS = ("file", "fileright", "fileleft", "fileup", "filedown", "filefront
 class Bundle:
     """What a point's scenario reads: the scenario as the worker must run it (input paths
     rewritten to ``files``' names), the files by worker-relative name, and one digest per
-    scenario key that names a file (for the cache key)."""
+    scenario key that names a file (dotted, for the cache key)."""
 
     scenario: dict[str, Any]
     files: Mapping[str, Path]
@@ -83,7 +83,7 @@ def _mjcf_files(model: Path) -> list[Path]:
 def _references(scenario: Mapping[str, Any]) -> list[tuple[tuple, str, str]]:
     """(key path, role, file as written) of every file the scenario names."""
     refs: list[tuple[tuple, str, str]] = []
-    if scenario["curve"].get("file"):
+    if (scenario.get("curve") or {}).get("file"):
         refs.append((("curve", "file"), "curve", scenario["curve"]["file"]))
     if scenario["workpiece"].get("kind") == "mesh":
         refs.append((("workpiece", "file"), "mesh", scenario["workpiece"]["file"]))
@@ -92,7 +92,22 @@ def _references(scenario: Mapping[str, Any]) -> list[tuple[tuple, str, str]]:
     footprint = scenario["gun"]["footprint"].strip()
     if footprint.lower().startswith("table:"):
         refs.append((("gun", "footprint"), "footprint", footprint.split(":", 1)[1].strip()))
+    for i, entry in enumerate(scenario.get("variants", ())):
+        if isinstance(entry, dict):  # a program of the user's own: its AS files
+            refs += [(("variants", i, "program", j), "program", name) for j, name in enumerate(entry["program"])]
     return refs
+
+
+def dotted(key: tuple) -> str:
+    """``("variants", 2, "program", 0)`` -> ``variants[2].program[0]``."""
+    return "".join(f"[{k}]" if isinstance(k, int) else (f".{k}" if i else k) for i, k in enumerate(key))
+
+
+def _set(data: dict, key: tuple, value: Any) -> None:
+    node = data
+    for part in key[:-1]:
+        node = node[part]
+    node[key[-1]] = value
 
 
 def bundle(scenario: Mapping[str, Any], base_dir: Path) -> Bundle:
@@ -104,16 +119,15 @@ def bundle(scenario: Mapping[str, Any], base_dir: Path) -> Bundle:
     for key, role, written in _references(scenario):
         path = Path(written).expanduser()
         path = path if path.is_absolute() else base_dir / path
-        dotted = ".".join(key)
         if not path.is_file():
-            raise InputError(f"{dotted}: {path}: no such file")
+            raise InputError(f"{dotted(key)}: {path}: no such file")
         try:
             members = _mjcf_files(path) if role == "robot" else [path]
             root = Path(os.path.commonpath([p.parent for p in members]))
             digest = _digest(members, root)
         except OSError as exc:
-            raise InputError(f"{dotted}: {path}: cannot read ({exc.strerror or exc})") from None
-        digests[dotted] = digest
+            raise InputError(f"{dotted(key)}: {path}: cannot read ({exc.strerror or exc})") from None
+        digests[dotted(key)] = digest
         if role == "robot":
             folder = f"inputs/robot_{digest[:12]}"
             for member in members:
@@ -122,8 +136,16 @@ def bundle(scenario: Mapping[str, Any], base_dir: Path) -> Bundle:
         else:
             name = f"inputs/{role}_{digest[:12]}{path.suffix.lower()}"
             files[name] = path
-        if role == "footprint":
-            out["gun"]["footprint"] = f"table:{name}"
-        else:
-            out[key[0]][key[1]] = name
+        _set(out, key, f"table:{name}" if role == "footprint" else name)
     return Bundle(out, files, digests)
+
+
+def with_absolute_paths(scenario: Mapping[str, Any], base_dir: Path) -> dict[str, Any]:
+    """The scenario with every file it names by absolute path (``coatsim run`` on it, from any
+    folder, reads the same files)."""
+    out = copy.deepcopy(dict(scenario))
+    for key, role, written in _references(scenario):
+        path = Path(written).expanduser()
+        path = path if path.is_absolute() else (base_dir / path).resolve()
+        _set(out, key, f"table:{path}" if role == "footprint" else str(path))
+    return out

@@ -19,12 +19,12 @@ from typing import Mapping, Optional, Sequence
 from coatsim import __version__
 from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
-from coatsim.sweep.inputs import Bundle, bundle
+from coatsim.sweep.inputs import bundle, with_absolute_paths
 from coatsim.sweep.points import Point, canonical_json, expand
 from coatsim.sweep.spec import SweepFile, load_sweep
 from coatsim.sweep.store import load_point, locked_outdir, save_point, write_manifest
 from coatsim.sweep.table import Table, build_table, write_csv, write_parquet
-from coatsim.sweep.task import PointOutcome, PointTask, failed
+from coatsim.sweep.task import PointOutcome, PointTask, failed, variant_names
 
 FORMAT = "coatsim.sweep/1"
 
@@ -53,22 +53,6 @@ def cache_key(scenario: Mapping, digests: Mapping[str, str], fast: bool) -> str:
     """What a point's result depends on, hashed."""
     text = canonical_json({"coatsim": __version__, "fast": fast, "inputs": dict(digests), "scenario": dict(scenario)})
     return hashlib.sha256(text.encode()).hexdigest()
-
-
-def _user_scenario(scenario: Mapping, bundled: Bundle, base_dir: Path) -> dict:
-    """The resolved scenario with its input files named by absolute path (``coatsim run`` on it
-    reproduces the point)."""
-    out = json.loads(json.dumps(scenario))
-    for key in bundled.digests:
-        group, name = key.split(".")
-        value = out[group][name]
-        if group == "gun":
-            path = Path(value.split(":", 1)[1].strip()).expanduser()
-            out[group][name] = f"table:{path if path.is_absolute() else (base_dir / path).resolve()}"
-        else:
-            path = Path(value).expanduser()
-            out[group][name] = str(path if path.is_absolute() else (base_dir / path).resolve())
-    return out
 
 
 def _gate_failures(outcome: PointOutcome) -> tuple[str, ...]:
@@ -101,10 +85,10 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
     fast = sweep.spec.fast
     outcomes: dict[str, PointOutcome] = {}
     pending: list[tuple[PointTask, dict[str, Path], Point, dict]] = []
-    from coatsim.scenario import load_scenario
+    from coatsim.scenario import as_dict, load_scenario
 
-    base_variants = tuple(load_scenario(sweep.base_path).spec.variants)
-    variants_of = {p.id: tuple(p.scenario["variants"]) if p.scenario else base_variants for p in points}
+    base_variants = variant_names(as_dict(load_scenario(sweep.base_path).spec)["variants"])
+    variants_of = {p.id: variant_names(p.scenario["variants"]) if p.scenario else base_variants for p in points}
     variants = list(dict.fromkeys(v for p in points for v in variants_of[p.id]))
     session = None
     with locked_outdir(out):
@@ -130,7 +114,7 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
                 continue
             sources = {name: str(p) for name, p in bundled.files.items()}
             task = PointTask(point.id, key, bundled.scenario, sources, fast, keep_outputs, __version__)
-            pending.append((task, dict(bundled.files), point, _user_scenario(point.scenario, bundled, base_dir)))
+            pending.append((task, dict(bundled.files), point, with_absolute_paths(point.scenario, base_dir)))
         if pending:
             from coatsim.sweep.cluster import DaskSession, draw_on_workers, run_tasks
 

@@ -61,6 +61,11 @@ class PointOutcome:
         return OK if self.error is None and not any(self.variants.values()) else FAILED
 
 
+def variant_names(variants) -> tuple[str, ...]:
+    """The names of a resolved scenario's variants (built-in names, or programs' ``name``)."""
+    return tuple(v if isinstance(v, str) else v["name"] for v in variants)
+
+
 def one_line(text: str) -> str:
     """The first non-empty line of a message."""
     return next((line.strip() for line in str(text).splitlines() if line.strip()), "") or "(no message)"
@@ -79,7 +84,7 @@ def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
     from coatsim.errors import CoatsimError
 
     started, cpu_started = time.perf_counter(), time.process_time()
-    variants = tuple(task.scenario.get("variants", ()))
+    variants = variant_names(task.scenario.get("variants", ()))
     extra = {"host": socket.gethostname(), "version": __version__}
     if __version__ != task.version:
         return failed(task, variants, f"the worker runs coatsim {__version__}, the client {task.version}; install "

@@ -16,7 +16,7 @@ from coatsim.errors import ExecutionError
 from coatsim.robot import ik
 from coatsim.robot.cell import M_TO_MM, load_cell
 from coatsim.robot.ik_batch import continuity_ok, refine, rotation_vectors
-from coatsim.robot.kinematics import Chain
+from coatsim.robot.chain import Chain
 
 DOWN = np.diag([-1.0, 1.0, -1.0])
 CELL = load_cell()
