@@ -20,33 +20,53 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def programs(path: Path, fast: bool):
-    """(variant, ToolPath, sample step mm) of every variant of the scenario at ``path``."""
+def programs(path: Path, fast: bool, cell):
+    """(variant, ToolPath, sample step mm) of every variant of the scenario at ``path``, built
+    as ``coatsim run`` builds them (the cell's gun as TOOL; a user's program read as given)."""
+    import tempfile
+
     import numpy as np
 
-    from coatsim.geometry import segment_curve
-    from coatsim.pipeline import FULL_SAMPLE_STEP_MM, curve_frame, load_input_curve
-    from coatsim.program import interpret, parse_as
+    from coatsim.geometry import make_curve, segment_curve
+    from coatsim.pipeline import FULL_SAMPLE_STEP_MM, curve_frame, load_input_curve, read_user_program
+    from coatsim.program import read_toolpath
+    from coatsim.program.as_lang.names import program_name
     from coatsim.program.build import ProgramOptions, build_program
     from coatsim.program.placement import Placement, centering_offset
+    from coatsim.program.user import user_program
+    from coatsim.robot.kinematics import CellKinematics
+    from coatsim.robot.tooling import gun_tool
     from coatsim.scenario import load_scenario
 
     loaded = load_scenario(path)
     spec = loaded.spec
-    curve = load_input_curve(loaded)
+    step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
+    if spec.curve is None:  # the sprayed path of the first program variant, as run does
+        entry = spec.programs[0]
+        user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
+        curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
+    else:
+        curve = load_input_curve(loaded)
     seg = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
                         corner_deg=spec.segmentation.corner_deg)
-    offset = np.add(centering_offset(seg.polysegment) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+    if spec.curve is not None:
+        offset = np.add(centering_offset(seg.polysegment) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
     placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
                           follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                           lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
-    step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
-    for name in spec.variants:
-        options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s,
-                                 accuracy_mm=spec.motion.accuracy_mm, gun_signal=spec.gun.signal, name=spec.name)
+    for entry in spec.variants:
+        if not isinstance(entry, str):
+            yield entry.name, read_user_program(loaded, entry, cell)[0], step
+            continue
+        options = ProgramOptions(variant=entry, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
+                                 gun_signal=spec.gun.signal, tool=gun_tool(cell), name=program_name(spec.name))
         built = build_program(seg.polysegment, placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                               source=f"scenario:{spec.name}", points=seg.curve.points)
-        yield name, interpret(parse_as(built.text, f"{name}.as"), gun_signal=spec.gun.signal), step
+        with tempfile.TemporaryDirectory() as tmp:
+            program = Path(tmp) / f"{entry}.as"
+            program.write_text(built.text, encoding="utf-8")
+            toolpath = read_toolpath(program, gun_signal=spec.gun.signal, kinematics=CellKinematics(cell))
+        yield entry, toolpath, step
 
 
 def main() -> None:
@@ -63,7 +83,7 @@ def main() -> None:
 
     cell = load_cell()
     files = args.scenarios or sorted((ROOT / "scenarios").glob("*.yaml"))
-    warm = next(programs(files[0], args.fast))  # first-run costs (lazy imports, caches) left out
+    warm = next(programs(files[0], args.fast, cell))  # first-run costs (lazy imports, caches) left out
     execute(warm[1], cell, step_mm=warm[2])
     print(f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; {'fast' if args.fast else 'full'} mode")
     header = ("scenario", "variant", "robot_s", "wall_s", "ik_s", "timing_s", "play_s", "metr_s", "x_real",
@@ -71,7 +91,7 @@ def main() -> None:
     print(" ".join(f"{h:>14}" if i < 2 else f"{h:>9}" for i, h in enumerate(header)))
     robot_total = wall_total = cpu_total = 0.0
     for path in files:
-        for name, toolpath, step in programs(path, args.fast):
+        for name, toolpath, step in programs(path, args.fast, cell):
             best = None
             for _ in range(max(1, args.repeat)):
                 t0, c0 = time.perf_counter(), time.process_time()
