@@ -109,12 +109,12 @@ def run(
 
 @app.command()
 def sweep(
-    sweep_file: Path = typer.Argument(..., metavar="SWEEP", help="sweep YAML file: base scenario, grid and/or points"),
-    outdir: Optional[Path] = typer.Option(None, "-o", "--outdir", help="output folder [default: runs/NAME]"),
+    sweep_file: Path = typer.Argument(..., help="sweep YAML file: base scenario, grid and/or points"),
+    outdir: Optional[Path] = typer.Option(None, "-o", "--outdir", help="output folder [default: runs/SWEEP_FILE_NAME]"),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address, tcp://host:port [default: a local cluster]"),
     workers: Optional[int] = typer.Option(None, "--workers", help="worker processes of the local cluster [default: one per core]"),
     keep_outputs: bool = typer.Option(False, "--keep-outputs", help="keep every run's full outputs in OUTDIR/points/ID/"),
-    metric: Optional[list[str]] = typer.Option(None, "--metric", help="metric sweep.html plots against each axis (repeatable) [default: the sweep file's]"),
+    metric: Optional[list[str]] = typer.Option(None, "--metric", metavar="NAME", help="metric sweep.html plots against each axis (repeatable) [default: the sweep file's]"),
 ) -> None:
     """Run many scenario points on Dask: results.parquet, results.csv, sweep.html; exit 1 if a
     point or a gate failed. Rerunning into the same folder runs only what is missing."""
