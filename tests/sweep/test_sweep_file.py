@@ -131,3 +131,11 @@ def test_ids_do_not_depend_on_the_order_of_the_sweep_file(tmp_path):
     assert sorted(p.id for p in a) == sorted(p.id for p in b)
     by_id = {p.id: json.dumps(p.scenario, sort_keys=True) for p in a}
     assert all(by_id[p.id] == json.dumps(p.scenario, sort_keys=True) for p in b)
+
+
+@pytest.mark.parametrize("path", sorted((Path(__file__).resolve().parents[2] / "sweeps").glob("*.yaml")),
+                         ids=lambda p: p.name)
+def test_shipped_sweeps_expand_into_valid_points(path):
+    axes, points = expand(load_sweep(path))
+    assert axes and len(points) >= 2 and all(p.invalid is None for p in points)
+    assert len({p.id for p in points}) == len(points)
