@@ -5,13 +5,17 @@ Every CoatsimError becomes one line on stderr and its exit code; nothing else is
 
 from __future__ import annotations
 
+import os
+import signal
 import sys
+import threading
+import warnings
 from pathlib import Path
-from typing import Optional
+from typing import Callable, Optional
 
 import typer
 
-from coatsim.errors import CoatsimError
+from coatsim.errors import CoatsimError, CoatsimWarning
 
 app = typer.Typer(
     add_completion=False,
@@ -43,6 +47,16 @@ def fail(message: str, code: int = 2) -> None:
     raise typer.Exit(code)
 
 
+SEGMENT_FLAGS = {"min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
+
+
+def _segment_flags(message: str) -> str:
+    """A segment_curve error with its parameter names as the command's flags."""
+    for name, flag in SEGMENT_FLAGS.items():
+        message = message.replace(name, flag)
+    return message
+
+
 @app.command()
 def segment(
     input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns) or builtin:NAME[:key=value,...]."),
@@ -54,13 +68,39 @@ def segment(
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
     timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
+    min_segment: Optional[float] = typer.Option(None, "--min-segment", help="Shortest fitted segment, mm [default: 5 x --tol]."),
+    speed: Optional[float] = typer.Option(None, "--speed", help="Programmed speed, mm/s: no arc tighter than speed²/tool-accel where the curve allows; the rest is listed as speed-limited."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit with --speed, m/s² [default: the cell model's]."),
 ) -> None:
     """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
+    import math
+
+    from coatsim.errors import InputError
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
+    from coatsim.outputs_guard import check_distinct
 
     if closed not in ("auto", "yes", "no"):
         fail(f"--closed: expected auto, yes or no, got {closed!r}")
-    seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg, theta_tolerance=theta_tol)
+    check_distinct([("the input curve", None if input.startswith("builtin:") else input)],
+                   [("-o", output), ("--plot", plot)])
+    if tool_accel is not None and speed is None:
+        fail("--tool-accel: needs --speed")
+    accel_mm_s2 = None
+    if speed is not None:
+        if tool_accel is None:
+            from coatsim.robot.cell import load_cell
+
+            accel_mm_s2 = load_cell().tool_accel_mm_s2
+        elif math.isfinite(tool_accel) and tool_accel > 0:
+            accel_mm_s2 = tool_accel * 1000.0
+        else:
+            fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
+    try:
+        seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
+                            theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
+                            tool_accel_mm_s2=accel_mm_s2)
+    except InputError as exc:
+        fail(_segment_flags(str(exc)))
     if output is not None:
         write_polysegment_json(output, seg)
     if plot is not None:
@@ -82,6 +122,7 @@ def run(
     fast: bool = typer.Option(False, "--fast", help="the scenario's coarser mesh and path sampling (for CI)"),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF replacing the scenario's robot.model [default: the scenario's]."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per stage on stderr."),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run a scenario: programs, simulated arm, coating, metrics.json and report.html for every
     variant; exit 1 if a gate fails, 3 if the simulated arm diverges."""
@@ -92,7 +133,7 @@ def run(
     from coatsim.report.summary import summary_text
 
     started = time.perf_counter()
-    result = run_scenario(scenario, outdir, fast=fast, model=model)
+    result = run_scenario(scenario, outdir, fast=fast, model=model, force=force)
     typer.echo(summary_text(result.document))
     for warning in result.document["warnings"]:
         typer.echo(f"warning: {warning['variant']}: {warning['message']}", err=True)
@@ -120,11 +161,9 @@ def sweep(
     point or a gate failed. Rerunning into the same folder runs only what is missing."""
     from coatsim.sweep.run import reused_count, run_sweep, sweep_problems
 
-    try:
-        result = run_sweep(sweep_file, outdir, scheduler=scheduler, workers=workers, keep_outputs=keep_outputs,
-                           metrics=metric)
-    except KeyboardInterrupt:
-        fail(f"interrupted; finished points are kept in {outdir or 'the output folder'}; rerun to resume", 130)
+    # an interrupt ends here like any command's (exit 130); the finished points stay for a rerun
+    result = run_sweep(sweep_file, outdir, scheduler=scheduler, workers=workers, keep_outputs=keep_outputs,
+                       metrics=metric)
     rows = result.table.rows
     ok = sum(r[result.table.columns.index("status")] == "ok" for r in rows)
     typer.echo(f"{len(result.points)} points ({len(result.ran)} run, {reused_count(result.points, result.ran)} reused), "
@@ -165,12 +204,13 @@ def coat(
     occlusion: bool = typer.Option(False, "--occlusion", help="Ray-cast visibility for concave parts (slow)."),
     section: Optional[str] = typer.Option(None, "--section", help="Cross-section line x0,y0,x1,y1 in heat-map coordinates, mm."),
     out: Path = typer.Option(Path("out/coat"), "-o", "--out", help="Output folder."),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Spray a logged trajectory onto a surface: thickness.ply, coating.json, heatmap.png, section.png."""
     from coatsim.spray.coat import run_coat
 
     result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
-                             edge_band, de_exponent, occlusion, section, out)
+                             edge_band, de_exponent, occlusion, section, out, force)
     m = result.metrics
     typer.echo(f"{result.surface.n_vertices} vertices, spray {m['spray_time_s']:.3f} s; ROI ({roi}) "
                f"mean {m['thickness_mean_um']:.3f} um, CV {m['thickness_cv']:.4f}, "
@@ -188,8 +228,8 @@ def program(
     frame: str = typer.Option("700,0,200,0,0,0", "--frame", help="Workpiece frame x,y,z,o,a,t in the robot base frame (mm, deg O-A-T)."),
     variant: str = typer.Option("polysegment", "--variant", help="polysegment | polyline-stop | polyline-blend."),
     accuracy: float = typer.Option(1.0, "--accuracy", help="ACCURACY (blend zone radius), mm."),
-    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed)."),
-    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed)."),
+    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed on an open curve; a closed one is sprayed exactly once around)."),
+    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed on an open curve)."),
     approach: float = typer.Option(50.0, "--approach", help="Approach and depart distance along the tool axis, mm."),
     roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
     follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it)."),
@@ -197,16 +237,27 @@ def program(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit the curve is segmented for at --speed, m/s² [default: the cell model's]."),
 ) -> None:
     """Write the Kawasaki AS program (polysegment or polyline variant) of a curve."""
+    import math
+
     from coatsim.program.build import ProgramOptions
     from coatsim.program.run import program_summary, run_program
 
     options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
                              gun_signal=gun, name=name)
+    if tool_accel is None:
+        from coatsim.robot.cell import load_cell
+
+        accel_mm_s2 = load_cell().tool_accel_mm_s2
+    elif math.isfinite(tool_accel) and tool_accel > 0:
+        accel_mm_s2 = tool_accel * 1000.0
+    else:
+        fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
     built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                         lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                        output=output)
+                        output=output, tool_accel_mm_s2=accel_mm_s2)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
@@ -222,6 +273,7 @@ def execute(
     main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
     if it cannot be executed or the simulated arm diverges."""
@@ -229,7 +281,7 @@ def execute(
     from coatsim.robot.execute import execute_program
 
     result, files = execute_program(program, model, output, gun, step, main,
-                                    parse_inputs(inputs) if inputs is not None else None)
+                                    parse_inputs(inputs) if inputs is not None else None, force=force)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
@@ -261,10 +313,12 @@ def convert(
 ) -> None:
     """Rewrite the process path of an existing AS program with arcs within a tolerance."""
     from coatsim.fileio import write_text
+    from coatsim.outputs_guard import check_distinct
     from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
     from coatsim.robot.kinematics import LazyKinematics
 
+    check_distinct([*(("the program", p) for p in paths), ("--model", model)], [("-o", output)])
     line_range = None
     if lines is not None:
         first, sep, last = lines.partition("-")
@@ -328,29 +382,84 @@ def _click_errors() -> tuple[type, ...]:
     return tuple(found)
 
 
-def main() -> None:
-    """Console entry point: run the app, turning CoatsimError into a one-line error."""
-    from coatsim.runtime import single_threaded_numerics
+class _Signalled(BaseException):
+    """Raised by the SIGINT/SIGTERM handlers; a BaseException of our own, so that neither click
+    nor a library swallows it, while every ``finally`` (temporary files, folder locks) runs."""
 
-    single_threaded_numerics()
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _raise_signalled(signum: int, frame: object) -> None:
+    raise _Signalled(signum)
+
+
+def _one_line_warnings(show_other: Callable) -> Callable:
+    """A ``warnings.showwarning`` that prints a CoatsimWarning as one line on stderr."""
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        if issubclass(category, CoatsimWarning):
+            typer.echo(f"coatsim: warning: {message}", err=True)
+        else:
+            show_other(message, category, filename, lineno, file, line)
+
+    return show
+
+
+_SIGNAL_EXITS = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
+
+
+def _run() -> int:
+    """Run the app and turn every failure into one line on stderr; return the exit code."""
     try:
         # Without standalone mode click returns typer.Exit's code instead of raising it.
         code = app(standalone_mode=False)
     except CoatsimError as exc:
         typer.echo(f"coatsim: error: {exc}", err=True)
-        sys.exit(exc.exit_code)
+        return exc.exit_code
     except typer.Exit as exc:
-        sys.exit(exc.exit_code)
-    except typer.Abort:
-        typer.echo("coatsim: aborted", err=True)
-        sys.exit(130)
+        return exc.exit_code
+    except (_Signalled, KeyboardInterrupt, typer.Abort) as exc:
+        status, word = _SIGNAL_EXITS[getattr(exc, "signum", signal.SIGINT)]
+        typer.echo(f"coatsim: {word}", err=True)
+        return status
+    except MemoryError:
+        typer.echo("coatsim: error: out of memory; use coarser settings (a larger step, spacing or tolerance) "
+                   "or allow the process more memory", err=True)
+        return 3
     except Exception as exc:  # click usage errors and the like
         if isinstance(exc, _click_errors()):
             # one line, like every other error; `coatsim COMMAND --help` shows the usage
             typer.echo(f"coatsim: error: {exc.format_message()} (see --help)", err=True)
-            sys.exit(exc.exit_code)
-        raise
-    sys.exit(code if isinstance(code, int) else 0)
+            return exc.exit_code
+        if os.environ.get("COATSIM_TRACEBACK"):
+            raise
+        first = (str(exc).strip().splitlines() or [""])[0][:200]
+        typer.echo(f"coatsim: internal error: {type(exc).__name__}: {first} (a bug in coatsim; "
+                   "COATSIM_TRACEBACK=1 shows the traceback)", err=True)
+        return 70
+    return code if isinstance(code, int) else 0
+
+
+def main() -> None:
+    """Console entry point: exit codes 0 ok, 1 gate failed, 2 invalid input, 3 cannot execute,
+    70 internal error, 130 interrupted (SIGINT), 143 terminated (SIGTERM)."""
+    from coatsim.runtime import single_threaded_numerics
+
+    single_threaded_numerics()
+    handlers = {}
+    if threading.current_thread() is threading.main_thread():
+        handlers = {signum: signal.signal(signum, _raise_signalled) for signum in _SIGNAL_EXITS}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("always", CoatsimWarning)
+            warnings.showwarning = _one_line_warnings(warnings.showwarning)
+            status = _run()
+    finally:
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
+    sys.exit(status)
 
 
 if __name__ == "__main__":

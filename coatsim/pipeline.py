@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Iterator, Mapping, Optional
 
@@ -36,7 +36,7 @@ from coatsim.robot.execute import Execution, execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, check_gate_metrics, load_scenario
-from coatsim.spray.coat import CoatingResult, coat
+from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import write_thickness_ply
@@ -89,7 +89,12 @@ def load_input_curve(loaded: ScenarioFile) -> Curve:
         raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
     angle = math.radians(spec.rotate_deg)
     rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
-    return curve.transformed(rotation, np.zeros(2), spec.scale)
+    try:  # checked again: a scale can push a valid curve out of range
+        with np.errstate(all="ignore"):
+            placed = curve.transformed(rotation, np.zeros(2), spec.scale)
+            return make_curve(placed.points, curve.name, "yes" if curve.closed else "no")
+    except InputError as exc:
+        raise InputError(f"{loaded.where('curve', 'scale')}: curve (scaled by {spec.scale:g}): {exc}") from None
 
 
 def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:
@@ -247,25 +252,82 @@ def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: T
     return VariantRun(name, program, execution, result, groups)
 
 
+def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
+    """Every variant's coating measured over the same region of interest: the vertices inside
+    every variant's band. Each band follows its own sprayed track, and the tracks differ within
+    the tolerance and the corner blends, so a vertex near a band's edge may fall in one and not
+    in another; the variants are compared on the same area instead."""
+    common = np.logical_and.reduce([r.coating.roi for r in runs])
+    if not common.any():
+        raise InputError("the variants' regions of interest share no vertex; check coating.band_halfwidth_mm")
+    measured = []
+    for r in runs:
+        coating = remeasured(r.coating, common, target_um)
+        measured.append(replace(r, coating=coating, groups={**r.groups, "coating": coating_group(coating.metrics)}))
+    return measured
+
+
+def variant_names(spec: Scenario) -> list[str]:
+    """The names of the scenario's variants (built-in variants and program variants)."""
+    return [entry if isinstance(entry, str) else entry.name for entry in spec.variants]
+
+
+def output_names(spec: Scenario) -> list[str]:
+    """The files a run of ``spec`` writes into its output folder, in writing order."""
+    per_variant = [f"{v}.{kind}" for v in variant_names(spec) for kind in ("as", "trajectory.csv", "thickness.ply")]
+    return ["polysegment.json", *per_variant, "metrics.json", "report.html"]
+
+
+def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
+    """Every file the scenario reads, labelled by its key (None where the key names no file)."""
+    spec = loaded.spec
+    table = spec.gun.footprint.strip()
+    scenario_model = None if spec.robot.model == "default" else loaded.resolve(spec.robot.model)
+    robot = Path(model) if model is not None else scenario_model
+    files: list[tuple[str, Optional[Path]]] = [
+        ("the scenario", loaded.path),
+        ("curve.file", loaded.resolve(spec.curve.file) if spec.curve is not None and spec.curve.file else None),
+        ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece.kind == "mesh" else None),
+        ("gun.footprint", loaded.resolve(table.split(":", 1)[1].strip()) if table.lower().startswith("table:") else None),
+        ("--model" if model is not None else "robot.model", robot),
+    ]
+    for entry in spec.variants:
+        if not isinstance(entry, str):
+            files += [(f"the program of variant {entry.name}", loaded.resolve(f)) for f in entry.files]
+    return files
+
+
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None, model: Optional[str | Path] = None, *, keep_going: bool = False,
-                 report: bool = True) -> RunResult:
+                 progress: Optional[bool] = None, model: Optional[str | Path] = None, force: bool = False, *,
+                 keep_going: bool = False, report: bool = True) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
-    ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
-    settings; ``progress`` defaults to showing a bar when stderr is a terminal; ``model``
-    replaces the scenario's robot model. With ``keep_going`` a variant that cannot run is
-    recorded in ``failures`` (and in the metrics document's ``failed``, which then does not
-    pass; gates on it are left out) while the others run. ``report=False`` skips report.html
-    (so does a run where no variant ran).
+    ``outdir`` defaults to ``runs/<name>`` and is held for the run (coatsim.outputs_guard): no
+    output may be an input, and files there that coatsim did not write are replaced only with
+    ``force``. ``fast`` uses the scenario's coarser ``fast`` settings; ``progress`` defaults to
+    showing a bar when stderr is a terminal; ``model`` replaces the scenario's robot model. With
+    ``keep_going`` a variant that cannot run is recorded in ``failures`` (and in the metrics
+    document's ``failed``, which then does not pass; gates on it are left out) while the others
+    run. ``report=False`` skips report.html (so does a run where no variant ran).
     """
-    from coatsim.report.document import write_report
+    from coatsim.outputs_guard import check_distinct, output_folder
 
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
+    out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
+    names = output_names(loaded.spec)
+    check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
+    with output_folder(out, names, "coatsim run", force):
+        return _run_in(loaded, cell, out, fast, progress, keep_going, report)
+
+
+def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool], keep_going: bool,
+            report: bool) -> RunResult:
+    """Every stage of a loaded scenario, writing into the held folder ``out``."""
+    from coatsim.report.document import write_report
+
     spec = loaded.spec
-    out = Path(outdir) if outdir is not None else Path("runs") / spec.name
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
     sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
@@ -277,8 +339,11 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
             curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
         else:
             curve = load_input_curve(loaded)
+        # the fitter knows the programmed speed and the arm's tool acceleration limit: no arc
+        # tighter than v² / a where the curve allows the speed, the rest listed as speed-limited
         segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
-                                     corner_deg=spec.segmentation.corner_deg)
+                                     corner_deg=spec.segmentation.corner_deg, speed_mm_s=spec.motion.speed_mm_s,
+                                     tool_accel_mm_s2=cell.tool_accel_mm_s2)
         poly = segmentation.polysegment
         write_polysegment_json(out / "polysegment.json", segmentation)
         if spec.curve is not None:
@@ -303,6 +368,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
                     raise (exc if not isinstance(entry, str) else type(exc)(f"{name}: {exc}")) from None
                 failures[name] = str(exc).removeprefix(f"{name}: ")
         step("metrics, gates and report")
+        runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates([g for g in spec.gates if {g.variant, g.compare_to or g.variant} <= set(variants)],
                                variants)
@@ -314,8 +380,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         write_text(out / "metrics.json", to_json(document))
         if report and runs:
             write_report(out / "report.html", loaded, curve, segmentation, runs, document)
-    files = [out / "polysegment.json"]
-    for r in runs:
-        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
-    files += [out / "metrics.json"] + ([out / "report.html"] if report and runs else [])
-    return RunResult(out, tuple(runs), document, tuple(files), failures, segmentation.seconds)
+    unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply")}
+    unwritten |= set() if report and runs else {"report.html"}
+    written = [name for name in output_names(spec) if name not in unwritten]
+    return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures, segmentation.seconds)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import difflib
 import inspect
 import json
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping, Optional, Union
@@ -31,6 +32,8 @@ BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
 Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
 Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
 Positive = Annotated[float, Field(gt=0)]
+# A scenario name names the run folder (runs/NAME) and its programs: never '.', '..', '-x'.
+SCENARIO_NAME = r"^[A-Za-z][A-Za-z0-9_.-]{0,63}$"
 NonNegative = Annotated[float, Field(ge=0)]
 
 
@@ -222,21 +225,38 @@ VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated
 
 class GateSpec(_Strict):
     """A pass/fail check on one metric of one variant: against a ``threshold``, or against
-    ``factor`` times the same metric of the ``compare_to`` variant."""
+    ``factor`` times the same metric of the ``compare_to`` variant — or of each of a list of
+    variants, i.e. of the best of them (``compare_to: [polyline-stop, polyline-blend]``)."""
 
     metric: Annotated[str, Field(pattern=r"^[a-z_]+\.[a-z0-9_]+$", description="group.name, e.g. coating.thickness_cv")]
     variant: VariantLabel = "polysegment"
     op: Literal["<", "<=", ">", ">=", "=="]
     threshold: Optional[float] = None
-    compare_to: Optional[VariantLabel] = None
+    compare_to: Optional[Union[VariantLabel, Annotated[list[VariantLabel], Field(min_length=1)]]] = None
     factor: Positive = 1.0
+
+    @field_validator("compare_to", mode="before")
+    @classmethod
+    def _some_variant(cls, value: Any) -> Any:
+        if isinstance(value, list) and not value:
+            raise ValueError("expected a variant or a list of at least one variant, got []")
+        return value
+
+    @property
+    def compared(self) -> tuple[str, ...]:
+        """The compared variants (none for a threshold gate)."""
+        if self.compare_to is None:
+            return ()
+        return (self.compare_to,) if isinstance(self.compare_to, str) else tuple(self.compare_to)
 
     @model_validator(mode="after")
     def _one_reference(self) -> GateSpec:
         if (self.threshold is None) == (self.compare_to is None):
             raise ValueError("give exactly one of 'threshold' or 'compare_to'")
-        if self.compare_to == self.variant:
-            raise ValueError(f"'compare_to' must name another variant than {self.variant!r}")
+        if self.variant in self.compared:
+            raise ValueError(f"'compare_to' must name other variants than {self.variant!r}")
+        if len(set(self.compared)) != len(self.compared):
+            raise ValueError("'compare_to' lists a variant twice")
         if self.threshold is not None and self.factor != 1.0:
             raise ValueError("'factor' applies only with 'compare_to'")
         return self
@@ -245,7 +265,7 @@ class GateSpec(_Strict):
 class Scenario(_Strict):
     """One coating job, as written in a scenario YAML file."""
 
-    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
+    name: Annotated[str, Field(pattern=SCENARIO_NAME, description="a file stem: names the run folder and its programs")]
     description: str = ""
     curve: Optional[CurveSpec] = Field(None, description="the curve; without it, the sprayed path of the first "
                                        "program variant")
@@ -258,6 +278,14 @@ class Scenario(_Strict):
     coating: CoatingSpec = Field(default_factory=CoatingSpec)
     fast: FastSpec = Field(default_factory=FastSpec)
     gates: list[GateSpec] = Field(default_factory=list)
+
+    @field_validator("name", mode="before")
+    @classmethod
+    def _file_stem(cls, name: Any) -> Any:
+        if isinstance(name, str) and not re.match(SCENARIO_NAME, name):
+            raise ValueError(f"{name!r} is not a safe file stem: a letter, then letters, digits, '_', '-' or '.' "
+                             "(at most 64 characters), e.g. 'paper_spiral'")
+        return name
 
     @field_validator("variants")
     @classmethod
@@ -309,13 +337,13 @@ class ScenarioFile:
 def check_references(spec: Scenario, where: ScenarioFile) -> None:
     """Gates may only name variants the scenario runs."""
     for i, gate in enumerate(spec.gates):
-        for key in ("variant", "compare_to"):
-            name = getattr(gate, key)
-            if name is not None and name not in spec.variant_names:
-                raise InputError(
-                    f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
-                    f"(add it to 'variants': {', '.join(spec.variant_names)})"
-                )
+        for key, names in (("variant", (gate.variant,)), ("compare_to", gate.compared)):
+            for name in names:
+                if name not in spec.variant_names:
+                    raise InputError(
+                        f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
+                        f"(add it to 'variants': {', '.join(spec.variant_names)})"
+                    )
 
 
 def check_gate_metrics(loaded: ScenarioFile) -> None:

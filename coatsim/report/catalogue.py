@@ -28,6 +28,7 @@ METRICS: dict[str, MetricInfo] = {
     "segmentation.tolerance_mm": MetricInfo("mm", "deviation the fitter was asked to guarantee"),
     "segmentation.max_tangent_break_deg": MetricInfo("deg", "largest heading change at the other junctions (0 = tangent-continuous; a polyline turns at every vertex)"),
     "segmentation.curve_length_mm": MetricInfo("mm", "length of the programmed curve (without run-in and run-out)"),
+    "segmentation.max_curvature_jump_per_mm": MetricInfo("1/mm", "largest curvature change at a junction that is not a corner (a tool at speed v feels v² x this as a step of its sideways acceleration; 0 for a polyline)"),
     # motion: the simulated arm running the program text (the robot stage's motion metrics)
     "motion.programmed_speed_mm_s": MetricInfo("mm/s", "tool speed the program asks for on the curve"),
     "motion.curve_length_mm": MetricInfo("mm", "length of the curve proper along the programmed path (run-in and run-out excluded)"),
@@ -39,6 +40,7 @@ METRICS: dict[str, MetricInfo] = {
     "motion.speed_cv": MetricInfo("1", "coefficient of variation (std / mean) of the tool speed over the curve proper"),
     "motion.fraction_at_speed": MetricInfo("1", "fraction of the curve length travelled at >= 95 % of the programmed speed"),
     "motion.fraction_at_speed_feasible": MetricInfo("1", "the same over the stretches where the programmed speed is feasible for the arm's tool acceleration (speed² x curvature <= limit)"),
+    "motion.min_speed_ratio": MetricInfo("1", "lowest tool speed / programmed speed where the curve allows the programmed speed: the curve proper without its true corners and turns tighter than v² / tool acceleration, and without 1.5 x the distance to brake for them or to speed up after them, at the tool acceleration limit (null if the curve allows the speed nowhere)"),
     "motion.stops": MetricInfo("count", "times the tool comes to rest on the curve proper (speed < 5 % of the programmed speed)"),
     "motion.max_path_error_mm": MetricInfo("mm", "largest distance from the simulated tool centre point to the programmed path over the curve proper"),
     "motion.rms_path_error_mm": MetricInfo("mm", "root-mean-square of that distance"),

@@ -9,7 +9,9 @@ Controller semantics modelled here (see the README's robot section):
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
-  cubic blend tangent to both moves (for two lines: the classic parabolic blend).
+  cubic blend tangent to both moves (for two lines: the classic parabolic blend). The blend
+  belongs to the outgoing move as far as the gun is concerned: a signal that switches as a
+  move starts switches where the tool enters the accuracy zone of the corner before it.
 Samples are at most ``step`` mm apart and include every primitive's (trimmed) end points exactly.
 """
 
@@ -21,7 +23,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.errors import ExecutionError, InputError
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
@@ -30,6 +33,7 @@ TANGENT_TOL_RAD = math.radians(0.5)
 # turn it round; the blend curve would fold onto itself).
 REVERSAL_RAD = math.radians(179.5)
 MIN_MOVE_MM = 1e-6
+MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,9 +198,15 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
     for k, sp in enumerate(spans):
         lo, hi = trims[k], sp.prim.length - trims[k + 1]
-        s = lo + _uniform(max(hi - lo, 0.0), step)
-        if k > 0:
-            s = s[1:]  # the first point is the previous blend's (or span's) last sample
+        if k == 0:
+            s = lo + _uniform(max(hi - lo, 0.0), step)
+        elif hi - lo > MERGE_MM or k == n - 1:
+            # the first point is the previous blend's (or span's) last sample
+            s = lo + np.linspace(0.0, hi - lo, max(1, int(math.ceil((hi - lo) / step - 1e-9))) + 1)[1:]
+        else:
+            # blends that meet mid-move leave (almost) nothing of it: samples a fraction of a
+            # micrometre apart would make the joint spline through them swing
+            s = np.zeros(0)
         if len(s):
             m = len(s)
             frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
@@ -213,7 +223,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
             first = frac <= 0.5
             add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
-                np.where(first, sp.index, nxt.index), np.where(first, sp.spray, nxt.spray),
+                np.where(first, sp.index, nxt.index), np.full(len(pts), nxt.spray),
                 ref_offset + hi + frac * (sp.prim.length - hi + d))
         ref_offset += sp.prim.length
     p = np.vstack(cols["p"])
@@ -232,11 +242,23 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
 
 def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
-    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm."""
-    if not step > 0:
-        raise ExecutionError(f"sampling step must be positive, got {step}")
+    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm.
+
+    The number of samples is checked against MAX_PATH_SAMPLES before any is made."""
+    if not (math.isfinite(step) and step > 0):
+        raise InputError(f"sampling step (--step-mm) must be a positive number of mm, got {step}")
     if not toolpath.moves:
         raise ExecutionError(f"{toolpath.name}: the program has no motion")
+    spans: dict[int, _Span] = {}
+    for index, move in enumerate(toolpath.moves):
+        if not isinstance(move, (JointMove, LinearMove, CircularMove)):
+            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
+        if not isinstance(move, JointMove):
+            spans[index] = _span(toolpath, index)
+    length = sum(sp.prim.length for sp in spans.values())
+    check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
+                 length / step + 10 * len(spans), MAX_PATH_SAMPLES,
+                 "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
     pieces: list[Piece] = []
     chain: list[_Span] = []
 
@@ -251,9 +273,7 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index,
                                      move.joints_rad))
             continue
-        if not isinstance(move, (LinearMove, CircularMove)):
-            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
-        span = _span(toolpath, index)
+        span = spans[index]
         if span.prim.length <= MIN_MOVE_MM:
             if span.stop:
                 flush()  # nothing to execute, but the tool comes to rest here (a dwell may follow)
@@ -271,3 +291,20 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
         m = toolpath.moves[int(first.move[0])]
         pieces.insert(0, JointPiece(m.start, float(m.settings.speed_mm_s), False, None))
     return tuple(pieces)
+
+
+def min_motion_time_s(toolpath: ToolPath, pieces: tuple[Piece, ...]) -> float:
+    """A lower bound on the time the program takes: every path length at its programmed speed,
+    joint moves by the straight distance between their end points, every dwell (the budget of
+    simulation steps is checked with it before any timing)."""
+    total, here = sum(d.seconds for d in toolpath.dwells), None
+    for piece in pieces:
+        if isinstance(piece, JointPiece):
+            target = np.asarray(piece.target.position, float)
+            distance = 0.0 if here is None else float(np.linalg.norm(target - here))
+            total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
+            here = target
+        else:
+            total += float(np.sum(np.diff(piece.s) / piece.speed[1:]))
+            here = piece.position[-1]
+    return total

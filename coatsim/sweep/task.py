@@ -120,7 +120,9 @@ def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
                           cpu_seconds=time.process_time() - cpu_started, **extra)
         files = {}
         if task.keep_outputs:
-            files = {p.relative_to(out).as_posix(): p.read_bytes() for p in sorted(out.rglob("*")) if p.is_file()}
+            # every output (not the run's own lock and manifest of its scratch folder)
+            files = {p.relative_to(out).as_posix(): p.read_bytes() for p in sorted(out.rglob("*"))
+                     if p.is_file() and not p.name.startswith(".")}
         status = {v: (clean(result.failures[v]) if v in result.failures else None) for v in variants}
         return PointOutcome(task.point, task.key, status, metrics=(out / "metrics.json").read_text(encoding="utf-8"),
                             files=files, seconds=time.perf_counter() - started,

@@ -36,7 +36,7 @@ def test_check_program_reports_the_golden_program(run_cli):
     code, out, err = run_cli(["check-program", str(GOLDEN)])
     assert code == 0, err
     assert "program roundrect: 26 steps, 15 poses; moves: 1 joint, 8 linear, 4 arc" in out
-    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10 + 60
+    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10  # one lap: the lead-in and lead-out run with the gun closed
     assert f"sprayed {length:.3f} mm" in out and "no problems found" in out
 
 
@@ -69,6 +69,7 @@ def test_program_from_polysegment_json(tmp_path, run_cli):
     tp = read_toolpath(out_file)
     assert tp.metadata["tolerance_mm"] == "0.1" and tp.metadata["lead_in_mm"] == "20"
     assert tp.spray_moves[0].start.position[2] == pytest.approx(330.0)
+    assert tp.metadata["sprayed"] == "curve"
     assert all(m.settings.speed_mm_s == 300.0 for m in tp.moves)
     code, text, err = run_cli(["program", str(src), "--variant", "polyline-stop", "--tol", "0.5"])
     assert code == 0 and text.startswith(".PROGRAM rr()") and "CP OFF" in text and "program rr" in err
@@ -89,9 +90,10 @@ def test_program_rejects_bad_options(tmp_path, run_cli, args, words):
 def test_check_program_lists_signals_and_sprayed_stretches(run_cli):
     code, out, err = run_cli(["check-program", str(GOLDEN)])
     assert code == 0, err
-    assert f"signal: {GOLDEN}:26: SIGNAL 1 (gun on)" in out and f"signal: {GOLDEN}:42: SIGNAL -1 (gun off)" in out
-    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10 + 60
-    assert f"sprayed: lines 27-40, 10 moves, {length:.3f} mm" in out
+    # a closed contour: the gun opens on the fly at the seam and closes after exactly one lap
+    assert f"signal: {GOLDEN}:30: SIGNAL 1 (gun on)" in out and f"signal: {GOLDEN}:43: SIGNAL -1 (gun off)" in out
+    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10
+    assert f"sprayed: lines 29-41, 8 moves, {length:.3f} mm" in out
 
 
 def test_check_program_accepts_a_bom_and_several_files(tmp_path, run_cli):
@@ -144,3 +146,27 @@ def test_check_program_options(tmp_path, run_cli):
     assert code == 2 and "--inputs" in err
     code, _, err = run_cli(["check-program", str(prog), "--program", "third"])
     assert code == 2 and "no program named 'third'" in err
+
+
+def test_program_segments_a_curve_for_its_speed(tmp_path, run_cli):
+    """--speed and the tool acceleration (the cell's, or --tool-accel) reach the fitter: the NACA
+    leading edge (radius ~3 mm) is listed as speed-limited at 300 mm/s, and with a laxer tool
+    limit it is not; the trailing edge is a true corner either way."""
+    out_file = tmp_path / "naca.as"
+    code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--speed", "300", "-o", str(out_file)])
+    assert code == 0, err
+    limits = read_toolpath(out_file).metadata["speed_limits"].split()
+    assert len(limits) == 2 and limits[-1].endswith(":0.0000") and 0.0 < float(limits[0].split(":")[2]) < 300.0
+    code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--speed", "300", "--tool-accel", "50",
+                            "-o", str(out_file)])
+    assert code == 0, err
+    assert len(read_toolpath(out_file).metadata["speed_limits"].split()) == 1
+    code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--tool-accel", "0"])
+    assert code == 2 and "--tool-accel" in err
+    # a polysegment JSON gets its stretches listed again for the program's speed
+    src = polysegment_json(tmp_path / "rr.json")
+    code, _, err = run_cli(["program", str(src), "--speed", "300", "-o", str(out_file)])
+    assert code == 0, err
+    assert len(read_toolpath(out_file).metadata["speed_limits"].split()) == 4  # the 10 mm corner arcs
+    code, _, err = run_cli(["program", str(src), "--speed", "200", "-o", str(out_file)])
+    assert read_toolpath(out_file).metadata["speed_limits"] == "none"

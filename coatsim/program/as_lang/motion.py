@@ -12,8 +12,13 @@ reference; the parts marked there as unconfirmed are modelled as stated here):
   the last motion of the program.
 - Gun signal (forward processing): the program runs ahead while a motion executes, so a gun
   switch written after motion k with no BREAK in between switches the gun as motion k starts;
-  after a BREAK it switches when motion k has ended, i.e. as motion k+1 starts. A move's
-  ``spray`` is the gun state from its start to its end.
+  after a BREAK it switches when motion k has ended, i.e. as motion k+1 starts. The rule is
+  the same under CP ON and CP OFF, for lines and arcs (C2MOVE), and a switch never makes the
+  robot stop. Under CP ON, "motion k starts" where the tool enters the accuracy zone of the
+  point before it (the robot stage switches at the start of the corner blend). A move's
+  ``spray`` is the gun state from its start to its end; several switches between two motions
+  act as the last one. The writer relies on this to spray a closed contour exactly once
+  around, switching on the fly at the seam.
 - Dwells: DELAY t / STABLE t are motion steps: the robot stops, then stands still t s (a gun
   switch written right after one switches as it starts). TWAIT t counts from the start of the
   motion in progress: the robot rests t minus the motion's nominal time (length / speed) at its
