@@ -322,6 +322,12 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         return _run_in(loaded, cell, out, fast, progress, keep_going, report)
 
 
+def _gate_variants(gate) -> set[str]:
+    """The variants a gate reads (its own and those it compares to)."""
+    other = gate.compare_to
+    return {gate.variant, *(() if other is None else (other,) if isinstance(other, str) else other)}
+
+
 def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool], keep_going: bool,
             report: bool) -> RunResult:
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
@@ -370,8 +376,7 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
         step("metrics, gates and report")
         runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
-        gates = evaluate_gates([g for g in spec.gates if {g.variant, g.compare_to or g.variant} <= set(variants)],
-                               variants)
+        gates = evaluate_gates([g for g in spec.gates if _gate_variants(g) <= set(variants)], variants)
         warnings = [{"variant": r.name, "message": event} for r in runs
                     for event in (*r.execution.warnings, *r.execution.events)]
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
