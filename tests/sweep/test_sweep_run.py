@@ -216,7 +216,7 @@ HOG = """\
 base: scenario/base.yaml
 fast: true
 grid:
-  fast.coating_spacing_mm: [4.0, 3.0, 0.15]   # 0.15 mm on a 300 mm plate: 4 M vertices
+  fast.coating_spacing_mm: [4.0, 3.0, 0.22]   # 0.22 mm on a 300 mm plate: 1.9 M vertices (within the budget)
   workpiece.size_mm: [[300.0, 300.0]]
 """
 
@@ -229,8 +229,8 @@ def test_a_killed_worker_is_retried_and_a_point_that_kills_every_worker_fails(tm
     from distributed import Client
 
     path = write_case(tmp_path, HOG)
-    hog_id = next(p.id for p in expand(load_sweep(path))[1] if p.axes["fast.coating_spacing_mm"] == 0.15)
-    with dask_processes(tmp_path, ("--memory-limit", "700MB"),
+    hog_id = next(p.id for p in expand(load_sweep(path))[1] if p.axes["fast.coating_spacing_mm"] == 0.22)
+    with dask_processes(tmp_path, ("--memory-limit", "500MB"),
                         {"DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "1",
                          "DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION": "1.0"}) as address, \
             Client(address, timeout="60s") as spy:
@@ -252,7 +252,7 @@ def test_a_killed_worker_is_retried_and_a_point_that_kills_every_worker_fails(tm
     assert killed
     result = done["result"]
     rows = rows_of(result)
-    hog = [r for r in rows if r["fast.coating_spacing_mm"] == 0.15]
+    hog = [r for r in rows if r["fast.coating_spacing_mm"] == 0.22]
     assert {r["status"] for r in hog} == {"failed"}
     assert all("died 2 times" in r["error"] for r in hog)
     assert {r["status"] for r in rows if r not in hog} == {"ok"}, [r["error"] for r in rows if r not in hog]
