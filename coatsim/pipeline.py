@@ -8,13 +8,12 @@ never the in-memory polysegment: the twin runs what the robot would run.
 
 from __future__ import annotations
 
-import difflib
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Callable, Iterator, Optional
+from typing import Callable, Iterator, Mapping, Optional
 
 import numpy as np
 
@@ -35,14 +34,13 @@ from coatsim.program.part_program import PartProgram, build_part_program, part_c
 from coatsim.program.placement import Frame, Placement
 from coatsim.program.toolpath import ToolPath
 from coatsim.program.user import UserProgram, user_program
-from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, combine_segmentation, contours_section, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
-from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, load_scenario
+from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, check_gate_metrics, load_scenario
 from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel
@@ -68,27 +66,19 @@ class VariantRun:
 
 @dataclass(frozen=True, eq=False)
 class RunResult:
-    """A finished run: every variant, the metrics document and the files written."""
+    """A finished run: every variant, the metrics document and the files written; with
+    ``keep_going``, ``failures`` holds the one-line error of each variant that could not run."""
 
     outdir: Path
     variants: tuple[VariantRun, ...]
     document: dict
     files: tuple[Path, ...]
+    failures: Mapping[str, str] = field(default_factory=dict)
     segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
 
     @property
     def passed(self) -> bool:
         return bool(self.document["passed"])
-
-
-def check_gate_metrics(loaded: ScenarioFile) -> None:
-    """Every gate names a metric of the catalogue (checked before anything runs)."""
-    for i, gate in enumerate(loaded.spec.gates):
-        if gate.metric not in METRICS:
-            close = difflib.get_close_matches(gate.metric, list(METRICS), n=1)
-            group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
-            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
-            raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
 
 
 def segment_input(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation]]:
@@ -381,13 +371,17 @@ def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> lis
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None, model: Optional[str | Path] = None, force: bool = False) -> RunResult:
+                 progress: Optional[bool] = None, model: Optional[str | Path] = None, force: bool = False, *,
+                 keep_going: bool = False, report: bool = True) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
     ``outdir`` defaults to ``runs/<name>`` and is held for the run (coatsim.outputs_guard): no
     output may be an input, and files there that coatsim did not write are replaced only with
     ``force``. ``fast`` uses the scenario's coarser ``fast`` settings; ``progress`` defaults to
-    showing a bar when stderr is a terminal; ``model`` replaces the scenario's robot model.
+    showing a bar when stderr is a terminal; ``model`` replaces the scenario's robot model. With
+    ``keep_going`` a variant that cannot run is recorded in ``failures`` (and in the metrics
+    document's ``failed``, which then does not pass; gates on it are left out) while the others
+    run. ``report=False`` skips report.html (so does a run where no variant ran).
     """
     from coatsim.outputs_guard import check_distinct, output_folder
 
@@ -398,10 +392,11 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
     with output_folder(out, names, "coatsim run", force):
-        return _run_in(loaded, cell, out, fast, progress)
+        return _run_in(loaded, cell, out, fast, progress, keep_going, report)
 
 
-def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool]) -> RunResult:
+def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool], keep_going: bool,
+            report: bool) -> RunResult:
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
     from coatsim.report.document import write_report
 
@@ -446,21 +441,23 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
             deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
         job = Job(loaded, contours, placement, surface, model, cell, out, sample_step, spacing, away,
                   polylines, deviations)
-        runs = []
+        runs, failures = [], {}
         for entry in spec.variants:
             name = entry if isinstance(entry, str) else entry.name
             step(f"{name}: writing and reading the program")
-            if not isinstance(entry, str):
-                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
-                continue
             try:
-                runs.append(run_variant(name, job, step))
+                if isinstance(entry, str):
+                    runs.append(run_variant(name, job, step))
+                else:
+                    runs.append(run_program_variant(entry, job, step))  # its errors name the variant
             except CoatsimError as exc:
-                raise type(exc)(f"{name}: {exc}") from None
+                if not keep_going:
+                    raise (exc if not isinstance(entry, str) else type(exc)(f"{name}: {exc}")) from None
+                failures[name] = str(exc).removeprefix(f"{name}: ")
         step("metrics, gates and report")
         runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
-        gates = evaluate_gates(spec.gates, variants)
+        gates = evaluate_gates([g for g in spec.gates if {g.variant, *g.compared} <= set(variants)], variants)
         warnings = [{"variant": r.name, "message": event} for r in runs
                     for event in (*r.execution.warnings, *r.execution.events)]
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
@@ -468,10 +465,14 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
             order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
             document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
                                                                        if r.contour_groups})
+        if failures:
+            document.update(failed=failures, passed=False)
         write_text(out / "metrics.json", to_json(document))
-        write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else ())
-    files = [segmentation_file]
-    for r in runs:
-        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
-    files += [out / "metrics.json", out / "report.html"]
-    return RunResult(out, tuple(runs), document, tuple(files), part.seconds if part is not None else contours[0].seconds)
+        if report and runs:
+            write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else ())
+    unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply")}
+    unwritten |= set() if report and runs else {"report.html"}
+    unwritten |= {"polysegment.json", "part.json"} - {segmentation_file.name}
+    written = [name for name in output_names(spec) if name not in unwritten]
+    return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures,
+                     part.seconds if part is not None else contours[0].seconds)

@@ -9,6 +9,7 @@ line and the key path, e.g. ``job.yaml:12: gun.standoff_mm: Input should be grea
 
 from __future__ import annotations
 
+import difflib
 import inspect
 import json
 import re
@@ -22,6 +23,7 @@ from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
 from coatsim.geometry.cad.drawing import is_drawing
 from coatsim.program.build import VARIANTS
+from coatsim.report.catalogue import METRICS
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
 
@@ -346,7 +348,7 @@ class ScenarioFile:
         return p if p.is_absolute() else self.path.parent / p
 
 
-def _check_references(spec: Scenario, where: ScenarioFile) -> None:
+def check_references(spec: Scenario, where: ScenarioFile) -> None:
     """Gates may only name variants the scenario runs."""
     for i, gate in enumerate(spec.gates):
         for key, names in (("variant", (gate.variant,)), ("compare_to", gate.compared)):
@@ -356,6 +358,16 @@ def _check_references(spec: Scenario, where: ScenarioFile) -> None:
                         f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
                         f"(add it to 'variants': {', '.join(spec.variant_names)})"
                     )
+
+
+def check_gate_metrics(loaded: ScenarioFile) -> None:
+    """Every gate names a metric of the catalogue (checked before anything runs)."""
+    for i, gate in enumerate(loaded.spec.gates):
+        if gate.metric not in METRICS:
+            close = difflib.get_close_matches(gate.metric, list(METRICS), n=1)
+            group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
+            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
+            raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
 
 
 def load_scenario(path: str | Path) -> ScenarioFile:
@@ -369,7 +381,7 @@ def load_scenario(path: str | Path) -> ScenarioFile:
     except ValidationError as exc:
         raise InputError(format_validation_error(exc, path, data, lines, Scenario)) from None
     loaded = ScenarioFile(spec, path, lines)
-    _check_references(spec, loaded)
+    check_references(spec, loaded)
     return loaded
 
 

@@ -156,21 +156,22 @@ def _read_bounded(path: Path) -> str:
     return data.decode("utf-8")
 
 
-def load_yaml_with_lines(path: Path) -> tuple[Any, dict[Loc, int]]:
-    """Parse one YAML document; return the data and the line of every key path."""
+def load_yaml_with_lines(path: Path, expected: str = "a scenario (name, curve, workpiece, ...)") -> tuple[Any, dict[Loc, int]]:
+    """Parse one YAML document; return the data and the line of every key path. ``expected``
+    says what the file should hold (for the messages on a folder or an empty file)."""
     try:
         text = _read_bounded(path)
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
     except IsADirectoryError:
-        raise InputError(f"{path}: is a folder, expected a scenario YAML file") from None
+        raise InputError(f"{path}: is a folder, expected a YAML file with {expected}") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
     loader = _Loader(text)
     try:
         node = loader.get_single_node()
         if node is None:
-            raise InputError(f"{path}: empty file, expected a scenario (name, curve, workpiece, ...)")
+            raise InputError(f"{path}: empty file, expected {expected}")
         _check_expansion(node)
         lines: dict[Loc, int] = {(): node.start_mark.line + 1}
         _record_lines(node, (), lines, path)
@@ -188,7 +189,7 @@ def load_yaml_with_lines(path: Path) -> tuple[Any, dict[Loc, int]]:
     return data, lines
 
 
-def _data_path(loc: Loc, data: Any) -> Loc:
+def data_path(loc: Loc, data: Any) -> Loc:
     """The part of a pydantic error location that indexes the data: union tags and
     validator names are dropped; a missing key (the last item) is kept."""
     out: list[Union[str, int]] = []
@@ -232,6 +233,12 @@ def _annotation_at(model: type[BaseModel], loc: Loc, data: Any) -> Any:
             current = typing.get_args(current)[0]
         current = _pick(current, node)
     return current
+
+
+def allowed_keys(model: type[BaseModel], loc: Loc, data: Any) -> list[str]:
+    """The keys the schema accepts in the mapping at ``loc`` of ``data`` ([] if not a model)."""
+    parent = _annotation_at(model, loc, data)
+    return sorted(parent.model_fields) if _is_model(parent) else []
 
 
 def _is_model(annotation: Any) -> bool:
@@ -289,10 +296,9 @@ def format_validation_error(
     """One line for the first error: ``file:line: key.path: what is wrong`` (+ a count)."""
     errors = exc.errors()
     err = errors[0]
-    loc = _data_path(tuple(err["loc"]), data)
+    loc = data_path(tuple(err["loc"]), data)
     line = next((lines[loc[:n]] for n in range(len(loc), -1, -1) if loc[:n] in lines), None)
-    parent = _annotation_at(model, loc[:-1], data) if loc else model
-    allowed = sorted(parent.model_fields) if _is_model(parent) else []
+    allowed = allowed_keys(model, loc[:-1], data) if loc else sorted(model.model_fields)
     tags = _tags(_annotation_at(model, loc, data))
     text = f"{path}:{line}: {_dotted(loc)}: {_describe(err, loc[-1] if loc else None, allowed, tags)}"
     if len(errors) > 1:

@@ -19,11 +19,15 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
+from coatsim.runtime import single_threaded_numerics
 
-from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
-from coatsim.robot.cell import load_cell
-from coatsim.robot.execute import execute
+single_threaded_numerics()  # as `coatsim` does, before the numerical libraries load
+
+import numpy as np  # noqa: E402
+
+from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath  # noqa: E402
+from coatsim.robot.cell import load_cell  # noqa: E402
+from coatsim.robot.execute import execute  # noqa: E402
 
 DOWN = np.diag([-1.0, 1.0, -1.0])
 

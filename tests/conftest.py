@@ -9,7 +9,11 @@ from typing import Callable
 import pytest
 from hypothesis import settings
 
-from coatsim import cli
+from coatsim.runtime import single_threaded_numerics
+
+single_threaded_numerics()  # as the console entry point does, before numerical libraries load
+
+from coatsim import cli  # noqa: E402
 
 # Property tests are reproducible by default (and in CI): derandomised, no example database, so a
 # run never replays a failure found by an earlier one. `--hypothesis-profile=explore` searches

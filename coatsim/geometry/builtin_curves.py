@@ -9,7 +9,6 @@ import math
 from typing import Callable
 
 import numpy as np
-from scipy.special import fresnel
 
 from coatsim.budgets import MAX_CURVE_POINTS, check_budget
 from coatsim.errors import InputError
@@ -124,6 +123,8 @@ def sine(points: int = DEFAULT_POINTS, amplitude: float = 20.0, wavelength: floa
 
 def clothoid(points: int = DEFAULT_POINTS, length: float = 200.0, end_radius: float = 40.0) -> np.ndarray:
     """Euler spiral from curvature 0 to 1/end_radius over ``length`` (exact, via Fresnel)."""
+    from scipy.special import fresnel  # heavy; only the clothoid needs it
+
     scale = math.sqrt(math.pi * length * end_radius)
     t = np.linspace(0.0, length / scale, points)
     s_int, c_int = fresnel(t)

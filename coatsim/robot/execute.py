@@ -7,7 +7,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 import mujoco
 import numpy as np
@@ -26,9 +26,11 @@ from coatsim.robot.primitives3d import line
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import JointPiece, min_motion_time_s, plan_pieces, step_label
-from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
+
+if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads only when a program is timed
+    from coatsim.robot.timing import TimedPiece
 
 _WINDOW_MM = 10.0  # progress search window around the commanded point (plus blend radii)
 
@@ -145,6 +147,8 @@ def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
 
 def _rest(cell: Cell, q: np.ndarray, dwell: Dwell, offset: float) -> _Segment | None:
     """The arm standing still at ``q`` for the dwell (None if shorter than half a time step)."""
+    from coatsim.robot.timing import TimedPiece
+
     m = int(round(dwell.seconds / cell.timestep))
     if m == 0:
         return None
@@ -192,6 +196,8 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
     ExecutionError when it diverged, warnings for small excesses.
     """
+    from coatsim.robot.timing import time_cartesian, time_joint
+
     cell = cell or load_cell()
     wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
     t_start = time.perf_counter()

@@ -9,6 +9,7 @@ names the program step, the pose and the residual.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Callable, Sequence
@@ -16,10 +17,11 @@ from typing import Callable, Sequence
 import mink
 import mujoco
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, MM, M_TO_MM, Cell
+from coatsim.robot.ik_batch import continuity_ok, first_order, refine
+from coatsim.robot.chain import Chain
 
 POS_TOL_MM = 0.05
 ROT_TOL_DEG = 0.05
@@ -28,6 +30,11 @@ _CONVERGED_DEG = 1e-4
 _MAX_TRACK_ITERS = 8   # ... or this many QP steps per sample
 _MAX_POSE_ITERS = 400  # for isolated targets (joint-move end points)
 _PREDICTOR_POINTS = 2  # linear extrapolation of the previous solutions
+KNOT_MM = 20.0         # spacing of the samples mink solves where the path is smooth
+_MIN_KNOT_SAMPLES = 8  # shorter pieces start from the first-order prediction, without knots
+_MAX_NEWTON_ITERS = 6  # batched Newton steps on the samples between the knots ...
+_POLISH_MM = 1e-6      # ... until this close
+_POLISH_DEG = 1e-6
 
 
 @dataclass(frozen=True)
@@ -66,6 +73,7 @@ class Tracker:
         self.tasks = [self.frame, self.posture]
         self.config_limit = mink.ConfigurationLimit(cell.model, min_distance_from_limits=1e-3)
         self.velocity_limit = mink.VelocityLimit(cell.model, dict(zip(JOINTS, cell.v_max)))
+        self.chain = Chain.build(cell.model, cell.tcp_site, (cell.wrist_site,))
 
     def _target(self, quat_wxyz: np.ndarray, p_mm: np.ndarray) -> None:
         self.frame.set_target(mink.SE3(np.concatenate((quat_wxyz, p_mm * MM))))
@@ -111,38 +119,105 @@ class Tracker:
         time the programmed speed allows from the previous sample to each sample: it scales the
         joint velocity limit into a per-step bound (a joint move that would need more is a
         singularity symptom and shows up as a residual).
+
+        Where the arm's kinematics are available vectorised, mink solves only knots about
+        ``KNOT_MM`` apart (none on pieces under 8 samples, which start from the first-order
+        prediction at ``q_start``); the samples between start from a cubic through the knot
+        solutions, and batched Newton steps bring every sample to 10^-6 mm / 10^-6 deg. The
+        result is kept when every sample converged, stays inside the joint limits and within one
+        speed-bounded QP step of the per-sample prediction; otherwise every sample is solved as
+        above.
         """
+        if self.chain is not None and len(s_mm) >= 2:
+            fast = self._track_fast(q_start, s_mm, positions_mm, rotations, step_time)
+            if fast is not None:
+                return fast
+        return self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, label, range(len(s_mm)))
+
+    def _track_samples(self, q_start, s_mm, positions_mm, rotations, step_time, label, indices,
+                       strict: bool = True) -> tuple[np.ndarray, np.ndarray, Residual] | None:
+        """The per-sample predictor-corrector over ``indices`` (all samples, or the knots);
+        ``strict=False`` returns None instead of raising on a residual above the tolerance."""
         cfg, cell = self.configuration, self.cell
-        n = len(positions_mm)
-        quats = _quat(rotations)
-        qs = np.empty((n, 6))
-        wrist = np.empty((n, 3))
+        idx = np.asarray(indices)
+        quats = _quat(rotations[idx])
+        qs = np.empty((len(idx), 6))
+        wrist = np.empty((len(idx), 3))
         limits = [self.config_limit, self.velocity_limit]
         worst = [0.0, 0.0, 0]
         q = np.asarray(q_start, float)
-        for i in range(n):
-            if i >= 1:
-                k = min(i, _PREDICTOR_POINTS)
-                q = _extrapolate(s_mm[i - k:i], qs[i - k:i], s_mm[i])
+        s_at = s_mm[idx]
+        # the time the programmed speed allows since the previous solved sample
+        elapsed = np.concatenate(([0.0], np.cumsum(step_time[1:])))
+        dt = np.concatenate(([step_time[idx[0]]], np.diff(elapsed[idx])))
+        for k, i in enumerate(idx):
+            if k >= 1:
+                m = min(k, _PREDICTOR_POINTS)
+                q = _extrapolate(s_at[k - m:k], qs[k - m:k], s_at[k])
             cfg.update(np.clip(q, cell.q_min, cell.q_max))
-            self._target(quats[i], positions_mm[i])
-            dp, dr, it = self._iterate(positions_mm[i], rotations[i], max(float(step_time[i]), 1e-4),
-                                       limits, _MAX_TRACK_ITERS)
+            self._target(quats[k], positions_mm[i])
+            dp, dr, it = self._iterate(positions_mm[i], rotations[i], max(float(dt[k]), 1e-4), limits,
+                                       _MAX_TRACK_ITERS)
             if dp > POS_TOL_MM or dr > ROT_TOL_DEG:
+                if not strict:
+                    return None
                 raise ExecutionError(
                     f"{label(i)}: cannot follow the path at {_describe(positions_mm[i], rotations[i])}: "
                     f"IK residual {dp:.3f} mm / {dr:.3f} deg exceeds {POS_TOL_MM} mm / {ROT_TOL_DEG} deg "
                     "(out of reach, joint limit or singularity); move or re-orient the path"
                 )
-            if dp > worst[0]:
-                worst[0] = dp
-            if dr > worst[1]:
-                worst[1] = dr
-            if it > worst[2]:
-                worst[2] = it
-            qs[i] = cfg.q
-            wrist[i] = cfg.data.site_xpos[cell.wrist_site] * M_TO_MM
+            worst = [max(worst[0], dp), max(worst[1], dr), max(worst[2], it)]
+            qs[k] = cfg.q
+            wrist[k] = cfg.data.site_xpos[cell.wrist_site] * M_TO_MM
         return qs, wrist, Residual(worst[0], worst[1], int(worst[2]))
+
+    def _track_fast(self, q_start, s_mm, positions_mm, rotations, step_time) -> tuple | None:
+        """Knots with mink (or the first-order prediction on a short piece), every sample
+        polished by batched Newton; None where that is not the path the per-sample tracker
+        would follow."""
+        cell, chain = self.cell, self.chain
+        if len(s_mm) >= _MIN_KNOT_SAMPLES:
+            knots = _knots(s_mm, KNOT_MM)
+            solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots,
+                                         strict=False)
+            if solved is None:
+                return None
+            q_knots, _, knot_residual = solved
+            guess = _interpolate(s_mm[knots], q_knots, s_mm)
+            guess[knots] = q_knots
+            qp_iterations = knot_residual.iterations
+        else:
+            guess, qp_iterations = first_order(chain, np.asarray(q_start, float), positions_mm, rotations), 0
+        # every sample, the knots too, polished well below the QP's convergence: a joint path
+        # without residual noise between neighbouring samples
+        q, dp, dr, wrist = refine(chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS,
+                                  cell.wrist_site)
+        margin = 1e-3  # as the QP's ConfigurationLimit
+        if dp.max() > _CONVERGED_MM or dr.max() > _CONVERGED_DEG \
+                or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \
+                or not continuity_ok(s_mm, q, step_time, cell.v_max):
+            return None
+        return q, wrist, Residual(float(dp.max()), float(dr.max()), qp_iterations)
+
+
+def _knots(s_mm: np.ndarray, spacing_mm: float) -> np.ndarray:
+    """Sample indices about ``spacing_mm`` apart along the path, the first and the last included."""
+    picks = [0]
+    for i in range(1, len(s_mm) - 1):
+        if s_mm[i] - s_mm[picks[-1]] >= spacing_mm:
+            picks.append(i)
+    picks.append(len(s_mm) - 1)
+    return np.array(picks)
+
+
+def _interpolate(s_knots: np.ndarray, q_knots: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Joint configurations at ``s`` from the knot solutions: a cubic spline (linear for fewer
+    than four knots, where scipy would solve a dense system)."""
+    if len(s_knots) < 4:
+        return np.column_stack([np.interp(s, s_knots, q_knots[:, j]) for j in range(q_knots.shape[1])])
+    from scipy.interpolate import CubicSpline
+
+    return CubicSpline(s_knots, q_knots, axis=0)(s)
 
 
 def _extrapolate(s: np.ndarray, q: np.ndarray, x: float) -> np.ndarray:
@@ -159,8 +234,22 @@ def _extrapolate(s: np.ndarray, q: np.ndarray, x: float) -> np.ndarray:
 
 def _quat(rotations: np.ndarray) -> np.ndarray:
     """wxyz quaternions (n, 4) of rotation matrices (n, 3, 3) (mink and MuJoCo order)."""
-    xyzw = Rotation.from_matrix(np.asarray(rotations, float)).as_quat()
-    return np.column_stack((xyzw[:, 3], xyzw[:, :3]))
+    out = np.empty((len(rotations), 4))
+    for k, r in enumerate(np.asarray(rotations, float).reshape(-1, 9)):
+        mujoco.mju_mat2Quat(out[k], r)
+    return out
+
+
+@functools.lru_cache(maxsize=4)
+def _arm_dimensions(cell: Cell) -> tuple[np.ndarray, float, float]:
+    """Joint anchors (3, 3) mm of JT1-JT3 at the zero configuration, the upper-arm and the
+    shoulder-to-wrist forearm lengths (mm)."""
+    data = mujoco.MjData(cell.model)
+    data.qpos[:] = 0.0
+    mujoco.mj_kinematics(cell.model, data)
+    anchors = data.xanchor[:3] * M_TO_MM
+    upper = float(np.linalg.norm(anchors[2] - anchors[1]))
+    return anchors, upper, float(np.linalg.norm(data.site_xpos[cell.wrist_site] * M_TO_MM - anchors[2]))
 
 
 def joint_path_events(cell: Cell, q: np.ndarray, wrist_mm: np.ndarray, labels: Sequence[str],
@@ -171,12 +260,7 @@ def joint_path_events(cell: Cell, q: np.ndarray, wrist_mm: np.ndarray, labels: S
     (arm stretched to 99 % of its shoulder-to-wrist reach) and shoulder (wrist centre within
     100 mm of the JT1 axis).
     """
-    data = mujoco.MjData(cell.model)
-    data.qpos[:] = 0.0
-    mujoco.mj_kinematics(cell.model, data)
-    anchors = data.xanchor[:3] * M_TO_MM
-    upper = np.linalg.norm(anchors[2] - anchors[1])
-    fore = np.linalg.norm(data.site_xpos[cell.wrist_site] * M_TO_MM - anchors[2])
+    anchors, upper, fore = _arm_dimensions(cell)
     reach = np.linalg.norm(wrist_mm - anchors[1], axis=1) / (upper + fore)
     axis_dist = np.linalg.norm(wrist_mm[:, :2] - anchors[0, :2], axis=1)
     margin = math.radians(limit_margin_deg)

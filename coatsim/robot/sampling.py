@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import mujoco
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
 from coatsim.errors import ExecutionError, InputError
@@ -124,10 +124,18 @@ def _span(toolpath: ToolPath, index: int) -> _Span:
 
 def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
     """Rotations (n, 3, 3) from r0 to r1 at fractions f (n,), along the shortest rotation."""
-    rel = Rotation.from_matrix(r0.T @ r1).as_rotvec()
-    if not np.any(rel):
+    quat = np.empty(4)
+    mujoco.mju_mat2Quat(quat, np.ascontiguousarray(r0.T @ r1).ravel())
+    if quat[0] < 0.0:
+        quat = -quat  # the shorter way round
+    sin_half = float(np.linalg.norm(quat[1:]))
+    if sin_half == 0.0:
         return np.broadcast_to(r0, (len(f), 3, 3)).copy()
-    return r0 @ Rotation.from_rotvec(np.outer(f, rel)).as_matrix()
+    x, y, z = quat[1:] / sin_half
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    angle = 2.0 * math.atan2(sin_half, quat[0]) * np.asarray(f, float)
+    turn = np.eye(3) + np.sin(angle)[:, None, None] * k + (1.0 - np.cos(angle))[:, None, None] * (k @ k)
+    return r0 @ turn
 
 
 def _uniform(length: float, step: float) -> np.ndarray:

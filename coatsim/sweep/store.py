@@ -1,0 +1,126 @@
+"""The sweep's output folder: one folder per point, the manifest, the lock, and resuming.
+
+``OUTDIR/points/<id>/`` holds ``point.json`` (written last: the point is finished once it is
+there), the run's ``metrics.json``, the resolved ``scenario.yaml`` (``coatsim run`` reproduces
+the point from it) and, with ``--keep-outputs``, every output of the run. A rerun reuses a
+point whose ``point.json`` has the same cache key (resolved scenario, input file contents,
+fast mode, coatsim version) and a reusable outcome; everything else runs again.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any, Iterator, Mapping, Optional
+
+import yaml
+
+from coatsim.errors import InputError
+from coatsim.fileio import write_bytes, write_text
+from coatsim.sweep.task import PointOutcome
+
+MANIFEST = "sweep.json"
+POINT_FORMAT = "coatsim.sweep-point/1"
+_LOCK = ".coatsim-sweep.lock"
+
+
+@contextmanager
+def locked_outdir(outdir: Path) -> Iterator[Path]:
+    """Create or reopen a sweep folder and hold it for this process; InputError when it is a
+    file, a folder that is not a sweep's (so nothing of the user's is overwritten), or in use."""
+    if outdir.exists() and not outdir.is_dir():
+        raise InputError(f"{outdir}: is a file; give a folder for the sweep's outputs")
+    if outdir.is_dir() and any(outdir.iterdir()) and not (outdir / MANIFEST).is_file():
+        raise InputError(f"{outdir}: folder exists and holds no {MANIFEST}: not a sweep's output folder; "
+                         "give a new or empty folder")
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+        handle = open(outdir / _LOCK, "a+")
+    except OSError as exc:
+        raise InputError(f"{outdir}: cannot write ({exc.strerror or exc})") from None
+    with handle:
+        try:
+            import fcntl
+
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except ImportError:  # no advisory locks on this platform
+            pass
+        except OSError:
+            raise InputError(f"{outdir}: another sweep is writing into this folder; wait for it or choose "
+                             "another") from None
+        yield outdir
+
+
+def point_dir(outdir: Path, point: str) -> Path:
+    return outdir / "points" / point
+
+
+def _json(value: Any) -> str:
+    return json.dumps(value, indent=2, ensure_ascii=False, allow_nan=False) + "\n"
+
+
+def save_point(outdir: Path, outcome: PointOutcome, params: Mapping[str, Any],
+               scenario: Optional[Mapping[str, Any]]) -> None:
+    """Replace the point's folder with this outcome (its metrics, scenario and outputs)."""
+    folder = point_dir(outdir, outcome.point)
+    if folder.exists():
+        shutil.rmtree(folder)
+    folder.mkdir(parents=True)
+    for name, data in outcome.files.items():
+        write_bytes(folder / name, data)
+    if outcome.metrics is not None:
+        write_text(folder / "metrics.json", outcome.metrics)
+    if scenario is not None:
+        write_text(folder / "scenario.yaml", yaml.safe_dump(dict(scenario), sort_keys=False))
+    record = {
+        "format": POINT_FORMAT,
+        "point": outcome.point,
+        "key": outcome.key,
+        "parameters": dict(params),
+        "status": outcome.status,
+        "variants": {v: {"status": "ok" if e is None else "failed", "error": e} for v, e in outcome.variants.items()},
+        "error": outcome.error,
+        "exit_code": outcome.exit_code,
+        "reusable": outcome.reusable,
+        "outputs": bool(outcome.files),
+        "coatsim": outcome.version,
+        "host": outcome.host,
+        "seconds": round(outcome.seconds, 3),
+        "cpu_seconds": round(outcome.cpu_seconds, 3),
+    }
+    if outcome.traceback:
+        record["traceback"] = outcome.traceback
+    write_text(folder / "point.json", _json(record))
+
+
+def load_point(outdir: Path, point: str, key: str, keep_outputs: bool) -> Optional[PointOutcome]:
+    """The stored outcome of ``point`` if a rerun may reuse it (same key, reusable, outputs kept
+    when asked for), else None."""
+    folder = point_dir(outdir, point)
+    try:
+        record = json.loads((folder / "point.json").read_text(encoding="utf-8"))
+        metrics_path = folder / "metrics.json"
+        metrics = metrics_path.read_text(encoding="utf-8") if metrics_path.is_file() else None
+    except (OSError, ValueError):
+        return None
+    if not isinstance(record, dict) or record.get("format") != POINT_FORMAT or record.get("key") != key:
+        return None
+    if not record.get("reusable") or (keep_outputs and metrics is not None and not record.get("outputs")):
+        return None
+    try:
+        variants = {v: item["error"] for v, item in record["variants"].items()}
+    except (KeyError, TypeError, AttributeError):
+        return None
+    if metrics is None and record.get("error") is None:
+        return None
+    return PointOutcome(point, key, variants, error=record.get("error"), exit_code=record.get("exit_code"),
+                        reusable=True, metrics=metrics, seconds=float(record.get("seconds") or 0.0),
+                        cpu_seconds=float(record.get("cpu_seconds") or 0.0),
+                        host=str(record.get("host", "")), version=str(record.get("coatsim", "")))
+
+
+def write_manifest(outdir: Path, manifest: Mapping[str, Any]) -> None:
+    write_text(outdir / MANIFEST, _json(dict(manifest)))
+

@@ -1,0 +1,38 @@
+"""Start-up: importing a stage loads only what the stage needs (checked in fresh interpreters)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+PLOTTING = ("matplotlib", "toppra")  # toppra imports matplotlib.pyplot at import
+
+
+def loaded(modules: list[str], watch: tuple[str, ...]) -> list[str]:
+    code = (f"import sys, json\nfor m in {modules!r}: __import__(m)\n"
+            f"print(json.dumps([w for w in {list(watch)!r} if w in sys.modules]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+@pytest.mark.parametrize("modules", [
+    ["coatsim.geometry", "coatsim.geometry.segment", "coatsim.geometry.builtin_curves", "coatsim.geometry.polysegment_json"],
+    ["coatsim.program", "coatsim.program.check", "coatsim.program.build", "coatsim.program.run"],
+    ["coatsim.robot.execute", "coatsim.robot.ik", "coatsim.robot.sampling", "coatsim.robot.playback",
+     "coatsim.robot.cell", "coatsim.robot.motion_metrics", "coatsim.robot.reference"],
+])
+def test_geometry_program_and_robot_stages_load_no_plotting_library(modules):
+    assert loaded(modules, PLOTTING) == []
+
+
+def test_the_program_stage_and_the_cli_load_no_scipy_and_no_simulator():
+    heavy = ("scipy.optimize", "scipy.special", "scipy.spatial", "mujoco", "mink", "trimesh", "pydantic", "dask")
+    assert loaded(["coatsim.program", "coatsim.program.check", "coatsim.program.run"], heavy) == []
+    assert loaded(["coatsim.cli"], heavy + ("numpy",) + PLOTTING) == []
+
+
+def test_a_sweep_client_loads_no_simulator_until_it_runs_points():
+    assert loaded(["coatsim.sweep.run", "coatsim.sweep.points"], ("mujoco", "mink", "toppra", "trimesh", "dask")) == []
