@@ -43,6 +43,16 @@ def fail(message: str, code: int = 2) -> None:
     raise typer.Exit(code)
 
 
+SEGMENT_FLAGS = {"min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
+
+
+def _segment_flags(message: str) -> str:
+    """A segment_curve error with its parameter names as the command's flags."""
+    for name, flag in SEGMENT_FLAGS.items():
+        message = message.replace(name, flag)
+    return message
+
+
 @app.command()
 def segment(
     input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns) or builtin:NAME[:key=value,...]."),
@@ -53,14 +63,37 @@ def segment(
     theta_tol: Optional[float] = typer.Option(None, "--theta-tol", help="paper method: fixed RDP tolerance on θ instead of searching for tol."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
+    min_segment: Optional[float] = typer.Option(None, "--min-segment", help="Shortest fitted segment, mm [default: 5 x --tol]."),
+    speed: Optional[float] = typer.Option(None, "--speed", help="Programmed speed, mm/s: no arc tighter than speed²/tool-accel where the curve allows; the rest is listed as speed-limited."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit with --speed, m/s² [default: the cell model's]."),
     timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
 ) -> None:
     """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
+    import math
+
+    from coatsim.errors import InputError
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
 
     if closed not in ("auto", "yes", "no"):
         fail(f"--closed: expected auto, yes or no, got {closed!r}")
-    seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg, theta_tolerance=theta_tol)
+    if tool_accel is not None and speed is None:
+        fail("--tool-accel: needs --speed")
+    accel_mm_s2 = None
+    if speed is not None:
+        if tool_accel is None:
+            from coatsim.robot.cell import load_cell
+
+            accel_mm_s2 = load_cell().tool_accel_mm_s2
+        elif math.isfinite(tool_accel) and tool_accel > 0:
+            accel_mm_s2 = tool_accel * 1000.0
+        else:
+            fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
+    try:
+        seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
+                            theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
+                            tool_accel_mm_s2=accel_mm_s2)
+    except InputError as exc:
+        fail(_segment_flags(str(exc)))
     if output is not None:
         write_polysegment_json(output, seg)
     if plot is not None:

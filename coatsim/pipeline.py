@@ -12,7 +12,7 @@ import difflib
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
@@ -33,7 +33,7 @@ from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
 from coatsim.robot.tooling import gun_tool
 from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
-from coatsim.spray.coat import CoatingResult, coat
+from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import write_thickness_ply
@@ -221,6 +221,21 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     return VariantRun(name, program, execution, result, groups)
 
 
+def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
+    """Every variant's coating measured over the same region of interest: the vertices inside
+    every variant's band. Each band follows its own sprayed track, and the tracks differ within
+    the tolerance and the corner blends, so a vertex near a band's edge may fall in one and not
+    in another; the variants are compared on the same area instead."""
+    common = np.logical_and.reduce([r.coating.roi for r in runs])
+    if not common.any():
+        raise InputError("the variants' regions of interest share no vertex; check coating.band_halfwidth_mm")
+    measured = []
+    for r in runs:
+        coating = remeasured(r.coating, common, target_um)
+        measured.append(replace(r, coating=coating, groups={**r.groups, "coating": coating_group(coating.metrics)}))
+    return measured
+
+
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
                  progress: Optional[bool] = None, model: Optional[str | Path] = None) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
@@ -261,6 +276,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
             except CoatsimError as exc:
                 raise type(exc)(f"{name}: {exc}") from None
         step("metrics, gates and report")
+        runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates(spec.gates, variants)
         warnings = [{"variant": r.name, "message": event} for r in runs for event in r.execution.events]

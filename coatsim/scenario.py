@@ -171,21 +171,38 @@ class FastSpec(_Strict):
 
 class GateSpec(_Strict):
     """A pass/fail check on one metric of one variant: against a ``threshold``, or against
-    ``factor`` times the same metric of the ``compare_to`` variant."""
+    ``factor`` times the same metric of the ``compare_to`` variant — or of each of a list of
+    variants, i.e. of the best of them (``compare_to: [polyline-stop, polyline-blend]``)."""
 
     metric: Annotated[str, Field(pattern=r"^[a-z_]+\.[a-z0-9_]+$", description="group.name, e.g. coating.thickness_cv")]
     variant: VariantName = "polysegment"
     op: Literal["<", "<=", ">", ">=", "=="]
     threshold: Optional[float] = None
-    compare_to: Optional[VariantName] = None
+    compare_to: Optional[Union[VariantName, Annotated[list[VariantName], Field(min_length=1)]]] = None
     factor: Positive = 1.0
+
+    @field_validator("compare_to", mode="before")
+    @classmethod
+    def _some_variant(cls, value: Any) -> Any:
+        if isinstance(value, list) and not value:
+            raise ValueError("expected a variant or a list of at least one variant, got []")
+        return value
+
+    @property
+    def compared(self) -> tuple[str, ...]:
+        """The compared variants (none for a threshold gate)."""
+        if self.compare_to is None:
+            return ()
+        return (self.compare_to,) if isinstance(self.compare_to, str) else tuple(self.compare_to)
 
     @model_validator(mode="after")
     def _one_reference(self) -> GateSpec:
         if (self.threshold is None) == (self.compare_to is None):
             raise ValueError("give exactly one of 'threshold' or 'compare_to'")
-        if self.compare_to == self.variant:
-            raise ValueError(f"'compare_to' must name another variant than {self.variant!r}")
+        if self.variant in self.compared:
+            raise ValueError(f"'compare_to' must name other variants than {self.variant!r}")
+        if len(set(self.compared)) != len(self.compared):
+            raise ValueError("'compare_to' lists a variant twice")
         if self.threshold is not None and self.factor != 1.0:
             raise ValueError("'factor' applies only with 'compare_to'")
         return self
@@ -240,13 +257,13 @@ class ScenarioFile:
 def _check_references(spec: Scenario, where: ScenarioFile) -> None:
     """Gates may only name variants the scenario runs."""
     for i, gate in enumerate(spec.gates):
-        for key in ("variant", "compare_to"):
-            name = getattr(gate, key)
-            if name is not None and name not in spec.variants:
-                raise InputError(
-                    f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
-                    f"(add it to 'variants': {', '.join(spec.variants)})"
-                )
+        for key, names in (("variant", (gate.variant,)), ("compare_to", gate.compared)):
+            for name in names:
+                if name not in spec.variants:
+                    raise InputError(
+                        f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
+                        f"(add it to 'variants': {', '.join(spec.variants)})"
+                    )
 
 
 def load_scenario(path: str | Path) -> ScenarioFile:

@@ -1,15 +1,18 @@
-"""Benchmark of the geometry stage: segment the five benchmark curves with the paper's method and
-the default fitter, next to the reference counts (coatsim.geometry.benchmark: the curves are
-generated from their formulas; ``--curves DIR`` reads NAME.csv files instead and exits non-zero
-when one is missing).
+"""Benchmark of the geometry stage: segment the five benchmark curves, the built-ins and curves the
+fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts
+(coatsim.geometry.benchmark: the curves are generated from their formulas; ``--curves DIR`` reads
+NAME.csv files instead and exits non-zero when one is missing).
 
-For every curve and σ in SIGMAS, per method: segments (arcs, lines), the deviation reported
-by segment_curve, an independent check of it by dense sampling of both curves (KD-tree,
-step σ/20, within step/2 of the true value), the largest tangent break at a junction that is
-not a listed corner, and the wall time. Then the time to segment 100 000-point curves at
-σ = 0.05 mm. Prints only; never asserts.
+For every curve and σ, per method: segments (arcs, lines), the deviation reported by
+segment_curve, an independent check of it by dense sampling of both curves (KD-tree, step σ/20,
+within step/2 of the true value), the largest tangent break at a junction that is not a listed
+corner, the tightest arc over the curve's tightest radius (``R ratio``: below 1 the fit turns
+tighter than the curve anywhere does), the shortest segment, the largest curvature jump at a
+tangent junction (1/mm) and the wall time. Then the time to segment 100 000-point curves at
+σ = 0.05 mm. Prints only; never asserts. The figures come from the polysegment alone, so the
+script also measures older versions of the fitter (PYTHONPATH=<their checkout>).
 
-    python scripts/bench_segment.py [--no-paper] [--sigmas 0.05,0.5] [--curves DIR]
+    python scripts/bench_segment.py [--paper] [--sigmas 0.05,0.5] [--only bench,builtin,heldout,large] [--curves DIR]
 """
 
 from __future__ import annotations
@@ -24,12 +27,22 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from coatsim.errors import CoatsimError
-from coatsim.geometry import load_curve, segment_curve
+from coatsim.geometry import load_curve, make_curve, segment_curve
 from coatsim.geometry.benchmark import NAMES, TOLERANCES_MM, bench_curve, reference_count
 
+from heldout_curves import CURVES, heldout_points, tightest_radius_mm
+
 SIGMAS = TOLERANCES_MM
+BUILTINS = ("paper-spiral", "ellipse", "ellipse:a=80,b=50", "naca", "cam", "epitrochoid", "sine", "clothoid",
+            "rounded-rectangle", "polygon", "d-shape", "raster")
+BUILTIN_SIGMAS = (0.05, 0.5)
+HELDOUT_SIGMAS = (0.05, 0.1, 0.5)
 LARGE = ("builtin:paper-spiral:points=100000", "builtin:ellipse:points=100000")
 LARGE_SIGMA = 0.05
+
+
+def reference(kind: str, name: str, sigma: float) -> int | str:
+    return (reference_count(kind, name, sigma) or "") if sigma in TOLERANCES_MM else ""
 
 
 def dense(points: np.ndarray, step: float) -> np.ndarray:
@@ -61,79 +74,129 @@ def sampled_deviation(points: np.ndarray, poly, step: float) -> float:
     return float(max(cKDTree(b).query(a)[0].max(), cKDTree(a).query(b)[0].max()))
 
 
+def _tangent(seg, at_end: bool) -> np.ndarray:
+    if seg.kind == "arc":
+        r = np.subtract(seg.end if at_end else seg.start, seg.center)
+        t = np.array([-r[1], r[0]]) * math.copysign(1.0, seg.sweep)
+    else:
+        t = np.subtract(seg.end, seg.start)
+    return t / np.linalg.norm(t)
+
+
+def _pairs(poly) -> list[tuple[int, object, object]]:
+    """(junction index, segment before, segment after) for every junction, seam last."""
+    segs = poly.segments
+    pairs = list(zip(segs[:-1], segs[1:])) + ([(segs[-1], segs[0])] if poly.closed else [])
+    return [(k, a, b) for k, (a, b) in enumerate(pairs)]
+
+
 def max_break_deg(poly) -> float:
     """Largest heading change at a junction that is not a listed corner (end tangents from
     the end points and centres, not from the stored headings)."""
-    def tangent(seg, at_end: bool):
-        if seg.kind == "arc":
-            r = np.subtract(seg.end if at_end else seg.start, seg.center)
-            t = np.array([-r[1], r[0]]) * math.copysign(1.0, seg.sweep)
-        else:
-            t = np.subtract(seg.end, seg.start)
-        return t / np.linalg.norm(t)
-
-    segs = poly.segments
-    pairs = list(zip(segs[:-1], segs[1:])) + ([(segs[-1], segs[0])] if poly.closed else [])
     worst = 0.0
-    for k, (a, b) in enumerate(pairs):
-        if k in poly.corners:
-            continue
-        ta, tb = tangent(a, True), tangent(b, False)
-        worst = max(worst, abs(math.atan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb)))
+    for k, a, b in _pairs(poly):
+        if k not in poly.corners:
+            ta, tb = _tangent(a, True), _tangent(b, False)
+            worst = max(worst, abs(math.atan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb)))
     return math.degrees(worst)
 
 
-def reference(kind: str, name: str, sigma: float) -> int | str:
-    return (reference_count(kind, name, sigma) or "") if sigma in TOLERANCES_MM else ""
+def _curvature(seg) -> float:
+    return math.copysign(1.0 / seg.radius, seg.sweep) if seg.kind == "arc" else 0.0
 
 
-def row(name: str, sigma: float, method: str, curve) -> str:
-    greedy, literal = reference("greedy", name, sigma), reference("paper", name, sigma)
-    head = f"{name:10} {sigma:6g} {method:8}"
-    tail = f"{greedy!s:>7} {literal!s:>7}"
+def max_curvature_jump(poly) -> float:
+    """Largest |Δκ| (1/mm) at a junction that is not a listed corner."""
+    jumps = [abs(_curvature(b) - _curvature(a)) for k, a, b in _pairs(poly) if k not in poly.corners]
+    return max(jumps, default=0.0)
+
+
+def min_radius(poly) -> float:
+    return min((s.radius for s in poly.segments if s.kind == "arc"), default=math.inf)
+
+
+def input_tightest_radius(points: np.ndarray, poly, spacing: float = 0.5) -> float:
+    """Tightest radius of a noise-free input: circles through points ``spacing`` mm apart
+    along it, away (3 spacings) from the polysegment's listed corners."""
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))))
+    at = np.arange(spacing, s[-1] - spacing, spacing / 4)
+    p = lambda u: np.column_stack((np.interp(u, s, points[:, 0]), np.interp(u, s, points[:, 1])))  # noqa: E731
+    a, b, c = p(at - spacing), p(at), p(at + spacing)
+    cross = (b - a)[:, 0] * (c - b)[:, 1] - (b - a)[:, 1] * (c - b)[:, 0]
+    kappa = 2 * np.abs(cross) / (np.linalg.norm(b - a, axis=1) * np.linalg.norm(c - b, axis=1) * np.linalg.norm(c - a, axis=1))
+    corners = np.array([poly.segments[k].end for k in poly.corners]).reshape(-1, 2)
+    if len(corners):
+        near = cKDTree(corners).query(b)[0] < 3 * spacing
+        kappa = kappa[~near]
+    top = float(kappa.max()) if len(kappa) else 0.0
+    return 1.0 / top if top > 0 else math.inf
+
+
+HEAD = (f"{'segs':>5} {'arcs':>5} {'lines':>5} {'dev mm':>9} {'check mm':>9}   {'break deg':>9} "
+        f"{'R ratio':>7} {'short mm':>8} {'jump 1/mm':>9} {'seconds':>7}")
+
+
+def measure(curve, sigma: float, method: str, tightest: float | None) -> str:
     t0 = time.perf_counter()
     try:
         seg = segment_curve(curve, sigma, method=method)
     except CoatsimError as exc:
-        return f"{head} failed after {time.perf_counter() - t0:.2f} s: {exc}"[:150] + f"  | refs {greedy} {literal}"
+        return f"failed after {time.perf_counter() - t0:.2f} s: {exc}"[:110]
     seconds = time.perf_counter() - t0
     poly = seg.polysegment
     check = sampled_deviation(curve.points, poly, sigma / 20)
     flag = " !" if check > sigma * 1.025 else ""
+    tight = input_tightest_radius(curve.points, poly) if tightest is None else tightest
+    ratio = min_radius(poly) / tight if math.isfinite(tight) else math.inf
+    shortest = min(s.length for s in poly.segments)
     gap = "" if not curve.closed or poly.end == poly.start else " (open seam)"
-    return (f"{head} {poly.n_segments:5d} {poly.n_arcs:5d} {poly.n_lines:5d} {seg.max_deviation_mm:10.5f} "
-            f"{check:10.5f}{flag:2} {max_break_deg(poly):9.2e} {seconds:8.2f} {tail}{gap}")
+    return (f"{poly.n_segments:5d} {poly.n_arcs:5d} {poly.n_lines:5d} {seg.max_deviation_mm:9.5f} "
+            f"{check:9.5f}{flag:2} {max_break_deg(poly):9.2e} {ratio:7.3f} {shortest:8.3f} "
+            f"{max_curvature_jump(poly):9.4f} {seconds:7.2f}{gap}")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--no-paper", action="store_true", help="skip the paper's method")
-    parser.add_argument("--sigmas", default=",".join(map(str, SIGMAS)), help="comma-separated tolerances, mm")
-    parser.add_argument("--no-large", action="store_true", help="skip the 100 000-point timings")
-    parser.add_argument("--curves", type=Path, help="read the benchmark curves from DIR/NAME.csv")
-    args = parser.parse_args()
-    sigmas = tuple(float(s) for s in args.sigmas.split(","))
-    methods = ("optimal",) if args.no_paper else ("paper", "optimal")
+def bench_table(sigmas, methods, folder: Path | None) -> None:
     curves = {}
     for name in NAMES:
-        if args.curves is None:
+        if folder is None:
             curves[name] = bench_curve(name)
             continue
-        path = args.curves / f"{name}.csv"
+        path = folder / f"{name}.csv"
         if not path.is_file():
             sys.exit(f"bench_segment: benchmark curve {path} not found")
         curves[name] = load_curve(str(path))
-    print(f"bench curves: {args.curves or 'generated from their formulas (coatsim.geometry.benchmark)'}")
-    print("dev = reported by segment_curve; check = dense-sampling Hausdorff (step sigma/20; '!' above 1.025 sigma);")
-    print("break = largest tangent break at a non-corner junction; refs = greedy free-arc / paper literally")
-    print(f"{'curve':10} {'sigma':>6} {'method':8} {'segs':>5} {'arcs':>5} {'lines':>5} {'dev mm':>10} "
-          f"{'check mm':>10}   {'break deg':>9} {'seconds':>8} {'greedy':>7} {'paper':>7}")
+    where = folder or "generated from their formulas (coatsim.geometry.benchmark)"
+    print(f"\nbench curves ({where}); refs = greedy free-arc / paper literally")
+    print(f"{'curve':10} {'sigma':>6} {'method':8} {HEAD} {'greedy':>6} {'paper':>6}")
     for name, curve in curves.items():
         for sigma in sigmas:
             for method in methods:
-                print(row(name, sigma, method, curve), flush=True)
-    if args.no_large:
-        return
+                greedy, literal = reference("greedy", name, sigma), reference("paper", name, sigma)
+                print(f"{name:10} {sigma:6g} {method:8} {measure(curve, sigma, method, None)} {greedy!s:>6} {literal!s:>6}",
+                      flush=True)
+
+
+def builtin_table() -> None:
+    print("\nbuilt-in curves (default method)")
+    print(f"{'curve':22} {'sigma':>6} {HEAD}")
+    for name in BUILTINS:
+        curve = load_curve(f"builtin:{name}")
+        for sigma in BUILTIN_SIGMAS:
+            print(f"{name:22} {sigma:6g} {measure(curve, sigma, 'optimal', None)}", flush=True)
+
+
+def heldout_table() -> None:
+    print("\nheld-out curves, 4000 points (scripts/heldout_curves.py; R ratio against the formula's tightest radius)")
+    print(f"{'curve':18} {'R min':>7} {'sigma':>6} {HEAD}")
+    for name in CURVES:
+        pts, closed = heldout_points(name)
+        curve = make_curve(pts, name, "yes" if closed else "no")
+        tight = tightest_radius_mm(name)
+        for sigma in HELDOUT_SIGMAS:
+            print(f"{name:18} {tight:7.2f} {sigma:6g} {measure(curve, sigma, 'optimal', tight)}", flush=True)
+
+
+def large_table() -> None:
     print(f"\nlarge inputs at sigma = {LARGE_SIGMA} mm (default method)")
     for spec in LARGE:
         curve = load_curve(spec)
@@ -146,7 +209,30 @@ def main() -> None:
         seconds = time.perf_counter() - t0
         poly = seg.polysegment
         print(f"{spec}: {len(curve.points)} points -> {poly.n_segments} segments ({poly.n_arcs} arcs), "
-              f"deviation {seg.max_deviation_mm:.5f} mm, {seconds:.2f} s", flush=True)
+              f"deviation {seg.max_deviation_mm:.5f} mm, shortest {min(s.length for s in poly.segments):.3f} mm, "
+              f"{seconds:.2f} s", flush=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--paper", action="store_true", help="also the paper's method on the bench curves")
+    parser.add_argument("--sigmas", default=",".join(map(str, SIGMAS)), help="bench-curve tolerances, mm")
+    parser.add_argument("--only", default="bench,builtin,heldout,large", help="tables to print")
+    parser.add_argument("--curves", type=Path, help="read the benchmark curves from DIR/NAME.csv")
+    args = parser.parse_args()
+    tables = set(args.only.split(","))
+    print("dev = reported by segment_curve; check = dense-sampling Hausdorff (step sigma/20; '!' above 1.025 sigma);")
+    print("break = largest tangent break at a non-corner junction; R ratio = tightest arc / tightest radius of the "
+          "input; short = shortest segment; jump = largest curvature change at a tangent junction")
+    if "bench" in tables:
+        bench_table(tuple(float(s) for s in args.sigmas.split(",")), ("paper", "optimal") if args.paper else ("optimal",),
+                    args.curves)
+    if "builtin" in tables:
+        builtin_table()
+    if "heldout" in tables:
+        heldout_table()
+    if "large" in tables:
+        large_table()
 
 
 if __name__ == "__main__":

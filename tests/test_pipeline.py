@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+from html import escape
 import io
 import json
 import re
@@ -16,6 +17,7 @@ import pytest
 from coatsim.cli import main
 from coatsim.program import read_toolpath
 from coatsim.report.document import SECTION_TITLES
+from coatsim.report.verdict import verdict
 from coatsim.robot.trajectory_log import read_trajectory_csv
 from coatsim.scenario import VARIANTS
 
@@ -130,6 +132,19 @@ def test_report_has_every_section_and_embeds_its_images(small_run: tuple[Cli, Pa
     assert not re.search(r'(src|href)="(?!data:|#)', html)
     assert "<script" not in html.lower()
     assert "FAIL" in html and "coating.thickness_cv [polysegment] &lt; 0" in html
+
+
+def test_report_and_console_lead_with_the_verdict_from_the_metrics(small_run: tuple[Cli, Path]) -> None:
+    cli, outdir = small_run
+    html = (outdir / "report.html").read_text(encoding="utf-8")
+    doc = json.loads((outdir / "metrics.json").read_text(encoding="utf-8"))
+    comparisons = verdict(doc).comparisons
+    assert [c.against for c in comparisons] == ["polyline-stop", "polyline-blend"]
+    for c in comparisons:
+        assert f"<h3>Polysegment against {c.against}</h3><p>{escape(c.headline, quote=True)}</p>" in html
+        assert c.headline in cli.out
+    assert "What arcs buy" not in html
+    assert html.index("Polysegment against polyline-stop") < html.index('<section id="curve">')
 
 
 def test_a_scenario_that_cannot_execute_exits_3(tmp_path: Path) -> None:

@@ -84,6 +84,10 @@ MALFORMED = [
     ("gate with two references", BASE + "gates:\n  - metric: coating.thickness_cv\n    op: '<'\n    threshold: 0.1\n    compare_to: polyline-stop\n", 9, ["gates[0]", "exactly one of 'threshold' or 'compare_to'"]),
     ("gate metric without group", BASE + "gates:\n  - metric: thickness_cv\n    op: '<'\n    threshold: 0.1\n", 9, ["gates[0].metric", "'thickness_cv'"]),
     ("gate on a variant not run", BASE + "variants: [polysegment]\ngates:\n  - metric: coating.thickness_cv\n    op: '<'\n    compare_to: polyline-stop\n", 12, ["gates[0].compare_to", "not run"]),
+    ("best of a variant not run", BASE + "variants: [polysegment, polyline-stop]\ngates:\n  - metric: coating.thickness_cv\n    op: '<'\n    compare_to: [polyline-stop, polyline-blend]\n", 12, ["gates[0].compare_to", "'polyline-blend' is not run"]),
+    ("best of itself", BASE + "gates:\n  - metric: coating.thickness_cv\n    op: '<'\n    compare_to: [polyline-stop, polysegment]\n", 9, ["gates[0]", "other variants than 'polysegment'"]),
+    ("best of one variant twice", BASE + "gates:\n  - metric: coating.thickness_cv\n    op: '<'\n    compare_to: [polyline-stop, polyline-stop]\n", 9, ["gates[0]", "lists a variant twice"]),
+    ("best of nothing", BASE + "gates:\n  - metric: coating.thickness_cv\n    op: '<'\n    compare_to: []\n", 11, ["gates[0].compare_to", "at least one variant, got []"]),
     ("unknown built-in curve", BASE.replace("builtin: raster", "builtin: hexagon"), 3, ["curve.builtin", "'hexagon'"]),
     ("unknown built-in parameter", BASE.replace("passes: 3", "passez: 3"), 2, ["curve", "no parameter 'passez'", "passes"]),
     ("two curve sources", BASE.replace("builtin: raster", "builtin: raster\n  file: c.csv"), 2, ["curve", "exactly one of 'builtin' or 'file'"]),
@@ -197,3 +201,22 @@ def test_shipped_scenarios_load() -> None:
     assert files, "no shipped scenarios"
     for path in files:
         assert load_scenario(path).spec.name == path.stem
+
+
+def test_every_shipped_scenario_gates_the_polysegment_against_both_polylines() -> None:
+    """Thickness CV and lowest speed, each against the best of the two polylines, within a small
+    margin (at most 5 %); a shipped scenario at process speed closes on itself."""
+    folder = Path(__file__).resolve().parents[1] / "scenarios"
+    from coatsim.pipeline import load_input_curve
+
+    closed_at_process_speed = 0
+    for path in sorted(folder.glob("*.yaml")):
+        loaded = load_scenario(path)
+        spec = loaded.spec
+        against = {(g.metric, g.op): g for g in spec.gates if set(g.compared) == {"polyline-stop", "polyline-blend"}}
+        cv, speed = against[("coating.thickness_cv", "<=")], against[("motion.min_speed_ratio", ">=")]
+        assert cv.variant == speed.variant == "polysegment", path.name
+        assert 1.0 <= cv.factor <= 1.05 and 0.95 <= speed.factor <= 1.0, path.name
+        if spec.motion.speed_mm_s >= 300.0 and load_input_curve(loaded).closed:
+            closed_at_process_speed += 1
+    assert closed_at_process_speed >= 1

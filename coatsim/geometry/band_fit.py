@@ -8,32 +8,45 @@ tangent continuity of the chain, so G1 holds by construction.
 
 Given the state (Φ̂, θ̂) at a knot, the curvatures that keep the piece inside the band up to
 knot b form an interval; its running intersection gives every reachable end at once. The
-greedy picks each piece's end and curvature by one step of look-ahead: the choice that lets
-the *next* piece reach farthest.
+curvature of a piece is also capped by the input's own curvature near it (FitLimits), and a
+piece is at least the minimum segment length long (so is what remains after it). The greedy
+picks each piece's end and curvature by one step of look-ahead: the choice that lets the
+*next* piece reach farthest.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linprog
 
+from coatsim.geometry.limits import FitLimits
+
 N_END_CANDIDATES = 12
 N_CURVATURE_CANDIDATES = 5
 N_HEADING_CANDIDATES = 7
 LP_KNOTS = 400
+TIE = 0.0  # look-ahead reaches within this share of the best count as equal
+LANDED_BAND = 0.9  # a re-measured state keeps its offset within this share of the band
 
 
 @dataclass(frozen=True, eq=False)
 class BandProblem:
-    """Knots ``s`` (n,) and integrated heading ``phi`` (n,) of one open run of a curve."""
+    """Knots ``s`` (n,) and integrated heading ``phi`` (n,) of one open run of a curve, the
+    curvature cap of a piece covering each knot (n,) 1/mm, the shortest piece (mm), and the
+    run's ``points`` (n, 2) with their tangent headings ``tangent`` (n,) rad."""
 
     s: np.ndarray
     phi: np.ndarray
+    cap: np.ndarray
+    min_length: float
+    points: np.ndarray
+    tangent: np.ndarray
 
     @classmethod
-    def from_points(cls, points: np.ndarray) -> tuple["BandProblem", float]:
+    def from_points(cls, points: np.ndarray, limits: FitLimits) -> tuple["BandProblem", float]:
         """Build from a polyline; returns the problem and the reference heading θ is taken from."""
         d = np.diff(points, axis=0)
         ell = np.linalg.norm(d, axis=1)
@@ -41,24 +54,80 @@ class BandProblem:
         ref = float(heading[0])
         s = np.concatenate(([0.0], np.cumsum(ell)))
         phi = np.concatenate(([0.0], np.cumsum((heading - ref) * ell)))
-        return cls(s, phi), ref
+        tangent = np.concatenate(([heading[0]], (heading[:-1] + heading[1:]) / 2, [heading[-1]]))
+        return cls(s, phi, limits.at_knots(s), limits.min_length_mm, np.asarray(points, float), tangent), ref
+
+    def ends_allowed(self, a: int, b: np.ndarray) -> np.ndarray:
+        """Whether a piece from knot ``a`` may end at each knot of ``b``: long enough, and
+        leaving either nothing or at least a minimum length after it."""
+        last = len(self.s) - 1
+        rest = self.s[last] - self.s[b]
+        return ((self.s[b] - self.s[a] >= self.min_length) | (b == last)) & ((b == last) | (rest >= self.min_length))
 
 
 @dataclass(frozen=True)
 class Piece:
-    """One quadratic piece of Φ̂ from knot ``a`` to knot ``b`` with curvature ``kappa``."""
+    """One quadratic piece of Φ̂ from knot ``a`` to knot ``b`` with curvature ``kappa``; the
+    arc it stands for is ``length`` mm long (s[b] - s[a] unless corrected, see _landed)."""
 
     a: int
     b: int
     kappa: float
+    length: float
+
+
+@dataclass(frozen=True)
+class _Pose:
+    """Where the chain really is: its end point (x, y) and heading (rad)."""
+
+    x: float
+    y: float
+    heading: float
+
+    def along(self, kappa: float, length: float) -> "_Pose":
+        sweep = kappa * length
+        chord = length * (math.sin(sweep / 2) / (sweep / 2) if abs(sweep) > 1e-12 else 1.0)
+        mid = self.heading + sweep / 2
+        return _Pose(self.x + chord * math.cos(mid), self.y + chord * math.sin(mid), self.heading + sweep)
+
+
+def _landed(prob: BandProblem, ref: float, pose: _Pose, piece: Piece, band: float) -> tuple[Piece, _Pose, float, float]:
+    """The piece with its arc length corrected so the arc ends on the curve's normal at knot
+    b, the chain's pose there, and the Φ-domain state (value, slope) it really has.
+
+    Φ̂ − Φ is the lateral offset only to first order: over a long run the chain drifts along
+    the curve by the second-order terms. Measuring the offset and heading of the real arc at
+    every knot keeps the greedy's states true to the geometry (an offset beyond the band is
+    taken as the band's edge: the refinement that follows closes such gaps).
+    """
+    b = piece.b
+    px, py = prob.points[b]
+    tx, ty = math.cos(prob.tangent[b]), math.sin(prob.tangent[b])
+    length = piece.length
+    for _ in range(4):  # Newton on the tangential gap to the normal line at knot b
+        end = pose.along(piece.kappa, length)
+        gap = (end.x - px) * tx + (end.y - py) * ty
+        rate = math.cos(end.heading - prob.tangent[b])
+        if rate < 0.5:
+            break
+        length -= gap / rate
+    if not 0.5 * piece.length <= length <= 1.5 * piece.length:
+        length = piece.length
+    end = pose.along(piece.kappa, length)
+    offset = float(np.clip(-(end.x - px) * ty + (end.y - py) * tx, -LANDED_BAND * band, LANDED_BAND * band))
+    return Piece(piece.a, b, piece.kappa, length), end, float(prob.phi[b] + offset), end.heading - ref
 
 
 def _reach(prob: BandProblem, a: int, value: float, slope: float, band: float) -> tuple[int, np.ndarray, np.ndarray]:
-    """Farthest knot b reachable from state (value, slope) at knot a, and the feasible
-    curvature bounds (lo, hi) for every knot a+1..b (arrays of length b - a)."""
+    """Knots a piece from state (value, slope) at knot a can end at.
+
+    Returns (b, lo, hi): the band holds up to knot b, and (lo[i], hi[i]) are the curvatures
+    of a piece ending at knot a+1+i that stay inside the band and under the cap of the
+    stretch (lo > hi where the cap leaves none), arrays of length b - a.
+    """
     n = len(prob.s)
     lo_all, hi_all = [], []
-    lo_run, hi_run = -np.inf, np.inf
+    lo_run, hi_run, cap_run = -np.inf, np.inf, float(prob.cap[a])
     start, width = a + 1, 256
     while start < n:
         stop = min(n, start + width)
@@ -67,18 +136,24 @@ def _reach(prob: BandProblem, a: int, value: float, slope: float, band: float) -
         inv = 2.0 / (u * u)
         lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - band - base) * inv)))[1:]
         hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + band - base) * inv)))[1:]
+        cap = np.maximum.accumulate(np.concatenate(([cap_run], prob.cap[start:stop])))[1:]
         bad = np.flatnonzero(lo > hi)
+        stop_at = bad[0] if len(bad) else len(lo)
+        lo_all.append(np.maximum(lo[:stop_at], -cap[:stop_at]))
+        hi_all.append(np.minimum(hi[:stop_at], cap[:stop_at]))
         if len(bad):
-            lo_all.append(lo[: bad[0]])
-            hi_all.append(hi[: bad[0]])
             break
-        lo_all.append(lo)
-        hi_all.append(hi)
-        lo_run, hi_run = lo[-1], hi[-1]
+        lo_run, hi_run, cap_run = lo[-1], hi[-1], cap[-1]
         start, width = stop, width * 4
     lo_cat = np.concatenate(lo_all) if lo_all else np.empty(0)
     hi_cat = np.concatenate(hi_all) if hi_all else np.empty(0)
     return a + len(lo_cat), lo_cat, hi_cat
+
+
+def _farthest(prob: BandProblem, a: int, lo: np.ndarray, hi: np.ndarray) -> int:
+    """The farthest knot a piece from knot a can end at under the caps (a if none)."""
+    ok = np.flatnonzero(lo <= hi)
+    return a + 1 + int(ok[-1]) if len(ok) else a
 
 
 def _advance(prob: BandProblem, a: int, b: int, value: float, slope: float, kappa: float) -> tuple[float, float]:
@@ -93,43 +168,53 @@ def _curvature_candidates(lo: float, hi: float) -> np.ndarray:
     return cands
 
 
-def _end_candidates(prob: BandProblem, a: int, b_max: int) -> np.ndarray:
-    """Knots to try as the piece end: the farthest, and others spread over the last 40 %."""
-    s_far = prob.s[b_max]
-    targets = prob.s[a] + (s_far - prob.s[a]) * np.linspace(0.6, 1.0, N_END_CANDIDATES)
-    ends = np.searchsorted(prob.s, targets).clip(a + 1, b_max)
-    return np.unique(ends)
+def _end_candidates(prob: BandProblem, a: int, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Knots to try as the piece end: the farthest allowed one, and others spread over the
+    last 40 % before it."""
+    ends = a + 1 + np.flatnonzero(lo <= hi)
+    ends = ends[prob.ends_allowed(a, ends)]
+    if not len(ends):
+        return ends
+    s_end = prob.s[ends]
+    targets = prob.s[a] + (s_end[-1] - prob.s[a]) * np.linspace(0.6, 1.0, N_END_CANDIDATES)
+    return np.unique(ends[np.searchsorted(s_end, targets).clip(0, len(ends) - 1)])
 
 
-def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: float) -> tuple[Piece, float, float, float]:
+def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: float,
+               previous: float | None = None) -> tuple[Piece, float, float, float]:
     """Choose the next piece from a state by one step of look-ahead.
 
+    Among the choices whose following piece reaches within ``TIE`` of the farthest, the one
+    with the smallest curvature jump from the ``previous`` piece's curvature wins (a tool at
+    speed feels a jump as a step of its lateral acceleration), then the longer piece.
     Returns (piece, next value, next slope, score), score = arc length the following piece
     reaches (infinity when this piece ends the run).
     """
     last = len(prob.s) - 1
     b_max, lo, hi = _reach(prob, a, value, slope, band)
-    if b_max == a:
-        raise _Stuck(a)
-    if b_max == last:
+    if b_max == last and lo[-1] <= hi[-1]:
         # Final piece: end the run with the curvature that lands closest to the curve's end.
         k_lo, k_hi = lo[-1], hi[-1]
         u = prob.s[last] - prob.s[a]
         ideal = 2.0 * (prob.phi[last] - value - slope * u) / (u * u)
         kappa = 0.0 if k_lo <= 0.0 <= k_hi and abs(ideal) * u * u < 0.2 * band else float(np.clip(ideal, k_lo, k_hi))
         v, t = _advance(prob, a, last, value, slope, kappa)
-        return Piece(a, last, kappa), v, t, np.inf
-    best = None
-    for b in _end_candidates(prob, a, b_max):
+        return Piece(a, last, kappa, float(prob.s[last] - prob.s[a])), v, t, np.inf
+    options = []
+    for b in _end_candidates(prob, a, lo, hi):
         for kappa in _curvature_candidates(lo[b - a - 1], hi[b - a - 1]):
             v, t = _advance(prob, a, b, value, slope, kappa)
-            nxt, _, _ = _reach(prob, b, v, t, band)
-            score = np.inf if nxt == last else prob.s[nxt]
-            key = (score, prob.s[b], kappa == 0.0)
-            if best is None or key > best[0]:
-                best = (key, Piece(a, int(b), float(kappa)), v, t)
-    _, piece, v, t = best
-    return piece, v, t, best[0][0]
+            _, lo2, hi2 = _reach(prob, b, v, t, band)
+            nxt = _farthest(prob, b, lo2, hi2)
+            score = np.inf if nxt == last else float(prob.s[nxt])
+            options.append((score, float(prob.s[b]), float(kappa), int(b), v, t))
+    if not options:
+        raise _Stuck(a)
+    top = max(o[0] for o in options)
+    near = top if np.isinf(top) else top - TIE * (top - prob.s[a])
+    jump = (lambda k: 0.0) if previous is None else (lambda k: abs(k - previous))
+    score, _, kappa, b, v, t = max((o for o in options if o[0] >= near), key=lambda o: (-jump(o[2]), o[1], o[2] == 0.0))
+    return Piece(a, b, kappa, float(prob.s[b] - prob.s[a])), v, t, score
 
 
 class _Stuck(Exception):
@@ -155,9 +240,10 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
         a_ub = np.vstack((np.column_stack((u, 0.5 * u * u)), -np.column_stack((u, 0.5 * u * u))))
         rhs = prob.phi[knots] - prob.phi[0]
         b_ub = np.concatenate((rhs + band, band - rhs))
+        cap = float(prob.cap[: b + 1].max())
         out = []
         for c in (1.0, -1.0):
-            res = linprog([c, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * 2, method="highs")
+            res = linprog([c, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None), (-cap, cap)], method="highs")
             if res.status != 0:
                 return None
             out.append(res.x[0])
@@ -188,7 +274,7 @@ def _closing_pair(prob: BandProblem, a: int, value: float, slope: float, band: f
     reach, lo, hi = _reach(prob, a, value, slope, band)
     for j in np.unique(np.linspace(a + 1, min(reach, last - 1), 24).astype(int))[::-1]:
         u1, u2 = prob.s[j] - prob.s[a], prob.s[last] - prob.s[j]
-        if u1 <= 0 or u2 <= 0:
+        if u1 <= 0 or u2 <= 0 or not prob.ends_allowed(a, np.array([j]))[0]:
             continue
         # slope:  slope + k1 u1 + k2 u2 = end_slope
         # value:  value + slope (u1 + u2) + k1 (u1²/2 + u1 u2) + k2 u2²/2 = phi[last]
@@ -200,18 +286,21 @@ def _closing_pair(prob: BandProblem, a: int, value: float, slope: float, band: f
         v, t = _advance(prob, a, j, value, slope, k1)
         reach2, lo2, hi2 = _reach(prob, j, v, t, band)
         if reach2 == last and lo2[-1] <= k2 <= hi2[-1]:
-            return [Piece(a, int(j), float(k1)), Piece(int(j), last, float(k2))]
+            return [Piece(a, int(j), float(k1), float(u1)), Piece(int(j), last, float(k2), float(u2))]
     return None
 
 
 def fit_band(
-    prob: BandProblem, band: float, start_slope: float | None = None, end_turn: float | None = None,
+    prob: BandProblem, ref: float, band: float, start_slope: float | None = None, end_turn: float | None = None,
+    landed: bool = False,
 ) -> tuple[float, list[Piece]]:
     """Greedy C1 piecewise-quadratic fit of Φ within ±band over the whole run.
 
     The run starts on the curve (Φ̂(0) = Φ(0)); its start slope is ``start_slope`` if given,
-    otherwise chosen by look-ahead. With ``end_turn`` (closed loops) the last pieces are
-    chosen to end with the start slope plus that turn where the band allows it.
+    otherwise chosen by look-ahead. With ``landed``, the state after every piece is
+    re-measured on the real arc (``ref``: the heading Φ is taken against), which helps on
+    long runs whose chain drifts along the curve. With ``end_turn`` (closed loops) the last
+    pieces are chosen to end with the start slope plus that turn where the band allows it.
     Returns (start slope, pieces).
     """
     if start_slope is None:
@@ -231,13 +320,18 @@ def fit_band(
     if best is None:
         raise _Stuck(0)
     _, slope0, piece, v, t = best
-    pieces = [piece]
     last = len(prob.s) - 1
+    pose = _Pose(float(prob.points[0][0]), float(prob.points[0][1]), ref + slope0)
+    pieces: list[Piece] = []
     states = [(0, float(prob.phi[0]), slope0)]
-    while pieces[-1].b < last:
-        states.append((pieces[-1].b, v, t))
-        piece, v, t, _ = _best_step(prob, pieces[-1].b, v, t, band)
+    while True:
+        if piece.b < last and landed:
+            piece, pose, v, t = _landed(prob, ref, pose, piece, band)
         pieces.append(piece)
+        if piece.b == last:
+            break
+        states.append((piece.b, v, t))
+        piece, v, t, _ = _best_step(prob, piece.b, v, t, band, piece.kappa)
     if end_turn is not None:
         # Re-end the loop from the start of the last piece, or of the one before it.
         for back in range(1, min(2, len(pieces)) + 1):

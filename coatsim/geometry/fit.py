@@ -18,13 +18,18 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
-from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.fillet import fillet_chain
+from coatsim.geometry.limits import FitLimits, arc_excess
+from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
+from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 20
+SLACK = 0.02  # caps and minimum length hold to this share (the stretch a segment covers is mapped by length)
+RELAX = (1.0, 1.5, 3.0)  # caps loosened by these factors, in turn, where the fit fails under them
+RELAXED_ATTEMPTS = 8  # attempts granted to each loosened try
+QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its first point)
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
@@ -45,7 +50,7 @@ def build_chain(start: np.ndarray, p: ChainParams, end: np.ndarray) -> tuple[Seg
 
 def _params_from_band(prob: BandProblem, ref: float, slope: float, pieces) -> ChainParams:
     kappa = np.array([p.kappa for p in pieces])
-    length = np.array([prob.s[p.b] - prob.s[p.a] for p in pieces])
+    length = np.array([p.length for p in pieces])
     return ChainParams(ref + slope, kappa, length)
 
 
@@ -64,9 +69,66 @@ def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
     return bool(np.abs(offset).max() <= tolerance)
 
 
-def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tuple[Segment, ...], float]:
-    """G1 chain within ``tolerance`` of a run (start and end points kept exactly), and its
-    verified deviation (mm)."""
+def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:
+    """Whether every curvature is under its stretch's cap and every length at least the
+    minimum (a run of one segment may be shorter)."""
+    if len(params.length) > 1 and params.length.min() < (1 - SLACK) * limits.min_length_mm:
+        return False
+    return arc_excess(params.kappa, params.length, limits, total) <= 1 + SLACK
+
+
+def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+                 budget: list[int]) -> tuple[tuple[Segment, ...], float] | None:
+    """Band fit, refinement and the exact check under ``limits``; None if no chain within
+    ``tolerance`` is found within the attempt ``budget`` (a shared one-element counter)."""
+    end = pts[-1]
+    total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    turn = total_turn(pts) if closed_loop else None
+    prob, ref = BandProblem.from_points(pts, limits)
+    band, target = tolerance, TARGET * tolerance
+    params: ChainParams | None = None
+    splits, landed = 0, False
+    while budget[0] > 0:
+        budget[0] -= 1
+        if params is None:
+            try:
+                slope, pieces = fit_band(prob, ref, band, end_turn=turn, landed=landed)
+            except BandStuck:
+                band *= 0.9 if landed else 0.7
+                landed = False
+                continue
+            params = _params_from_band(prob, ref, slope, pieces)
+        params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target)
+        params = close_exactly(pts[0], params, end, turn)
+        dev, segs = _check(pts, params, end)
+        honest = _honest(params, limits, total)
+        if dev <= tolerance and honest:
+            return segs, dev
+        if honest and sampled <= target:
+            # The samples met the target but the exact check did not (chords of the input
+            # cut inside the chain): aim lower with the same segments.
+            target *= 0.99 * tolerance / dev
+        elif (honest and sampled < SPLIT_BELOW * tolerance and splits < MAX_SPLITS
+              and _splittable(params, pts, limits)):
+            params = split_segment(params, worst_segment(pts[0], params, pts))
+            splits += 1
+        else:
+            # A new band fit: the same band with states re-measured on the real arcs, then
+            # a narrower band.
+            if landed:
+                band *= float(np.clip(0.97 * tolerance / dev, 0.85, 0.95)) if honest else 0.9
+            splits, params, landed = 0, None, not landed
+    return None
+
+
+def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool:
+    """Whether the worst segment is long enough to be cut in two."""
+    return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
+
+
+def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tuple[Segment, ...], float] | None:
+    """A run that is one line within ``tolerance`` (open runs), or exactly a chain of lines
+    and arcs, as that chain with its verified deviation; else None."""
     pts = np.asarray(points, dtype=float)
     end = pts[-1]
     if not closed_loop and _near_chord(pts, tolerance):
@@ -77,44 +139,37 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tu
     exact = recover_exact(pts, closed_loop, tolerance)
     if exact is not None:
         return exact, hausdorff(pts, Polysegment(exact)).hausdorff
-    turn = total_turn(pts) if closed_loop else None
-    min_len = 1e-6 * float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
-    prob, ref = BandProblem.from_points(pts)
-    band, target = tolerance, TARGET * tolerance
-    best: tuple[tuple[Segment, ...], float] | None = None
-    params: ChainParams | None = None
-    splits = 0
-    for _ in range(MAX_ATTEMPTS):
-        if params is None:
-            try:
-                slope, pieces = fit_band(prob, band, end_turn=turn)
-            except BandStuck:
-                band *= 0.7
-                continue
-            params = _params_from_band(prob, ref, slope, pieces)
-        params, sampled = refine_chain(pts[0], params, pts, end, turn, min_len, target)
-        params = close_exactly(pts[0], params, end, turn)
-        dev, segs = _check(pts, params, end)
-        if dev <= tolerance:
-            best = (segs, dev)
-            break
-        if sampled <= target:
-            # The samples met the target but the exact check did not (chords of the input
-            # cut inside the chain): aim lower with the same segments.
-            target *= 0.99 * tolerance / dev
-        elif sampled < SPLIT_BELOW * tolerance and splits < MAX_SPLITS:
-            params = split_segment(params, worst_segment(pts[0], params, pts))
-            splits += 1
-        else:
-            splits = 0
-            band *= float(np.clip(0.97 * tolerance / dev, 0.85, 0.95))
-            params = None
-    if best is None:
-        # Sparse or kinked input the band fit cannot follow: round every vertex instead.
-        segs = fillet_chain(pts, tolerance, closed_loop)
-        dev = hausdorff(pts, Polysegment(segs)).hausdorff
-        if dev > tolerance:
-            raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
-        best = (segs, dev)
-    return best
+    return None
 
+
+def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+             quick: bool = False) -> tuple[tuple[Segment, ...], float] | None:
+    """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
+    under the curvature caps and minimum length of ``limits``, and its verified deviation.
+
+    Where no such chain is found, the caps are loosened step by step, and as the last resort
+    every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
+    caps as they are, None if those fail.
+    """
+    pts = np.asarray(points, dtype=float)
+    if quick:
+        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS])
+    budget = [MAX_ATTEMPTS]
+    for factor in RELAX:
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), budget)
+        if found is not None:
+            return found
+        budget[0] = max(budget[0], RELAXED_ATTEMPTS)
+    # Sparse or kinked input the band fit cannot follow: round every vertex instead.
+    segs = fillet_chain(pts, tolerance, closed_loop)
+    dev = hausdorff(pts, Polysegment(segs)).hausdorff
+    if dev > tolerance:
+        raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
+    return segs, dev
+
+
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
+            limits: FitLimits) -> tuple[tuple[Segment, ...], float]:
+    """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
+    else fit_free."""
+    return fit_simple(points, tolerance, closed_loop) or fit_free(points, tolerance, closed_loop, limits)

@@ -19,11 +19,14 @@ def wrap_angle(angle: np.ndarray | float) -> np.ndarray | float:
 @dataclass(frozen=True)
 class Polysegment:
     """Chain of segments; ``corners`` are junction indices k (end of k, start of k+1,
-    with ``n - 1`` the seam of a closed chain) where tangency is intentionally broken."""
+    with ``n - 1`` the seam of a closed chain) where tangency is intentionally broken;
+    ``speed_limited`` the stretches (s0 mm, s1 mm, v_max mm/s) along the chain where the
+    speed it was fitted for cannot be kept (coatsim.geometry.dynamics), if one was given."""
 
     segments: tuple[Segment, ...]
     closed: bool = False
     corners: tuple[int, ...] = ()
+    speed_limited: tuple[tuple[float, float, float], ...] = ()
 
     def __post_init__(self) -> None:
         if not self.segments:
@@ -88,10 +91,12 @@ class Polysegment:
         return np.vstack(pts), np.concatenate(ss)
 
     def transformed(self, matrix: np.ndarray, offset: Sequence[float], scale: float = 1.0) -> Polysegment:
-        """Image under p -> scale * matrix @ p + offset (matrix orthogonal)."""
+        """Image under p -> scale * matrix @ p + offset (matrix orthogonal); speed limits
+        scale with the radii (s by ``scale``, v_max by its square root)."""
         off = np.asarray(offset, dtype=float)
         segs = tuple(s.transformed(np.asarray(matrix, float), off, scale) for s in self.segments)
-        return replace(self, segments=segs)
+        limited = tuple((a * scale, b * scale, v * math.sqrt(scale)) for a, b, v in self.speed_limited)
+        return replace(self, segments=segs, speed_limited=limited)
 
 
 def chain(

@@ -37,6 +37,7 @@ def polysegment_document(poly: Polysegment, tolerance_mm: float, stats: dict[str
         "tolerance_mm": float(tolerance_mm),
         "segments": [segment_to_dict(s) for s in poly.segments],
         "corners": [int(k) for k in poly.corners],
+        "speed_limited": [[float(v) for v in stretch] for stretch in poly.speed_limited],
         "stats": stats,
     }
 
@@ -97,7 +98,27 @@ def polysegment_from_document(doc: Any, source: str) -> Polysegment:
     corners = doc.get("corners", [])
     if not isinstance(corners, list) or not all(isinstance(k, int) and 0 <= k < len(segments) for k in corners):
         raise InputError(f"{source}: corners: expected junction indices 0..{len(segments) - 1}")
-    return Polysegment(tuple(segments), closed=closed, corners=tuple(corners))
+    length = float(sum(s.length for s in segments))
+    return Polysegment(tuple(segments), closed=closed, corners=tuple(corners),
+                       speed_limited=_speed_limited(doc.get("speed_limited", []), length, source))
+
+
+def _speed_limited(value: Any, length: float, source: str) -> tuple[tuple[float, float, float], ...]:
+    """Validate ``speed_limited``: [[s0, s1, v_max], ...] with 0 <= s0 <= s1 <= the length (mm)
+    and v_max >= 0 (mm/s); an older file without the key has none."""
+    if not isinstance(value, list):
+        raise InputError(f"{source}: speed_limited: expected a list of [s0, s1, v_max]")
+    out = []
+    slack = 1e-6 * max(1.0, length)
+    for i, item in enumerate(value):
+        where = f"{source}: speed_limited[{i}]"
+        if not isinstance(item, list) or len(item) != 3:
+            raise InputError(f"{where}: expected [s0, s1, v_max] (mm, mm, mm/s)")
+        s0, s1, v = (_number(x, where) for x in item)
+        if not (-slack <= s0 <= s1 <= length + slack) or v < 0:
+            raise InputError(f"{where}: need 0 <= s0 <= s1 <= {length:.6g} mm (the path length) and v_max >= 0")
+        out.append((s0, s1, v))
+    return tuple(out)
 
 
 def read_polysegment_json(path: str | Path) -> Polysegment:

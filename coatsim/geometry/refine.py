@@ -4,7 +4,9 @@ The chain starts at a fixed point; every parameter vector is a tangent-continuou
 optimising in this space keeps G1 by construction. We minimise the largest lateral distance
 of the input samples to the chain (each sample measured against the carrier circle of the
 segment at the same normalised arc length), subject to the chain ending at the run's end
-point (open runs) or closing onto its start with the start heading (closed curves).
+point (open runs) or closing onto its start with the start heading (closed curves), every
+curvature staying under the cap of the stretch its segment covers and every length above
+the minimum (FitLimits).
 """
 
 from __future__ import annotations
@@ -14,9 +16,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linprog
 
+from coatsim.geometry.limits import FitLimits
+
 MAX_SAMPLES = 400
 EXCHANGE = 60  # worst points added to the samples per exchange round
 EXCHANGE_ROUNDS = 6
+EARLY = 12
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,7 +55,7 @@ def _segment_starts(start: np.ndarray, heading0: np.ndarray, kappa: np.ndarray, 
     return pts, heading
 
 
-def _batch_residuals(start: np.ndarray, x: np.ndarray, samples: np.ndarray, s_frac: np.ndarray) -> np.ndarray:
+def batch_residuals(start: np.ndarray, x: np.ndarray, samples: np.ndarray, s_frac: np.ndarray) -> np.ndarray:
     """Signed lateral distance (B, m) of every sample for a batch of parameter vectors (B, 2n+1).
 
     Each sample is compared with the carrier circle (or line) of the segment at the same
@@ -72,11 +77,11 @@ def _batch_residuals(start: np.ndarray, x: np.ndarray, samples: np.ndarray, s_fr
 
 
 def lateral_residuals(start: np.ndarray, p: ChainParams, samples: np.ndarray, s_frac: np.ndarray) -> np.ndarray:
-    """Signed distance of each sample to the carrier of its segment (see _batch_residuals)."""
-    return _batch_residuals(np.asarray(start, float), p.vector()[None], samples, s_frac)[0]
+    """Signed distance of each sample to the carrier of its segment (see batch_residuals)."""
+    return batch_residuals(np.asarray(start, float), p.vector()[None], samples, s_frac)[0]
 
 
-def _closure(start: np.ndarray, x: np.ndarray, end: np.ndarray, turn: float | None) -> np.ndarray:
+def closure_gap(start: np.ndarray, x: np.ndarray, end: np.ndarray, turn: float | None) -> np.ndarray:
     """Gap (B, 2 or 3) between each chain's end and the required end point, and between its
     total turning and the required ``turn`` (closed curves)."""
     n = (x.shape[1] - 1) // 2
@@ -87,7 +92,7 @@ def _closure(start: np.ndarray, x: np.ndarray, end: np.ndarray, turn: float | No
     return np.concatenate((gap, heading[:, -1:] - heading[:, :1] - turn), axis=1)
 
 
-def _jacobian(f, z: np.ndarray, eps: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+def jacobian(f, z: np.ndarray, eps: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
     """Value and forward-difference Jacobian of a batched function f((B, d)) -> (B, m)."""
     batch = np.vstack((z, z + eps * np.eye(len(z))))
     out = f(batch)
@@ -96,15 +101,15 @@ def _jacobian(f, z: np.ndarray, eps: float = 1e-7) -> tuple[np.ndarray, np.ndarr
 
 def _minimax_step(
     r: np.ndarray, jr: np.ndarray, lift_l: np.ndarray, lift_r: np.ndarray,
-    c: np.ndarray, jc: np.ndarray, lower: np.ndarray, radius: float, weight: float,
+    c: np.ndarray, jc: np.ndarray, lower: np.ndarray, upper: np.ndarray, weight: float,
 ) -> tuple[np.ndarray, float] | None:
     """Solve the linearised step: minimise max_i(±(r_i + J_i dz) + lift_i) + weight·|c + J_c dz|∞
-    with |dz| <= radius (and dz >= ``lower``). Returns (dz, model value) or None."""
+    with ``lower`` <= dz <= ``upper``. Returns (dz, model value) or None."""
     d = jr.shape[1]
-    # Inside the trust region a residual moves by at most `reach`; rows that cannot become
-    # the largest one are left out of the LP (same optimum, much smaller LP).
+    # Inside the bounds a residual moves by at most `reach`; rows that cannot become the
+    # largest one are left out of the LP (same optimum, much smaller LP).
     size = np.maximum(r + lift_l, -r + lift_r)
-    reach = np.abs(jr).sum(axis=1) * radius
+    reach = np.abs(jr) @ np.maximum(np.abs(lower), np.abs(upper))
     active = size + reach >= float(np.max(size - reach))
     r, jr, lift_l, lift_r = r[active], jr[active], lift_l[active], lift_r[active]
     m, k = len(r), len(c)
@@ -119,11 +124,79 @@ def _minimax_step(
         np.hstack((-jc, zeros_k, -ones_k)),
     ))
     b_ub = np.concatenate((-r - lift_l, r - lift_r, -c, c))
-    bounds = list(zip(lower, np.full(d, radius))) + [(0, None), (0, None)]
-    lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs-ds")
+    box = list(zip(lower, upper)) + [(0, None), (0, None)]
+    lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=box, method="highs-ds")
     if lp.status != 0:
         return None
     return lp.x[:d], float(lp.x[d] + weight * lp.x[d + 1])
+
+
+class ChainProblem:
+    """A run to fit a chain of ``n`` segments to, in scaled variables z = x / ``unit``
+    (angles; curvature x run length; length / mean length), with the samples the deviation
+    is measured at (``pick``, grown by exchange rounds)."""
+
+    def __init__(self, start: np.ndarray, points: np.ndarray, end: np.ndarray, turn: float | None,
+                 limits: FitLimits, n: int) -> None:
+        seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
+        s = np.concatenate(([0.0], np.cumsum(seg)))
+        self.total = float(s[-1])
+        self.frac = s / self.total
+        self.points = points
+        self.start = np.asarray(start, dtype=float)
+        self.end = np.asarray(end, dtype=float)
+        self.turn = turn
+        self.limits = limits
+        self.n = n
+        self.inset_left, self.inset_right = chord_insets(points)
+        grid = np.linspace(0, self.total, min(MAX_SAMPLES, len(points)))
+        self.pick = np.unique(np.searchsorted(s, grid).clip(0, len(points) - 1))
+        self.unit = np.concatenate(([1.0], np.full(n, 1.0 / self.total), np.full(n, self.total / n)))
+        self.min_len_z = max(limits.min_length_mm if n > 1 else 0.0, 1e-6 * self.total) / self.unit[n + 1 :]
+
+    def residuals(self, zb: np.ndarray) -> np.ndarray:
+        """Lateral residuals (B, samples) for a batch of scaled vectors."""
+        return batch_residuals(self.start, zb * self.unit, self.points[self.pick], self.frac[self.pick])
+
+    def excess(self, r: np.ndarray, where: np.ndarray | slice) -> np.ndarray:
+        """Distance bound per sample: the lateral residual, plus the chord inset of the input
+        on the side where the chain lies (output-to-input distance between vertices)."""
+        return np.maximum(r + self.inset_left[where], -r + self.inset_right[where])
+
+    def deviation(self, zb: np.ndarray) -> np.ndarray:
+        """Largest sampled distance bound (B,)."""
+        return self.excess(self.residuals(zb), self.pick).max(axis=1)
+
+    def closure(self, zb: np.ndarray) -> np.ndarray:
+        """End gap (and turning gap times the run length) (B, 2 or 3)."""
+        scale = np.append([1.0, 1.0], [self.total] * (self.turn is not None))
+        return closure_gap(self.start, zb * self.unit, self.end, self.turn) * scale
+
+    def bounds(self, z: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+        """Step bounds: the trust region, the curvature caps of the segments' present
+        stretches and the minimum length (a parameter already past its bound may stay but
+        not go farther)."""
+        n = self.n
+        x = z * self.unit
+        ends = np.concatenate(([0.0], np.cumsum(x[n + 1 :])))
+        ends = ends / ends[-1] * self.total
+        cap_z = self.limits.over(ends[:-1], ends[1:]) / self.unit[1 : n + 1]
+        lower, upper = np.full(2 * n + 1, -radius), np.full(2 * n + 1, radius)
+        kappa = z[1 : n + 1]
+        lower[1 : n + 1] = np.clip(np.minimum(-cap_z - kappa, 0.0), -radius, radius)
+        upper[1 : n + 1] = np.clip(np.maximum(cap_z - kappa, 0.0), -radius, radius)
+        lower[n + 1 :] = np.clip(np.minimum(self.min_len_z - z[n + 1 :], 0.0), -radius, radius)
+        return lower, upper
+
+    def add_missing(self, z: np.ndarray) -> bool:
+        """Add the points whose distance bound exceeds every sampled one (the samples missed
+        a peak); whether there were any."""
+        full = self.excess(batch_residuals(self.start, (z * self.unit)[None], self.points, self.frac)[0], slice(None))
+        sampled = float(full[self.pick].max())
+        order = np.argsort(-full)[:EXCHANGE]
+        missing = order[full[order] > 1.001 * sampled + 1e-12]
+        self.pick = np.union1d(self.pick, missing)
+        return len(missing) > 0
 
 
 def refine_chain(
@@ -132,7 +205,7 @@ def refine_chain(
     points: np.ndarray,
     end: np.ndarray,
     turn: float | None,
-    min_length: float,
+    limits: FitLimits,
     target: float,
     max_iter: int = 40,
 ) -> tuple[ChainParams, float]:
@@ -142,60 +215,31 @@ def refine_chain(
     end conditions are linearised and the LP "minimise the largest residual plus a heavy
     penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
     at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
-    Stops early once the sampled deviation is below ``target`` with the end gap closed, or
-    when it is still far above it after a few steps.
+    Curvatures stay under the caps of ``limits`` for the stretches their segments cover now,
+    lengths above its minimum. Stops early once the sampled deviation is below ``target``
+    with the end gap closed, or when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
-    seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
-    s = np.concatenate(([0.0], np.cumsum(seg)))
-    total = float(s[-1])
-    all_frac = s / total
-    inset_left, inset_right = chord_insets(points)
-    pick = np.unique(np.searchsorted(s, np.linspace(0, total, min(MAX_SAMPLES, len(points)))).clip(0, len(points) - 1))
-    n = len(params.kappa)
-    d = 2 * n + 1
-    # Scaled variables z = x / unit: angles, curvature x run length, length / mean length.
-    unit = np.concatenate(([1.0], np.full(n, 1.0 / total), np.full(n, total / n)))
-    start = np.asarray(start, dtype=float)
-    end = np.asarray(end, dtype=float)
+    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa))
     weight = 100.0  # the end gap costs this many times a lateral deviation
 
-    def res(zb: np.ndarray) -> np.ndarray:
-        return _batch_residuals(start, zb * unit, points[pick], all_frac[pick])
-
-    def excess(r: np.ndarray, where: np.ndarray) -> np.ndarray:
-        """Distance bound per sample: the lateral residual, plus the chord inset of the input
-        on the side where the chain lies (output-to-input distance between vertices)."""
-        return np.maximum(r + inset_left[where], -r + inset_right[where])
-
-    def worst_missing(z: np.ndarray) -> np.ndarray:
-        """Points whose residual exceeds every sampled one (the samples missed a peak)."""
-        full = excess(_batch_residuals(start, (z * unit)[None], points, all_frac)[0], slice(None))
-        sampled = float(full[pick].max())
-        order = np.argsort(-full)[:EXCHANGE]
-        return order[full[order] > 1.001 * sampled + 1e-12]
-
-    def clo(zb: np.ndarray) -> np.ndarray:
-        return _closure(start, zb * unit, end, turn) * np.append([1.0, 1.0], [total] * (turn is not None))
-
     def merit(zb: np.ndarray) -> np.ndarray:
-        return excess(res(zb), pick).max(axis=1) + weight * np.abs(clo(zb)).max(axis=1)
+        return prob.deviation(zb) + weight * np.abs(prob.closure(zb)).max(axis=1)
 
-    z = params.vector() / unit
+    z = params.vector() / prob.unit
     f = float(merit(z[None])[0])
     radius = 0.05
-    min_len_z = min_length / unit[n + 1 :]
     iteration = 0  # LP steps, shared by all exchange rounds
     for _ in range(EXCHANGE_ROUNDS):
         while iteration < max_iter:
             iteration += 1
-            if f <= target or (iteration >= 12 and f > 1.5 * target):
+            if f <= target or (iteration >= EARLY and f > 1.5 * target):
                 break
-            r, jr = _jacobian(res, z)
-            c, jc = _jacobian(clo, z)
-            lower = np.full(d, -radius)
-            lower[n + 1 :] = np.maximum(lower[n + 1 :], min_len_z - z[n + 1 :])
-            solved = _minimax_step(r, jr, inset_left[pick], inset_right[pick], c, jc, lower, radius, weight)
+            r, jr = jacobian(prob.residuals, z)
+            c, jc = jacobian(prob.closure, z)
+            lower, upper = prob.bounds(z, radius)
+            solved = _minimax_step(r, jr, prob.inset_left[prob.pick], prob.inset_right[prob.pick], c, jc,
+                                   lower, upper, weight)
             if solved is None:
                 break
             step, model = solved
@@ -209,12 +253,10 @@ def refine_chain(
             radius = radius * 2.0 if ratio > 0.75 else radius * 0.25 if ratio < 0.25 else radius
             if radius < 1e-9:
                 break
-        missing = worst_missing(z)
-        if not len(missing):
+        if not prob.add_missing(z):
             break
-        pick = np.union1d(pick, missing)
         f = float(merit(z[None])[0])
-    return ChainParams.from_vector(z * unit), f
+    return ChainParams.from_vector(z * prob.unit), f
 
 
 def chord_insets(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -262,7 +304,7 @@ def close_exactly(start: np.ndarray, params: ChainParams, end: np.ndarray, turn:
     scale = np.array([params.length.sum() if i <= n else 1.0 for i in free])
     start = np.asarray(start, float)
     for _ in range(8):
-        gap = _closure(start, x[None], end, turn)[0]
+        gap = closure_gap(start, x[None], end, turn)[0]
         if np.abs(gap).max() < 1e-12 * max(1.0, params.length.sum()):
             break
         eps = 1e-7
@@ -270,7 +312,7 @@ def close_exactly(start: np.ndarray, params: ChainParams, end: np.ndarray, turn:
         for i, sc in zip(free, scale):
             dx = x.copy()
             dx[i] += eps / sc
-            cols.append((_closure(start, dx[None], end, turn)[0] - gap) / eps)
+            cols.append((closure_gap(start, dx[None], end, turn)[0] - gap) / eps)
         step = np.linalg.lstsq(np.column_stack(cols), -gap, rcond=None)[0]
         x[free] += step / scale
     out = ChainParams.from_vector(x)

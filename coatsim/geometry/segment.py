@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
@@ -12,9 +12,14 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.curves import Curve
+from coatsim.geometry.degenerate import check_chain, extent_mm, obvious_answer, split_long_arcs
 from coatsim.geometry.deviation import hausdorff
-from coatsim.geometry.fit import fit_run
+from coatsim.geometry.dynamics import max_curvature_jump, speed_limited
+from coatsim.geometry.fit import fit_free, fit_run, fit_simple
+from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.primitives import Arc, Segment
+from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
 Method = Literal["optimal", "paper"]
@@ -36,6 +41,9 @@ class Segmentation:
     theta: ThetaFunction
     theta_approx: ThetaFunction | None = None
     theta_tolerance: float | None = None
+    input_min_radius_mm: float | None = None
+    speed_mm_s: float | None = None
+    tool_accel_mm_s2: float | None = None
 
     def summary(self) -> str:
         """One screen of text: counts, verified deviation, tangency."""
@@ -49,7 +57,16 @@ class Segmentation:
             f"corners {len(self.polysegment.corners)}",
             f"max deviation {st['max_deviation_mm']:.6f} mm (exact two-sided Hausdorff), "
             f"max tangent break {st['max_tangent_break_deg']:.3g} deg",
+            f"tightest arc {_mm(st['min_radius_mm'])} (input {_mm(st['input_min_radius_mm'])}), "
+            f"shortest segment {st['min_segment_mm']:.3f} mm, "
+            f"largest curvature jump {st['max_curvature_jump_per_mm']:.4g} 1/mm",
         ]
+        if self.speed_mm_s is not None:
+            limited = self.polysegment.speed_limited
+            slowest = min((v for _, _, v in limited), default=None)
+            lines.append(f"at {self.speed_mm_s:g} mm/s and {self.tool_accel_mm_s2 / 1000:g} m/s²: "
+                         + (f"{len(limited)} speed-limited stretch(es), slowest {slowest:.1f} mm/s"
+                            if limited else "no speed-limited stretch"))
         return "\n".join(lines)
 
     def stats(self) -> dict:
@@ -60,8 +77,22 @@ class Segmentation:
             "n_lines": poly.n_lines,
             "max_deviation_mm": self.max_deviation_mm,
             "max_tangent_break_deg": math.degrees(poly.max_tangent_break()),
+            "min_radius_mm": _finite(min((s.radius for s in poly.segments if isinstance(s, Arc)), default=math.inf)),
+            "input_min_radius_mm": self.input_min_radius_mm,
+            "min_segment_mm": min(s.length for s in poly.segments),
+            "max_curvature_jump_per_mm": max_curvature_jump(poly),
+            "speed_mm_s": self.speed_mm_s,
+            "tool_accel_mm_s2": self.tool_accel_mm_s2,
             "input_points": len(self.curve.points),
         }
+
+
+def _finite(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
+def _mm(value: float | None) -> str:
+    return "none" if value is None else f"r {value:.3f} mm"
 
 
 def _runs(points: np.ndarray, corners: np.ndarray, closed: bool) -> tuple[np.ndarray, list[np.ndarray]]:
@@ -88,19 +119,32 @@ def _corner_junctions(counts: list[int], closed: bool, has_corners: bool) -> tup
     return tuple(junctions)
 
 
+def _positive(value: float | None, flag: str, unit: str) -> None:
+    if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise InputError(f"{flag}: must be a positive number of {unit}, got {value}")
+
+
 def segment_curve(
     curve: Curve,
     tol: float,
     method: Method = "optimal",
     corner_deg: float = 20.0,
     theta_tolerance: float | None = None,
+    min_segment_mm: float | None = None,
+    speed_mm_s: float | None = None,
+    tool_accel_mm_s2: float | None = None,
 ) -> Segmentation:
     """Approximate ``curve`` by a G1 chain of arcs and lines within ``tol`` mm.
 
     ``optimal`` guarantees the two-sided Hausdorff distance <= tol (verified exactly), keeps
-    every junction tangent-continuous except at detected true corners, and uses few segments.
-    ``paper`` is the paper's literal method: RDP on θ with ``theta_tolerance`` if given,
-    otherwise the largest θ tolerance (by bisection) whose result stays within ``tol``.
+    every junction tangent-continuous except at detected true corners, keeps every arc
+    within 1.25 x the input's own curvature near it and every segment at least
+    ``min_segment_mm`` long (default 5 tol), and uses few segments. With ``speed_mm_s`` and
+    ``tool_accel_mm_s2`` (both or neither), no arc is tighter than v² / a where the input
+    allows that speed; where it does not, the stretch is listed in the polysegment's
+    ``speed_limited``. ``paper`` is the paper's literal method: RDP on θ with
+    ``theta_tolerance`` if given, otherwise the largest θ tolerance (by bisection) whose
+    result stays within ``tol``.
     """
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise InputError(f"--tol: the tolerance must be a positive number of mm, got {tol}")
@@ -108,22 +152,77 @@ def segment_curve(
         raise InputError(f"--method: unknown method {method!r}; choose one of {', '.join(METHODS)}")
     if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
         raise InputError(f"--corner-deg: must be between 0 and 180 degrees, got {corner_deg}")
+    _positive(min_segment_mm, "min_segment_mm", "mm")
+    _positive(speed_mm_s, "speed_mm_s", "mm/s")
+    _positive(tool_accel_mm_s2, "tool_accel_mm_s2", "mm/s²")
+    if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
+        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither")
     started = time.perf_counter()
     pts = curve.points
     theta = theta_of_polyline(pts)
     if method == "paper":
         poly, approx, eps = _paper(curve, tol, theta_tolerance)
         dev = hausdorff(pts, poly).hausdorff
-        return Segmentation(curve, poly, method, tol, dev, time.perf_counter() - started, theta, approx, eps)
+        return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
+                            time.perf_counter() - started, theta, approx, eps,
+                            speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
+    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
+    poly = obvious_answer(pts, curve.closed, tol)
+    input_radius = None
+    if poly is not None:
+        dev = hausdorff(pts, poly).hausdorff
+    else:
+        poly, dev, input_radius = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+    check_chain(poly, extent_mm(pts))
+    return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
+                        time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
+                        speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
+
+
+def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> Polysegment:
+    if speed_mm_s is None:
+        return poly
+    return replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))
+
+
+def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
+         speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
+    """The default fitter over the curve's runs between corners (or its whole closed loop).
+    Returns (polysegment, verified deviation, the input's tightest radius (robust, mm))."""
+    pts = curve.points
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
-    fitted = [fit_run(run, tol, closed_loop) for run in runs]
-    pieces = [segs for segs, _ in fitted]
+    if closed_loop:
+        return _fit_loop(pts, tol, min_segment_mm, speed_kappa)
+    pieces: list[tuple[Segment, ...]] = []
+    deviations, radii = [], []
+    for run in runs:
+        limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
+        segs, dev = fit_run(run, tol, False, limits)
+        pieces.append(split_long_arcs(segs))
+        deviations.append(dev)
+        radii.append(limits.profile.tightest_radius_mm)
     segments = tuple(seg for piece in pieces for seg in piece)
-    poly = Polysegment(segments, closed=curve.closed, corners=_corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0))
-    dev = fitted[0][1] if len(fitted) == 1 else hausdorff(rotated, poly).hausdorff
-    return Segmentation(curve, poly, method, tol, dev, time.perf_counter() - started, theta)
+    junctions = _corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0)
+    poly = Polysegment(segments, closed=curve.closed, corners=junctions)
+    dev = deviations[0] if len(runs) == 1 else hausdorff(rotated, poly).hausdorff
+    return poly, dev, _finite(min(radii))
+
+
+def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
+              speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
+    """A closed loop without corners: an exact chain as it is; else a quick fit from the
+    first point; else a fit from the loop's calmest point, started again at the first point."""
+    limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
+    found = fit_simple(pts, tol, True) or fit_free(pts, tol, True, limits, quick=True)
+    if found is None:
+        run = rotated_loop(pts, calm_start(pts, limits.profile))
+        segs, dev = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa))
+        found = reseat(segs, pts[0], limits.min_length_mm), dev
+    segs, dev = found
+    poly = Polysegment(split_long_arcs(segs), closed=True)
+    return poly, dev, _finite(limits.profile.tightest_radius_mm)
 
 
 def _paper(curve: Curve, tol: float, theta_tolerance: float | None) -> tuple[Polysegment, ThetaFunction, float]:

@@ -1,17 +1,27 @@
 """Kawasaki AS writer: a ProgramPlan becomes a complete, loadable .as file.
 
 Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly,
-a joint approach above the start, ``BREAK`` + ``SIGNAL gun`` (the gun opens with the robot at
+a joint approach above the start, a linear move down to the stand-off and ``BREAK`` (at rest at
 the start of the lead-in), one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end)
-pair per arc, ``BREAK`` + ``SIGNAL -gun``, a linear depart, ``.END``, then every pose in a
-``.TRANS`` section. Only straight-line code between the first and last sprayed move: loops and
-calls there make a Kawasaki controller slow down.
+pair per arc, ``BREAK``, a linear depart, ``.END``, then every pose in a ``.TRANS`` section.
+Only straight-line code between the first and last sprayed move: loops and calls there make a
+Kawasaki controller slow down.
+
+Gun timing (AS forward processing, as the interpreter models it): a ``SIGNAL`` written after a
+motion, with no ``BREAK`` in between, switches as that motion starts. So:
+- the gun opens with the first sprayed move: ``BREAK`` + ``SIGNAL gun`` before it when it is
+  the first move of the path (at rest), otherwise ``SIGNAL gun`` right after it (on the fly:
+  at the seam of a closed contour, at full speed after the lead-in);
+- it closes with the first move after the sprayed ones: ``SIGNAL -gun`` right after that move
+  (on the fly: as the lead-out starts, after exactly one lap), or ``BREAK`` + ``SIGNAL -gun``
+  at rest after the last move when the path is sprayed to its end.
 """
 
 from __future__ import annotations
 
 import math
 import re
+from typing import Callable
 
 import numpy as np
 
@@ -99,6 +109,25 @@ def _arc_is_writable(start: Pose, via: Pose, end: Pose) -> bool:
     return True
 
 
+def _write_segment(out: _Lines, seg: PlacedLine | PlacedArc, label: str, name: Callable[[Pose], str],
+                   max_arc_sweep_deg: float, signal: tuple[str, str] | None) -> None:
+    """One LMOVE for a line; one C1MOVE + C2MOVE pair per piece of an arc (an LMOVE for a piece
+    too flat to define a circle once written); ``signal`` (statement, comment) right after the
+    segment's first move, so that it switches as the segment starts."""
+    pieces = (seg,) if isinstance(seg, PlacedLine) else seg.split(math.radians(max_arc_sweep_deg))
+    for k, piece in enumerate(pieces):
+        part_label = label if len(pieces) == 1 else f"{label} ({k + 1}/{len(pieces)})"
+        if isinstance(piece, PlacedLine):
+            out.add(f"LMOVE {name(piece.end)}", label)
+        elif _arc_is_writable(piece.start, piece.via, piece.end):
+            out.add(f"C1MOVE {name(piece.via)}", f"{part_label}, arc via")
+            out.add(f"C2MOVE {name(piece.end)}", "arc end")
+        else:
+            out.add(f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution")
+        if k == 0 and signal is not None:
+            out.add(*signal)
+
+
 def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> str:
     """The complete AS program text of ``plan`` (ASCII, '\\n' line ends)."""
     poses: list[Pose] = []
@@ -126,25 +155,28 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     start = name(plan.path.start)
     out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
     out.add(f"LMOVE {start}", "down to the stand-off")
-    out.add("BREAK", "at rest before the gun opens")
-    out.add(f"SIGNAL {plan.gun_signal}", "gun on")
+    gun_on = False
     counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
-    for seg in plan.path.segments:
+    for index, seg in enumerate(plan.path.segments):
         counters[seg.part] += 1
         label = seg.part.replace("_", "-") if seg.part != "curve" else f"segment {counters['curve']}"
-        if isinstance(seg, PlacedLine):
-            out.add(f"LMOVE {name(seg.end)}", label)
-            continue
-        pieces = seg.split(math.radians(max_arc_sweep_deg))
-        for k, piece in enumerate(pieces):
-            part_label = label if len(pieces) == 1 else f"{label} ({k + 1}/{len(pieces)})"
-            if _arc_is_writable(piece.start, piece.via, piece.end):
-                out.add(f"C1MOVE {name(piece.via)}", f"{part_label}, arc via")
-                out.add(f"C2MOVE {name(piece.end)}", "arc end")
-            else:
-                out.add(f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution")
-    out.add("BREAK", "at rest before the gun closes")
-    out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
+        sprayed = plan.spray_leads or seg.part == "curve"
+        if index == 0:
+            out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
+            if sprayed:
+                out.add(f"SIGNAL {plan.gun_signal}", "gun on")
+                gun_on = True
+        signal = None
+        if sprayed != gun_on:
+            signal = (f"SIGNAL {plan.gun_signal if sprayed else -plan.gun_signal}",
+                      f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
+            gun_on = sprayed
+        _write_segment(out, seg, label, name, max_arc_sweep_deg, signal)
+    if gun_on:
+        out.add("BREAK", "at rest before the gun closes")
+        out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
+    else:
+        out.add("BREAK", "at rest at the end of the path")
     out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]

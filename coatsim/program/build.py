@@ -5,13 +5,18 @@ Variants:
 - ``polyline-stop``: the curve simplified to a polyline within the same tolerance (RDP on
   positions), one LMOVE per vertex, exact stop at every vertex (CP OFF).
 - ``polyline-blend``: the same polyline, blended (CP ON, ACCURACY d).
+
+Every variant switches the gun the same way: on a closed contour the lead-in runs with the gun
+closed, the gun opens on the fly at the seam and closes on the fly as the lead-out starts,
+after exactly one lap; on an open contour it is open from the start of the lead-in (at rest)
+to the end of the lead-out (at rest). See :mod:`coatsim.program.as_writer` for the timing.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
+from typing import Optional, Sequence
 
 import numpy as np
 
@@ -23,8 +28,11 @@ from coatsim.program.as_dialect import KAWASAKI_AS
 from coatsim.program.as_writer import fmt_short, program_name
 from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, curve_limits, format_limits
+from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS
 
 VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
+
 # Densest sampling of a polysegment when no input points are given for the polyline variant.
 _MAX_SAMPLES = 200_000
 
@@ -81,11 +89,16 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS) -> BuiltProgram:
+                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS,
+                  speed_limited: Sequence[Sequence[float]] = ()) -> BuiltProgram:
     """Write the ``options.variant`` program of a curve in ``dialect``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
-    curve, (n, 2)) or, without them, dense samples of ``poly``.
+    curve, (n, 2)) or, without them, dense samples of ``poly``. ``speed_limited`` lists the
+    fitter's stretches [s0_mm, s1_mm, v_max_mm_s] along ``poly`` where the input curve does not
+    allow the programmed speed; with the true corners of ``poly`` they go into the header
+    (``speed_limits``), scaled to the variant's own curve length, so that every variant is
+    measured over the same stretches.
     """
     if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
         raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
@@ -96,6 +109,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         raw = points if points is not None else dense_points(poly, tolerance_mm)
         curve = polyline_of(raw, poly.closed, tolerance_mm)
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
+    limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly, speed_limited))
     path = place(curve, placement)
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
     if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_ABS_NUMBER):
@@ -113,9 +127,11 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         ("gun_signal", str(options.gun_signal)),
         ("frame", str(placement.frame)),
         ("closed", "yes" if curve.closed else "no"),
+        ("sprayed", SPRAYED_CURVE if curve.closed else SPRAYED_WITH_LEADS),
         ("n_segments", str(curve.n_segments)),
         ("n_lines", str(curve.n_lines)),
         ("n_arcs", str(curve.n_arcs)),
+        (SPEED_LIMITS_KEY, format_limits(limits)),
     )
     plan = ProgramPlan(
         name=options.name or program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
@@ -126,6 +142,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         approach_mm=options.approach_mm,
         gun_signal=options.gun_signal,
         tool=options.tool,
+        spray_leads=not curve.closed,
         metadata=metadata,
         comments=(f"coatsim {options.variant} program: {summary}, tolerance {fmt_short(tolerance_mm)} mm",),
     )

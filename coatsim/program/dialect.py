@@ -18,8 +18,10 @@ from coatsim.program.toolpath import ToolPath
 class ProgramPlan:
     """Everything a coating program says, before it is written in a language.
 
-    ``path`` is sprayed from its start to its end; the program approaches its start from
-    ``approach_mm`` back along the tool axis and departs the same distance after its end.
+    The program approaches the start of ``path`` from ``approach_mm`` back along the tool axis
+    and departs the same distance after its end. The gun is open along the whole path when
+    ``spray_leads`` (lead-in, curve, lead-out: an open contour), otherwise exactly along its
+    ``curve`` part (one lap of a closed contour: no double coat at the seam).
     ``exact_stop`` asks for a stop at every programmed point (no blending).
     ``metadata`` pairs are written as machine-readable header comments and come back in
     ``ToolPath.metadata``; ``comments`` are free header lines for people.
@@ -33,6 +35,7 @@ class ProgramPlan:
     approach_mm: float
     gun_signal: int
     tool: Frame
+    spray_leads: bool = True
     metadata: tuple[tuple[str, str], ...] = ()
     comments: tuple[str, ...] = ()
 

@@ -16,9 +16,14 @@ reference; the parts marked there as unconfirmed are modelled as stated here):
   DELAY follows it before the next motion, and for the last motion of the program.
 - Gun signal (forward processing): the program runs ahead while a motion executes, so a
   ``SIGNAL`` written after motion k with no BREAK in between switches the gun as motion k
-  starts; after a BREAK it switches when motion k has ended, i.e. as motion k+1 starts. A
-  move's ``spray`` is the gun state from its start to its end. Other outputs, TWAIT, ACCEL and
-  DECEL do not change the path and are not represented.
+  starts; after a BREAK it switches when motion k has ended, i.e. as motion k+1 starts. The
+  rule is the same under CP ON and CP OFF, for lines and arcs (C2MOVE), and a SIGNAL never
+  makes the robot stop. Under CP ON, "motion k starts" where the tool enters the accuracy zone
+  of the point before it (the robot stage switches at the start of the corner blend). A move's
+  ``spray`` is the gun state from its start to its end; several SIGNALs between two motions
+  act as the last one. Switching delays of a real gun, TWAIT before a SIGNAL, other outputs,
+  ACCEL and DECEL do not change the path and are not represented. The writer relies on this
+  to spray a closed contour exactly once around, switching on the fly at the seam.
 - ``TOOL`` (at any point) sets the controller's TCP in the flange frame for the motions after
   it (``MotionSettings.tool``; the robot stage puts the flange where that TCP reaches the
   programmed poses, wherever the physical gun is). A TOOL after motion ends that motion at rest

@@ -13,6 +13,14 @@ from typing import Mapping, Union
 import numpy as np
 
 
+# Values of the ``sprayed`` header field (``; coatsim: sprayed=...``): which parts of the path
+# the gun covers. A closed contour is sprayed exactly once around, from the seam to the seam
+# (no double coat there); an open one along its lead-in and lead-out too. A program without the
+# field is read as SPRAYED_WITH_LEADS.
+SPRAYED_CURVE = "curve"
+SPRAYED_WITH_LEADS = "lead-in,curve,lead-out"
+
+
 @dataclass(frozen=True, eq=False)
 class Pose:
     """Tool pose: ``position`` (3,) mm and ``rotation`` (3, 3), base frame."""
@@ -99,11 +107,11 @@ Move = Union[JointMove, LinearMove, CircularMove]
 class ToolPath:
     """The moves of a program in execution order.
 
-    ``spray`` on a move is true when the gun output is on for the whole move (signals are
-    applied at move boundaries; the writer puts BREAK before every SIGNAL).
+    ``spray`` on a move is true when the gun output is on for the whole move: signals switch
+    at move boundaries, as a move starts (see the interpreter for the forward-processing rule).
     ``metadata`` holds ``; coatsim: key=value`` header comments of the program (e.g. lead-in
-    and lead-out lengths in mm) so downstream stages can tell the curve proper from the
-    run-in and run-out without the in-memory polysegment.
+    and lead-out lengths in mm, ``sprayed``) so downstream stages can tell the curve proper
+    from the run-in and run-out without the in-memory polysegment.
     """
 
     name: str

@@ -39,6 +39,7 @@ METRICS: dict[str, MetricInfo] = {
     "motion.speed_cv": MetricInfo("1", "coefficient of variation (std / mean) of the tool speed over the curve proper"),
     "motion.fraction_at_speed": MetricInfo("1", "fraction of the curve length travelled at >= 95 % of the programmed speed"),
     "motion.fraction_at_speed_feasible": MetricInfo("1", "the same over the stretches where the programmed speed is feasible for the arm's tool acceleration (speed² x curvature <= limit)"),
+    "motion.min_speed_ratio": MetricInfo("1", "lowest tool speed / programmed speed where the curve allows the programmed speed: the curve proper without its true corners and turns tighter than v² / tool acceleration, and without 1.5 x the distance to brake for them or to speed up after them, at the tool acceleration limit (null if the curve allows the speed nowhere)"),
     "motion.stops": MetricInfo("count", "times the tool comes to rest on the curve proper (speed < 5 % of the programmed speed)"),
     "motion.max_path_error_mm": MetricInfo("mm", "largest distance from the simulated tool centre point to the programmed path over the curve proper"),
     "motion.rms_path_error_mm": MetricInfo("mm", "root-mean-square of that distance"),

@@ -1,6 +1,7 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
-Sections: scenario summary with the headline comparison, curve and polysegment, θ, speed
+Sections: scenario summary with the verdict (what the polysegment wins and loses against each
+polyline, :mod:`coatsim.report.verdict`) and the headline metrics, curve and polysegment, θ, speed
 profiles, thickness maps, cross-section, warnings, all metrics with ratios, gates.
 """
 
@@ -17,6 +18,7 @@ from coatsim.fileio import write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
 from coatsim.report.summary import headline_rows
+from coatsim.report.verdict import Verdict, change_text, verdict
 from coatsim.geometry.plots import segmentation_figure_png
 from coatsim.report.plots import SpeedProfile, polyline_figure, speed_figure
 from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
@@ -43,6 +45,30 @@ def headline_table(document: Mapping[str, Any]) -> str:
         for key, values in headline_rows(document)
     )
     return f"<table>{head}{body}</table>"
+
+
+def verdict_html(result: Verdict) -> str:
+    """Per polyline variant: the headline sentence, then the five metrics with both values, the
+    change and the outcome."""
+    if not result.comparisons:
+        return '<p class="muted">No polysegment and polyline variants to compare in this run.</p>'
+    out = []
+    for c in result.comparisons:
+        head = (f'<tr><th class="l">metric</th><th>{esc(c.against)}</th><th>polysegment</th>'
+                f'<th>change</th><th class="l">polysegment</th></tr>')
+        rows = "".join(
+            f'<tr><td class="l" title="{esc(METRICS[o.criterion.key].meaning)}">{esc(o.criterion.label)}</td>'
+            f"<td>{fmt(o.polyline)}</td><td>{fmt(o.polysegment)}</td>"
+            f"<td>{esc(change_text(o))}</td>"
+            f'<td class="l">{_OUTCOME_HTML[o.outcome]}</td></tr>'
+            for o in c.outcomes
+        )
+        out.append(f"<h3>Polysegment against {esc(c.against)}</h3><p>{esc(c.headline)}</p><table>{head}{rows}</table>")
+    return "".join(out)
+
+
+_OUTCOME_HTML = {"win": '<span class="pass">wins</span>', "loss": '<span class="fail">loses</span>',
+                 "tie": "ties", "undefined": '<span class="muted">undefined</span>'}
 
 
 def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
@@ -76,16 +102,20 @@ def _summary_rows(loaded, curve, runs: Sequence, document: Mapping[str, Any]) ->
     return rows
 
 
-def _speed_profiles(runs: Sequence, lead_in_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
-    """Speed against path length while the gun is on, from where it opens (the run-in start);
-    the curve proper follows the run-in."""
+def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], tuple[float, float]]:
+    """Speed against path length from the start of the run-in to the end of the run-out (the
+    curve proper in between), whether or not the gun is open on the run-in and run-out."""
     profiles, span = {}, (0.0, 0.0)
     for r in runs:
-        log = r.execution.log
-        on = log.spray
-        origin = float(log.progress[np.argmax(on)])
-        profiles[r.name] = SpeedProfile(log.progress[on] - origin, log.speed[on])
-        span = (lead_in_mm, lead_in_mm + r.program.path.curve_length_mm)
+        log, (a, b) = r.execution.log, r.execution.curve
+        # the log's progress is monotonic up to servo jitter: take the rows between the first
+        # one at the run-in start and the first one past the run-out end
+        reach = np.maximum.accumulate(log.progress)
+        i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
+        i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
+        rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
+        profiles[r.name] = SpeedProfile(log.progress[rows] - (a - lead_in_mm), log.speed[rows])
+        span = (lead_in_mm, lead_in_mm + (b - a))
     return profiles, span
 
 
@@ -94,7 +124,7 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     spec = loaded.spec
     polyline = next((r.program.curve for r in runs if r.name != "polysegment"), None)
     polyline_xy = None if polyline is None else np.array([s.start for s in polyline.segments] + [polyline.end])
-    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm)
+    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
     surface = runs[0].coating.surface
     top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
     line = default_section(surface)
@@ -104,7 +134,8 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
     baseline = "polysegment" if "polysegment" in document["variants"] else None
     return [
         Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, curve, runs, document))
-                + "<h3>What arcs buy</h3>" + headline_table(document)),
+                + verdict_html(verdict(document))
+                + "<h3>Every variant, headline metrics</h3>" + headline_table(document)),
         Section("curve", SECTION_TITLES["curve"], figures=(Figure(
             "Input curve, polysegment and θ", segmentation_figure_png(segmentation),
             "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
@@ -116,8 +147,9 @@ def build_sections(loaded, curve, segmentation, runs: Sequence, document: Mappin
             "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
         Section("speed", SECTION_TITLES["speed"], figures=(Figure(
             "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
-            "Simulated tool-centre-point speed while the gun is on, from the trajectory logs; the shaded ends are "
-            "the run-in and run-out, outside the curve proper."),)),
+            "Simulated tool-centre-point speed along the run-in, the curve proper and the run-out, from the "
+            "trajectory logs; the shaded ends are the run-in and run-out (on a closed contour the gun is closed "
+            "there: it sprays exactly one lap, from the seam to the seam)."),)),
         Section("thickness", SECTION_TITLES["thickness"], figures=(Figure(
             "Thickness maps on one colour scale", heat,
             f"Per-vertex coating thickness of each variant, same scale 0 to {top:.3g} µm (the largest 99.5th "

@@ -76,7 +76,7 @@ def speed_figure(profiles: Mapping[str, SpeedProfile], commanded_mm_s: float, cu
     for name, p in profiles.items():
         ax.plot(p.progress_mm, p.speed_mm_s, color=_colour(name), lw=1.1, label=name)
     ax.set_xlabel("path length along the program (mm); grey: run-in / run-out")
-    ax.set_ylabel("tool speed while spraying (mm/s)")
+    ax.set_ylabel("tool speed (mm/s)")
     ax.set_ylim(0, 1.15 * max(commanded_mm_s, max(float(np.nanmax(p.speed_mm_s)) for p in profiles.values())))
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)

@@ -1,4 +1,5 @@
-"""The console summary of a run: the headline comparison table and the gate results."""
+"""The console summary of a run: the headline comparison table, the verdict per polyline and the
+gate results."""
 
 from __future__ import annotations
 
@@ -6,9 +7,11 @@ from typing import Any, Mapping
 
 from coatsim.report.catalogue import METRICS
 from coatsim.report.html import fmt
+from coatsim.report.verdict import verdict
 
 HEADLINE = (
     "motion.cycle_time_s",
+    "motion.min_speed_ratio",
     "motion.fraction_at_speed",
     "motion.stops",
     "coating.thickness_cv",
@@ -35,6 +38,10 @@ def summary_text(document: Mapping[str, Any]) -> str:
     lines = [" " * width + "".join(f"  {n:>{c}}" for n, c in zip(names, cols))]
     for text, (_, values) in zip(label, headline_rows(document)):
         lines.append(f"{text:<{width}}" + "".join(f"  {fmt(v):>{c}}" for v, c in zip(values, cols)))
+    comparisons = verdict(document).comparisons
+    if comparisons:
+        lines.append("")
+        lines.extend(c.headline for c in comparisons)
     gates = document["gates"]
     if gates:
         lines.append("")

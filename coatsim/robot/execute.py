@@ -13,11 +13,12 @@ import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
-from coatsim.program.toolpath import ToolPath
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
+from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
-from coatsim.robot.motion_metrics import MotionMetrics, motion_metrics
+from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reference import ReferencePath, build_reference
@@ -68,14 +69,25 @@ def _metadata_mm(toolpath: ToolPath, key: str) -> float:
     return value
 
 
+def _leads_sprayed(toolpath: ToolPath) -> bool:
+    """Whether the gun covers the lead-in and lead-out (header ``sprayed``, default yes)."""
+    raw = toolpath.metadata.get("sprayed", SPRAYED_WITH_LEADS)
+    if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
+        raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
+    return raw == SPRAYED_WITH_LEADS
+
+
 def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float, float]:
-    """Progress interval of the curve proper and its programmed speed."""
+    """Progress interval of the curve proper and its programmed speed: the sprayed moves
+    (every Cartesian move if none sprays), without the lead-in and lead-out when the gun
+    covers them."""
     cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
     chosen = [i for i in cartesian if toolpath.moves[i].spray] or cartesian
     if not chosen:
         raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
-    a = ref.move_span(chosen[0])[0] + _metadata_mm(toolpath, "lead_in_mm")
-    b = ref.move_span(chosen[-1])[1] - _metadata_mm(toolpath, "lead_out_mm")
+    leads = _leads_sprayed(toolpath)
+    a = ref.move_span(chosen[0])[0] + (_metadata_mm(toolpath, "lead_in_mm") if leads else 0.0)
+    b = ref.move_span(chosen[-1])[1] - (_metadata_mm(toolpath, "lead_out_mm") if leads else 0.0)
     if b <= a:
         raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
     inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
@@ -87,6 +99,16 @@ def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
     """Per move, where the gun sits in the frame of the controller's TCP: (M, 3, 3), (M, 3) mm."""
     pairs = [mount(m.settings.tool, cell) for m in toolpath.moves]
     return np.array([r for r, _ in pairs]), np.array([p for _, p in pairs])
+
+
+def _allowance(toolpath: ToolPath) -> CurveAllowance:
+    """Where the program header says the curve allows the programmed speed (no header: everywhere
+    but near the rest points at the ends)."""
+    raw = toolpath.metadata.get(SPEED_LIMITS_KEY)
+    limits = () if raw is None else parse_limits(raw, toolpath.name)
+    return CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits),
+                          toolpath.metadata.get("closed") == "yes", _metadata_mm(toolpath, "lead_in_mm"),
+                          _metadata_mm(toolpath, "lead_out_mm"))
 
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
@@ -181,7 +203,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
                         progress=progress, path_error=dist, q=run.q)
     a, b, speed = _curve_proper(toolpath, ref)
     metrics = motion_metrics(log, (a, b), speed, curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max,
-                             (worst[0], worst[1]))
+                             (worst[0], worst[1]), _allowance(toolpath))
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,

@@ -1,9 +1,18 @@
 """Motion metrics of one executed program, from the logged trajectory over the curve proper.
 
 The curve proper is the progress interval of the spray-on moves (all Cartesian moves when none
-sprays) without the lead-in and lead-out lengths named in the program header. Its window in
+sprays) without the lead-in and lead-out lengths named in the program header when the gun
+covers them (header ``sprayed``; a closed contour is sprayed only along the curve). Its window in
 time runs from the last log row not yet past its start to the first row at or past its end;
 rest at either end of the window is not counted as a stop.
+
+``min_speed_ratio`` looks only where the curve allows the programmed speed: outside the
+stretches the program header lists as limited by the curve itself (true corners, turns tighter
+than v² / a; see :mod:`coatsim.program.speed_limits`), and outside the distance the tool needs
+to brake to, or speed up from, each of them and the rest points at the start of the lead-in and
+the end of the lead-out (RAMP_FACTOR x (v² - v_limit²) / 2a at the tool acceleration limit a;
+around the seam of a closed curve). Every variant of a curve carries the same stretches, so the figure compares
+them on the same ground.
 """
 
 from __future__ import annotations
@@ -20,6 +29,9 @@ END_TOLERANCE_MM = 0.1  # the curve proper counts as covered this close to its e
 AT_SPEED = 0.95  # fraction of the programmed speed that counts as "at speed"
 STOPPED = 0.05   # below this fraction of the programmed speed the tool counts as stopped
 MOVING = 0.2     # ... and moving again only above this fraction (hysteresis)
+# The braking distance (v² - v_limit²) / 2a is the ideal ramp; the timing's acceleration polygon,
+# the path sampling and the servo make the simulated one up to ~20 % longer: allow half again.
+RAMP_FACTOR = 1.5
 
 
 @dataclass(frozen=True)
@@ -36,6 +48,7 @@ class MotionMetrics:
     speed_cv: float
     fraction_at_speed: float
     fraction_at_speed_feasible: float
+    min_speed_ratio: float | None
     stops: int
     max_path_error_mm: float
     rms_path_error_mm: float
@@ -44,8 +57,39 @@ class MotionMetrics:
     max_ik_residual_mm: float
     max_ik_residual_deg: float
 
-    def as_dict(self) -> dict[str, float | int]:
+    def as_dict(self) -> dict[str, float | int | None]:
         return {k: (round(v, 6) if isinstance(v, float) else v) for k, v in asdict(self).items()}
+
+
+@dataclass(frozen=True)
+class CurveAllowance:
+    """What decides where the curve allows the programmed speed: the limited stretches
+    (s0_mm, s1_mm, v_max_mm_s) along the curve proper, whether it closes on itself, and the
+    lead-in and lead-out lengths (mm) from and to rest."""
+
+    limits: tuple[tuple[float, float, float], ...] = ()
+    closed: bool = False
+    lead_in_mm: float = 0.0
+    lead_out_mm: float = 0.0
+
+
+def allowed_by_curve(s_mm: np.ndarray, length_mm: float, speed_mm_s: float, tool_accel_mm_s2: float,
+                     allowance: CurveAllowance) -> np.ndarray:
+    """Boolean mask of arc lengths ``s_mm`` (from the curve proper's start) where the curve
+    allows ``speed_mm_s``: at least RAMP_FACTOR x the braking distance (v² - v_limit²) / 2a from every
+    limited stretch (cyclically on a closed curve) and from the rest points beyond the leads."""
+    s = np.asarray(s_mm, dtype=float)
+    rests = [(-allowance.lead_in_mm, -allowance.lead_in_mm, 0.0, False),
+             (length_mm + allowance.lead_out_mm, length_mm + allowance.lead_out_mm, 0.0, False)]
+    ok = np.ones(len(s), dtype=bool)
+    for s0, s1, v, cyclic in rests + [(*lim, allowance.closed) for lim in allowance.limits]:
+        if v >= speed_mm_s:
+            continue
+        ramp = RAMP_FACTOR * (speed_mm_s**2 - v**2) / (2.0 * tool_accel_mm_s2)
+        shifts = (-length_mm, 0.0, length_mm) if cyclic else (0.0,)
+        gap = np.min([np.maximum(np.maximum(s0 - (s + k), (s + k) - s1), 0.0) for k in shifts], axis=0)
+        ok &= gap >= ramp
+    return ok
 
 
 def _stops(speed: np.ndarray, programmed: float) -> int:
@@ -75,11 +119,13 @@ def motion_metrics(
     v_max: np.ndarray,
     a_max: np.ndarray,
     ik_residual: tuple[float, float],
+    allowance: CurveAllowance = CurveAllowance(),
 ) -> MotionMetrics:
     """Metrics over the curve proper ``curve`` = (start, end) progress in mm.
 
     ``path_curvature`` (n,) is the programmed curvature at each row's closest point; the
     "feasible" fraction counts only rows where speed^2 * curvature <= ``tool_accel_mm_s2``.
+    ``allowance`` says where the curve allows the programmed speed (for ``min_speed_ratio``).
     """
     a, b = curve
     # the window opens at the last row not yet past the start (at rest there, if the tool stops)
@@ -100,6 +146,7 @@ def motion_metrics(
     qdd = np.gradient(qd, dt, axis=0)
     err = log.path_error[w]
     mean = float(speed.mean())
+    allowed = allowed_by_curve(log.progress[w] - a, b - a, speed_mm_s, tool_accel_mm_s2, allowance)
     return MotionMetrics(
         programmed_speed_mm_s=float(speed_mm_s),
         curve_length_mm=float(b - a),
@@ -112,6 +159,7 @@ def motion_metrics(
         fraction_at_speed=float(step[fast].sum() / travelled) if travelled > 0 else 0.0,
         fraction_at_speed_feasible=float(step[fast & feasible].sum() / step[feasible].sum())
         if step[feasible].sum() > 0 else 0.0,
+        min_speed_ratio=float(speed[allowed].min() / speed_mm_s) if allowed.any() else None,
         stops=_stops(speed, speed_mm_s),
         max_path_error_mm=float(err.max()),
         rms_path_error_mm=float(np.sqrt(np.mean(err**2))),

@@ -8,7 +8,9 @@ Controller semantics modelled here (see the README's robot section):
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
-  cubic blend tangent to both moves (for two lines: the classic parabolic blend).
+  cubic blend tangent to both moves (for two lines: the classic parabolic blend). The blend
+  belongs to the outgoing move as far as the gun is concerned: a signal that switches as a
+  move starts switches where the tool enters the accuracy zone of the corner before it.
 Samples are at most ``step`` mm apart and include every primitive's (trimmed) end points exactly.
 """
 
@@ -26,6 +28,7 @@ from coatsim.robot.primitives3d import Primitive, arc_through, line
 
 TANGENT_TOL_RAD = math.radians(0.5)
 MIN_MOVE_MM = 1e-6
+MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,9 +183,15 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
     for k, sp in enumerate(spans):
         lo, hi = trims[k], sp.prim.length - trims[k + 1]
-        s = lo + _uniform(max(hi - lo, 0.0), step)
-        if k > 0:
-            s = s[1:]  # the first point is the previous blend's (or span's) last sample
+        if k == 0:
+            s = lo + _uniform(max(hi - lo, 0.0), step)
+        elif hi - lo > MERGE_MM or k == n - 1:
+            # the first point is the previous blend's (or span's) last sample
+            s = lo + np.linspace(0.0, hi - lo, max(1, int(math.ceil((hi - lo) / step - 1e-9))) + 1)[1:]
+        else:
+            # blends that meet mid-move leave (almost) nothing of it: samples a fraction of a
+            # micrometre apart would make the joint spline through them swing
+            s = np.zeros(0)
         if len(s):
             m = len(s)
             frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
@@ -199,7 +208,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
             first = frac <= 0.5
             add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
-                np.where(first, sp.index, nxt.index), np.where(first, sp.spray, nxt.spray),
+                np.where(first, sp.index, nxt.index), np.full(len(pts), nxt.spray),
                 ref_offset + hi + frac * (sp.prim.length - hi + d))
         ref_offset += sp.prim.length
     p = np.vstack(cols["p"])

@@ -11,7 +11,7 @@ import json
 import math
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator
 
@@ -56,6 +56,13 @@ def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "ba
     mask = region_of_interest(surface, result, model, roi, edge_band_mm, band_halfwidth_mm, spacing)
     metrics = coating_metrics(surface, result, model, mask, target_um)
     return CoatingResult(surface, model, result, mask, roi, metrics)
+
+
+def remeasured(result: CoatingResult, roi: np.ndarray, target_um: float | None = None) -> CoatingResult:
+    """``result`` measured over another region of interest (a boolean vertex mask), e.g. the
+    one every variant of a run shares."""
+    metrics = coating_metrics(result.surface, result.deposit, result.model, roi, target_um)
+    return replace(result, roi=roi, metrics=metrics)
 
 
 def parse_section(text: str) -> tuple[np.ndarray, np.ndarray]:

@@ -44,9 +44,10 @@ def placed_pieces(path: PlacedPath) -> list:
 
 def path_errors(path: PlacedPath, toolpath: ToolPath, samples: int = 21) -> tuple[float, float, float]:
     """Largest position error (mm), tangent error (rad) and tool rotation error (rad) between
-    the placed path and the sprayed moves read back, compared piece by piece."""
+    the placed path and the moves read back (those between the move down to the stand-off and
+    the depart), compared piece by piece."""
     pieces = placed_pieces(path)
-    moves = toolpath.spray_moves
+    moves = toolpath.moves[2:-1]
     assert len(moves) == len(pieces)
     u = np.linspace(0.0, 1.0, samples)
     dp = dt = dr = 0.0

@@ -52,17 +52,17 @@ def test_deterministic_and_well_formed(rr):
 def test_program_structure_and_metadata(rr):
     text = golden_text()
     order = ["BASE NULL", "TOOL TRANS", "SPEED 500 MM/S ALWAYS", "ACCURACY 1 ALWAYS", "CP ON", "JAPPRO p0000, 50",
-             "LMOVE p0000", "BREAK", "SIGNAL 1", "LMOVE p0001", "LMOVE p0002", "C1MOVE p0003", "C2MOVE p0004"]
+             "LMOVE p0000", "BREAK", "LMOVE p0001", "LMOVE p0002", "SIGNAL 1", "C1MOVE p0003", "C2MOVE p0004"]
     statements = [line.strip() for line in text.splitlines() if line.startswith("  ") and not line.strip().startswith(";")]
     assert len(statements) > len(order) and all(s.startswith(o) for s, o in zip(statements, order))
-    assert [s.split(" ;")[0].strip() for s in statements[-3:]] == ["BREAK", "SIGNAL -1", "LDEPART 50"]
+    assert [s.split(" ;")[0].strip() for s in statements[-4:]] == ["LMOVE p0014", "SIGNAL -1", "BREAK", "LDEPART 50"]
     assert sum(s.startswith("C1MOVE") for s in statements) == 4
     assert sum(s.startswith("C2MOVE") for s in statements) == 4
     meta = dict(re.findall(r"; coatsim: (\w+)=(.*)", text))
     for key in ("lead_in_mm", "lead_out_mm", "curve_length_mm", "variant", "tolerance_mm", "standoff_mm"):
         assert key in meta
     assert float(meta["curve_length_mm"]) == pytest.approx(rr.length, abs=1e-6)
-    assert meta["variant"] == "polysegment" and meta["n_arcs"] == "4"
+    assert meta["variant"] == "polysegment" and meta["n_arcs"] == "4" and meta["sprayed"] == "curve"
 
 
 def test_arcs_above_the_sweep_limit_are_split():
@@ -135,7 +135,7 @@ def test_dialect_interface_writes_and_reads(rr):
                           dialect=dialect)
     assert built.text == golden_text() and dialect.suffix == ".as"
     toolpath = dialect.read(built.text, "rr.as", gun_signal=1)
-    assert len(toolpath.spray_moves) == 10 and toolpath.name == "roundrect"
+    assert len(toolpath.spray_moves) == 8 and toolpath.name == "roundrect"
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ def test_check_program_reports_the_golden_program(run_cli):
     code, out, err = run_cli(["check-program", str(GOLDEN)])
     assert code == 0, err
     assert "program roundrect: 26 steps, 15 poses; moves: 1 joint, 8 linear, 4 arc" in out
-    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10 + 60
+    length = 2 * 130 + 2 * 60 + 2 * math.pi * 10  # one lap: the lead-in and lead-out run with the gun closed
     assert f"sprayed {length:.3f} mm" in out and "no problems found" in out
 
 
@@ -69,6 +69,7 @@ def test_program_from_polysegment_json(tmp_path, run_cli):
     tp = read_toolpath(out_file)
     assert tp.metadata["tolerance_mm"] == "0.1" and tp.metadata["lead_in_mm"] == "20"
     assert tp.spray_moves[0].start.position[2] == pytest.approx(330.0)
+    assert tp.metadata["sprayed"] == "curve"
     assert all(m.settings.speed_mm_s == 300.0 for m in tp.moves)
     code, text, err = run_cli(["program", str(src), "--variant", "polyline-stop", "--tol", "0.5"])
     assert code == 0 and text.startswith(".PROGRAM rr()") and "CP OFF" in text and "program rr" in err

@@ -83,4 +83,4 @@ def test_mutated_valid_programs(data):
 
 
 def test_golden_reads():
-    assert len(interpret(parse_as_bytes(GOLDEN, "fuzz.as")).spray_moves) == 10
+    assert len(interpret(parse_as_bytes(GOLDEN, "fuzz.as")).spray_moves) == 8

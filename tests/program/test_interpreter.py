@@ -88,6 +88,25 @@ def test_signal_without_break_switches_as_the_previous_move_starts():
     assert [m.spray for m in tp.moves] == [False, True, False, False]
 
 
+@pytest.mark.parametrize("cp", ["ON", "OFF"])
+def test_seam_pattern_sprays_exactly_the_moves_between_the_signals(cp):
+    """The closed-contour pattern of the writer (pinned: the robot stage and the coat rely on it):
+    a SIGNAL right after a motion switches the gun as that motion starts, under CP ON and CP OFF
+    alike, for an arc as for a line, and a SIGNAL never makes the robot stop."""
+    body = (f"  CP {cp}\n  JMOVE a\n  LMOVE b\n  BREAK\n  LMOVE c\n  C1MOVE v\n  C2MOVE e\n  SIGNAL 1\n"
+            "  LMOVE b\n  LMOVE a\n  SIGNAL -1\n  BREAK\n  LDEPART 10\n")
+    tp = run(body)
+    assert [m.kind for m in tp.moves] == ["joint", "line", "line", "arc", "line", "line", "line"]
+    assert [m.spray for m in tp.moves] == [False, False, False, True, True, False, False]
+    stops = [m.settings.stop_at_end for m in tp.moves]
+    assert stops == ([False, True, False, False, False, True, True] if cp == "ON" else [True] * 7)
+
+
+def test_signal_switches_once_per_motion_and_the_last_state_wins():
+    tp = run("  JMOVE a\n  LMOVE b\n  SIGNAL 1\n  SIGNAL -1\n  LMOVE c\n  SIGNAL 1\n  TWAIT 0.5\n  SIGNAL 1\n  LMOVE a\n")
+    assert [m.spray for m in tp.moves] == [False, False, True, True]
+
+
 def test_signal_before_any_motion_and_other_outputs():
     tp = run("  SIGNAL 1, 7\n  JMOVE a\n  SIGNAL -7\n  LMOVE b\n")
     assert [m.spray for m in tp.moves] == [True, True]

@@ -53,19 +53,54 @@ def test_frames_and_tool_roll(frame, follow):
     assert_same_path(round_trip(arc_spiral(turns=2), "polysegment", placement)[2])
 
 
-def test_sprayed_path_is_the_curve_with_its_leads_and_nothing_else(rr):
-    built, toolpath, _ = round_trip(rr, "polysegment", Placement(lead_in_mm=12.0, lead_out_mm=7.0))
-    from coatsim.program.arcs import move_length
-
-    sprayed = sum(move_length(m) for m in toolpath.spray_moves)
-    assert sprayed == pytest.approx(rr.length + 19.0, abs=1e-5)
+def _approach_and_depart_are_dry(toolpath):
     approach, down = toolpath.moves[:2]
     assert not approach.spray and not down.spray and not toolpath.moves[-1].spray
-    assert down.settings.stop_at_end and toolpath.spray_moves[-1].settings.stop_at_end
-    assert not any(m.settings.stop_at_end for m in toolpath.spray_moves[:-1])
+    assert down.settings.stop_at_end
     # The approach and depart are along the surface normal, standoff + 50 mm above the surface.
     assert approach.target.position[2] == pytest.approx(200.0 + 100.0 + 50.0)
     assert toolpath.moves[-1].end.position[2] == pytest.approx(200.0 + 100.0 + 50.0)
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_closed_contour_is_sprayed_exactly_once_around(rr, variant):
+    """Lead-in and lead-out run with the gun closed; the gun is on from the seam to the seam."""
+    built, toolpath, _ = round_trip(rr, variant, Placement(lead_in_mm=12.0, lead_out_mm=7.0))
+    from coatsim.program.arcs import move_length
+
+    path_moves = toolpath.moves[2:-1]
+    assert [m.spray for m in path_moves] == [False] + [True] * (len(path_moves) - 2) + [False]
+    assert sum(move_length(m) for m in toolpath.spray_moves) == pytest.approx(built.curve.length, abs=1e-5)
+    assert np.allclose(toolpath.spray_moves[0].start.position, toolpath.spray_moves[-1].end.position, atol=1e-6)
+    assert toolpath.metadata["sprayed"] == "curve"
+    # on the fly: no stop where the gun switches, unless the variant stops at every point
+    stop = variant == "polyline-stop"
+    assert all(m.settings.stop_at_end == stop for m in path_moves[:-1]) and path_moves[-1].settings.stop_at_end
+    _approach_and_depart_are_dry(toolpath)
+
+
+@pytest.mark.parametrize("lead_in,lead_out", [(12.0, 7.0), (0.0, 7.0), (12.0, 0.0), (0.0, 0.0)])
+def test_closed_contour_without_leads_switches_at_rest(rr, lead_in, lead_out):
+    built, toolpath, _ = round_trip(rr, "polysegment", Placement(lead_in_mm=lead_in, lead_out_mm=lead_out))
+    from coatsim.program.arcs import move_length
+
+    assert sum(move_length(m) for m in toolpath.spray_moves) == pytest.approx(rr.length, abs=1e-5)
+    path_moves = toolpath.moves[2:-1]
+    assert path_moves[0].spray == (lead_in == 0.0) and path_moves[-1].spray == (lead_out == 0.0)
+    assert toolpath.spray_moves[-1].settings.stop_at_end == (lead_out == 0.0)
+
+
+def test_open_curve_is_sprayed_with_its_leads_and_nothing_else():
+    poly = arc_spiral(turns=1)
+    built, toolpath, _ = round_trip(poly, "polysegment", Placement(lead_in_mm=12.0, lead_out_mm=7.0))
+    from coatsim.program.arcs import move_length
+
+    sprayed = sum(move_length(m) for m in toolpath.spray_moves)
+    assert sprayed == pytest.approx(poly.length + 19.0, abs=1e-5)
+    assert toolpath.metadata["sprayed"] == "lead-in,curve,lead-out"
+    assert toolpath.spray_moves[-1].settings.stop_at_end
+    assert not any(m.settings.stop_at_end for m in toolpath.spray_moves[:-1])
+    _approach_and_depart_are_dry(toolpath)
 
 
 # make_segment builds an arc from its centre, so curvatures near zero (radius beyond ~1e6 mm)

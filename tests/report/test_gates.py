@@ -73,3 +73,45 @@ def test_gate_agrees_with_python_comparison(value: float, threshold: float, op: 
     expected = {"<": value < threshold, "<=": value <= threshold, ">": value > threshold,
                 ">=": value >= threshold, "==": value == threshold}[op]
     assert evaluate_gate(Gate("motion.x", op, threshold), variants).passed is expected
+
+
+THREE = {
+    "polysegment": {"coating": {"thickness_cv": 0.10}, "motion": {"min_speed_ratio": 0.99, "n": 2}},
+    "polyline-stop": {"coating": {"thickness_cv": 0.40}, "motion": {"min_speed_ratio": 0.01, "n": 2}},
+    "polyline-blend": {"coating": {"thickness_cv": 0.09}, "motion": {"min_speed_ratio": None, "n": 3}},
+}
+BOTH = ("polyline-stop", "polyline-blend")
+
+
+def test_best_of_several_variants_is_the_strictest_reference() -> None:
+    r = evaluate_gate(Gate("coating.thickness_cv", "<=", compare_to=BOTH, factor=1.05), THREE)
+    assert not r.passed and r.reference == pytest.approx(0.0945) and r.reference_variant == "polyline-blend"
+    assert r.label == "coating.thickness_cv [polysegment] <= 1.05 x best of (polyline-stop, polyline-blend)"
+    r = evaluate_gate(Gate("coating.thickness_cv", "<=", compare_to=BOTH, factor=1.2), THREE)
+    assert r.passed and r.compare_to == BOTH
+    ratio = evaluate_gate(Gate("motion.min_speed_ratio", ">=", compare_to=["polyline-stop"]), THREE)
+    assert ratio.passed and ratio.label == "motion.min_speed_ratio [polysegment] >= best of (polyline-stop)"
+
+
+def test_best_of_fails_when_any_compared_value_is_undefined() -> None:
+    r = evaluate_gate(Gate("motion.min_speed_ratio", ">=", compare_to=BOTH), THREE)
+    assert not r.passed and r.reference is None and r.reference_variant == "polyline-blend"
+
+
+def test_best_of_equality_holds_only_against_every_variant() -> None:
+    r = evaluate_gate(Gate("motion.n", "==", compare_to=BOTH), THREE)
+    assert not r.passed and r.reference == 3 and r.reference_variant == "polyline-blend"
+    assert evaluate_gate(Gate("motion.n", "==", compare_to=["polyline-stop"]), THREE).passed
+
+
+values = st.floats(-1e6, 1e6, allow_nan=False)
+
+
+@given(values, st.lists(values, min_size=1, max_size=4), st.sampled_from(sorted(OPERATORS)),
+       st.floats(0.5, 2.0))
+def test_best_of_passes_exactly_when_every_single_comparison_passes(mine, others, op, factor) -> None:
+    names = [f"v{k}" for k in range(len(others))]
+    variants = {"me": {"g": {"m": mine}}, **{n: {"g": {"m": x}} for n, x in zip(names, others)}}
+    best = evaluate_gate(Gate("g.m", op, compare_to=tuple(names), factor=factor, variant="me"), variants)
+    each = [evaluate_gate(Gate("g.m", op, compare_to=n, factor=factor, variant="me"), variants).passed for n in names]
+    assert best.passed == all(each)

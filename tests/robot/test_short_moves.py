@@ -42,3 +42,42 @@ def test_blends_that_meet_mid_chord_leave_no_duplicate_samples(cell):
 def test_exact_stops_on_moves_shorter_than_the_sampling_step(cell, step):
     result = execute(zigzag(chord=1.5, n=6, accuracy=1.0, stop=True), cell, step_mm=step)
     assert np.isfinite(result.log.t).all() and result.log.t[-1] > 0
+
+
+def circle_chords(radius: float, chord: float, accuracy: float, speed: float) -> ToolPath:
+    """A blended polyline around a circle, chords of about ``chord`` mm (one lap and a half),
+    their lengths a micrometre apart as an RDP polyline's are."""
+    step = 2 * np.arcsin(chord / (2 * radius))
+    n = int(3 * np.pi / step)
+    phi = np.concatenate(([0.0], np.cumsum(step * (1.0 + 3e-4 * np.sin(np.arange(n))))))
+    pts = [(700.0 + radius * np.cos(a), radius * np.sin(a)) for a in phi]
+    return ToolPath("chords", (approach(pts[0]), *lines(pts, speed=speed, accuracy=accuracy, stop=False)))
+
+
+@pytest.mark.parametrize("chord", [3.74, 4.0, 4.09])
+def test_blends_meeting_mid_chord_leave_no_sliver_samples(chord):
+    """Chords at most a little longer than two accuracy radii are all blend: nothing of them is
+    sampled a fraction of a micrometre from a blend end."""
+    path = circle_chords(radius=60.0, chord=chord, accuracy=2.0, speed=300.0)
+    (piece,) = [p for p in plan_pieces(path, step=1.0) if hasattr(p, "position")]
+    assert np.diff(piece.s).min() > 1e-3
+    assert piece.length == pytest.approx(piece.ref_s[-1], rel=0.01)
+
+
+def test_blended_polyline_with_blends_meeting_mid_chord_keeps_the_speed(cell):
+    """The RDP polyline of an epitrochoid (vertices ~3.7 mm apart, 3.6 deg turns) at 300 mm/s
+    with ACCURACY 2: the blends' radii (~60 mm) allow the speed everywhere, and the tool keeps
+    it (sliver samples between blends used to make the joint spline swing and the tool slow to a
+    third of the speed on part of the curve)."""
+    from coatsim.geometry import builtin_curve
+    from coatsim.program import interpret, parse_as
+    from coatsim.program.build import ProgramOptions, build_program, polyline_of
+    from coatsim.program.placement import Placement, centering_offset
+
+    curve = builtin_curve("epitrochoid")
+    poly = polyline_of(curve.points, True, 0.1)
+    built = build_program(poly, Placement(lead_in_mm=20.0, lead_out_mm=20.0, offset_xy=centering_offset(poly)),
+                          ProgramOptions(variant="polyline-blend", speed_mm_s=300.0, accuracy_mm=2.0),
+                          tolerance_mm=0.1, source="epitrochoid", points=curve.points)
+    result = execute(interpret(parse_as(built.text)), cell)
+    assert result.metrics.min_speed_ratio > 0.98 and result.metrics.fraction_at_speed > 0.99

@@ -12,9 +12,11 @@
   ; coatsim: gun_signal=1
   ; coatsim: frame=700,0,200,0,0,0
   ; coatsim: closed=yes
+  ; coatsim: sprayed=curve
   ; coatsim: n_segments=8
   ; coatsim: n_lines=4
   ; coatsim: n_arcs=4
+  ; coatsim: speed_limits=none
   BASE NULL                    ; poses are in the robot base frame
   TOOL TRANS(0.00000000,0.00000000,250.00000000,0.000000,0.000000,0.000000) ; spray gun TCP
   SPEED 500 MM/S ALWAYS
@@ -22,10 +24,10 @@
   CP ON                        ; blend
   JAPPRO p0000, 50             ; above the start
   LMOVE p0000                  ; down to the stand-off
-  BREAK                        ; at rest before the gun opens
-  SIGNAL 1                     ; gun on
+  BREAK                        ; at rest at the start of the lead-in
   LMOVE p0001                  ; lead-in
   LMOVE p0002                  ; segment 1
+  SIGNAL 1                     ; gun on as the move above starts (on the fly)
   C1MOVE p0003                 ; segment 2, arc via
   C2MOVE p0004                 ; arc end
   LMOVE p0005                  ; segment 3
@@ -38,8 +40,8 @@
   C1MOVE p0012                 ; segment 8, arc via
   C2MOVE p0013                 ; arc end
   LMOVE p0014                  ; lead-out
-  BREAK                        ; at rest before the gun closes
-  SIGNAL -1                    ; gun off
+  SIGNAL -1                    ; gun off as the move above starts (on the fly)
+  BREAK                        ; at rest at the end of the path
   LDEPART 50                   ; back along the tool axis
 .END
 .TRANS

@@ -1,0 +1,93 @@
+"""motion.min_speed_ratio: the lowest speed where the curve allows the programmed speed."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from coatsim.errors import InputError
+from coatsim.program.toolpath import ToolPath
+from coatsim.robot.cell import load_cell
+from coatsim.robot.execute import execute
+from coatsim.robot.motion_metrics import RAMP_FACTOR, CurveAllowance, allowed_by_curve
+
+from robot_helpers import square, straight_line
+
+A = 5000.0  # mm/s², the default cell's tool acceleration limit
+V = 300.0
+
+
+@pytest.fixture(scope="module")
+def cell():
+    return load_cell()
+
+
+def ramp(v_limit: float) -> float:
+    return RAMP_FACTOR * (V**2 - v_limit**2) / (2 * A)
+
+
+def test_analytic_mask_of_one_corner_and_one_slow_stretch():
+    s = np.linspace(0.0, 200.0, 20001)
+    allowance = CurveAllowance(((50.0, 50.0, 0.0), (120.0, 130.0, 200.0)), lead_in_mm=100.0, lead_out_mm=100.0)
+    ok = allowed_by_curve(s, 200.0, V, A, allowance)
+    expected = (np.abs(s - 50.0) >= ramp(0.0)) & ((s <= 120.0 - ramp(200.0)) | (s >= 130.0 + ramp(200.0)))
+    assert np.array_equal(ok, expected)
+
+
+def test_rest_points_beyond_short_leads_exclude_the_ramps_only():
+    s = np.linspace(0.0, 100.0, 1001)
+    ok = allowed_by_curve(s, 100.0, V, A, CurveAllowance(lead_in_mm=5.0, lead_out_mm=0.0))
+    assert np.array_equal(ok, (s + 5.0 >= ramp(0.0)) & (100.0 - s >= ramp(0.0)))
+    assert allowed_by_curve(s, 100.0, V, A, CurveAllowance(lead_in_mm=50.0, lead_out_mm=50.0)).all()
+
+
+def test_a_corner_at_the_seam_of_a_closed_curve_excludes_both_sides():
+    s = np.linspace(0.0, 300.0, 3001)
+    leads = dict(lead_in_mm=50.0, lead_out_mm=50.0)
+    closed = allowed_by_curve(s, 300.0, V, A, CurveAllowance(((0.0, 0.0, 0.0),), closed=True, **leads))
+    assert np.array_equal(closed, (s >= ramp(0.0)) & (300.0 - s >= ramp(0.0)))
+    open_ = allowed_by_curve(s, 300.0, V, A, CurveAllowance(((0.0, 0.0, 0.0),), closed=False, **leads))
+    assert open_[-1] and not open_[0]
+
+
+limit = st.tuples(st.floats(0, 400), st.floats(0, 50), st.floats(0, 400))
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(limit, max_size=6), limit, st.booleans(), st.floats(0, 30), st.floats(0, 30))
+def test_more_limits_never_allow_more(limits, extra, closed, lead_in, lead_out):
+    s = np.linspace(0.0, 400.0, 801)
+    as_limits = [(a, a + b, v) for a, b, v in limits]
+    base = allowed_by_curve(s, 400.0, V, A, CurveAllowance(tuple(as_limits), closed, lead_in, lead_out))
+    more = allowed_by_curve(s, 400.0, V, A, CurveAllowance(tuple(as_limits + [(extra[0], extra[0] + extra[1], extra[2])]),
+                                                            closed, lead_in, lead_out))
+    assert not np.any(more & ~base)
+    if extra[2] >= V:
+        assert np.array_equal(more, base)
+
+
+def test_a_line_that_reaches_its_speed_keeps_it(cell):
+    result = execute(straight_line(speed=200.0), cell)
+    assert result.metrics.min_speed_ratio == pytest.approx(1.0, abs=0.02)
+
+
+def test_stops_count_where_the_curve_allows_the_speed_and_declared_corners_do_not(cell):
+    stopping = square(side=200.0, speed=200.0, stop=True)
+    assert execute(stopping, cell).metrics.min_speed_ratio < 0.05
+    # the same square declared as a curve with four true corners: the stops are where it must slow
+    corners = " ".join(f"{s:g}:{s:g}:0" for s in (200.0, 400.0, 600.0))
+    declared = ToolPath(stopping.name, stopping.moves, {"speed_limits": corners})
+    assert execute(declared, cell).metrics.min_speed_ratio == pytest.approx(1.0, abs=0.03)
+
+
+def test_a_curve_that_allows_the_speed_nowhere_has_no_ratio(cell):
+    line = straight_line(length=6.0, speed=200.0, lead=0.0)
+    assert execute(line, cell).metrics.min_speed_ratio is None
+
+
+def test_a_malformed_header_is_an_input_error(cell):
+    line = straight_line()
+    with pytest.raises(InputError, match="speed_limits"):
+        execute(ToolPath(line.name, line.moves, {"speed_limits": "10:5:0"}), cell)
