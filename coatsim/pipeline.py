@@ -11,6 +11,7 @@ from __future__ import annotations
 import difflib
 import math
 import sys
+import time
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -26,6 +27,7 @@ from coatsim.program import read_toolpath
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
+from coatsim.program.toolpath import ToolPath
 from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
@@ -36,7 +38,7 @@ from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
 from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
-from coatsim.spray.outputs import write_thickness_ply
+from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
 from coatsim.spray.surfaces import Surface, cylinder, mesh_file, plate
 
 Step = Callable[[str], None]
@@ -52,6 +54,7 @@ class VariantRun:
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
+    toolpath: Optional[ToolPath] = None  # the program as read back (the report ties events to its lines)
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,6 +66,7 @@ class RunResult:
     document: dict
     files: tuple[Path, ...]
     segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
+    report_s: float = 0.0        # wall time of the thickness files, the video and report.html
 
     @property
     def passed(self) -> bool:
@@ -191,8 +195,7 @@ class Job:
 
 
 def run_variant(name: str, job: Job, step: Step) -> VariantRun:
-    """Program, execute and coat one variant; writes ``name.as``, ``name.trajectory.csv`` and
-    ``name.thickness.ply``."""
+    """Program, execute and coat one variant; writes ``name.as`` and ``name.trajectory.csv``."""
     spec, out = job.loaded.spec, job.outdir
     poly, points = job.segmentation.polysegment, job.segmentation.curve.points
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
@@ -209,8 +212,6 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                   spacing=job.spacing_mm)
-    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um, 0.0,
-                        float(result.thickness_um.max()), result.deposit.exposure_s)  # as `coatsim coat` writes it
     groups = {
         "segmentation": segmentation_group(
             points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
@@ -218,7 +219,7 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
     }
-    return VariantRun(name, program, execution, result, groups)
+    return VariantRun(name, program, execution, result, groups, toolpath)
 
 
 def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
@@ -236,13 +237,31 @@ def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
     return measured
 
 
+def write_thickness_files(runs: list[VariantRun], out: Path, standoff_mm: float) -> list[Path]:
+    """Every variant's ``V.thickness.ply`` (the properties ``coatsim coat`` writes) and
+    ``V.thickness.glb`` (vertex colours, the sprayed tool path), all on the report's one
+    colour scale."""
+    from coatsim.report.data import aim_paths, thickness_scale
+
+    vmin, vmax = thickness_scale([r.coating.thickness_um for r in runs])
+    files = []
+    for r in runs:
+        ply, glb = out / f"{r.name}.thickness.ply", out / f"{r.name}.thickness.glb"
+        write_thickness_ply(ply, r.coating.surface, r.coating.thickness_um, vmin, vmax, r.coating.deposit.exposure_s)
+        write_thickness_glb(glb, r.coating.surface, r.coating.thickness_um, vmin, vmax, r.coating.deposit.exposure_s,
+                            aim_paths(r.execution.log, standoff_mm))
+        files += [ply, glb]
+    return files
+
+
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None, model: Optional[str | Path] = None) -> RunResult:
+                 progress: Optional[bool] = None, model: Optional[str | Path] = None, *,
+                 video: bool = False) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
     ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
     settings; ``progress`` defaults to showing a bar when stderr is a terminal; ``model``
-    replaces the scenario's robot model.
+    replaces the scenario's robot model; ``video`` also writes an MP4 of the polysegment run.
     """
     from coatsim.report.document import write_report
 
@@ -254,7 +273,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
     sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
-    with progress_steps(3 + 3 * len(spec.variants), show) as step:
+    with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
         step("segmenting the curve")
         curve = load_input_curve(loaded)
         segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
@@ -282,9 +301,21 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         warnings = [{"variant": r.name, "message": event} for r in runs for event in r.execution.events]
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
         write_text(out / "metrics.json", to_json(document))
-        write_report(out / "report.html", loaded, curve, segmentation, runs, document)
+        report_started = time.perf_counter()
+        thickness_files = write_thickness_files(runs, out, spec.gun.standoff_mm)
+        movie = None
+        if video:
+            from coatsim.report.data import ReportData
+            from coatsim.report.video import write_video
+
+            step("rendering the video")
+            data = ReportData(loaded, (segmentation,), tuple(runs), document)
+            movie = write_video(out / f"{data.reference.name}.mp4", data, cell)
+        write_report(out / "report.html", loaded, (segmentation,), runs, document, cell=cell,
+                     video=None if movie is None else movie.name)
+        report_s = time.perf_counter() - report_started
     files = [out / "polysegment.json"]
     for r in runs:
-        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv", out / f"{r.name}.thickness.ply"]
-    files += [out / "metrics.json", out / "report.html"]
-    return RunResult(out, tuple(runs), document, tuple(files), segmentation.seconds)
+        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv"]
+    files += thickness_files + [out / "metrics.json", out / "report.html"] + ([movie] if movie else [])
+    return RunResult(out, tuple(runs), document, tuple(files), segmentation.seconds, report_s)

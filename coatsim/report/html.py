@@ -1,5 +1,6 @@
-"""Self-contained HTML report: one file, images embedded as base64 PNG, inline CSS, no
-scripts and no external assets, so it opens anywhere without coatsim installed.
+"""Self-contained HTML report: one file, images embedded as base64 PNG, inline CSS and inline
+scripts (the 3-D viewer, opening a collapsed listing at a linked line), no external assets, so
+it opens anywhere, offline, without coatsim installed.
 """
 
 from __future__ import annotations
@@ -23,7 +24,24 @@ tr.group td{background:#fafafa;font-weight:600;text-align:left}
 .pass{color:#0a7d28;font-weight:600}.fail{color:#b3121f;font-weight:600}
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}
 figcaption{color:#555;font-size:.9em}.muted{color:#777}
+p.verdict{font-size:1.05em;background:#f6f8fa;border-left:4px solid #1b6ca8;padding:.6em .9em}
+table.events td{vertical-align:top}tr.warn td:nth-child(3){color:#b3121f;font-weight:600}
+tr.note td{color:#555}
+pre.listing{font-size:.8em;line-height:1.35;max-height:40em;overflow:auto;background:#fafafa;padding:.5em}
+pre.listing i{color:#999;font-style:normal}pre.listing .hit{background:#ffe3b3;display:inline-block;width:100%}
+pre.listing span:target{outline:2px solid #c0392b}pre.listing .tag{color:#b3121f;font-weight:600}
+details{margin:.4em 0}summary{cursor:pointer}
+.viewer canvas{border:1px solid #ddd;max-width:100%;touch-action:none;cursor:grab}
+.viewer .controls label{margin-right:.8em}
 """
+
+# First script of the page: records script errors on <html data-script-errors> (read by tests).
+ERROR_HOOK = ("window.addEventListener('error',function(e){var h=document.documentElement;"
+              "h.setAttribute('data-script-errors',(h.getAttribute('data-script-errors')||'')+e.message+';')});")
+# Last script: a link to a line of a collapsed listing opens the listing.
+OPEN_TARGET = ("function coatsimOpen(){var t=location.hash&&document.getElementById(location.hash.slice(1));"
+               "for(var e=t;e;e=e.parentElement){if(e.tagName==='DETAILS'){e.open=true;}}if(t){t.scrollIntoView();}}"
+               "window.addEventListener('hashchange',coatsimOpen);coatsimOpen();")
 
 
 @dataclass(frozen=True)
@@ -131,7 +149,7 @@ def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
-        f"<title>{esc(title)}</title><style>{CSS}</style></head><body>",
+        f"<title>{esc(title)}</title><style>{CSS}</style><script>{ERROR_HOOK}</script></head><body>",
         f"<h1>{esc(title)}</h1><p class=\"muted\">{esc(subtitle)}</p>",
         f"<nav><ol>{toc}</ol></nav>",
     ]
@@ -139,5 +157,5 @@ def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
         parts.append(f'<section id="{esc(s.anchor)}"><h2>{esc(s.heading)}</h2>{s.body}')
         parts.extend(figure_html(f) for f in s.figures)
         parts.append("</section>")
-    parts.append("</body></html>\n")
+    parts.append(f"<script>{OPEN_TARGET}</script></body></html>\n")
     return "\n".join(parts)

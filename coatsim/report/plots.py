@@ -19,7 +19,8 @@ import numpy as np
 VARIANT_COLOURS = {"polysegment": "#1b6ca8", "polyline-stop": "#c0392b", "polyline-blend": "#e08e0b"}
 
 
-def _pyplot():
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (imported on first use)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -28,15 +29,25 @@ def _pyplot():
     return plt
 
 
-def _png(fig) -> bytes:
+def png_bytes(fig, dpi: int = 100) -> bytes:
+    """The figure as PNG bytes without a timestamp (equal figures give equal bytes); closes it."""
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100, metadata={"Software": None}, bbox_inches="tight")
-    _pyplot().close(fig)
+    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None}, bbox_inches="tight")
+    pyplot().close(fig)
     return buf.getvalue()
 
 
-def _colour(variant: str) -> str:
-    return VARIANT_COLOURS.get(variant, "#555555")
+_pyplot, _png = pyplot, png_bytes
+
+_OTHER_COLOURS = ("#6a3d9a", "#33a02c", "#b15928", "#e7298a", "#1f78b4", "#666666")
+
+
+def colour(variant: str, order: int = 0) -> str:
+    """A variant's colour: fixed for the built-in variants, from a palette by order otherwise."""
+    return VARIANT_COLOURS.get(variant, _OTHER_COLOURS[order % len(_OTHER_COLOURS)])
+
+
+_colour = colour
 
 
 def polyline_figure(curve_xy: np.ndarray, polyline_xy: np.ndarray) -> bytes:
