@@ -20,6 +20,47 @@ settings.load_profile("ci")
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 
+# A small scenario that runs in seconds in fast mode (one gate fails on purpose: exit 1).
+SMALL = """\
+name: small_job
+description: two 60 mm passes joined by one semicircular turn-around
+curve:
+  builtin: raster
+  params: {width: 60.0, pitch: 20.0, passes: 2}
+segmentation: {tolerance_mm: 0.1}
+workpiece: {kind: plate, size_mm: [130.0, 90.0]}
+gun: {footprint: "gaussian:sigma=5", target_thickness_um: 16.0}
+motion: {speed_mm_s: 200.0, accuracy_mm: 0.5, lead_in_mm: 10.0, lead_out_mm: 10.0}
+coating: {spacing_mm: 2.0, band_halfwidth_mm: 2.5}
+fast: {coating_spacing_mm: 2.5}
+gates:
+  - {metric: segmentation.max_deviation_mm, op: "<=", threshold: 0.1}
+  - {metric: coating.mass_balance_error, op: "<=", threshold: 0.001}
+  - {metric: motion.stops, op: "==", threshold: 0}
+  - {metric: coating.thickness_cv, op: "<", threshold: 0.0}
+"""
+
+
+@pytest.fixture(scope="session")
+def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, str, Path]:
+    """`coatsim run SMALL --fast` once per session, in-process: (exit code, stdout, stderr, output folder)."""
+    import contextlib
+    import io
+
+    folder = tmp_path_factory.mktemp("small")
+    scenario = folder / "small_job.yaml"
+    scenario.write_text(SMALL, encoding="utf-8")
+    outdir = folder / "out"
+    out, err = io.StringIO(), io.StringIO()
+    old = sys.argv
+    sys.argv = ["coatsim", "run", str(scenario), "--fast", "-o", str(outdir)]
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
+            cli.main()
+    finally:
+        sys.argv = old
+    return int(info.value.code or 0), out.getvalue(), err.getvalue(), outdir
+
 
 @pytest.fixture(scope="session")
 def readme_metric_names() -> list[str]:

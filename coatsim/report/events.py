@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
 
 AT_SPEED = 0.95          # a dip: the tool below 95 % of the programmed speed on the curve proper
+STOP = 0.05              # at rest: below 5 % of the programmed speed (as motion.stops counts)
 IK_NOTE_MM = 0.01        # an IK residual above this is listed (the solver's bound is 0.05 mm)
 _MERGE_MM = 1.0          # dips closer than this along the path are one dip
 
@@ -145,6 +146,9 @@ def speed_dips(name: str, execution: Execution, toolpath: ToolPath) -> list[Even
         s0, s1, s = (float(log.progress[i]) - a for i in (run[0], run[-1], low))
         allowed = [lim.v_max_mm_s for lim in limits if lim.s0_mm - 1.0 <= s <= lim.s1_mm + 1.0]
         why = f"; the curve allows at most {min(allowed):.0f} mm/s here" if allowed else ""
+        resting = log.speed[run] < STOP * v
+        stops = int(np.count_nonzero(resting[1:] & ~resting[:-1]) + resting[0])
+        why += f"; {stops} stop{'s' if stops != 1 else ''}" if stops else ""
         out.append(Event(name, "speed dip", "warning", where.line_at(float(log.progress[low])),
                          f"speed falls to {log.speed[low]:.0f} mm/s ({100 * log.speed[low] / v:.0f} % of {v:g}) at "
                          f"s = {s:.1f} mm, below {100 * AT_SPEED:.0f} % from {s0:.1f} to {s1:.1f} mm{why}",

@@ -40,7 +40,7 @@ def write_video(path: Path, data: Any, cell: Any) -> Path:
 
     coarse = decimate(data.surface, RENDER_FACES)
     vmin, vmax = data.scale_um
-    camera = framing(camera_points(data, run))
+    camera = framing(camera_points(data, run), elevation_deg=-38.0)
     standoff = data.spec.gun.standoff_mm
     aim = log.position + standoff * log.axis
     writer = None

@@ -231,5 +231,7 @@ def execute_program(program: str | Path, model: str | Path | None, outdir: str |
         "events": list(result.events),
     }
     write_text(files[1], json.dumps(doc, indent=2) + "\n")
-    plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{toolpath.name}: tool speed along the path")
+    variant = toolpath.metadata.get("variant")
+    label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(program).name})"
+    plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{label}: tool speed over the sprayed stretch")
     return result, files

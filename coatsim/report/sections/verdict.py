@@ -51,11 +51,11 @@ def bar_chart(result: Verdict) -> bytes:
         ax.set_xlim(-CLIP_PCT * 1.9, CLIP_PCT * 1.9)
         ax.set_xticks([-100, -50, 0, 50, 100])
         ax.set_yticks(range(len(labels)), labels)
-        ax.invert_yaxis()
         ax.set_title(f"against {c.against}", fontsize=9)
         ax.set_xlabel("polysegment better → (%)", fontsize=8)
         ax.grid(axis="x", alpha=0.3)
         ax.tick_params(labelsize=8)
+    axes[0, 0].invert_yaxis()  # shared: the first measure on top in every panel
     fig.tight_layout()
     return png_bytes(fig)
 

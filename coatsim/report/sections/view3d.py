@@ -54,12 +54,12 @@ def thickness_until(run: Any, rows: Sequence[int]) -> list[np.ndarray]:
 
 
 def camera_points(data: Any, run: Any) -> np.ndarray:
-    """What the overview must show: the part, the robot's base and the tool's path."""
+    """What the pictures must show: the part, the tool's path and the gun above it."""
     log = run.execution.log
     on = spray_rows(run)
     tcp = log.position[on[0]:on[-1] + 1:10]
-    top = np.array([[0.0, 0.0, max(float(tcp[:, 2].max()) + 350.0, 900.0)]])
-    return np.vstack((data.surface.vertices, np.zeros((1, 3)), tcp, top))
+    gun = tcp - 250.0 * log.axis[on[0]:on[-1] + 1:10]
+    return np.vstack((data.surface.vertices, tcp, gun))
 
 
 def render_instants(data: Any, run: Any, renderer: Any, fractions: Sequence[float]) -> list[tuple[float, np.ndarray]]:
@@ -70,7 +70,7 @@ def render_instants(data: Any, run: Any, renderer: Any, fractions: Sequence[floa
     rows = instant_rows(run, fractions)
     log = run.execution.log
     vmin, vmax = data.scale_um
-    camera = framing(camera_points(data, run))
+    camera = framing(camera_points(data, run), elevation_deg=-38.0)
     standoff = data.spec.gun.standoff_mm
     out = []
     path = log.position[spray_rows(run)] + standoff * log.axis[spray_rows(run)]
