@@ -11,7 +11,6 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
-from coatsim.report.catalogue import METRICS, GROUPS
 
 CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:2em auto;max-width:1200px;
@@ -94,38 +93,6 @@ def key_value_table(rows: Sequence[tuple[str, Any]]) -> str:
     """Two-column table of labels and values."""
     body = "".join(f'<tr><th class="l">{esc(k)}</th><td class="l">{esc(v)}</td></tr>' for k, v in rows)
     return f"<table>{body}</table>"
-
-
-def _ratio(value: Any, base: Any) -> str:
-    if not isinstance(value, (int, float)) or not isinstance(base, (int, float)) or isinstance(value, bool):
-        return "–"
-    if base == 0 or math.isnan(base) or math.isnan(value):
-        return "–"
-    return f"{value / base:.3g}"
-
-
-def metrics_table(variants: Mapping[str, Mapping[str, Mapping[str, Any]]], baseline: str | None) -> str:
-    """Every metric for every variant, grouped, with ratios of each variant to ``baseline``."""
-    names = list(variants)
-    others = [v for v in names if v != baseline] if baseline in variants else []
-    head = '<th class="l">metric</th><th class="l">unit</th>' + "".join(f"<th>{esc(v)}</th>" for v in names)
-    head += "".join(f"<th>{esc(v)} / {esc(baseline)}</th>" for v in others)
-    rows = []
-    for group in GROUPS:
-        rows.append(f'<tr class="group"><td colspan="{2 + len(names) + len(others)}">{esc(group)}</td></tr>')
-        for key, info in METRICS.items():
-            if not key.startswith(group + "."):
-                continue
-            name = key.split(".", 1)[1]
-            values = [variants[v].get(group, {}).get(name) for v in names]
-            cells = "".join(f"<td>{fmt(x)}</td>" for x in values)
-            base = variants[baseline].get(group, {}).get(name) if others else None
-            cells += "".join(f"<td>{_ratio(variants[v].get(group, {}).get(name), base)}</td>" for v in others)
-            rows.append(
-                f'<tr><td class="l" title="{esc(info.meaning)}">{esc(key)}</td>'
-                f'<td class="l">{esc(info.unit)}</td>{cells}</tr>'
-            )
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
 
 
 def gates_table(gates: Sequence[Mapping[str, Any]]) -> str:

@@ -154,7 +154,7 @@ def overall(result: Verdict) -> str:
         return (f"The polysegment wins or ties every measure against {every} "
                 f"({wins} win{'s' if wins != 1 else ''}, no loss).")
     if not losses:
-        return "The polysegment neither wins nor loses: every measure is a tie or cannot be compared."
+        return "No measure tells the variants apart: every one is a tie or cannot be compared."
     lost = "; ".join(f"{o.criterion.label} against {name} ({change_text(o)})" for name, o in losses)
     if not wins:
         return f"The polysegment loses: it wins no measure and loses {lost}."

@@ -50,6 +50,17 @@ def section(data: Any) -> Section:
             "corners as crosses. Right: the angular function θ(t) (cumulative turning angle against normalised arc "
             "length) of the input and of the polysegment, piecewise linear: each slope is an arc, each flat piece a "
             "line."))
+    polyline = next((r for r in data.runs if r.name.startswith("polyline") and hasattr(r.program, "curve")), None)
+    if polyline is not None and len(data.contours) == 1:
+        import numpy as np
+
+        from coatsim.report.plots import polyline_figure
+
+        curve = polyline.program.curve
+        xy = np.array([s.start for s in curve.segments] + [curve.end])
+        figure += figure_html(Figure(
+            "Polyline program", polyline_figure(data.contours[0].curve.points, xy),
+            "The polyline variants' vertices on the input curve: without blending the arm stops at each."))
     note = ('<p class="muted">Each listing opens on a click; a line number in the Warnings table jumps to its line. '
             "Highlighted: the lines the warnings point to, tagged with their event numbers.</p>")
     return Section("program", "Programs", figure + note + "".join(parts))
