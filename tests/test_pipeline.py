@@ -21,7 +21,7 @@ from coatsim.report.verdict import verdict
 from coatsim.robot.trajectory_log import read_trajectory_csv
 from coatsim.scenario import VARIANTS
 
-from conftest import SMALL
+from small_scenario import SMALL
 
 
 

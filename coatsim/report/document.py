@@ -22,7 +22,16 @@ SECTION_IDS = ("verdict", "speed", "thickness-along-track", "maps", "warnings", 
 
 def build_sections(data: ReportData, cell: Optional[Any] = None, video: Optional[str] = None) -> list[Section]:
     """Every section of the report, in order."""
-    from coatsim.report.sections import maps, program, speed, tables, track, verdict, view3d, warnings
+    from coatsim.report.sections import (
+        maps,
+        program,
+        speed,
+        tables,
+        track,
+        verdict,
+        view3d,
+        warnings,
+    )
 
     document = data.document
     return [

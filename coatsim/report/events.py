@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING, Optional, Sequence
 
 import numpy as np
 
-from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
+from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
+from coatsim.program.speed_limits import parse_limits
 from coatsim.program.toolpath import ToolPath
 
 if TYPE_CHECKING:

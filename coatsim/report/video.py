@@ -23,8 +23,15 @@ def write_video(path: Path, data: Any, cell: Any) -> Path:
         import imageio_ffmpeg
     except ImportError:
         raise InputError("--video needs imageio-ffmpeg: pip install 'coatsim[video]'") from None
-    from coatsim.report.sections.view3d import camera_points, make_renderer, spray_rows, thickness_until
+    from coatsim.report.sections.view3d import (
+        RENDER_FACES,
+        camera_points,
+        make_renderer,
+        spray_rows,
+        thickness_until,
+    )
     from coatsim.robot.render import framing
+    from coatsim.spray.decimate import decimate
 
     run = data.reference
     log = run.execution.log
@@ -35,9 +42,6 @@ def write_video(path: Path, data: Any, cell: Any) -> Path:
     times = np.arange(max(t0, float(log.t[0])), min(t1, float(log.t[-1])), 1.0 / FPS)
     rows = [int(r) for r in np.clip(np.searchsorted(log.t, times), 0, len(log.t) - 1)]
     renderer = make_renderer(data, cell)
-    from coatsim.spray.decimate import decimate
-    from coatsim.report.sections.view3d import RENDER_FACES
-
     coarse = decimate(data.surface, RENDER_FACES)
     vmin, vmax = data.scale_um
     camera = framing(camera_points(data, run), elevation_deg=-38.0)

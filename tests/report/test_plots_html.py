@@ -5,7 +5,6 @@ from __future__ import annotations
 import base64
 import re
 
-import numpy as np
 
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.report import plots

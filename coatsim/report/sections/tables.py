@@ -8,7 +8,7 @@ import json
 from typing import Any, Mapping, Sequence
 
 from coatsim.report.catalogue import GROUPS, METRICS
-from coatsim.report.html import Section, esc, fmt, gates_table, key_value_table
+from coatsim.report.html import Section, esc, gates_table, key_value_table
 from coatsim.report.metric_names import ratio_text, shown, unit, value_text
 
 GROUP_TITLES = {"segmentation": "Programmed curve", "motion": "Motion of the simulated arm",
@@ -93,5 +93,3 @@ def overall(passed: bool) -> str:
 def gates_section(gates: Sequence[Mapping[str, Any]], passed: bool) -> Section:
     return Section("gates", "Gates", gates_table(gates) + overall(passed))
 
-
-__all__ = ["metrics_section", "summary_section", "gates_section", "fmt"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping, Sequence
 
-from coatsim.report.html import Section, esc, figure_html, Figure
+from coatsim.report.html import Figure, Section, esc, figure_html
 from coatsim.report.plots import png_bytes, pyplot
 from coatsim.report.verdict import Verdict, advantage_pct, change_text, overall, verdict
 
