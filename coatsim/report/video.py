@@ -46,7 +46,7 @@ def write_video(path: Path, data: Any, cell: Any) -> Path:
     vmin, vmax = data.scale_um
     camera = framing(camera_points(data, run), elevation_deg=-38.0)
     standoff = data.spec.gun.standoff_mm
-    aim = log.position + standoff * log.axis
+    aim = log.position + (standoff - 1.0) * log.axis  # 1 mm above the part, over its drawn surface
     writer = None
     with temporary_path(path) as tmp:
         try:

@@ -55,8 +55,7 @@ def speed_figure(runs: Sequence[Any], events: Sequence[Event], numbers: Mapping[
                 ax.plot(e.s_mm, 1.08 * top, "v", color="#b3121f", ms=5)
                 ax.annotate(f"#{numbers[e]}", (e.s_mm, 1.08 * top), textcoords="offset points", xytext=(4, -3),
                             fontsize=6.5, color="#b3121f")
-        ax.text(0.005, 0.04, run.name, transform=ax.transAxes, fontsize=9, fontweight="bold",
-                color=colour(run.name, k))
+        ax.set_title(run.name, loc="left", fontsize=9, fontweight="bold", color=colour(run.name, k), pad=3)
         ax.set_ylabel("mm/s", fontsize=8)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=8)

@@ -32,7 +32,7 @@ def track_figure(data: Any) -> bytes:
             for x in (0.0, length):
                 ax.axvline(x, color="#6a3d9a", lw=0.9, ls="-.")
         ax.plot(s, values[run.name], color=colour(run.name, k), lw=1.0)
-        ax.text(0.005, 0.86, run.name, transform=ax.transAxes, fontsize=9, fontweight="bold", color=colour(run.name, k))
+        ax.set_title(run.name, loc="left", fontsize=9, fontweight="bold", color=colour(run.name, k), pad=3)
         ax.set_ylabel("µm", fontsize=8)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=8)

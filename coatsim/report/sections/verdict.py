@@ -41,7 +41,10 @@ def bar_chart(result: Verdict) -> bytes:
         labels = [o.criterion.label for o in c.outcomes]
         for y, o in enumerate(c.outcomes):
             adv = advantage_pct(o)
-            width = 0.0 if adv is None else max(-CLIP_PCT, min(CLIP_PCT, adv))
+            if adv is None:  # no ratio (the polyline's value is 0): a win or a loss runs to the edge
+                width = {"win": CLIP_PCT, "loss": -CLIP_PCT}.get(o.outcome, 0.0)
+            else:
+                width = max(-CLIP_PCT, min(CLIP_PCT, adv))
             ax.barh(y, width, color=OUTCOME_COLOURS[o.outcome], height=0.6)
             text = change_text(o) if o.outcome != "undefined" else "n/a"
             word = {"win": "win", "loss": "loss", "tie": "tie", "undefined": ""}[o.outcome]

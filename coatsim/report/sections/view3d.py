@@ -73,7 +73,7 @@ def render_instants(data: Any, run: Any, renderer: Any, fractions: Sequence[floa
     camera = framing(camera_points(data, run), elevation_deg=-38.0)
     standoff = data.spec.gun.standoff_mm
     out = []
-    path = log.position[spray_rows(run)] + standoff * log.axis[spray_rows(run)]
+    path = log.position[spray_rows(run)] + (standoff - 1.0) * log.axis[spray_rows(run)]  # 1 mm above the part
     for row, thickness in zip(rows, thickness_until(run, rows)):
         fraction = (coarse.field(thickness) - vmin) / (vmax - vmin)
         nozzle = log.position[row]
