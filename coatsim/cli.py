@@ -63,10 +63,10 @@ def segment(
     theta_tol: Optional[float] = typer.Option(None, "--theta-tol", help="paper method: fixed RDP tolerance on θ instead of searching for tol."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
+    timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
     min_segment: Optional[float] = typer.Option(None, "--min-segment", help="Shortest fitted segment, mm [default: 5 x --tol]."),
     speed: Optional[float] = typer.Option(None, "--speed", help="Programmed speed, mm/s: no arc tighter than speed²/tool-accel where the curve allows; the rest is listed as speed-limited."),
     tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit with --speed, m/s² [default: the cell model's]."),
-    timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
 ) -> None:
     """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
     import math
@@ -188,8 +188,8 @@ def program(
     frame: str = typer.Option("700,0,200,0,0,0", "--frame", help="Workpiece frame x,y,z,o,a,t in the robot base frame (mm, deg O-A-T)."),
     variant: str = typer.Option("polysegment", "--variant", help="polysegment | polyline-stop | polyline-blend."),
     accuracy: float = typer.Option(1.0, "--accuracy", help="ACCURACY (blend zone radius), mm."),
-    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed)."),
-    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed)."),
+    lead_in: float = typer.Option(30.0, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed on an open curve; a closed one is sprayed exactly once around)."),
+    lead_out: float = typer.Option(30.0, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed on an open curve)."),
     approach: float = typer.Option(50.0, "--approach", help="Approach and depart distance along the tool axis, mm."),
     roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
     follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it)."),
@@ -197,16 +197,27 @@ def program(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit the curve is segmented for at --speed, m/s² [default: the cell model's]."),
 ) -> None:
     """Write the Kawasaki AS program (polysegment or polyline variant) of a curve."""
+    import math
+
     from coatsim.program.build import ProgramOptions
     from coatsim.program.run import program_summary, run_program
 
     options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
                              gun_signal=gun, name=name)
+    if tool_accel is None:
+        from coatsim.robot.cell import load_cell
+
+        accel_mm_s2 = load_cell().tool_accel_mm_s2
+    elif math.isfinite(tool_accel) and tool_accel > 0:
+        accel_mm_s2 = tool_accel * 1000.0
+    else:
+        fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
     built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                         lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                        output=output)
+                        output=output, tool_accel_mm_s2=accel_mm_s2)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
@@ -214,24 +225,30 @@ def program(
 
 @app.command()
 def execute(
-    program: Path = typer.Argument(..., help="Kawasaki AS program file."),
+    program: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF [default: the shipped coating_cell.xml]."),
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
     if it cannot be executed or the simulated arm diverges."""
+    from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.robot.execute import execute_program
 
-    result, files = execute_program(program, model, output, gun, step)
+    result, files = execute_program(program, model, output, gun, step, main,
+                                    parse_inputs(inputs) if inputs is not None else None)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
                f"CV {m.speed_cv:.4f}, {m.fraction_at_speed:.1%} at speed, {m.stops} stops; path error max "
                f"{m.max_path_error_mm:.3f} rms {m.rms_path_error_mm:.3f} mm; joint speed/accel "
                f"{m.max_joint_speed_ratio:.2f}/{m.max_joint_accel_ratio:.2f} of limits")
+    for warning in result.warnings:
+        typer.echo(f"warning: {warning}", err=True)
     for event in result.events:
         typer.echo(f"warning: {event}", err=True)
     typer.echo(f"wrote {', '.join(str(f) for f in files)}")
@@ -239,21 +256,65 @@ def execute(
         typer.echo("timings: " + ", ".join(f"{k.removesuffix('_s')} {t:.2f} s" for k, t in result.wall.items()), err=True)
 
 
+@app.command()
+def convert(
+    paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
+    tol: float = typer.Option(..., "--tol", help="Tolerance sigma: largest deviation from the original path, mm."),
+    output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    gun: int = typer.Option(1, "--gun", help="Gun output signal number: its sprayed moves are the process path."),
+    standalone: bool = typer.Option(False, "--standalone", help="A clean program of the path alone instead of the edited original."),
+    lines: Optional[str] = typer.Option(None, "--lines", help="FIRST-LAST: the moves of these source lines instead of the sprayed ones."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
+    corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
+    name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
+) -> None:
+    """Rewrite the process path of an existing AS program with arcs within a tolerance."""
+    from coatsim.fileio import write_text
+    from coatsim.program.as_lang.io_model import parse_inputs
+    from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
+    from coatsim.robot.kinematics import LazyKinematics
+
+    line_range = None
+    if lines is not None:
+        first, sep, last = lines.partition("-")
+        if not (sep and first.strip().isdigit() and last.strip().isdigit() and int(first) <= int(last)):
+            fail(f"--lines {lines!r}: expected FIRST-LAST source line numbers, as in 12-1911")
+        line_range = (int(first), int(last))
+    options = ConvertOptions(tolerance_mm=tol, gun_signal=gun, program=main, lines=line_range, standalone=standalone,
+                             corner_deg=corner_deg, name=name)
+    result = convert_program(paths, options, inputs=parse_inputs(inputs) if inputs is not None else None,
+                             kinematics=LazyKinematics(model))
+    if output is not None:
+        write_text(output, result.text)
+    else:
+        typer.echo(result.text, nl=False)
+    typer.echo(conversion_summary(result) + (f"\nwrote {output}" if output else ""), err=output is None)
+
+
 @app.command("check-program")
 def check_program(
-    path: Path = typer.Argument(..., help="Kawasaki AS program file."),
+    paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
-    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF whose gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
 ) -> None:
-    """Parse and interpret an AS program; report steps, poses, path length and problems; exit 2
-    if the gun never opens."""
+    """Parse and interpret AS programs; report steps, poses, signals, sprayed path and problems;
+    exit 2 if the gun never opens."""
     from coatsim.errors import InputError
+    from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.check import check_program as check
     from coatsim.program.run import check_summary
     from coatsim.robot.cell import load_cell
+    from coatsim.robot.kinematics import CellKinematics
+    from coatsim.robot.sampling import plan_pieces
 
     cell = load_cell(model)
-    result = check(path, gun_signal=gun, gun_tcp=(cell.gun_rotation, cell.gun_offset_mm))
+    result = check(paths, gun_signal=gun, program=main, inputs=parse_inputs(inputs) if inputs is not None else None,
+                   kinematics=CellKinematics(cell), gun_tcp=(cell.gun_rotation, cell.gun_offset_mm))
+    plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
     typer.echo(check_summary(result))
     if result.errors:
         raise InputError(result.errors[0])

@@ -23,18 +23,22 @@ from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
 from coatsim.geometry.segment import Segmentation
-from coatsim.program import read_toolpath
+from coatsim.program import read_program_bytes, read_toolpath
+from coatsim.program.as_lang.source import decode
+from coatsim.program.as_lang.names import program_name
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
 from coatsim.program.toolpath import ToolPath
+from coatsim.program.user import UserProgram, user_program
 from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
+from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
-from coatsim.scenario import Scenario, ScenarioFile, as_dict, load_scenario
+from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, load_scenario
 from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
@@ -50,7 +54,7 @@ class VariantRun:
     """One program variant carried through every stage."""
 
     name: str
-    program: BuiltProgram
+    program: BuiltProgram | UserProgram
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
@@ -199,12 +203,43 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     spec, out = job.loaded.spec, job.outdir
     poly, points = job.segmentation.polysegment, job.segmentation.curve.points
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=spec.name)
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name(spec.name))
     program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
                             source=f"scenario:{spec.name}", points=points)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
-    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal)
+    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
+    deviation = job.segmentation.max_deviation_mm if program.curve is poly else None
+    return simulate_variant(name, program, toolpath, job, step, deviation)
+
+
+def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
+    """The ToolPath of a program variant and its text (the files one after the other)."""
+    files = [loaded.resolve(f) for f in entry.files]
+    try:
+        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
+                                 kinematics=CellKinematics(cell))
+    except CoatsimError as exc:
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+    return toolpath, "\n".join(decode(read_program_bytes(f)) for f in files)
+
+
+def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> VariantRun:
+    """Execute and coat a user's program; writes ``name.as`` (a copy), ``name.trajectory.csv``
+    and ``name.thickness.ply``."""
+    toolpath, text = read_user_program(job.loaded, entry, job.cell)
+    write_text(job.outdir / f"{entry.name}.as", text)
+    try:
+        program = user_program(toolpath, curve_frame(job.loaded.spec), text)
+        return simulate_variant(entry.name, program, toolpath, job, step, None)
+    except CoatsimError as exc:
+        raise type(exc)(f"{entry.name}: {exc}") from None
+
+
+def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: ToolPath, job: Job, step: Step,
+                     deviation_mm: Optional[float]) -> VariantRun:
+    """Execute and coat one variant's program; its metrics against the scenario's curve."""
+    spec, out = job.loaded.spec, job.outdir
     step(f"{name}: simulating the arm")
     execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
     execution.log.write_csv(out / f"{name}.trajectory.csv")
@@ -214,8 +249,8 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
                   spacing=job.spacing_mm)
     groups = {
         "segmentation": segmentation_group(
-            points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
-            job.segmentation.max_deviation_mm if program.curve is poly else None),
+            job.segmentation.curve.points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
+            deviation_mm),
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
     }
@@ -275,12 +310,21 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
         step("segmenting the curve")
-        curve = load_input_curve(loaded)
+        if spec.curve is None:  # the sprayed path of the first program variant
+            entry = spec.programs[0]
+            user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
+            curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
+        else:
+            curve = load_input_curve(loaded)
+        # the fitter knows the programmed speed and the arm's tool acceleration limit: no arc
+        # tighter than v² / a where the curve allows the speed, the rest listed as speed-limited
         segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
-                                     corner_deg=spec.segmentation.corner_deg)
+                                     corner_deg=spec.segmentation.corner_deg, speed_mm_s=spec.motion.speed_mm_s,
+                                     tool_accel_mm_s2=cell.tool_accel_mm_s2)
         poly = segmentation.polysegment
         write_polysegment_json(out / "polysegment.json", segmentation)
-        offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        if spec.curve is not None:
+            offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
         placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
@@ -288,8 +332,12 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
                   sample_step, spacing)
         runs = []
-        for name in spec.variants:
+        for entry in spec.variants:
+            name = entry if isinstance(entry, str) else entry.name
             step(f"{name}: writing and reading the program")
+            if not isinstance(entry, str):
+                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
+                continue
             try:
                 runs.append(run_variant(name, job, step))
             except CoatsimError as exc:
@@ -298,7 +346,8 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         runs = on_common_roi(runs, spec.gun.target_thickness_um)
         variants = {r.name: r.groups for r in runs}
         gates = evaluate_gates(spec.gates, variants)
-        warnings = [{"variant": r.name, "message": event} for r in runs for event in r.execution.events]
+        warnings = [{"variant": r.name, "message": event} for r in runs
+                    for event in (*r.execution.warnings, *r.execution.events)]
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
         write_text(out / "metrics.json", to_json(document))
         report_started = time.perf_counter()

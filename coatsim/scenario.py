@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, ValidationError, field_validator, model_validator
 
 from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
@@ -24,6 +24,7 @@ from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
 
 VariantName = Literal[VARIANTS]  # type: ignore[valid-type]
+VariantLabel = Annotated[str, Field(pattern=r"^[A-Za-z][A-Za-z0-9_.-]*$", max_length=40)]
 BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
 Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
 Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
@@ -169,16 +170,64 @@ class FastSpec(_Strict):
     sample_step_mm: Positive = 1.0
 
 
+class ProgramVariantSpec(_Strict):
+    """A program of the user's own run as a variant beside coatsim's: its AS file(s) relative
+    to the scenario (data files such as poses after the program), the main program (default:
+    the first), and the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off)."""
+
+    name: VariantLabel
+    program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
+    main: Optional[str] = None
+    inputs: list[Annotated[int, Field(ge=-9999, le=9999)]] = Field(
+        default_factory=list, description="input signals the cell sets: n on, -n off")
+
+    @field_validator("program", mode="before")
+    @classmethod
+    def _one_file(cls, value: Any) -> Any:
+        return [value] if isinstance(value, str) else value
+
+    @field_validator("name")
+    @classmethod
+    def _own_name(cls, name: str) -> str:
+        if name in VARIANTS:
+            raise ValueError(f"{name!r} is the name of a built-in variant; give the program another name")
+        return name
+
+    @field_validator("inputs")
+    @classmethod
+    def _signals(cls, inputs: list[int]) -> list[int]:
+        if 0 in inputs:
+            raise ValueError("signal 0 does not exist; give n (on) or -n (off)")
+        return inputs
+
+    @property
+    def files(self) -> list[str]:
+        return list(self.program)
+
+    @property
+    def input_states(self) -> dict[int, bool]:
+        return {abs(n): n > 0 for n in self.inputs}
+
+
+def _variant_kind(value: Any) -> str:
+    return "builtin" if isinstance(value, str) else "program"
+
+
+# A built-in variant by name, or a user's program (a mapping): errors speak of the one meant.
+VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated[ProgramVariantSpec, Tag("program")]],
+                         Discriminator(_variant_kind)]
+
+
 class GateSpec(_Strict):
     """A pass/fail check on one metric of one variant: against a ``threshold``, or against
     ``factor`` times the same metric of the ``compare_to`` variant — or of each of a list of
     variants, i.e. of the best of them (``compare_to: [polyline-stop, polyline-blend]``)."""
 
     metric: Annotated[str, Field(pattern=r"^[a-z_]+\.[a-z0-9_]+$", description="group.name, e.g. coating.thickness_cv")]
-    variant: VariantName = "polysegment"
+    variant: VariantLabel = "polysegment"
     op: Literal["<", "<=", ">", ">=", "=="]
     threshold: Optional[float] = None
-    compare_to: Optional[Union[VariantName, Annotated[list[VariantName], Field(min_length=1)]]] = None
+    compare_to: Optional[Union[VariantLabel, Annotated[list[VariantLabel], Field(min_length=1)]]] = None
     factor: Positive = 1.0
 
     @field_validator("compare_to", mode="before")
@@ -213,24 +262,42 @@ class Scenario(_Strict):
 
     name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
     description: str = ""
-    curve: CurveSpec
+    curve: Optional[CurveSpec] = Field(None, description="the curve; without it, the sprayed path of the first "
+                                       "program variant")
     segmentation: SegmentationSpec = Field(default_factory=SegmentationSpec)
     workpiece: WorkpieceSpec
     robot: RobotSpec = Field(default_factory=RobotSpec)
     gun: GunSpec = Field(default_factory=GunSpec)
     motion: MotionSpec = Field(default_factory=MotionSpec)
-    variants: Annotated[list[VariantName], Field(min_length=1)] = Field(default_factory=lambda: list(VARIANTS))
+    variants: Annotated[list[VariantEntry], Field(min_length=1)] = Field(default_factory=lambda: list(VARIANTS))
     coating: CoatingSpec = Field(default_factory=CoatingSpec)
     fast: FastSpec = Field(default_factory=FastSpec)
     gates: list[GateSpec] = Field(default_factory=list)
 
     @field_validator("variants")
     @classmethod
-    def _unique(cls, variants: list[str]) -> list[str]:
-        twice = [v for i, v in enumerate(variants) if v in variants[:i]]
+    def _unique(cls, variants: list) -> list:
+        names = [v if isinstance(v, str) else v.name for v in variants]
+        twice = [v for i, v in enumerate(names) if v in names[:i]]
         if twice:
             raise ValueError(f"variant {twice[0]!r} is listed twice")
         return variants
+
+    @model_validator(mode="after")
+    def _curve_or_program(self) -> Scenario:
+        if self.curve is None and not self.programs:
+            raise ValueError("give a 'curve', or a program variant ({name: ..., program: FILE.as}) whose sprayed "
+                             "path is the curve")
+        return self
+
+    @property
+    def variant_names(self) -> list[str]:
+        return [v if isinstance(v, str) else v.name for v in self.variants]
+
+    @property
+    def programs(self) -> list[ProgramVariantSpec]:
+        """The program variants, in order."""
+        return [v for v in self.variants if not isinstance(v, str)]
 
 
 @dataclass(frozen=True)
@@ -259,10 +326,10 @@ def _check_references(spec: Scenario, where: ScenarioFile) -> None:
     for i, gate in enumerate(spec.gates):
         for key, names in (("variant", (gate.variant,)), ("compare_to", gate.compared)):
             for name in names:
-                if name not in spec.variants:
+                if name not in spec.variant_names:
                     raise InputError(
                         f"{where.where('gates', i, key)}: gates[{i}].{key}: variant {name!r} is not run "
-                        f"(add it to 'variants': {', '.join(spec.variants)})"
+                        f"(add it to 'variants': {', '.join(spec.variant_names)})"
                     )
 
 

@@ -1,23 +1,26 @@
-"""Benchmark of the programs stage: write, parse and interpret AS programs of the benchmark curves.
+"""Benchmark of the programs stage: write, parse and interpret AS programs.
 
-Prints, per curve and variant: moves, program steps, poses, text size, and the best of
-``REPEATS`` wall times for writing, parsing and interpreting. Never asserts.
-The curves are the benchmark curves (coatsim.geometry.benchmark), or the CSV files of a folder
-given as the argument (exit non-zero when it has none); the polysegment comes from
-coatsim.geometry.segment_curve at TOL mm.
+Part 1, per benchmark curve and variant: moves, program steps, poses, text size, and the best
+of ``REPEATS`` wall times for writing, parsing and interpreting. Part 2: parse and interpret
+speed (lines/s, statements executed/s) on 5 000-line programs in a user's style: a contour of
+LMOVEs to a pose array, and one that computes its poses in loops, CASEs and CALLs.
+Never asserts. The curves are the benchmark curves (coatsim.geometry.benchmark), or the CSV
+files of a folder given as the argument (exit non-zero when it has none); the polysegment comes
+from coatsim.geometry.segment_curve at TOL mm.
 
     python scripts/bench_program.py [DIR]
 """
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
 
 from coatsim.geometry import load_curve, segment_curve
 from coatsim.geometry.benchmark import NAMES, bench_curve
-from coatsim.program import interpret, parse_as
+from coatsim.program import interpret, interpret_run, parse_as
 from coatsim.program.build import VARIANTS, ProgramOptions, build_program
 from coatsim.program.placement import Placement, centering_offset
 
@@ -38,6 +41,44 @@ def polysegment_of(curve):
     t0 = time.perf_counter()
     seg = segment_curve(curve, TOL)
     return seg.polysegment, f"segment_curve, {time.perf_counter() - t0:.2f} s"
+
+
+def contour_program(lines: int) -> str:
+    """A hand-written style contour: step numbers, lower case, a gun routine, LMOVEs to c[i]."""
+    n = lines // 2 - 12
+    body = [".PROGRAM trace()", "  speed 150 mm/s always", "  accuracy 1 always", "  jmove c[0]", "  call gun_on"]
+    body += [f"  {100 + i} lmove c[{i}]  ; point {i}" for i in range(1, n)]
+    body += ["  break", "  signal -1", ".END", ".PROGRAM gun_on()", "  break", "  signal 1", ".END", ".TRANS"]
+    body += [f"c[{i}] {700 + 80 * math.cos(i / n * 2 * math.pi):.3f} {40 * math.sin(i / n * 2 * math.pi):.3f} "
+             "300.000 0 180 0" for i in range(n)]
+    return "\n".join(body + [".END"]) + "\n"
+
+
+def logic_program(lines: int) -> str:
+    """Poses computed in loops, CASEs, string functions and CALLs (many statements per motion)."""
+    block = ["  FOR .k = 1 TO 3", "    .x = .x + SIN(.k * 10) * 2", "    IF .x > 50 THEN", "      .x = .x - 100",
+             "    ELSE", "      .y = .y + 1", "    END", "  END", "  CASE .y MOD 3 OF", "    VALUE 0:",
+             "      $s = $ENCODE(/F6.2, .x)", "    ANY :", "      $s = $MID(\"abcdef\", 2, 3)", "  END",
+             "  CALL step(.x, .&y)", "  LMOVE SHIFT(org BY .x, .y MOD 50, 0)"]
+    body = [".PROGRAM logic()", "  .x = 0", "  .y = 0", "  JMOVE org"]
+    while len(body) + len(block) < lines - 8:
+        body += block
+    body += [".END", ".PROGRAM step(.a, .&b)", "  .b = .b + INT(.a / 10)", ".END", ".TRANS", "org 650 0 300 0 180 0",
+             ".END"]
+    return "\n".join(body) + "\n"
+
+
+def bench_language() -> None:
+    print("\n# parse and interpret speed on 5 000-line programs, best of", REPEATS)
+    print(f"{'program':10} {'lines':>6} {'parse ms':>9} {'lines/s':>9} {'interp ms':>10} {'steps':>7} {'steps/s':>9} "
+          f"{'moves':>6}")
+    for name, text in (("contour", contour_program(5000)), ("logic", logic_program(5000))):
+        n_lines = text.count("\n")
+        t_parse, parsed = best(lambda: parse_as(text))
+        t_run, run = best(lambda: interpret_run(parsed))
+        steps = sum(run.executions.values())
+        print(f"{name:10} {n_lines:6d} {1e3 * t_parse:9.1f} {n_lines / t_parse:9.0f} {1e3 * t_run:10.1f} {steps:7d} "
+              f"{steps / t_run:9.0f} {len(run.toolpath.moves):6d}")
 
 
 def main() -> None:
@@ -62,9 +103,10 @@ def main() -> None:
             t_parse, parsed = best(lambda: parse_as(built.text))
             t_interp, toolpath = best(lambda: interpret(parsed))
             n_lines = built.text.count("\n")
-            print(f"{name:10} {variant:15} {len(toolpath.moves):6d} {len(parsed.programs[0].statements):6d} "
+            print(f"{name:10} {variant:15} {len(toolpath.moves):6d} {len(parsed.programs[0].body):6d} "
                   f"{len(parsed.trans):6d} {len(built.text):7d} {1e3 * t_write:9.2f} {1e3 * t_parse:9.2f} "
                   f"{1e3 * t_interp:10.2f} {n_lines / t_parse:9.0f}")
+    bench_language()
 
 
 if __name__ == "__main__":

@@ -1,7 +1,6 @@
-"""Benchmark of the geometry stage: segment the five benchmark curves, the built-ins and curves the
-fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts
-(coatsim.geometry.benchmark: the curves are generated from their formulas; ``--curves DIR`` reads
-NAME.csv files instead and exits non-zero when one is missing).
+"""Benchmark of the geometry stage: segment the five bench curves, the built-ins and curves the
+fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts of
+../shared/bench/README.md.
 
 For every curve and σ, per method: segments (arcs, lines), the deviation reported by
 segment_curve, an independent check of it by dense sampling of both curves (KD-tree, step σ/20,
@@ -39,10 +38,6 @@ BUILTIN_SIGMAS = (0.05, 0.5)
 HELDOUT_SIGMAS = (0.05, 0.1, 0.5)
 LARGE = ("builtin:paper-spiral:points=100000", "builtin:ellipse:points=100000")
 LARGE_SIGMA = 0.05
-
-
-def reference(kind: str, name: str, sigma: float) -> int | str:
-    return (reference_count(kind, name, sigma) or "") if sigma in TOLERANCES_MM else ""
 
 
 def dense(points: np.ndarray, step: float) -> np.ndarray:
@@ -155,23 +150,27 @@ def measure(curve, sigma: float, method: str, tightest: float | None) -> str:
             f"{max_curvature_jump(poly):9.4f} {seconds:7.2f}{gap}")
 
 
-def bench_table(sigmas, methods, folder: Path | None) -> None:
+def bench_curves(folder: Path | None) -> dict:
+    """The five bench curves: generated, or read from ``folder``/NAME.csv (exit if one is missing)."""
+    if folder is None:
+        return {name: bench_curve(name) for name in NAMES}
     curves = {}
     for name in NAMES:
-        if folder is None:
-            curves[name] = bench_curve(name)
-            continue
         path = folder / f"{name}.csv"
         if not path.is_file():
             sys.exit(f"bench_segment: benchmark curve {path} not found")
         curves[name] = load_curve(str(path))
-    where = folder or "generated from their formulas (coatsim.geometry.benchmark)"
-    print(f"\nbench curves ({where}); refs = greedy free-arc / paper literally")
+    return curves
+
+
+def bench_table(curves: dict, sigmas, methods) -> None:
+    print("\nbench curves; refs = greedy free-arc / paper literally (coatsim.geometry.benchmark)")
     print(f"{'curve':10} {'sigma':>6} {'method':8} {HEAD} {'greedy':>6} {'paper':>6}")
     for name, curve in curves.items():
         for sigma in sigmas:
             for method in methods:
-                greedy, literal = reference("greedy", name, sigma), reference("paper", name, sigma)
+                greedy = reference_count("greedy", name, sigma) or ""
+                literal = reference_count("paper", name, sigma) or ""
                 print(f"{name:10} {sigma:6g} {method:8} {measure(curve, sigma, method, None)} {greedy!s:>6} {literal!s:>6}",
                       flush=True)
 
@@ -218,15 +217,14 @@ def main() -> None:
     parser.add_argument("--paper", action="store_true", help="also the paper's method on the bench curves")
     parser.add_argument("--sigmas", default=",".join(map(str, SIGMAS)), help="bench-curve tolerances, mm")
     parser.add_argument("--only", default="bench,builtin,heldout,large", help="tables to print")
-    parser.add_argument("--curves", type=Path, help="read the benchmark curves from DIR/NAME.csv")
+    parser.add_argument("--curves", type=Path, help="read the bench curves from DIR/NAME.csv")
     args = parser.parse_args()
     tables = set(args.only.split(","))
     print("dev = reported by segment_curve; check = dense-sampling Hausdorff (step sigma/20; '!' above 1.025 sigma);")
     print("break = largest tangent break at a non-corner junction; R ratio = tightest arc / tightest radius of the "
           "input; short = shortest segment; jump = largest curvature change at a tangent junction")
     if "bench" in tables:
-        bench_table(tuple(float(s) for s in args.sigmas.split(",")), ("paper", "optimal") if args.paper else ("optimal",),
-                    args.curves)
+        bench_table(bench_curves(args.curves), tuple(float(s) for s in args.sigmas.split(",")), ("paper", "optimal") if args.paper else ("optimal",))
     if "builtin" in tables:
         builtin_table()
     if "heldout" in tables:

@@ -253,3 +253,41 @@ SHIPPED = sorted((Path(__file__).resolve().parents[1] / "scenarios").glob("*.yam
 def test_shipped_scenario_passes_its_gates_in_fast_mode(scenario: Path, tmp_path: Path) -> None:
     cli = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path))
     assert cli.code == 0, cli.out + cli.err
+
+
+@pytest.mark.slow
+def test_a_users_program_against_coatsims(tmp_path):
+    """A user's polyline program as a variant: the curve is its sprayed path, coatsim's arc
+    program of the same path is compared with it in metrics.json and the report."""
+    sys.path.insert(0, str(Path(__file__).parent / "program" / "as_lang"))
+    from as_samples import rounded_rectangle_points, user_contour
+
+    (tmp_path / "cell.as").write_bytes(user_contour(rounded_rectangle_points(), z=300.0))
+    scenario = tmp_path / "mine.yaml"
+    scenario.write_text(
+        "name: mine_vs_arcs\nworkpiece: {kind: plate, size_mm: [200.0, 120.0]}\n"
+        "gun: {standoff_mm: 100.0, target_thickness_um: 16.0}\nmotion: {speed_mm_s: 150.0}\n"
+        "variants:\n  - {name: mine, program: cell.as}\n  - polysegment\n  - polyline-blend\n"
+        "fast: {coating_spacing_mm: 4.0, sample_step_mm: 2.0}\n"
+        "gates:\n  - {metric: segmentation.n_segments, variant: polysegment, op: '<', compare_to: mine, factor: 0.1}\n")
+    result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
+    assert result.code == 0, result.err
+    doc = json.loads((tmp_path / "out" / "metrics.json").read_text())
+    assert list(doc["variants"]) == ["mine", "polysegment", "polyline-blend"]
+    mine, arcs = doc["variants"]["mine"], doc["variants"]["polysegment"]
+    assert mine["segmentation"]["n_segments"] == len(rounded_rectangle_points()) - 1
+    assert arcs["segmentation"]["n_segments"] < 20
+    assert mine["segmentation"]["max_deviation_mm"] < 1e-6
+    assert mine["motion"]["curve_length_mm"] == pytest.approx(arcs["segmentation"]["curve_length_mm"], rel=0.01)
+    assert (tmp_path / "out" / "mine.as").read_text().startswith(".PROGRAM trace()")
+    assert "sprayed path of program variant mine" in (tmp_path / "out" / "report.html").read_text()
+
+
+def test_a_users_program_with_a_defect_is_one_line(tmp_path):
+    (tmp_path / "bad.as").write_text(".PROGRAM x()\n  JMOVE a\n  LMOVE nowhere\n.END\n.TRANS\na 700 0 300 0 180 0\n.END\n")
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("name: s\nworkpiece: {kind: plate, size_mm: [100, 100]}\n"
+                        "variants:\n  - {name: mine, program: bad.as}\n  - polysegment\n")
+    result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
+    assert result.code == 2 and result.err.count("\n") == 1
+    assert f"{scenario}:3: variant mine: {tmp_path / 'bad.as'}:3: pose 'nowhere' is not defined" in result.err

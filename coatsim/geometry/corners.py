@@ -8,6 +8,7 @@ import numpy as np
 
 
 SPARSE = 10.0  # a polyline whose median edge is this many σ long has only its vertices to go by
+CONCENTRATED = 2.0  # a corner turns at most this much more over 3w than over w
 
 
 def _point_at(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -20,7 +21,8 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
 
     The turn is measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so fine
     sampling of a smooth bend does not count while a sharp vertex does; requiring the turn
-    over 3w too rejects digitising noise. Neighbouring detections within 2w collapse to the
+    over 3w too rejects digitising noise, and requiring it to be at most twice the turn over
+    w rejects smooth bends that a large tolerance makes turn much within w. Neighbouring detections within 2w collapse to the
     vertex with the largest turn. End points of an open curve are never corners. A sparse
     polyline (median edge >= 10 σ) has its sharp vertices as corners.
     """
@@ -52,14 +54,42 @@ def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, toleranc
 
     # A corner turns sharply at w and still at 3w: noise on single vertices does not persist
     # over the wider chords, a smooth bend does not turn enough within w.
-    turn = np.minimum(turn_within(w), turn_within(3 * w))
-    hits = np.flatnonzero(turn > math.radians(corner_deg))
+    near, wide = turn_within(w), turn_within(3 * w)
+    turn = np.minimum(near, wide)
+    # ... and it is concentrated: a smooth bend keeps turning over the wider chords (three
+    # times as much on a circle), a corner does not.
+    hits = np.flatnonzero((turn > math.radians(corner_deg)) & (wide <= CONCENTRATED * near))
+    vertex_turn = _vertex_turns(pts, closed)
     corners: list[int] = []
     for h in hits[np.argsort(-turn[hits], kind="stable")]:
-        v = int(idx[h])
+        v = _sharpest_near(s, vertex_turn, int(idx[h]), w, closed)
         if all(_arc_gap(s, v, c, total, closed) > 2 * w for c in corners):
             corners.append(v)
-    return np.array(sorted(corners), dtype=int)
+    return np.array(sorted(set(corners)), dtype=int)
+
+
+def _vertex_turns(pts: np.ndarray, closed: bool) -> np.ndarray:
+    """|turn| (rad) at every vertex between its two edges (0 at the ends of an open curve)."""
+    d = np.diff(pts, axis=0)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.zeros(len(pts))
+    turn[1:-1] = np.abs(np.remainder(np.diff(heading) + math.pi, 2 * math.pi) - math.pi)
+    if closed:
+        turn[0] = turn[-1] = abs(math.remainder(heading[0] - heading[-1], 2 * math.pi))
+    return turn
+
+
+def _sharpest_near(s: np.ndarray, vertex_turn: np.ndarray, v: int, w: float, closed: bool) -> int:
+    """The vertex within w of vertex v that turns most (where a cusp or a sharp corner
+    really is: the chord test ties along the stretch around it)."""
+    total = s[-1]
+    if closed:  # vertices 0 .. n-2, distances around the loop
+        gap = np.abs(s[:-1] - s[v])
+        near = np.flatnonzero(np.minimum(gap, total - gap) <= w)
+    else:
+        near = np.flatnonzero(np.abs(s - s[v]) <= w)
+        near = near[(near > 0) & (near < len(s) - 1)]
+    return int(near[np.argmax(vertex_turn[near])]) if len(near) else v
 
 
 def _vertex_corners(pts: np.ndarray, closed: bool, corner_deg: float) -> np.ndarray:

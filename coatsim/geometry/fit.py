@@ -19,7 +19,7 @@ from coatsim.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
-from coatsim.geometry.limits import FitLimits, arc_excess
+from coatsim.geometry.limits import FitLimits, arc_excess, fit_limits
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.recover import recover_exact
@@ -27,8 +27,9 @@ from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, sp
 
 MAX_ATTEMPTS = 20
 SLACK = 0.02  # caps and minimum length hold to this share (the stretch a segment covers is mapped by length)
-RELAX = (1.0, 1.5, 3.0)  # caps loosened by these factors, in turn, where the fit fails under them
-RELAXED_ATTEMPTS = 8  # attempts granted to each loosened try
+NARROWER = (0.5, 0.25)  # then fits within these shares of the tolerance, under their own caps
+RELAX = (1.5, 3.0)  # then caps loosened by these factors
+RELAXED_ATTEMPTS = 8  # attempts granted to each of those tries
 QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its first point)
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
@@ -87,14 +88,14 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     prob, ref = BandProblem.from_points(pts, limits)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
-    splits, landed = 0, False
+    splits, landed, shrink = 0, False, 0.9
     while budget[0] > 0:
         budget[0] -= 1
         if params is None:
             try:
                 slope, pieces = fit_band(prob, ref, band, end_turn=turn, landed=landed)
             except BandStuck:
-                band *= 0.9 if landed else 0.7
+                band *= shrink if landed else 0.7
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
@@ -114,9 +115,10 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
             splits += 1
         else:
             # A new band fit: the same band with states re-measured on the real arcs, then
-            # a narrower band.
+            # a band narrower by what the deviation asks for.
+            shrink = float(np.clip(0.97 * tolerance / dev, 0.5, 0.95)) if honest else 0.9
             if landed:
-                band *= float(np.clip(0.97 * tolerance / dev, 0.85, 0.95)) if honest else 0.9
+                band *= shrink
             splits, params, landed = 0, None, not landed
     return None
 
@@ -147,19 +149,27 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
     under the curvature caps and minimum length of ``limits``, and its verified deviation.
 
-    Where no such chain is found, the caps are loosened step by step, and as the last resort
-    every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
+    Where no such chain is found, chains within a fraction of the tolerance are tried, then
+    loosened caps, and as the last resort every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
     caps as they are, None if those fail.
     """
     pts = np.asarray(points, dtype=float)
     if quick:
         return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS])
-    budget = [MAX_ATTEMPTS]
-    for factor in RELAX:
-        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), budget)
+    found = _constrained(pts, tolerance, closed_loop, limits, [MAX_ATTEMPTS])
+    # A chain within a smaller tolerance is within this one too: where the band fit's
+    # linearisation misleads (a tolerance large against the curve's features), aim lower.
+    for share in NARROWER:
         if found is not None:
             return found
-        budget[0] = max(budget[0], RELAXED_ATTEMPTS)
+        narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
+        found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS])
+    for factor in RELAX:
+        if found is not None:
+            return found
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS])
+    if found is not None:
+        return found
     # Sparse or kinked input the band fit cannot follow: round every vertex instead.
     segs = fillet_chain(pts, tolerance, closed_loop)
     dev = hausdorff(pts, Polysegment(segs)).hausdorff

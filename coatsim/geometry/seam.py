@@ -14,16 +14,18 @@ import math
 import numpy as np
 
 from coatsim.geometry.deviation import distance_to_polysegment
-from coatsim.geometry.envelope import CurvatureProfile
+from coatsim.geometry.envelope import curvature_profile
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 
 CALM_SHARE = 0.05  # the flattest stretch is judged over this share of the loop's length
 
 
-def calm_start(points: np.ndarray, profile: CurvatureProfile) -> int:
+def calm_start(points: np.ndarray) -> int:
     """Index of the vertex of a closed loop (last point = first) where the input is flattest
-    over a stretch around it."""
+    over a stretch around it (its curvature at the input's own resolution, not the
+    tolerance's: a large tolerance smooths a tight dip into a flat one)."""
+    profile = curvature_profile(points, True, 0.0)
     envelope = profile.envelope(CALM_SHARE * profile.length)
     s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))))[:-1]
     return int(np.argmin(profile.at(envelope, s)))

@@ -190,6 +190,9 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
     """The default fitter over the curve's runs between corners (or its whole closed loop).
     Returns (polysegment, verified deviation, the input's tightest radius (robust, mm))."""
     pts = curve.points
+    exact = fit_simple(pts, tol, curve.closed)
+    if exact is not None:  # before corners: a large tolerance must not turn a fillet into one
+        return Polysegment(exact[0], closed=curve.closed), exact[1], None
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
@@ -212,12 +215,12 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
 
 def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
               speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
-    """A closed loop without corners: an exact chain as it is; else a quick fit from the
-    first point; else a fit from the loop's calmest point, started again at the first point."""
+    """A free-form closed loop without corners: a quick fit from the first point, else a fit
+    from the loop's calmest point, started again at the first point."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
-    found = fit_simple(pts, tol, True) or fit_free(pts, tol, True, limits, quick=True)
+    found = fit_free(pts, tol, True, limits, quick=True)
     if found is None:
-        run = rotated_loop(pts, calm_start(pts, limits.profile))
+        run = rotated_loop(pts, calm_start(pts))
         segs, dev = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa))
         found = reseat(segs, pts[0], limits.min_length_mm), dev
     segs, dev = found

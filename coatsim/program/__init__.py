@@ -3,17 +3,18 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import Mapping, Optional, Sequence, Union
 
 from coatsim.errors import InputError
-from coatsim.program.as_dialect import KAWASAKI_AS
-from coatsim.program.as_parser import parse_as, parse_as_bytes
-from coatsim.program.interpreter import interpret
+from coatsim.program.as_lang import Run, interpret, interpret_run, parse_as, parse_as_bytes
+from coatsim.program.as_lang.ast import AsFile
+from coatsim.program.as_lang.dialect import KAWASAKI_AS
 from coatsim.program.dialect import Dialect
-from coatsim.program.toolpath import ToolPath
+from coatsim.program.toolpath import Kinematics, ToolPath
 
 # Robot languages by name; every dialect module is registered here.
 DIALECTS: dict[str, Dialect] = {KAWASAKI_AS.name: KAWASAKI_AS}
+Paths = Union[str, Path, Sequence[Union[str, Path]]]
 
 
 def read_program_bytes(path: str | Path) -> bytes:
@@ -24,10 +25,26 @@ def read_program_bytes(path: str | Path) -> bytes:
         raise InputError(f"{path}: cannot read program ({exc.strerror or exc})") from None
 
 
-def read_toolpath(path: str | Path, gun_signal: int = 1, program: Optional[str] = None) -> ToolPath:
-    """Parse and interpret an AS program file; InputError naming file:line on any defect,
-    including poses the program uses but never defines."""
-    return interpret(parse_as_bytes(read_program_bytes(path), str(path)), gun_signal=gun_signal, program=program)
+def parse_files(paths: Paths) -> tuple[AsFile, ...]:
+    """Parse one AS file or several loaded together (programs in one, poses in another)."""
+    items = [paths] if isinstance(paths, (str, Path)) else list(paths)
+    if not items:
+        raise InputError("no program file given")
+    return tuple(parse_as_bytes(read_program_bytes(p), str(p)) for p in items)
 
 
-__all__ = ["DIALECTS", "Dialect", "ToolPath", "interpret", "parse_as", "parse_as_bytes", "read_program_bytes", "read_toolpath"]
+def read_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,
+                 inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None) -> Run:
+    """Parse and interpret AS files; the run with the origin of every move."""
+    return interpret_run(parse_files(paths), gun_signal, program, inputs=inputs, kinematics=kinematics)
+
+
+def read_toolpath(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,
+                  inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None) -> ToolPath:
+    """Parse and interpret AS files; InputError naming file:line on any defect, including
+    poses the program uses but never defines."""
+    return read_program(paths, gun_signal, program, inputs=inputs, kinematics=kinematics).toolpath
+
+
+__all__ = ["DIALECTS", "Dialect", "Run", "ToolPath", "interpret", "interpret_run", "parse_as", "parse_as_bytes",
+           "parse_files", "read_program", "read_program_bytes", "read_toolpath"]

@@ -16,16 +16,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional, Sequence
+from typing import Optional
 
 import numpy as np
 
 from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
-from coatsim.program.as_lexer import MAX_ABS_NUMBER
-from coatsim.program.as_dialect import KAWASAKI_AS
-from coatsim.program.as_writer import fmt_short, program_name
+from coatsim.program.as_lang.dialect import KAWASAKI_AS
+from coatsim.program.as_lang.names import check_name, program_name
+from coatsim.program.as_lang.writer import MAX_COORDINATE_MM, fmt_short
 from coatsim.program.dialect import Dialect, ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, curve_limits, format_limits
@@ -58,6 +58,8 @@ class ProgramOptions:
                 raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}")
         if not 1 <= self.gun_signal <= 9999:
             raise InputError(f"--gun {self.gun_signal}: expected an output number from 1 to 9999")
+        if self.name is not None:
+            check_name(self.name, "--name")
 
 
 @dataclass(frozen=True, eq=False)
@@ -89,16 +91,14 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS,
-                  speed_limited: Sequence[Sequence[float]] = ()) -> BuiltProgram:
+                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS) -> BuiltProgram:
     """Write the ``options.variant`` program of a curve in ``dialect``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
-    curve, (n, 2)) or, without them, dense samples of ``poly``. ``speed_limited`` lists the
-    fitter's stretches [s0_mm, s1_mm, v_max_mm_s] along ``poly`` where the input curve does not
-    allow the programmed speed; with the true corners of ``poly`` they go into the header
-    (``speed_limits``), scaled to the variant's own curve length, so that every variant is
-    measured over the same stretches.
+    curve, (n, 2)) or, without them, dense samples of ``poly``. The stretches where the curve
+    does not allow the programmed speed (``poly.speed_limited`` from the fitter, and its true
+    corners) go into the header (``speed_limits``), scaled to the variant's own curve length,
+    so that every variant is measured over the same stretches.
     """
     if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
         raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
@@ -109,11 +109,11 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         raw = points if points is not None else dense_points(poly, tolerance_mm)
         curve = polyline_of(raw, poly.closed, tolerance_mm)
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
-    limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly, speed_limited))
+    limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly))
     path = place(curve, placement)
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
-    if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_ABS_NUMBER):
-        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_ABS_NUMBER:g} mm)")
+    if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_COORDINATE_MM):
+        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_COORDINATE_MM:g} mm)")
     metadata = (
         ("variant", options.variant),
         ("source", source),

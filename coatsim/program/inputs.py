@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Optional
 
@@ -34,15 +34,22 @@ def _json_tolerance(path: str) -> Optional[float]:
     return float(value) if isinstance(value, (int, float)) and math.isfinite(value) and value > 0 else None
 
 
-def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0) -> ProgramInput:
+def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0, speed_mm_s: Optional[float] = None,
+                       tool_accel_mm_s2: Optional[float] = None) -> ProgramInput:
     """Read ``spec``; a curve is segmented within ``tol`` mm (required), a polysegment JSON is
-    taken as is (``tol`` defaults to the file's ``tolerance_mm``)."""
+    taken as is (``tol`` defaults to the file's ``tolerance_mm``). With the programmed speed and
+    the tool acceleration limit, a curve is segmented for them (no arc tighter than v² / a where
+    the curve allows v), and the speed-limited stretches of a JSON are listed again for them."""
     if tol is not None and not (math.isfinite(tol) and tol > 0.0):
         raise InputError(f"--tol {tol}: must be a finite number > 0 (mm)")
     if spec.lower().endswith(".json"):
         from coatsim.geometry import read_polysegment_json
 
         poly = read_polysegment_json(spec)
+        if speed_mm_s is not None and tool_accel_mm_s2 is not None:
+            from coatsim.geometry.dynamics import speed_limited
+
+            poly = replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))
         tolerance = tol if tol is not None else _json_tolerance(spec)
         if tolerance is None:
             raise InputError(f"{spec}: no tolerance_mm in the file; give --tol MM")
@@ -52,5 +59,5 @@ def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0
     from coatsim.geometry import load_curve, segment_curve
 
     curve = load_curve(spec)
-    seg = segment_curve(curve, tol, corner_deg=corner_deg)
+    seg = segment_curve(curve, tol, corner_deg=corner_deg, speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
     return ProgramInput(seg.polysegment, curve.points, tol, spec, spec.startswith("builtin:"))

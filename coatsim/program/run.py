@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Optional
 
 from coatsim.fileio import write_text
-from coatsim.program.as_parser import parse_as
+from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.program.check import ProgramCheck
 from coatsim.program.inputs import load_program_input
@@ -16,15 +16,18 @@ from coatsim.program.placement import Frame, Placement, centering_offset
 
 def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
                 lead_in_mm: float, lead_out_mm: float, roll_deg: float = 0.0, follow_tangent: bool = False,
-                center: Optional[bool] = None, output: Optional[Path] = None) -> BuiltProgram:
+                center: Optional[bool] = None, output: Optional[Path] = None,
+                tool_accel_mm_s2: Optional[float] = None) -> BuiltProgram:
     """Load ``spec``, place it, write the program (to ``output`` if given).
 
     ``center`` None centres built-in curves on the frame origin and leaves file curves where
-    their coordinates put them.
+    their coordinates put them. With ``tool_accel_mm_s2`` the curve is segmented for the
+    programmed speed (see :func:`load_program_input`).
     """
     placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
-    inp = load_program_input(spec, tol)
+    speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
+    inp = load_program_input(spec, tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
     if inp.builtin if center is None else center:
         placement = replace(placement, offset_xy=centering_offset(inp.polysegment))
     built = build_program(inp.polysegment, placement, options, tolerance_mm=inp.tolerance_mm,
@@ -37,7 +40,7 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
 def program_summary(built: BuiltProgram) -> str:
     """Two lines describing a written program."""
     plan, curve = built.plan, built.curve
-    n_steps = len(parse_as(built.text).programs[0].statements)
+    n_steps = len(parse_as(built.text).programs[0].body)
     return (
         f"program {plan.name}: {dict(plan.metadata)['variant']}, {curve.n_lines} lines + {curve.n_arcs} arcs, "
         f"{n_steps} steps, {built.text.count(chr(10))} lines of text\n"
@@ -53,5 +56,9 @@ def check_summary(check: ProgramCheck) -> str:
         f"{check.n_joint_moves} joint, {check.n_linear_moves} linear, {check.n_arc_moves} arc",
         f"path length {check.path_length_mm:.3f} mm (sprayed {check.spray_length_mm:.3f} mm)",
     ]
+    lines += [f"signal: {s}" for s in check.signals]
+    lines += [f"sprayed: lines {r.first_line}-{r.last_line}, {r.moves} moves, {r.length_mm:.3f} mm"
+              for r in check.spray_runs]
+    lines += [f"warning: {w}" for w in check.warnings]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
     return "\n".join(lines)

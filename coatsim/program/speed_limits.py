@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import Sequence
 
 from coatsim.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
@@ -53,11 +53,17 @@ def corner_limits(poly: Polysegment) -> tuple[SpeedLimit, ...]:
     return tuple(SpeedLimit(ends[k], ends[k], 0.0) for k in sorted(poly.corners) if k < len(ends))
 
 
-def curve_limits(poly: Polysegment, speed_limited: Iterable[Sequence[float]] = ()) -> tuple[SpeedLimit, ...]:
-    """The true corners of ``poly`` and the fitter's ``speed_limited`` stretches
-    ([s0_mm, s1_mm, v_max_mm_s] along ``poly``), in arc-length order."""
-    stretches = tuple(SpeedLimit(float(a), float(b), float(v)) for a, b, v in speed_limited)
-    return tuple(sorted(corner_limits(poly) + stretches, key=lambda lim: (lim.s0_mm, lim.s1_mm)))
+def curve_limits(poly: Polysegment) -> tuple[SpeedLimit, ...]:
+    """The stretches of ``poly`` where the curve does not allow the programmed speed: the
+    fitter's ``speed_limited`` (known when it was given the speed) and every true corner, in
+    arc-length order."""
+    stretches = [SpeedLimit(float(a), float(b), float(v)) for a, b, v in poly.speed_limited]
+    def listed(corner: SpeedLimit) -> bool:
+        return any(x.v_max_mm_s == 0.0 and abs(x.s0_mm - corner.s0_mm) <= 1e-6 and abs(x.s1_mm - corner.s1_mm) <= 1e-6
+                   for x in stretches)
+
+    corners = [c for c in corner_limits(poly) if not listed(c)]
+    return tuple(sorted(stretches + corners, key=lambda lim: (lim.s0_mm, lim.s1_mm)))
 
 
 def format_limits(limits: Sequence[SpeedLimit]) -> str:

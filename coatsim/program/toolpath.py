@@ -8,7 +8,7 @@ a rotation is a 3x3 matrix whose columns are the tool x, y, z axes (z = spray ax
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Mapping, Union
+from typing import Mapping, Optional, Protocol, Union
 
 import numpy as np
 
@@ -62,6 +62,9 @@ class JointMove:
     """JMOVE / JAPPRO / HOME: joint-interpolated move to ``target`` (path not Cartesian).
 
     ``start`` is None for the first move of a program: the robot starts wherever it is.
+    ``joints_rad`` (6,) is the configuration to reach when the program gives one (a joint
+    value, HOME); ``target`` is then its forward kinematics. Otherwise the robot stage solves
+    the inverse kinematics of ``target``.
     """
 
     start: Pose | None
@@ -70,6 +73,7 @@ class JointMove:
     spray: bool
     line: int
     kind: str = field(default="joint", init=False)
+    joints_rad: Optional[np.ndarray] = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,6 +107,30 @@ class CircularMove:
 Move = Union[JointMove, LinearMove, CircularMove]
 
 
+@dataclass(frozen=True)
+class Dwell:
+    """The tool rests ``seconds`` at the end of move ``after`` (-1: before the first move),
+    the gun on when ``spray``: TWAIT, DELAY and STABLE (the coat sees a thick spot)."""
+
+    after: int
+    seconds: float
+    spray: bool
+    line: int
+
+
+class Kinematics(Protocol):
+    """What the interpreter needs to know of the cell: forward kinematics of a joint
+    configuration (rad) to the controller's TCP (base frame, mm) under a TOOL (None: the
+    controller's own, the cell's gun), and the home configurations."""
+
+    def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
+        ...
+
+    def home(self, number: int) -> np.ndarray:
+        """HOME n (1 = the start configuration of every program); InputError if the cell has none."""
+        ...
+
+
 @dataclass(frozen=True, eq=False)
 class ToolPath:
     """The moves of a program in execution order.
@@ -111,12 +139,16 @@ class ToolPath:
     at move boundaries, as a move starts (see the interpreter for the forward-processing rule).
     ``metadata`` holds ``; coatsim: key=value`` header comments of the program (e.g. lead-in
     and lead-out lengths in mm, ``sprayed``) so downstream stages can tell the curve proper
-    from the run-in and run-out without the in-memory polysegment.
+    from the run-in and run-out without the in-memory polysegment. ``dwells`` are the rests
+    between moves in program order; ``warnings`` what the interpreter did not simulate, one
+    line each.
     """
 
     name: str
     moves: tuple[Move, ...]
     metadata: Mapping[str, str] = field(default_factory=dict)
+    dwells: tuple[Dwell, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     @property
     def spray_moves(self) -> tuple[Move, ...]:

@@ -28,6 +28,7 @@ METRICS: dict[str, MetricInfo] = {
     "segmentation.tolerance_mm": MetricInfo("mm", "deviation the fitter was asked to guarantee"),
     "segmentation.max_tangent_break_deg": MetricInfo("deg", "largest heading change at the other junctions (0 = tangent-continuous; a polyline turns at every vertex)"),
     "segmentation.curve_length_mm": MetricInfo("mm", "length of the programmed curve (without run-in and run-out)"),
+    "segmentation.max_curvature_jump_per_mm": MetricInfo("1/mm", "largest curvature change at a junction that is not a corner (a tool at speed v feels v² x this as a step of its sideways acceleration; 0 for a polyline)"),
     # motion: the simulated arm running the program text (the robot stage's motion metrics)
     "motion.programmed_speed_mm_s": MetricInfo("mm/s", "tool speed the program asks for on the curve"),
     "motion.curve_length_mm": MetricInfo("mm", "length of the curve proper along the programmed path (run-in and run-out excluded)"),

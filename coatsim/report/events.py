@@ -2,7 +2,8 @@
 
 Sources: the robot stage's warnings (``Execution.events``: TOOL mismatch, joint-limit approach,
 singularity proximity, tracking error, joint speed or acceleration over the limit; each message
-starts with the program step, ``NAME: line N (KIND): ...``), the IK residual, the speed dips
+starts with the program step, ``NAME: line N (KIND): ...``), what the twin did not simulate
+(``Execution.warnings``, e.g. statements of a user's program), the IK residual, the speed dips
 below AT_SPEED of the programmed speed on the curve proper (at the move where the speed is
 lowest), the stretches where the curve itself does not allow the programmed speed (the
 program header's ``speed_limits``) and, for a closed contour, the seam where the gun switches.
@@ -115,6 +116,9 @@ def robot_events(name: str, execution: Execution, toolpath: ToolPath) -> list[Ev
             span = None if line is None else where.line_span(line)
             s = None if span is None else 0.5 * (span[0] + span[1]) - where.start
         out.append(Event(name, _kind(text), "warning", line, text, s, t_s))
+    for message in getattr(execution, "warnings", ()):  # what the twin did not simulate
+        line, _, text = parse_step(message)
+        out.append(Event(name, "not simulated", "warning", line, text))
     residual = execution.metrics.max_ik_residual_mm
     if residual > IK_NOTE_MM:
         out.append(Event(name, "IK residual", "note", None,
@@ -181,7 +185,8 @@ def curve_notes(name: str, execution: Execution, toolpath: ToolPath) -> list[Eve
 def run_events(name: str, execution: Execution, toolpath: Optional[ToolPath]) -> list[Event]:
     """Every event of one variant's run, warnings first, each group in path order."""
     if toolpath is None:  # nothing to tie the messages to
-        return [Event(name, _kind(m), "warning", parse_step(m)[0], parse_step(m)[2]) for m in execution.events]
+        messages = (*getattr(execution, "warnings", ()), *execution.events)
+        return [Event(name, _kind(m), "warning", parse_step(m)[0], parse_step(m)[2]) for m in messages]
     warnings = robot_events(name, execution, toolpath) + speed_dips(name, execution, toolpath)
     key = lambda e: (e.severity != "warning", e.s_mm if e.s_mm is not None else np.inf)  # noqa: E731
     return sorted(warnings + curve_notes(name, execution, toolpath), key=key)

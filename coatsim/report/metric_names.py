@@ -30,6 +30,7 @@ SHOWN: dict[str, Shown] = {
     "segmentation.max_deviation_mm": Shown("largest deviation from the input curve"),
     "segmentation.tolerance_mm": Shown("tolerance"),
     "segmentation.max_tangent_break_deg": Shown("largest tangent break"),
+    "segmentation.max_curvature_jump_per_mm": Shown("largest curvature jump at a tangent junction"),
     "segmentation.curve_length_mm": Shown("programmed curve length", True),
     "motion.programmed_speed_mm_s": Shown("programmed speed"),
     "motion.curve_length_mm": Shown("curve length along the path", True),

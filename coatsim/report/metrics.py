@@ -49,6 +49,8 @@ def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm
     breaks = np.degrees(programmed.junction_breaks())
     corner = breaks > corner_deg
     smooth = breaks[~corner]
+    kappa = np.array([s.curvature for s in programmed.segments])
+    jumps = np.abs(np.roll(kappa, -1) - kappa)[: len(breaks)][~corner]
     return {
         "n_segments": programmed.n_segments,
         "n_arcs": programmed.n_arcs,
@@ -58,6 +60,7 @@ def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm
         "tolerance_mm": tolerance_mm,
         "max_tangent_break_deg": float(smooth.max()) if len(smooth) else 0.0,
         "curve_length_mm": programmed.length,
+        "max_curvature_jump_per_mm": float(jumps.max()) if len(jumps) else 0.0,
     }
 
 

@@ -7,6 +7,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Mapping, Sequence
 
 import mujoco
 import numpy as np
@@ -14,7 +15,7 @@ import numpy as np
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
-from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, ToolPath
+from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
@@ -44,6 +45,7 @@ class Execution:
     reference: ReferencePath
     curve: tuple[float, float]
     wall: dict[str, float] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass
@@ -95,6 +97,35 @@ def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float,
     return a, b, float(speed)
 
 
+def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
+    """A configuration the program gives, checked against the joint ranges."""
+    q = np.asarray(q, dtype=float)
+    outside = np.flatnonzero((q < cell.q_min - 1e-9) | (q > cell.q_max + 1e-9))
+    if len(outside):
+        j = int(outside[0])
+        raise ExecutionError(f"{label}: joint {j + 1} at {math.degrees(q[j]):.3f} deg is outside its range "
+                             f"{math.degrees(cell.q_min[j]):.1f}..{math.degrees(cell.q_max[j]):.1f} deg")
+    return q.copy()
+
+
+def _rest(cell: Cell, q: np.ndarray, dwell: Dwell, offset: float) -> _Segment | None:
+    """The arm standing still at ``q`` for the dwell (None if shorter than half a time step)."""
+    m = int(round(dwell.seconds / cell.timestep))
+    if m == 0:
+        return None
+    zeros = np.zeros((m + 1, 6))
+    timed = TimedPiece(t=np.arange(m + 1) * cell.timestep, q=np.tile(q, (m + 1, 1)), qd=zeros, qdd=zeros,
+                       s=np.zeros(m + 1), sd=np.zeros(m + 1))
+    return _Segment(timed, np.full(m + 1, offset), np.full(m + 1, dwell.spray), np.full(m + 1, dwell.after))
+
+
+def _first_move(piece) -> float:
+    """Index of the program move a piece starts with (the implicit move from home: before all)."""
+    if isinstance(piece, JointPiece):
+        return -0.5 if piece.move is None else float(piece.move)
+    return float(piece.move[0])
+
+
 def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
     """Per move, where the gun sits in the frame of the controller's TCP: (M, 3, 3), (M, 3) mm."""
     pairs = [mount(m.settings.tool, cell) for m in toolpath.moves]
@@ -134,14 +165,26 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     worst = [0.0, 0.0, 0]
     offset = 0.0
     max_blend = 0.0
+    dwells = list(toolpath.dwells)
+
+    def rest_until(before: float) -> None:
+        while dwells and dwells[0].after < before:
+            segment = _rest(cell, q_now, dwells.pop(0), offset)
+            if segment is not None:
+                segments.append(segment)
+
     for k, piece in enumerate(pieces):
+        rest_until(_first_move(piece))
         if isinstance(piece, JointPiece):
             label = step_label(toolpath, piece.move)
             # the implicit first move goes to the start of the first Cartesian move, with its TOOL
             tool_move = piece.move if piece.move is not None else int(pieces[k + 1].move[0])
             p_gun, r_gun = to_gun(piece.target.position, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
             t0 = time.perf_counter()
-            q_goal = tracker.solve_pose(q_now, p_gun, r_gun, label)
+            if piece.joints_rad is not None:
+                q_goal = _joint_target(cell, piece.joints_rad, label)
+            else:
+                q_goal = tracker.solve_pose(q_now, p_gun, r_gun, label)
             wall["ik_s"] += time.perf_counter() - t0
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
@@ -178,6 +221,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
         offset += float(sum(p.length for p in piece.reference))
         max_blend = max(max_blend, max(toolpath.moves[m].settings.accuracy_mm for m in piece.reference_moves))
         q_now = qs[-1]
+    rest_until(float("inf"))
     if not segments:
         raise ExecutionError(f"{toolpath.name}: the program moves the tool nowhere")
 
@@ -207,28 +251,34 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
-                     curve=(a, b), wall=wall)
+                     curve=(a, b), wall=wall, warnings=toolpath.warnings)
 
 
-def execute_program(program: str | Path, model: str | Path | None, outdir: str | Path, gun_signal: int = 1,
-                    step_mm: float = 1.0) -> tuple[Execution, list[Path]]:
-    """``coatsim execute``: read an AS program, run it, write trajectory.csv, motion.json and
-    speed.png into ``outdir``."""
+def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
+                    gun_signal: int = 1, step_mm: float = 1.0, main: str | None = None,
+                    inputs: Mapping[int, bool] | None = None) -> tuple[Execution, list[Path]]:
+    """``coatsim execute``: read AS program files, run the main program (``main``, default the
+    first), write trajectory.csv, motion.json and speed.png into ``outdir``."""
     from coatsim.program import read_toolpath
+    from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.plots import plot_speed
 
-    toolpath = read_toolpath(program, gun_signal=gun_signal)
-    result = execute(toolpath, load_cell(model), step_mm)
+    cell = load_cell(model)
+    toolpath = read_toolpath(program, gun_signal=gun_signal, program=main, inputs=inputs,
+                             kinematics=CellKinematics(cell))
+    result = execute(toolpath, cell, step_mm)
     out = Path(outdir)
     files = [out / "trajectory.csv", out / "motion.json", out / "speed.png"]
     result.log.write_csv(files[0])
     doc = {
         "format": "coatsim.motion/1",
-        "program": str(program),
+        "program": str(program) if isinstance(program, (str, Path)) else
+        str(program[0]) if len(program) == 1 else [str(p) for p in program],
         "model": str(model) if model is not None else "default",
         "step_mm": step_mm,
         "motion": result.metrics.as_dict(),
         "events": list(result.events),
+        "warnings": list(result.warnings),
     }
     write_text(files[1], json.dumps(doc, indent=2) + "\n")
     variant = toolpath.metadata.get("variant")

@@ -11,6 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.program.arcs import DegenerateArc, circle_through
+
 
 @dataclass(frozen=True, eq=False)
 class Primitive:
@@ -77,22 +79,14 @@ def line(start: np.ndarray, end: np.ndarray) -> Primitive:
 
 def arc_through(start: np.ndarray, via: np.ndarray, end: np.ndarray) -> Primitive | None:
     """The circular arc from ``start`` through ``via`` to ``end``; None if the points are
-    collinear or coincide (no unique circle)."""
-    a, b, c = (np.asarray(x, float) for x in (start, via, end))
-    ab, ac = b - a, c - a
-    n = np.cross(ab, ac)
-    nn = float(n @ n)
-    scale = max(float(ab @ ab), float(ac @ ac), 1e-300)
-    if nn <= 1e-18 * scale * scale:
+    collinear or coincide (no unique circle). The test is the interpreter's, so a program that
+    reads is a program the robot stage can build."""
+    a, c = np.asarray(start, float), np.asarray(end, float)
+    try:
+        circle = circle_through(a, via, c)
+    except DegenerateArc:
         return None
-    # circumcentre of the triangle (a, b, c)
-    centre = a + (np.cross(n, ab) * float(ac @ ac) + np.cross(ac, n) * float(ab @ ab)) / (2.0 * nn)
-    radius = float(np.linalg.norm(a - centre))
-    normal = n / math.sqrt(nn)  # a -> b -> c runs counter-clockwise about this normal
+    centre, normal, radius, sweep = circle.center, circle.normal, circle.radius, circle.sweep
     u = (a - centre) / radius
     v = np.cross(normal, u)
-    rel = c - centre
-    sweep = float(np.mod(math.atan2(rel @ v, rel @ u), 2 * math.pi))
-    if sweep == 0.0:
-        sweep = 2 * math.pi
     return Primitive(start=a, end=c, length=radius * sweep, centre=centre, u=u, v=v, radius=radius, sweep=sweep)

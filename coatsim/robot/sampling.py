@@ -5,6 +5,7 @@ Controller semantics modelled here (see the README's robot section):
 - a joint move (JMOVE) starts and ends at rest;
 - where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the
   tool runs straight through;
+- where a move turns back on the previous one (more than 179.5 deg) the tool stops and reverses;
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
@@ -27,6 +28,9 @@ from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, 
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
 TANGENT_TOL_RAD = math.radians(0.5)
+# A junction turning back by more than this is a reversal: the tool stops there (no blend can
+# turn it round; the blend curve would fold onto itself).
+REVERSAL_RAD = math.radians(179.5)
 MIN_MOVE_MM = 1e-6
 MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 
@@ -60,13 +64,15 @@ class CartesianPiece:
 
 @dataclass(frozen=True, eq=False)
 class JointPiece:
-    """A joint-interpolated move to ``target`` (rest to rest); ``move`` is None for the
-    implicit move from home to the start of the first Cartesian move."""
+    """A joint-interpolated move to ``target`` (rest to rest), to the configuration
+    ``joints_rad`` when the program gives one; ``move`` is None for the implicit move from home
+    to the start of the first Cartesian move."""
 
     target: Pose
     speed_mm_s: float
     spray: bool
     move: int | None
+    joints_rad: np.ndarray | None = None
 
 
 Piece = CartesianPiece | JointPiece
@@ -243,13 +249,18 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
     for index, move in enumerate(toolpath.moves):
         if isinstance(move, JointMove):
             flush()
-            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index))
+            pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index,
+                                     move.joints_rad))
             continue
         if not isinstance(move, (LinearMove, CircularMove)):
             raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
         span = _span(toolpath, index)
         if span.prim.length <= MIN_MOVE_MM:
-            continue  # a move to where the tool already is: nothing to execute
+            if span.stop:
+                flush()  # nothing to execute, but the tool comes to rest here (a dwell may follow)
+            continue  # a move to where the tool already is
+        if chain and _heading_change(chain[-1].prim, span.prim) > REVERSAL_RAD:
+            flush()
         chain.append(span)
         if span.stop:
             flush()

@@ -161,9 +161,32 @@ def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.n
     return _timed(cell, path, path7, extra, s, 1.0 / MM, label)
 
 
+# Below this joint travel (rad) a move is timed by a bang-bang profile: toppra's solver fails
+# on such short paths (measured: 2e-7 to 1e-5 rad), and the TCP speed limit cannot bind there.
+TINY_JOINT_MOVE_RAD = 1e-4
+
+
+def _bang_bang(cell: Cell, q0: np.ndarray, q1: np.ndarray) -> TimedPiece:
+    """Constant acceleration then deceleration, as fast as the joint limits allow."""
+    dq = q1 - q0
+    duration = max(float(np.max(2.0 * np.sqrt(np.abs(dq) / cell.a_max))), float(np.max(2.0 * np.abs(dq) / cell.v_max)),
+                   cell.timestep)
+    m = int(math.ceil(duration / cell.timestep - 1e-9))
+    t = np.minimum(np.arange(m + 1) * cell.timestep, duration)
+    x = t / duration
+    first = x <= 0.5
+    s = np.where(first, 2.0 * x**2, 1.0 - 2.0 * (1.0 - x) ** 2)
+    sd = np.where(first, 4.0 * x, 4.0 * (1.0 - x)) / duration
+    sdd = np.where(first, 4.0, -4.0) / duration**2
+    sdd[-1] = 0.0
+    return TimedPiece(t=t, q=q0 + s[:, None] * dq, qd=sd[:, None] * dq, qdd=sdd[:, None] * dq, s=s, sd=sd)
+
+
 def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
                n_grid: int = 60) -> TimedPiece:
     """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
+    if float(np.max(np.abs(q1 - q0))) < TINY_JOINT_MOVE_RAD:
+        return _bang_bang(cell, np.asarray(q0, float), np.asarray(q1, float))
     u = np.linspace(0.0, 1.0, n_grid)
     qs = q0 + u[:, None] * (q1 - q0)
     data = mujoco.MjData(cell.model)

@@ -24,7 +24,7 @@ from coatsim.geometry.theta import theta_of_polyline
 from geometry_helpers import bench_spec, segmented
 
 # The example of the design notes' "Polysegment JSON" section, verbatim (it predates the removal
-# of stats.seconds, the speed_limited field and the curvature stats: a file without them still reads).
+# of stats.seconds and the addition of speed_limited and the curvature stats; readers accept it).
 DESIGN_EXAMPLE = Path(__file__).resolve().parents[1] / "data" / "design_polysegment_example.json"
 TOP_KEYS = {"format", "units", "closed", "tolerance_mm", "segments", "corners", "speed_limited", "stats"}
 STATS_KEYS = {"n_segments", "n_arcs", "n_lines", "max_deviation_mm", "max_tangent_break_deg", "min_radius_mm",
@@ -129,6 +129,8 @@ def test_roundtrip_of_random_chains(tmp_path, start, heading, pieces):
 
 
 def test_the_design_example_is_a_valid_file(tmp_path):
+    """The design's example (which predates speed_limited and the curvature stats, and still
+    carries stats.seconds: such a file still reads) is a valid file."""
     block = DESIGN_EXAMPLE.read_text(encoding="utf-8")
     doc = json.loads(block)
     assert set(doc) <= TOP_KEYS and set(doc["stats"]) <= STATS_KEYS | {"seconds"}

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.program.as_writer import MAX_ARC_SWEEP_DEG
+from coatsim.program.as_lang.writer import MAX_ARC_SWEEP_DEG
 from coatsim.program.arcs import sample_move
 from coatsim.program.oat import rotation_angle
 from coatsim.program.placement import PlacedArc, PlacedPath

@@ -11,7 +11,8 @@ import pytest
 
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.program import interpret, parse_as
-from coatsim.program.as_writer import MAX_NAME_LENGTH, fmt, fmt_short, program_name
+from coatsim.program.as_lang.names import MAX_NAME_LENGTH, program_name
+from coatsim.program.as_lang.writer import fmt, fmt_short
 from coatsim.program.build import ProgramOptions, build_program, polyline_of
 from coatsim.program.placement import Placement
 

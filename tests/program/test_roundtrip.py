@@ -146,3 +146,17 @@ def test_benchmark_curves_segmented(name, tol):
             arcs_written = sum(m.kind == "arc" for m in toolpath.spray_moves)
             assert arcs_written >= poly.n_arcs
             assert np.isclose(float(toolpath.metadata["curve_length_mm"]), poly.length, atol=1e-6)
+
+
+def test_a_full_circle_split_into_arc_pairs_is_sprayed_from_its_first_pair():
+    """The gun switches as the first move of the first segment starts, even when that segment is
+    an arc the writer splits into several C1MOVE/C2MOVE pairs."""
+    circle = Polysegment(chain((0.0, 0.0), 0.0, [0.02], [2 * math.pi * 50.0]), closed=True)
+    built, toolpath, errors = round_trip(circle, "polysegment")
+    assert_same_path(errors)
+    assert [m.kind for m in toolpath.spray_moves] == ["arc"] * 3
+    assert not toolpath.moves[2].spray and not toolpath.moves[-2].spray  # lead-in and lead-out
+    text = built.text.splitlines()
+    first_signal = next(i for i, line in enumerate(text) if line.strip().startswith("SIGNAL 1"))
+    assert text[first_signal - 1].strip().startswith("C2MOVE") and text[first_signal - 2].strip().startswith("C1MOVE")
+    assert "segment 1 (1/3)" in text[first_signal - 2]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 
 import pytest
 from hypothesis import given, settings
@@ -35,9 +36,14 @@ def test_corners_become_zero_speed_points_at_their_arc_length():
     assert corner_limits(roundrect()) == ()
 
 
-def test_fitter_stretches_and_corners_are_merged_in_order():
-    limits = curve_limits(d_shape(), [[150.0, 160.0, 120.0], [10.0, 12.0, 80.5]])
-    assert [lim.s0_mm for lim in limits] == [10.0, 100.0, 150.0, pytest.approx(d_shape().length)]
+def test_fitter_stretches_and_corners_are_merged_in_order_once():
+    d = d_shape()
+    # the fitter lists the corners too once it knows the speed: they are not repeated
+    limited = replace(d, speed_limited=((10.0, 12.0, 80.5), (100.0, 100.0, 0.0), (150.0, 160.0, 120.0)))
+    limits = curve_limits(limited)
+    assert [lim.s0_mm for lim in limits] == [10.0, 100.0, 150.0, pytest.approx(d.length)]
+    assert [lim.v_max_mm_s for lim in limits] == [80.5, 0.0, 120.0, 0.0]
+    assert curve_limits(d) == corner_limits(d)
 
 
 @settings(max_examples=60, deadline=None)
@@ -62,9 +68,8 @@ def test_bad_header_values_name_the_field(text, words):
 
 @pytest.mark.parametrize("variant", VARIANTS)
 def test_every_variant_carries_the_same_stretches_scaled_to_its_curve(variant):
-    d = d_shape()
-    built = build_program(d, Placement(), ProgramOptions(variant=variant), tolerance_mm=0.1, source="d",
-                          speed_limited=[[150.0, 160.0, 120.0]])
+    d = replace(d_shape(), speed_limited=((150.0, 160.0, 120.0),))
+    built = build_program(d, Placement(), ProgramOptions(variant=variant), tolerance_mm=0.1, source="d")
     header = interpret(parse_as(built.text)).metadata["speed_limits"]
     limits = parse_limits(header, "d.as")
     scale = built.curve.length / d.length

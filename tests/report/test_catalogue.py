@@ -64,6 +64,7 @@ def test_segmentation_group_of_a_line_arc_chain_and_of_a_polyline() -> None:
     assert g["max_deviation_mm"] == pytest.approx(chord**2 / (8 * 20), rel=1e-3)  # sagitta of the arc's chords
     assert g["max_tangent_break_deg"] < 1e-9
     assert g["curve_length_mm"] == pytest.approx(80 + 10 * math.pi)
+    assert g["max_curvature_jump_per_mm"] == pytest.approx(1 / 20)  # line -> arc of radius 20 -> line
     # a square corner and a 10-degree kink
     kink = math.radians(10)
     lines = Polysegment((Line((0.0, 0.0), (10.0, 0.0)), Line((10.0, 0.0), (10.0, 10.0)),
@@ -71,6 +72,7 @@ def test_segmentation_group_of_a_line_arc_chain_and_of_a_polyline() -> None:
     g = segmentation_group(np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]), lines, 0.1, 20.0)
     assert g["n_corners"] == 1
     assert g["max_tangent_break_deg"] == pytest.approx(10.0)
+    assert g["max_curvature_jump_per_mm"] == 0.0
     assert g["max_deviation_mm"] == pytest.approx(10.0)  # the third line ends 10 mm past the input
 
 

@@ -91,3 +91,15 @@ def test_a_malformed_header_is_an_input_error(cell):
     line = straight_line()
     with pytest.raises(InputError, match="speed_limits"):
         execute(ToolPath(line.name, line.moves, {"speed_limits": "10:5:0"}), cell)
+
+
+def test_the_sprayed_header_decides_whether_the_leads_are_part_of_the_curve(cell):
+    """straight_line sprays only its middle move: with sprayed=curve that move is the curve
+    proper; with the leads declared sprayed, the header's lead lengths are cut from it."""
+    line = straight_line(length=300.0, lead=20.0)
+    only_curve = execute(ToolPath(line.name, line.moves, {"sprayed": "curve", "lead_in_mm": "20"}), cell)
+    assert only_curve.metrics.curve_length_mm == pytest.approx(300.0, abs=1e-6)
+    with_leads = execute(ToolPath(line.name, line.moves, {"lead_in_mm": "20", "lead_out_mm": "30"}), cell)
+    assert with_leads.metrics.curve_length_mm == pytest.approx(250.0, abs=1e-6)
+    with pytest.raises(InputError, match="sprayed='everything'"):
+        execute(ToolPath(line.name, line.moves, {"sprayed": "everything"}), cell)

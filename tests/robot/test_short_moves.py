@@ -44,6 +44,38 @@ def test_exact_stops_on_moves_shorter_than_the_sampling_step(cell, step):
     assert np.isfinite(result.log.t).all() and result.log.t[-1] > 0
 
 
+@pytest.mark.parametrize("travel", [1e-8, 2e-7, 1e-6, 1e-5, 9e-5])
+def test_tiny_joint_moves_are_timed_within_the_limits(travel):
+    """toppra fails on joint moves of 2e-7 to 1e-5 rad; a program may ask for one (JMOVE to a
+    joint value a hair off where the arm stands)."""
+    from coatsim.robot.cell import load_cell
+    from coatsim.robot.timing import time_joint
+
+    cell = load_cell()
+    q1 = cell.home.copy()
+    q1[[1, 2]] += travel
+    timed = time_joint(cell, cell.home, q1, 500.0, "tiny")
+    assert np.allclose(timed.q[0], cell.home) and np.allclose(timed.q[-1], q1, atol=1e-15)
+    assert np.all(np.abs(timed.qdd) <= cell.a_max + 1e-9) and np.all(np.abs(timed.qd) <= cell.v_max)
+
+
+def test_a_reversal_stops_instead_of_folding_a_blend():
+    """a -> b -> a with CP ON: no blend can turn the tool round; it stops at b."""
+    import warnings
+
+    from coatsim.program.toolpath import LinearMove
+    from robot_helpers import pose, settings
+
+    toolpath = ToolPath("reverse", (approach((700.0, -50.0)),
+                                    LinearMove(pose(700.0, -50.0), pose(700.0, 50.0), settings(accuracy=5.0), True, 10),
+                                    LinearMove(pose(700.0, 50.0), pose(700.0, -50.0), settings(stop=True), True, 11)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pieces = plan_pieces(toolpath)
+    assert [type(p).__name__ for p in pieces] == ["JointPiece", "CartesianPiece", "CartesianPiece"]
+    assert all(np.isfinite(p.curvature).all() for p in pieces[1:])
+
+
 def circle_chords(radius: float, chord: float, accuracy: float, speed: float) -> ToolPath:
     """A blended polyline around a circle, chords of about ``chord`` mm (one lap and a half),
     their lengths a micrometre apart as an RDP polyline's are."""

@@ -51,7 +51,11 @@ def summary_rows(data: Any) -> list[tuple[str, Any]]:
     """The scenario at a glance: inputs, workpiece, robot, gun, motion, variants, mode."""
     spec, document, loaded = data.spec, data.document, data.loaded
     c = spec.curve
-    source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    if c is None:
+        source = f"the sprayed path of program variant {spec.programs[0].name}"
+    else:
+        source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
+    placed = "" if c is None else f"; scale {c.scale:g}, rotated {c.rotate_deg:g} deg"
     curve = data.contours[0].curve
     wp = spec.workpiece
     size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
@@ -61,7 +65,7 @@ def summary_rows(data: Any) -> list[tuple[str, Any]]:
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}; scale {c.scale:g}, rotated {c.rotate_deg:g} deg; {'closed' if curve.closed else 'open'}, "
+        ("curve", f"{source}{placed}; {'closed' if curve.closed else 'open'}, "
                   f"{len(curve.points)} points, {curve.length:.1f} mm"),
         ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
                          f"corners above {spec.segmentation.corner_deg:g} deg"),

@@ -1,4 +1,5 @@
-"""Interpreter semantics: poses, settings, stops, forward-processed signals, errors with lines."""
+"""Interpreter: the controller model (poses, settings, stops, forward-processed signals, dwells,
+joint poses, HOME) and errors with lines."""
 
 from __future__ import annotations
 
@@ -7,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from coatsim.errors import InputError
+from coatsim.errors import ExecutionError, InputError
 from coatsim.program import interpret, parse_as, read_toolpath
 from coatsim.program.arcs import circle_through, move_length
-from coatsim.program.interpreter import FULL_SPEED_MM_S
+from coatsim.program.as_lang.motion import FULL_SPEED_MM_S
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove
 
@@ -178,13 +179,11 @@ SEMANTIC_ERRORS = [
     ("  JMOVE a\n  LMOVE zz\n", 3, "pose 'zz' is not defined"),
     ("  LMOVE a\n", 2, "needs a known start pose"),
     ("  JMOVE a\n  C2MOVE b\n", 3, "C2MOVE without a C1MOVE"),
-    ("  JMOVE a\n  C1MOVE b\n  LMOVE c\n", 3, "C1MOVE must be followed directly by C2MOVE"),
+    ("  JMOVE a\n  C1MOVE b\n  LMOVE c\n", 3, "C1MOVE must be followed by C2MOVE"),
     ("  JMOVE a\n  C1MOVE b\n", 3, "C1MOVE at the end of the program"),
     ("  JMOVE a\n  C1MOVE b\n  C2MOVE SHIFT(b BY 100, 0, 0)\n", 4, "lie on one line"),
     ("  JMOVE a\n  C1MOVE a\n  C2MOVE b\n", 4, "not distinct"),
-    ("  HOME\n", 2, "HOME"),
-    ("  JMOVE #home\n", 2, "joint pose #home"),
-    ("  JMOVE a\n  DRAW 1, 0, 0, 0, 10, 0\n", 3, "rotation"),
+    ("  JMOVE #home\n", 2, "joint pose '#home' is not defined"),
     ("  JMOVE TRANS(x, 0, 0, 0, 0, 0)\n", 2, "real variable 'x'"),
     ("  SPEED 0 MM/S\n", 2, "SPEED must be > 0"),
     ("  ACCURACY -1\n", 2, "ACCURACY must be >= 0"),
@@ -214,3 +213,117 @@ def test_read_toolpath_file_errors(tmp_path):
     bad.write_text(".PROGRAM x()\n  JMOVE a\n  LMOVE nowhere\n.END\n" + TRANS)
     with pytest.raises(InputError, match=r"bad\.as:3: pose 'nowhere'"):
         read_toolpath(bad)
+
+
+# --- joint poses and HOME use the cell's kinematics ----------------------------------------
+@pytest.fixture(scope="module")
+def kin():
+    from coatsim.robot.cell import load_cell
+    from coatsim.robot.kinematics import CellKinematics
+
+    return CellKinematics(load_cell())
+
+
+def test_joint_poses_and_home_with_the_cell(kin):
+    trans = TRANS + ".JOINTS\n#j 10 0 35 0 55 0\n.END\n"
+    tp = run("  JMOVE #j\n  HERE .p\n  LMOVE SHIFT(.p BY 0, 0, -20)\n  JMOVE #[0, 0, 35, 0, 55, 0]\n  HOME\n"
+             "  LMOVE #j\n", trans=trans, kinematics=kin)
+    j0, line, j1, home, lin = tp.moves
+    assert isinstance(j0, JointMove) and np.allclose(np.degrees(j0.joints_rad), [10, 0, 35, 0, 55, 0])
+    assert np.allclose(j0.target.position, kin.forward(j0.joints_rad).position)
+    assert np.allclose(line.start.position, j0.target.position)
+    assert np.allclose(line.end.position, j0.target.position - [0, 0, 20])
+    assert np.allclose(home.joints_rad, kin.home(1)) and np.allclose(j1.joints_rad, kin.home(1))
+    assert isinstance(lin, LinearMove) and np.allclose(lin.end.position, j0.target.position)
+
+
+def test_start_pose_is_home_with_the_cell(kin):
+    tp = run("  LMOVE a\n", kinematics=kin)
+    assert np.allclose(tp.moves[0].start.position, kin.forward(kin.home(1)).position)
+
+
+@pytest.mark.parametrize("body,kind,words", [
+    ("  HOME 2\n", InputError, "no keyframe 'home2'"),
+    ("  JMOVE #[0, 0, 35, 0, 55, 400]\n", ExecutionError, "outside the cell's range"),
+    ("  JMOVE #[0, 0, 35]\n", InputError, "needs 6 values"),
+    ("  JMOVE a\n  HERE #j\n", ExecutionError, "inverse kinematics"),
+])
+def test_joint_pose_errors(kin, body, kind, words):
+    with pytest.raises(kind) as info:
+        run(body, kinematics=kin)
+    assert words in str(info.value) and str(info.value).startswith("t.as:")
+
+
+# --- what the twin cannot simulate: one line, exit 3 ----------------------------------------
+UNSIMULATED = [
+    ("  HOME\n", "needs the cell's kinematics"),
+    ("  JMOVE #[0, 0, 0, 0, 0, 0]\n", "needs the cell's kinematics"),
+    ("  JMOVE a\n  DRAW 1, 0, 0, 0, 10, 0\n", "rotation is not simulated"),
+    ("  JMOVE a\n  LMOVE b\n  BRAKE\n", "BRAKE stops the motion"),
+    ("  JMOVE a\n  ALIGN\n", "ALIGN moves the arm"),
+    ("  JMOVE a\n  DRIVE 1, 10, 50\n", "DRIVE moves the arm"),
+    ("  JMOVE a\n  LINEAR 125. ACCU1 TIMER0\n", "teach-pendant block step"),
+    ("  PULSE 1, 0.5\n", "PULSE of the gun output"),
+    ("  SPEED 30 DEG/S\n", "rotation speed"),
+    ("  JMOVE a\n  HMOVE b\n", "HMOVE"),
+]
+
+
+@pytest.mark.parametrize("body,words", UNSIMULATED)
+def test_unsimulated_is_one_line_exit_3(body, words):
+    with pytest.raises(ExecutionError) as info:
+        run(body)
+    assert words in str(info.value) and str(info.value).startswith("t.as:") and "\n" not in str(info.value)
+
+
+def test_brake_at_rest_does_nothing():
+    assert len(run("  JMOVE a\n  BREAK\n  BRAKE\n  LMOVE b\n").moves) == 2
+
+
+# --- dwells: TWAIT, DELAY, STABLE ----------------------------------------------------------
+def test_twait_after_break_is_a_dwell_with_the_gun_state():
+    tp = run("  SPEED 100 MM/S ALWAYS\n  JMOVE a\n  LMOVE b\n  BREAK\n  SIGNAL 1\n  TWAIT 0.5\n  LMOVE c\n  SIGNAL -1\n")
+    assert [(d.after, d.seconds, d.spray, d.line) for d in tp.dwells] == [(1, 0.5, True, 7)]
+    assert tp.moves[1].settings.stop_at_end
+
+
+def test_twait_counts_from_the_start_of_the_motion():
+    # b -> c is 100 mm at 100 mm/s: a 0.4 s wait is over before the arm arrives, a 1.5 s one is not
+    short = run("  SPEED 100 MM/S ALWAYS\n  JMOVE b\n  LMOVE c\n  TWAIT 0.4\n  LMOVE e\n")
+    assert short.dwells == () and not short.moves[1].settings.stop_at_end
+    long = run("  SPEED 100 MM/S ALWAYS\n  JMOVE b\n  LMOVE c\n  TWAIT 1.5\n  SIGNAL 1\n  LMOVE e\n")
+    (d,) = long.dwells
+    assert d.after == 1 and d.seconds == pytest.approx(0.5) and not d.spray and long.moves[1].settings.stop_at_end
+    assert [m.spray for m in long.moves] == [False, False, True]   # the switch waits for the rest to end
+
+
+def test_delay_is_a_motion_step_and_a_following_switch_sprays_it():
+    tp = run("  JMOVE a\n  LMOVE b\n  DELAY 2\n  SIGNAL 1\n  LMOVE c\n  STABLE 1\n")
+    assert [(d.after, d.seconds, d.spray) for d in tp.dwells] == [(1, 2.0, True), (2, 1.0, True)]
+    assert [m.spray for m in tp.moves] == [False, False, True]
+
+
+def test_twait_before_any_motion_leaves_no_dwell():
+    assert run("  TWAIT 3\n  JMOVE a\n").dwells == ()
+
+
+def test_speed_units_and_xmove():
+    tp = run("  JMOVE a\n  SPEED 5 CM/S\n  LMOVE b\n  SPEED 60 CM/MIN\n  XMOVE c TILL 1001\n")
+    assert [m.settings.speed_mm_s for m in tp.moves[1:]] == pytest.approx([50.0, 10.0])
+    assert any("XMOVE" in w for w in tp.warnings)
+
+
+def test_draw_with_empty_components_and_tdraw_in_tool_axes():
+    tp = run("  JMOVE a\n  DRAW , 10\n  TDRAW ,,5\n")
+    assert np.allclose(tp.moves[1].end.position, [0, 10, 0]) and np.allclose(tp.moves[2].end.position, [0, 10, -5])
+
+
+def test_joint_poses_are_read_with_the_tool_in_force(kin):
+    """The controller's TCP for a joint value is the flange times the TOOL: a TOOL 50 mm longer
+    than the gun puts it 50 mm further along the tool axis."""
+    trans = TRANS + ".JOINTS\n#j 10 0 35 0 55 0\n.END\n"
+    gun = run("  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
+    same = run("  TOOL TRANS(0, 0, 250)\n  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
+    longer = run("  TOOL TRANS(0, 0, 300)\n  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
+    assert np.allclose(same.position, gun.position) and np.allclose(same.rotation, gun.rotation)
+    assert np.allclose(longer.position, gun.position + 50.0 * gun.rotation[:, 2])

@@ -20,15 +20,16 @@ motion, with no ``BREAK`` in between, switches as that motion starts. So:
 from __future__ import annotations
 
 import math
-import re
-from typing import Callable
+from typing import Callable, Sequence
 
 import numpy as np
 
+from coatsim.errors import InputError
 from coatsim.program.arcs import DegenerateArc, circle_through
+from coatsim.program.as_lang.names import MAX_NAME_LENGTH, check_name, sanitize_comment
 from coatsim.program.dialect import ProgramPlan
 from coatsim.program.oat import matrix_to_oat
-from coatsim.program.placement import Frame, PlacedArc, PlacedLine
+from coatsim.program.placement import Frame, PlacedArc, PlacedLine, PlacedSegment
 from coatsim.program.toolpath import Pose
 
 # Coordinates are the program's only record of the path, and the twin executes the text.
@@ -43,8 +44,8 @@ MM_DECIMALS = 8
 DEG_DECIMALS = 6
 # Longest arc one C1MOVE/C2MOVE pair may sweep; a pair cannot describe 180 deg or more reliably.
 MAX_ARC_SWEEP_DEG = 170.0
-# Controller limit on variable names (15 characters).
-MAX_NAME_LENGTH = 15
+# Largest coordinate a written program holds (1e9 mm is beyond any cell).
+MAX_COORDINATE_MM = 1e9
 INDENT = "  "
 _COMMENT_COLUMN = 30
 
@@ -73,19 +74,6 @@ def _trans_literal(frame: Frame) -> str:
     return f"TRANS({mm},{deg})"
 
 
-def program_name(text: str) -> str:
-    """A valid AS program name from any text: lower-case letters, digits and '_', starting
-    with a letter, at most 15 characters."""
-    name = re.sub(r"[^a-z0-9_]+", "_", text.lower()).strip("_")
-    if not name or not name[0].isalpha():
-        name = "c" + name
-    return name[:MAX_NAME_LENGTH].rstrip("_") or "coat"
-
-
-def _ascii(text: str) -> str:
-    return "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in text)
-
-
 class _Lines:
     """Program lines with aligned trailing comments."""
 
@@ -109,27 +97,47 @@ def _arc_is_writable(start: Pose, via: Pose, end: Pose) -> bool:
     return True
 
 
-def _write_segment(out: _Lines, seg: PlacedLine | PlacedArc, label: str, name: Callable[[Pose], str],
-                   max_arc_sweep_deg: float, signal: tuple[str, str] | None) -> None:
-    """One LMOVE for a line; one C1MOVE + C2MOVE pair per piece of an arc (an LMOVE for a piece
-    too flat to define a circle once written); ``signal`` (statement, comment) right after the
-    segment's first move, so that it switches as the segment starts."""
-    pieces = (seg,) if isinstance(seg, PlacedLine) else seg.split(math.radians(max_arc_sweep_deg))
+def _segment_moves(seg: PlacedSegment, label: str, name: Callable[[Pose], str],
+                   max_arc_sweep_deg: float) -> list[tuple[str, str]]:
+    """(statement, comment) of the motions of one segment: one LMOVE for a line; one C1MOVE +
+    C2MOVE pair per arc piece of at most ``max_arc_sweep_deg`` (an LMOVE for a piece too flat to
+    define a circle once written)."""
+    if isinstance(seg, PlacedLine):
+        return [(f"LMOVE {name(seg.end)}", label)]
+    out: list[tuple[str, str]] = []
+    pieces = seg.split(math.radians(max_arc_sweep_deg))
     for k, piece in enumerate(pieces):
         part_label = label if len(pieces) == 1 else f"{label} ({k + 1}/{len(pieces)})"
-        if isinstance(piece, PlacedLine):
-            out.add(f"LMOVE {name(piece.end)}", label)
-        elif _arc_is_writable(piece.start, piece.via, piece.end):
-            out.add(f"C1MOVE {name(piece.via)}", f"{part_label}, arc via")
-            out.add(f"C2MOVE {name(piece.end)}", "arc end")
+        if _arc_is_writable(piece.start, piece.via, piece.end):
+            out.append((f"C1MOVE {name(piece.via)}", f"{part_label}, arc via"))
+            out.append((f"C2MOVE {name(piece.end)}", "arc end"))
         else:
-            out.add(f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution")
-        if k == 0 and signal is not None:
-            out.add(*signal)
+            out.append((f"LMOVE {name(piece.end)}", f"{part_label}, arc flatter than the pose resolution"))
+    return out
+
+
+def _labels(segments: Sequence[PlacedSegment]) -> list[str]:
+    """The comment naming each segment: lead-in, segment k, lead-out."""
+    counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
+    labels = []
+    for seg in segments:
+        counters[seg.part] += 1
+        labels.append(seg.part.replace("_", "-") if seg.part != "curve" else f"segment {counters['curve']}")
+    return labels
+
+
+def path_moves(segments: Sequence[PlacedSegment], name: Callable[[Pose], str],
+               max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> list[tuple[str, str]]:
+    """(statement, comment) of each motion along ``segments``; ``name`` gives the text a pose is
+    written as."""
+    return [move for seg, label in zip(segments, _labels(segments))
+            for move in _segment_moves(seg, label, name, max_arc_sweep_deg)]
 
 
 def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> str:
-    """The complete AS program text of ``plan`` (ASCII, '\\n' line ends)."""
+    """The complete AS program text of ``plan`` (ASCII, '\\n' line ends); InputError if the
+    program name is not a valid AS name."""
+    check_name(plan.name)
     poses: list[Pose] = []
 
     def name(pose: Pose) -> str:
@@ -140,13 +148,13 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
                        for s in plan.path.segments)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:
-        raise ValueError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names")
+        raise InputError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names; split the path")
 
     out = _Lines()
     for text in plan.comments:
-        out.add(f"; {_ascii(text)}")
+        out.add(f"; {sanitize_comment(text)}")
     for key, value in plan.metadata:
-        out.add(f"; coatsim: {_ascii(key)}={_ascii(value)}")
+        out.add(f"; coatsim: {sanitize_comment(key)}={sanitize_comment(value)}")
     out.add("BASE NULL", "poses are in the robot base frame")
     out.add(f"TOOL {_trans_literal(plan.tool)}", "spray gun TCP")
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
@@ -156,22 +164,23 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
     out.add(f"LMOVE {start}", "down to the stand-off")
     gun_on = False
-    counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
-    for index, seg in enumerate(plan.path.segments):
-        counters[seg.part] += 1
-        label = seg.part.replace("_", "-") if seg.part != "curve" else f"segment {counters['curve']}"
+    for index, (seg, label) in enumerate(zip(plan.path.segments, _labels(plan.path.segments))):
         sprayed = plan.spray_leads or seg.part == "curve"
         if index == 0:
             out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
             if sprayed:
                 out.add(f"SIGNAL {plan.gun_signal}", "gun on")
                 gun_on = True
-        signal = None
+        moves = _segment_moves(seg, label, name, max_arc_sweep_deg)
+        first = 1 if moves[0][0].startswith("LMOVE") else 2  # the segment's first motion (C1MOVE + C2MOVE)
+        for move in moves[:first]:
+            out.add(*move)
         if sprayed != gun_on:
-            signal = (f"SIGNAL {plan.gun_signal if sprayed else -plan.gun_signal}",
-                      f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
+            out.add(f"SIGNAL {plan.gun_signal if sprayed else -plan.gun_signal}",
+                    f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
             gun_on = sprayed
-        _write_segment(out, seg, label, name, max_arc_sweep_deg, signal)
+        for move in moves[first:]:
+            out.add(*move)
     if gun_on:
         out.add("BREAK", "at rest before the gun closes")
         out.add(f"SIGNAL {-plan.gun_signal}", "gun off")

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from coatsim.program.as_parser import parse_as
-from coatsim.program.as_writer import MAX_ARC_SWEEP_DEG, write_as
+from coatsim.program.as_lang.interpreter import interpret
+from coatsim.program.as_lang.parser import parse_as
+from coatsim.program.as_lang.writer import MAX_ARC_SWEEP_DEG, write_as
 from coatsim.program.dialect import ProgramPlan
-from coatsim.program.interpreter import interpret
 from coatsim.program.toolpath import ToolPath
 
 

@@ -1,0 +1,123 @@
+"""Replace the statements that make a process path with its arc moves, in the program's own file.
+
+The statements replaced are the smallest run of consecutive statements of one program (blocks
+whole) that make exactly the path's moves. They may hold motions, assignments, loops, labels no
+GOTO names and the gun's own switch (forward processing: it is written again after the first
+new move); anything else there (other signals, waits, calls, setting changes) would change
+meaning and is refused with its line, as are moves given in different BASEs or settings.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from coatsim.errors import InputError
+from coatsim.program import read_program_bytes
+from coatsim.program.as_lang import ast
+from coatsim.program.as_lang.edit import edit_lines, indentation
+from coatsim.program.as_lang.interpreter import Run
+from coatsim.program.as_lang.names import sanitize_comment
+from coatsim.program.as_lang.writer import fmt_short, path_moves, pose_values
+from coatsim.program.as_lang.values import Frame
+from coatsim.program.check import walk
+from coatsim.program.toolpath import Pose
+
+_HINT = "; use --standalone"
+
+
+def _span(st: ast.Statement) -> tuple[int, int]:
+    return st.line, getattr(st, "end_line", st.line)
+
+
+def _gun_on(st: ast.Signal, gun: int) -> bool:
+    return all(isinstance(e, ast.Num) and e.value == gun for e in st.outputs)
+
+
+def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: int) -> bool:
+    """Whether the replaced statements hold the gun's switch; InputError on one that cannot go."""
+    gotos = {st.label for st in walk(program.body) if isinstance(st, ast.Goto)}
+    switch = False
+    for st in walk(tuple(body)):
+        where = f"{program.source}:{st.line}"
+        if isinstance(st, ast.Label):
+            if st.name in gotos:
+                raise InputError(f"{where}: label {st.name} inside the process path is a GOTO target{_HINT}")
+        elif isinstance(st, ast.Move):
+            if st.op not in ("LMOVE", "C1MOVE", "C2MOVE"):
+                raise InputError(f"{where}: {st.op} inside the process path{_HINT}")
+        elif isinstance(st, ast.Signal) and _gun_on(st, gun) and not switch:
+            switch = True
+        elif not isinstance(st, (ast.Assign, ast.PointAssign, ast.For, ast.While, ast.DoUntil)):
+            kind = type(st).__name__ if not isinstance(st, ast.Command) else st.name
+            raise InputError(f"{where}: the process path holds a {kind.upper()} statement that an arc program "
+                             f"cannot keep in place{_HINT}")
+    return switch
+
+
+def _names_taken(files) -> set[str]:
+    return {k.split("[")[0] for f in files for table in (f.trans, f.reals, f.joints) for k in table}
+
+
+def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, list[int], list[tuple[int, int]]]:
+    """(the file edited, its new bytes, the number of moves each path becomes, the lines each
+    replaces)."""
+    programs = {run.move_origins[i][0] for f in fitted for i in f.path.moves}
+    program_objs = [run.programs[name.lower()] for name in programs]
+    sources = {p.source for p in program_objs}
+    if len(sources) != 1:
+        raise InputError(f"the process paths lie in several files ({', '.join(sorted(sources))}){_HINT}")
+    source = sources.pop()
+    path = next(p for p in items if str(p) == source)
+    data = read_program_bytes(path)
+    taken = _names_taken(files)
+    prefix = next(p for p in ("cv", "cva", "cvb", "cvc", "cvz") if not any(t.startswith(p) for t in taken))
+    replacements, trans, counts, ranges = [], [], [], []
+    for k, f in enumerate(fitted, start=1):
+        origins = [run.move_origins[i] for i in f.path.moves]
+        names = {o[0] for o in origins}
+        if len(names) != 1:
+            raise InputError(f"the process path of lines {f.lines[0]}-{f.lines[1]} comes from programs "
+                             f"{', '.join(sorted(names))}{_HINT}")
+        program = run.programs[names.pop().lower()]
+        body = program.body
+        touched = [i for i, st in enumerate(body)
+                   if any(_span(st)[0] <= a <= _span(st)[1] or _span(st)[0] <= b <= _span(st)[1] for _, a, b in origins)]
+        lo, hi = touched[0], touched[-1]
+        first_line, last_line = _span(body[lo])[0], _span(body[hi])[1]
+        made = [i for i, (name, a, b) in enumerate(run.move_origins)
+                if name.lower() == program.name.lower() and first_line <= a and b <= last_line]
+        if made != list(f.path.moves):
+            raise InputError(f"{source}:{first_line}: lines {first_line}-{last_line} make other moves than the process "
+                             f"path (they run more than once, or hold other motions){_HINT}")
+        switch = _check_statements(body[lo:hi + 1], program, options.gun_signal)
+        moves = [run.toolpath.moves[i] for i in f.path.moves]
+        settings = {(m.settings.speed_mm_s, m.settings.accuracy_mm, m.settings.cp) for m in moves}
+        if len(settings) != 1:
+            raise InputError(f"{source}:{first_line}: the speed or accuracy changes along the process path{_HINT}")
+        base = run.move_bases[f.path.moves[0]]
+        if any(run.move_bases[i] is not base for i in f.path.moves):
+            raise InputError(f"{source}:{first_line}: BASE changes along the process path{_HINT}")
+        inverse = base.inverse()
+
+        def name(pose: Pose, _k=k) -> str:
+            user = inverse * Frame.from_pose(pose)
+            label = f"{prefix}{_k}_{len(trans):04d}"
+            if len(label) > 15:
+                raise InputError(f"too many new poses for 15-character names{_HINT}")
+            trans.append(" ".join((label, *pose_values(user.pose()))))
+            return label
+
+        statements = path_moves(f.segments, name)
+        indent = indentation(data, first_line)
+        block = [f"{indent}; coatsim convert: lines {first_line}-{last_line}, {len(moves)} moves -> "
+                 f"{f.n_lines} lines + {f.n_arcs} arcs within {fmt_short(options.tolerance_mm)} mm"]
+        for statement, comment in statements:
+            block.append(f"{indent}{statement}".ljust(30) + f" ; {sanitize_comment(comment)}")
+            if switch and not statement.startswith("C1MOVE"):  # after the first complete move, as before
+                block.append(f"{indent}SIGNAL {options.gun_signal}".ljust(30) + " ; gun on (as in the original)")
+                switch = False
+        replacements.append((first_line, last_line, block))
+        ranges.append((first_line, last_line))
+        counts.append(sum(1 for s, _ in statements if not s.startswith("C1MOVE")))
+    new = edit_lines(data, replacements, [".TRANS", *trans, ".END"])
+    return source, new, counts, ranges
