@@ -170,11 +170,12 @@ def curve_notes(name: str, execution: Execution, toolpath: ToolPath) -> list[Eve
     for lim in _limits(toolpath):
         line = where.line_at(a + lim.s0_mm)
         if lim.s0_mm == lim.s1_mm:
-            text = f"true corner at s = {lim.s0_mm:.1f} mm: the tool must stop there"
+            kind, text = "true corner", f"true corner at s = {lim.s0_mm:.1f} mm: the tool must stop there"
         else:
+            kind = "speed-limited stretch"
             text = (f"speed-limited stretch from s = {lim.s0_mm:.1f} to {lim.s1_mm:.1f} mm: the curve allows at most "
                     f"{lim.v_max_mm_s:.0f} mm/s within the tool acceleration limit")
-        out.append(Event(name, "speed-limited stretch", "note", line, text, lim.s0_mm))
+        out.append(Event(name, kind, "note", line, text, lim.s0_mm))
     if toolpath.metadata.get("closed") == "yes":
         out.append(Event(name, "seam", "note", where.line_at(a + 1.0),
                          f"seam at s = 0 (= {b - a:.1f} mm): the gun opens on the fly as the lap starts and "

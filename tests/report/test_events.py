@@ -66,8 +66,8 @@ def test_run_events_order_warnings_first_with_lines_and_notes():
     events = run_events("v", _execution(np.full_like(progress, 200.0), progress, messages, residual=0.02), toolpath)
     kinds = [e.kind for e in events]
     assert kinds[:2] == ["joint speed over the limit", "singularity proximity"]
-    assert {"IK residual", "speed-limited stretch", "seam"} <= set(kinds)
+    assert {"IK residual", "speed-limited stretch", "true corner", "seam"} <= set(kinds)
     assert events[0].line == 13 and events[0].t_s == 1.0 and events[1].s_mm == pytest.approx(150.0)
-    corner = next(e for e in events if "true corner" in e.message)
+    corner = next(e for e in events if e.kind == "true corner")
     assert corner.line == 12 and corner.severity == "note"
     assert lines_of(events, "v") == {12, 13}
