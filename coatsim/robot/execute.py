@@ -282,6 +282,7 @@ def execute_program(program: str | Path | Sequence[str | Path], model: str | Pat
     }
     write_text(files[1], json.dumps(doc, indent=2) + "\n")
     variant = toolpath.metadata.get("variant")
-    label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(program).name})"
+    first = Path(program if isinstance(program, (str, Path)) else program[0])
+    label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({first.name})"
     plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{label}: tool speed over the sprayed stretch")
     return result, files

@@ -152,7 +152,7 @@ class CellRenderer:
         cam.distance, cam.azimuth, cam.elevation = camera.distance_mm / M_TO_MM, camera.azimuth_deg, camera.elevation_deg
         mj.mjv_updateScene(self.model, self.data, self.option, mj.MjvPerturb(), cam, mj.mjtCatBit.mjCAT_ALL, self.scene)
         if path_mm is not None and len(path_mm) > 1:
-            self._polyline(np.asarray(path_mm) / M_TO_MM, 2.0, np.array([1.0, 0.45, 0.1, 1.0], np.float32))
+            self._polyline(np.asarray(path_mm) / M_TO_MM, 2.5, np.array([1.0, 1.0, 1.0, 1.0], np.float32))
         if spray_mm is not None:
             self._polyline(np.asarray(spray_mm) / M_TO_MM, 4.0, np.array([1.0, 0.9, 0.3, 1.0], np.float32))
         viewport = mj.MjrRect(0, 0, self.width, self.height)

@@ -130,7 +130,7 @@ def renders_html(data: Any, cell: Optional[Any]) -> str:
         f"The simulated arm and the part at {', '.join(f'{100 * f:.0f} %' for f in FRACTIONS)} of the spray time, "
         f"rendered offscreen by MuJoCo ({renderer.backend.upper()} backend), the part coloured by the thickness sprayed "
         f"so far on the report's scale ({vmin:g} to {vmax:.3g} µm, the colours of the heat maps), the sprayed aim "
-        f"points as an orange line and the spray axis as a yellow ray."))
+        f"points as a white line and the spray axis as a yellow ray."))
 
 
 def section(data: Any, cell: Optional[Any] = None, video: Optional[str] = None) -> Section:
