@@ -118,6 +118,13 @@ class ReportData:
     def track_view(self, run: Any) -> np.ndarray:
         """The sprayed aim points of ``run`` in the heat maps' view coordinates (k, 2) mm, NaN
         rows where the gun is closed (lines break there)."""
+        return self._track_views[run.name]
+
+    @cached_property
+    def _track_views(self) -> dict[str, np.ndarray]:
+        return {r.name: self._view_of(r) for r in self.runs}
+
+    def _view_of(self, run: Any) -> np.ndarray:
         log = run.execution.log
         step = max(1, len(log.t) // 4000)
         rows = np.arange(0, len(log.t), step)

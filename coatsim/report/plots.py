@@ -27,9 +27,11 @@ def pyplot():
 
 
 def png_bytes(fig, dpi: int = 100) -> bytes:
-    """The figure as PNG bytes without a timestamp (equal figures give equal bytes); closes it."""
+    """The figure as PNG bytes without a timestamp (equal figures give equal bytes); closes it.
+    The figure lays itself out (tight or constrained layout): a tight bounding box here would
+    draw it twice."""
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None}, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
     pyplot().close(fig)
     return buf.getvalue()
 
@@ -57,4 +59,5 @@ def polyline_figure(curve_xy: np.ndarray, polyline_xy: np.ndarray) -> bytes:
     ax.set_ylabel("y (mm)")
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
     return png_bytes(fig)

@@ -57,7 +57,8 @@ def histogram_figure(data: Any) -> bytes:
     for k, (ax, run) in enumerate(zip(axes[0], runs)):
         mask = run.coating.roi
         weights = 100.0 * area[mask] / max(float(area[mask].sum()), 1e-12)
-        ax.hist(run.coating.thickness_um[mask], bins=bins, weights=weights, color=colour(run.name, k))
+        counts, _ = np.histogram(run.coating.thickness_um[mask], bins=bins, weights=weights)
+        ax.stairs(counts, bins, fill=True, color=colour(run.name, k))
         ax.axvspan(BAND[0] * target, BAND[1] * target, color="#2e8b57", alpha=0.13, lw=0)
         ax.axvline(target, color="#2e8b57", lw=0.8, ls="--")
         ax.set_title(run.name, fontsize=9)
