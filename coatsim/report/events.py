@@ -131,13 +131,22 @@ def _limits(toolpath: ToolPath):
     return () if raw is None else parse_limits(raw, toolpath.name)
 
 
+def curve_spans(execution: Execution) -> tuple[tuple[float, float], ...]:
+    """Progress intervals (mm) of the curve proper: one, or one per contour of a part (the
+    travel between contours is no part of it)."""
+    return tuple(getattr(execution, "curves", ()) or (execution.curve,))
+
+
 def speed_dips(name: str, execution: Execution, toolpath: ToolPath) -> list[Event]:
     """Every stretch of the curve proper below AT_SPEED of the programmed speed, at the line of
     the move where the speed is lowest."""
-    log, (a, b) = execution.log, execution.curve
+    log, (a, _) = execution.log, execution.curve
     v = execution.metrics.programmed_speed_mm_s
     where = _Locator(execution, toolpath)
-    rows = np.flatnonzero((log.progress >= a) & (log.progress <= b))
+    inside = np.zeros(len(log.progress), bool)
+    for lo, hi in curve_spans(execution):
+        inside |= (log.progress >= lo) & (log.progress <= hi)
+    rows = np.flatnonzero(inside)
     if len(rows) == 0:
         return []
     slow = rows[log.speed[rows] < AT_SPEED * v]

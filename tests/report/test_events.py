@@ -71,3 +71,15 @@ def test_run_events_order_warnings_first_with_lines_and_notes():
     corner = next(e for e in events if e.kind == "true corner")
     assert corner.line == 12 and corner.severity == "note"
     assert lines_of(events, "v") == {12, 13}
+
+
+def test_the_travel_between_the_contours_of_a_part_has_no_dip():
+    """A part's run: two curves proper (0..100 and 200..300 mm) with a stop in the travel between."""
+    progress = np.linspace(0.0, 300.0, 3001)
+    speed = np.full_like(progress, 200.0)
+    speed[(progress > 120) & (progress < 180)] = 0.0
+    execution = _execution(speed, progress)
+    execution.curves = ((0.0, 100.0), (200.0, 300.0))
+    assert speed_dips("part", execution, _toolpath([11, 12, 13])) == []
+    execution.curves = ()
+    assert len(speed_dips("part", execution, _toolpath([11, 12, 13]))) == 1

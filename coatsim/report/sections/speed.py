@@ -8,7 +8,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from coatsim.report.events import AT_SPEED, Event
+from coatsim.report.events import AT_SPEED, Event, curve_spans
 from coatsim.report.html import Figure, Section, figure_html
 from coatsim.report.plots import colour, png_bytes, pyplot
 
@@ -36,8 +36,10 @@ def speed_figure(runs: Sequence[Any], events: Sequence[Event], numbers: Mapping[
         s, v = profile(run, lead_in_mm, lead_out_mm)
         length = run.execution.curve[1] - run.execution.curve[0]
         programmed = run.execution.metrics.programmed_speed_mm_s
-        ax.axvspan(min(s[0], 0.0), 0.0, color="#ececec", lw=0)
-        ax.axvspan(length, max(s[-1], length), color="#ececec", lw=0)
+        spans = [(lo - run.execution.curve[0], hi - run.execution.curve[0]) for lo, hi in curve_spans(run.execution)]
+        edges = [min(s[0], 0.0), *(x for span in spans for x in span), max(s[-1], length)]
+        for lo, hi in zip(edges[::2], edges[1::2]):  # run-in, travel between contours, run-out
+            ax.axvspan(lo, hi, color="#ececec", lw=0)
         ax.axhline(programmed, color="black", ls="--", lw=0.7)
         ax.axhline(AT_SPEED * programmed, color="#888888", ls=":", lw=0.7)
         ax.plot(s, v, color=colour(run.name, k), lw=1.0)
