@@ -5,13 +5,17 @@ Every CoatsimError becomes one line on stderr and its exit code; nothing else is
 
 from __future__ import annotations
 
+import os
+import signal
 import sys
+import threading
+import warnings
 from pathlib import Path
-from typing import Optional
+from typing import Callable, Optional
 
 import typer
 
-from coatsim.errors import CoatsimError
+from coatsim.errors import CoatsimError, CoatsimWarning
 
 app = typer.Typer(
     add_completion=False,
@@ -73,9 +77,12 @@ def segment(
 
     from coatsim.errors import InputError
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
+    from coatsim.outputs_guard import check_distinct
 
     if closed not in ("auto", "yes", "no"):
         fail(f"--closed: expected auto, yes or no, got {closed!r}")
+    check_distinct([("the input curve", None if input.startswith("builtin:") else input)],
+                   [("-o", output), ("--plot", plot)])
     if tool_accel is not None and speed is None:
         fail("--tool-accel: needs --speed")
     accel_mm_s2 = None
@@ -116,6 +123,7 @@ def run(
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF replacing the scenario's robot.model [default: the scenario's]."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per stage on stderr."),
     video: bool = typer.Option(False, "--video", help="Also write polysegment.mp4: the polysegment run rendered offscreen (needs imageio-ffmpeg)."),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run a scenario: programs, simulated arm, coating, metrics.json and report.html for every
     variant; exit 1 if a gate fails, 3 if the simulated arm diverges."""
@@ -126,7 +134,7 @@ def run(
     from coatsim.report.summary import summary_text
 
     started = time.perf_counter()
-    result = run_scenario(scenario, outdir, fast=fast, model=model, video=video)
+    result = run_scenario(scenario, outdir, fast=fast, model=model, force=force, video=video)
     typer.echo(summary_text(result.document))
     for warning in result.document["warnings"]:
         typer.echo(f"warning: {warning['variant']}: {warning['message']}", err=True)
@@ -165,12 +173,13 @@ def coat(
     occlusion: bool = typer.Option(False, "--occlusion", help="Ray-cast visibility for concave parts (slow)."),
     section: Optional[str] = typer.Option(None, "--section", help="Cross-section line x0,y0,x1,y1 in heat-map coordinates, mm."),
     out: Path = typer.Option(Path("out/coat"), "-o", "--out", help="Output folder."),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Spray a logged trajectory onto a surface: thickness.ply, coating.json, heatmap.png, section.png."""
     from coatsim.spray.coat import run_coat
 
     result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
-                             edge_band, de_exponent, occlusion, section, out)
+                             edge_band, de_exponent, occlusion, section, out, force)
     m = result.metrics
     typer.echo(f"{result.surface.n_vertices} vertices, spray {m['spray_time_s']:.3f} s; ROI ({roi}) "
                f"mean {m['thickness_mean_um']:.3f} um, CV {m['thickness_cv']:.4f}, "
@@ -233,6 +242,7 @@ def execute(
     main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
     if it cannot be executed or the simulated arm diverges."""
@@ -240,7 +250,7 @@ def execute(
     from coatsim.robot.execute import execute_program
 
     result, files = execute_program(program, model, output, gun, step, main,
-                                    parse_inputs(inputs) if inputs is not None else None)
+                                    parse_inputs(inputs) if inputs is not None else None, force=force)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
@@ -272,10 +282,12 @@ def convert(
 ) -> None:
     """Rewrite the process path of an existing AS program with arcs within a tolerance."""
     from coatsim.fileio import write_text
+    from coatsim.outputs_guard import check_distinct
     from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
     from coatsim.robot.kinematics import LazyKinematics
 
+    check_distinct([*(("the program", p) for p in paths), ("--model", model)], [("-o", output)])
     line_range = None
     if lines is not None:
         first, sep, last = lines.partition("-")
@@ -339,26 +351,81 @@ def _click_errors() -> tuple[type, ...]:
     return tuple(found)
 
 
-def main() -> None:
-    """Console entry point: run the app, turning CoatsimError into a one-line error."""
+class _Signalled(BaseException):
+    """Raised by the SIGINT/SIGTERM handlers; a BaseException of our own, so that neither click
+    nor a library swallows it, while every ``finally`` (temporary files, folder locks) runs."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _raise_signalled(signum: int, frame: object) -> None:
+    raise _Signalled(signum)
+
+
+def _one_line_warnings(show_other: Callable) -> Callable:
+    """A ``warnings.showwarning`` that prints a CoatsimWarning as one line on stderr."""
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        if issubclass(category, CoatsimWarning):
+            typer.echo(f"coatsim: warning: {message}", err=True)
+        else:
+            show_other(message, category, filename, lineno, file, line)
+
+    return show
+
+
+_SIGNAL_EXITS = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
+
+
+def _run() -> int:
+    """Run the app and turn every failure into one line on stderr; return the exit code."""
     try:
         # Without standalone mode click returns typer.Exit's code instead of raising it.
         code = app(standalone_mode=False)
     except CoatsimError as exc:
         typer.echo(f"coatsim: error: {exc}", err=True)
-        sys.exit(exc.exit_code)
+        return exc.exit_code
     except typer.Exit as exc:
-        sys.exit(exc.exit_code)
-    except typer.Abort:
-        typer.echo("coatsim: aborted", err=True)
-        sys.exit(130)
+        return exc.exit_code
+    except (_Signalled, KeyboardInterrupt, typer.Abort) as exc:
+        status, word = _SIGNAL_EXITS[getattr(exc, "signum", signal.SIGINT)]
+        typer.echo(f"coatsim: {word}", err=True)
+        return status
+    except MemoryError:
+        typer.echo("coatsim: error: out of memory; use coarser settings (a larger step, spacing or tolerance) "
+                   "or allow the process more memory", err=True)
+        return 3
     except Exception as exc:  # click usage errors and the like
         if isinstance(exc, _click_errors()):
             # one line, like every other error; `coatsim COMMAND --help` shows the usage
             typer.echo(f"coatsim: error: {exc.format_message()} (see --help)", err=True)
-            sys.exit(exc.exit_code)
-        raise
-    sys.exit(code if isinstance(code, int) else 0)
+            return exc.exit_code
+        if os.environ.get("COATSIM_TRACEBACK"):
+            raise
+        first = (str(exc).strip().splitlines() or [""])[0][:200]
+        typer.echo(f"coatsim: internal error: {type(exc).__name__}: {first} (a bug in coatsim; "
+                   "COATSIM_TRACEBACK=1 shows the traceback)", err=True)
+        return 70
+    return code if isinstance(code, int) else 0
+
+
+def main() -> None:
+    """Console entry point: exit codes 0 ok, 1 gate failed, 2 invalid input, 3 cannot execute,
+    70 internal error, 130 interrupted (SIGINT), 143 terminated (SIGTERM)."""
+    handlers = {}
+    if threading.current_thread() is threading.main_thread():
+        handlers = {signum: signal.signal(signum, _raise_signalled) for signum in _SIGNAL_EXITS}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("always", CoatsimWarning)
+            warnings.showwarning = _one_line_warnings(warnings.showwarning)
+            status = _run()
+    finally:
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
+    sys.exit(status)
 
 
 if __name__ == "__main__":

@@ -5,6 +5,8 @@ Exit codes: 0 success; 1 a gate failed; 2 invalid input; 3 cannot execute.
 
 from __future__ import annotations
 
+import re
+
 
 class CoatsimError(Exception):
     """Base of every error coatsim reports to a user; the message is one line."""
@@ -28,3 +30,23 @@ class GateFailure(CoatsimError):
     """An accuracy gate failed (exit 1)."""
 
     exit_code = 1
+
+
+class CoatsimWarning(UserWarning):
+    """Something a user should know that does not stop the run; the CLI prints it on one line."""
+
+
+# a number, or a number with a typo or a unit ('1.2.3', '2mm', '1e5x'): starts like a number
+_NUMBER_LIKE = re.compile(r"^(?:[-+0-9.,eE_ ]{1,24}|[-+]?\.?[0-9][0-9A-Za-z.,_%+-]{0,15})$")
+_NAME_LIKE = re.compile(r"^[A-Za-z_][A-Za-z0-9_ ()\[\]/.-]{0,23}$")
+
+
+def shown(field: str, names: bool = False) -> str:
+    """How an error quotes a field read from a file: a short number-like field (and, with
+    ``names``, a short column name) as is, anything else only by its length, so that an error
+    never echoes the content of a file that is not what it was asked to read (a scenario that
+    points at ``/etc/passwd``)."""
+    text = field.strip()
+    if _NUMBER_LIKE.match(text) or (names and _NAME_LIKE.match(text)):
+        return repr(text)
+    return f"a {len(text)}-character text" if text else "an empty field"

@@ -102,7 +102,12 @@ def load_input_curve(loaded: ScenarioFile) -> Curve:
         raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
     angle = math.radians(spec.rotate_deg)
     rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
-    return curve.transformed(rotation, np.zeros(2), spec.scale)
+    try:  # checked again: a scale can push a valid curve out of range
+        with np.errstate(all="ignore"):
+            placed = curve.transformed(rotation, np.zeros(2), spec.scale)
+            return make_curve(placed.points, curve.name, "yes" if curve.closed else "no")
+    except InputError as exc:
+        raise InputError(f"{loaded.where('curve', 'scale')}: curve (scaled by {spec.scale:g}): {exc}") from None
 
 
 def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:
@@ -272,6 +277,46 @@ def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
     return measured
 
 
+def variant_names(spec: Scenario) -> list[str]:
+    """The names of the scenario's variants (built-in variants and program variants)."""
+    return [entry if isinstance(entry, str) else entry.name for entry in spec.variants]
+
+
+def reference_variant(spec: Scenario) -> str:
+    """The variant the report compares the others with (and ``--video`` shows): the
+    polysegment, else the first."""
+    names = variant_names(spec)
+    return "polysegment" if "polysegment" in names else names[0]
+
+
+def output_names(spec: Scenario, video: bool = False) -> list[str]:
+    """The files a run of ``spec`` writes into its output folder, in writing order."""
+    names = variant_names(spec)
+    programs = [f"{v}.{kind}" for v in names for kind in ("as", "trajectory.csv")]
+    coats = [f"{v}.{kind}" for v in names for kind in ("thickness.ply", "thickness.glb")]
+    movie = [f"{reference_variant(spec)}.mp4"] if video else []
+    return ["polysegment.json", *programs, "metrics.json", *coats, *movie, "report.html"]
+
+
+def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
+    """Every file the scenario reads, labelled by its key (None where the key names no file)."""
+    spec = loaded.spec
+    table = spec.gun.footprint.strip()
+    scenario_model = None if spec.robot.model == "default" else loaded.resolve(spec.robot.model)
+    robot = Path(model) if model is not None else scenario_model
+    files: list[tuple[str, Optional[Path]]] = [
+        ("the scenario", loaded.path),
+        ("curve.file", loaded.resolve(spec.curve.file) if spec.curve is not None and spec.curve.file else None),
+        ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece.kind == "mesh" else None),
+        ("gun.footprint", loaded.resolve(table.split(":", 1)[1].strip()) if table.lower().startswith("table:") else None),
+        ("--model" if model is not None else "robot.model", robot),
+    ]
+    for entry in spec.variants:
+        if not isinstance(entry, str):
+            files += [(f"the program of variant {entry.name}", loaded.resolve(f)) for f in entry.files]
+    return files
+
+
 def write_thickness_files(runs: list[VariantRun], out: Path, standoff_mm: float) -> list[Path]:
     """Every variant's ``V.thickness.ply`` (the properties ``coatsim coat`` writes) and
     ``V.thickness.glb`` (vertex colours, the sprayed tool path), all on the report's one
@@ -290,21 +335,34 @@ def write_thickness_files(runs: list[VariantRun], out: Path, standoff_mm: float)
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
-                 progress: Optional[bool] = None, model: Optional[str | Path] = None, *,
+                 progress: Optional[bool] = None, model: Optional[str | Path] = None, force: bool = False, *,
                  video: bool = False) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
-    ``outdir`` defaults to ``runs/<name>``; ``fast`` uses the scenario's coarser ``fast``
-    settings; ``progress`` defaults to showing a bar when stderr is a terminal; ``model``
-    replaces the scenario's robot model; ``video`` also writes an MP4 of the polysegment run.
+    ``outdir`` defaults to ``runs/<name>`` and is held for the run (coatsim.outputs_guard): no
+    output may be an input, and files there that coatsim did not write are replaced only with
+    ``force``. ``fast`` uses the scenario's coarser ``fast`` settings; ``progress`` defaults to
+    showing a bar when stderr is a terminal; ``model`` replaces the scenario's robot model;
+    ``video`` also writes an MP4 of the reference (polysegment) run.
     """
-    from coatsim.report.document import write_report
+    from coatsim.outputs_guard import check_distinct, output_folder
 
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
+    out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
+    names = output_names(loaded.spec, video)
+    check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
+    with output_folder(out, names, "coatsim run", force):
+        return _run_in(loaded, cell, out, fast, progress, video)
+
+
+def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool],
+            video: bool = False) -> RunResult:
+    """Every stage of a loaded scenario, writing into the held folder ``out``."""
+    from coatsim.report.document import write_report
+
     spec = loaded.spec
-    out = Path(outdir) if outdir is not None else Path("runs") / spec.name
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
     sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
@@ -351,7 +409,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
         write_text(out / "metrics.json", to_json(document))
         report_started = time.perf_counter()
-        thickness_files = write_thickness_files(runs, out, spec.gun.standoff_mm)
+        write_thickness_files(runs, out, spec.gun.standoff_mm)
         movie = None
         if video:
             from coatsim.report.data import ReportData
@@ -359,12 +417,9 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
 
             step("rendering the video")
             data = ReportData(loaded, (segmentation,), tuple(runs), document)
-            movie = write_video(out / f"{data.reference.name}.mp4", data, cell)
+            movie = write_video(out / f"{reference_variant(spec)}.mp4", data, cell)
         write_report(out / "report.html", loaded, (segmentation,), runs, document, cell=cell,
                      video=None if movie is None else movie.name)
         report_s = time.perf_counter() - report_started
-    files = [out / "polysegment.json"]
-    for r in runs:
-        files += [out / f"{r.name}.as", out / f"{r.name}.trajectory.csv"]
-    files += thickness_files + [out / "metrics.json", out / "report.html"] + ([movie] if movie else [])
-    return RunResult(out, tuple(runs), document, tuple(files), segmentation.seconds, report_s)
+    files = tuple(out / name for name in output_names(spec, video))
+    return RunResult(out, tuple(runs), document, files, segmentation.seconds, report_s)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import inspect
 import json
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping, Optional, Union
@@ -29,6 +30,8 @@ BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
 Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
 Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
 Positive = Annotated[float, Field(gt=0)]
+# A scenario name names the run folder (runs/NAME) and its programs: never '.', '..', '-x'.
+SCENARIO_NAME = r"^[A-Za-z][A-Za-z0-9_.-]{0,63}$"
 NonNegative = Annotated[float, Field(ge=0)]
 
 
@@ -260,7 +263,7 @@ class GateSpec(_Strict):
 class Scenario(_Strict):
     """One coating job, as written in a scenario YAML file."""
 
-    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
+    name: Annotated[str, Field(pattern=SCENARIO_NAME, description="a file stem: names the run folder and its programs")]
     description: str = ""
     curve: Optional[CurveSpec] = Field(None, description="the curve; without it, the sprayed path of the first "
                                        "program variant")
@@ -273,6 +276,14 @@ class Scenario(_Strict):
     coating: CoatingSpec = Field(default_factory=CoatingSpec)
     fast: FastSpec = Field(default_factory=FastSpec)
     gates: list[GateSpec] = Field(default_factory=list)
+
+    @field_validator("name", mode="before")
+    @classmethod
+    def _file_stem(cls, name: Any) -> Any:
+        if isinstance(name, str) and not re.match(SCENARIO_NAME, name):
+            raise ValueError(f"{name!r} is not a safe file stem: a letter, then letters, digits, '_', '-' or '.' "
+                             "(at most 64 characters), e.g. 'paper_spiral'")
+        return name
 
     @field_validator("variants")
     @classmethod

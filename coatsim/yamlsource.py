@@ -1,5 +1,9 @@
 """YAML with line numbers: load a document, remember the line of every key path, and turn a
 pydantic validation error into one line that names the file, the line and the key path.
+
+Loading is bounded (coatsim.budgets): file size, nesting depth, alias uses and the node count
+after expanding aliases are checked while composing, before any value is built, so neither a
+deeply nested file nor an alias bomb ("billion laughs") nor a recursive alias gets far.
 """
 
 from __future__ import annotations
@@ -13,6 +17,7 @@ from typing import Any, Mapping, Union
 import yaml
 from pydantic import BaseModel, ValidationError
 
+from coatsim.budgets import MAX_YAML_ALIASES, MAX_YAML_BYTES, MAX_YAML_DEPTH, MAX_YAML_NODES
 from coatsim.errors import InputError
 
 Loc = tuple[Union[str, int], ...]
@@ -27,8 +32,37 @@ _FLOAT = re.compile(
 )
 
 
+class _OverBudget(Exception):
+    """A YAML budget was exceeded at ``line`` (1-based)."""
+
+    def __init__(self, line: int, message: str):
+        super().__init__(message)
+        self.line = line
+
+
 class _Loader(yaml.SafeLoader):
-    """SafeLoader that reads ``1e-3`` as a float (YAML 1.2 style) and keeps dates as text."""
+    """SafeLoader that reads ``1e-3`` as a float (YAML 1.2 style), keeps dates as text and
+    refuses nesting deeper than MAX_YAML_DEPTH and more than MAX_YAML_ALIASES alias uses."""
+
+    def __init__(self, stream: str):
+        super().__init__(stream)
+        self._depth = 0
+        self._aliases = 0
+
+    def compose_node(self, parent: Any, index: Any) -> yaml.Node:
+        line = self.peek_event().start_mark.line + 1
+        if self.check_event(yaml.AliasEvent):
+            self._aliases += 1
+            if self._aliases > MAX_YAML_ALIASES:
+                raise _OverBudget(line, f"more than {MAX_YAML_ALIASES} alias uses (*name); write the values out")
+            return super().compose_node(parent, index)
+        self._depth += 1
+        try:
+            if self._depth > MAX_YAML_DEPTH:
+                raise _OverBudget(line, f"nested deeper than {MAX_YAML_DEPTH} levels")
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
 
 
 _Loader.yaml_implicit_resolvers = {
@@ -77,10 +111,55 @@ def _record_lines(node: yaml.Node, loc: Loc, lines: dict[Loc, int], path: Path) 
             _record_lines(item, loc + (i,), lines, path)
 
 
+def _check_expansion(root: yaml.Node) -> None:
+    """Refuse a document whose aliases expand past MAX_YAML_NODES nodes or MAX_YAML_DEPTH
+    levels, or refer to themselves; linear time (subtree sizes are memoised per node)."""
+    memo: dict[int, tuple[int, int]] = {}  # id(node) -> (expanded nodes, expanded height)
+    active: set[int] = set()
+
+    def visit(node: yaml.Node, depth: int) -> tuple[int, int]:
+        line = node.start_mark.line + 1
+        key = id(node)
+        if key in active:
+            raise _OverBudget(line, "an alias refers to the node that contains it (recursive alias)")
+        if key not in memo:
+            if depth > MAX_YAML_DEPTH:
+                raise _OverBudget(line, f"nested deeper than {MAX_YAML_DEPTH} levels once aliases are expanded")
+            children: list[yaml.Node] = []
+            if isinstance(node, yaml.MappingNode):
+                children = [n for pair in node.value for n in pair]
+            elif isinstance(node, yaml.SequenceNode):
+                children = list(node.value)
+            active.add(key)
+            size, height = 1, 1
+            for child in children:
+                child_size, child_height = visit(child, depth + 1)
+                size, height = size + child_size, max(height, child_height + 1)
+                if size > MAX_YAML_NODES:
+                    raise _OverBudget(line, f"aliases expand to more than {MAX_YAML_NODES:,} values; write the values out")
+            active.discard(key)
+            memo[key] = (size, height)
+        size, height = memo[key]
+        if depth + height - 1 > MAX_YAML_DEPTH:
+            raise _OverBudget(line, f"nested deeper than {MAX_YAML_DEPTH} levels once aliases are expanded")
+        return size, height
+
+    visit(root, 1)
+
+
+def _read_bounded(path: Path) -> str:
+    """The file's text, refused unread past MAX_YAML_BYTES."""
+    with open(path, "rb") as handle:
+        data = handle.read(MAX_YAML_BYTES + 1)
+    if len(data) > MAX_YAML_BYTES:
+        raise InputError(f"{path}: larger than {MAX_YAML_BYTES // 1024} KiB, the budget for a YAML file")
+    return data.decode("utf-8")
+
+
 def load_yaml_with_lines(path: Path) -> tuple[Any, dict[Loc, int]]:
     """Parse one YAML document; return the data and the line of every key path."""
     try:
-        text = path.read_text(encoding="utf-8")
+        text = _read_bounded(path)
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
     except IsADirectoryError:
@@ -92,9 +171,12 @@ def load_yaml_with_lines(path: Path) -> tuple[Any, dict[Loc, int]]:
         node = loader.get_single_node()
         if node is None:
             raise InputError(f"{path}: empty file, expected a scenario (name, curve, workpiece, ...)")
+        _check_expansion(node)
         lines: dict[Loc, int] = {(): node.start_mark.line + 1}
         _record_lines(node, (), lines, path)
         data = loader.construct_document(node)
+    except _OverBudget as exc:
+        raise InputError(f"{path}:{exc.line}: {exc}") from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f"{path}:{mark.line + 1}" if mark else str(path)

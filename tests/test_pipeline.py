@@ -55,7 +55,7 @@ def test_a_failing_gate_exits_1_after_writing_everything(small_run: tuple[Cli, P
     cli, outdir = small_run
     assert cli.code == 1, cli.err
     assert cli.err.count("\n") == 1 and "coatsim: error: 1 gate(s) failed: coating.thickness_cv [polysegment] < 0" in cli.err
-    expected = {"polysegment.json", "metrics.json", "report.html"}
+    expected = {"polysegment.json", "metrics.json", "report.html", ".coatsim-outputs.json"}
     expected |= {f"{v}.{ext}" for v in VARIANTS for ext in ("as", "trajectory.csv", "thickness.ply", "thickness.glb")}
     assert {p.name for p in outdir.iterdir()} == expected
     for variant in VARIANTS:

@@ -10,10 +10,12 @@ from typing import Literal
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_CURVE_FILE_BYTES, MAX_CURVE_POINTS, check_budget
+from coatsim.errors import InputError, shown
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
+MIN_LENGTH_MM = 1e-6  # a shorter curve is no curve to spray (and leaves no room for float round-off)
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,9 +49,14 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
         raise InputError(f"{name}: expected x,y points, got an array of shape {pts.shape}")
     if len(pts) == 0:
         raise InputError(f"{name}: no points")
+    check_budget(f"{name}: curve points", len(pts), MAX_CURVE_POINTS, "thin the curve out")
     bad = ~np.isfinite(pts).all(axis=1)
     if bad.any():
         raise InputError(f"{name}: point {int(np.argmax(bad)) + 1} is not finite (NaN or inf)")
+    far = np.abs(pts).max(axis=1) > MAX_ABS_COORDINATE_MM
+    if far.any():
+        raise InputError(f"{name}: point {int(np.argmax(far)) + 1} lies beyond {MAX_ABS_COORDINATE_MM:g} mm from the "
+                         "origin; give coordinates in mm near the part")
     keep = np.ones(len(pts), dtype=bool)
     keep[1:] = np.any(np.diff(pts, axis=0) != 0.0, axis=1)
     pts = pts[keep]
@@ -57,6 +64,8 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
         what = "one point" if keep.size == 1 else "all points are equal"
         raise InputError(f"{name}: a curve needs at least two distinct points ({what})")
     length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    if not length >= MIN_LENGTH_MM:
+        raise InputError(f"{name}: the curve is {length:.3g} mm long; give at least {MIN_LENGTH_MM:g} mm (coordinates in mm)")
     gap = float(np.linalg.norm(pts[-1] - pts[0]))
     if closed == "auto":
         is_closed = len(pts) >= 4 and gap <= CLOSE_FRACTION * length
@@ -76,6 +85,8 @@ _SEPARATORS = re.compile(r"[,;\s]+")
 
 
 def _read_text_points(path: Path) -> np.ndarray:
+    check_budget(f"{path}: bytes of curve text", path.stat().st_size, MAX_CURVE_FILE_BYTES,
+                 "thin the curve out or save it as an (n, 2) .npy array")
     try:
         text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:
@@ -96,8 +107,9 @@ def _read_text_points(path: Path) -> np.ndarray:
             if not rows and not header_seen and not _is_float(fields[0]):
                 header_seen = True
                 continue  # header row: its first field is a name such as "x" or "x (mm)"
-            bad = next(f for f in fields if not _is_float(f))
-            raise InputError(f"{path}:{number}: not a number: {bad!r} (expected x,y columns)") from None
+            column = next(k for k, f in enumerate(fields, start=1) if not _is_float(f))
+            raise InputError(f"{path}:{number}: field {column} is not a number: {shown(fields[column - 1])} "
+                             "(expected x,y columns)") from None
         if len(values) < 2:
             raise InputError(f"{path}:{number}: expected two columns x,y, found {len(values)}")
         x, y = values[0], values[1]
@@ -118,12 +130,18 @@ def _is_float(text: str) -> bool:
 
 
 def _read_npy_points(path: Path) -> np.ndarray:
+    with open(path, "rb") as handle:
+        if handle.read(6) != b"\x93NUMPY":
+            raise InputError(f"{path}: not a .npy file (no NumPy header); save the points with numpy.save")
     try:
-        data = np.load(path, allow_pickle=False)
+        data = np.load(path, allow_pickle=False, mmap_mode="r")  # the header first: shape before reading
     except (ValueError, OSError) as exc:
-        raise InputError(f"{path}: not a readable .npy array ({exc})") from None
-    if data.ndim != 2 or data.shape[1] < 2 or not np.issubdtype(data.dtype, np.number):
-        raise InputError(f"{path}: expected a numeric (n, 2) array, got {data.dtype} {data.shape}")
+        raise InputError(f"{path}: not a readable .npy array ({str(exc).splitlines()[0][:120]})") from None
+    if data.ndim == 2:
+        check_budget(f"{path}: curve points", data.shape[0], MAX_CURVE_POINTS, "thin the curve out")
+    real = np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)
+    if data.ndim != 2 or data.shape[1] < 2 or not real:
+        raise InputError(f"{path}: expected a real-valued (n, 2) array, got {data.dtype} {data.shape}")
     return data[:, :2].astype(float)
 
 

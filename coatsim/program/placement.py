@@ -92,6 +92,10 @@ class Placement:
             ("lead_in_mm", self.lead_in_mm, self.lead_in_mm >= 0.0),
             ("lead_out_mm", self.lead_out_mm, self.lead_out_mm >= 0.0),
         )
+        if not math.isfinite(self.roll_deg):
+            raise InputError(f"roll_deg = {self.roll_deg}: must be a finite number of degrees")
+        if not all(math.isfinite(v) for v in self.offset_xy):
+            raise InputError(f"offset_xy = {self.offset_xy}: must be finite (mm)")
         for name, value, ok in checks:
             if not (ok and math.isfinite(value)):
                 raise InputError(f"{name} = {value}: must be a finite number {'> 0' if name == 'standoff_mm' else '>= 0'}")

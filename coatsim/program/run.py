@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import replace
 from pathlib import Path
 from typing import Optional
 
+from coatsim.errors import CoatsimWarning
 from coatsim.fileio import write_text
 from coatsim.program.as_lang.parser import parse_as
 from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
@@ -24,14 +26,23 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     their coordinates put them. With ``tool_accel_mm_s2`` the curve is segmented for the
     programmed speed (see :func:`load_program_input`).
     """
+    from coatsim.outputs_guard import check_distinct
+
     placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
+    check_distinct([("the input", None if spec.startswith("builtin:") else spec)], [("-o", output)])
     speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
     inp = load_program_input(spec, tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
     if inp.builtin if center is None else center:
         placement = replace(placement, offset_xy=centering_offset(inp.polysegment))
     built = build_program(inp.polysegment, placement, options, tolerance_mm=inp.tolerance_mm,
                           source=inp.source, points=inp.points)
+    parse_as(built.text)  # what goes to disk must read back (raises InputError otherwise)
+    longest = max(max(s.length for s in built.path.segments), options.approach_mm)
+    if options.accuracy_mm > longest:
+        warnings.warn(f"--accuracy {options.accuracy_mm:g} mm is longer than every move (the longest is {longest:.4g} "
+                      "mm); blended corners are rounded as far as the controller allows, half their shorter "
+                      "neighbouring move", CoatsimWarning, stacklevel=2)
     if output is not None:
         write_text(output, built.text)
     return built

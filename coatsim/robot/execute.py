@@ -12,6 +12,7 @@ from typing import Mapping, Sequence
 import mujoco
 import numpy as np
 
+from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
@@ -22,8 +23,9 @@ from coatsim.robot.ik import Residual, Tracker, joint_path_events
 from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
+from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
-from coatsim.robot.sampling import JointPiece, plan_pieces, step_label
+from coatsim.robot.sampling import JointPiece, min_motion_time_s, plan_pieces, step_label
 from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
@@ -142,6 +144,11 @@ def _allowance(toolpath: ToolPath) -> CurveAllowance:
                           _metadata_mm(toolpath, "lead_out_mm"))
 
 
+def steps_left(segments: list[_Segment]) -> int:
+    """Simulation steps the pieces timed so far leave of MAX_SIM_STEPS."""
+    return MAX_SIM_STEPS - sum(len(s.timed.t) for s in segments)
+
+
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
     """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration.
 
@@ -155,13 +162,19 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     t_start = time.perf_counter()
     toolpath = with_tool_changes(toolpath, cell)
     pieces = plan_pieces(toolpath, step_mm)
+    least_s = min_motion_time_s(toolpath, pieces)
+    check_budget(f"{toolpath.name}: simulation steps of {cell.timestep * 1e3:g} ms (at least {least_s:.4g} s of "
+                 "motion and dwells at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
+                 "raise the programmed SPEED (coatsim program --speed, the scenario's motion.speed_mm_s) or "
+                 "shorten the dwells")
     mount_r, mount_p = _mounts(toolpath, cell)
     tracker = Tracker(cell)
     fk = mujoco.MjData(cell.model)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
     chunks: list = []
-    events: list[str] = tool_mismatches(toolpath, cell)
+    events: list[str] = tool_mismatches(toolpath, cell) + [e for e in (accuracy_event(toolpath, pieces),) if e]
+    too_fast: list[str] = []
     worst = [0.0, 0.0, 0]
     offset = 0.0
     max_blend = 0.0
@@ -189,7 +202,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
             t0 = time.perf_counter()
-            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label)
+            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=steps_left(segments))
             wall["timing_s"] += time.perf_counter() - t0
             tcp = np.array([cell.forward(fk, q)[0] for q in timed.q])
             chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
@@ -211,8 +224,10 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
         wall["ik_s"] += time.perf_counter() - t0
         worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
         events.extend(e for e in joint_path_events(cell, qs, wrist, labels) if e not in events)
+        too_fast.extend(filter(None, [speed_event(cell, piece, qs, labels[int(np.argmax(piece.speed))])]))
         t0 = time.perf_counter()
-        timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0])
+        timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0],
+                               max_steps=steps_left(segments))
         wall["timing_s"] += time.perf_counter() - t0
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
         segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
@@ -224,6 +239,8 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     rest_until(float("inf"))
     if not segments:
         raise ExecutionError(f"{toolpath.name}: the program moves the tool nowhere")
+    if too_fast:
+        events.append(too_fast[0] + (f" (and on {len(too_fast) - 1} more stretches)" if len(too_fast) > 1 else ""))
 
     # one timeline on the simulation grid; consecutive pieces share their rest point
     keep = [slice(None)] + [slice(1, None)] * (len(segments) - 1)
@@ -256,33 +273,37 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
 
 def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
                     gun_signal: int = 1, step_mm: float = 1.0, main: str | None = None,
-                    inputs: Mapping[int, bool] | None = None) -> tuple[Execution, list[Path]]:
+                    inputs: Mapping[int, bool] | None = None, force: bool = False) -> tuple[Execution, list[Path]]:
     """``coatsim execute``: read AS program files, run the main program (``main``, default the
-    first), write trajectory.csv, motion.json and speed.png into ``outdir``."""
+    first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
+    see coatsim.outputs_guard)."""
+    from coatsim.outputs_guard import check_distinct, output_folder
     from coatsim.program import read_toolpath
     from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.plots import plot_speed
 
+    sources = [program] if isinstance(program, (str, Path)) else list(program)
+    out = Path(outdir)
+    names = ["trajectory.csv", "motion.json", "speed.png"]
+    files = [out / name for name in names]
+    check_distinct([*(("the program", p) for p in sources), ("--model", model)], [("output", f) for f in files])
     cell = load_cell(model)
     toolpath = read_toolpath(program, gun_signal=gun_signal, program=main, inputs=inputs,
                              kinematics=CellKinematics(cell))
-    result = execute(toolpath, cell, step_mm)
-    out = Path(outdir)
-    files = [out / "trajectory.csv", out / "motion.json", out / "speed.png"]
-    result.log.write_csv(files[0])
-    doc = {
-        "format": "coatsim.motion/1",
-        "program": str(program) if isinstance(program, (str, Path)) else
-        str(program[0]) if len(program) == 1 else [str(p) for p in program],
-        "model": str(model) if model is not None else "default",
-        "step_mm": step_mm,
-        "motion": result.metrics.as_dict(),
-        "events": list(result.events),
-        "warnings": list(result.warnings),
-    }
-    write_text(files[1], json.dumps(doc, indent=2) + "\n")
-    variant = toolpath.metadata.get("variant")
-    first = Path(program if isinstance(program, (str, Path)) else program[0])
-    label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({first.name})"
-    plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{label}: tool speed over the sprayed stretch")
+    with output_folder(out, names, "coatsim execute", force):
+        result = execute(toolpath, cell, step_mm)
+        result.log.write_csv(files[0])
+        doc = {
+            "format": "coatsim.motion/1",
+            "program": str(sources[0]) if len(sources) == 1 else [str(p) for p in sources],
+            "model": str(model) if model is not None else "default",
+            "step_mm": step_mm,
+            "motion": result.metrics.as_dict(),
+            "events": list(result.events),
+            "warnings": list(result.warnings),
+        }
+        write_text(files[1], json.dumps(doc, indent=2) + "\n")
+        variant = toolpath.metadata.get("variant")
+        label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(sources[0]).name})"
+        plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{label}: tool speed over the sprayed stretch")
     return result, files

@@ -23,7 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from coatsim.errors import ExecutionError
+from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.errors import ExecutionError, InputError
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
@@ -233,11 +234,23 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 
 
 def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
-    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm."""
-    if not step > 0:
-        raise ExecutionError(f"sampling step must be positive, got {step}")
+    """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm.
+
+    The number of samples is checked against MAX_PATH_SAMPLES before any is made."""
+    if not (math.isfinite(step) and step > 0):
+        raise InputError(f"sampling step (--step-mm) must be a positive number of mm, got {step}")
     if not toolpath.moves:
         raise ExecutionError(f"{toolpath.name}: the program has no motion")
+    spans: dict[int, _Span] = {}
+    for index, move in enumerate(toolpath.moves):
+        if not isinstance(move, (JointMove, LinearMove, CircularMove)):
+            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
+        if not isinstance(move, JointMove):
+            spans[index] = _span(toolpath, index)
+    length = sum(sp.prim.length for sp in spans.values())
+    check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
+                 length / step + 10 * len(spans), MAX_PATH_SAMPLES,
+                 "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
     pieces: list[Piece] = []
     chain: list[_Span] = []
 
@@ -252,9 +265,7 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             pieces.append(JointPiece(move.target, float(move.settings.speed_mm_s), bool(move.spray), index,
                                      move.joints_rad))
             continue
-        if not isinstance(move, (LinearMove, CircularMove)):
-            raise ExecutionError(f"{toolpath.name}: unsupported move kind {getattr(move, 'kind', type(move).__name__)!r}")
-        span = _span(toolpath, index)
+        span = spans[index]
         if span.prim.length <= MIN_MOVE_MM:
             if span.stop:
                 flush()  # nothing to execute, but the tool comes to rest here (a dwell may follow)
@@ -272,3 +283,20 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
         m = toolpath.moves[int(first.move[0])]
         pieces.insert(0, JointPiece(m.start, float(m.settings.speed_mm_s), False, None))
     return tuple(pieces)
+
+
+def min_motion_time_s(toolpath: ToolPath, pieces: tuple[Piece, ...]) -> float:
+    """A lower bound on the time the program takes: every path length at its programmed speed,
+    joint moves by the straight distance between their end points, every dwell (the budget of
+    simulation steps is checked with it before any timing)."""
+    total, here = sum(d.seconds for d in toolpath.dwells), None
+    for piece in pieces:
+        if isinstance(piece, JointPiece):
+            target = np.asarray(piece.target.position, float)
+            distance = 0.0 if here is None else float(np.linalg.norm(target - here))
+            total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
+            here = target
+        else:
+            total += float(np.sum(np.diff(piece.s) / piece.speed[1:]))
+            here = piece.position[-1]
+    return total

@@ -23,6 +23,7 @@ import toppra.constraint as tc
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
 from toppra.parametrizer import ParametrizeConstAccel
 
+from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 
@@ -119,12 +120,16 @@ def _parametrize(cell: Cell, path, extra: list, gridpoints: np.ndarray, label: s
     return data.gridpoints, np.maximum(data.sd_vec, 0.0)
 
 
-def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float) -> TimedPiece:
-    """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s)."""
+def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
+            max_steps: int) -> TimedPiece:
+    """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s); at most
+    ``max_steps`` steps (checked before they are allocated)."""
     traj = ParametrizeConstAccel(path7, gridpoints, sd)
     duration = float(traj.duration)
     if not math.isfinite(duration):
         raise ExecutionError("timing: a path piece has no room to move (zero speed along it); sample it more finely")
+    check_budget(f"{label}: simulation steps of {dt * 1e3:g} ms ({duration:.4g} s of motion under the joint limits)",
+                 duration / dt, max_steps, "raise the programmed SPEED or shorten the program")
     m = int(math.ceil(duration / dt - 1e-9))
     t = np.minimum(np.arange(m + 1) * dt, duration)
     x, xd, xdd = traj(t), traj(t, 1), traj(t, 2)
@@ -137,28 +142,29 @@ def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
     return np.any(np.abs(piece.qd) > limit * cell.v_max, axis=1) | np.any(np.abs(piece.qdd) > limit * cell.a_max, axis=1)
 
 
-def _timed(cell: Cell, path, path7, extra: list, grid: np.ndarray, s_scale: float, label: str) -> TimedPiece:
+def _timed(cell: Cell, path, path7, extra: list, grid: np.ndarray, s_scale: float, label: str,
+           max_steps: int) -> TimedPiece:
     """Parametrise and sample, halving the grid intervals where the command exceeds a joint bound."""
     for _ in range(_MAX_REFINEMENTS):
         grid_out, sd = _parametrize(cell, path, extra, grid, label)
-        piece = _sample(path7, grid_out, sd, cell.timestep, s_scale)
+        piece = _sample(path7, grid_out, sd, cell.timestep, s_scale, label, max_steps)
         bad = _over_bound(cell, piece)
         if not bad.any():
             return piece
         k = np.searchsorted(grid_out, piece.s[bad] / s_scale, side="right") - 1
         k = np.unique(np.clip(np.concatenate((k - 1, k, k + 1)), 0, len(grid_out) - 2))
         grid = np.union1d(grid_out, (grid_out[k] + grid_out[k + 1]) / 2)
-    return _sample(path7, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale)
+    return _sample(path7, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale, label, max_steps)
 
 
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
-                   curvature_per_mm: np.ndarray, label: str) -> TimedPiece:
+                   curvature_per_mm: np.ndarray, label: str, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
     s = s_mm * MM
     path = toppra.SplineInterpolator(s, q)
     path7 = toppra.SplineInterpolator(s, np.column_stack((q, s)))
     extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
-    return _timed(cell, path, path7, extra, s, 1.0 / MM, label)
+    return _timed(cell, path, path7, extra, s, 1.0 / MM, label, max_steps)
 
 
 # Below this joint travel (rad) a move is timed by a bang-bang profile: toppra's solver fails
@@ -183,7 +189,7 @@ def _bang_bang(cell: Cell, q0: np.ndarray, q1: np.ndarray) -> TimedPiece:
 
 
 def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
-               n_grid: int = 60) -> TimedPiece:
+               n_grid: int = 60, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
     """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
     if float(np.max(np.abs(q1 - q0))) < TINY_JOINT_MOVE_RAD:
         return _bang_bang(cell, np.asarray(q0, float), np.asarray(q1, float))
@@ -195,4 +201,4 @@ def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, la
     bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
     path = toppra.SplineInterpolator(u, qs)
     path7 = toppra.SplineInterpolator(u, np.column_stack((qs, u)))
-    return _timed(cell, path, path7, [_PathSpeedBound(u, bound)], u, 1.0, label)
+    return _timed(cell, path, path7, [_PathSpeedBound(u, bound)], u, 1.0, label, max_steps)

@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.budgets import MAX_TRAJECTORY_BYTES, check_budget
+from coatsim.errors import InputError, shown
 from coatsim.fileio import write_text
 
 COLUMNS = (
@@ -64,6 +65,8 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
     """Read a trajectory CSV; any defect raises InputError naming the file and line."""
     path = Path(path)
     try:
+        check_budget(f"{path}: bytes of trajectory", path.stat().st_size, MAX_TRAJECTORY_BYTES,
+                     "log the motion at a coarser rate")
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"{path}: cannot read trajectory ({getattr(exc, 'strerror', None) or exc})") from None
@@ -84,9 +87,9 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
             try:
                 value = float(row[k])
             except ValueError:
-                raise InputError(f"{path}:{line}: column {COLUMNS[j]} is not a number: {row[k]!r}") from None
+                raise InputError(f"{path}:{line}: column {COLUMNS[j]} is not a number: {shown(row[k])}") from None
             if not math.isfinite(value):
-                raise InputError(f"{path}:{line}: column {COLUMNS[j]} is not finite: {row[k]!r}")
+                raise InputError(f"{path}:{line}: column {COLUMNS[j]} is not finite: {shown(row[k], names=True)}")
             data[i, j] = value
     if len(data) < 2:
         raise InputError(f"{path}: a trajectory needs at least 2 rows, found {len(data)}")

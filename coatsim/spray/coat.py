@@ -17,6 +17,7 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from coatsim.budgets import MAX_ABS_COORDINATE_MM
 from coatsim.errors import InputError
 from coatsim.fileio import write_text
 from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
@@ -26,9 +27,10 @@ from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import (
     Profile, default_section, heatmap_png, panel, profile_png, section_profile, write_thickness_ply,
 )
-from coatsim.spray.surfaces import Surface, parse_surface_spec
+from coatsim.spray.surfaces import Surface, parse_surface_spec, surface_file
 
 COATING_FORMAT = "coatsim.coating/1"
+COATING_FILES = ("thickness.ply", "coating.json", "heatmap.png", "section.png")
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,8 +73,9 @@ def parse_section(text: str) -> tuple[np.ndarray, np.ndarray]:
         values = [float(v) for v in text.split(",")]
     except ValueError:
         values = []
-    if len(values) != 4 or not all(map(math.isfinite, values)) or values[:2] == values[2:]:
-        raise InputError(f"--section must be x0,y0,x1,y1 in mm (two distinct points), found {text!r}")
+    if len(values) != 4 or not all(abs(v) <= MAX_ABS_COORDINATE_MM for v in values) or values[:2] == values[2:]:
+        raise InputError(f"--section must be x0,y0,x1,y1 in mm (two distinct points within "
+                         f"{MAX_ABS_COORDINATE_MM:g} mm of the origin), found {text!r}")
     return np.array(values[:2]), np.array(values[2:])
 
 
@@ -82,7 +85,7 @@ def write_coating(result: CoatingResult, outdir: str | Path, inputs: dict[str, o
     outdir = Path(outdir)
     surface, thickness = result.surface, result.thickness_um
     section = default_section(surface) if section is None else section
-    files = [outdir / name for name in ("thickness.ply", "coating.json", "heatmap.png", "section.png")]
+    files = [outdir / name for name in COATING_FILES]
     write_thickness_ply(files[0], surface, thickness, 0.0, float(thickness.max()), result.deposit.exposure_s)
     document = {"format": COATING_FORMAT, **result.metrics, "inputs": inputs,
                 "mesh": {"vertices": surface.n_vertices, "triangles": len(surface.faces),
@@ -115,19 +118,29 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
              footprint: str = "gaussian:sigma=5", rate: float = 40.0, standoff: float = 100.0,
              target_um: float | None = None, roi: str = "band", edge_band_mm: float | None = None,
              de_exponent: float = 1.0, occlusion: bool = False, section: str | None = None,
-             outdir: str | Path = "out/coat") -> tuple[CoatingResult, list[Path]]:
-    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default)."""
+             outdir: str | Path = "out/coat", force: bool = False) -> tuple[CoatingResult, list[Path]]:
+    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default);
+    the output folder is held for the run (see coatsim.outputs_guard)."""
+    from coatsim.outputs_guard import check_distinct, output_folder
+
     fp = parse_footprint_spec(footprint)
     model = SprayModel(fp, rate, standoff, de_exponent, occlusion)
     spacing = fp.spacing_mm if spacing is None else spacing
+    if edge_band_mm is not None and not (math.isfinite(edge_band_mm) and edge_band_mm >= 0):
+        raise InputError(f"--edge-band {edge_band_mm}: must be a finite number of mm >= 0")
     line = parse_section(section) if section is not None else None
+    outdir = Path(outdir)
+    inputs = [("the trajectory", trajectory), ("the surface mesh", surface_file(surface_spec)),
+              ("the footprint table", getattr(fp, "path", None))]
+    check_distinct(inputs, [("output", outdir / name) for name in COATING_FILES])
     surface = parse_surface_spec(surface_spec, spacing)
     log = read_trajectory_csv(trajectory)
-    with _progress("coating") as progress:
-        result = coat(log, surface, model, roi, target_um, edge_band_mm, spacing=spacing, progress=progress)
-    inputs = {"trajectory": str(trajectory), "surface": surface_spec, "spacing_mm": spacing,
-              "footprint": fp.spec, "rate_mm3_s": rate, "standoff_mm": standoff,
-              "de_exponent": de_exponent, "occlusion": occlusion, "substep_mm": model.step_mm,
-              "roi": roi, "edge_band_mm": 3 * fp.sigma_mm if edge_band_mm is None else edge_band_mm,
-              "band_halfwidth_mm": 2 * fp.sigma_mm}
-    return result, write_coating(result, outdir, inputs, line)
+    with output_folder(outdir, COATING_FILES, "coatsim coat", force):
+        with _progress("coating") as progress:
+            result = coat(log, surface, model, roi, target_um, edge_band_mm, spacing=spacing, progress=progress)
+        inputs = {"trajectory": str(trajectory), "surface": surface_spec, "spacing_mm": spacing,
+                  "footprint": fp.spec, "rate_mm3_s": rate, "standoff_mm": standoff,
+                  "de_exponent": de_exponent, "occlusion": occlusion, "substep_mm": model.step_mm,
+                  "roi": roi, "edge_band_mm": 3 * fp.sigma_mm if edge_band_mm is None else edge_band_mm,
+                  "band_halfwidth_mm": 2 * fp.sigma_mm}
+        return result, write_coating(result, outdir, inputs, line)

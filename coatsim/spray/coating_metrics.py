@@ -53,8 +53,8 @@ def region_of_interest(surface: Surface, deposit: Deposit, model: SprayModel, ki
     sigma = model.footprint.sigma_mm
     edge = 3 * sigma if edge_band_mm is None else edge_band_mm
     half = 2 * sigma if band_halfwidth_mm is None else band_halfwidth_mm
-    if edge < 0 or half <= 0:
-        raise InputError(f"ROI widths must be >= 0 (edge band) and > 0 (band half-width), found {edge:g}, {half:g} mm")
+    if not (edge >= 0 and half > 0 and np.isfinite(edge) and np.isfinite(half)):
+        raise InputError(f"ROI widths must be finite, >= 0 (edge band) and > 0 (band half-width), found {edge:g}, {half:g} mm")
     mask = border_distance(surface, spacing) >= edge
     if kind == "band":
         mask &= deposit.track_distance_mm <= half

@@ -31,11 +31,13 @@ from typing import Callable
 import numpy as np
 from scipy.spatial import cKDTree
 
+from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
 from coatsim.errors import InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface
 
+MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far below float overflow
 LEAF_SIZE = 48
 _LEAF_TESTS_PER_BATCH = 400_000
 _PAIRS_PER_BATCH = 1_000_000
@@ -54,10 +56,11 @@ class SprayModel:
     major_axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
 
     def __post_init__(self) -> None:
-        checks = (("rate", self.rate_mm3_s, "--rate (mm3/s)"), ("stand-off", self.standoff_mm, "--standoff (mm)"))
-        for name, value, flag in checks:
-            if not (math.isfinite(value) and value > 0):
-                raise InputError(f"spray {name} must be positive, found {value:g}; set {flag}")
+        checks = (("rate", self.rate_mm3_s, "--rate (mm3/s)", MAX_RATE_MM3_S),
+                  ("stand-off", self.standoff_mm, "--standoff (mm)", MAX_ABS_COORDINATE_MM))
+        for name, value, flag, most in checks:
+            if not (0 < value <= most):
+                raise InputError(f"spray {name} must be positive and at most {most:g}, found {value:g}; set {flag}")
         if self.substep_mm is not None and not (math.isfinite(self.substep_mm) and self.substep_mm > 0):
             raise InputError(f"sub-step must be positive, found {self.substep_mm:g} mm")
         if not (math.isfinite(self.de_exponent) and self.de_exponent >= 1):
@@ -125,6 +128,8 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     turn = np.arccos(np.clip(np.sum(a[k] * a[k + 1], axis=1), -1.0, 1.0))
     travel = np.maximum(np.linalg.norm(dp, axis=1), model.standoff_mm * turn)
     n = np.maximum(1, np.ceil(travel / model.step_mm - 1e-9)).astype(np.int64)
+    check_budget(f"coating sub-steps of {model.step_mm:g} mm along {float(travel.sum()):.6g} mm of sprayed path",
+                 float(n.sum()), MAX_SPRAY_SUBSTEPS, "use a wider footprint or a longer sub-step")
     rep = np.repeat(np.arange(len(k)), n)
     j = np.arange(len(rep)) - np.repeat(np.cumsum(n) - n, n)
     f = ((j + 0.5) / n[rep])[:, None]

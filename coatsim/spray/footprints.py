@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from scipy.special import beta as beta_fn
 
-from coatsim.errors import InputError
+from coatsim.errors import InputError, shown
 
 #: Gaussian footprints are cut off at this many standard deviations (mass outside: 1.5e-8)
 #: and renormalised, so the kernel conserves volume exactly.
@@ -276,6 +276,14 @@ def _trapezoid_weights(axis: np.ndarray) -> np.ndarray:
     return w
 
 
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 def load_footprint_table(path: str | Path) -> Tabulated:
     """Read a ``u_mm,v_mm,rate`` CSV holding every node of a regular grid once (any order)."""
     path = Path(path)
@@ -285,15 +293,18 @@ def load_footprint_table(path: str | Path) -> Tabulated:
         raise InputError(f"{path}: cannot read footprint table ({getattr(exc, 'strerror', None) or exc})") from None
     header = [h.strip() for h in rows[0]] if rows else []
     if header != ["u_mm", "v_mm", "rate"]:
-        raise InputError(f"{path}:1: footprint table header must be 'u_mm,v_mm,rate', found {','.join(header)!r}")
+        found = ", ".join(shown(h, names=True) for h in header[:4]) or "nothing"
+        raise InputError(f"{path}:1: footprint table header must be 'u_mm,v_mm,rate', found {found}")
     data = []
     for line, row in enumerate(rows[1:], start=2):
         try:
             values = [float(x) for x in row]
         except ValueError:
-            raise InputError(f"{path}:{line}: footprint table values must be numbers, found {row}") from None
+            bad = next(x for x in row if not _is_number(x))
+            raise InputError(f"{path}:{line}: footprint table values must be numbers, found {shown(bad)}") from None
         if len(values) != 3 or not all(map(math.isfinite, values)):
-            raise InputError(f"{path}:{line}: expected 3 finite numbers u_mm,v_mm,rate, found {row}")
+            raise InputError(f"{path}:{line}: expected 3 finite numbers u_mm,v_mm,rate, found "
+                             f"{', '.join(shown(x) for x in row[:4]) or 'nothing'}")
         if values[2] < 0:
             raise InputError(f"{path}:{line}: rate must be >= 0, found {values[2]:g}")
         data.append(values)

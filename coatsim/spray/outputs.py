@@ -187,9 +187,11 @@ def section_profile(view: np.ndarray, faces: np.ndarray, thickness_um: np.ndarra
     det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
     keep = np.abs(det) > 1e-12 * max(1.0, float(np.ptp(view)) ** 2)
     faces, a, b, c, det = faces[keep], a[keep], b[keep], c[keep], det[keep]
+    if len(faces) == 0:  # a part too thin to draw: no profile
+        return frac * float(np.linalg.norm(end - start)), np.full(n, np.nan)
     k = min(16, len(faces))
     _, near = cKDTree((a + b + c) / 3).query(points, k=k)
-    near = near.reshape(n, k)
+    near = np.minimum(near.reshape(n, k), len(faces) - 1)  # a missing neighbour comes back as len(faces)
     p = points[:, None, :]
     l1 = ((p[..., 0] - a[near, 0]) * (c[near, 1] - a[near, 1])
           - (c[near, 0] - a[near, 0]) * (p[..., 1] - a[near, 1])) / det[near]

@@ -17,10 +17,12 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
+from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
 from coatsim.errors import InputError
 
-#: refinement refuses to build meshes with more triangles than this (memory, run time)
-MAX_TRIANGLES = 4_000_000
+#: refinement refuses to build meshes with more triangles than this (about two per vertex)
+MAX_TRIANGLES = 2 * MAX_MESH_VERTICES
+MIN_PART_MM = 1e-3  # smallest plate or cylinder dimension (a micrometre)
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
 
 
@@ -58,6 +60,15 @@ def _check_spacing(spacing: float) -> None:
         raise InputError(f"surface spacing must be a positive number of mm, found {spacing:g}")
 
 
+def _grid_size(what: str, extent_u: float, extent_v: float, spacing: float, min_u: int = 1) -> tuple[int, int]:
+    """Cells along u and v of a structured grid at ``spacing``; its vertex count is checked
+    against MAX_MESH_VERTICES before anything is allocated."""
+    cells_u, cells_v = max(min_u, extent_u / spacing), max(1.0, extent_v / spacing)
+    check_budget(f"{what} meshed every {spacing:g} mm: vertices", (cells_u + 1) * (cells_v + 1), MAX_MESH_VERTICES,
+                 "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
+    return max(min_u, math.ceil(extent_u / spacing - 1e-9)), max(1, math.ceil(extent_v / spacing - 1e-9))
+
+
 def _grid_faces(nu: int, nv: int) -> np.ndarray:
     """Two counter-clockwise triangles per cell of an (nu+1) x (nv+1) node grid, u fastest."""
     i, j = np.meshgrid(np.arange(nu), np.arange(nv))
@@ -82,10 +93,11 @@ def _pose(pose: np.ndarray | None) -> np.ndarray:
 def plate(width: float, height: float, spacing: float, pose: np.ndarray | None = None) -> Surface:
     """Flat W x H plate centred on the pose origin, normal +z of the pose, structured grid."""
     _check_spacing(spacing)
-    if not (width > 0 and height > 0):
-        raise InputError(f"plate size must be positive, found {width:g} x {height:g} mm")
+    if not (MIN_PART_MM <= width <= MAX_ABS_COORDINATE_MM and MIN_PART_MM <= height <= MAX_ABS_COORDINATE_MM):
+        raise InputError(f"plate size must be between {MIN_PART_MM:g} and {MAX_ABS_COORDINATE_MM:g} mm, "
+                         f"found {width:g} x {height:g} mm")
     pose = _pose(pose)
-    nu, nv = max(1, math.ceil(width / spacing - 1e-9)), max(1, math.ceil(height / spacing - 1e-9))
+    nu, nv = _grid_size(f"plate {width:g} x {height:g} mm", width, height, spacing)
     x = np.linspace(-width / 2, width / 2, nu + 1)
     y = np.linspace(-height / 2, height / 2, nv + 1)
     xx, yy = np.meshgrid(x, y)
@@ -110,14 +122,14 @@ def cylinder(radius: float, length: float, spacing: float, axis: str = "x",
     ``axis``; angle 0 is +z (+x for a z axis). The seam at ±180° carries duplicated vertices
     so the unrolled view (along-axis, R·angle) has no wrap-around."""
     _check_spacing(spacing)
-    if not (radius > 0 and length > 0):
-        raise InputError(f"cylinder size must be positive, found R={radius:g} x L={length:g} mm")
+    if not (MIN_PART_MM <= radius <= MAX_ABS_COORDINATE_MM and MIN_PART_MM <= length <= MAX_ABS_COORDINATE_MM):
+        raise InputError(f"cylinder size must be between {MIN_PART_MM:g} and {MAX_ABS_COORDINATE_MM:g} mm, "
+                         f"found R={radius:g} x L={length:g} mm")
     if axis not in _CYLINDER_FRAMES:
         raise InputError(f"cylinder axis must be x, y or z, found {axis!r}")
     pose = _pose(pose)
     ax, r0, r90 = (np.array(v) for v in _CYLINDER_FRAMES[axis])
-    n_phi = max(3, math.ceil(2 * math.pi * radius / spacing - 1e-9))
-    n_len = max(1, math.ceil(length / spacing - 1e-9))
+    n_phi, n_len = _grid_size(f"cylinder R {radius:g} x {length:g} mm", 2 * math.pi * radius, length, spacing, 3)
     phi = np.linspace(-math.pi, math.pi, n_phi + 1)
     s = np.linspace(-length / 2, length / 2, n_len + 1)
     ss, pp = np.meshgrid(s, phi)  # rows: phi, columns: along the axis
@@ -153,9 +165,9 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     mesh.update_faces(mesh.nondegenerate_faces())
     if len(mesh.faces) == 0:
         raise InputError(f"{path}: every triangle of the mesh is degenerate (zero area)")
-    estimate = mesh.area / (math.sqrt(3) / 4 * spacing**2)
-    if estimate > MAX_TRIANGLES:
-        raise InputError(f"{path}: spacing {spacing:g} mm would need ~{estimate:.2g} triangles; use a larger --spacing")
+    estimate = max(len(mesh.faces), mesh.area / (math.sqrt(3) / 4 * spacing**2))
+    check_budget(f"{path} refined to edges of {spacing:g} mm: triangles", estimate, MAX_TRIANGLES,
+                 "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
     vertices, faces = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=spacing, max_iter=20)
     refined = trimesh.Trimesh(vertices, faces, process=True)
     refined.remove_unreferenced_vertices()
@@ -192,6 +204,22 @@ def _placement(text: str | None, spec: str, allow_axis: bool) -> tuple[np.ndarra
     return pose, axis
 
 
+def _mesh_spec(spec: str) -> tuple[str, str | None]:
+    """A mesh file spec split into its path and the text after '@' (None without one)."""
+    path, at, place = spec.rpartition("@") if "@" in spec else (spec, "", "")
+    if at and Path(spec).suffix.lower() not in MESH_SUFFIXES:
+        return path, place
+    return spec, None
+
+
+def surface_file(spec: str) -> Path | None:
+    """The mesh file a surface spec reads (None for ``plate:`` and ``cylinder:``)."""
+    spec = spec.strip()
+    if spec.split(":", 1)[0].lower() in ("plate", "cylinder"):
+        return None
+    return Path(_mesh_spec(spec)[0])
+
+
 def parse_surface_spec(spec: str, spacing: float) -> Surface:
     """Surface from ``plate:WxH@x,y,z`` (normal +z), ``cylinder:RxL@x,y,z[,axis]`` (axis x by
     default) or a mesh file path with an optional ``@x,y,z`` translation; all in mm."""
@@ -206,13 +234,13 @@ def parse_surface_spec(spec: str, spacing: float) -> Surface:
             surface = cylinder(float(a), float(b), spacing, axis, pose)
         return Surface(spec, surface.kind, surface.vertices, surface.faces, surface.normals,
                        surface.areas, surface.view, surface.view_labels)
-    if spec.split(":", 1)[0].lower() in ("plate", "cylinder"):
+    if surface_file(spec) is None:
         raise InputError(f"surface {spec!r}: expected plate:WxH@x,y,z or cylinder:RxL@x,y,z[,axis] (mm)")
-    path, at, place = spec.rpartition("@") if "@" in spec else (spec, "", "")
-    if at and Path(spec).suffix.lower() not in MESH_SUFFIXES:
+    path, place = _mesh_spec(spec)
+    if place is not None:
         pose, _ = _placement(place, spec, allow_axis=False)
         return mesh_file(path, spacing, pose)
-    return mesh_file(spec, spacing)
+    return mesh_file(path, spacing)
 
 
 def border_distance(surface: Surface, spacing: float | None = None) -> np.ndarray:

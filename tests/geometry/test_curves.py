@@ -190,7 +190,7 @@ BAD_TEXT = {
     "nan": ("0,0\n1,1\nnan,2\n3,3\n", 3, ()),
     "inf": ("0,0\n1,inf\n2,2\n", 2, ()),
     "negative inf": ("0,0\n1,1\n2,2\n3,-inf\n", 4, ()),
-    "text in a numeric column": ("0,0\n1,1\n2,2\n3,abc\n", 4, ("abc",)),
+    "text in a numeric column": ("0,0\n1,1\n2,2\n3,abc\n", 4, ("field 2 is not a number",)),
     "text in the x column": ("0;0\n1;1\n2mm;2\n", 3, ("2mm",)),
     "header after data": ("0,0\nx,y\n1,1\n", 2, ()),
     "one column": ("0,0\n1\n2,2\n", 2, ()),

@@ -102,7 +102,10 @@ def test_mesh_rotated_by_pose(tmp_path):
 
 
 @pytest.mark.parametrize("spec, words", [
-    ("plate:0x100", "must be positive"),
+    ("plate:0x100", "plate size must be between 0.001 and 1e\\+09 mm"),
+    ("plate:1e-9x300", "plate size must be between"),
+    ("cylinder:1e-300x300@0,0,0", "cylinder size must be between"),
+    ("plate:1e12x300", "plate size must be between"),
     ("plate:100", "expected plate"),
     ("plate:100x100@1,2", "x,y,z"),
     ("cylinder:10x100@0,0,0,w", "axis must be x, y or z"),
@@ -131,5 +134,5 @@ def test_empty_and_unreadable_meshes(tmp_path):
         mesh_file(garbage, 2.0)
     big = tmp_path / "big.stl"
     trimesh.creation.box((1000, 1000, 1000)).export(big)
-    with pytest.raises(InputError, match="larger --spacing"):
+    with pytest.raises(InputError, match="larger spacing"):
         mesh_file(big, 0.001)

@@ -1,0 +1,93 @@
+"""What the resource budgets of coatsim/budgets.py cost: time and peak memory per unit of each
+bounded quantity, measured on a moderate case in a fresh process, and extrapolated to the budget;
+then how fast an over-budget input is refused.
+
+Prints figures only (never asserts). Run: python scripts/bench_budgets.py
+"""
+
+from __future__ import annotations
+
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from coatsim import budgets
+
+CHILD = r"""
+import resource, sys, time
+t0 = time.perf_counter()
+from coatsim.cli import main
+sys.argv = ["coatsim", *sys.argv[1:]]
+try:
+    main()
+except SystemExit as exc:
+    code = exc.code
+print(f"RESULT {code} {time.perf_counter() - t0:.3f} {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss}",
+      file=sys.stderr)
+"""
+
+
+def measure(*args: str) -> tuple[int, float, float, str]:
+    """Exit code, wall time (s) and peak RSS (MB) of one coatsim command in a fresh process."""
+    child = subprocess.run([sys.executable, "-c", CHILD, *args], capture_output=True, text=True)
+    lines = child.stderr.strip().splitlines()
+    _, code, wall, rss = lines[-1].split()
+    return int(code), float(wall), int(rss) / 1024, (lines[0] if len(lines) > 1 else "")
+
+
+def main() -> None:
+    d = Path(tempfile.mkdtemp(prefix="bench_budgets."))
+    subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
+                    "-o", str(d / "p.as")], check=True, capture_output=True)
+    subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
+                    "--speed", "2", "-o", str(d / "slow.as")], check=True, capture_output=True)
+    subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
+                    "--speed", "1e-3", "-o", str(d / "crawl.as")], check=True, capture_output=True)
+    subprocess.run([sys.executable, "-m", "coatsim.cli", "execute", str(d / "p.as"), "-o", str(d / "e0")],
+                   check=True, capture_output=True)
+    _, base_s, base_mb, _ = measure("segment", "builtin:ellipse:points=3", "--tol", "1")
+    print(f"baseline (import + tiny segment): {base_s:.2f} s, {base_mb:.0f} MB peak RSS\n")
+    print("| quantity | measured on | time | peak RSS | per unit | at the budget |")
+    print("|---|---|---|---|---|---|")
+    from coatsim.program import read_toolpath
+    from coatsim.robot.sampling import CartesianPiece, plan_pieces
+
+    samples = sum(len(p.s) for p in plan_pieces(read_toolpath(d / "p.as"), 0.01) if isinstance(p, CartesianPiece))
+    rows = [
+        ("IK samples", budgets.MAX_PATH_SAMPLES, samples,
+         ("execute", str(d / "p.as"), "--step-mm", "0.01", "-o", str(d / "e1"))),
+        ("simulation steps", budgets.MAX_SIM_STEPS, None, ("execute", str(d / "slow.as"), "-o", str(d / "e2"))),
+        ("mesh vertices", budgets.MAX_MESH_VERTICES, 601 * 601,
+         ("coat", str(d / "e0" / "trajectory.csv"), "--surface", "plate:300x300@700,0,100", "--spacing", "0.5",
+          "-o", str(d / "c1"))),
+        ("curve points", budgets.MAX_CURVE_POINTS, 200_000, ("segment", "builtin:ellipse:points=200000", "--tol", "0.05")),
+    ]
+    for name, budget, units, args in rows:
+        code, wall, rss, _ = measure(*args)
+        if units is None:  # simulation steps: read the log length
+            units = sum(1 for _ in open(d / "e2" / "trajectory.csv")) - 1
+        per_ms = 1e3 * (wall - base_s) / units
+        per_kb = 1024 * max(rss - base_mb, 0.0) / units
+        print(f"| {name} | {units:,.0f} (exit {code}) | {wall:.1f} s | {rss:.0f} MB | {per_ms:.3f} ms, {per_kb:.2f} kB "
+              f"| {per_ms * budget / 1e3:.0f} s, {per_kb * budget / 1024**2:.2f} GB |")
+    print("\nrefusals (exit code, wall time including the import, peak RSS):")
+    bomb = d / "bomb.yaml"
+    text = 'a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]\n'
+    for prev, new in zip("abcdefgh", "bcdefghi"):
+        text += f"{new}: &{new} [" + ",".join([f"*{prev}"] * 9) + "]\n"
+    bomb.write_text(text)
+    for label, args in (("--step-mm 1e-4", ("execute", str(d / "p.as"), "--step-mm", "1e-4", "-o", str(d / "r1"))),
+                        ("--speed 1e-3", ("execute", str(d / "crawl.as"), "-o", str(d / "r2"))),
+                        ("coat --spacing 0.001", ("coat", str(d / "e0" / "trajectory.csv"), "--surface",
+                                                  "plate:300x300@700,0,100", "--spacing", "0.001", "-o", str(d / "r3"))),
+                        ("YAML alias bomb", ("run", str(bomb)))):
+        code, wall, rss, message = measure(*args)
+        print(f"  {label}: exit {code}, {wall:.2f} s, {rss:.0f} MB  {message[:110]}")
+    print(f"\n(children's total CPU {resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime:.0f} s; files in {d})")
+
+
+if __name__ == "__main__":
+    main()
