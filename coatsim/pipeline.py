@@ -22,11 +22,13 @@ import numpy as np
 from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
+from coatsim.geometry.deviation import hausdorff
+from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.segment import Segmentation
 from coatsim.program import read_program_bytes, read_toolpath
 from coatsim.program.as_lang.source import decode
 from coatsim.program.as_lang.names import program_name
-from coatsim.program.build import BuiltProgram, ProgramOptions, build_program
+from coatsim.program.build import BuiltProgram, ProgramOptions, build_program, polyline_of
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame, Placement, centering_offset
 from coatsim.program.toolpath import ToolPath
@@ -40,6 +42,7 @@ from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.scenario import ProgramVariantSpec, Scenario, ScenarioFile, as_dict, load_scenario
 from coatsim.spray.coat import CoatingResult, coat, remeasured
+from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
@@ -201,6 +204,9 @@ class Job:
     outdir: Path
     sample_step_mm: float
     spacing_mm: float
+    away_mm: np.ndarray  # surface vertices clear of the edge band (every variant's ROI)
+    polyline: Optional[Polysegment] = None  # the polyline variants' curve and its deviation, computed once
+    polyline_deviation_mm: Optional[float] = None
 
 
 def run_variant(name: str, job: Job, step: Step) -> VariantRun:
@@ -210,11 +216,11 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
                              gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name(spec.name))
     program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
-                            source=f"scenario:{spec.name}", points=points)
+                            source=f"scenario:{spec.name}", points=points, polyline=job.polyline)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
     toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
-    deviation = job.segmentation.max_deviation_mm if program.curve is poly else None
+    deviation = job.segmentation.max_deviation_mm if program.curve is poly else job.polyline_deviation_mm
     return simulate_variant(name, program, toolpath, job, step, deviation)
 
 
@@ -251,7 +257,7 @@ def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: T
     step(f"{name}: spraying")
     result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
-                  spacing=job.spacing_mm)
+                  spacing=job.spacing_mm, away=job.away_mm)
     groups = {
         "segmentation": segmentation_group(
             job.segmentation.curve.points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
@@ -387,8 +393,14 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
-        job = Job(loaded, segmentation, placement, build_surface(loaded, spacing), spray_model(loaded), cell, out,
-                  sample_step, spacing)
+        surface, model = build_surface(loaded, spacing), spray_model(loaded)
+        away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
+        polyline = deviation = None
+        if any(isinstance(v, str) and v != "polysegment" for v in spec.variants):
+            polyline = polyline_of(curve.points, poly.closed, spec.segmentation.tolerance_mm)
+            deviation = hausdorff(curve.points, polyline).hausdorff
+        job = Job(loaded, segmentation, placement, surface, model, cell, out, sample_step, spacing, away,
+                  polyline, deviation)
         runs = []
         for entry in spec.variants:
             name = entry if isinstance(entry, str) else entry.name

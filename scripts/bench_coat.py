@@ -1,6 +1,8 @@
 """Benchmark of the coating stage: validation figures of spray_model.md §5.6, run time, mass balance.
 
-Prints figures only (never asserts). Run: python scripts/bench_coat.py
+Then the scaling exponent of every stage of `coatsim coat` (scripts/scaling.py: the 320 mm
+plate at 1 and 0.5 mm, 4 N vertices). Prints figures only (never asserts).
+Run: python scripts/bench_coat.py
 """
 
 from __future__ import annotations
@@ -176,5 +178,8 @@ def performance() -> None:
 
 
 if __name__ == "__main__":
+    import scaling  # scripts/scaling.py: the exponent of every coating stage
+
     validation()
     performance()
+    scaling.coat()

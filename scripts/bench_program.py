@@ -3,7 +3,8 @@
 Part 1, per benchmark curve and variant: moves, program steps, poses, text size, and the best
 of ``REPEATS`` wall times for writing, parsing and interpreting. Part 2: parse and interpret
 speed (lines/s, statements executed/s) on 5 000-line programs in a user's style: a contour of
-LMOVEs to a pose array, and one that computes its poses in loops, CASEs and CALLs.
+LMOVEs to a pose array, and one that computes its poses in loops, CASEs and CALLs. Part 3: the
+scaling exponent of writing, parsing and interpreting (scripts/scaling.py, N and 10 N moves).
 Never asserts. The curves are the benchmark curves (coatsim.geometry.benchmark), or the CSV
 files of a folder given as the argument (exit non-zero when it has none); the polysegment comes
 from coatsim.geometry.segment_curve at TOL mm.
@@ -107,6 +108,9 @@ def main() -> None:
                   f"{len(parsed.trans):6d} {len(built.text):7d} {1e3 * t_write:9.2f} {1e3 * t_parse:9.2f} "
                   f"{1e3 * t_interp:10.2f} {n_lines / t_parse:9.0f}")
     bench_language()
+    import scaling  # scripts/scaling.py: the exponent of writing, parsing and interpreting
+
+    scaling.program()
 
 
 if __name__ == "__main__":

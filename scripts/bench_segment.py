@@ -1,6 +1,7 @@
 """Benchmark of the geometry stage: segment the five bench curves, the built-ins and curves the
-fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts of
-../shared/bench/README.md.
+fitter was not tuned on (scripts/heldout_curves.py), next to the reference counts
+(coatsim.geometry.benchmark: the bench curves are generated from their formulas; ``--curves DIR``
+reads NAME.csv files instead and exits non-zero when one is missing).
 
 For every curve and σ, per method: segments (arcs, lines), the deviation reported by
 segment_curve, an independent check of it by dense sampling of both curves (KD-tree, step σ/20,
@@ -8,7 +9,8 @@ within step/2 of the true value), the largest tangent break at a junction that i
 corner, the tightest arc over the curve's tightest radius (``R ratio``: below 1 the fit turns
 tighter than the curve anywhere does), the shortest segment, the largest curvature jump at a
 tangent junction (1/mm) and the wall time. Then the time to segment 100 000-point curves at
-σ = 0.05 mm. Prints only; never asserts. The figures come from the polysegment alone, so the
+σ = 0.05 mm, and the scaling exponent of the built-in curves, the exact deviation check and the
+whole fit from 100 000 to 1 000 000 points (scripts/scaling.py). Prints only; never asserts. The figures come from the polysegment alone, so the
 script also measures older versions of the fitter (PYTHONPATH=<their checkout>).
 
     python scripts/bench_segment.py [--paper] [--sigmas 0.05,0.5] [--only bench,builtin,heldout,large] [--curves DIR]
@@ -210,6 +212,9 @@ def large_table() -> None:
         print(f"{spec}: {len(curve.points)} points -> {poly.n_segments} segments ({poly.n_arcs} arcs), "
               f"deviation {seg.max_deviation_mm:.5f} mm, shortest {min(s.length for s in poly.segments):.3f} mm, "
               f"{seconds:.2f} s", flush=True)
+    import scaling  # scripts/scaling.py: the exponent of every geometry stage
+
+    scaling.segment()
 
 
 def main() -> None:

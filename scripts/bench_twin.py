@@ -6,6 +6,8 @@
    --curve, which must exist; sigma = 0.1 mm, 200 mm/s) as a polysegment program,
    an exact-stop polyline program and a blended polyline program (ACCURACY 1 mm), each written
    as AS text, parsed back and executed.
+3. The scaling exponent of every execute phase on exact-stop polygons of N and 10 N sides, and
+   the CPU per robot second of every variant on the spiral (scripts/scaling.py).
 Usage: python scripts/bench_twin.py [--curve PATH] [--tol MM] [--speed MM_S]
 """
 
@@ -102,6 +104,9 @@ def main() -> None:
     cell = load_cell()
     bench_speed(cell, args.speed)
     bench_spiral(cell, args.curve, args.tol, args.speed)
+    import scaling  # scripts/scaling.py: the exponent of every execute phase, compute per robot second
+
+    scaling.execute()
 
 
 if __name__ == "__main__":

@@ -143,6 +143,37 @@ def test_metrics_are_shown_with_human_names_and_percent(small_run: tuple[Cli, Pa
     assert ">motion.fraction_at_speed<" not in table and "e+1" not in table
 
 
+def test_run_finds_the_roi_border_and_the_polyline_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Three variants on one surface: the edge band's border distance and the polyline (with
+    its deviation) are computed once and shared, not per variant."""
+    import coatsim.pipeline
+    import coatsim.program.build
+    import coatsim.spray.coating_metrics
+
+    calls = {"border_distance": 0, "polyline_of": 0}
+
+    def counted(module, name):
+        real = getattr(module, name)
+
+        def wrapper(*args, **kwargs):
+            calls[name] += 1
+            return real(*args, **kwargs)
+        monkeypatch.setattr(module, name, wrapper)
+
+    counted(coatsim.spray.coating_metrics, "border_distance")
+    for module in (coatsim.pipeline, coatsim.program.build):
+        counted(module, "polyline_of")
+    scenario = tmp_path / "three.yaml"
+    scenario.write_text(SMALL.replace('  - {metric: coating.thickness_cv, op: "<", threshold: 0.0}\n', ""), encoding="utf-8")
+    cli = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
+    assert cli.code == 0, cli.out + cli.err
+    document = json.loads((tmp_path / "out" / "metrics.json").read_text(encoding="utf-8"))
+    assert set(document["variants"]) == set(VARIANTS)
+    assert calls == {"border_distance": 1, "polyline_of": 1}
+    stop, blend = (document["variants"][v]["segmentation"] for v in ("polyline-stop", "polyline-blend"))
+    assert stop == blend  # the same polyline, measured once
+
+
 def test_a_scenario_that_cannot_execute_exits_3(tmp_path: Path) -> None:
     far = SMALL.replace("{kind: plate, size_mm: [130.0, 90.0]}",
                         "{kind: plate, size_mm: [130.0, 90.0], pose: {position_mm: [4000.0, 0.0, 200.0]}}")

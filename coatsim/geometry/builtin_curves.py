@@ -1,4 +1,4 @@
-"""Named parametric test curves, sampled uniformly by arc length (mm).
+"""Named parametric test curves, sampled uniformly by arc length (mm), every point on the curve.
 
 ``builtin_curve("ellipse", a=120)`` or, from the command line, ``builtin:ellipse:a=120,points=3000``.
 """
@@ -18,36 +18,51 @@ from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line
 
 DEFAULT_POINTS = 3000
-# Dense samples a parametric curve is resampled from: 40 per output point, at most this many
-# (beyond it the chords of the dense polyline already deviate by far less than 1e-9 of the size).
-_MAX_DENSE = 4_000_000
 
 
-def _resample(xy: np.ndarray, n: int) -> np.ndarray:
-    """Resample a dense polyline to ``n`` points equally spaced in arc length."""
-    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))))
-    t = np.linspace(0.0, s[-1], n)
-    return np.column_stack((np.interp(t, s, xy[:, 0]), np.interp(t, s, xy[:, 1])))
+ARC_GRID = 16384  # parameter intervals of the arc-length table (5-point Gauss–Legendre each)
 
 
-def _dense(n: int, factor: int = 40) -> int:
-    return max(n, min(factor * n, _MAX_DENSE))
+def _by_arc_length(f: Callable[[np.ndarray], np.ndarray], t0: float, t1: float, n: int) -> np.ndarray:
+    """``n`` points of the curve ``f`` (parameter t0 -> t1) equally spaced in arc length,
+    every one on the curve itself: the arc length s(t) is integrated on a fixed parameter
+    grid (speed by central differences) and t(s) interpolated between the grid nodes by
+    cubic Hermite pieces with the exact slope dt/ds = 1/speed (monotone pieces where the
+    curve stops, e.g. at a cusp)."""
+    from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
+    h = 2e-6 * (t1 - t0)
 
-def _parametric(f: Callable[[np.ndarray], np.ndarray], t0: float, t1: float, n: int) -> np.ndarray:
-    return _resample(f(np.linspace(t0, t1, _dense(n) + 1)), n)
+    def speed(t: np.ndarray) -> np.ndarray:
+        v = (f(t + h) - f(t - h)) / (2 * h)
+        return np.hypot(v[:, 0], v[:, 1])
+
+    t = np.linspace(t0, t1, ARC_GRID + 1)
+    nodes, weights = np.polynomial.legendre.leggauss(5)
+    half = (t1 - t0) / ARC_GRID / 2
+    tn = ((t[:-1] + t[1:]) / 2)[:, None] + half * nodes
+    s = np.concatenate(([0.0], np.cumsum(speed(tn.ravel()).reshape(tn.shape) @ weights * half)))
+    at_nodes = speed(t)
+    if at_nodes.min() > 1e-9 * at_nodes.mean():
+        t_of_s = CubicHermiteSpline(s, t, 1.0 / at_nodes)
+    else:
+        moving = np.r_[True, np.diff(s) > 0]  # a stop would repeat an arc length
+        t_of_s = PchipInterpolator(s[moving], t[moving])
+    u = t_of_s(np.linspace(0.0, s[-1], n))
+    u[0], u[-1] = t0, t1
+    return f(u)
 
 
 def paper_spiral(points: int = DEFAULT_POINTS, width: float = 200.0, turns: float = 2.0) -> np.ndarray:
     """The paper's Fig. 6: x = -(1+2t) cos t, y = (1+2t) sin t, t in [0, 2π·turns]."""
     f = lambda t: np.column_stack((-(1 + 2 * t) * np.cos(t), (1 + 2 * t) * np.sin(t)))  # noqa: E731
-    xy = _parametric(f, 0.0, 2 * math.pi * turns, points)
+    xy = _by_arc_length(f, 0.0, 2 * math.pi * turns, points)
     return xy * (width / np.ptp(xy[:, 0]))
 
 
 def ellipse(points: int = DEFAULT_POINTS, a: float = 100.0, b: float = 50.0) -> np.ndarray:
     f = lambda t: np.column_stack((a * np.cos(t), b * np.sin(t)))  # noqa: E731
-    return _parametric(f, 0.0, 2 * math.pi, points)
+    return _by_arc_length(f, 0.0, 2 * math.pi, points)
 
 
 def naca(points: int = DEFAULT_POINTS, code: str = "0012", chord: float = 200.0) -> np.ndarray:
@@ -56,36 +71,42 @@ def naca(points: int = DEFAULT_POINTS, code: str = "0012", chord: float = 200.0)
     if len(code) != 4 or not code.isdigit():
         raise InputError(f"builtin:naca: code must be 4 digits, got {code!r}")
     m, p, tt = int(code[0]) / 100, int(code[1]) / 10, int(code[2:]) / 100
-    beta = np.linspace(0.0, math.pi, _dense(points, 20))
-    x = (1 - np.cos(beta)) / 2
-    yt = 5 * tt * (0.2969 * np.sqrt(x) - 0.1260 * x - 0.3516 * x**2 + 0.2843 * x**3 - 0.1036 * x**4)
-    if m > 0 and p > 0:
-        yc = np.where(x < p, m / p**2 * (2 * p * x - x**2), m / (1 - p) ** 2 * (1 - 2 * p + 2 * p * x - x**2))
-        dyc = np.where(x < p, 2 * m / p**2 * (p - x), 2 * m / (1 - p) ** 2 * (p - x))
-    else:
-        yc, dyc = np.zeros_like(x), np.zeros_like(x)
-    th = np.arctan(dyc)
-    upper = np.column_stack((x - yt * np.sin(th), yc + yt * np.cos(th)))[::-1]
-    lower = np.column_stack((x + yt * np.sin(th), yc - yt * np.cos(th)))[1:]
-    xy = np.vstack((upper, lower)) * chord
-    return _resample(xy, points)
+
+    def surface(u: np.ndarray) -> np.ndarray:
+        """u in [0, π]: upper surface TE -> LE for u <= π/2, lower LE -> TE after; the chord
+        position x = 1 - cos|u - π/2| (written 2 sin²(·/2), exact near 0) keeps both the leading edge (x ~ u²) and the trailing
+        edge (dx/du = 1) regular in u."""
+        x = 2 * np.sin(np.abs(u - math.pi / 2) / 2) ** 2
+        yt = 5 * tt * (0.2969 * np.sqrt(x) - 0.1260 * x - 0.3516 * x**2 + 0.2843 * x**3 - 0.1036 * x**4)
+        if m > 0 and p > 0:
+            yc = np.where(x < p, m / p**2 * (2 * p * x - x**2), m / (1 - p) ** 2 * (1 - 2 * p + 2 * p * x - x**2))
+            dyc = np.where(x < p, 2 * m / p**2 * (p - x), 2 * m / (1 - p) ** 2 * (p - x))
+        else:
+            yc, dyc = np.zeros_like(x), np.zeros_like(x)
+        th = np.arctan(dyc)
+        side = np.where(u <= math.pi / 2, 1.0, -1.0)
+        return chord * np.column_stack((x - side * yt * np.sin(th), yc + side * yt * np.cos(th)))
+
+    return _by_arc_length(surface, 0.0, math.pi, points)
 
 
 def cam(points: int = DEFAULT_POINTS, base_radius: float = 40.0, lift: float = 12.0) -> np.ndarray:
     """Disc cam: rise 120° (cycloidal), dwell 60°, return 120°, dwell 60°."""
-    phi = np.linspace(0.0, 2 * math.pi, _dense(points) + 1)
-    u = np.degrees(phi)
 
     def cycloid(x: np.ndarray) -> np.ndarray:
         return x - np.sin(2 * math.pi * x) / (2 * math.pi)
 
-    lift_of = np.select(
-        [u < 120, u < 180, u < 300],
-        [cycloid(u / 120), np.ones_like(u), 1 - cycloid((u - 180) / 120)],
-        np.zeros_like(u),
-    )
-    r = base_radius + lift * lift_of
-    return _resample(np.column_stack((r * np.cos(phi), r * np.sin(phi))), points)
+    def profile(phi: np.ndarray) -> np.ndarray:
+        u = np.degrees(phi)
+        lift_of = np.select(
+            [u < 120, u < 180, u < 300],
+            [cycloid(u / 120), np.ones_like(u), 1 - cycloid((u - 180) / 120)],
+            np.zeros_like(u),
+        )
+        r = base_radius + lift * lift_of
+        return np.column_stack((r * np.cos(phi), r * np.sin(phi)))
+
+    return _by_arc_length(profile, 0.0, 2 * math.pi, points)
 
 
 def epitrochoid(points: int = DEFAULT_POINTS, big_r: float = 60.0, small_r: float = 20.0, d: float = 10.0) -> np.ndarray:
@@ -93,12 +114,12 @@ def epitrochoid(points: int = DEFAULT_POINTS, big_r: float = 60.0, small_r: floa
     f = lambda t: np.column_stack(  # noqa: E731
         ((big_r + small_r) * np.cos(t) - d * np.cos(k * t), (big_r + small_r) * np.sin(t) - d * np.sin(k * t))
     )
-    return _parametric(f, 0.0, 2 * math.pi, points)
+    return _by_arc_length(f, 0.0, 2 * math.pi, points)
 
 
 def sine(points: int = DEFAULT_POINTS, amplitude: float = 20.0, wavelength: float = 100.0, length: float = 200.0) -> np.ndarray:
     f = lambda t: np.column_stack((t, amplitude * np.sin(2 * math.pi * t / wavelength)))  # noqa: E731
-    return _parametric(f, 0.0, length, points)
+    return _by_arc_length(f, 0.0, length, points)
 
 
 def clothoid(points: int = DEFAULT_POINTS, length: float = 200.0, end_radius: float = 40.0) -> np.ndarray:

@@ -96,9 +96,13 @@ class Arc:
         return self.start_heading + self.sweep
 
     def points(self, s: np.ndarray) -> np.ndarray:
+        """Points at arc lengths ``s`` from the start, from the chord (length · sinc of half
+        the turn), which stays exact for nearly straight arcs of huge radius."""
         s = np.asarray(s, dtype=float)
-        phi = self.start_angle + np.sign(self.sweep) * s / self.radius
-        return np.asarray(self.center) + self.radius * np.column_stack((np.cos(phi), np.sin(phi)))
+        half = np.sign(self.sweep) * s / (2 * self.radius)
+        chord = s * np.sinc(half / math.pi)
+        heading = self.start_heading + half
+        return np.asarray(self.start) + chord[:, None] * np.column_stack((np.cos(heading), np.sin(heading)))
 
     def tangents(self, s: np.ndarray) -> np.ndarray:
         s = np.asarray(s, dtype=float)

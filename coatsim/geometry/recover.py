@@ -31,13 +31,25 @@ def _curvature(points: np.ndarray) -> np.ndarray:
 
 
 def _stretches(kappa: np.ndarray, length: float) -> list[tuple[int, int]]:
-    """Maximal runs of interior vertices (indices into points) with constant curvature."""
-    out, first = [], 0
-    for i in range(1, len(kappa) + 1):
-        if i == len(kappa) or abs(kappa[i] - kappa[first]) * length > KAPPA_JUMP:
-            if i - first >= MIN_VERTICES:
-                out.append((first + 1, i))  # vertex indices: kappa[j] belongs to vertex j + 1
-            first = i
+    """Maximal runs of interior vertices (indices into points) with constant curvature; a
+    run ends at the first curvature that differs from the run's first by the jump. The end
+    is searched in windows that double (a long run costs one vectorised pass), and the search
+    stops once there are more runs than a chain may have primitives."""
+    out, first, n = [], 0, len(kappa)
+    while first < n:
+        end, lo, window = n, first + 1, 64
+        while lo < n:
+            hi = min(n, lo + window)
+            hit = np.flatnonzero(np.abs(kappa[lo:hi] - kappa[first]) * length > KAPPA_JUMP)
+            if len(hit):
+                end = lo + int(hit[0])
+                break
+            lo, window = hi, 2 * window
+        if end - first >= MIN_VERTICES:
+            out.append((first + 1, end))  # vertex indices: kappa[j] belongs to vertex j + 1
+            if len(out) > MAX_PRIMITIVES:
+                break
+        first = end
     return out
 
 

@@ -91,11 +91,13 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS) -> BuiltProgram:
+                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS,
+                  polyline: Optional[Polysegment] = None) -> BuiltProgram:
     """Write the ``options.variant`` program of a curve in ``dialect``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
-    curve, (n, 2)) or, without them, dense samples of ``poly``. The stretches where the curve
+    curve, (n, 2)) or, without them, dense samples of ``poly``, unless ``polyline`` (that simplification, computed once for
+    both polyline variants) is given. The stretches where the curve
     does not allow the programmed speed (``poly.speed_limited`` from the fitter, and its true
     corners) go into the header (``speed_limits``), scaled to the variant's own curve length,
     so that every variant is measured over the same stretches.
@@ -107,7 +109,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         summary = f"{poly.n_segments} segments ({poly.n_lines} lines, {poly.n_arcs} arcs)"
     else:
         raw = points if points is not None else dense_points(poly, tolerance_mm)
-        curve = polyline_of(raw, poly.closed, tolerance_mm)
+        curve = polyline if polyline is not None else polyline_of(raw, poly.closed, tolerance_mm)
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
     limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly))
     path = place(curve, placement)

@@ -4,13 +4,20 @@ Constraints: joint speed and acceleration limits of the cell (``PLANNING_FRACTIO
 first-order bound on the path speed, not a post-hoc scale) and, on Cartesian pieces, the tool
 acceleration limit applied to the combined tangential and centripetal acceleration. The path is
 a cubic spline through the IK samples, parametrised by the TCP arc length (m); gridpoints are the
-samples; ``ParametrizeConstAccel`` integrates the piecewise-constant path acceleration exactly,
-and where the sampled command still exceeds a joint bound between gridpoints, those intervals are
-refined until it does not.
+samples; the piecewise-constant path acceleration between gridpoints (toppra's
+``ParametrizeConstAccel``) is integrated exactly, and where the sampled command still exceeds a
+joint bound between gridpoints, those intervals are refined until it does not.
+
+A program with exact stops has hundreds of short pieces, so the per-piece overhead counts: the
+joint-limit constraints are built once per cell (toppra formats every limit into a string when
+one is built), the tool-acceleration facets once per limit, the seidel solver is chosen without
+probing for the other solvers on every piece, one spline serves every derivative, and the
+sampling is vectorised.
 """
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 from dataclasses import dataclass
@@ -18,10 +25,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 import toppra
+from scipy.interpolate import CubicSpline, make_interp_spline
 import toppra.algorithm
 import toppra.constraint as tc
+from toppra.algorithm.algorithm import ParameterizationAlgorithm
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
-from toppra.parametrizer import ParametrizeConstAccel
+from toppra.interpolator import AbstractGeometricPath
+from toppra.solverwrapper.cy_seidel_solverwrapper import seidelWrapper
 
 from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError
@@ -74,6 +84,13 @@ class _PathSpeedBound(tc.LinearConstraint):
         return None, None, None, None, None, None, xbound
 
 
+@functools.lru_cache(maxsize=16)
+def _facets(accel: float) -> tuple[np.ndarray, np.ndarray]:
+    """The tool-acceleration disc of radius ``accel`` as an inscribed polygon: (F, g) with F x <= g."""
+    phi = np.linspace(0.0, math.pi, _FACETS + 1)
+    return np.column_stack((np.cos(phi), np.sin(phi))), np.full(_FACETS + 1, accel * math.cos(math.pi / (2 * _FACETS)))
+
+
 class _ToolAcceleration(tc.LinearConstraint):
     """|(sdd, kappa * sd^2)| <= a_max: tangential and centripetal TCP acceleration together.
 
@@ -84,9 +101,7 @@ class _ToolAcceleration(tc.LinearConstraint):
     def __init__(self, s: np.ndarray, kappa: np.ndarray, accel: float):
         super().__init__()
         self._s, self._kappa = s, np.abs(kappa)
-        phi = np.linspace(0.0, math.pi, _FACETS + 1)
-        self._F = np.column_stack((np.cos(phi), np.sin(phi)))
-        self._g = np.full(_FACETS + 1, accel * math.cos(math.pi / (2 * _FACETS)))
+        self._F, self._g = _facets(float(accel))
         self.identical = True
         self.set_discretization_type(tc.DiscretizationType.Interpolation)
 
@@ -99,15 +114,51 @@ class _ToolAcceleration(tc.LinearConstraint):
                                                gridpoints, identical=True)
 
 
-def _parametrize(cell: Cell, path, extra: list, gridpoints: np.ndarray, label: str):
-    constraints = [
-        tc.JointVelocityConstraint(PLANNING_FRACTION * cell.v_max),
-        tc.JointAccelerationConstraint(PLANNING_FRACTION * cell.a_max,
-                                       discretization_scheme=tc.DiscretizationType.Interpolation),
-        *extra,
-    ]
-    algo = toppra.algorithm.TOPPRA(constraints, path, gridpoints=gridpoints, solver_wrapper="seidel",
-                                   parametrizer="ParametrizeConstAccel")
+@functools.lru_cache(maxsize=8)
+def _joint_limits(cell: Cell) -> tuple[tc.LinearConstraint, tc.LinearConstraint]:
+    """The cell's joint speed and acceleration constraints at the planning fraction (they hold
+    no path state)."""
+    return (tc.JointVelocityConstraint(PLANNING_FRACTION * cell.v_max),
+            tc.JointAccelerationConstraint(PLANNING_FRACTION * cell.a_max,
+                                           discretization_scheme=tc.DiscretizationType.Interpolation))
+
+
+class _Spline(AbstractGeometricPath):
+    """Cubic spline (not-a-knot) through the samples, every derivative evaluated from the one
+    spline (a B-spline: three times cheaper to build than scipy's CubicSpline, the same curve)."""
+
+    def __init__(self, s: np.ndarray, q: np.ndarray):
+        self._spline = make_interp_spline(s, q, k=3) if len(s) >= 4 else CubicSpline(s, q)
+        self._s, self._q = s, q
+
+    def __call__(self, path_positions, order=0):
+        return self._spline(path_positions, order)
+
+    @property
+    def dof(self) -> int:
+        return self._q.shape[1]
+
+    @property
+    def path_interval(self) -> np.ndarray:
+        return np.array([self._s[0], self._s[-1]])
+
+    @property
+    def waypoints(self):
+        return self._s, self._q
+
+
+class _TOPPRA(toppra.algorithm.TOPPRA):
+    """TOPPRA with the seidel solver, chosen directly: the stock constructor probes for every
+    other solver (cvxpy, qpOASES) on each call."""
+
+    def __init__(self, constraints: list, path: AbstractGeometricPath, gridpoints: np.ndarray):
+        ParameterizationAlgorithm.__init__(self, constraints, path, gridpoints=gridpoints,
+                                           parametrizer="ParametrizeConstAccel")
+        self.solver_wrapper = seidelWrapper(self.constraints, self.path, self.gridpoints, solve_lp1d=True)
+
+
+def _parametrize(cell: Cell, path: AbstractGeometricPath, extra: list, gridpoints: np.ndarray, label: str):
+    algo = _TOPPRA([*_joint_limits(cell), *extra], path, gridpoints)
     algo.compute_parameterization(0.0, 0.0)
     data = algo.problem_data
     code = data.return_code
@@ -120,20 +171,30 @@ def _parametrize(cell: Cell, path, extra: list, gridpoints: np.ndarray, label: s
     return data.gridpoints, np.maximum(data.sd_vec, 0.0)
 
 
-def _sample(path7, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
+def _sample(path: _Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
             max_steps: int) -> TimedPiece:
-    """Evaluate the const-accel parametrisation on the grid k*dt; path7 carries (q, s); at most
-    ``max_steps`` steps (checked before they are allocated)."""
-    traj = ParametrizeConstAccel(path7, gridpoints, sd)
-    duration = float(traj.duration)
+    """Evaluate the piecewise-constant path acceleration between gridpoints (toppra's
+    ParametrizeConstAccel, vectorised) on the time grid k*dt; at most ``max_steps`` steps
+    (checked before they are allocated)."""
+    ds = np.diff(gridpoints)
+    x = sd**2
+    accel = 0.5 * (x[1:] - x[:-1]) / ds
+    with np.errstate(divide="ignore"):  # a stretch at zero speed takes forever (rejected below)
+        knots = np.concatenate(([0.0], np.cumsum(2 * ds / (sd[:-1] + sd[1:]))))
+    duration = float(knots[-1])
     if not math.isfinite(duration):
         raise ExecutionError("timing: a path piece has no room to move (zero speed along it); sample it more finely")
     check_budget(f"{label}: simulation steps of {dt * 1e3:g} ms ({duration:.4g} s of motion under the joint limits)",
                  duration / dt, max_steps, "raise the programmed SPEED or shorten the program")
     m = int(math.ceil(duration / dt - 1e-9))
     t = np.minimum(np.arange(m + 1) * dt, duration)
-    x, xd, xdd = traj(t), traj(t, 1), traj(t, 2)
-    return TimedPiece(t=t, q=x[:, :6], qd=xd[:, :6], qdd=xdd[:, :6], s=x[:, 6] * s_scale, sd=xd[:, 6] * s_scale)
+    k = np.minimum(np.searchsorted(knots, t, side="right") - 1, len(accel) - 1)
+    h = t - knots[k]
+    s = gridpoints[k] + h * sd[k] + 0.5 * h**2 * accel[k]
+    v = sd[k] + h * accel[k]
+    dq = path(s, 1)
+    return TimedPiece(t=t, q=path(s), qd=dq * v[:, None], qdd=path(s, 2) * (v**2)[:, None] + dq * accel[k][:, None],
+                      s=s * s_scale, sd=v * s_scale)
 
 
 def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
@@ -142,29 +203,27 @@ def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
     return np.any(np.abs(piece.qd) > limit * cell.v_max, axis=1) | np.any(np.abs(piece.qdd) > limit * cell.a_max, axis=1)
 
 
-def _timed(cell: Cell, path, path7, extra: list, grid: np.ndarray, s_scale: float, label: str,
+def _timed(cell: Cell, path: _Spline, extra: list, grid: np.ndarray, s_scale: float, label: str,
            max_steps: int) -> TimedPiece:
     """Parametrise and sample, halving the grid intervals where the command exceeds a joint bound."""
     for _ in range(_MAX_REFINEMENTS):
         grid_out, sd = _parametrize(cell, path, extra, grid, label)
-        piece = _sample(path7, grid_out, sd, cell.timestep, s_scale, label, max_steps)
+        piece = _sample(path, grid_out, sd, cell.timestep, s_scale, label, max_steps)
         bad = _over_bound(cell, piece)
         if not bad.any():
             return piece
         k = np.searchsorted(grid_out, piece.s[bad] / s_scale, side="right") - 1
         k = np.unique(np.clip(np.concatenate((k - 1, k, k + 1)), 0, len(grid_out) - 2))
         grid = np.union1d(grid_out, (grid_out[k] + grid_out[k + 1]) / 2)
-    return _sample(path7, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale, label, max_steps)
+    return _sample(path, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale, label, max_steps)
 
 
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
                    curvature_per_mm: np.ndarray, label: str, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
     s = s_mm * MM
-    path = toppra.SplineInterpolator(s, q)
-    path7 = toppra.SplineInterpolator(s, np.column_stack((q, s)))
     extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
-    return _timed(cell, path, path7, extra, s, 1.0 / MM, label, max_steps)
+    return _timed(cell, _Spline(s, q), extra, s, 1.0 / MM, label, max_steps)
 
 
 # Below this joint travel (rad) a move is timed by a bang-bang profile: toppra's solver fails
@@ -199,6 +258,4 @@ def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, la
     tcp = np.array([cell.forward(data, qk)[0] for qk in qs]) * MM
     dp_du = np.linalg.norm(np.gradient(tcp, u, axis=0), axis=1)
     bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
-    path = toppra.SplineInterpolator(u, qs)
-    path7 = toppra.SplineInterpolator(u, np.column_stack((qs, u)))
-    return _timed(cell, path, path7, [_PathSpeedBound(u, bound)], u, 1.0, label, max_steps)
+    return _timed(cell, _Spline(u, qs), [_PathSpeedBound(u, bound)], u, 1.0, label, max_steps)

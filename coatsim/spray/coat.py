@@ -21,7 +21,7 @@ from coatsim.budgets import MAX_ABS_COORDINATE_MM
 from coatsim.errors import InputError
 from coatsim.fileio import write_text
 from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
-from coatsim.spray.coating_metrics import coating_metrics, region_of_interest
+from coatsim.spray.coating_metrics import coating_metrics, edge_band_width, region_of_interest
 from coatsim.spray.deposition import Deposit, SprayModel, deposit
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import (
@@ -52,10 +52,11 @@ class CoatingResult:
 def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "band",
          target_um: float | None = None, edge_band_mm: float | None = None,
          band_halfwidth_mm: float | None = None, spacing: float | None = None,
-         progress: Callable[[float], None] | None = None) -> CoatingResult:
-    """Deposit the sprayed part of ``log`` on ``surface`` and measure it over the ROI."""
+         progress: Callable[[float], None] | None = None, away: np.ndarray | None = None) -> CoatingResult:
+    """Deposit the sprayed part of ``log`` on ``surface`` and measure it over the ROI
+    (``away``: the surface's vertices clear of the edge band, if already computed)."""
     result = deposit(surface, log, model, progress)
-    mask = region_of_interest(surface, result, model, roi, edge_band_mm, band_halfwidth_mm, spacing)
+    mask = region_of_interest(surface, result, model, roi, edge_band_mm, band_halfwidth_mm, spacing, away)
     metrics = coating_metrics(surface, result, model, mask, target_um)
     return CoatingResult(surface, model, result, mask, roi, metrics)
 
@@ -141,6 +142,6 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
         inputs = {"trajectory": str(trajectory), "surface": surface_spec, "spacing_mm": spacing,
                   "footprint": fp.spec, "rate_mm3_s": rate, "standoff_mm": standoff,
                   "de_exponent": de_exponent, "occlusion": occlusion, "substep_mm": model.step_mm,
-                  "roi": roi, "edge_band_mm": 3 * fp.sigma_mm if edge_band_mm is None else edge_band_mm,
+                  "roi": roi, "edge_band_mm": edge_band_width(model, edge_band_mm),
                   "band_halfwidth_mm": 2 * fp.sigma_mm}
         return result, write_coating(result, outdir, inputs, line)

@@ -44,18 +44,32 @@ def _footprint_radius(surface: Surface, deposit: Deposit, model: SprayModel, ste
     return np.where(seen, lateral * model.standoff_mm / np.where(seen, da, 1.0), np.inf)
 
 
+def edge_band_width(model: SprayModel, edge_band_mm: float | None = None) -> float:
+    """The edge band left out of the ROI (mm): 3σ of the footprint unless given."""
+    return 3 * model.footprint.sigma_mm if edge_band_mm is None else edge_band_mm
+
+
+def away_from_border(surface: Surface, edge_band_mm: float, spacing: float | None = None) -> np.ndarray:
+    """Vertices at least ``edge_band_mm`` from the part border (the ``part`` ROI). It depends on
+    the surface alone: compute it once per surface and pass it to every variant's ROI."""
+    if not edge_band_mm >= 0:
+        raise InputError(f"the edge band must be >= 0 mm, found {edge_band_mm:g} mm")
+    return border_distance(surface, spacing, within_mm=edge_band_mm) >= edge_band_mm
+
+
 def region_of_interest(surface: Surface, deposit: Deposit, model: SprayModel, kind: str = "band",
                        edge_band_mm: float | None = None, band_halfwidth_mm: float | None = None,
-                       spacing: float | None = None) -> np.ndarray:
-    """Boolean vertex mask of the ROI (see module docstring); widths default to 3σ and 2σ."""
+                       spacing: float | None = None, away: np.ndarray | None = None) -> np.ndarray:
+    """Boolean vertex mask of the ROI (see module docstring); widths default to 3σ and 2σ.
+    ``away`` is ``away_from_border(surface, edge band, spacing)`` when already known."""
     if kind not in ROI_KINDS:
         raise InputError(f"ROI must be one of {', '.join(ROI_KINDS)}, found {kind!r}")
     sigma = model.footprint.sigma_mm
-    edge = 3 * sigma if edge_band_mm is None else edge_band_mm
+    edge = edge_band_width(model, edge_band_mm)
     half = 2 * sigma if band_halfwidth_mm is None else band_halfwidth_mm
     if not (edge >= 0 and half > 0 and np.isfinite(edge) and np.isfinite(half)):
         raise InputError(f"ROI widths must be finite, >= 0 (edge band) and > 0 (band half-width), found {edge:g}, {half:g} mm")
-    mask = border_distance(surface, spacing) >= edge
+    mask = (away_from_border(surface, edge, spacing) if away is None else away).copy()
     if kind == "band":
         mask &= deposit.track_distance_mm <= half
         for step in _stretch_ends(deposit, closing_mm=model.step_mm):

@@ -243,21 +243,35 @@ def parse_surface_spec(spec: str, spacing: float) -> Surface:
     return mesh_file(path, spacing)
 
 
-def border_distance(surface: Surface, spacing: float | None = None) -> np.ndarray:
+def _merged_vertices(vertices: np.ndarray) -> np.ndarray:
+    """Vertex ids with coincident vertices (within 1e-7 of the part size) sharing one id."""
+    scale = float(np.ptp(vertices, axis=0).max()) or 1.0
+    key = np.round(vertices / (1e-7 * scale)).astype(np.int64)
+    order = np.lexsort(key.T[::-1])
+    ordered = key[order]
+    ids = np.cumsum(np.r_[True, np.any(ordered[1:] != ordered[:-1], axis=1)]) - 1
+    merged = np.empty(len(vertices), dtype=np.int64)
+    merged[order] = ids
+    return merged
+
+
+def border_distance(surface: Surface, spacing: float | None = None, within_mm: float = math.inf) -> np.ndarray:
     """3-D distance (mm) from every vertex to the part border (edges with one adjacent
-    triangle, after merging coincident vertices such as a cylinder seam); inf if closed.
-    Accurate to spacing/16 (border edges are sampled at spacing/8)."""
-    scale = float(np.ptp(surface.vertices, axis=0).max()) or 1.0
-    key = np.round(surface.vertices / (1e-7 * scale)).astype(np.int64)
-    _, merged = np.unique(key, axis=0, return_inverse=True)
-    merged = merged.ravel()
+    triangle, after merging coincident vertices such as a cylinder seam); inf if closed or
+    not within ``within_mm`` (the search stops there, so an edge band costs time in
+    proportion to the vertices it holds). Accurate to spacing/16 (border edges are sampled
+    at spacing/8)."""
+    merged = _merged_vertices(surface.vertices)
     faces = merged[surface.faces]
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
-    unique, first, counts = np.unique(edges, axis=0, return_index=True, return_counts=True)
-    if not np.any(counts == 1):
+    key = edges[:, 0] * (int(merged.max()) + 1) + edges[:, 1]
+    values, counts = np.unique(key, return_counts=True)
+    once = values[counts == 1]  # an edge of one triangle only
+    if not len(once):
         return np.full(surface.n_vertices, np.inf)
+    slot = np.minimum(np.searchsorted(once, key), len(once) - 1)
     all_edges = np.concatenate([surface.faces[:, [0, 1]], surface.faces[:, [1, 2]], surface.faces[:, [2, 0]]])
-    border = all_edges[np.sort(first[counts == 1])]
+    border = all_edges[once[slot] == key]
     a, b = surface.vertices[border[:, 0]], surface.vertices[border[:, 1]]
     lengths = np.linalg.norm(b - a, axis=1)
     step = (spacing if spacing else float(np.median(lengths))) / 8
@@ -265,5 +279,16 @@ def border_distance(surface: Surface, spacing: float | None = None) -> np.ndarra
     edge = np.repeat(np.arange(len(border)), n + 1)
     frac = (np.arange(len(edge)) - np.repeat(np.cumsum(n + 1) - (n + 1), n + 1)) / np.repeat(n, n + 1)
     samples = a[edge] + frac[:, None] * (b - a)[edge]
-    distance, _ = cKDTree(samples).query(surface.vertices)
+    if not math.isfinite(within_mm):
+        return cKDTree(samples).query(surface.vertices)[0]
+    bound = within_mm * (1 + 1e-9) + 1e-9
+    # A search from far inside the part is slow (the tree's boxes hold the interior); one sample
+    # per cell of a coarse grid bounds every distance from below, so only vertices that may lie
+    # within the band go to the fine samples.
+    cell = max(within_mm / 16, step)
+    _, keep = np.unique(np.floor(samples / cell).astype(np.int64), axis=0, return_index=True)
+    coarse = cKDTree(samples[np.sort(keep)]).query(surface.vertices)[0]
+    near = np.flatnonzero(coarse - (cell * math.sqrt(3) + step / 2) < bound)
+    distance = np.full(surface.n_vertices, np.inf)
+    distance[near] = cKDTree(samples).query(surface.vertices[near], distance_upper_bound=bound)[0]
     return distance

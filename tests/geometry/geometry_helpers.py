@@ -132,12 +132,11 @@ def dense_polysegment(poly: Polysegment, step: float) -> np.ndarray:
 def dense_polyline(points: np.ndarray, step: float) -> np.ndarray:
     """Points on a polyline no farther than ``step`` apart (vertices included)."""
     pts = np.asarray(points, dtype=float)
-    out = [pts[:1]]
-    for a, b in zip(pts[:-1], pts[1:]):
-        n = max(1, int(math.ceil(np.linalg.norm(b - a) / step)))
-        u = np.linspace(0.0, 1.0, n + 1)[1:]
-        out.append(a + u[:, None] * (b - a))
-    return np.vstack(out)
+    d = np.diff(pts, axis=0)
+    n = np.maximum(1, np.ceil(np.linalg.norm(d, axis=1) / step).astype(np.int64))
+    edge = np.repeat(np.arange(len(d)), n)
+    k = np.arange(len(edge)) - np.repeat(np.cumsum(n) - n, n) + 1  # 1..n along each edge
+    return np.vstack((pts[:1], pts[edge] + (k / n[edge])[:, None] * d[edge]))
 
 
 def distance_to_polyline(points: np.ndarray, vertices: np.ndarray, chunk: int = 4000) -> np.ndarray:

@@ -272,6 +272,7 @@ def _jittered(spec, sigma, seed):
 
 NOISE_CASES = [
     pytest.param("builtin:paper-spiral:points=5000", id="spiral"),
+    # once 17 -> 25, 42, 38 segments: the deviation check over-reported on dense noisy input
     pytest.param("builtin:ellipse:points=5000", id="ellipse"),
 ]
 
