@@ -59,7 +59,7 @@ def _segment_flags(message: str) -> str:
 
 @app.command()
 def segment(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns) or builtin:NAME[:key=value,...]."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
     tol: float = typer.Option(0.1, "--tol", help="Tolerance sigma: max two-sided deviation, mm."),
     method: str = typer.Option("optimal", "--method", help="optimal (guaranteed tolerance, few segments) | paper (literal RDP on θ)."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
@@ -71,12 +71,16 @@ def segment(
     min_segment: Optional[float] = typer.Option(None, "--min-segment", help="Shortest fitted segment, mm [default: 5 x --tol]."),
     speed: Optional[float] = typer.Option(None, "--speed", help="Programmed speed, mm/s: no arc tighter than speed²/tool-accel where the curve allows; the rest is listed as speed-limited."),
     tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit with --speed, m/s² [default: the cell model's]."),
+    layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
+    join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
 ) -> None:
-    """Approximate a curve by tangent-continuous arcs and lines within a tolerance."""
+    """Approximate a curve by tangent-continuous arcs and lines within a tolerance; a drawing
+    gives one polysegment per contour (a part JSON when there are several)."""
     import math
 
     from coatsim.errors import InputError
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
+    from coatsim.geometry.cad.drawing import is_drawing
     from coatsim.outputs_guard import check_distinct
 
     if closed not in ("auto", "yes", "no"):
@@ -95,6 +99,19 @@ def segment(
             accel_mm_s2 = tool_accel * 1000.0
         else:
             fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
+    if is_drawing(input):
+        from coatsim.geometry.cad.command import segment_drawing_command
+
+        if min_segment is not None:
+            fail("--min-segment applies to point curves; a drawing keeps its lines and arcs as drawn")
+        text, seconds = segment_drawing_command(input, tol, layer, join_tol, method, closed, theta_tol, output, plot,
+                                                corner_deg, speed, accel_mm_s2)
+        typer.echo(text)
+        if timings:
+            typer.echo(f"timings: reading, chaining and fitting {seconds:.3f} s", err=True)
+        return
+    if layer or join_tol is not None:
+        fail("--layer and --join-tol apply to drawings (DXF, SVG)")
     try:
         seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
                             theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
@@ -190,7 +207,7 @@ def coat(
 
 @app.command()
 def program(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY), builtin:NAME, or a polysegment JSON (coatsim segment -o)."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY), builtin:NAME, a drawing (DXF/SVG), or a polysegment or part JSON (coatsim segment -o)."),
     tol: Optional[float] = typer.Option(None, "--tol", help="Tolerance sigma, mm (required for a curve; default for a JSON: its tolerance_mm)."),
     speed: float = typer.Option(500.0, "--speed", help="Programmed tool speed, mm/s."),
     standoff: float = typer.Option(100.0, "--standoff", help="Stand-off of the TCP above the surface, mm."),
@@ -207,8 +224,12 @@ def program(
     name: Optional[str] = typer.Option(None, "--name", help="AS program name (<= 15 characters) [default: from the input]."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
     tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit the curve is segmented for at --speed, m/s² [default: the cell model's]."),
+    layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
+    join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
+    order: str = typer.Option("as-drawn", "--order", help="Parts: spray the contours as-drawn | nearest (next start closest to the last end)."),
 ) -> None:
-    """Write the Kawasaki AS program (polysegment or polyline variant) of a curve."""
+    """Write the Kawasaki AS program (polysegment or polyline variant) of a curve, or of every
+    contour of a drawing one after the other (gun off between them)."""
     import math
 
     from coatsim.program.build import ProgramOptions
@@ -226,7 +247,7 @@ def program(
         fail(f"--tool-accel: must be a positive number of m/s², got {tool_accel}")
     built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                         lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                        output=output, tool_accel_mm_s2=accel_mm_s2)
+                        output=output, layers=layer, join_tol=join_tol, order=order, tool_accel_mm_s2=accel_mm_s2)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
@@ -239,7 +260,7 @@ def execute(
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
     step: float = typer.Option(1.0, "--step-mm", help="Cartesian sampling step for IK, mm."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
@@ -274,14 +295,14 @@ def convert(
     gun: int = typer.Option(1, "--gun", help="Gun output signal number: its sprayed moves are the process path."),
     standalone: bool = typer.Option(False, "--standalone", help="A clean program of the path alone instead of the edited original."),
     lines: Optional[str] = typer.Option(None, "--lines", help="FIRST-LAST: the moves of these source lines instead of the sprayed ones."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
     name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
 ) -> None:
     """Rewrite the process path of an existing AS program with arcs within a tolerance."""
-    from coatsim.fileio import write_text
+    from coatsim.fileio import write_bytes
     from coatsim.outputs_guard import check_distinct
     from coatsim.program.as_lang.io_model import parse_inputs
     from coatsim.program.convert import ConvertOptions, convert_program, conversion_summary
@@ -299,9 +320,11 @@ def convert(
     result = convert_program(paths, options, inputs=parse_inputs(inputs) if inputs is not None else None,
                              kinematics=LazyKinematics(model))
     if output is not None:
-        write_text(output, result.text)
+        write_bytes(output, result.data)  # the original's bytes: encoding and line ends kept
     else:
-        typer.echo(result.text, nl=False)
+        sys.stdout.flush()
+        sys.stdout.buffer.write(result.data)
+        sys.stdout.buffer.flush()
     typer.echo(conversion_summary(result) + (f"\nwrote {output}" if output else ""), err=output is None)
 
 
@@ -309,7 +332,7 @@ def convert(
 def check_program(
     paths: list[Path] = typer.Argument(..., help="Kawasaki AS file(s) loaded together: programs, then data such as poses."),
     gun: int = typer.Option(1, "--gun", help="Gun output signal number."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
 ) -> None:

@@ -23,19 +23,22 @@ from coatsim.errors import CoatsimError, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import Curve, builtin_curve, make_curve, read_curve_file, segment_curve, write_polysegment_json
 from coatsim.geometry.deviation import hausdorff
+from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
+from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.segment import Segmentation
 from coatsim.program import read_program_bytes, read_toolpath
 from coatsim.program.as_lang.source import decode
 from coatsim.program.as_lang.names import program_name
-from coatsim.program.build import BuiltProgram, ProgramOptions, build_program, polyline_of
+from coatsim.program.build import ProgramOptions, polyline_of
 from coatsim.program.oat import oat_to_matrix
-from coatsim.program.placement import Frame, Placement, centering_offset
+from coatsim.program.part_program import PartProgram, build_part_program, part_centering_offset
+from coatsim.program.placement import Frame, Placement
 from coatsim.program.toolpath import ToolPath
 from coatsim.program.user import UserProgram, user_program
 from coatsim.report.catalogue import METRICS
 from coatsim.report.gates import evaluate_gates
-from coatsim.report.metrics import assemble, coating_group, segmentation_group, to_json
+from coatsim.report.metrics import assemble, coating_group, combine_segmentation, contours_section, segmentation_group, to_json
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.execute import Execution, execute
 from coatsim.robot.kinematics import CellKinematics
@@ -57,10 +60,11 @@ class VariantRun:
     """One program variant carried through every stage."""
 
     name: str
-    program: BuiltProgram | UserProgram
+    program: PartProgram | UserProgram
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
+    contour_groups: tuple[dict[str, dict[str, float | int | None]], ...] = ()
     toolpath: Optional[ToolPath] = None  # the program as read back (the report ties events to its lines)
 
 
@@ -88,6 +92,31 @@ def check_gate_metrics(loaded: ScenarioFile) -> None:
             group = [m for m in METRICS if m.split(".")[0] == gate.metric.split(".")[0]]
             hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(group or METRICS)}"
             raise InputError(f"{loaded.where('gates', i, 'metric')}: gates[{i}].metric: unknown metric {gate.metric!r}; {hint}")
+
+
+def segment_input(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation]]:
+    """The scenario's contours segmented: one for a curve; a drawing's every contour (and the
+    part they make). The fitter knows the programmed speed and the arm's tool acceleration
+    limit: no arc tighter than v² / a where the curve allows the speed, the rest listed as
+    speed-limited."""
+    spec, seg = loaded.spec.curve, loaded.spec.segmentation
+    speed = {"speed_mm_s": loaded.spec.motion.speed_mm_s, "tool_accel_mm_s2": cell.tool_accel_mm_s2}
+    if spec.file is None or not is_drawing(spec.file):
+        return (segment_curve(load_input_curve(loaded), seg.tolerance_mm, method=seg.method,
+                              corner_deg=seg.corner_deg, **speed),), None
+    if seg.method != "optimal":
+        raise InputError(f"{loaded.where('segmentation', 'method')}: segmentation.method: a drawing keeps its lines "
+                         "and arcs exactly; 'paper' applies to point curves")
+    layers = [spec.layer] if isinstance(spec.layer, str) else spec.layer
+    angle = math.radians(spec.rotate_deg)
+    rotation = np.array([[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]])
+    try:
+        part = segment_drawing(loaded.resolve(spec.file), seg.tolerance_mm, layers=layers,
+                               join_tolerance_mm=spec.join_tolerance_mm, rotation=rotation, scale=spec.scale,
+                               corner_deg=seg.corner_deg, **speed)
+    except InputError as exc:
+        raise InputError(f"{loaded.where('curve')}: curve: {exc}") from None
+    return part.contours, part
 
 
 def load_input_curve(loaded: ScenarioFile) -> Curve:
@@ -196,7 +225,7 @@ class Job:
     """What every variant of a run shares: inputs, placement, part, gun, arm, numerics."""
 
     loaded: ScenarioFile
-    segmentation: Segmentation
+    contours: tuple[Segmentation, ...]
     placement: Placement
     surface: Surface
     model: SprayModel
@@ -205,23 +234,24 @@ class Job:
     sample_step_mm: float
     spacing_mm: float
     away_mm: np.ndarray  # surface vertices clear of the edge band (every variant's ROI)
-    polyline: Optional[Polysegment] = None  # the polyline variants' curve and its deviation, computed once
-    polyline_deviation_mm: Optional[float] = None
+    # per contour, the polyline variants' curve and its deviation, computed once for both
+    polylines: tuple[Optional[Polysegment], ...] = ()
+    polyline_deviations_mm: tuple[Optional[float], ...] = ()
 
 
 def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     """Program, execute and coat one variant; writes ``name.as`` and ``name.trajectory.csv``."""
     spec, out = job.loaded.spec, job.outdir
-    poly, points = job.segmentation.polysegment, job.segmentation.curve.points
+    polys = [c.polysegment for c in job.contours]
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
                              gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name(spec.name))
-    program = build_program(poly, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
-                            source=f"scenario:{spec.name}", points=points, polyline=job.polyline)
+    program = build_part_program(polys, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
+                                 source=f"scenario:{spec.name}", points=[c.curve.points for c in job.contours],
+                                 order=spec.motion.contour_order, polylines=job.polylines or None)
     program_path = out / f"{name}.as"
     write_text(program_path, program.text)
     toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
-    deviation = job.segmentation.max_deviation_mm if program.curve is poly else job.polyline_deviation_mm
-    return simulate_variant(name, program, toolpath, job, step, deviation)
+    return simulate_variant(name, program, toolpath, job, step)
 
 
 def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
@@ -242,14 +272,45 @@ def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> Vari
     write_text(job.outdir / f"{entry.name}.as", text)
     try:
         program = user_program(toolpath, curve_frame(job.loaded.spec), text)
-        return simulate_variant(entry.name, program, toolpath, job, step, None)
+        toolpath = replace(toolpath, warnings=(*toolpath.warnings, *program.notes))  # they reach metrics.json
+        return simulate_variant(entry.name, program, toolpath, job, step)
     except CoatsimError as exc:
         raise type(exc)(f"{entry.name}: {exc}") from None
 
 
-def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: ToolPath, job: Job, step: Step,
-                     deviation_mm: Optional[float]) -> VariantRun:
-    """Execute and coat one variant's program; its metrics against the scenario's curve."""
+def _user_contour(job: Job, program: UserProgram) -> np.ndarray:
+    """The points of the contour a user's program sprays (of a part's, the one nearest to its
+    path), placed as coatsim's programs place them (the user's path is in the frame's plane)."""
+    placed = [c.curve.points + np.asarray(job.placement.offset_xy, dtype=float) for c in job.contours]
+    if len(placed) == 1:
+        return placed[0]
+    return min(placed, key=lambda pts: hausdorff(pts, program.curve).hausdorff)
+
+
+def _segmentation_groups(job: Job, program: PartProgram | UserProgram) -> list[dict]:
+    """Each contour's segmentation group (drawing order) for coatsim's programs; for a user's
+    program, that of the contour it sprays."""
+    spec = job.loaded.spec.segmentation
+    if isinstance(program, UserProgram):
+        points = _user_contour(job, program)
+        return [segmentation_group(points, program.curve, spec.tolerance_mm, spec.corner_deg, None)]
+    groups: list = [None] * len(job.contours)
+    for k, curve in zip(program.order, program.curves):
+        c = job.contours[k]
+        if curve is c.polysegment:
+            known = c.max_deviation_mm
+        elif job.polylines and curve is job.polylines[k]:
+            known = job.polyline_deviations_mm[k]
+        else:
+            known = None
+        groups[k] = segmentation_group(c.curve.points, curve, spec.tolerance_mm, spec.corner_deg, known)
+    return groups
+
+
+def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: ToolPath, job: Job,
+                     step: Step) -> VariantRun:
+    """Execute and coat one variant's program; its metrics against the scenario's curve (each
+    contour of a part, and the part as a whole)."""
     spec, out = job.loaded.spec, job.outdir
     step(f"{name}: simulating the arm")
     execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
@@ -258,14 +319,19 @@ def simulate_variant(name: str, program: BuiltProgram | UserProgram, toolpath: T
     result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                   spacing=job.spacing_mm, away=job.away_mm)
+    segmentation = _segmentation_groups(job, program)
     groups = {
-        "segmentation": segmentation_group(
-            job.segmentation.curve.points, program.curve, spec.segmentation.tolerance_mm, spec.segmentation.corner_deg,
-            deviation_mm),
+        "segmentation": combine_segmentation(segmentation),
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
     }
-    return VariantRun(name, program, execution, result, groups, toolpath)
+    per_contour: tuple = ()
+    if len(job.contours) > 1 and isinstance(program, PartProgram):
+        motion = [None] * len(job.contours)
+        for place, k in enumerate(program.order):
+            motion[k] = execution.contour_metrics[place].as_dict()
+        per_contour = tuple({"segmentation": s, "motion": m} for s, m in zip(segmentation, motion))
+    return VariantRun(name, program, execution, result, groups, per_contour, toolpath)
 
 
 def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
@@ -296,12 +362,13 @@ def reference_variant(spec: Scenario) -> str:
 
 
 def output_names(spec: Scenario, video: bool = False) -> list[str]:
-    """The files a run of ``spec`` writes into its output folder, in writing order."""
+    """The files a run of ``spec`` may write into its output folder, in writing order (a drawing
+    of several contours writes part.json instead of polysegment.json)."""
     names = variant_names(spec)
     programs = [f"{v}.{kind}" for v in names for kind in ("as", "trajectory.csv")]
     coats = [f"{v}.{kind}" for v in names for kind in ("thickness.ply", "thickness.glb")]
     movie = [f"{reference_variant(spec)}.mp4"] if video else []
-    return ["polysegment.json", *programs, "metrics.json", *coats, *movie, "report.html"]
+    return ["polysegment.json", "part.json", *programs, "metrics.json", *coats, *movie, "report.html"]
 
 
 def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
@@ -374,33 +441,41 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
         step("segmenting the curve")
+        part = None
         if spec.curve is None:  # the sprayed path of the first program variant
             entry = spec.programs[0]
-            user = user_program(read_user_program(loaded, entry, cell)[0], curve_frame(spec), "")
-            curve, offset = make_curve(user.points, entry.name, "auto"), (0.0, 0.0)
+            toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
+            try:
+                user = user_program(toolpath, curve_frame(spec), "")
+            except CoatsimError as exc:
+                raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+            contours = (segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
+                                      method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
+                                      speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2),)
+            offset = (0.0, 0.0)
         else:
-            curve = load_input_curve(loaded)
-        # the fitter knows the programmed speed and the arm's tool acceleration limit: no arc
-        # tighter than v² / a where the curve allows the speed, the rest listed as speed-limited
-        segmentation = segment_curve(curve, spec.segmentation.tolerance_mm, method=spec.segmentation.method,
-                                     corner_deg=spec.segmentation.corner_deg, speed_mm_s=spec.motion.speed_mm_s,
-                                     tool_accel_mm_s2=cell.tool_accel_mm_s2)
-        poly = segmentation.polysegment
-        write_polysegment_json(out / "polysegment.json", segmentation)
-        if spec.curve is not None:
-            offset = np.add(centering_offset(poly) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+            contours, part = segment_input(loaded, cell)
+            polys = [c.polysegment for c in contours]
+            offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
+        if part is None:
+            write_polysegment_json(segmentation_file, contours[0])
+        else:
+            write_part_json(segmentation_file, part)
         placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
                               follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
                               lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
         surface, model = build_surface(loaded, spacing), spray_model(loaded)
         away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
-        polyline = deviation = None
+        polylines: tuple = ()
+        deviations: tuple = ()
         if any(isinstance(v, str) and v != "polysegment" for v in spec.variants):
-            polyline = polyline_of(curve.points, poly.closed, spec.segmentation.tolerance_mm)
-            deviation = hausdorff(curve.points, polyline).hausdorff
-        job = Job(loaded, segmentation, placement, surface, model, cell, out, sample_step, spacing, away,
-                  polyline, deviation)
+            tol = spec.segmentation.tolerance_mm
+            polylines = tuple(polyline_of(c.curve.points, c.polysegment.closed, tol) for c in contours)
+            deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
+        job = Job(loaded, contours, placement, surface, model, cell, out, sample_step, spacing, away,
+                  polylines, deviations)
         runs = []
         for entry in spec.variants:
             name = entry if isinstance(entry, str) else entry.name
@@ -419,6 +494,10 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
         warnings = [{"variant": r.name, "message": event} for r in runs
                     for event in (*r.execution.warnings, *r.execution.events)]
         document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
+        if len(contours) > 1:
+            order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
+            document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
+                                                                       if r.contour_groups})
         write_text(out / "metrics.json", to_json(document))
         report_started = time.perf_counter()
         write_thickness_files(runs, out, spec.gun.standoff_mm)
@@ -428,10 +507,12 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
             from coatsim.report.video import write_video
 
             step("rendering the video")
-            data = ReportData(loaded, (segmentation,), tuple(runs), document)
+            data = ReportData(loaded, tuple(contours), tuple(runs), document)
             movie = write_video(out / f"{reference_variant(spec)}.mp4", data, cell)
-        write_report(out / "report.html", loaded, (segmentation,), runs, document, cell=cell,
-                     video=None if movie is None else movie.name)
+        write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
+                     cell=cell, video=None if movie is None else movie.name)
         report_s = time.perf_counter() - report_started
-    files = tuple(out / name for name in output_names(spec, video))
-    return RunResult(out, tuple(runs), document, files, segmentation.seconds, report_s)
+    not_written = "polysegment.json" if segmentation_file.name == "part.json" else "part.json"
+    files = tuple(out / name for name in output_names(spec, video) if name != not_written)
+    seconds = part.seconds if part is not None else contours[0].seconds
+    return RunResult(out, tuple(runs), document, files, seconds, report_s)

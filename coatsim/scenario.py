@@ -20,6 +20,7 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, Validatio
 
 from coatsim.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
+from coatsim.geometry.cad.drawing import is_drawing
 from coatsim.program.build import VARIANTS
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
@@ -42,10 +43,15 @@ class _Strict(BaseModel):
 class CurveSpec(_Strict):
     """Where the curve comes from (exactly one of ``builtin`` or ``file``) and how it is
     placed in the workpiece XY plane: scaled, rotated, then its bounding-box centre moved
-    to ``offset_mm`` (when ``center``)."""
+    to ``offset_mm`` (when ``center``). A drawing (DXF, SVG) is a part: every contour on its
+    ``layer``(s) is sprayed, one after the other."""
 
     builtin: Optional[BuiltinName] = Field(None, description="built-in curve name")
-    file: Optional[str] = Field(None, description="CSV/TXT/NPY curve file, relative to the scenario")
+    file: Optional[str] = Field(None, description="CSV/TXT/NPY curve file or DXF/SVG drawing, relative to the scenario")
+    layer: Optional[Union[str, list[str]]] = Field(None, description="drawings: the layer(s) to read "
+                                                   "(default: every visible layer)")
+    join_tolerance_mm: Optional[Positive] = Field(None, description="drawings: join piece ends this close "
+                                                  "(default: tolerance / 100)")
     params: dict[str, Union[int, float, str]] = Field(default_factory=dict, description="built-in curve parameters")
     closed: Union[Literal["auto"], bool] = "auto"
     scale: Positive = 1.0
@@ -59,6 +65,11 @@ class CurveSpec(_Strict):
             raise ValueError("give exactly one of 'builtin' or 'file'")
         if self.file is not None and self.params:
             raise ValueError("'params' applies to built-in curves only")
+        drawing = self.file is not None and is_drawing(self.file)
+        if not drawing and (self.layer is not None or self.join_tolerance_mm is not None):
+            raise ValueError("'layer' and 'join_tolerance_mm' apply to drawings (DXF, SVG files) only")
+        if drawing and self.closed != "auto":
+            raise ValueError("'closed' applies to point curves; a drawn contour is closed where its ends meet")
         if self.builtin is not None:
             allowed = [p for p in inspect.signature(BUILTINS[self.builtin]).parameters if p != "points"]
             unknown = sorted(set(self.params) - set(allowed))
@@ -148,12 +159,15 @@ class GunSpec(_Strict):
 
 
 class MotionSpec(_Strict):
-    """Programmed tool speed, blending accuracy, and straight run-in/run-out lengths."""
+    """Programmed tool speed, blending accuracy, straight run-in/run-out lengths, and the
+    order in which the contours of a part are sprayed."""
 
     speed_mm_s: Positive = 200.0
     accuracy_mm: NonNegative = 1.0
     lead_in_mm: NonNegative = 20.0
     lead_out_mm: NonNegative = 20.0
+    contour_order: Literal["as-drawn", "nearest"] = Field("as-drawn", description="parts: spray the contours as drawn, "
+                                                          "or each next one whose start is nearest the last end")
 
 
 class CoatingSpec(_Strict):

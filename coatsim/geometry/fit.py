@@ -26,6 +26,7 @@ from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
 MAX_ATTEMPTS = 20
+PIN_RAD = 1e-9  # a pinned end tangent is kept to this (rad)
 SLACK = 0.02  # caps and minimum length hold to this share (the stretch a segment covers is mapped by length)
 NARROWER = (0.5, 0.25)  # then fits within these shares of the tolerance, under their own caps
 RELAX = (1.5, 3.0)  # then caps loosened by these factors
@@ -78,14 +79,33 @@ def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:
     return arc_excess(params.kappa, params.length, limits, total) <= 1 + SLACK
 
 
+def _pinned_turn(pts: np.ndarray, start_heading: float, end_heading: float) -> float:
+    """The turning (rad) from ``start_heading`` to ``end_heading`` nearest the polyline's own."""
+    d = np.diff(pts, axis=0)
+    h = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    return float(h[-1] - h[0]) + math.remainder(float(h[0]) - start_heading, 2 * math.pi) \
+        + math.remainder(end_heading - float(h[-1]), 2 * math.pi)
+
+
+def _pins_kept(segs: tuple[Segment, ...], start_heading: float | None, end_heading: float | None) -> bool:
+    """Whether a chain starts and ends on the pinned tangents (to round-off)."""
+    ok = start_heading is None or abs(math.remainder(segs[0].start_heading - start_heading, 2 * math.pi)) <= PIN_RAD
+    return ok and (end_heading is None or abs(math.remainder(segs[-1].end_heading - end_heading, 2 * math.pi)) <= PIN_RAD)
+
+
 def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-                 budget: list[int]) -> tuple[tuple[Segment, ...], float] | None:
+                 budget: list[int], start_heading: float | None = None,
+                 end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
     """Band fit, refinement and the exact check under ``limits``; None if no chain within
-    ``tolerance`` is found within the attempt ``budget`` (a shared one-element counter)."""
+    ``tolerance`` is found within the attempt ``budget`` (a shared one-element counter).
+    ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents."""
     end = pts[-1]
     total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     turn = total_turn(pts) if closed_loop else None
+    if start_heading is not None and end_heading is not None:
+        turn = _pinned_turn(pts, start_heading, end_heading)
     prob, ref = BandProblem.from_points(pts, limits)
+    pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
     splits, landed, shrink = 0, False, 0.9
@@ -93,16 +113,17 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
         budget[0] -= 1
         if params is None:
             try:
-                slope, pieces = fit_band(prob, ref, band, end_turn=turn, landed=landed)
+                slope, pieces = fit_band(prob, ref, band, start_slope=pinned_slope, end_turn=turn, landed=landed)
             except BandStuck:
                 band *= shrink if landed else 0.7
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
-        params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target)
+        params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target,
+                                       fixed_heading=start_heading is not None)
         params = close_exactly(pts[0], params, end, turn)
         dev, segs = _check(pts, params, end)
-        honest = _honest(params, limits, total)
+        honest = _honest(params, limits, total) and _pins_kept(segs, start_heading, end_heading)
         if dev <= tolerance and honest:
             return segs, dev
         if honest and sampled <= target:
@@ -128,46 +149,51 @@ def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool
     return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
 
 
-def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool) -> tuple[tuple[Segment, ...], float] | None:
+def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None = None,
+               end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
     """A run that is one line within ``tolerance`` (open runs), or exactly a chain of lines
-    and arcs, as that chain with its verified deviation; else None."""
+    and arcs, as that chain with its verified deviation (if it keeps the pinned end tangents
+    given); else None."""
     pts = np.asarray(points, dtype=float)
     end = pts[-1]
     if not closed_loop and _near_chord(pts, tolerance):
         line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
         dev = hausdorff(pts, Polysegment(line)).hausdorff
-        if dev <= tolerance:
+        if dev <= tolerance and _pins_kept(line, start_heading, end_heading):
             return line, dev
     exact = recover_exact(pts, closed_loop, tolerance)
-    if exact is not None:
+    if exact is not None and _pins_kept(exact, start_heading, end_heading):
         return exact, hausdorff(pts, Polysegment(exact)).hausdorff
     return None
 
 
 def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-             quick: bool = False) -> tuple[tuple[Segment, ...], float] | None:
+             quick: bool = False, start_heading: float | None = None,
+             end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
     """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
     under the curvature caps and minimum length of ``limits``, and its verified deviation.
 
     Where no such chain is found, chains within a fraction of the tolerance are tried, then
     loosened caps, and as the last resort every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
-    caps as they are, None if those fail.
+    caps as they are, None if those fail. ``start_heading`` / ``end_heading`` pin the end
+    tangents (see fit_run); the last resort does not keep them.
     """
     pts = np.asarray(points, dtype=float)
+    pins = (start_heading, end_heading) if not closed_loop else (None, None)
     if quick:
-        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS])
-    found = _constrained(pts, tolerance, closed_loop, limits, [MAX_ATTEMPTS])
+        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS], *pins)
+    found = _constrained(pts, tolerance, closed_loop, limits, [MAX_ATTEMPTS], *pins)
     # A chain within a smaller tolerance is within this one too: where the band fit's
     # linearisation misleads (a tolerance large against the curve's features), aim lower.
     for share in NARROWER:
         if found is not None:
             return found
         narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
-        found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS])
+        found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
     for factor in RELAX:
         if found is not None:
             return found
-        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS])
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
     if found is not None:
         return found
     # Sparse or kinked input the band fit cannot follow: round every vertex instead.
@@ -178,8 +204,18 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     return segs, dev
 
 
-def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool,
-            limits: FitLimits) -> tuple[tuple[Segment, ...], float]:
+def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
+            start_heading: float | None = None, end_heading: float | None = None) -> tuple[tuple[Segment, ...], float]:
     """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
-    else fit_free."""
-    return fit_simple(points, tolerance, closed_loop) or fit_free(points, tolerance, closed_loop, limits)
+    else fit_free.
+
+    ``start_heading`` (rad, open runs), and with it ``end_heading``, pin the chain's end
+    tangents, e.g. to fixed neighbours it must join G1 (to pin only the end, fit the reversed
+    run with its start pinned). The last resort (fillets) does not keep them, so a caller
+    checks the result's end headings.
+    """
+    if end_heading is not None and start_heading is None:
+        raise ValueError("end_heading needs start_heading; pin the start of the reversed run instead")
+    pins = (start_heading, end_heading) if not closed_loop else (None, None)
+    return (fit_simple(points, tolerance, closed_loop, *pins)
+            or fit_free(points, tolerance, closed_loop, limits, start_heading=pins[0], end_heading=pins[1]))

@@ -137,7 +137,7 @@ class ChainProblem:
     is measured at (``pick``, grown by exchange rounds)."""
 
     def __init__(self, start: np.ndarray, points: np.ndarray, end: np.ndarray, turn: float | None,
-                 limits: FitLimits, n: int) -> None:
+                 limits: FitLimits, n: int, fixed_heading: bool = False) -> None:
         seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
         s = np.concatenate(([0.0], np.cumsum(seg)))
         self.total = float(s[-1])
@@ -148,6 +148,7 @@ class ChainProblem:
         self.turn = turn
         self.limits = limits
         self.n = n
+        self.fixed_heading = fixed_heading
         self.inset_left, self.inset_right = chord_insets(points)
         grid = np.linspace(0, self.total, min(MAX_SAMPLES, len(points)))
         self.pick = np.unique(np.searchsorted(s, grid).clip(0, len(points) - 1))
@@ -186,6 +187,8 @@ class ChainProblem:
         lower[1 : n + 1] = np.clip(np.minimum(-cap_z - kappa, 0.0), -radius, radius)
         upper[1 : n + 1] = np.clip(np.maximum(cap_z - kappa, 0.0), -radius, radius)
         lower[n + 1 :] = np.clip(np.minimum(self.min_len_z - z[n + 1 :], 0.0), -radius, radius)
+        if self.fixed_heading:  # a start tangent pinned by the caller
+            lower[0] = upper[0] = 0.0
         return lower, upper
 
     def add_missing(self, z: np.ndarray) -> bool:
@@ -208,6 +211,7 @@ def refine_chain(
     limits: FitLimits,
     target: float,
     max_iter: int = 40,
+    fixed_heading: bool = False,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -216,11 +220,11 @@ def refine_chain(
     penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
     at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
     Curvatures stay under the caps of ``limits`` for the stretches their segments cover now,
-    lengths above its minimum. Stops early once the sampled deviation is below ``target``
+    lengths above its minimum; ``fixed_heading`` keeps the start heading as it is. Stops early once the sampled deviation is below ``target``
     with the end gap closed, or when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
-    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa))
+    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading)
     weight = 100.0  # the end gap costs this many times a lateral deviation
 
     def merit(zb: np.ndarray) -> np.ndarray:

@@ -16,6 +16,7 @@ from typing import Iterator, Mapping, Optional
 
 import numpy as np
 
+from coatsim.errors import ExecutionError
 from coatsim.program import parse_files, Paths
 from coatsim.program.arcs import circle_through, move_length
 from coatsim.program.as_lang import ast, interpret_run
@@ -29,12 +30,14 @@ _LISTED = 5  # unused poses named before "and N more"
 
 @dataclass(frozen=True)
 class SprayRun:
-    """Consecutive moves with the gun on: source lines of the first and last, length in mm."""
+    """Consecutive moves with the gun on: source lines of the first and last (in ``source``,
+    the file of the first), length in mm."""
 
     first_line: int
     last_line: int
     length_mm: float
     moves: int
+    source: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,20 +78,20 @@ def walk(body: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
             yield from walk(st.default or ())
 
 
-def _names(e) -> Iterator[str]:
+def used_names(e) -> Iterator[str]:
     """Base names (lower case, no index) of the variables an expression or statement uses."""
     if isinstance(e, ast.Name):
         yield e.name.lower()
         for i in e.index:
-            yield from _names(i)
+            yield from used_names(i)
     elif isinstance(e, tuple):
         for item in e:
-            yield from _names(item)
+            yield from used_names(item)
     elif e is not None and hasattr(e, "__dataclass_fields__") and not isinstance(e, (ast.Num, ast.Str)):
         for name in e.__dataclass_fields__:
             value = getattr(e, name)
             if isinstance(value, (tuple, ast.Name)) or hasattr(value, "__dataclass_fields__"):
-                yield from _names(value)
+                yield from used_names(value)
 
 
 def _constant(e, reals: Mapping[str, float]) -> Optional[float]:
@@ -117,16 +120,17 @@ def _signal_line(st: ast.Statement, gun: int, source: str, reals: Mapping[str, f
     return None
 
 
-def spray_runs(toolpath: ToolPath) -> tuple[SprayRun, ...]:
-    """The stretches of consecutive moves the gun is on for."""
+def spray_runs(toolpath: ToolPath, sources: list[str]) -> tuple[SprayRun, ...]:
+    """The stretches of consecutive moves the gun is on for; ``sources`` the file of each move."""
     runs, current = [], []
-    for m in (*toolpath.moves, None):
+    for i, m in enumerate((*toolpath.moves, None)):
         if m is not None and m.spray:
-            current.append(m)
+            current.append(i)
             continue
         if current:
-            runs.append(SprayRun(current[0].line, current[-1].line, float(sum(move_length(x) for x in current)),
-                                 len(current)))
+            moves = [toolpath.moves[k] for k in current]
+            runs.append(SprayRun(moves[0].line, moves[-1].line, float(sum(move_length(x) for x in moves)),
+                                 len(moves), sources[current[0]]))
             current = []
     return tuple(runs)
 
@@ -141,13 +145,19 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     run = interpret_run(files, gun_signal, program, inputs=inputs, kinematics=kinematics)
     toolpath = run.toolpath
     main = run.programs[toolpath.name.lower()]
+    if not toolpath.moves:
+        ended = f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}"
+        others = [p.name for p in run.programs.values() if p is not main]
+        hint = f"; choose another main program (loaded: {', '.join(others)})" if others else ""
+        raise ExecutionError(f"{main.source}:{main.line}: program {main.name} has no motion ({ended} before any "
+                             f"motion){hint}")
     problems: list[str] = []
     used: set[str] = set()
     signals: list[str] = []
     reals = {k: d.value for f in files for k, d in f.reals.items()}
     for p in run.programs.values():
         for st in walk(p.body):
-            used.update(_names(st))
+            used.update(used_names(st))
             line = _signal_line(st, gun_signal, p.source, reals)
             if line is not None:
                 signals.append(line)
@@ -170,11 +180,11 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     sections = [f".{s.name} (line {s.line})" for f in files for s in f.sections]
     if sections:
         problems.append(f"sections not read (controller data): {', '.join(sections)}")
-    for move in toolpath.moves:
+    for move, (name, _, _) in zip(toolpath.moves, run.move_origins):
         if isinstance(move, CircularMove):
             sweep = circle_through(move.start.position, move.via.position, move.end.position).sweep
             if sweep >= math.pi:
-                problems.append(f"line {move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
+                problems.append(f"{run.programs[name.lower()].source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
                                 "pair below 180 deg")
     if gun_tcp is not None:
         problems += [f"{main.source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]
@@ -182,7 +192,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
     if not toolpath.spray_moves:
         errors.append(f"{files[0].source}: the gun (output {gun_signal}) is never on during a motion")
         problems.append(errors[-1])
-    elif toolpath.moves[-1].spray:
+    elif run.gun_on_at_end:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
     cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
     return ProgramCheck(
@@ -198,7 +208,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         metadata=tuple(toolpath.metadata.items()),
         problems=tuple(problems),
         signals=tuple(signals),
-        spray_runs=spray_runs(toolpath),
+        spray_runs=spray_runs(toolpath, [run.programs[name.lower()].source for name, _, _ in run.move_origins]),
         warnings=toolpath.warnings,
         toolpath=toolpath,
         errors=tuple(errors),

@@ -24,7 +24,7 @@ from coatsim.program.as_lang import interpret_run
 from coatsim.program.as_lang.interpreter import Run
 from coatsim.program.as_lang.names import check_name
 from coatsim.program.as_lang.parser import parse_as_bytes
-from coatsim.program.as_lang.writer import fmt_short, write_as
+from coatsim.program.as_lang.writer import MAX_ARC_SWEEP_DEG, fmt_short, write_as
 from coatsim.program.dialect import ProgramPlan
 from coatsim.program.placement import DEFAULT_TOOL, Frame, PlacedArc, PlacedLine, PlacedPath
 from coatsim.program.process_path import ProcessPath, PlaneFrame, dense_points, moves_in_lines, path_distance, \
@@ -89,18 +89,26 @@ class PathReport:
 
 @dataclass(frozen=True, eq=False)
 class Conversion:
-    """The written program text, the input file it replaces (None: standalone), the figures."""
+    """The written program text, the input file it replaces (None: standalone), the figures;
+    ``data`` the bytes to write (the original's encoding and line ends kept)."""
 
     text: str
     replaces: Optional[str]
     paths: tuple[PathReport, ...]
     notes: tuple[str, ...]
     tolerance_mm: float
+    data: bytes
 
 
 def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
     if options.lines is not None:
-        return [moves_in_lines(run, *options.lines)]
+        moves = moves_in_lines(run, *options.lines)
+        sprayed = {run.toolpath.moves[i].spray for i in moves}
+        if len(sprayed) > 1:
+            off = next(run.toolpath.moves[i].line for i in moves if not run.toolpath.moves[i].spray)
+            raise InputError(f"--lines {options.lines[0]}-{options.lines[1]}: the gun sprays some of these moves and "
+                             f"not others (line {off}); choose lines the gun sprays throughout, or none of")
+        return [moves]
     runs = [r for r in spray_runs(run.toolpath) if len(r) >= 2]
     if not runs:
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
@@ -162,30 +170,41 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
                   _line_span(run, moves), tuple(notes))
 
 
-def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
-    if len(fitted) != 1:
-        lines = ", ".join(f"{f.lines[0]}-{f.lines[1]}" for f in fitted)
-        raise InputError(f"{len(fitted)} process paths (lines {lines}); --standalone writes one: choose it with "
-                         "--lines FIRST-LAST")
-    f = fitted[0]
+def _settings(run: Run, f: Fitted) -> tuple[float, float, bool]:
+    """Speed (of the longest move), accuracy and CP a path was sprayed with."""
     moves = [run.toolpath.moves[i] for i in f.path.moves]
     lengths = np.array([float(np.linalg.norm(m.end.position - m.start.position)) for m in moves])
-    speeds = np.array([m.settings.speed_mm_s for m in moves])
-    speed = float(speeds[int(np.argmax(lengths))])
+    first = moves[0].settings
+    return float(moves[int(np.argmax(lengths))].settings.speed_mm_s), float(first.accuracy_mm), first.cp
+
+
+def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
+    """One clean program spraying every path in turn (each approached and departed alike)."""
+    spans = ", ".join(f"{f.lines[0]}-{f.lines[1]}" for f in fitted)
+    settings = {_settings(run, f) for f in fitted}
+    if len(settings) != 1:
+        raise InputError(f"{len(fitted)} process paths (lines {spans}) sprayed with different speeds or accuracies; "
+                         "--standalone writes them with one: choose a path with --lines FIRST-LAST")
+    speed, accuracy, cp = settings.pop()
     tool = run.toolpath.metadata.get("tool")
     tool_frame = Frame.parse(tool, "TOOL") if tool else DEFAULT_TOOL
-    path = PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
+    paths = [PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
+             for f in fitted]
     name = options.name or run.toolpath.name[:15]
+    n_moves = sum(len(f.path.moves) for f in fitted)
+    n_segments = sum(len(f.segments) for f in fitted)
     plan = ProgramPlan(
-        name=check_name(name, "program name"), path=path, speed_mm_s=speed,
-        accuracy_mm=float(moves[0].settings.accuracy_mm), exact_stop=not moves[0].settings.cp,
-        approach_mm=options.approach_mm, gun_signal=options.gun_signal, tool=tool_frame,
-        metadata=(("variant", "convert"), ("source", f"{run.toolpath.name} lines {f.lines[0]}-{f.lines[1]}"),
-                  ("tolerance_mm", fmt_short(options.tolerance_mm)), ("curve_length_mm", fmt_short(path.length)),
+        name=check_name(name, "program name"), path=paths[0], further_paths=tuple((p, True) for p in paths[1:]), speed_mm_s=speed,
+        accuracy_mm=accuracy, exact_stop=not cp, approach_mm=options.approach_mm, gun_signal=options.gun_signal,
+        tool=tool_frame,
+        metadata=(("variant", "convert"), ("source", f"{run.toolpath.name} lines {spans}"),
+                  ("tolerance_mm", fmt_short(options.tolerance_mm)),
+                  ("curve_length_mm", fmt_short(sum(p.length for p in paths))),
                   ("lead_in_mm", "0"), ("lead_out_mm", "0"), ("gun_signal", str(options.gun_signal)),
-                  ("n_segments", str(len(f.segments))), ("n_lines", str(f.n_lines)), ("n_arcs", str(f.n_arcs))),
-        comments=(f"coatsim convert: lines {f.lines[0]}-{f.lines[1]} of {run.toolpath.name}, {len(moves)} moves -> "
-                  f"{len(f.segments)} lines and arcs within {fmt_short(options.tolerance_mm)} mm",),
+                  ("n_segments", str(n_segments)), ("n_lines", str(sum(f.n_lines for f in fitted))),
+                  ("n_arcs", str(sum(f.n_arcs for f in fitted)))),
+        comments=(f"coatsim convert: lines {spans} of {run.toolpath.name}, {n_moves} moves -> "
+                  f"{n_segments} lines and arcs within {fmt_short(options.tolerance_mm)} mm",),
     )
     return write_as(plan)
 
@@ -203,7 +222,11 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     notes = [n for f in fitted for n in f.notes]
     if options.standalone:
         text, replaces, counts, ranges = _standalone(run, fitted, options), None, None, [f.lines for f in fitted]
-        new_files = (parse_as_bytes(text.encode("ascii"), "converted.as"),)
+        data = text.encode("ascii")
+        new_files = (parse_as_bytes(data, "converted.as"),)
+        if any(d.extra for f in files for d in f.trans.values()):
+            notes.append("the original's poses hold external axis values (a rail, a positioner); the standalone "
+                         "program's poses have none: add them before loading it on such a cell")
     else:
         replaces, data, counts, ranges = edit_in_place(items, files, run, fitted, options)
         text = data.decode("utf-8" if _is_utf8(data) else "latin-1")
@@ -213,8 +236,12 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
                                 inputs=inputs, kinematics=kinematics)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
-    reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0)
-    return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm)
+    reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0,
+                      replaces or "the standalone program")
+    notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
+              f"{r.moves_before}; an arc sweeping more than {MAX_ARC_SWEEP_DEG:g} deg is written in pieces)"
+              for r in reports if r.moves_after >= r.moves_before]
+    return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
 
 
 def _is_utf8(data: bytes) -> bool:
@@ -232,31 +259,34 @@ def _same(a, b) -> bool:
 
 
 def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[int]], ranges: list[tuple[int, int]],
-            step: float) -> list[PathReport]:
+            step: float, where: str) -> list[PathReport]:
     """Each new process path against its original, measured both ways on the programs' paths;
-    in place, every other move must be the same as before."""
+    in place, every other move must be the same as before (``where`` names the file edited)."""
     old, new = run.toolpath.moves, new_run.toolpath.moves
     blocks = []
     if counts is None:
-        blocks.append([m for m in new if m.spray and m.kind != "joint"])
+        blocks = [[new[i] for i in r] for r in spray_runs(new_run.toolpath)]
+        if len(blocks) != len(fitted):
+            raise InputError(f"the standalone program sprays {len(blocks)} paths, not the {len(fitted)} converted")
     else:
         if len(new) != len(old) + sum(c - len(f.path.moves) for f, c in zip(fitted, counts)):
-            raise InputError("the converted program moves differently from the original outside the process path; "
-                             "use --standalone")
+            raise InputError(f"{where}: the converted program moves differently from the original outside the "
+                             "process path; use --standalone")
         offset, done = 0, 0
         for f, c in zip(fitted, counts):
             first, n = f.path.moves[0], len(f.path.moves)
             if not all(_same(old[i], new[i + offset]) for i in range(done, first)):
-                raise InputError("the converted program moves differently from the original before the process path; "
-                                 "use --standalone")
+                raise InputError(f"{where}: the converted program moves differently from the original before the "
+                                 "process path; use --standalone")
             block = list(new[first + offset:first + offset + c])
             if any(m.spray != old[first].spray for m in block):
-                raise InputError("the gun does not spray the converted path as it sprayed the original; use --standalone")
+                raise InputError(f"{where}: the gun does not spray the converted path as it sprayed the original; "
+                                 "use --standalone")
             blocks.append(block)
             offset, done = offset + c - n, first + n
         if not all(_same(old[i], new[i + offset]) for i in range(done, len(old))):
-            raise InputError("the converted program moves differently from the original after the process path; "
-                             "use --standalone")
+            raise InputError(f"{where}: the converted program moves differently from the original after the "
+                             "process path; use --standalone")
     reports = []
     for f, block, (first, last) in zip(fitted, blocks, ranges):
         old_moves = [old[i] for i in f.path.moves]
@@ -276,6 +306,7 @@ def conversion_summary(c: Conversion) -> str:
                    f"(tolerance {c.tolerance_mm:g} mm; out of plane {r.plane_deviation_mm:.4f} mm)")
     before, after = sum(r.moves_before for r in c.paths), sum(r.moves_after for r in c.paths)
     out.append(f"moves on the process path: {before} -> {after}; "
-               + (f"edited in place: {c.replaces}" if c.replaces else "standalone program"))
+               + (f"path replaced in a copy of {c.replaces} (every other line as it was)" if c.replaces
+                  else "standalone program"))
     out += [f"note: {n}" for n in c.notes]
     return "\n".join(out)

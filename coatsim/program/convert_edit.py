@@ -1,8 +1,9 @@
 """Replace the statements that make a process path with its arc moves, in the program's own file.
 
 The statements replaced are the smallest run of consecutive statements of one program (blocks
-whole) that make exactly the path's moves. They may hold motions, assignments, loops, labels no
-GOTO names and the gun's own switch (forward processing: it is written again after the first
+whole) that make exactly the path's moves. They may hold linear and arc motions (LMOVE, C1MOVE,
+C2MOVE, LAPPRO, LDEPART, DRAW, TDRAW), assignments, loops (a label and the GOTO back to it too),
+labels no other GOTO names and the gun's own switch (forward processing: it is written again after the first
 new move); anything else there (other signals, waits, calls, setting changes) would change
 meaning and is refused with its line, as are moves given in different BASEs or settings.
 """
@@ -17,9 +18,9 @@ from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.edit import edit_lines, indentation
 from coatsim.program.as_lang.interpreter import Run
 from coatsim.program.as_lang.names import sanitize_comment
-from coatsim.program.as_lang.writer import fmt_short, path_moves, pose_values
+from coatsim.program.as_lang.writer import fmt, fmt_short, path_moves, pose_values
 from coatsim.program.as_lang.values import Frame
-from coatsim.program.check import walk
+from coatsim.program.check import used_names, walk
 from coatsim.program.toolpath import Pose
 
 _HINT = "; use --standalone"
@@ -33,25 +34,59 @@ def _gun_on(st: ast.Signal, gun: int) -> bool:
     return all(isinstance(e, ast.Num) and e.value == gun for e in st.outputs)
 
 
+def _goto_loops(body: Sequence[ast.Statement], lo: int, hi: int) -> tuple[int, int]:
+    """``lo``..``hi`` (indices into ``body``) widened to every loop made of a label and a GOTO
+    back to it (``loop:`` ... ``IF .i < n GOTO loop``) that overlaps it: such a loop is replaced
+    whole, like a FOR loop."""
+    labels = {st.name: i for i, st in enumerate(body) if isinstance(st, ast.Label)}
+    jumps = [(labels[g.label], j) for j, st in enumerate(body) for g in walk((st,))
+             if isinstance(g, ast.Goto) and labels.get(g.label, j + 1) <= j]
+    changed = True
+    while changed:
+        changed = False
+        for i, j in jumps:
+            if i <= hi and j >= lo and (i < lo or j > hi):
+                lo, hi, changed = min(lo, i), max(hi, j), True
+    return lo, hi
+
+
 def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: int) -> bool:
-    """Whether the replaced statements hold the gun's switch; InputError on one that cannot go."""
-    gotos = {st.label for st in walk(program.body) if isinstance(st, ast.Goto)}
+    """Whether the replaced statements hold the gun's switch; InputError on one that cannot go
+    (a GOTO in or out of them among them)."""
+    inside = list(walk(tuple(body)))
+    ids = {id(st) for st in inside}
+    labels = {st.name for st in inside if isinstance(st, ast.Label)}
+    gotos = {st.label for st in walk(program.body) if isinstance(st, ast.Goto) and id(st) not in ids}
     switch = False
-    for st in walk(tuple(body)):
+    for st in inside:
         where = f"{program.source}:{st.line}"
         if isinstance(st, ast.Label):
             if st.name in gotos:
                 raise InputError(f"{where}: label {st.name} inside the process path is a GOTO target{_HINT}")
-        elif isinstance(st, ast.Move):
-            if st.op not in ("LMOVE", "C1MOVE", "C2MOVE"):
+        elif isinstance(st, ast.Goto):
+            if st.label not in labels:
+                raise InputError(f"{where}: GOTO {st.label} leaves the process path{_HINT}")
+        elif isinstance(st, (ast.Move, ast.Appro, ast.Depart, ast.Draw)):
+            if st.op not in ("LMOVE", "C1MOVE", "C2MOVE", "LAPPRO", "LDEPART", "DRAW", "TDRAW"):
                 raise InputError(f"{where}: {st.op} inside the process path{_HINT}")
         elif isinstance(st, ast.Signal) and _gun_on(st, gun) and not switch:
             switch = True
-        elif not isinstance(st, (ast.Assign, ast.PointAssign, ast.For, ast.While, ast.DoUntil)):
+        elif not isinstance(st, (ast.Assign, ast.PointAssign, ast.For, ast.While, ast.DoUntil, ast.If)):
             kind = type(st).__name__ if not isinstance(st, ast.Command) else st.name
             raise InputError(f"{where}: the process path holds a {kind.upper()} statement that an arc program "
                              f"cannot keep in place{_HINT}")
     return switch
+
+
+def _external_axes(files, body: Sequence[ast.Statement], where: str) -> tuple[str, ...]:
+    """The external axis values (rail, positioner) of the ``.TRANS`` poses the replaced
+    statements name, written after each new pose: they must be one set along the path."""
+    used = {name for st in walk(tuple(body)) for name in used_names(st)}
+    found = {d.extra for f in files for k, d in f.trans.items() if k.split("[")[0] in used}
+    if len(found) > 1:
+        raise InputError(f"{where}: the poses of the process path hold different external axis values; coatsim "
+                         "does not move external axes along an arc path")
+    return tuple(fmt(v, 3) for v in (found.pop() if found else ()))
 
 
 def _names_taken(files) -> set[str]:
@@ -82,7 +117,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         body = program.body
         touched = [i for i, st in enumerate(body)
                    if any(_span(st)[0] <= a <= _span(st)[1] or _span(st)[0] <= b <= _span(st)[1] for _, a, b in origins)]
-        lo, hi = touched[0], touched[-1]
+        lo, hi = _goto_loops(body, touched[0], touched[-1])
         first_line, last_line = _span(body[lo])[0], _span(body[hi])[1]
         made = [i for i, (name, a, b) in enumerate(run.move_origins)
                 if name.lower() == program.name.lower() and first_line <= a and b <= last_line]
@@ -90,6 +125,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
             raise InputError(f"{source}:{first_line}: lines {first_line}-{last_line} make other moves than the process "
                              f"path (they run more than once, or hold other motions){_HINT}")
         switch = _check_statements(body[lo:hi + 1], program, options.gun_signal)
+        extra = _external_axes(files, body[lo:hi + 1], f"{source}:{first_line}")
         moves = [run.toolpath.moves[i] for i in f.path.moves]
         settings = {(m.settings.speed_mm_s, m.settings.accuracy_mm, m.settings.cp) for m in moves}
         if len(settings) != 1:
@@ -104,7 +140,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
             label = f"{prefix}{_k}_{len(trans):04d}"
             if len(label) > 15:
                 raise InputError(f"too many new poses for 15-character names{_HINT}")
-            trans.append(" ".join((label, *pose_values(user.pose()))))
+            trans.append(" ".join((label, *pose_values(user.pose()), *extra)))
             return label
 
         statements = path_moves(f.segments, name)

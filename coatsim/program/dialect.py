@@ -22,6 +22,9 @@ class ProgramPlan:
     and departs the same distance after its end. The gun is open along the whole path when
     ``spray_leads`` (lead-in, curve, lead-out: an open contour), otherwise exactly along its
     ``curve`` part (one lap of a closed contour: no double coat at the seam).
+    ``further_paths`` (the other contours of a part, each with its own ``spray_leads``) are
+    sprayed after it in order, each reached with the gun off by a straight travel at the
+    approach clearance.
     ``exact_stop`` asks for a stop at every programmed point (no blending).
     ``metadata`` pairs are written as machine-readable header comments and come back in
     ``ToolPath.metadata``; ``comments`` are free header lines for people.
@@ -38,6 +41,17 @@ class ProgramPlan:
     spray_leads: bool = True
     metadata: tuple[tuple[str, str], ...] = ()
     comments: tuple[str, ...] = ()
+    further_paths: tuple[tuple[PlacedPath, bool], ...] = ()
+
+    @property
+    def paths(self) -> tuple[PlacedPath, ...]:
+        """Every sprayed path, in spray order."""
+        return (self.path, *(path for path, _ in self.further_paths))
+
+    @property
+    def legs(self) -> tuple[tuple[PlacedPath, bool], ...]:
+        """Every sprayed path with whether the gun covers its lead-in and lead-out."""
+        return ((self.path, self.spray_leads), *self.further_paths)
 
 
 class Dialect(Protocol):

@@ -19,6 +19,9 @@ import numpy as np
 # field is read as SPRAYED_WITH_LEADS.
 SPRAYED_CURVE = "curve"
 SPRAYED_WITH_LEADS = "lead-in,curve,lead-out"
+# A program of a part sprays several contours: its per-contour header fields (closed, sprayed,
+# speed_limits) hold one value per contour, in spray order, joined by this.
+PART_SEPARATOR = " | "
 
 
 @dataclass(frozen=True, eq=False)

@@ -20,12 +20,14 @@ from coatsim.program.toolpath import CircularMove, ToolPath
 @dataclass(frozen=True, eq=False)
 class UserProgram:
     """A program a user brought: its text, the sprayed path as lines and arcs in the workpiece
-    plane (``curve``), the dense points of that path (n, 2), its height above the plane (mm)."""
+    plane (``curve``), the dense points of that path (n, 2), its height above the plane (mm);
+    ``notes`` what a reader of the comparison must know (other sprayed stretches left out)."""
 
     text: str
     curve: Polysegment
     points: np.ndarray
     height_mm: float
+    notes: tuple[str, ...] = ()
 
     @property
     def path(self) -> "UserProgram":
@@ -46,7 +48,14 @@ def user_program(toolpath: ToolPath, frame: Frame, text: str, step_mm: float = 0
     if not runs:
         raise InputError(f"{toolpath.name}: the gun is never on during an LMOVE or C1MOVE/C2MOVE move; the program "
                          "has no process path to compare")
-    moves = [toolpath.moves[i] for i in max(runs, key=lambda r: sum(move_length(toolpath.moves[i]) for i in r))]
+    lengths = [sum(move_length(toolpath.moves[i]) for i in r) for r in runs]
+    longest = runs[int(np.argmax(lengths))]
+    moves = [toolpath.moves[i] for i in longest]
+    notes = ()
+    if len(runs) > 1:
+        notes = (f"{toolpath.name} sprays {len(runs)} stretches ({sum(lengths):.1f} mm in all); its path here is the "
+                 f"longest, lines {moves[0].line}-{moves[-1].line} ({max(lengths):.1f} mm), which the other variants "
+                 "spray alone",)
     segments, points, heights = [], [_local(frame, moves[0].start.position)[:2]], []
     for m in moves:
         a, b = _local(frame, m.start.position), _local(frame, m.end.position)
@@ -68,4 +77,4 @@ def user_program(toolpath: ToolPath, frame: Frame, text: str, step_mm: float = 0
     closed = bool(np.linalg.norm(np.asarray(segments[0].start) - np.asarray(segments[-1].end)) < 1e-6)
     pts = np.vstack(points)
     keep = np.concatenate(([True], np.any(np.diff(pts, axis=0) != 0.0, axis=1)))
-    return UserProgram(text, Polysegment(tuple(segments), closed=closed), pts[keep], float(np.median(heights)))
+    return UserProgram(text, Polysegment(tuple(segments), closed=closed), pts[keep], float(np.median(heights)), notes)

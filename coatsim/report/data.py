@@ -69,12 +69,13 @@ def centre_line(run: Any, surface: Any, standoff_mm: float, lead_in_mm: float, l
 class ReportData:
     """A finished run as the report sections see it. ``runs`` are the pipeline's variant runs
     (name, program, execution, coating, toolpath); ``contours`` the segmentations of the
-    input."""
+    input (one, or one per contour of a part); ``notes`` what reading a drawing noted."""
 
     loaded: Any
     contours: tuple[Any, ...]
     runs: tuple[Any, ...]
     document: Mapping[str, Any]
+    notes: tuple[str, ...] = ()
 
     @property
     def spec(self) -> Any:
@@ -112,8 +113,9 @@ class ReportData:
     @cached_property
     def centre(self) -> CentreLine:
         spec = self.spec
+        closed = len(self.contours) == 1 and bool(self.contours[0].curve.closed)
         return centre_line(self.reference, self.surface, spec.gun.standoff_mm, spec.motion.lead_in_mm,
-                           spec.motion.lead_out_mm, bool(self.contours[0].curve.closed))
+                           spec.motion.lead_out_mm, closed)
 
     def track_view(self, run: Any) -> np.ndarray:
         """The sprayed aim points of ``run`` in the heat maps' view coordinates (k, 2) mm, NaN

@@ -49,11 +49,12 @@ def build_sections(data: ReportData, cell: Optional[Any] = None, video: Optional
 
 
 def write_report(path: Path, loaded: Any, contours: Sequence[Any], runs: Sequence[Any], document: Mapping[str, Any],
-                 *, cell: Optional[Any] = None, video: Optional[str] = None) -> None:
+                 notes: Sequence[str] = (), *, cell: Optional[Any] = None, video: Optional[str] = None) -> None:
     """Write the self-contained report.html of a run: ``contours`` are the segmentations of the
-    input, ``runs`` the variants' runs, ``cell`` the robot cell (for the 3-D pictures), ``video``
-    the name of the run's MP4 beside the report, if one was made."""
-    data = ReportData(loaded, tuple(contours), tuple(runs), document)
+    curve (one) or of the contours of a part, ``runs`` the variants' runs, ``notes`` what reading
+    a drawing noted, ``cell`` the robot cell (for the 3-D pictures), ``video`` the name of the
+    run's MP4 beside the report, if one was made."""
+    data = ReportData(loaded, tuple(contours), tuple(runs), document, tuple(notes))
     sections = build_sections(data, cell, video)
     subtitle = f"coatsim {__version__}, scenario {loaded.path.name}, {document['mode']} mode"
     write_text(path, render_html(f"coatsim report: {loaded.spec.name}", subtitle, sections))

@@ -4,7 +4,9 @@
 "motion": {...}, "coating": {...}}}, "warnings": [{"variant": V, "message": ...}], "gates": [...], "passed": bool}``;
 the metric names are those of :mod:`coatsim.report.catalogue`, values are plain numbers (null where undefined);
 ``warnings`` lists what the simulated run warned about (TOOL mismatch, joint-limit approach, singularity,
-small tracking or joint-limit excesses), each naming its program line.
+small tracking or joint-limit excesses), each naming its program line. A part of several
+contours adds "contours": one entry per contour with its segmentation and motion groups per
+variant (the variant groups sum or take the extremes over the part).
 """
 
 from __future__ import annotations
@@ -62,6 +64,47 @@ def segmentation_group(points: np.ndarray, programmed: Polysegment, tolerance_mm
         "curve_length_mm": programmed.length,
         "max_curvature_jump_per_mm": float(jumps.max()) if len(jumps) else 0.0,
     }
+
+
+_SUMMED = ("n_segments", "n_arcs", "n_lines", "n_corners", "curve_length_mm")
+
+
+def combine_segmentation(groups: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """The segmentation group of a part from its contours' groups: counts and the curve
+    length add up, the tolerance is the one they share, every other figure (deviation,
+    tangent break, curvature jump) is the largest."""
+    if len(groups) == 1:
+        return dict(groups[0])
+    out: dict[str, Any] = {}
+    for name in groups[0]:
+        values = [g[name] for g in groups]
+        if name in _SUMMED:
+            out[name] = sum(values)
+        elif name == "tolerance_mm":
+            out[name] = values[0]
+        else:
+            known = [v for v in values if v is not None]
+            out[name] = max(known) if known else None
+    return out
+
+
+def contours_section(contours: Sequence[Any], order: Sequence[int],
+                     per_variant: Mapping[str, Sequence[Mapping[str, Mapping[str, Any]]]]) -> list[dict[str, Any]]:
+    """``metrics.json`` "contours" of a part: for every contour in drawing order its number,
+    its place in the spray order, whether it is closed, where the drawing starts it, and per
+    variant its segmentation and motion groups (the catalogue's names)."""
+    place = {k: i for i, k in enumerate(order)}
+    rows = []
+    for k, c in enumerate(contours):
+        rows.append({
+            "contour": k + 1,
+            "spray_order": place[k] + 1,
+            "closed": bool(c.curve.closed),
+            "source": getattr(c, "origin", "") or c.curve.name,
+            "variants": {v: {g: {n: plain(groups[k][g][n]) for n in names(g)} for g in ("segmentation", "motion")}
+                         for v, groups in per_variant.items()},
+        })
+    return rows
 
 
 def coating_group(coating: Mapping[str, float]) -> dict[str, Any]:

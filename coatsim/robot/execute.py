@@ -16,7 +16,7 @@ from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError, InputError
 from coatsim.fileio import write_text
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
-from coatsim.program.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
+from coatsim.program.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
@@ -37,8 +37,9 @@ _WINDOW_MM = 10.0  # progress search window around the commanded point (plus ble
 class Execution:
     """Result of executing one program: the log, its metrics, the warnings by program step (TOOL
     mismatch, joint-limit approach, singularity, small tracking or limit excesses), the largest
-    IK residual, the programmed reference path, the curve-proper progress interval (mm), and
-    wall time per phase (s)."""
+    IK residual, the programmed reference path, the curve-proper progress interval (mm; from
+    the first contour's start to the last one's end), wall time per phase (s), and for a part
+    each contour's interval and metrics."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
@@ -48,6 +49,8 @@ class Execution:
     curve: tuple[float, float]
     wall: dict[str, float] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    curves: tuple[tuple[float, float], ...] = ()
+    contour_metrics: tuple[MotionMetrics, ...] = ()
 
 
 @dataclass
@@ -73,30 +76,60 @@ def _metadata_mm(toolpath: ToolPath, key: str) -> float:
     return value
 
 
-def _leads_sprayed(toolpath: ToolPath) -> bool:
-    """Whether the gun covers the lead-in and lead-out (header ``sprayed``, default yes)."""
-    raw = toolpath.metadata.get("sprayed", SPRAYED_WITH_LEADS)
-    if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
-        raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
-    return raw == SPRAYED_WITH_LEADS
+def _per_contour(toolpath: ToolPath, key: str, default: str, n: int) -> list[str]:
+    """A header field per curve proper: a part program holds one value per contour, joined by
+    PART_SEPARATOR; a single value holds for every one."""
+    raw = toolpath.metadata.get(key, default)
+    values = [v.strip() for v in raw.split(PART_SEPARATOR.strip())] if PART_SEPARATOR.strip() in raw else [raw]
+    if len(values) == 1:
+        return values * n
+    if len(values) != n:
+        raise InputError(f"{toolpath.name}: header field {key} holds {len(values)} values for {n} sprayed contours")
+    return values
 
 
-def _curve_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[float, float, float]:
-    """Progress interval of the curve proper and its programmed speed: the sprayed moves
-    (every Cartesian move if none sprays), without the lead-in and lead-out when the gun
-    covers them."""
+def _leads_sprayed(toolpath: ToolPath, n: int) -> list[bool]:
+    """Whether the gun covers the lead-in and lead-out of each curve proper (header
+    ``sprayed``, default yes)."""
+    out = []
+    for raw in _per_contour(toolpath, "sprayed", SPRAYED_WITH_LEADS, n):
+        if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
+            raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
+        out.append(raw == SPRAYED_WITH_LEADS)
+    return out
+
+
+def _spray_runs(toolpath: ToolPath, cartesian: list[int]) -> list[list[int]]:
+    """Indices of the Cartesian moves of each unbroken run of spray-on moves (the contours of a
+    part); every Cartesian move as one run if none sprays."""
+    runs: list[list[int]] = [[]]
+    members = set(cartesian)
+    for i, move in enumerate(toolpath.moves):  # a move with the gun off ends a run
+        if move.spray and i in members:
+            runs[-1].append(i)
+        elif not move.spray and runs[-1]:
+            runs.append([])
+    return [r for r in runs if r] or [cartesian]
+
+
+def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[float, float]], float]:
+    """Progress interval of each curve proper and the programmed speed: the sprayed moves of
+    each contour, without the lead-in and lead-out where the gun covers them."""
     cartesian = [i for i, m in enumerate(toolpath.moves) if m.kind != "joint" and np.any(ref.moves == i)]
-    chosen = [i for i in cartesian if toolpath.moves[i].spray] or cartesian
-    if not chosen:
+    if not cartesian:
         raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
-    leads = _leads_sprayed(toolpath)
-    a = ref.move_span(chosen[0])[0] + (_metadata_mm(toolpath, "lead_in_mm") if leads else 0.0)
-    b = ref.move_span(chosen[-1])[1] - (_metadata_mm(toolpath, "lead_out_mm") if leads else 0.0)
-    if b <= a:
-        raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
-    inside = [i for i in chosen if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
+    runs = _spray_runs(toolpath, cartesian)
+    lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
+    spans, inside = [], []
+    for run, leads in zip(runs, _leads_sprayed(toolpath, len(runs))):
+        a = ref.move_span(run[0])[0] + (lead_in if leads else 0.0)
+        b = ref.move_span(run[-1])[1] - (lead_out if leads else 0.0)
+        if b <= a:
+            raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
+        spans.append((a, b))
+        inside += [i for i in run if ref.move_span(i)[1] > a and ref.move_span(i)[0] < b]
     speed = max(toolpath.moves[i].settings.speed_mm_s for i in inside)
-    return a, b, float(speed)
+    return spans, float(speed)
 
 
 def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
@@ -134,14 +167,16 @@ def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
     return np.array([r for r, _ in pairs]), np.array([p for _, p in pairs])
 
 
-def _allowance(toolpath: ToolPath) -> CurveAllowance:
-    """Where the program header says the curve allows the programmed speed (no header: everywhere
-    but near the rest points at the ends)."""
-    raw = toolpath.metadata.get(SPEED_LIMITS_KEY)
-    limits = () if raw is None else parse_limits(raw, toolpath.name)
-    return CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits),
-                          toolpath.metadata.get("closed") == "yes", _metadata_mm(toolpath, "lead_in_mm"),
-                          _metadata_mm(toolpath, "lead_out_mm"))
+def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
+    """Where the program header says each curve proper allows the programmed speed (no header:
+    everywhere but near the rest points at the ends)."""
+    lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
+    out = []
+    for raw, closed in zip(_per_contour(toolpath, SPEED_LIMITS_KEY, "none", n), _per_contour(toolpath, "closed", "no", n)):
+        limits = parse_limits(raw, toolpath.name)
+        out.append(CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits), closed == "yes",
+                                  lead_in, lead_out))
+    return out
 
 
 def steps_left(segments: list[_Segment]) -> int:
@@ -262,13 +297,17 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     dist, progress, curvature = ref.project(run.tcp, hint, _WINDOW_MM + 2 * max_blend)
     log = TrajectoryLog(t=run.t, position=run.tcp, axis=run.axis, speed=run.speed, spray=spray,
                         progress=progress, path_error=dist, q=run.q)
-    a, b, speed = _curve_proper(toolpath, ref)
-    metrics = motion_metrics(log, (a, b), speed, curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max,
-                             (worst[0], worst[1]), _allowance(toolpath))
+    spans, speed = _curves_proper(toolpath, ref)
+    allowances = _allowances(toolpath, len(spans))
+    limits = (curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max, (worst[0], worst[1]))
+    metrics = motion_metrics(log, spans, speed, *limits, allowances)
+    per_contour = tuple(motion_metrics(log, span, speed, *limits, allowance) for span, allowance in zip(spans, allowances)) \
+        if len(spans) > 1 else (metrics,)
     wall["metrics_s"] = time.perf_counter() - t0
     wall["total_s"] = time.perf_counter() - t_start
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
-                     curve=(a, b), wall=wall, warnings=toolpath.warnings)
+                     curve=(spans[0][0], spans[-1][1]), wall=wall, warnings=toolpath.warnings, curves=tuple(spans),
+                     contour_metrics=per_contour)
 
 
 def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
@@ -305,5 +344,6 @@ def execute_program(program: str | Path | Sequence[str | Path], model: str | Pat
         write_text(files[1], json.dumps(doc, indent=2) + "\n")
         variant = toolpath.metadata.get("variant")
         label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(sources[0]).name})"
-        plot_speed(result.log, result.metrics, result.curve, files[2], title=f"{label}: tool speed over the sprayed stretch")
+        plot_speed(result.log, result.metrics, result.curves, files[2],
+                   title=f"{label}: tool speed over the sprayed stretch")
     return result, files

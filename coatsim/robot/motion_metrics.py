@@ -2,7 +2,8 @@
 
 The curve proper is the progress interval of the spray-on moves (all Cartesian moves when none
 sprays) without the lead-in and lead-out lengths named in the program header when the gun
-covers them (header ``sprayed``; a closed contour is sprayed only along the curve). Its window in
+covers them (header ``sprayed``; a closed contour is sprayed only along the curve); a program of
+a part has one such interval per contour (per unbroken run of spray-on moves). Its window in
 time runs from the last log row not yet past its start to the first row at or past its end;
 rest at either end of the window is not counted as a stop.
 
@@ -18,6 +19,7 @@ them on the same ground.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from typing import Sequence
 
 import numpy as np
 
@@ -110,48 +112,60 @@ def _stops(speed: np.ndarray, programmed: float) -> int:
     return sum(1 for a, b in merged if a > 0 and b < len(speed))
 
 
+def _window(log: TrajectoryLog, curve: tuple[float, float]) -> slice:
+    """Log rows of one curve proper: from the last row not yet past its start (at rest
+    there, if the tool stops) to the first row at or past its end."""
+    a, b = curve
+    i0 = max(int(np.searchsorted(np.maximum.accumulate(log.progress), a, side="right")) - 1, 0)
+    # the servo may still trail the commanded end by a few hundredths of a millimetre
+    reached = np.flatnonzero(log.progress[i0:] >= b - END_TOLERANCE_MM)
+    if i0 >= len(log) or not len(reached):
+        raise ExecutionError(f"the simulated tool never covered the curve proper ({a:.1f} to {b:.1f} mm of the path)")
+    return slice(i0, i0 + int(reached[0]) + 1)
+
+
 def motion_metrics(
     log: TrajectoryLog,
-    curve: tuple[float, float],
+    curve: tuple[float, float] | Sequence[tuple[float, float]],
     speed_mm_s: float,
     path_curvature: np.ndarray,
     tool_accel_mm_s2: float,
     v_max: np.ndarray,
     a_max: np.ndarray,
     ik_residual: tuple[float, float],
-    allowance: CurveAllowance = CurveAllowance(),
+    allowance: CurveAllowance | Sequence[CurveAllowance] = CurveAllowance(),
 ) -> MotionMetrics:
-    """Metrics over the curve proper ``curve`` = (start, end) progress in mm.
+    """Metrics over the curve proper ``curve`` = (start, end) progress in mm, or over several
+    (the contours of a part, each with its ``allowance``: times, lengths and stops add up,
+    speeds and path errors are taken over all their rows together, fractions are of their
+    total length).
 
     ``path_curvature`` (n,) is the programmed curvature at each row's closest point; the
     "feasible" fraction counts only rows where speed^2 * curvature <= ``tool_accel_mm_s2``.
     ``allowance`` says where the curve allows the programmed speed (for ``min_speed_ratio``).
     """
-    a, b = curve
-    # the window opens at the last row not yet past the start (at rest there, if the tool stops)
-    i0 = max(int(np.searchsorted(np.maximum.accumulate(log.progress), a, side="right")) - 1, 0)
-    # the servo may still trail the commanded end by a few hundredths of a millimetre
-    reached = np.flatnonzero(log.progress[i0:] >= b - END_TOLERANCE_MM)
-    if i0 >= len(log) or not len(reached):
-        raise ExecutionError(f"the simulated tool never covered the curve proper ({a:.1f} to {b:.1f} mm of the path)")
-    i1 = i0 + int(reached[0])
-    w = slice(i0, i1 + 1)
-    speed = log.speed[w]
-    step = np.linalg.norm(np.diff(log.position[w], axis=0), axis=1)
-    fast = speed[:-1] >= AT_SPEED * speed_mm_s
-    feasible = (speed_mm_s**2 * path_curvature[w][:-1]) <= tool_accel_mm_s2
+    curves = [curve] if np.ndim(curve) == 1 else list(curve)
+    allowances = [allowance] * len(curves) if isinstance(allowance, CurveAllowance) else list(allowance)
+    windows = [_window(log, c) for c in curves]
+    speeds = [log.speed[w] for w in windows]
+    steps = [np.linalg.norm(np.diff(log.position[w], axis=0), axis=1) for w in windows]
+    fast = np.concatenate([v[:-1] >= AT_SPEED * speed_mm_s for v in speeds])
+    feasible = np.concatenate([(speed_mm_s**2 * path_curvature[w][:-1]) <= tool_accel_mm_s2 for w in windows])
+    allowed = np.concatenate([allowed_by_curve(log.progress[w] - a, b - a, speed_mm_s, tool_accel_mm_s2, al)
+                              for w, (a, b), al in zip(windows, curves, allowances)])
+    speed, step = np.concatenate(speeds), np.concatenate(steps)
     travelled = float(step.sum())
     dt = float(np.median(np.diff(log.t)))
     qd = np.gradient(log.q, dt, axis=0)
     qdd = np.gradient(qd, dt, axis=0)
-    err = log.path_error[w]
+    err = np.concatenate([log.path_error[w] for w in windows])
     mean = float(speed.mean())
-    allowed = allowed_by_curve(log.progress[w] - a, b - a, speed_mm_s, tool_accel_mm_s2, allowance)
+    length = float(sum(b - a for a, b in curves))
     return MotionMetrics(
         programmed_speed_mm_s=float(speed_mm_s),
-        curve_length_mm=float(b - a),
-        cycle_time_s=float(log.t[i1] - log.t[i0]),
-        ideal_time_s=float((b - a) / speed_mm_s),
+        curve_length_mm=length,
+        cycle_time_s=float(sum(log.t[w.stop - 1] - log.t[w.start] for w in windows)),
+        ideal_time_s=float(length / speed_mm_s),
         total_time_s=float(log.t[-1]),
         mean_speed_mm_s=mean,
         min_speed_mm_s=float(speed.min()),
@@ -160,7 +174,7 @@ def motion_metrics(
         fraction_at_speed_feasible=float(step[fast & feasible].sum() / step[feasible].sum())
         if step[feasible].sum() > 0 else 0.0,
         min_speed_ratio=float(speed[allowed].min() / speed_mm_s) if allowed.any() else None,
-        stops=_stops(speed, speed_mm_s),
+        stops=sum(_stops(v, speed_mm_s) for v in speeds),
         max_path_error_mm=float(err.max()),
         rms_path_error_mm=float(np.sqrt(np.mean(err**2))),
         max_joint_speed_ratio=float(np.max(np.abs(qd) / v_max)),

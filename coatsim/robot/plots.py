@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
+from typing import Sequence
 
 import numpy as np
 
@@ -11,23 +12,32 @@ from coatsim.fileio import write_bytes
 from coatsim.robot.motion_metrics import AT_SPEED, MotionMetrics
 from coatsim.robot.trajectory_log import TrajectoryLog
 
+Spans = tuple[float, float] | Sequence[tuple[float, float]]
 
-def sprayed_window(log: TrajectoryLog, curve: tuple[float, float], margin: float = 0.06) -> tuple[float, float]:
-    """Progress interval (mm) the plot shows: the stretch with the gun open and the curve proper,
-    plus ``margin`` of its length on either side (the approach from home is left out)."""
+
+def _spans(curve: Spans) -> list[tuple[float, float]]:
+    """One curve proper, or one per contour of a part."""
+    return [tuple(curve)] if np.ndim(curve) == 1 else [tuple(span) for span in curve]
+
+
+def sprayed_window(log: TrajectoryLog, curve: Spans, margin: float = 0.06) -> tuple[float, float]:
+    """Progress interval (mm) the plot shows: the stretch with the gun open and the curve proper
+    (every contour's), plus ``margin`` of its length on either side (the approach from home is
+    left out)."""
+    spans = _spans(curve)
+    lo, hi = min(a for a, _ in spans), max(b for _, b in spans)
     on = np.asarray(log.spray, bool)
-    lo, hi = curve
     if on.any():
         lo, hi = min(lo, float(log.progress[on].min())), max(hi, float(log.progress[on].max()))
     pad = margin * max(hi - lo, 1.0)
     return max(float(log.progress.min()), lo - pad), min(float(log.progress.max()), hi + pad)
 
 
-def plot_speed(log: TrajectoryLog, metrics: MotionMetrics, curve: tuple[float, float], path: str | Path,
-               title: str = "") -> None:
+def plot_speed(log: TrajectoryLog, metrics: MotionMetrics, curve: Spans, path: str | Path, title: str = "") -> None:
     """Write a PNG: tool speed (top) and path error (bottom) against progress along the path,
-    over the sprayed stretch (:func:`sprayed_window`); ``title`` names the program and variant,
-    the line under it gives the motion figures."""
+    over the sprayed stretch (:func:`sprayed_window`); ``curve`` is the curve proper (one
+    interval, or one per contour); ``title`` names the program and variant, the line under it
+    gives the motion figures."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -38,7 +48,8 @@ def plot_speed(log: TrajectoryLog, metrics: MotionMetrics, curve: tuple[float, f
     lo, hi = sprayed_window(log, curve)
     on = np.asarray(log.spray, bool)
     for ax in (top, bottom):
-        ax.axvspan(*curve, color="0.93", zorder=0, label="curve proper" if ax is top else None)
+        for k, span in enumerate(_spans(curve)):
+            ax.axvspan(*span, color="0.93", zorder=0, label="curve proper" if ax is top and k == 0 else None)
         ax.fill_between(log.progress, 0, 1, where=on, transform=ax.get_xaxis_transform(), color="#ffe9c7",
                         zorder=0, lw=0, label="gun open" if ax is top else None)
         ax.grid(True, lw=0.4, color="0.8")

@@ -93,7 +93,7 @@ def test_check_program_lists_signals_and_sprayed_stretches(run_cli):
     # a closed contour: the gun opens on the fly at the seam and closes after exactly one lap
     assert f"signal: {GOLDEN}:30: SIGNAL 1 (gun on)" in out and f"signal: {GOLDEN}:43: SIGNAL -1 (gun off)" in out
     length = 2 * 130 + 2 * 60 + 2 * math.pi * 10
-    assert f"sprayed: lines 29-41, 8 moves, {length:.3f} mm" in out
+    assert f"sprayed: lines 29-41 of {GOLDEN}, 8 moves, {length:.3f} mm" in out
 
 
 def test_check_program_accepts_a_bom_and_several_files(tmp_path, run_cli):

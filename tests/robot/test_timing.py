@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from scipy.interpolate import CubicSpline
 from toppra.parametrizer import ParametrizeConstAccel
 
+from coatsim.budgets import MAX_SIM_STEPS
 from coatsim.robot.cell import load_cell
 from coatsim.robot.timing import PLANNING_FRACTION, _joint_limits, _sample, _Spline, time_cartesian
 
@@ -38,7 +39,7 @@ def pieces(draw):
 def test_sampling_matches_toppra_parametrize_const_accel(piece, dt):
     s, q, sd = piece
     path = _Spline(s, q)
-    mine = _sample(path, s, sd, dt, 1000.0)
+    mine = _sample(path, s, sd, dt, 1000.0, "piece", MAX_SIM_STEPS)
     reference = ParametrizeConstAccel(toppra.SplineInterpolator(s, q), s, sd)
     assert mine.duration == pytest.approx(reference.duration, rel=1e-12)
     for k, got in enumerate((mine.q, mine.qd, mine.qdd)):
@@ -65,7 +66,7 @@ def test_a_piece_at_rest_throughout_is_an_execution_error():
 
     s = np.array([0.0, 0.004])
     with pytest.raises(ExecutionError, match="no room to move"):
-        _sample(_Spline(s, np.zeros((2, 6))), s, np.zeros(2), 0.002, 1000.0)
+        _sample(_Spline(s, np.zeros((2, 6))), s, np.zeros(2), 0.002, 1000.0, "piece", MAX_SIM_STEPS)
 
 
 def test_joint_limit_constraints_are_built_once_per_cell(cell):

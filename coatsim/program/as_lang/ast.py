@@ -15,6 +15,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Optional, Union
 
+MAX_AXES = 18  # values a pose or joint value may hold: six arm axes, then external axes (rails, positioners)
+
 
 # --- expressions ---------------------------------------------------------------------------
 @dataclass(frozen=True)

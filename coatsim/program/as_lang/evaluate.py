@@ -325,18 +325,22 @@ class Evaluator:
         return "".join(out)
 
     def decode(self, e: ast.Call) -> str:
-        """$DECODE(&$s, $separators, mode): the leading characters of $s up to a separator
-        (mode 0) or the leading separators (mode 1), removed from $s."""
+        """$DECODE($s, $separators, mode): the leading characters of $s up to a separator
+        (mode 0, the default) or the leading separators (mode 1), removed from $s (a string
+        variable, written plain as cells do or as a reference ``&$s``)."""
         target = self.arg(e, 0)
-        if not isinstance(target, ast.Ref) or target.target.kind != "string":
-            raise self.error("$DECODE takes a string variable by reference first, as in $DECODE(&$s, \",\", 0)")
-        text = self.run.get_string(target.target)
+        if isinstance(target, ast.Ref):
+            target = target.target
+        if not isinstance(target, ast.Name) or target.kind != "string":
+            raise self.error("$DECODE takes a string variable first (it removes what it returns), as in "
+                             "$DECODE($s, \",\", 0)")
+        text = self.run.get_string(target)
         seps = self.string(self.arg(e, 1))
         mode = self.integer(self.arg(e, 2), "the $DECODE mode") if len(e.args) > 2 else 0
         i = 0
         while i < len(text) and ((text[i] in seps) == (mode != 0)):
             i += 1
-        self.run.set_string(target.target, text[i:])
+        self.run.set_string(target, text[i:])
         return text[:i]
 
     # --- poses ---------------------------------------------------------------------------
@@ -371,9 +375,11 @@ class Evaluator:
     def pose_call(self, e: ast.Call) -> Frame:
         name = e.name
         if name == "TRANS":
-            if len(e.args) > 6:
-                raise self.error(f"TRANS takes x, y, z, o, a, t; found {len(e.args)} values")
-            values = [0.0 if a is None else self.real(a) for a in e.args] + [0.0] * (6 - len(e.args))
+            if len(e.args) > ast.MAX_AXES:
+                raise self.error(f"TRANS takes x, y, z, o, a, t and external axes; found {len(e.args)} values")
+            if any(a is not None for a in e.args[6:]):
+                self.run.warn("trans-external-axes", "TRANS values beyond the 6th (external axes) are ignored")
+            values = [0.0 if a is None else self.real(a) for a in e.args[:6]] + [0.0] * (6 - len(e.args[:6]))
             return Frame.from_xyzoat(*values)
         if name in ("RX", "RY", "RZ"):
             self.arity(e, 1)

@@ -17,7 +17,7 @@ GRIPPER = frozenset({
 # Arm configuration, payload, limits, home poses: the cell model decides (a warning).
 CONFIGURATION = frozenset({
     "RIGHTY", "LEFTY", "ABOVE", "BELOW", "UWRIST", "DWRIST", "WEIGHT", "SETHOME", "SETHOME2", "SET2HOME", "ULIMIT",
-    "LLIMIT", "BSPEED", "FREE", "FTOOL", "LOCK", "PRIORITY", "SLOW_REPEAT", "SETTIME",
+    "LLIMIT", "BSPEED", "FREE", "FTOOL", "LOCK", "PRIORITY", "SLOW_REPEAT", "SETTIME", "GROUP",
 })
 # Other programs and tasks: not run (a warning).
 TASKS = frozenset({

@@ -1,14 +1,14 @@
 """Interpreter: parsed AS files -> the ToolPath the robot executes.
 
-Runs the main program (the first of the first file, or the one named) with the programs it
-CALLs, their control flow, variables and expressions. Poses are relative to the current BASE
-(``BASE``); the ToolPath is in the robot base frame. Motions, settings, the gun and the rests
-follow :mod:`~coatsim.program.as_lang.motion`; signals and unknown inputs
-:mod:`~coatsim.program.as_lang.io_model`. Joint values and HOME use the cell's kinematics
-(``kinematics``); without it they are an error. What the twin does not simulate either stops
-the run (exit 3: motions it cannot follow, teach-pendant block steps, the gun pulsed) or is one
-warning line in ``ToolPath.warnings`` (tasks, network, grippers, displays, unknown inputs).
-A step budget stops a program that never ends, naming its loop.
+Runs the main program (the one named, else the first one loaded that is not a background PC
+program ``*.pc``) with the programs it CALLs, their control flow, variables and expressions.
+Poses are relative to the current BASE (``BASE``); the ToolPath is in the robot base frame.
+Motions, settings, the gun and the rests follow :mod:`~coatsim.program.as_lang.motion`; signals
+and unknown inputs :mod:`~coatsim.program.as_lang.io_model`. Joint values and HOME use the
+cell's kinematics (``kinematics``); without it they are an error. What the twin does not
+simulate either stops the run (exit 3: motions it cannot follow, teach-pendant block steps, the
+gun pulsed) or is one warning line in ``ToolPath.warnings`` (tasks, network, grippers, displays,
+unknown inputs). A step budget stops a program that never ends, naming its loop.
 """
 
 from __future__ import annotations
@@ -42,13 +42,17 @@ MAX_CALL_DEPTH = 50
 class Run:
     """An interpreted program: its ToolPath, where each move comes from ((program, first line,
     line): an arc's first line is its C1MOVE) and the BASE it was given in, how often each
-    (program, line) ran, and the programs loaded."""
+    (program, line) ran, the programs loaded, whether the gun output is still on when the
+    program ends (a switch after the last motion counts), and the STOP / HALT that ended it
+    ("file:line: HALT"; empty when it ran to its end)."""
 
     toolpath: ToolPath
     move_origins: tuple[tuple[str, int, int], ...]
     move_bases: tuple[Frame, ...]
     executions: Mapping[tuple[str, int], int]
     programs: Mapping[str, ast.Program]
+    gun_on_at_end: bool = False
+    stopped: str = ""
 
 
 @dataclass
@@ -82,6 +86,7 @@ class Interpreter:
         self.stack: list[_Frame] = []
         self.code: dict[str, Code] = {}
         self.steps, self.line, self.last_loop = 0, 0, None
+        self.stopped = ""  # "file:line: HALT" of the STOP / HALT that ended the run
         self.rng: Optional[_random.Random] = None
         self.origins: list[tuple[str, int, int]] = []
         self.bases: list[Frame] = []
@@ -395,8 +400,8 @@ class Interpreter:
 def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,
                   *, inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
                   full_speed_mm_s: float = FULL_SPEED_MM_S, max_steps: int = MAX_STEPS) -> Run:
-    """Run the main program of ``files`` (the first program of the first file that has one, or
-    ``program``) and report where each move comes from."""
+    """Run the main program of ``files`` (``program``, else the first one loaded that is not a
+    background PC program ``*.pc``) and report where each move comes from."""
     files = (files,) if isinstance(files, ast.AsFile) else tuple(files)
     if gun_signal < 1:
         raise InputError(f"gun signal {gun_signal}: must be an output number >= 1")
@@ -405,15 +410,16 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
         names = ", ".join(f.source for f in files)
         raise InputError(f"{names}: no .PROGRAM section; expected '.PROGRAM name()' ... '.END'")
     run = Interpreter(files, gun_signal, inputs or {}, kinematics, full_speed_mm_s, max_steps)
-    if program is None:
-        main = all_programs[0]
+    if program is None:  # PC programs (autostart.pc, ...) are background tasks, never the robot's main program
+        main = next((p for p in all_programs if not p.name.lower().endswith(".pc")), all_programs[0])
     else:
         main = run.programs.get(program.lower())
         if main is None:
             names = ", ".join(p.name for p in all_programs)
             raise InputError(f"{files[0].source}: no program named '{program}' (loaded: {names})")
     toolpath = run.run(main)
-    return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs))
+    return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs),
+               run.controller.gun_on, run.stopped)
 
 
 def interpret(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

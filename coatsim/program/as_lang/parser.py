@@ -25,7 +25,6 @@ _DIRECTIVE = re.compile(r"\.([A-Za-z_][A-Za-z0-9_]*)")
 _PROGRAM_NAME = re.compile(r"[ \t]+([A-Za-z][A-Za-z0-9_.]*)")
 _METADATA = re.compile(r"[ \t]*(?:\d+[ \t]+)?;[ \t]*coatsim:[ \t]*([A-Za-z0-9_.]+)[ \t]*=(.*)$")
 _DATA = ("TRANS", "JOINTS", "REALS", "STRINGS")
-MAX_JOINTS = 18
 _SIMPLE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*(\[\d+(,\d+)?\])?\Z")
 
 
@@ -211,7 +210,7 @@ class _Reader:
     def _fast_trans(self, text: str, line: int) -> bool:
         """The common ``name x y z o a t`` line without the tokenizer; False to take the slow path."""
         parts = text.replace(",", " ").split()
-        if not 7 <= len(parts) <= 10 or not _SIMPLE_NAME.match(parts[0]) or "_" in text.split(None, 1)[1]:
+        if not 7 <= len(parts) <= 1 + ast.MAX_AXES or not _SIMPLE_NAME.match(parts[0]) or "_" in text.split(None, 1)[1]:
             return False
         try:
             values = [float(v) for v in parts[1:]]
@@ -226,14 +225,14 @@ class _Reader:
 
     def _trans(self, c: Cursor, line: int) -> None:
         name, col = self._name(c, "a pose name")
-        values = self._numbers(c, "a number (x y z mm, o a t deg)", 6 + 3, f"pose '{name}'")
+        values = self._numbers(c, "a number (x y z mm, o a t deg)", ast.MAX_AXES, f"pose '{name}'")
         if len(values) < 6:
             raise c.error(f"pose '{name}' has {len(values)} numbers; expected 6 (x y z o a t) and external axes")
         self._store("TRANS", name, ast.TransDef(name, tuple(values[:6]), tuple(values[6:]), line), line, col, "pose")
 
     def _joint(self, c: Cursor, line: int) -> None:
         name, col = self._name(c, "a joint pose name", "#")
-        values = self._numbers(c, "a joint value", MAX_JOINTS, f"joint pose '{name}'")
+        values = self._numbers(c, "a joint value", ast.MAX_AXES, f"joint pose '{name}'")
         if not values:
             raise c.error(f"joint pose '{name}' has no values")
         self._store("JOINTS", name, ast.JointDef(name, tuple(values), line), line, col, "joint pose")

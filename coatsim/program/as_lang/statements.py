@@ -167,9 +167,14 @@ def _point(c: StatementParser, op: str, line: int) -> Item:
     component = None
     if c.is_op("/"):
         c.take()
-        component = c.word(*_POINT_PARTS)
+        tok = c.peek()
+        if tok is not None and tok.kind == "num" and tok.text.isdigit() and 7 <= int(tok.text) <= ast.MAX_AXES:
+            component = str(int(c.take().text))  # an external axis: POINT/7 p = TRANS(,,,,,,1200)
+        else:
+            component = c.word(*_POINT_PARTS)
         if component is None:
-            raise c.error(f"expected one of {', '.join(_POINT_PARTS)} after 'POINT/', found {c.found(c.peek())}", c.peek())
+            raise c.error(f"expected one of {', '.join(_POINT_PARTS)} or an external axis 7..{ast.MAX_AXES} after "
+                          f"'POINT/', found {c.found(c.peek())}", c.peek())
     target = c.target_name("a pose or joint variable")
     if target.kind == "string":
         raise c.error(f"POINT assigns poses and joint values; assign the string {target.name} with '='")
@@ -238,14 +243,16 @@ def _if(c: StatementParser, op: str, line: int) -> Item:
         label = c.label()
         c.end("IF ... GOTO statement")
         return ast.Goto(line, label, condition)
-    c.expect_word("THEN", "after the IF condition (or GOTO label)")
+    if not c.at_end():  # THEN may be left out, as controllers save some blocks
+        c.expect_word("THEN", "after the IF condition (or GOTO label)")
     c.end("IF ... THEN")
     return Open("IF", line, (condition,))
 
 
 def _elseif(c: StatementParser, op: str, line: int) -> Item:
     condition = c.condition()
-    c.expect_word("THEN", "after the ELSEIF condition")
+    if not c.at_end():
+        c.expect_word("THEN", "after the ELSEIF condition")
     c.end("ELSEIF ... THEN")
     return Marker("ELSEIF", line, (condition,))
 
@@ -391,6 +398,8 @@ def parse_line(tokens: list[Token], source: str, line: int, text: str) -> list[I
         items.append(ast.BlockStep(line, word, c.rest_text()))
         return items
     parser = PARSERS.get(word)
+    if parser is None and _is_switch_line(c):
+        parser = _switch  # any system switch: `DISP.EXESTEP ON`, `autostart.pc ON`
     if parser is None:
         raise c.error(f"{keyword.show()} is not an AS instruction coatsim knows", keyword)
     c.take()
@@ -398,6 +407,13 @@ def parse_line(tokens: list[Token], source: str, line: int, text: str) -> list[I
     c.end(f"{word} statement")
     items.append(statement)
     return items
+
+
+def _is_switch_line(c: StatementParser) -> bool:
+    """``NAME ON`` / ``NAME OFF`` and nothing else: a system switch set by the program."""
+    rest = c.tokens[c.pos + 1:]
+    return len(rest) == 1 and rest[0].kind == "name" and rest[0].upper in ("ON", "OFF") \
+        and c.tokens[c.pos].text[:1].isalpha()
 
 
 def _assignment(c: StatementParser, line: int) -> ast.Assign:

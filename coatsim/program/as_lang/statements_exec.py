@@ -57,6 +57,10 @@ def _move(run: Interpreter, st: ast.Move) -> None:
         c.joint(target, st.line)
     elif op in ("LMOVE", "XMOVE"):
         if op == "XMOVE":
+            number = run.eval.integer(st.till, "the XMOVE ... TILL signal")
+            if number != 0 and run.signals.state(abs(number)) == (number > 0, True):
+                raise run.failure(f"XMOVE ... TILL {number}: the signal is already in that state, so the controller "
+                                  "ends the move at once; coatsim does not simulate that")
             run.warn(f"xmove:{st.line}", "XMOVE ... TILL: the signal never comes in the simulation; the move runs to "
                      "its end")
         c.linear(op, target, st.line)
@@ -108,6 +112,12 @@ def _point(run: Interpreter, st: ast.PointAssign) -> None:
         run.set("joint", st.target, run.eval.joints(st.value))
         return
     value = run.eval.pose(st.value)
+    if st.component is not None and st.component.isdigit():
+        run.warn(f"point/{st.component}", f"POINT/{st.component}: external axes are not simulated; {st.target.name} keeps "
+                 "its x, y, z, o, a, t")
+        old = run.scope_of(st.target).get("pose", run.key(st.target))
+        run.set("pose", st.target, old if old is not None else Frame(np.eye(3), np.zeros(3)))
+        return
     if st.component is not None:
         old = run.scope_of(st.target).get("pose", run.key(st.target))
         parts = list((old if old is not None else Frame(np.eye(3), np.zeros(3))).xyzoat())
@@ -205,6 +215,8 @@ def _stop(run: Interpreter, st: ast.Stop) -> None:
     if st.op == "PAUSE":
         run.warn("pause", "PAUSE: the simulation goes on at once")
         return
+    run.stopped = f"{run.where()}: {st.op}"
+    run.warn("stop", f"{st.op} ends the program here")
     raise StopProgram()
 
 

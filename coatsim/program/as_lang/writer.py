@@ -1,11 +1,12 @@
 """Kawasaki AS writer: a ProgramPlan becomes a complete, loadable .as file.
 
 Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly,
-a joint approach above the start, a linear move down to the stand-off and ``BREAK`` (at rest at
-the start of the lead-in), one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end)
-pair per arc, ``BREAK``, a linear depart, ``.END``, then every pose in a ``.TRANS`` section.
-Only straight-line code between the first and last sprayed move: loops and calls there make a
-Kawasaki controller slow down.
+then per path (the plan's path and its ``more_paths`` in turn): a joint approach above the
+start, a linear move down to the stand-off and ``BREAK`` (at rest at the start of the lead-in),
+one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end) pair per arc, ``BREAK``, a
+linear depart; ``.END``, then every pose in a ``.TRANS`` section. Only straight-line code
+between the first and last sprayed move: loops and calls there make a Kawasaki controller slow
+down.
 
 Gun timing (AS forward processing, as the interpreter models it): a ``SIGNAL`` written after a
 motion, with no ``BREAK`` in between, switches as that motion starts. So:
@@ -134,6 +135,33 @@ def path_moves(segments: Sequence[PlacedSegment], name: Callable[[Pose], str],
             for move in _segment_moves(seg, label, name, max_arc_sweep_deg)]
 
 
+def _path_lines(out: "_Lines", path, spray_leads: bool, gun: int, name, max_arc_sweep_deg: float) -> None:
+    """The moves of one sprayed path and the gun signals along it: open along the whole path
+    with ``spray_leads``, otherwise exactly along its curve part (switched on the fly)."""
+    gun_on = False
+    for index, (seg, label) in enumerate(zip(path.segments, _labels(path.segments))):
+        sprayed = spray_leads or seg.part == "curve"
+        if index == 0:
+            out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
+            if sprayed:
+                out.add(f"SIGNAL {gun}", "gun on")
+                gun_on = True
+        moves = _segment_moves(seg, label, name, max_arc_sweep_deg)
+        first = 1 if moves[0][0].startswith("LMOVE") else 2  # the segment's first motion (C1MOVE + C2MOVE)
+        for move in moves[:first]:
+            out.add(*move)
+        if sprayed != gun_on:
+            out.add(f"SIGNAL {gun if sprayed else -gun}", f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
+            gun_on = sprayed
+        for move in moves[first:]:
+            out.add(*move)
+    if gun_on:
+        out.add("BREAK", "at rest before the gun closes")
+        out.add(f"SIGNAL {-gun}", "gun off")
+    else:
+        out.add("BREAK", "at rest at the end of the path")
+
+
 def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> str:
     """The complete AS program text of ``plan`` (ASCII, '\\n' line ends); InputError if the
     program name is not a valid AS name."""
@@ -144,8 +172,8 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
         poses.append(pose)
         return f"p{len(poses) - 1:0{width}d}"
 
-    n_points = 1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
-                       for s in plan.path.segments)
+    n_points = sum(1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
+                           for s in path.segments) for path in plan.paths)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:
         raise InputError(f"{n_points} poses do not fit {MAX_NAME_LENGTH}-character names; split the path")
@@ -160,33 +188,16 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
     out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
     out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
-    start = name(plan.path.start)
-    out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", "above the start")
-    out.add(f"LMOVE {start}", "down to the stand-off")
-    gun_on = False
-    for index, (seg, label) in enumerate(zip(plan.path.segments, _labels(plan.path.segments))):
-        sprayed = plan.spray_leads or seg.part == "curve"
+    for index, (path, spray_leads) in enumerate(plan.legs):
+        which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
+        start = name(path.start)
         if index == 0:
-            out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
-            if sprayed:
-                out.add(f"SIGNAL {plan.gun_signal}", "gun on")
-                gun_on = True
-        moves = _segment_moves(seg, label, name, max_arc_sweep_deg)
-        first = 1 if moves[0][0].startswith("LMOVE") else 2  # the segment's first motion (C1MOVE + C2MOVE)
-        for move in moves[:first]:
-            out.add(*move)
-        if sprayed != gun_on:
-            out.add(f"SIGNAL {plan.gun_signal if sprayed else -plan.gun_signal}",
-                    f"gun {'on' if sprayed else 'off'} as the move above starts (on the fly)")
-            gun_on = sprayed
-        for move in moves[first:]:
-            out.add(*move)
-    if gun_on:
-        out.add("BREAK", "at rest before the gun closes")
-        out.add(f"SIGNAL {-plan.gun_signal}", "gun off")
-    else:
-        out.add("BREAK", "at rest at the end of the path")
-    out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+            out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", f"above the start{which}")
+        else:  # the next contour of a part: straight travel at the clearance, gun off
+            out.add(f"LAPPRO {start}, {fmt_short(plan.approach_mm)}", f"gun off: travel above the start{which}")
+        out.add(f"LMOVE {start}", "down to the stand-off")
+        _path_lines(out, path, spray_leads, plan.gun_signal, name, max_arc_sweep_deg)
+        out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):

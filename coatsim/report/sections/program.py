@@ -25,6 +25,22 @@ def _program_text(run: Any) -> str:
     return getattr(run.program, "text", "") or ""
 
 
+def part_figure(data: Any) -> str:
+    """A part: every contour with its polysegment in spray order, and the table per contour."""
+    from coatsim.geometry.part_plots import part_figure_png
+    from coatsim.report.part_section import contours_table
+
+    order = next((r.program.order for r in data.runs if hasattr(r.program, "order")), None)
+    png = part_figure_png([c.polysegment for c in data.contours], "part", [c.curve.points for c in data.contours],
+                          order=order)
+    table = contours_table(data.document["contours"]) if data.document.get("contours") else ""
+    return figure_html(Figure(
+        "The part's contours and their polysegments", png,
+        "Every contour of the drawing (grey) with its polysegment: arcs and lines in their own colours, true corners as "
+        "crosses, the start of each contour as a dot with an arrow along the direction of travel, numbered in spray "
+        "order. The gun is off between contours.")) + table
+
+
 def section(data: Any) -> Section:
     runs = sorted(data.runs, key=lambda r: r.name != "polysegment")
     parts = []
@@ -41,7 +57,9 @@ def section(data: Any) -> Section:
         parts.append(f"<details><summary><b>{esc(run.name)}.as</b>: {count} lines, {what}</summary>"
                      f"{listing(run.name, text, warned, numbers)}</details>")
     figure = ""
-    if len(data.contours) == 1:
+    if len(data.contours) > 1:
+        figure = part_figure(data)
+    else:
         from coatsim.geometry.plots import segmentation_figure_png
 
         figure = figure_html(Figure(

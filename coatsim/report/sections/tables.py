@@ -10,6 +10,7 @@ from typing import Any, Mapping, Sequence
 from coatsim.report.catalogue import GROUPS, METRICS
 from coatsim.report.html import Section, esc, gates_table, key_value_table
 from coatsim.report.metric_names import ratio_text, shown, unit, value_text
+from coatsim.report.part_section import part_summary
 
 GROUP_TITLES = {"segmentation": "Programmed curve", "motion": "Motion of the simulated arm",
                 "coating": "Coating (region of interest all variants share)"}
@@ -65,8 +66,8 @@ def summary_rows(data: Any) -> list[tuple[str, Any]]:
     rows = [
         ("scenario file", loaded.path.name),
         ("description", spec.description or "–"),
-        ("curve", f"{source}{placed}; {'closed' if curve.closed else 'open'}, "
-                  f"{len(curve.points)} points, {curve.length:.1f} mm"),
+        ("curve", f"{source}{placed}; " + (part_summary(data.contours) if len(data.contours) > 1 else
+                  f"{'closed' if curve.closed else 'open'}, {len(curve.points)} points, {curve.length:.1f} mm")),
         ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
                          f"corners above {spec.segmentation.corner_deg:g} deg"),
         ("workpiece", f"{size} at {wp.pose.position_mm} mm, O-A-T {wp.pose.oat_deg} deg"),
@@ -86,7 +87,8 @@ def summary_rows(data: Any) -> list[tuple[str, Any]]:
 
 
 def summary_section(data: Any) -> Section:
-    return Section("summary", "Scenario", key_value_table(summary_rows(data)))
+    notes = "".join(f'<p class="muted">{esc(n)}</p>' for n in data.notes)
+    return Section("summary", "Scenario", key_value_table(summary_rows(data)) + notes)
 
 
 def overall(passed: bool) -> str:

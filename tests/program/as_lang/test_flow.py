@@ -191,7 +191,8 @@ def test_backup_file():
     tp = interpret(f, program="main")
     # forward processing: each SIGNAL switches as the motion before it starts
     assert [m.kind for m in tp.moves] == ["joint", "line"] and [m.spray for m in tp.moves] == [True, False]
-    assert interpret(f).moves == ()
+    assert interpret(f, program="autostart.pc").moves == ()
+    assert interpret(f).name == "main"  # the background PC program is not the default main
     assert isinstance(tp.moves[0], JointMove)
 
 

@@ -111,7 +111,7 @@ SYNTAX_ERRORS = [
     (".TRANS extra\n.END\n", 1, 7, "after '.TRANS'"),
     (". TRANS\n.END\n", 1, 1, "section name"),
     (".TRANS\np1 1 2 3 4 5\n.END\n", 2, 13, "expected 6"),
-    (".TRANS\np1 1 2 3 4 5 6 7 8 9 10\n.END\n", 2, 22, "too many numbers"),
+    (".TRANS\np1 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19\n.END\n", 2, 49, "too many numbers"),  # 6 + 12 external axes at most
     (".TRANS\np1 1 2 x 4 5 6\n.END\n", 2, 8, "expected a number"),
     (".TRANS\np1 1 2 3 4 5 6\nP1 1 2 3 4 5 6\n.END\n", 3, 1, "defined twice (first at line 2)"),
     (".TRANS\n1 2 3 4 5 6 7\n.END\n", 2, 1, "expected a pose name"),

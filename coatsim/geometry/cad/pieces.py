@@ -1,0 +1,204 @@
+"""Drawn primitives in the workpiece plane (mm): native lines and arcs, and free-form pieces.
+
+A *native* piece is a line or circular arc of the drawing, kept exactly. A *free-form* piece
+(spline, ellipse, Bézier, elliptical arc) is a dense polyline within a flattening distance of
+the drawn curve, with the drawn curve's exact end tangents (from its derivatives), so a join
+with a neighbour can be judged tangent or not. Every piece names the entity it came from.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Union
+
+import numpy as np
+
+from coatsim.geometry.primitives import Arc, Line, Point, Segment
+
+_ROUND_OFF = 1e-9  # relative: end moves this small are round-off, not geometry
+
+
+def _xy(p: np.ndarray | Point) -> Point:
+    return (float(p[0]), float(p[1]))
+
+
+def heading_of(vector: np.ndarray) -> float:
+    return math.atan2(float(vector[1]), float(vector[0]))
+
+
+@dataclass(frozen=True, eq=False)
+class NativePiece:
+    """A line or arc of the drawing, exactly."""
+
+    segment: Segment
+    source: str
+
+    @property
+    def start(self) -> Point:
+        return self.segment.start
+
+    @property
+    def end(self) -> Point:
+        return self.segment.end
+
+    @property
+    def start_heading(self) -> float:
+        return self.segment.start_heading
+
+    @property
+    def end_heading(self) -> float:
+        return self.segment.end_heading
+
+    @property
+    def length(self) -> float:
+        return self.segment.length
+
+    def midpoint(self) -> np.ndarray:
+        return self.segment.points(np.array([self.length / 2]))[0]
+
+    def reversed(self) -> NativePiece:
+        return NativePiece(self.segment.reversed(), self.source)
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float) -> NativePiece:
+        return NativePiece(self.segment.transformed(np.asarray(matrix, float), np.asarray(offset, float), scale),
+                           self.source)
+
+    def with_ends(self, start: Point, end: Point) -> NativePiece:
+        """The piece moved to end exactly at ``start`` and ``end`` (each at most the join
+        tolerance away); an arc keeps its radius and sense and gets the centre that fits."""
+        seg = self.segment
+        if isinstance(seg, Line):
+            return NativePiece(Line(_xy(start), _xy(end)), self.source)
+        return NativePiece(refit_arc(seg, start, end), self.source)
+
+    def samples(self, flatten_mm: float) -> np.ndarray:
+        """Points (n, 2) from start to end, chords within ``flatten_mm`` of the piece."""
+        seg = self.segment
+        if isinstance(seg, Line):
+            return np.array([seg.start, seg.end], dtype=float)
+        step = 2.0 * math.sqrt(max(flatten_mm * (2.0 * seg.radius - flatten_mm), 1e-300)) if flatten_mm < seg.radius else seg.radius
+        n = max(2, int(math.ceil(seg.length / step)), int(math.ceil(abs(seg.sweep) / (math.pi / 8))))
+        pts = seg.points(np.linspace(0.0, seg.length, n + 1))
+        pts[0], pts[-1] = seg.start, seg.end
+        return pts
+
+
+def refit_arc(arc: Arc, start: Point, end: Point) -> Arc:
+    """The arc of ``arc``'s radius and sense from ``start`` to ``end`` (ends moved by round-off
+    or within the join tolerance), its centre on the side of the old one."""
+    scale = max(1.0, arc.radius)
+    if math.dist(start, arc.start) <= _ROUND_OFF * scale and math.dist(end, arc.end) <= _ROUND_OFF * scale:
+        return Arc(_xy(start), _xy(end), arc.center, arc.radius, arc.sweep)
+    a, b = np.asarray(start, float), np.asarray(end, float)
+    chord = b - a
+    d = float(np.linalg.norm(chord))
+    if d <= _ROUND_OFF * scale:  # a full circle: move it with its start point
+        shift = a - np.asarray(arc.start, float)
+        return Arc(_xy(a), _xy(a), _xy(np.asarray(arc.center) + shift), arc.radius, arc.sweep)
+    radius = max(arc.radius, d / 2)
+    mid = (a + b) / 2
+    normal = np.array([-chord[1], chord[0]]) / d
+    side = 1.0 if float(np.dot(np.asarray(arc.center) - mid, normal)) >= 0 else -1.0
+    center = mid + side * math.sqrt(max(radius * radius - d * d / 4, 0.0)) * normal
+    turn = math.atan2(b[1] - center[1], b[0] - center[0]) - math.atan2(a[1] - center[1], a[0] - center[0])
+    turn += 2 * math.pi * round((arc.sweep - turn) / (2 * math.pi))  # the sweep nearest the old one
+    return Arc(_xy(a), _xy(b), _xy(center), radius, turn)
+
+
+@dataclass(frozen=True, eq=False)
+class FreePiece:
+    """A free-form curve: ``points`` (n, 2) within the flattening distance of it, start and
+    end exactly on it, and its exact end headings (rad)."""
+
+    points: np.ndarray
+    start_heading: float
+    end_heading: float
+    source: str
+
+    @property
+    def start(self) -> Point:
+        return _xy(self.points[0])
+
+    @property
+    def end(self) -> Point:
+        return _xy(self.points[-1])
+
+    @property
+    def length(self) -> float:
+        return float(np.linalg.norm(np.diff(self.points, axis=0), axis=1).sum())
+
+    def midpoint(self) -> np.ndarray:
+        cum = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(self.points, axis=0), axis=1))))
+        half = cum[-1] / 2
+        k = int(np.clip(np.searchsorted(cum, half), 1, len(cum) - 1))
+        u = (half - cum[k - 1]) / max(cum[k] - cum[k - 1], 1e-300)
+        return self.points[k - 1] + u * (self.points[k] - self.points[k - 1])
+
+    def reversed(self) -> FreePiece:
+        return FreePiece(self.points[::-1].copy(), self.end_heading + math.pi, self.start_heading + math.pi, self.source)
+
+    def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float) -> FreePiece:
+        m = np.asarray(matrix, float)
+        pts = scale * self.points @ m.T + np.asarray(offset, float)
+        turn = lambda h: heading_of(m @ np.array([math.cos(h), math.sin(h)]))  # noqa: E731
+        return FreePiece(pts, turn(self.start_heading), turn(self.end_heading), self.source)
+
+    def with_ends(self, start: Point, end: Point) -> FreePiece:
+        pts = self.points.copy()
+        pts[0], pts[-1] = start, end
+        return FreePiece(pts, self.start_heading, self.end_heading, self.source)
+
+    def samples(self, flatten_mm: float) -> np.ndarray:
+        return self.points
+
+
+Piece = Union[NativePiece, FreePiece]
+
+
+def line_piece(start: np.ndarray, end: np.ndarray, source: str) -> NativePiece:
+    return NativePiece(Line(_xy(start), _xy(end)), source)
+
+
+def arc_piece(center: np.ndarray, radius: float, start: np.ndarray, end: np.ndarray, sweep: float,
+              source: str) -> NativePiece:
+    """A circular arc from its centre, radius, end points and signed sweep (rad)."""
+    return NativePiece(Arc(_xy(start), _xy(end), _xy(center), float(radius), float(sweep)), source)
+
+
+def flatten(point_at: Callable[[np.ndarray], np.ndarray], flatten_mm: float, min_pieces: int = 8,
+            max_points: int = 200_000) -> np.ndarray:
+    """Samples (n, 2) of a parametric curve on [0, 1] whose chords stay within ``flatten_mm``.
+
+    ``point_at`` maps parameters (m,) to points (m, 2). Starts from ``min_pieces`` equal
+    intervals and halves every interval whose middle (and quarter points) lie farther than
+    ``flatten_mm`` from its chord.
+    """
+    t = np.linspace(0.0, 1.0, min_pieces + 1)
+    for _ in range(40):
+        a, b = t[:-1], t[1:]
+        probe = np.concatenate((a + (b - a) / 4, (a + b) / 2, a + 3 * (b - a) / 4))
+        pa, pb, pp = point_at(a), point_at(b), point_at(probe).reshape(3, len(a), 2)
+        chord = pb - pa
+        norm = np.linalg.norm(chord, axis=1)
+        rel = pp - pa
+        off = np.where(norm > 0, np.abs(rel[..., 0] * chord[:, 1] - rel[..., 1] * chord[:, 0]) / np.maximum(norm, 1e-300),
+                       np.linalg.norm(rel, axis=2))
+        bad = off.max(axis=0) > flatten_mm
+        if not bad.any() or len(t) > max_points:
+            break
+        t = np.sort(np.concatenate((t, ((a + b) / 2)[bad])))
+    return point_at(t)
+
+
+def tangent_heading(point_at: Callable[[np.ndarray], np.ndarray], at_end: bool) -> float:
+    """Heading of the tangent at t = 0 (or 1) of a parametric curve, by a short forward (or
+    backward) difference that also finds the direction where the derivative vanishes."""
+    for eps in (1e-7, 1e-5, 1e-3):
+        t = np.array([1.0 - eps, 1.0]) if at_end else np.array([0.0, eps])
+        p = point_at(t)
+        d = p[1] - p[0]
+        if np.linalg.norm(d) > 1e-12 * max(1.0, float(np.abs(p).max())):
+            return heading_of(d)
+    p = point_at(np.array([0.0, 1.0]))
+    return heading_of(p[1] - p[0])

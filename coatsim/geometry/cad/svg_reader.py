@@ -1,0 +1,232 @@
+"""SVG drawings (svgelements): shapes as pieces in mm with y up.
+
+svgelements parses the whole of SVG 1.1 geometry: ``path`` (M L H V C S Q T A Z, relative
+and absolute), ``rect`` (rounded), ``circle``, ``ellipse``, ``line``, ``polyline``,
+``polygon``, ``use``, nested ``transform``s, ``viewBox``, ``width``/``height`` with units and
+CSS styles, and keeps circular arcs as arcs through similarity transforms. Its user unit is
+the CSS pixel, 96 per inch. The mapping to the workpiece plane is
+
+    (x_mm, y_mm) = (25.4 / 96) * (x, -y)
+
+of the user coordinates after every transform (viewBox included): millimetres with y up,
+origin at the SVG origin (its top-left corner), so a drawing lies below the x axis.
+Circular arcs (including circles and rounded corners) and lines are native; Béziers and
+elliptical arcs are free-form. Inkscape layers (groups with ``inkscape:groupmode="layer"``)
+are selected with ``--layer LABEL``; hidden elements (``display:none``, ``visibility:hidden``)
+are left out. Text and images are ignored with a note.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from collections import Counter
+from pathlib import Path
+from typing import Iterator, Optional, Sequence
+
+import numpy as np
+
+from coatsim.errors import InputError
+from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
+from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, flatten, line_piece, tangent_heading
+
+MM_PER_USER_UNIT = 25.4 / 96.0
+# svgelements converts mm and cm with 0.0393701 inch per mm (rounded); its px of a document
+# sized in mm or cm are converted back with the same constant, so the user's mm stay exact.
+_SVGELEMENTS_INCH_PER_MM = 0.0393701
+_INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_ARITY = {"m": 2, "l": 2, "t": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "a": 7, "z": 0}
+
+
+def path_data_error(d: str) -> Optional[str]:
+    """Why SVG path data is malformed (svgelements silently drops what it cannot read), or
+    None when it is well formed."""
+    i, n = 0, len(d)
+
+    def skip(i: int) -> int:
+        while i < n and (d[i].isspace() or d[i] == ","):
+            i += 1
+        return i
+
+    i = skip(i)
+    if i == n:
+        return None
+    if d[i] not in "Mm":
+        return f"path data must start with M, found {d[i]!r}"
+    while True:
+        i = skip(i)
+        if i == n:
+            return None
+        cmd = d[i]
+        if cmd.lower() not in _ARITY:
+            return f"unknown path command {cmd!r} at character {i + 1}"
+        i += 1
+        arity = _ARITY[cmd.lower()]
+        if arity == 0:
+            continue
+        groups = 0
+        while True:
+            j = skip(i)
+            if j == n or d[j].isalpha() and d[j] not in "eE":
+                break
+            for k in range(arity):
+                j = skip(j)
+                if cmd.lower() == "a" and k in (3, 4):
+                    if j < n and d[j] in "01":
+                        j += 1
+                        continue
+                    return f"arc flag expected (0 or 1) at character {j + 1} in {cmd!r}"
+                m = _NUMBER.match(d, j)
+                if m is None:
+                    return f"{cmd!r} needs {arity} numbers per step, found {'the end' if j == n else repr(d[j])} at character {j + 1}"
+                j = m.end()
+            i, groups = j, groups + 1
+        if groups == 0:
+            return f"{cmd!r} at character {i} has no coordinates"
+
+
+def _parse(path: Path):
+    import svgelements as se
+
+    try:
+        with path.open("rb") as handle:
+            svg = se.SVG.parse(handle, ppi=96.0)
+    except ET.ParseError as exc:
+        line, col = exc.position
+        raise InputError(f"{path}:{line}:{col}: not well-formed SVG ({str(exc).split(':')[0]})") from None
+    except (ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
+        raise InputError(f"{path}: not a readable SVG ({exc})") from None
+    if not isinstance(svg, se.SVG):
+        raise InputError(f"{path}: not an SVG (the root element is not <svg>)")
+    return svg
+
+
+def hidden_layers(path: Path) -> list[str]:
+    """Labels of Inkscape layers hidden with ``display:none`` (svgelements drops them whole)."""
+    hidden = []
+    for el in ET.parse(path).iter():
+        if el.get(f"{_INKSCAPE}groupmode") == "layer":
+            style = (el.get("style") or "").replace(" ", "").lower()
+            if "display:none" in style or el.get("display") == "none":
+                hidden.append(str(el.get(f"{_INKSCAPE}label") or el.get("id") or "layer"))
+    return hidden
+
+
+def _walk(node, labels: tuple[str, ...]) -> Iterator[tuple[object, tuple[str, ...]]]:
+    """Every non-group element with the labels of the layers it lies in (outermost first)."""
+    import svgelements as se
+
+    for el in node:
+        if isinstance(el, se.Use):  # a <use>: the referenced shapes, placed
+            yield from _walk(el, labels)
+        elif isinstance(el, se.Group):
+            own = el.values.get("attributes", {})
+            inner = labels
+            if own.get(f"{_INKSCAPE}groupmode") == "layer":
+                inner = labels + (str(own.get(f"{_INKSCAPE}label") or own.get("id") or "layer"),)
+            yield from _walk(el, inner)
+        else:
+            yield el, labels
+
+
+def _tag(el) -> str:
+    return str(el.values.get("tag", type(el).__name__.lower()))
+
+
+def _name(el, index: int) -> str:
+    tag = _tag(el)
+    return f"<{tag} id={el.id!r}>" if el.id else f"<{tag}> #{index} (no id)"
+
+
+def mm_per_px(svg) -> float:
+    """Millimetres per svgelements pixel for this document (see _SVGELEMENTS_INCH_PER_MM)."""
+    own = svg.values.get("attributes", {})
+    size = f"{own.get('width', '')} {own.get('height', '')}".lower()
+    return 1.0 / (96.0 * _SVGELEMENTS_INCH_PER_MM) if re.search(r"\d\s*(mm|cm)\b", size) else MM_PER_USER_UNIT
+
+
+def _circular(arc) -> bool:
+    """A circular arc (svgelements compares the radii exactly; this allows round-off)."""
+    rx, ry = float(arc.rx), float(arc.ry)
+    return abs(rx - ry) <= 1e-9 * max(rx, ry) and rx > 0 and abs(float(arc.sweep)) > 0
+
+
+def _shape_pieces(shape, label: str, flatten_mm: float, mm_px: float) -> list[Piece]:
+    """The pieces of one shape (every subpath, Close as a line back to its start), with
+    ``mm_px`` mm per pixel."""
+    import svgelements as se
+
+    flip = np.array([mm_px, -mm_px])
+    _to_mm = lambda p: np.array([float(p[0]), float(p[1])]) * flip  # noqa: E731
+    pieces: list[Piece] = []
+    for index, seg in enumerate(se.Path(shape).segments()):
+        sub = f"{label} segment {index}"
+        if isinstance(seg, se.Move) or seg.start is None or seg.end is None:
+            continue
+        a, b = _to_mm(seg.start), _to_mm(seg.end)
+        if not (np.isfinite(a).all() and np.isfinite(b).all()):
+            raise InputError(f"{label}: a coordinate is not finite")
+        if isinstance(seg, (se.Line, se.Close)):
+            pieces.append(line_piece(a, b, sub))
+        elif isinstance(seg, se.Arc) and _circular(seg):
+            # y flips, so the sense of rotation does too
+            pieces.append(arc_piece(_to_mm(seg.center), (float(seg.rx) + float(seg.ry)) / 2 * mm_px, a, b, -float(seg.sweep), sub))
+        else:
+            at = lambda t, seg=seg: np.asarray(seg.npoint(t), float) * flip  # noqa: E731
+            pts = flatten(at, flatten_mm)
+            pts[0], pts[-1] = a, b
+            pieces.append(FreePiece(pts, tangent_heading(at, False), tangent_heading(at, True), sub))
+    return pieces
+
+
+def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Drawing:
+    """The geometry of an SVG file in mm, y up; see the module docstring."""
+    import svgelements as se
+
+    svg = _parse(path)
+    k = mm_per_px(svg)
+    elements = list(_walk(svg, ()))
+    known = sorted({label for _, labels in elements for label in labels})
+    hidden_names = hidden_layers(path)
+    for name in layers or ():
+        if name.lower() in {h.lower() for h in hidden_names} and name.lower() not in {k.lower() for k in known}:
+            raise InputError(f"{path}: layer {name!r} (--layer) is hidden in the drawing (display:none); "
+                             "show it in the drawing to spray it")
+    wanted = check_layers(str(path), layers, known)
+    pieces: list[Piece] = []
+    ignored, hidden, elsewhere = Counter(), 0, 0
+    for index, (el, labels) in enumerate(elements):
+        if not isinstance(el, se.Shape):
+            if isinstance(el, (se.Text, se.Image)):
+                ignored[_tag(el)] += 1
+            continue
+        if wanted is not None and not any(label.lower() in wanted for label in labels):
+            elsewhere += 1
+            continue
+        if str(el.values.get("visibility", "visible")).strip() in ("hidden", "collapse"):
+            hidden += 1
+            continue
+        label = _name(el, index)
+        if isinstance(el, se.Path):
+            problem = path_data_error(str(el.values.get("d", "")))
+            if problem is not None:
+                raise InputError(f"{path}: {label}: {problem}")
+        pieces.extend(_shape_pieces(el, label, flatten_mm, k))
+    notes = []
+    if ignored:
+        notes.append(count_note("ignored", ignored, "not contour geometry"))
+    if hidden:
+        notes.append(f"left out {hidden} hidden elements")
+    if hidden_names and wanted is None:
+        notes.append(f"left out {len(hidden_names)} hidden layers ({', '.join(hidden_names)})")
+    if not pieces:
+        if wanted is not None and elsewhere:
+            why = f"no geometry on layer(s) {', '.join(repr(x) for x in layers)}"
+        elif ignored:
+            why = count_note("no geometry to spray: only", ignored, "coatsim reads path, rect, circle, ellipse, line, polyline, polygon")
+        else:
+            why = "no geometry to spray (no path, rect, circle, ellipse, line, polyline or polygon with a length)"
+        raise InputError(f"{path}: {why}")
+    return Drawing(str(path), tuple(pieces), f"SVG px (1 = {k:.9g} mm, y flipped)", tuple(notes))
+

@@ -1,0 +1,96 @@
+"""Part JSON (``coatsim.part/1``): several contours, each a complete polysegment/1 document.
+
+``{"format": "coatsim.part/1", "units": "mm", "source": "part.dxf", "tolerance_mm": 0.1,
+"join_tolerance_mm": 0.001, "contours": [<polysegment/1>, ...], "notes": [...],
+"stats": {...}}``; contours in drawing order. A drawing with one contour is written as a
+plain polysegment/1 document instead.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from coatsim.errors import InputError
+from coatsim.fileio import write_text
+from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.polysegment_json import FORMAT as POLYSEGMENT_FORMAT
+from coatsim.geometry.polysegment_json import polysegment_document, polysegment_from_document
+
+FORMAT = "coatsim.part/1"
+
+
+@dataclass(frozen=True, eq=False)
+class PartFile:
+    """The contours of a part file (or of a polysegment file: one contour) and the tolerance
+    they were fitted with, if the file says."""
+
+    contours: tuple[Polysegment, ...]
+    tolerance_mm: float | None
+    source: str
+
+
+def part_document(part) -> dict[str, Any]:
+    """The JSON document of a PartSegmentation (see coatsim.geometry.cad)."""
+    return {
+        "format": FORMAT,
+        "units": "mm",
+        "source": part.source,
+        "tolerance_mm": float(part.tolerance_mm),
+        "join_tolerance_mm": float(part.join_tolerance_mm),
+        "contours": [polysegment_document(c.polysegment, c.tolerance_mm, c.stats()) for c in part.contours],
+        "notes": list(part.notes),
+        "stats": part.stats(),
+    }
+
+
+def write_part_json(path: str | Path, part) -> None:
+    """Write a PartSegmentation: a part document, or a polysegment document for one contour."""
+    if len(part.contours) == 1:
+        c = part.contours[0]
+        doc = polysegment_document(c.polysegment, c.tolerance_mm, c.stats())
+    else:
+        doc = part_document(part)
+    write_text(path, json.dumps(doc, indent=2) + "\n")
+
+
+def _tolerance(value: Any) -> float | None:
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) and value > 0
+    return float(value) if ok else None
+
+
+def part_from_document(doc: Any, source: str) -> PartFile:
+    """Validate a parsed part or polysegment document; defects name the field at fault."""
+    if isinstance(doc, dict) and doc.get("format") == POLYSEGMENT_FORMAT:
+        return PartFile((polysegment_from_document(doc, source),), _tolerance(doc.get("tolerance_mm")), source)
+    if not isinstance(doc, dict) or doc.get("format") != FORMAT:
+        raise InputError(f"{source}: not a part or polysegment file (expected \"format\": \"{FORMAT}\" "
+                         f"or \"{POLYSEGMENT_FORMAT}\")")
+    items = doc.get("contours")
+    if not isinstance(items, list) or not items:
+        raise InputError(f"{source}: contours: expected a non-empty list of polysegment documents")
+    contours = tuple(polysegment_from_document(item, f"{source}: contours[{k}]") for k, item in enumerate(items))
+    tolerance = _tolerance(doc.get("tolerance_mm"))
+    if tolerance is None:
+        found = [_tolerance(item.get("tolerance_mm")) for item in items]
+        tolerance = max(found) if all(t is not None for t in found) else None
+    return PartFile(contours, tolerance, source)
+
+
+def read_part_json(path: str | Path) -> PartFile:
+    """Read and validate a part (or polysegment) JSON file."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{path}:{exc.lineno}: invalid JSON ({exc.msg})") from None
+    return part_from_document(doc, str(path))

@@ -1,0 +1,106 @@
+"""Chaining pieces into contours: any order and direction, closure, duplicates and
+zero-length pieces, branches, near misses, tangency of joins."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from coatsim.errors import InputError
+from coatsim.geometry import Arc, Line
+from coatsim.geometry.cad.chaining import TANGENT_FREE_DEG, chain_pieces
+from coatsim.geometry.cad.pieces import FreePiece, NativePiece
+
+JOIN = 1e-3
+
+
+def native(seg, name: str = "piece") -> NativePiece:
+    return NativePiece(seg, name)
+
+
+def square(size: float = 10.0) -> list[NativePiece]:
+    p = [(0.0, 0.0), (size, 0.0), (size, size), (0.0, size)]
+    return [native(Line(p[k], p[(k + 1) % 4]), f"edge {k}") for k in range(4)]
+
+
+@settings(max_examples=60, deadline=None)
+@given(order=st.permutations(list(range(4))), flips=st.lists(st.booleans(), min_size=4, max_size=4),
+       jitter=st.lists(st.floats(-0.3 * JOIN, 0.3 * JOIN), min_size=16, max_size=16))
+def test_any_order_direction_and_small_gaps_give_one_closed_contour(order, flips, jitter):
+    pieces = []
+    for k in order:
+        seg = square()[k].segment
+        j = jitter[4 * k: 4 * k + 4]
+        seg = Line((seg.start[0] + j[0], seg.start[1] + j[1]), (seg.end[0] + j[2], seg.end[1] + j[3]))
+        pieces.append(native(seg.reversed() if flips[k] else seg, f"edge {k}"))
+    (contour,) = chain_pieces(pieces, JOIN).contours
+    assert contour.closed and len(contour.pieces) == 4
+    # ends coincide exactly; the first drawn piece starts the contour, in its drawn direction
+    for a, b in zip(contour.pieces, contour.pieces[1:] + contour.pieces[:1]):
+        assert a.end == b.start
+    assert contour.pieces[0].source == pieces[0].source
+    first = pieces[0].segment
+    assert math.dist(contour.pieces[0].start, first.start) <= JOIN and math.dist(contour.pieces[0].end, first.end) <= JOIN
+    assert contour.tangent == (False,) * 4
+
+
+def test_duplicates_and_zero_length_pieces_are_dropped_with_notes():
+    pieces = square() + [native(Line((10.0, 0.0), (0.0, 0.0)), "copy"), native(Line((5.0, 5.0), (5.0, 5.0005)), "dot")]
+    chaining = chain_pieces(pieces, JOIN)
+    assert len(chaining.contours) == 1 and len(chaining.contours[0].pieces) == 4
+    assert any("duplicate" in n and "copy" in n for n in chaining.notes)
+    assert any("zero-length" in n and "dot" in n for n in chaining.notes)
+
+
+def test_branches_pair_the_straightest_continuation():
+    # a plus sign drawn as four arms from the centre: the straight lines pair up
+    arms = [native(Line((0.0, 0.0), (math.cos(a) * 10, math.sin(a) * 10)), f"arm {k}")
+            for k, a in enumerate((0.0, math.pi / 2, math.pi, 3 * math.pi / 2))]
+    chaining = chain_pieces(arms, JOIN)
+    assert len(chaining.contours) == 2
+    for contour in chaining.contours:
+        assert contour.tangent == (True,) and not contour.closed
+    assert any("three or more pieces meet" in n for n in chaining.notes)
+
+
+def test_near_miss_is_an_error_naming_both_pieces():
+    pieces = [native(Line((0.0, 0.0), (10.0, 0.0)), "LINE #A"), native(Line((10.01, 0.0), (20.0, 0.0)), "LINE #B")]
+    with pytest.raises(InputError, match=r"cannot chain LINE #A: its end at \(10, 0\) is 0\.01 mm from LINE #B"):
+        chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+    assert len(chain_pieces(pieces, JOIN, "d.dxf").contours) == 2  # without the check: two open contours
+
+
+def test_nearly_closed_contour_is_an_error():
+    pts = [(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0), (0.0, 0.02)]
+    pieces = [native(Line(a, b), f"e{k}") for k, (a, b) in enumerate(zip(pts[:-1], pts[1:]))]
+    with pytest.raises(InputError, match=r"0\.02 mm from its own start"):
+        chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+
+
+def test_tangency_native_exact_and_free_within_its_limit():
+    line = native(Line((-10.0, 0.0), (0.0, 0.0)))
+    arc = native(Arc((0.0, 0.0), (10.0, 10.0), (0.0, 10.0), 10.0, math.pi / 2))
+    kink = native(Line((10.0, 10.0), (20.0, 10.3)))
+    (contour,) = chain_pieces([line, arc, kink], JOIN).contours
+    assert contour.tangent == (True, False)
+    t = np.linspace(0.0, 1.0, 50)
+    small = math.radians(TANGENT_FREE_DEG / 2)
+    free = FreePiece(np.column_stack((20.0 + 10 * t, 10.3 + 3 * t ** 2)), small + math.atan2(0.3, 10.0), 0.5, "spline")
+    (contour,) = chain_pieces([line, arc, kink, free], JOIN).contours
+    assert contour.tangent == (True, False, True)
+
+
+def test_arc_keeps_its_end_and_second_arc_its_radius_at_a_gap():
+    a = native(Arc((0.0, 0.0), (10.0, 10.0), (0.0, 10.0), 10.0, math.pi / 2))
+    b = native(Arc((10.0, 10.0004), (20.0, 20.0), (20.0, 10.0), 10.0, -math.pi / 2))
+    (contour,) = chain_pieces([a, b], JOIN).contours
+    first, second = (p.segment for p in contour.pieces)
+    assert first == a.segment and second.start == first.end and second.radius == 10.0
+    assert math.dist(second.end, (20.0, 20.0)) < 1e-12
+    for arc in (first, second):
+        for p in (arc.start, arc.end):
+            assert abs(math.dist(p, arc.center) - arc.radius) < 1e-12
