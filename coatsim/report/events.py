@@ -20,7 +20,7 @@ import numpy as np
 
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
 from coatsim.program.speed_limits import parse_limits
-from coatsim.program.toolpath import ToolPath
+from coatsim.program.toolpath import PART_SEPARATOR, ToolPath
 
 if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
@@ -126,11 +126,6 @@ def robot_events(name: str, execution: Execution, toolpath: ToolPath) -> list[Ev
     return out
 
 
-def _limits(toolpath: ToolPath):
-    raw = toolpath.metadata.get(SPEED_LIMITS_KEY)
-    return () if raw is None else parse_limits(raw, toolpath.name)
-
-
 def curve_spans(execution: Execution) -> tuple[tuple[float, float], ...]:
     """Progress intervals (mm) of the curve proper: one, or one per contour of a part (the
     travel between contours is no part of it)."""
@@ -153,12 +148,15 @@ def speed_dips(name: str, execution: Execution, toolpath: ToolPath) -> list[Even
     if len(slow) == 0:
         return []
     breaks = np.flatnonzero((np.diff(slow) > 1) & (np.diff(log.progress[slow]) > _MERGE_MM)) + 1
-    limits = _limits(toolpath)
+    spans = curve_spans(execution)
+    limits = [(lo - a + lim.s0_mm, lo - a + lim.s1_mm, lim.v_max_mm_s)
+              for (lo, _), raw in zip(spans, per_contour(toolpath, SPEED_LIMITS_KEY, "none", len(spans)))
+              for lim in parse_limits(raw, toolpath.name)]
     out = []
     for run in np.split(slow, breaks):
         low = int(run[np.argmin(log.speed[run])])
         s0, s1, s = (float(log.progress[i]) - a for i in (run[0], run[-1], low))
-        allowed = [lim.v_max_mm_s for lim in limits if lim.s0_mm - 1.0 <= s <= lim.s1_mm + 1.0]
+        allowed = [v_max for s_lo, s_hi, v_max in limits if s_lo - 1.0 <= s <= s_hi + 1.0]
         why = f"; the curve allows at most {min(allowed):.0f} mm/s here" if allowed else ""
         resting = log.speed[run] < STOP * v
         stops = int(np.count_nonzero(resting[1:] & ~resting[:-1]) + resting[0])
@@ -170,25 +168,41 @@ def speed_dips(name: str, execution: Execution, toolpath: ToolPath) -> list[Even
     return out
 
 
+def per_contour(toolpath: ToolPath, key: str, default: str, n: int) -> list[str]:
+    """A header field for each of ``n`` curves proper: a part program joins one value per
+    contour with PART_SEPARATOR; a single value holds for every one (a count that does not
+    match: the single value for all, as far as the report is concerned)."""
+    raw = toolpath.metadata.get(key, default)
+    values = [v.strip() for v in raw.split(PART_SEPARATOR.strip())]
+    return values if len(values) == n else [values[0]] * n
+
+
 def curve_notes(name: str, execution: Execution, toolpath: ToolPath) -> list[Event]:
     """The curve's speed-limited stretches and true corners (from the program header) and the
-    seam of a closed contour."""
+    seam of a closed contour; for a part, those of every contour (s from the first contour's
+    start, as on the speed plots)."""
     where = _Locator(execution, toolpath)
-    a, b = execution.curve
+    spans = curve_spans(execution)
+    origin = execution.curve[0]
+    part = len(spans) > 1
+    limits = per_contour(toolpath, SPEED_LIMITS_KEY, "none", len(spans))
+    closed = per_contour(toolpath, "closed", "no", len(spans))
     out = []
-    for lim in _limits(toolpath):
-        line = where.line_at(a + lim.s0_mm)
-        if lim.s0_mm == lim.s1_mm:
-            kind, text = "true corner", f"true corner at s = {lim.s0_mm:.1f} mm: the tool must stop there"
-        else:
-            kind = "speed-limited stretch"
-            text = (f"speed-limited stretch from s = {lim.s0_mm:.1f} to {lim.s1_mm:.1f} mm: the curve allows at most "
-                    f"{lim.v_max_mm_s:.0f} mm/s within the tool acceleration limit")
-        out.append(Event(name, kind, "note", line, text, lim.s0_mm))
-    if toolpath.metadata.get("closed") == "yes":
-        out.append(Event(name, "seam", "note", where.line_at(a + 1.0),
-                         f"seam at s = 0 (= {b - a:.1f} mm): the gun opens on the fly as the lap starts and "
-                         "closes as it ends", 0.0))
+    for k, ((a, b), raw, loop) in enumerate(zip(spans, limits, closed)):
+        which = f"contour {k + 1}: " if part else ""
+        for lim in parse_limits(raw, toolpath.name):
+            s0, s1 = a - origin + lim.s0_mm, a - origin + lim.s1_mm
+            if lim.s0_mm == lim.s1_mm:
+                kind, text = "true corner", f"{which}true corner at s = {s0:.1f} mm: the tool must stop there"
+            else:
+                kind = "speed-limited stretch"
+                text = (f"{which}speed-limited stretch from s = {s0:.1f} to {s1:.1f} mm: the curve allows at most "
+                        f"{lim.v_max_mm_s:.0f} mm/s within the tool acceleration limit")
+            out.append(Event(name, kind, "note", where.line_at(a + lim.s0_mm), text, s0))
+        if loop == "yes":
+            out.append(Event(name, "seam", "note", where.line_at(a + 1.0),
+                             f"{which}seam at s = {a - origin:.1f} mm (= {b - origin:.1f} mm): the gun opens on the fly "
+                             "as the lap starts and closes as it ends", a - origin))
     return out
 
 

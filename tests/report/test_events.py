@@ -83,3 +83,18 @@ def test_the_travel_between_the_contours_of_a_part_has_no_dip():
     assert speed_dips("part", execution, _toolpath([11, 12, 13])) == []
     execution.curves = ()
     assert len(speed_dips("part", execution, _toolpath([11, 12, 13]))) == 1
+
+
+def test_a_part_program_header_gives_each_contour_its_limits_and_seam():
+    from coatsim.report.events import curve_notes
+
+    progress = np.linspace(0.0, 300.0, 3001)
+    execution = _execution(np.full_like(progress, 200.0), progress)
+    execution.curves = ((0.0, 100.0), (200.0, 300.0))
+    toolpath = _toolpath([11, 12, 13], {"speed_limits": "none | 50:50:0", "closed": "no | yes"})
+    notes = curve_notes("part", execution, toolpath)
+    corner = next(e for e in notes if e.kind == "true corner")
+    assert corner.s_mm == pytest.approx(250.0) and corner.line == 13 and corner.message.startswith("contour 2: ")
+    seam = next(e for e in notes if e.kind == "seam")
+    assert seam.s_mm == pytest.approx(200.0) and "contour 2" in seam.message
+    assert len(notes) == 2

@@ -68,8 +68,8 @@ def section(data: Any) -> Section:
             "corners as crosses. Right: the angular function θ(t) (cumulative turning angle against normalised arc "
             "length) of the input and of the polysegment, piecewise linear: each slope is an arc, each flat piece a "
             "line."))
-    polyline = next((r for r in data.runs if r.name.startswith("polyline") and hasattr(r.program, "curve")), None)
-    if polyline is not None and len(data.contours) == 1:
+    polyline = next((r for r in data.runs if r.name.startswith("polyline")), None)
+    if polyline is not None and len(data.contours) == 1:  # a part draws its polylines in the part figure
         import numpy as np
 
         from coatsim.report.plots import polyline_figure
