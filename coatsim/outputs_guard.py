@@ -111,6 +111,7 @@ class _Lock:
         self.info = {"command": command, "pid": os.getpid(), "host": socket.gethostname(),
                      "started": datetime.datetime.now().astimezone().isoformat(timespec="seconds")}
         self.fd: Optional[int] = None
+        self.created = False  # this process made the lock file (and removes it if interrupted before holding it)
 
     def _refuse(self, info: dict) -> None:
         raise FolderInUse(f"{self.path.parent}: output folder in use by {_owner_text(info)}; wait for it to "
@@ -129,6 +130,7 @@ class _Lock:
         for _ in range(100):
             try:
                 fd, created = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o644), True
+                self.created = True
             except FileExistsError:
                 try:
                     fd, created = os.open(self.path, os.O_RDWR), False
@@ -136,13 +138,15 @@ class _Lock:
                     continue
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except BlockingIOError:
+            except BlockingIOError:  # another run holds it (even if this one made the file)
                 os.close(fd)
+                self.created = False
                 self._refuse(_read_info(self.path))
             except OSError:  # the file system has no flock
                 os.close(fd)
                 if created:
                     self.path.unlink(missing_ok=True)
+                self.created = False
                 return self._acquire_by_pid()
             try:  # the holder may have removed the file between our open and flock
                 same = os.path.samestat(os.fstat(fd), os.stat(self.path))
@@ -150,6 +154,7 @@ class _Lock:
                 same = False
             if not same:
                 os.close(fd)
+                self.created = False
                 continue
             self._stale(_read_info(self.path))
             os.ftruncate(fd, 0)
@@ -173,6 +178,12 @@ class _Lock:
             os.close(fd)
             return
         self._refuse(_read_info(self.path))
+
+    def abandon(self) -> None:
+        """Undo a lock file this process created but never came to hold (an interrupt or a
+        refusal during ``acquire``)."""
+        if self.fd is None and self.created:
+            self.path.unlink(missing_ok=True)
 
     def release(self) -> None:
         self.path.unlink(missing_ok=True)
@@ -238,6 +249,7 @@ def output_folder(folder: str | Path, names: Iterable[str], command: str, force:
     try:
         lock.acquire()
     except BaseException:
+        lock.abandon()
         if created:
             _remove_if_empty(folder)
         raise

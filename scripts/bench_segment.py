@@ -8,12 +8,14 @@ segment_curve, an independent check of it by dense sampling of both curves (KD-t
 within step/2 of the true value), the largest tangent break at a junction that is not a listed
 corner, the tightest arc over the curve's tightest radius (``R ratio``: below 1 the fit turns
 tighter than the curve anywhere does), the shortest segment, the largest curvature jump at a
-tangent junction (1/mm) and the wall time. Then the time to segment 100 000-point curves at
-σ = 0.05 mm, and the scaling exponent of the built-in curves, the exact deviation check and the
-whole fit from 100 000 to 1 000 000 points (scripts/scaling.py). Prints only; never asserts. The figures come from the polysegment alone, so the
-script also measures older versions of the fitter (PYTHONPATH=<their checkout>).
+tangent junction (1/mm) and the wall time. Then the held-out curves fitted for 300 mm/s at
+5 m/s² (tightest arc against v²/a = 18 mm, speed-limited stretches), the time to segment
+100 000-point curves at σ = 0.05 mm, and the scaling exponent of the built-in curves, the exact
+deviation check and the whole fit from 100 000 to 1 000 000 points (scripts/scaling.py). Prints
+only; never asserts. The figures come from the polysegment alone, so the script also measures
+older versions of the fitter (PYTHONPATH=<their checkout>).
 
-    python scripts/bench_segment.py [--paper] [--sigmas 0.05,0.5] [--only bench,builtin,heldout,large] [--curves DIR]
+    python scripts/bench_segment.py [--paper] [--sigmas 0.05,0.5] [--only bench,builtin,heldout,speed,large] [--curves DIR]
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ BUILTINS = ("paper-spiral", "ellipse", "ellipse:a=80,b=50", "naca", "cam", "epit
             "rounded-rectangle", "polygon", "d-shape", "raster")
 BUILTIN_SIGMAS = (0.05, 0.5)
 HELDOUT_SIGMAS = (0.05, 0.1, 0.5)
+SPEED_MM_S, TOOL_ACCEL_MM_S2, SPEED_SIGMA = 300.0, 5000.0, 0.1  # the speed table: v²/a = 18 mm
 LARGE = ("builtin:paper-spiral:points=100000", "builtin:ellipse:points=100000")
 LARGE_SIGMA = 0.05
 
@@ -197,6 +200,30 @@ def heldout_table() -> None:
             print(f"{name:18} {tight:7.2f} {sigma:6g} {measure(curve, sigma, 'optimal', tight)}", flush=True)
 
 
+def speed_table() -> None:
+    """Fits that know the speed: the tightest arc against v²/a and the input's tightest radius,
+    the speed-limited stretches and the slowest speed on them."""
+    limit = SPEED_MM_S**2 / TOOL_ACCEL_MM_S2
+    print(f"\nat {SPEED_MM_S:g} mm/s and {TOOL_ACCEL_MM_S2 / 1000:g} m/s² (v²/a = {limit:g} mm), sigma = {SPEED_SIGMA} mm")
+    print(f"{'curve':18} {'R min':>7} {'segs':>5} {'tightest arc':>12} {'limited':>7} {'slowest mm/s':>12} {'seconds':>7}")
+    for name in CURVES:
+        pts, closed = heldout_points(name)
+        curve = make_curve(pts, name, "yes" if closed else "no")
+        t0 = time.perf_counter()
+        try:
+            seg = segment_curve(curve, SPEED_SIGMA, speed_mm_s=SPEED_MM_S, tool_accel_mm_s2=TOOL_ACCEL_MM_S2)
+        except TypeError:
+            print("this version of segment_curve takes no speed")
+            return
+        except CoatsimError as exc:
+            print(f"{name:18} failed: {exc}"[:110])
+            continue
+        poly = seg.polysegment
+        slowest = min((v for _, _, v in poly.speed_limited), default=math.nan)
+        print(f"{name:18} {tightest_radius_mm(name):7.2f} {poly.n_segments:5d} {min_radius(poly):12.2f} "
+              f"{len(poly.speed_limited):7d} {slowest:12.1f} {time.perf_counter() - t0:7.2f}", flush=True)
+
+
 def large_table() -> None:
     print(f"\nlarge inputs at sigma = {LARGE_SIGMA} mm (default method)")
     for spec in LARGE:
@@ -221,7 +248,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--paper", action="store_true", help="also the paper's method on the bench curves")
     parser.add_argument("--sigmas", default=",".join(map(str, SIGMAS)), help="bench-curve tolerances, mm")
-    parser.add_argument("--only", default="bench,builtin,heldout,large", help="tables to print")
+    parser.add_argument("--only", default="bench,builtin,heldout,speed,large", help="tables to print")
     parser.add_argument("--curves", type=Path, help="read the bench curves from DIR/NAME.csv")
     args = parser.parse_args()
     tables = set(args.only.split(","))
@@ -234,6 +261,8 @@ def main() -> None:
         builtin_table()
     if "heldout" in tables:
         heldout_table()
+    if "speed" in tables:
+        speed_table()
     if "large" in tables:
         large_table()
 

@@ -28,7 +28,6 @@ N_END_CANDIDATES = 12
 N_CURVATURE_CANDIDATES = 5
 N_HEADING_CANDIDATES = 7
 LP_KNOTS = 400
-TIE = 0.0  # look-ahead reaches within this share of the best count as equal
 LANDED_BAND = 0.9  # a re-measured state keeps its offset within this share of the band
 
 
@@ -184,9 +183,9 @@ def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: floa
                previous: float | None = None) -> tuple[Piece, float, float, float]:
     """Choose the next piece from a state by one step of look-ahead.
 
-    Among the choices whose following piece reaches within ``TIE`` of the farthest, the one
-    with the smallest curvature jump from the ``previous`` piece's curvature wins (a tool at
-    speed feels a jump as a step of its lateral acceleration), then the longer piece.
+    Among the choices whose following piece reaches farthest, the one with the smallest
+    curvature jump from the ``previous`` piece's curvature wins (a tool at speed feels a jump
+    as a step of its lateral acceleration), then the longer piece.
     Returns (piece, next value, next slope, score), score = arc length the following piece
     reaches (infinity when this piece ends the run).
     """
@@ -206,14 +205,15 @@ def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: floa
             v, t = _advance(prob, a, b, value, slope, kappa)
             _, lo2, hi2 = _reach(prob, b, v, t, band)
             nxt = _farthest(prob, b, lo2, hi2)
+            if nxt != last and prob.s[nxt] - prob.s[b] < prob.min_length:
+                continue  # the next piece could not be long enough: a dead end
             score = np.inf if nxt == last else float(prob.s[nxt])
             options.append((score, float(prob.s[b]), float(kappa), int(b), v, t))
     if not options:
         raise _Stuck(a)
     top = max(o[0] for o in options)
-    near = top if np.isinf(top) else top - TIE * (top - prob.s[a])
     jump = (lambda k: 0.0) if previous is None else (lambda k: abs(k - previous))
-    score, _, kappa, b, v, t = max((o for o in options if o[0] >= near), key=lambda o: (-jump(o[2]), o[1], o[2] == 0.0))
+    score, _, kappa, b, v, t = max((o for o in options if o[0] == top), key=lambda o: (-jump(o[2]), o[1], o[2] == 0.0))
     return Piece(a, b, kappa, float(prob.s[b] - prob.s[a])), v, t, score
 
 

@@ -15,8 +15,8 @@ import math
 import numpy as np
 
 from coatsim.errors import InputError
-from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.geometry.primitives import Arc, Line, Segment, snap_end
+from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.primitives import Arc, Line, Segment
 
 LONGEST_SWEEP = 1.5 * math.pi  # arcs turning more are cut into equal parts (all within (-2π, 2π))
 
@@ -40,10 +40,12 @@ def obvious_answer(points: np.ndarray, closed: bool, tolerance: float) -> Polyse
     length = float(np.linalg.norm(edges, axis=1).sum())
     radius = min(extent / 2, length / (2 * math.pi))
     area = float(np.sum(pts[:-1, 0] * pts[1:, 1] - pts[1:, 0] * pts[:-1, 1]))
-    kappa = math.copysign(1.0 / radius, area if area != 0 else 1.0)
-    heading = math.atan2(edges[0][1], edges[0][0])
-    half = math.pi * radius
-    return Polysegment(snap_end(chain(start, heading, [kappa, kappa], [half, half]), start), closed=closed)
+    turn = 1.0 if area >= 0 else -1.0  # counter-clockwise: the centre on the left of the first edge
+    heading = math.atan2(edges[0][1], edges[0][0]) + turn * math.pi / 2
+    center = (start[0] + radius * math.cos(heading), start[1] + radius * math.sin(heading))
+    far = (2 * center[0] - start[0], 2 * center[1] - start[1])
+    arcs = (Arc(start, far, center, radius, turn * math.pi), Arc(far, start, center, radius, turn * math.pi))
+    return Polysegment(arcs, closed=closed)
 
 
 def split_long_arcs(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:

@@ -58,10 +58,10 @@ class CurvatureProfile:
 
     @property
     def tightest_radius_mm(self) -> float:
-        """1 / the largest |κ| (inf for a straight run: one turning less than 1e-9 rad over
+        """1 / the largest |κ| (inf for a straight run: one turning less than 1e-6 rad over
         its whole length)."""
         top = float(np.abs(self.kappa).max()) if len(self.kappa) else 0.0
-        return 1.0 / top if top * self.length > 1e-9 else math.inf
+        return 1.0 / top if top * self.length > 1e-6 else math.inf
 
 
 def _running_integral(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -1,17 +1,23 @@
-"""The default fitter: guaranteed-tolerance G1 arc/line chains with few segments.
+"""The default fitter: guaranteed-tolerance G1 arc/line chains with few, honest segments.
 
 Per run of the curve between true corners (or the whole closed loop):
 1. a greedy C1 piecewise-quadratic fit of the integrated heading inside a band (band_fit),
+   under the run's curvature caps and minimum segment length (limits),
 2. a minimax refinement of the chain in its (heading, curvature, length) parameters that
-   also pins the run's end point (and closes a loop with its start heading) (refine),
-3. the exact two-sided Hausdorff check (deviation); if it exceeds σ, the band shrinks and the
-   run is fitted again,
-4. if the refined deviation is just above σ, the worst segment is split in two instead.
+   also pins the run's end point (and closes a loop with its start heading), under the same
+   limits (refine),
+3. the exact two-sided Hausdorff check (deviation) and the check of the limits; if either
+   fails, the band fit is repeated with its states re-measured on the real arcs, then with a
+   narrower band,
+4. if the refined deviation is just above σ, the worst segment is split in two instead,
+5. if no chain keeps the limits, chains within a fraction of σ are tried, then looser caps,
+   and as the last resort fillets at every vertex.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,6 +41,16 @@ QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its fir
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
+
+
+@dataclass(frozen=True)
+class RunFit:
+    """A run's chain, its verified deviation (mm), and whether it keeps the run's curvature
+    caps and minimum length (False: loosened caps or the fillet fallback)."""
+
+    segments: tuple[Segment, ...]
+    deviation_mm: float
+    limits_kept: bool = True
 
 
 def total_turn(points: np.ndarray) -> float:
@@ -62,13 +78,17 @@ def _check(points: np.ndarray, params: ChainParams, end: np.ndarray) -> tuple[fl
 
 
 def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
-    """Whether every point is within ``tolerance`` of the line through the end points."""
+    """Whether every point is within ``tolerance`` of the line through the end points, and
+    the points run along it without turning back by more than ``tolerance``."""
     chord = pts[-1] - pts[0]
     norm = float(np.linalg.norm(chord))
     if norm == 0.0:
         return False
-    offset = (pts - pts[0]) @ np.array([-chord[1], chord[0]]) / norm
-    return bool(np.abs(offset).max() <= tolerance)
+    rel = pts - pts[0]
+    offset = rel @ np.array([-chord[1], chord[0]]) / norm
+    along = rel @ chord / norm
+    back = np.maximum.accumulate(along) - along
+    return bool(np.abs(offset).max() <= tolerance and back.max() <= tolerance)
 
 
 def _honest(params: ChainParams, limits: FitLimits, total: float) -> bool:
@@ -108,13 +128,16 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
-    splits, landed, shrink = 0, False, 0.9
+    splits, landed, shrink, at_start = 0, False, 0.9, 0
     while budget[0] > 0:
         budget[0] -= 1
         if params is None:
             try:
                 slope, pieces = fit_band(prob, ref, band, start_slope=pinned_slope, end_turn=turn, landed=landed)
-            except BandStuck:
+            except BandStuck as stuck:
+                at_start = at_start + 1 if stuck.knot == 0 else 0
+                if at_start >= 3:
+                    return None  # no first piece fits these bands: narrower ones fit none either
                 band *= shrink if landed else 0.7
                 landed = False
                 continue
@@ -150,7 +173,7 @@ def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool
 
 
 def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None = None,
-               end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
+               end_heading: float | None = None) -> RunFit | None:
     """A run that is one line within ``tolerance`` (open runs), or exactly a chain of lines
     and arcs, as that chain with its verified deviation (if it keeps the pinned end tangents
     given); else None."""
@@ -160,52 +183,57 @@ def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool, start_he
         line = (Line((float(pts[0][0]), float(pts[0][1])), (float(end[0]), float(end[1]))),)
         dev = hausdorff(pts, Polysegment(line)).hausdorff
         if dev <= tolerance and _pins_kept(line, start_heading, end_heading):
-            return line, dev
+            return RunFit(line, dev)
     exact = recover_exact(pts, closed_loop, tolerance)
     if exact is not None and _pins_kept(exact, start_heading, end_heading):
-        return exact, hausdorff(pts, Polysegment(exact)).hausdorff
+        return RunFit(exact, hausdorff(pts, Polysegment(exact)).hausdorff)
     return None
 
 
 def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-             quick: bool = False, start_heading: float | None = None,
-             end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
+             quick: bool = False, fillet: bool = True, start_heading: float | None = None,
+             end_heading: float | None = None) -> RunFit | None:
     """G1 chain within ``tolerance`` of a free-form run (start and end points kept exactly)
     under the curvature caps and minimum length of ``limits``, and its verified deviation.
 
     Where no such chain is found, chains within a fraction of the tolerance are tried, then
-    loosened caps, and as the last resort every vertex of the input is rounded (fillet_chain). ``quick``: a few attempts under the
-    caps as they are, None if those fail. ``start_heading`` / ``end_heading`` pin the end
+    loosened caps, and as the last resort every vertex of the input is rounded
+    (fillet_chain). ``quick``: a few attempts under the caps as they are, None if those
+    fail. Without ``fillet`` (a minimum length the caller insists on), no chain found is an
+    InputError instead of the fillets. ``start_heading`` / ``end_heading`` pin the end
     tangents (see fit_run); the last resort does not keep them.
     """
     pts = np.asarray(points, dtype=float)
     pins = (start_heading, end_heading) if not closed_loop else (None, None)
     if quick:
-        return _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS], *pins)
+        found = _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS], *pins)
+        return None if found is None else RunFit(*found)
     found = _constrained(pts, tolerance, closed_loop, limits, [MAX_ATTEMPTS], *pins)
     # A chain within a smaller tolerance is within this one too: where the band fit's
     # linearisation misleads (a tolerance large against the curve's features), aim lower.
     for share in NARROWER:
-        if found is not None:
-            return found
-        narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
-        found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
-    for factor in RELAX:
-        if found is not None:
-            return found
-        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
+        if found is None:
+            narrow = fit_limits(pts, closed_loop, share * tolerance, limits.min_length_mm, limits.speed_kappa)
+            found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
     if found is not None:
-        return found
+        return RunFit(*found)
+    for factor in RELAX:
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
+        if found is not None:
+            return RunFit(*found, limits_kept=False)
+    if not fillet:
+        raise InputError(f"no chain within {tolerance:g} mm keeps every segment at least "
+                         f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one")
     # Sparse or kinked input the band fit cannot follow: round every vertex instead.
     segs = fillet_chain(pts, tolerance, closed_loop)
     dev = hausdorff(pts, Polysegment(segs)).hausdorff
     if dev > tolerance:
         raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
-    return segs, dev
+    return RunFit(segs, dev, limits_kept=False)
 
 
 def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
-            start_heading: float | None = None, end_heading: float | None = None) -> tuple[tuple[Segment, ...], float]:
+            fillet: bool = True, start_heading: float | None = None, end_heading: float | None = None) -> RunFit:
     """G1 chain within ``tolerance`` of a run and its verified deviation (mm): fit_simple,
     else fit_free.
 
@@ -218,4 +246,4 @@ def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fit
         raise ValueError("end_heading needs start_heading; pin the start of the reversed run instead")
     pins = (start_heading, end_heading) if not closed_loop else (None, None)
     return (fit_simple(points, tolerance, closed_loop, *pins)
-            or fit_free(points, tolerance, closed_loop, limits, start_heading=pins[0], end_heading=pins[1]))
+            or fit_free(points, tolerance, closed_loop, limits, fillet=fillet, start_heading=pins[0], end_heading=pins[1]))

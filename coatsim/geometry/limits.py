@@ -5,7 +5,7 @@ over the stretch it covers and a neighbourhood around it (coatsim.geometry.envel
 programmed speed v and a tool acceleration limit a, where the input allows v (its envelope at
 most a / v²) no arc may need more than a either (|κ| <= a / v²), and where the input needs a
 tighter turn, no arc may be tighter than the input there. Every fitted segment but the only
-one of a run is at least ``min_length_mm`` long.
+one of a run is at least ``min_length_mm`` long (default: 5 σ, or 1/500 of the run if longer).
 """
 
 from __future__ import annotations
@@ -17,8 +17,9 @@ import numpy as np
 
 from coatsim.geometry.envelope import CurvatureProfile, curvature_profile
 
-TIGHTER = 1.25  # an arc may be this much tighter than the input near it
-MIN_LENGTH_SIGMAS = 5.0  # the default shortest segment, in σ
+TIGHTER = 1.22  # an arc may be this much tighter than the input near it (1.25 with the fit's 2 % slack)
+MIN_LENGTH_SIGMAS = 5.0  # the default shortest segment, in σ ...
+MIN_LENGTH_SHARE = 1 / 500  # ... or this share of the run, if that is longer
 NEIGHBOURHOOD_WINDOWS = 2.0  # the neighbourhood of a stretch: this many curvature windows
 
 
@@ -64,7 +65,7 @@ def fit_limits(points: np.ndarray, closed_loop: bool, tolerance: float, min_leng
                speed_kappa: float | None) -> FitLimits:
     """The limits of one run; ``speed_kappa`` = a / v² (1/mm) when the speed is given."""
     profile = curvature_profile(points, closed_loop, tolerance)
-    min_length = MIN_LENGTH_SIGMAS * tolerance if min_length_mm is None else min_length_mm
+    min_length = max(MIN_LENGTH_SIGMAS * tolerance, MIN_LENGTH_SHARE * profile.length) if min_length_mm is None else min_length_mm
     near = profile.envelope(max(NEIGHBOURHOOD_WINDOWS * profile.window_mm, min_length))
     # An arc that bulges σ/8 from its chord over the whole run is as good as a line: the
     # floor keeps straight stretches (envelope ~ 0) from forbidding every curvature.

@@ -18,6 +18,7 @@ from coatsim.geometry.polysegment import chain
 from coatsim.geometry.primitives import Segment, snap_end
 
 KAPPA_JUMP = 1e-3  # curvature change x run length that ends a stretch
+DISTINCT = 10.0  # neighbouring primitives differ in curvature by this many KAPPA_JUMP at least
 MIN_VERTICES = 4
 MAX_PRIMITIVES = 200
 
@@ -103,6 +104,9 @@ def recover_exact(points: np.ndarray, closed_loop: bool, tolerance: float) -> tu
         prims = prims[:-1]
     if not prims or (closed_loop and len(prims) < 2):
         return None
+    pairs = zip(prims, prims[1:] + (prims[:1] if closed_loop else []))
+    if any(abs(p.kappa - q.kappa) * length <= DISTINCT * KAPPA_JUMP for p, q in pairs):
+        return None  # neighbours barely differ: a smooth curve cut into near-circles, not primitives
     segs = _assemble(pts, prims, closed_loop, slack)
     if segs is None:
         return None

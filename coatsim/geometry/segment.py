@@ -15,14 +15,16 @@ from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, extent_mm, obvious_answer, split_long_arcs
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.dynamics import max_curvature_jump, speed_limited
-from coatsim.geometry.fit import fit_free, fit_run, fit_simple
+from coatsim.geometry.fit import fit_free, fit_run
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
+from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
 Method = Literal["optimal", "paper"]
+HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 METHODS = ("optimal", "paper")
 
 
@@ -44,6 +46,7 @@ class Segmentation:
     input_min_radius_mm: float | None = None
     speed_mm_s: float | None = None
     tool_accel_mm_s2: float | None = None
+    limits_kept: bool | None = None
 
     def summary(self) -> str:
         """One screen of text: counts, verified deviation, tangency."""
@@ -59,7 +62,9 @@ class Segmentation:
             f"max tangent break {st['max_tangent_break_deg']:.3g} deg",
             f"tightest arc {_mm(st['min_radius_mm'])} (input {_mm(st['input_min_radius_mm'])}), "
             f"shortest segment {st['min_segment_mm']:.3f} mm, "
-            f"largest curvature jump {st['max_curvature_jump_per_mm']:.4g} 1/mm",
+            f"largest curvature jump {st['max_curvature_jump_per_mm']:.4g} 1/mm"
+            + ("" if self.limits_kept is not False else
+               "; WARNING: some arcs are tighter than the input allows or shorter than the minimum (fallback fit)"),
         ]
         if self.speed_mm_s is not None:
             limited = self.polysegment.speed_limited
@@ -81,6 +86,7 @@ class Segmentation:
             "input_min_radius_mm": self.input_min_radius_mm,
             "min_segment_mm": min(s.length for s in poly.segments),
             "max_curvature_jump_per_mm": max_curvature_jump(poly),
+            "limits_kept": self.limits_kept,
             "speed_mm_s": self.speed_mm_s,
             "tool_accel_mm_s2": self.tool_accel_mm_s2,
             "input_points": len(self.curve.points),
@@ -139,7 +145,8 @@ def segment_curve(
     ``optimal`` guarantees the two-sided Hausdorff distance <= tol (verified exactly), keeps
     every junction tangent-continuous except at detected true corners, keeps every arc
     within 1.25 x the input's own curvature near it and every segment at least
-    ``min_segment_mm`` long (default 5 tol), and uses few segments. With ``speed_mm_s`` and
+    ``min_segment_mm`` long (default 5 tol, or 1/500 of the run between corners if that is
+    longer), and uses few segments. With ``speed_mm_s`` and
     ``tool_accel_mm_s2`` (both or neither), no arc is tighter than v² / a where the input
     allows that speed; where it does not, the stretch is listed in the polysegment's
     ``speed_limited``. ``paper`` is the paper's literal method: RDP on θ with
@@ -168,15 +175,18 @@ def segment_curve(
                             speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
     speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
     poly = obvious_answer(pts, curve.closed, tol)
-    input_radius = None
+    input_radius, kept = None, True
     if poly is not None:
         dev = hausdorff(pts, poly).hausdorff
     else:
-        poly, dev, input_radius = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+        try:
+            poly, dev, input_radius, kept = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+        except InputError as exc:
+            raise InputError(f"{curve.name}: {exc}") from None
     check_chain(poly, extent_mm(pts))
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
-                        speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
+                        speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept)
 
 
 def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> Polysegment:
@@ -186,46 +196,65 @@ def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: f
 
 
 def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
-         speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
+         speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool]:
     """The default fitter over the curve's runs between corners (or its whole closed loop).
-    Returns (polysegment, verified deviation, the input's tightest radius (robust, mm))."""
+    Returns (polysegment, verified deviation, the input's tightest radius (robust, mm),
+    whether every run kept its curvature caps and minimum length)."""
     pts = curve.points
-    exact = fit_simple(pts, tol, curve.closed)
+    exact = recover_exact(pts, curve.closed, tol)
     if exact is not None:  # before corners: a large tolerance must not turn a fillet into one
-        return Polysegment(exact[0], closed=curve.closed), exact[1], None
+        return Polysegment(exact, closed=curve.closed), hausdorff(pts, Polysegment(exact)).hausdorff, None, True
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
     if closed_loop:
         return _fit_loop(pts, tol, min_segment_mm, speed_kappa)
     pieces: list[tuple[Segment, ...]] = []
-    deviations, radii = [], []
+    deviations, radii, kept = [], [], True
     for run in runs:
         limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-        segs, dev = fit_run(run, tol, False, limits)
-        pieces.append(split_long_arcs(segs))
-        deviations.append(dev)
+        found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
+        pieces.append(split_long_arcs(found.segments))
+        deviations.append(found.deviation_mm)
         radii.append(limits.profile.tightest_radius_mm)
+        kept = kept and found.limits_kept
     segments = tuple(seg for piece in pieces for seg in piece)
     junctions = _corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0)
     poly = Polysegment(segments, closed=curve.closed, corners=junctions)
     dev = deviations[0] if len(runs) == 1 else hausdorff(rotated, poly).hausdorff
-    return poly, dev, _finite(min(radii))
+    return poly, dev, _finite(min(radii)), kept
+
+
+def _hooked(segments: tuple[Segment, ...]) -> bool:
+    """Whether a closed chain closes with a hook: a segment at the seam much shorter than
+    the chain's typical one, or a curvature jump around the seam larger than any elsewhere."""
+    if len(segments) < 4:
+        return False
+    length = np.array([s.length for s in segments])
+    if min(length[0], length[-1]) < HOOK_SHARE * float(np.median(length)):
+        return True
+    jump = np.abs(np.diff(np.array([s.curvature for s in segments + segments[:1]])))  # jump[k]: after segment k
+    around = jump[[-3, -2, -1]]
+    return bool(around.max() > jump[:-3].max() * (1 + 1e-9))
 
 
 def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
-              speed_kappa: float | None) -> tuple[Polysegment, float, float | None]:
-    """A free-form closed loop without corners: a quick fit from the first point, else a fit
-    from the loop's calmest point, started again at the first point."""
+              speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool]:
+    """A free-form closed loop without corners: a quick fit from the first point, unless it
+    closes with a hook (see _hooked) and a fit from the loop's calmest point, started again at
+    the first point, needs at most one segment more (or the quick fit fails)."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
-    found = fit_free(pts, tol, True, limits, quick=True)
-    if found is None:
+    quick = fit_free(pts, tol, True, limits, quick=True)
+    found = quick
+    if quick is None or _hooked(quick.segments):
         run = rotated_loop(pts, calm_start(pts))
-        segs, dev = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa))
-        found = reseat(segs, pts[0], limits.min_length_mm), dev
-    segs, dev = found
-    poly = Polysegment(split_long_arcs(segs), closed=True)
-    return poly, dev, _finite(limits.profile.tightest_radius_mm)
+        calm = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa),
+                        fillet=min_segment_mm is None)
+        calm = replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
+        if quick is None or len(calm.segments) <= len(quick.segments) + 1:
+            found = calm
+    poly = Polysegment(split_long_arcs(found.segments), closed=True)
+    return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept
 
 
 def _paper(curve: Curve, tol: float, theta_tolerance: float | None) -> tuple[Polysegment, ThetaFunction, float]:

@@ -28,8 +28,8 @@ from geometry_helpers import bench_spec, segmented
 DESIGN_EXAMPLE = Path(__file__).resolve().parents[1] / "data" / "design_polysegment_example.json"
 TOP_KEYS = {"format", "units", "closed", "tolerance_mm", "segments", "corners", "speed_limited", "stats"}
 STATS_KEYS = {"n_segments", "n_arcs", "n_lines", "max_deviation_mm", "max_tangent_break_deg", "min_radius_mm",
-              "input_min_radius_mm", "min_segment_mm", "max_curvature_jump_per_mm", "speed_mm_s", "tool_accel_mm_s2",
-              "input_points"}
+              "input_min_radius_mm", "min_segment_mm", "max_curvature_jump_per_mm", "limits_kept", "speed_mm_s",
+              "tool_accel_mm_s2", "input_points"}
 LINE_KEYS = {"kind", "start", "end"}
 ARC_KEYS = {"kind", "start", "end", "center", "radius", "sweep"}
 

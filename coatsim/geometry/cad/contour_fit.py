@@ -93,11 +93,12 @@ def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_hea
     caps its arcs for the programmed speed."""
     if start_heading is None and end_heading is not None:
         back = points[::-1]
-        segs, dev = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, speed_kappa),
-                            start_heading=end_heading + math.pi)
-        return tuple(s.reversed() for s in reversed(segs)), dev
-    return fit_run(points, tolerance, closed_loop, fit_limits(points, closed_loop, tolerance, None, speed_kappa),
-                   start_heading=start_heading, end_heading=end_heading)
+        fit = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, speed_kappa),
+                      start_heading=end_heading + math.pi)
+        return tuple(s.reversed() for s in reversed(fit.segments)), fit.deviation_mm
+    fit = fit_run(points, tolerance, closed_loop, fit_limits(points, closed_loop, tolerance, None, speed_kappa),
+                  start_heading=start_heading, end_heading=end_heading)
+    return fit.segments, fit.deviation_mm
 
 
 def _corner_vertices(points: np.ndarray, tolerance: float, corner_deg: float, closed: bool = False) -> list[int]:

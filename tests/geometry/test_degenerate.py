@@ -1,0 +1,146 @@
+"""Degenerate fits (issue 14, item 4): a tolerance at or above the curve's size, no arc below
+the numerical floor or sweeping a full turn, programs written from a huge tolerance, and
+cusp-rich inputs (their cusps become corners first, so they finish quickly)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from coatsim.geometry import Arc, Line, load_curve, make_curve, read_polysegment_json, segment_curve
+from coatsim.geometry.deviation import hausdorff
+
+from geometry_helpers import brute_hausdorff, tangent_breaks
+
+G1 = 1e-9
+SMALL = np.array([[0, 0], [10, 0], [20, 5], [30, 0], [40, 2]], float)
+
+
+def assert_sane(seg, tol):
+    """Within tolerance, G1 at every junction that is not a corner, no arc below the
+    numerical floor or turning a full circle."""
+    poly, pts = seg.polysegment, seg.curve.points
+    assert seg.max_deviation_mm <= tol and hausdorff(pts, poly).hausdorff <= tol
+    for k, turn in tangent_breaks(poly):
+        assert k in poly.corners or turn <= G1
+    extent = float(np.linalg.norm(np.ptp(pts, axis=0)))
+    for s in poly.segments:
+        assert s.length > 0
+        if isinstance(s, Arc):
+            assert s.radius >= 1e-9 * extent and abs(s.sweep) < 2 * math.pi
+
+
+# ---------------------------------------------------------------- tolerance >= the curve's size
+
+
+@pytest.mark.parametrize("tol", [50.0, 1e3, 1e6])
+def test_an_open_curve_within_a_huge_tolerance_is_one_line(tol):
+    seg = segment_curve(make_curve(SMALL, "small"), tol)
+    poly = seg.polysegment
+    assert poly.segments == (Line((0.0, 0.0), (40.0, 2.0)),)
+    assert_sane(seg, tol)
+
+
+@pytest.mark.parametrize("spec", ["builtin:ellipse", "builtin:naca", "builtin:cam", "builtin:epitrochoid",
+                                  "builtin:d-shape", "builtin:polygon", "builtin:rounded-rectangle"])
+@pytest.mark.parametrize("tol", [300.0, 1e6])
+def test_a_closed_curve_within_a_huge_tolerance_is_one_circle(spec, tol):
+    """Regression: arcs of radius 1e-3 mm sweeping 2e4 rad (naca, cam, epitrochoid at 1e6),
+    a 158 degree break at a non-corner (epitrochoid at 300)."""
+    c = load_curve(spec)
+    seg = segment_curve(c, tol)
+    poly = seg.polysegment
+    assert poly.closed and poly.n_segments == 2 and poly.corners == ()
+    a, b = poly.segments
+    assert isinstance(a, Arc) and isinstance(b, Arc) and a.center == b.center and a.radius == b.radius
+    assert a.sweep == b.sweep and abs(a.sweep) == pytest.approx(math.pi)
+    assert poly.start == tuple(c.points[0]) and poly.end == poly.start
+    assert_sane(seg, tol)
+    assert brute_hausdorff(c.points, poly, 0.5) <= tol
+
+
+@pytest.mark.parametrize("spec", ["builtin:sine", "builtin:paper-spiral", "builtin:naca", "builtin:cam",
+                                  "builtin:epitrochoid", "builtin:clothoid", "builtin:d-shape", "builtin:raster",
+                                  "builtin:ellipse", "builtin:rounded-rectangle"])
+@pytest.mark.parametrize("tol", [10.0, 30.0, 100.0])
+def test_large_tolerances_give_sane_chains(spec, tol):
+    seg = segment_curve(load_curve(spec + ":points=1500" if spec != "builtin:raster" else spec), tol)
+    assert_sane(seg, tol)
+
+
+@pytest.mark.parametrize("spec", ["builtin:rounded-rectangle", "builtin:raster"])
+def test_a_large_tolerance_keeps_exact_shapes_exact(spec):
+    """Corners are only looked for after exact recovery: at 30 mm the rounded rectangle's
+    10 mm fillets once became corners."""
+    exact = segment_curve(load_curve(spec), 0.1).polysegment
+    big = segment_curve(load_curve(spec), 30.0).polysegment
+    assert big.segments == exact.segments and big.corners == ()
+
+
+def test_huge_tolerance_json_is_accepted_by_program(tmp_path, run_cli):
+    """Regression: `segment --tol 1e6` wrote a JSON that `program` rejected."""
+    for spec in ("builtin:ellipse", "builtin:sine"):
+        out = tmp_path / "huge.json"
+        code, _, err = run_cli(["segment", spec, "--tol", "1e6", "-o", str(out)])
+        assert code == 0, err
+        doc = json.loads(out.read_text())
+        assert all(abs(s["sweep"]) < 2 * math.pi for s in doc["segments"] if s["kind"] == "arc")
+        read_polysegment_json(out)
+        code, _, err = run_cli(["program", str(out), "-o", str(tmp_path / "huge.as")])
+        assert code == 0, err
+        assert (tmp_path / "huge.as").read_text().startswith(".PROGRAM")
+
+
+# ---------------------------------------------------------------- cusps
+
+
+def back_and_forth(points: int, laps: float = 1.0) -> np.ndarray:
+    """0 -> 100 -> 0 mm along x (``laps`` out-and-back trips), ``points`` points."""
+    t = np.linspace(0.0, 2 * laps, points)
+    return np.column_stack((100.0 * (1.0 - np.abs(np.mod(t, 2.0) - 1.0)), np.zeros(points)))
+
+
+@pytest.mark.parametrize("points", [1001, 201])
+@pytest.mark.parametrize("closed", ["auto", "no"])
+def test_the_dense_back_and_forth_line_is_two_lines(points, closed):
+    """Regression: 1001 points took over 120 s at 0.1 mm (201 points: 27 s and 203
+    segments); the corner was found one vertex before the cusp."""
+    seg = segment_curve(make_curve(back_and_forth(points), "back and forth", closed), 0.1)
+    poly = seg.polysegment
+    assert poly.n_segments == 2 and poly.n_lines == 2
+    assert poly.segments[0].end == (100.0, 0.0)
+    assert 0 in poly.corners
+    assert seg.max_deviation_mm <= 1e-12
+
+
+@pytest.mark.parametrize("tol", [0.1, 1.0])
+def test_a_noisy_back_and_forth_line_finds_both_cusps(tol):
+    """Regression: with 0.001 mm noise the seam's cusp (x = 0) was placed on a noise vertex
+    next to it, and the fit of the run around the real cusp fell back to 859 fillets."""
+    pts = back_and_forth(1001)
+    pts[:, 1] = np.random.default_rng(0).normal(0.0, 1e-3, len(pts))
+    pts[-1] = pts[0]
+    poly = segment_curve(make_curve(pts, "noisy"), tol).polysegment
+    assert poly.n_segments == 2 and poly.n_lines == 2 and len(poly.corners) == 2
+
+
+@pytest.mark.parametrize("laps", [2.5, 5.0])
+def test_many_reversals_are_corners(laps):
+    poly = segment_curve(make_curve(back_and_forth(2001, laps), "reversals", "no"), 0.1).polysegment
+    assert poly.n_lines == poly.n_segments == round(2 * laps) and len(poly.corners) == round(2 * laps) - 1
+
+
+@pytest.mark.parametrize("cusps,tol", [(4, 0.1), (5, 0.1), (4, 1.0)])
+def test_curves_with_cusps_have_them_as_corners(cusps, tol):
+    """An astroid (4 cusps) or a hypocycloid with 5: smooth between cusps, sharp at them."""
+    t = np.linspace(0.0, 2 * math.pi, 3000)
+    if cusps == 4:
+        pts = 50.0 * np.column_stack((np.cos(t) ** 3, np.sin(t) ** 3))
+    else:
+        pts = np.column_stack((40 * np.cos(t) + 10 * np.cos(4 * t), 40 * np.sin(t) - 10 * np.sin(4 * t)))
+    seg = segment_curve(make_curve(pts, "cusps"), tol)
+    assert len(seg.polysegment.corners) == cusps
+    assert_sane(seg, tol)
