@@ -139,6 +139,7 @@ def run(
     fast: bool = typer.Option(False, "--fast", help="the scenario's coarser mesh and path sampling (for CI)"),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF replacing the scenario's robot.model [default: the scenario's]."),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per stage on stderr."),
+    video: bool = typer.Option(False, "--video", help="Also write polysegment.mp4: the polysegment run rendered offscreen (needs imageio-ffmpeg)."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run a scenario: programs, simulated arm, coating, metrics.json and report.html for every
@@ -150,7 +151,7 @@ def run(
     from coatsim.report.summary import summary_text
 
     started = time.perf_counter()
-    result = run_scenario(scenario, outdir, fast=fast, model=model, force=force)
+    result = run_scenario(scenario, outdir, fast=fast, model=model, force=force, video=video)
     typer.echo(summary_text(result.document))
     for warning in result.document["warnings"]:
         typer.echo(f"warning: {warning['variant']}: {warning['message']}", err=True)
@@ -159,6 +160,7 @@ def run(
         parts = [f"segmentation {result.segmentation_s:.2f} s"]
         parts += [f"{v.name} " + ", ".join(f"{k.removesuffix('_s')} {t:.2f} s" for k, t in v.execution.wall.items())
                   for v in result.variants]
+        parts.append(f"report {result.report_s:.2f} s")
         typer.echo(f"timings: {'; '.join(parts)}; total {time.perf_counter() - started:.1f} s", err=True)
     failed = [g["label"] for g in result.document["gates"] if not g["passed"]]
     if failed:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import sys
+import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -45,7 +46,7 @@ from coatsim.spray.coat import CoatingResult, coat, remeasured
 from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import parse_footprint_spec
-from coatsim.spray.outputs import write_thickness_ply
+from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
 from coatsim.spray.surfaces import Surface, cylinder, mesh_file, plate
 
 Step = Callable[[str], None]
@@ -62,6 +63,7 @@ class VariantRun:
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]
     contour_groups: tuple[dict[str, dict[str, float | int | None]], ...] = ()
+    toolpath: Optional[ToolPath] = None  # the program as read back (the report ties events to its lines)
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +77,7 @@ class RunResult:
     files: tuple[Path, ...]
     failures: Mapping[str, str] = field(default_factory=dict)
     segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
+    report_s: float = 0.0        # wall time of the thickness files, the video and report.html
 
     @property
     def passed(self) -> bool:
@@ -227,8 +230,7 @@ class Job:
 
 
 def run_variant(name: str, job: Job, step: Step) -> VariantRun:
-    """Program, execute and coat one variant; writes ``name.as``, ``name.trajectory.csv`` and
-    ``name.thickness.ply``."""
+    """Program, execute and coat one variant; writes ``name.as`` and ``name.trajectory.csv``."""
     spec, out = job.loaded.spec, job.outdir
     polys = [c.polysegment for c in job.contours]
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
@@ -307,8 +309,6 @@ def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: To
     result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
                   edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                   spacing=job.spacing_mm, away=job.away_mm)
-    write_thickness_ply(out / f"{name}.thickness.ply", job.surface, result.thickness_um, 0.0,
-                        float(result.thickness_um.max()), result.deposit.exposure_s)  # as `coatsim coat` writes it
     segmentation = _segmentation_groups(job, program)
     groups = {
         "segmentation": combine_segmentation(segmentation),
@@ -321,7 +321,7 @@ def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: To
         for place, k in enumerate(program.order):
             motion[k] = execution.contour_metrics[place].as_dict()
         per_contour = tuple({"segmentation": s, "motion": m} for s, m in zip(segmentation, motion))
-    return VariantRun(name, program, execution, result, groups, per_contour)
+    return VariantRun(name, program, execution, result, groups, per_contour, toolpath)
 
 
 def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
@@ -344,11 +344,21 @@ def variant_names(spec: Scenario) -> list[str]:
     return [entry if isinstance(entry, str) else entry.name for entry in spec.variants]
 
 
-def output_names(spec: Scenario) -> list[str]:
+def reference_variant(spec: Scenario) -> str:
+    """The variant the report compares the others with (and ``--video`` shows): the
+    polysegment, else the first."""
+    names = variant_names(spec)
+    return "polysegment" if "polysegment" in names else names[0]
+
+
+def output_names(spec: Scenario, video: bool = False) -> list[str]:
     """The files a run of ``spec`` may write into its output folder, in writing order (a drawing
     of several contours writes part.json instead of polysegment.json)."""
-    per_variant = [f"{v}.{kind}" for v in variant_names(spec) for kind in ("as", "trajectory.csv", "thickness.ply")]
-    return ["polysegment.json", "part.json", *per_variant, "metrics.json", "report.html"]
+    names = variant_names(spec)
+    programs = [f"{v}.{kind}" for v in names for kind in ("as", "trajectory.csv")]
+    coats = [f"{v}.{kind}" for v in names for kind in ("thickness.ply", "thickness.glb")]
+    movie = [f"{reference_variant(spec)}.mp4"] if video else []
+    return ["polysegment.json", "part.json", *programs, "metrics.json", *coats, *movie, "report.html"]
 
 
 def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
@@ -370,9 +380,26 @@ def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> lis
     return files
 
 
+def write_thickness_files(runs: list[VariantRun], out: Path, standoff_mm: float) -> list[Path]:
+    """Every variant's ``V.thickness.ply`` (the properties ``coatsim coat`` writes) and
+    ``V.thickness.glb`` (vertex colours, the sprayed tool path), all on the report's one
+    colour scale."""
+    from coatsim.report.data import aim_paths, thickness_scale
+
+    vmin, vmax = thickness_scale([r.coating.thickness_um for r in runs])
+    files = []
+    for r in runs:
+        ply, glb = out / f"{r.name}.thickness.ply", out / f"{r.name}.thickness.glb"
+        write_thickness_ply(ply, r.coating.surface, r.coating.thickness_um, vmin, vmax, r.coating.deposit.exposure_s)
+        write_thickness_glb(glb, r.coating.surface, r.coating.thickness_um, vmin, vmax, r.coating.deposit.exposure_s,
+                            aim_paths(r.execution.log, standoff_mm))
+        files += [ply, glb]
+    return files
+
+
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
                  progress: Optional[bool] = None, model: Optional[str | Path] = None, force: bool = False, *,
-                 keep_going: bool = False, report: bool = True) -> RunResult:
+                 keep_going: bool = False, report: bool = True, video: bool = False) -> RunResult:
     """Run every stage of the scenario at ``path`` for every variant and write all outputs.
 
     ``outdir`` defaults to ``runs/<name>`` and is held for the run (coatsim.outputs_guard): no
@@ -381,22 +408,23 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     showing a bar when stderr is a terminal; ``model`` replaces the scenario's robot model. With
     ``keep_going`` a variant that cannot run is recorded in ``failures`` (and in the metrics
     document's ``failed``, which then does not pass; gates on it are left out) while the others
-    run. ``report=False`` skips report.html (so does a run where no variant ran).
+    run. ``report=False`` skips report.html (so does a run where no variant ran); ``video`` also
+    writes an MP4 of the reference (polysegment) run.
     """
     from coatsim.outputs_guard import check_distinct, output_folder
 
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
     out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
-    names = output_names(loaded.spec)
+    names = output_names(loaded.spec, video)
     check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
     with output_folder(out, names, "coatsim run", force):
-        return _run_in(loaded, cell, out, fast, progress, keep_going, report)
+        return _run_in(loaded, cell, out, fast, progress, keep_going, report, video)
 
 
 def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool], keep_going: bool,
-            report: bool) -> RunResult:
+            report: bool, video: bool) -> RunResult:
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
     from coatsim.report.document import write_report
 
@@ -404,7 +432,7 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
     sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
-    with progress_steps(3 + 3 * len(spec.variants), show) as step:
+    with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
         step("segmenting the curve")
         part = None
         if spec.curve is None:  # the sprayed path of the first program variant
@@ -468,11 +496,24 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
         if failures:
             document.update(failed=failures, passed=False)
         write_text(out / "metrics.json", to_json(document))
+        report_started = time.perf_counter()
+        write_thickness_files(runs, out, spec.gun.standoff_mm)
+        movie = None
+        reference = next((r for r in runs if r.name == reference_variant(spec)), None)
+        if video and reference is not None:
+            from coatsim.report.data import ReportData
+            from coatsim.report.video import write_video
+
+            step("rendering the video")
+            data = ReportData(loaded, tuple(contours), tuple(runs), document)
+            movie = write_video(out / f"{reference.name}.mp4", data, cell)
         if report and runs:
-            write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else ())
-    unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply")}
+            write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
+                         cell=cell, video=None if movie is None else movie.name)
+        report_s = time.perf_counter() - report_started
+    unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply", "thickness.glb", "mp4")}
     unwritten |= set() if report and runs else {"report.html"}
     unwritten |= {"polysegment.json", "part.json"} - {segmentation_file.name}
-    written = [name for name in output_names(spec) if name not in unwritten]
-    return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures,
-                     part.seconds if part is not None else contours[0].seconds)
+    written = [name for name in output_names(spec, video) if name not in unwritten]
+    seconds = part.seconds if part is not None else contours[0].seconds
+    return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures, seconds, report_s)

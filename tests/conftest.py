@@ -15,6 +15,8 @@ single_threaded_numerics()  # as the console entry point does, before numerical 
 
 from coatsim import cli  # noqa: E402
 
+from small_scenario import SMALL
+
 # Property tests are reproducible by default (and in CI): derandomised, no example database, so a
 # run never replays a failure found by an earlier one. `--hypothesis-profile=explore` searches
 # with fresh random examples (and remembers failures) when hunting for bugs.
@@ -23,6 +25,28 @@ settings.register_profile("explore", derandomize=False, print_blob=True)
 settings.load_profile("ci")
 
 README = Path(__file__).resolve().parents[1] / "README.md"
+
+
+
+@pytest.fixture(scope="session")
+def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, str, Path]:
+    """`coatsim run SMALL --fast` once per session, in-process: (exit code, stdout, stderr, output folder)."""
+    import contextlib
+    import io
+
+    folder = tmp_path_factory.mktemp("small")
+    scenario = folder / "small_job.yaml"
+    scenario.write_text(SMALL, encoding="utf-8")
+    outdir = folder / "out"
+    out, err = io.StringIO(), io.StringIO()
+    old = sys.argv
+    sys.argv = ["coatsim", "run", str(scenario), "--fast", "-o", str(outdir)]
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
+            cli.main()
+    finally:
+        sys.argv = old
+    return int(info.value.code or 0), out.getvalue(), err.getvalue(), outdir
 
 
 @pytest.fixture(scope="session")

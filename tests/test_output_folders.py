@@ -182,7 +182,8 @@ def test_a_users_file_under_an_output_name_needs_force(tmp_path, scenario):
     manifest = json.loads((out / MANIFEST_NAME).read_text())
     assert manifest["format"] == "coatsim.outputs/1"
     assert set(manifest["files"]) == {"polysegment.json", "polysegment.as", "polysegment.trajectory.csv",
-                                      "polysegment.thickness.ply", "metrics.json", "report.html"}
+                                      "polysegment.thickness.ply", "polysegment.thickness.glb", "metrics.json",
+                                      "report.html"}
     code, _, err = cli("run", scenario, "--fast", "-o", out)  # its own files: replaced without --force
     assert code == 0, err
     (out / "metrics.json").write_text("{}")  # changed by hand since coatsim wrote it

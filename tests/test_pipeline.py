@@ -16,29 +16,13 @@ import pytest
 
 from coatsim.cli import main
 from coatsim.program import read_toolpath
-from coatsim.report.document import SECTION_TITLES
+from coatsim.report.document import SECTION_IDS
 from coatsim.report.verdict import verdict
 from coatsim.robot.trajectory_log import read_trajectory_csv
 from coatsim.scenario import VARIANTS
 
-SMALL = """\
-name: small_job
-description: two 60 mm passes joined by one semicircular turn-around
-curve:
-  builtin: raster
-  params: {width: 60.0, pitch: 20.0, passes: 2}
-segmentation: {tolerance_mm: 0.1}
-workpiece: {kind: plate, size_mm: [130.0, 90.0]}
-gun: {footprint: "gaussian:sigma=5", target_thickness_um: 16.0}
-motion: {speed_mm_s: 200.0, accuracy_mm: 0.5, lead_in_mm: 10.0, lead_out_mm: 10.0}
-coating: {spacing_mm: 2.0, band_halfwidth_mm: 2.5}
-fast: {coating_spacing_mm: 2.5}
-gates:
-  - {metric: segmentation.max_deviation_mm, op: "<=", threshold: 0.1}
-  - {metric: coating.mass_balance_error, op: "<=", threshold: 0.001}
-  - {metric: motion.stops, op: "==", threshold: 0}
-  - {metric: coating.thickness_cv, op: "<", threshold: 0.0}
-"""
+from small_scenario import SMALL
+
 
 
 @dataclass(frozen=True)
@@ -62,12 +46,9 @@ def run_cli(*args: str) -> Cli:
 
 
 @pytest.fixture(scope="module")
-def small_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[Cli, Path]:
-    folder = tmp_path_factory.mktemp("small")
-    scenario = folder / "small_job.yaml"
-    scenario.write_text(SMALL, encoding="utf-8")
-    outdir = folder / "out"
-    return run_cli("run", str(scenario), "--fast", "-o", str(outdir)), outdir
+def small_run(small_report: tuple[int, str, str, Path]) -> tuple[Cli, Path]:
+    code, out, err, outdir = small_report
+    return Cli(code, out, err), outdir
 
 
 def test_a_failing_gate_exits_1_after_writing_everything(small_run: tuple[Cli, Path]) -> None:
@@ -75,7 +56,7 @@ def test_a_failing_gate_exits_1_after_writing_everything(small_run: tuple[Cli, P
     assert cli.code == 1, cli.err
     assert cli.err.count("\n") == 1 and "coatsim: error: 1 gate(s) failed: coating.thickness_cv [polysegment] < 0" in cli.err
     expected = {"polysegment.json", "metrics.json", "report.html", ".coatsim-outputs.json"}
-    expected |= {f"{v}.{ext}" for v in VARIANTS for ext in ("as", "trajectory.csv", "thickness.ply")}
+    expected |= {f"{v}.{ext}" for v in VARIANTS for ext in ("as", "trajectory.csv", "thickness.ply", "thickness.glb")}
     assert {p.name for p in outdir.iterdir()} == expected
     for variant in VARIANTS:
         assert variant in cli.out.splitlines()[0]
@@ -122,15 +103,17 @@ def test_programs_trajectories_and_coats_read_back(small_run: tuple[Cli, Path]) 
     assert poly["format"] == "coatsim.polysegment/1" and len(poly["segments"]) >= 3
 
 
-def test_report_has_every_section_and_embeds_its_images(small_run: tuple[Cli, Path]) -> None:
+def test_report_has_every_section_in_order_and_embeds_everything(small_run: tuple[Cli, Path]) -> None:
     _, outdir = small_run
     html = (outdir / "report.html").read_text(encoding="utf-8")
-    for anchor, title in SECTION_TITLES.items():
-        assert f'<section id="{anchor}"><h2>{title}</h2>' in html
+    found = re.findall(r'<section id="([^"]+)">', html)
+    assert found == list(SECTION_IDS) == ["verdict", "speed", "thickness-along-track", "maps", "warnings", "view3d",
+                                          "program", "metrics", "summary", "gates"]
     images = re.findall(r'<img alt="[^"]*" src="data:image/png;base64,', html)
-    assert len(images) == 5  # curve, θ, speed, thickness maps, cross-section
-    assert not re.search(r'(src|href)="(?!data:|#)', html)
-    assert "<script" not in html.lower()
+    # verdict bars, speed, centre line, histograms, maps, difference, events, the cell, the curve, the polyline
+    assert len(images) == 10
+    assert not re.search(r'(src|href)="(?!data:|#)', html)  # nothing outside the file
+    assert not re.search(r"<script[^>]+src=", html) and "https://" not in html.split("<script>")[-1]
     assert "FAIL" in html and "coating.thickness_cv [polysegment] &lt; 0" in html
 
 
@@ -140,11 +123,24 @@ def test_report_and_console_lead_with_the_verdict_from_the_metrics(small_run: tu
     doc = json.loads((outdir / "metrics.json").read_text(encoding="utf-8"))
     comparisons = verdict(doc).comparisons
     assert [c.against for c in comparisons] == ["polyline-stop", "polyline-blend"]
+    section = html[html.index('<section id="verdict">'):html.index('<section id="speed">')]
     for c in comparisons:
-        assert f"<h3>Polysegment against {c.against}</h3><p>{escape(c.headline, quote=True)}</p>" in html
+        assert escape(c.headline, quote=True) in section
         assert c.headline in cli.out
-    assert "What arcs buy" not in html
-    assert html.index("Polysegment against polyline-stop") < html.index('<section id="curve">')
+    assert "Gates: 3 of 4 passed; FAILED: coating.thickness_cv [polysegment] &lt; 0" in section
+
+
+def test_metrics_are_shown_with_human_names_and_percent(small_run: tuple[Cli, Path]) -> None:
+    _, outdir = small_run
+    html = (outdir / "report.html").read_text(encoding="utf-8")
+    table = html[html.index('<section id="metrics">'):html.index('<section id="summary">')]
+    doc = json.loads((outdir / "metrics.json").read_text(encoding="utf-8"))
+    at_speed = doc["variants"]["polysegment"]["motion"]["fraction_at_speed"]
+    row = re.search(r'>length at speed \(≥ 95 %\)</td><td class="l">%</td><td>([^<]+)</td>', table)
+    assert row and float(row.group(1)) == pytest.approx(100 * at_speed, rel=1e-3)
+    breaks = re.search(r">largest tangent break</td><td class=\"l\">deg</td>(.*?)</tr>", table).group(1)
+    assert breaks.endswith("<td>–</td><td>–</td>")  # no ratio to a tangent break of 0
+    assert ">motion.fraction_at_speed<" not in table and "e+1" not in table
 
 
 def test_run_finds_the_roi_border_and_the_polyline_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -240,7 +236,7 @@ def test_run_writes_the_cells_tool_and_reports_no_mismatch(small_run: tuple[Cli,
         outdir / "polysegment.as").read_text(encoding="ascii")
     doc = json.loads((outdir / "metrics.json").read_text(encoding="utf-8"))
     assert not [w for w in doc["warnings"] if "(TOOL)" in w["message"]]
-    assert '<section id="warnings"><h2>Warnings</h2>' in (outdir / "report.html").read_text(encoding="utf-8")
+    assert '<section id="warnings"><h2>Warnings and events</h2>' in (outdir / "report.html").read_text(encoding="utf-8")
 
 
 def test_a_missing_robot_model_names_its_yaml_line(tmp_path: Path) -> None:

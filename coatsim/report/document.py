@@ -1,237 +1,60 @@
 """report.html of a run: every section built from the run's values and its metrics document.
 
-Sections: scenario summary with the verdict (what the polysegment wins and loses against each
-polyline, :mod:`coatsim.report.verdict`) and the headline metrics, curve and polysegment, θ, speed
-profiles, thickness maps, cross-section, warnings, all metrics with ratios, gates.
+Sections, in the order of the design's "Report sections" contract: ``verdict`` (what the
+polysegment wins and loses, :mod:`coatsim.report.verdict`), ``speed``, ``thickness-along-track``,
+``maps``, ``warnings``, ``view3d``, ``program``, ``metrics``, then ``summary`` and ``gates``; one
+module each in :mod:`coatsim.report.sections`.
 """
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
-from typing import Any, Mapping, Sequence
-
-import numpy as np
+from typing import Any, Mapping, Optional, Sequence
 
 from coatsim import __version__
 from coatsim.fileio import write_text
-from coatsim.report.catalogue import METRICS
-from coatsim.report.html import Figure, Section, esc, fmt, gates_table, key_value_table, metrics_table, render_html
-from coatsim.report.part_section import part_summary
-from coatsim.report.summary import headline_rows
-from coatsim.report.verdict import Verdict, change_text, verdict
-from coatsim.geometry.plots import segmentation_figure_png
-from coatsim.report.plots import SpeedProfile, polyline_figure, speed_figure
-from coatsim.spray.outputs import Profile, default_section, heatmap_png, panel, profile_png, section_profile
+from coatsim.report.data import ReportData
+from coatsim.report.html import Section, render_html
 
-SECTION_TITLES = {
-    "summary": "Scenario",
-    "curve": "Curve, polysegment and θ",
-    "polyline": "Polyline program",
-    "speed": "Tool speed",
-    "thickness": "Coating thickness",
-    "section": "Thickness cross-section",
-    "warnings": "Warnings",
-    "metrics": "All metrics",
-    "gates": "Gates",
-}
+SECTION_IDS = ("verdict", "speed", "thickness-along-track", "maps", "warnings", "view3d", "program", "metrics",
+               "summary", "gates")
 
 
-def headline_table(document: Mapping[str, Any]) -> str:
-    names = list(document["variants"])
-    head = '<tr><th class="l">metric</th><th class="l">unit</th>' + "".join(f"<th>{esc(v)}</th>" for v in names) + "</tr>"
-    body = "".join(
-        f'<tr><td class="l">{esc(key)}</td><td class="l">{esc(METRICS[key].unit)}</td>'
-        + "".join(f"<td>{fmt(x)}</td>" for x in values) + "</tr>"
-        for key, values in headline_rows(document)
-    )
-    return f"<table>{head}{body}</table>"
-
-
-def verdict_html(result: Verdict) -> str:
-    """Per polyline variant: the headline sentence, then the five metrics with both values, the
-    change and the outcome."""
-    if not result.comparisons:
-        return '<p class="muted">No polysegment and polyline variants to compare in this run.</p>'
-    out = []
-    for c in result.comparisons:
-        head = (f'<tr><th class="l">metric</th><th>{esc(c.against)}</th><th>polysegment</th>'
-                f'<th>change</th><th class="l">result</th></tr>')
-        rows = "".join(
-            f'<tr><td class="l" title="{esc(METRICS[o.criterion.key].meaning)}">{esc(o.criterion.label)}</td>'
-            f"<td>{fmt(o.polyline)}</td><td>{fmt(o.polysegment)}</td>"
-            f"<td>{esc(change_text(o))}</td>"
-            f'<td class="l">{_OUTCOME_HTML[o.outcome]}</td></tr>'
-            for o in c.outcomes
-        )
-        out.append(f"<h3>Polysegment against {esc(c.against)}</h3><p>{esc(c.headline)}</p><table>{head}{rows}</table>")
-    return "".join(out)
-
-
-_OUTCOME_HTML = {"win": '<span class="pass">wins</span>', "loss": '<span class="fail">loses</span>',
-                 "tie": "ties", "undefined": '<span class="muted">undefined</span>'}
-
-
-def _summary_rows(loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any]) -> list[tuple[str, Any]]:
-    spec = loaded.spec
-    c = spec.curve
-    if c is None:
-        source = f"the sprayed path of program variant {spec.programs[0].name}"
-    else:
-        source = f"built-in {c.builtin} {json.dumps(c.params, sort_keys=True)}" if c.builtin else f"file {c.file}"
-    placed = "" if c is None else f"; scale {c.scale:g}, rotated {c.rotate_deg:g} deg"
-    wp = spec.workpiece
-    size = {"plate": lambda: f"plate {wp.size_mm[0]:g} x {wp.size_mm[1]:g} mm",
-            "cylinder": lambda: f"cylinder R {wp.radius_mm:g} x L {wp.length_mm:g} mm, axis {wp.axis}",
-            "mesh": lambda: f"mesh {wp.file}"}[wp.kind]()
-    seg = document["variants"].get("polysegment", {}).get("segmentation")
-    rows = [
-        ("scenario file", loaded.path.name),
-        ("description", spec.description or "–"),
-        ("curve", f"{source}{placed}; " + (
-            part_summary(contours) if len(contours) > 1 else
-            f"{'closed' if contours[0].curve.closed else 'open'}, {len(contours[0].curve.points)} points, "
-            f"{contours[0].curve.length:.1f} mm")),
-        ("segmentation", f"tolerance {spec.segmentation.tolerance_mm:g} mm, method {spec.segmentation.method}, "
-                         f"corners above {spec.segmentation.corner_deg:g} deg"),
-        ("workpiece", f"{size} at {wp.pose.position_mm} mm, O-A-T {wp.pose.oat_deg} deg"),
-        ("robot", spec.robot.model),
-        ("gun", f"{spec.gun.footprint}, Q {spec.gun.flow_mm3_s:g} mm³/s, stand-off {spec.gun.standoff_mm:g} mm, "
-                f"target {spec.gun.target_thickness_um:g} µm"),
-        ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
-                   f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
-        ("variants", ", ".join(spec.variant_names)),
-        ("mode", f"{document['mode']} (coating mesh {loaded.spec.fast.coating_spacing_mm if document['mode'] == 'fast' else spec.coating.spacing_mm:g} mm)"),
-    ]
-    if seg is not None:
-        rows.insert(4, ("polysegment", f"{seg['n_lines']} lines + {seg['n_arcs']} arcs, deviation "
-                                       f"{seg['max_deviation_mm']:.4g} mm"))
-    return rows
-
-
-def _speed_profiles(runs: Sequence, lead_in_mm: float, lead_out_mm: float) -> tuple[dict[str, SpeedProfile], list[tuple[float, float]]]:
-    """Speed against path length from the start of the run-in to the end of the run-out (the
-    curve proper in between), whether or not the gun is open on the run-in and run-out; the
-    contours of a part one after the other (the travel between them left out)."""
-    profiles, spans = {}, []
-    for r in runs:
-        log = r.execution.log
-        # the log's progress is monotonic up to servo jitter: take the rows between the first
-        # one at the run-in start and the first one past the run-out end
-        reach = np.maximum.accumulate(log.progress)
-        xs, vs, spans, at = [], [], [], 0.0
-        for a, b in r.execution.curves or (r.execution.curve,):
-            i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
-            i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
-            rows = slice(min(i0, len(log.progress) - 1), min(i1, len(log.progress) - 1) + 1)
-            if xs:  # a break in the line between contours
-                xs.append(np.array([at]))
-                vs.append(np.array([np.nan]))
-            xs.append(log.progress[rows] - (a - lead_in_mm) + at)
-            vs.append(log.speed[rows])
-            spans.append((at + lead_in_mm, at + lead_in_mm + (b - a)))
-            at += lead_in_mm + (b - a) + lead_out_mm
-        profiles[r.name] = SpeedProfile(np.concatenate(xs), np.concatenate(vs))
-    return profiles, spans
-
-
-def _stacked(arrays: Sequence[np.ndarray]) -> np.ndarray:
-    """Point arrays (n, 2) one after the other, a NaN row between them (lines break there)."""
-    parts = []
-    for pts in arrays:
-        parts += [np.asarray(pts, dtype=float), np.full((1, 2), np.nan)]
-    return np.vstack(parts[:-1])
-
-
-def _vertices(curves: Sequence) -> np.ndarray:
-    """Vertices of programmed polylines, contour after contour."""
-    return _stacked([np.array([s.start for s in poly.segments] + [poly.end]) for poly in curves])
-
-
-def _curve_section(contours: Sequence, runs: Sequence, document: Mapping[str, Any], notes: Sequence[str]) -> Section:
-    """The curve, its polysegment and θ; for a part every contour and a row per contour."""
-    if len(contours) == 1:
-        return Section("curve", SECTION_TITLES["curve"], figures=(Figure(
-            "Input curve, polysegment and θ", segmentation_figure_png(contours[0]),
-            "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, "
-            "true corners as crosses. Right: the angular function θ(t) (cumulative turning angle against "
-            "normalised arc length) of the input and of the polysegment, piecewise linear: each slope is an arc, "
-            "each flat piece a line."),))
-    from coatsim.geometry.part_plots import part_figure_png
-    from coatsim.report.part_section import contours_table
-
-    png = part_figure_png([c.polysegment for c in contours], "part", [c.curve.points for c in contours],
-                          order=next((r.program.order for r in runs if hasattr(r.program, "order")), None))
-    body = contours_table(document["contours"]) + "".join(f'<p class="muted">{esc(n)}</p>' for n in notes)
-    return Section("curve", "Part: contours and polysegments", body, figures=(Figure(
-        "The part's contours and their polysegments", png,
-        "Every contour of the drawing (grey) with its polysegment: arcs and lines in their own colours, true corners "
-        "as crosses, the start of each contour as a dot with an arrow along the direction of travel, numbered in "
-        "spray order. The gun is off between contours. The table lists each contour's figures per variant; the "
-        "metrics of the part sum the counts, lengths and times and take the largest deviation."),))
-
-
-def build_sections(loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any],
-                   notes: Sequence[str] = ()) -> list[Section]:
+def build_sections(data: ReportData, cell: Optional[Any] = None, video: Optional[str] = None) -> list[Section]:
     """Every section of the report, in order."""
-    spec = loaded.spec
-    polyline = next((getattr(r.program, "curves", None) or (r.program.curve,) for r in runs if r.name != "polysegment"), None)
-    polyline_xy = None if polyline is None else _vertices(polyline)
-    curve_xy = _stacked([c.curve.points for c in contours])
-    profiles, span = _speed_profiles(runs, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
-    surface = runs[0].coating.surface
-    top = max(float(np.percentile(r.coating.thickness_um, 99.5)) for r in runs)
-    line = default_section(surface)
-    heat = heatmap_png([panel(surface, r.coating.thickness_um, r.name) for r in runs], 0.0, top, section=line)
-    cuts = [Profile(r.name, *section_profile(surface.view, surface.faces, r.coating.thickness_um, *line)) for r in runs]
-    where = f"({line[0][0]:g}, {line[0][1]:g}) -> ({line[1][0]:g}, {line[1][1]:g}) mm"
-    baseline = "polysegment" if "polysegment" in document["variants"] else None
+    from coatsim.report.sections import (
+        maps,
+        program,
+        speed,
+        tables,
+        track,
+        verdict,
+        view3d,
+        warnings,
+    )
+
+    document = data.document
     return [
-        Section("summary", SECTION_TITLES["summary"], key_value_table(_summary_rows(loaded, contours, runs, document))
-                + verdict_html(verdict(document))
-                + "<h3>Every variant, headline metrics</h3>" + headline_table(document)),
-        _curve_section(contours, runs, document, notes),
-        *([] if polyline_xy is None else [Section("polyline", SECTION_TITLES["polyline"], figures=(Figure(
-            "Polyline program", polyline_figure(curve_xy, polyline_xy),
-            "The polyline variants' vertices on the input curve: without blending the arm stops at each."),))]),
-        Section("speed", SECTION_TITLES["speed"], figures=(Figure(
-            "Tool speed against path length, every variant", speed_figure(profiles, spec.motion.speed_mm_s, span),
-            "Simulated tool-centre-point speed along the run-in, the curve proper and the run-out, from the "
-            "trajectory logs; the shaded ends are the run-in and run-out (on a closed contour the gun is closed "
-            "there: it sprays exactly one lap, from the seam to the seam)."),)),
-        Section("thickness", SECTION_TITLES["thickness"], figures=(Figure(
-            "Thickness maps on one colour scale", heat,
-            f"Per-vertex coating thickness of each variant, same scale 0 to {top:.3g} µm (the largest 99.5th "
-            f"percentile; thicker spots saturate). Dashed: the cross-section line."),)),
-        Section("section", SECTION_TITLES["section"], figures=(Figure(
-            "Thickness cross-section", profile_png(cuts, title=f"section {where}"),
-            f"Thickness along the dashed line of the maps, {where}, every variant."),)),
-        Section("warnings", SECTION_TITLES["warnings"], warnings_list(document["warnings"])),
-        Section("metrics", SECTION_TITLES["metrics"],
-                metrics_table(document["variants"], baseline)
-                + '<p class="muted">Hover a metric name for its meaning; units and meanings are in the README.</p>'),
-        Section("gates", SECTION_TITLES["gates"], gates_table(document["gates"]) + _overall(document["passed"])),
+        verdict.section(data),
+        speed.section(data),
+        track.section(data),
+        maps.section(data),
+        warnings.section(data),
+        view3d.section(data, cell, video),
+        program.section(data),
+        tables.metrics_section(data),
+        tables.summary_section(data),
+        tables.gates_section(document["gates"], document["passed"]),
     ]
 
 
-def warnings_list(warnings: Sequence[Mapping[str, str]]) -> str:
-    """The run's warnings (metrics.json ``warnings``), one item each, naming variant and program line."""
-    if not warnings:
-        return '<p class="muted">No warnings: TOOL as the cell\'s gun, joints within their limits and away from '\
-               "singularities, the simulated tool on its commanded path.</p>"
-    items = "".join(f"<li><b>{esc(w['variant'])}</b>: {esc(w['message'])}</li>" for w in warnings)
-    return f"<ul>{items}</ul>"
-
-
-def _overall(passed: bool) -> str:
-    verdict = '<span class="pass">all gates passed</span>' if passed else '<span class="fail">a gate FAILED</span>'
-    return f"<p>Overall: {verdict}</p>"
-
-
-def write_report(path: Path, loaded, contours: Sequence, runs: Sequence, document: Mapping[str, Any],
-                 notes: Sequence[str] = ()) -> None:
-    """Write the self-contained report.html of a run: ``contours`` are the segmentations of
-    the curve (one) or of the contours of a part, ``notes`` what reading a drawing noted."""
-    sections = build_sections(loaded, contours, runs, document, notes)
+def write_report(path: Path, loaded: Any, contours: Sequence[Any], runs: Sequence[Any], document: Mapping[str, Any],
+                 notes: Sequence[str] = (), *, cell: Optional[Any] = None, video: Optional[str] = None) -> None:
+    """Write the self-contained report.html of a run: ``contours`` are the segmentations of the
+    curve (one) or of the contours of a part, ``runs`` the variants' runs, ``notes`` what reading
+    a drawing noted, ``cell`` the robot cell (for the 3-D pictures), ``video`` the name of the
+    run's MP4 beside the report, if one was made."""
+    data = ReportData(loaded, tuple(contours), tuple(runs), document, tuple(notes))
+    sections = build_sections(data, cell, video)
     subtitle = f"coatsim {__version__}, scenario {loaded.path.name}, {document['mode']} mode"
     write_text(path, render_html(f"coatsim report: {loaded.spec.name}", subtitle, sections))

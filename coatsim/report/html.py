@@ -1,5 +1,6 @@
-"""Self-contained HTML report: one file, images embedded as base64 PNG, inline CSS, no
-scripts and no external assets, so it opens anywhere without coatsim installed.
+"""Self-contained HTML report: one file, images embedded as base64 PNG, inline CSS and inline
+scripts (the 3-D viewer, opening a collapsed listing at a linked line), no external assets, so
+it opens anywhere, offline, without coatsim installed.
 """
 
 from __future__ import annotations
@@ -10,7 +11,6 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
-from coatsim.report.catalogue import METRICS, GROUPS
 
 CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:2em auto;max-width:1200px;
@@ -23,7 +23,24 @@ tr.group td{background:#fafafa;font-weight:600;text-align:left}
 .pass{color:#0a7d28;font-weight:600}.fail{color:#b3121f;font-weight:600}
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}
 figcaption{color:#555;font-size:.9em}.muted{color:#777}
+p.verdict{font-size:1.05em;background:#f6f8fa;border-left:4px solid #1b6ca8;padding:.6em .9em}
+table.events td{vertical-align:top}tr.warn td:nth-child(3){color:#b3121f;font-weight:600}
+tr.note td{color:#555}
+pre.listing{font-size:.8em;line-height:1.35;max-height:40em;overflow:auto;background:#fafafa;padding:.5em}
+pre.listing i{color:#999;font-style:normal}pre.listing .hit{background:#ffe3b3;display:inline-block;width:100%}
+pre.listing span:target{outline:2px solid #c0392b}pre.listing .tag{color:#b3121f;font-weight:600}
+details{margin:.4em 0}summary{cursor:pointer}
+.viewer canvas{border:1px solid #ddd;max-width:100%;touch-action:none;cursor:grab}
+.viewer .controls label{margin-right:.8em}
 """
+
+# First script of the page: records script errors on <html data-script-errors> (read by tests).
+ERROR_HOOK = ("window.addEventListener('error',function(e){var h=document.documentElement;"
+              "h.setAttribute('data-script-errors',(h.getAttribute('data-script-errors')||'')+e.message+';')});")
+# Last script: a link to a line of a collapsed listing opens the listing.
+OPEN_TARGET = ("function coatsimOpen(){var t=location.hash&&document.getElementById(location.hash.slice(1));"
+               "for(var e=t;e;e=e.parentElement){if(e.tagName==='DETAILS'){e.open=true;}}if(t){t.scrollIntoView();}}"
+               "window.addEventListener('hashchange',coatsimOpen);coatsimOpen();")
 
 
 @dataclass(frozen=True)
@@ -78,38 +95,6 @@ def key_value_table(rows: Sequence[tuple[str, Any]]) -> str:
     return f"<table>{body}</table>"
 
 
-def _ratio(value: Any, base: Any) -> str:
-    if not isinstance(value, (int, float)) or not isinstance(base, (int, float)) or isinstance(value, bool):
-        return "–"
-    if base == 0 or math.isnan(base) or math.isnan(value):
-        return "–"
-    return f"{value / base:.3g}"
-
-
-def metrics_table(variants: Mapping[str, Mapping[str, Mapping[str, Any]]], baseline: str | None) -> str:
-    """Every metric for every variant, grouped, with ratios of each variant to ``baseline``."""
-    names = list(variants)
-    others = [v for v in names if v != baseline] if baseline in variants else []
-    head = '<th class="l">metric</th><th class="l">unit</th>' + "".join(f"<th>{esc(v)}</th>" for v in names)
-    head += "".join(f"<th>{esc(v)} / {esc(baseline)}</th>" for v in others)
-    rows = []
-    for group in GROUPS:
-        rows.append(f'<tr class="group"><td colspan="{2 + len(names) + len(others)}">{esc(group)}</td></tr>')
-        for key, info in METRICS.items():
-            if not key.startswith(group + "."):
-                continue
-            name = key.split(".", 1)[1]
-            values = [variants[v].get(group, {}).get(name) for v in names]
-            cells = "".join(f"<td>{fmt(x)}</td>" for x in values)
-            base = variants[baseline].get(group, {}).get(name) if others else None
-            cells += "".join(f"<td>{_ratio(variants[v].get(group, {}).get(name), base)}</td>" for v in others)
-            rows.append(
-                f'<tr><td class="l" title="{esc(info.meaning)}">{esc(key)}</td>'
-                f'<td class="l">{esc(info.unit)}</td>{cells}</tr>'
-            )
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
-
-
 def gates_table(gates: Sequence[Mapping[str, Any]]) -> str:
     """One row per gate: the check, the measured value, the reference, pass or fail."""
     if not gates:
@@ -131,7 +116,7 @@ def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
-        f"<title>{esc(title)}</title><style>{CSS}</style></head><body>",
+        f"<title>{esc(title)}</title><style>{CSS}</style><script>{ERROR_HOOK}</script></head><body>",
         f"<h1>{esc(title)}</h1><p class=\"muted\">{esc(subtitle)}</p>",
         f"<nav><ol>{toc}</ol></nav>",
     ]
@@ -139,5 +124,5 @@ def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
         parts.append(f'<section id="{esc(s.anchor)}"><h2>{esc(s.heading)}</h2>{s.body}')
         parts.extend(figure_html(f) for f in s.figures)
         parts.append("</section>")
-    parts.append("</body></html>\n")
+    parts.append(f"<script>{OPEN_TARGET}</script></body></html>\n")
     return "\n".join(parts)

@@ -132,3 +132,31 @@ def verdict(document: Mapping[str, Any]) -> Verdict:
         Comparison(name, tuple(compare(c, _number(mine, c.key), _number(other, c.key)) for c in CRITERIA))
         for name, other in variants.items() if name != BASELINE
     ))
+
+
+def advantage_pct(o: MetricOutcome) -> Optional[float]:
+    """The change in % signed so that positive is better for the polysegment (a shorter cycle
+    time or a lower CV count as positive); None when there is no ratio."""
+    if o.change_pct is None:
+        return None
+    return o.change_pct if o.criterion.higher_is_better else -o.change_pct
+
+
+def overall(result: Verdict) -> str:
+    """One sentence over every comparison, worded from the outcomes: a loss is called a loss."""
+    if not result.comparisons:
+        return "No polyline variant ran beside the polysegment: there is nothing to compare."
+    names = ", ".join(c.against for c in result.comparisons)
+    losses = [(c.against, o) for c in result.comparisons for o in c.by("loss")]
+    wins = sum(len(c.by("win")) for c in result.comparisons)
+    if not losses and wins:
+        every = "every polyline variant" if len(result.comparisons) > 1 else names
+        return (f"The polysegment wins or ties every measure against {every} "
+                f"({wins} win{'s' if wins != 1 else ''}, no loss).")
+    if not losses:
+        return "No measure tells the variants apart: every one is a tie or cannot be compared."
+    lost = "; ".join(f"{o.criterion.label} against {name} ({change_text(o)})" for name, o in losses)
+    if not wins:
+        return f"The polysegment loses: it wins no measure and loses {lost}."
+    return (f"A mixed result: the polysegment wins {wins} and loses {len(losses)} of the comparisons with "
+            f"{names}; it loses {lost}.")

@@ -348,6 +348,8 @@ def execute_program(program: str | Path | Sequence[str | Path], model: str | Pat
             "warnings": list(result.warnings),
         }
         write_text(files[1], json.dumps(doc, indent=2) + "\n")
+        variant = toolpath.metadata.get("variant")
+        label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(sources[0]).name})"
         plot_speed(result.log, result.metrics, result.curves, files[2],
-                   title=f"{toolpath.name}: tool speed along the path")
+                   title=f"{label}: tool speed over the sprayed stretch")
     return result, files

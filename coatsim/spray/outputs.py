@@ -1,4 +1,5 @@
-"""Coating outputs: PLY with a per-vertex ``thickness`` property, heat maps, cross-section profiles.
+"""Coating outputs: PLY with a per-vertex ``thickness`` property, GLB (glTF) with vertex colours,
+heat maps, cross-section profiles.
 
 The plotting functions take no matplotlib objects and return PNG bytes (and write them when
 given a path), so the report stage can reuse them: ``heatmap_png`` draws several thickness
@@ -96,6 +97,34 @@ def write_thickness_ply(path: str | Path, surface: Surface, thickness_um: np.nda
                         vmin: float | None = None, vmax: float | None = None,
                         exposure_s: np.ndarray | None = None) -> None:
     write_bytes(path, ply_bytes(surface, thickness_um, vmin, vmax, exposure_s))
+
+
+def glb_bytes(surface: Surface, thickness_um: np.ndarray, vmin: float, vmax: float,
+              exposure_s: np.ndarray | None = None, path_mm: Sequence[np.ndarray] = ()) -> bytes:
+    """Binary glTF of the coated part, in metres as glTF requires (base frame, z up as coatsim's):
+    vertex colours COLOR_0 on the colour map from vmin to vmax µm, the values themselves as the
+    vertex attributes _THICKNESS_UM (and _EXPOSURE_S), and each polyline of ``path_mm`` (k, 3)
+    as a line node ``tool_path_N`` (the sprayed tool path, for instance)."""
+    import trimesh
+
+    rgba = np.column_stack((colours(thickness_um, vmin, vmax), np.full(len(thickness_um), 255, np.uint8)))
+    mesh = trimesh.Trimesh(surface.vertices / 1000.0, surface.faces, vertex_normals=surface.normals,
+                           vertex_colors=rgba, process=False)
+    mesh.vertex_attributes["_THICKNESS_UM"] = np.asarray(thickness_um, dtype=np.float32)
+    if exposure_s is not None:
+        mesh.vertex_attributes["_EXPOSURE_S"] = np.asarray(exposure_s, dtype=np.float32)
+    scene = trimesh.Scene()
+    scene.add_geometry(mesh, geom_name="thickness", node_name="thickness")
+    for k, points in enumerate(path_mm):
+        if len(points) > 1:
+            name = f"tool_path_{k + 1}"
+            scene.add_geometry(trimesh.load_path(np.asarray(points, float) / 1000.0), geom_name=name, node_name=name)
+    return scene.export(file_type="glb")
+
+
+def write_thickness_glb(path: str | Path, surface: Surface, thickness_um: np.ndarray, vmin: float, vmax: float,
+                        exposure_s: np.ndarray | None = None, path_mm: Sequence[np.ndarray] = ()) -> None:
+    write_bytes(path, glb_bytes(surface, thickness_um, vmin, vmax, exposure_s, path_mm))
 
 
 def _png(fig, path: str | Path | None) -> bytes:

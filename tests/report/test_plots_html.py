@@ -5,12 +5,13 @@ from __future__ import annotations
 import base64
 import re
 
-import numpy as np
 
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.report import plots
 from coatsim.report.catalogue import METRICS, names
-from coatsim.report.html import Figure, Section, gates_table, metrics_table, render_html
+from coatsim.report.html import Figure, Section, gates_table, render_html
+from coatsim.report.metric_names import SHOWN, ratio_text, value_text
+from coatsim.report.sections.tables import metrics_table
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -25,9 +26,6 @@ def test_figures_are_png_and_deterministic() -> None:
     first = plots.polyline_figure(xy, xy[::10])
     assert first.startswith(PNG_MAGIC)
     assert plots.polyline_figure(xy, xy[::10]) == first
-    s = np.linspace(0, 100, 200)
-    profile = plots.SpeedProfile(s, np.minimum(200.0, 20 * np.sqrt(s + 1)))
-    assert plots.speed_figure({"polysegment": profile, "polyline-stop": profile}, 200.0, (20.0, 80.0)).startswith(PNG_MAGIC)
 
 
 def _variants() -> dict:
@@ -37,12 +35,21 @@ def _variants() -> dict:
     }
 
 
-def test_metrics_table_lists_every_metric_with_ratios() -> None:
+def test_metrics_table_lists_every_metric_by_name_with_meaningful_ratios() -> None:
     html = metrics_table(_variants(), "polysegment")
+    assert set(SHOWN) == set(METRICS)
     for key in METRICS:
-        assert f">{key}<" in html
+        assert f">{SHOWN[key].label}<" in html.replace("&gt;", ">").replace("&lt;", "<")
     assert "polyline-stop / polysegment" in html
-    assert html.count("<td>2</td>") == len(METRICS)  # 1.0 / 0.5
+    assert html.count("<td>2</td>") == sum(s.ratio for s in SHOWN.values())  # 1.0 / 0.5 where a ratio means something
+
+
+def test_fractions_show_in_percent_and_ratios_only_where_meaningful() -> None:
+    assert value_text("motion.fraction_at_speed", 0.9805) == "98.05"
+    assert value_text("motion.stops", 3) == "3" and value_text("coating.thickness_cv", None) == "–"
+    assert ratio_text("segmentation.max_tangent_break_deg", 5.7, 1e-14) is None
+    assert ratio_text("motion.cycle_time_s", 3.0, 2.0) == "1.5"
+    assert ratio_text("motion.cycle_time_s", 3.0, 0.0) is None and ratio_text("motion.cycle_time_s", None, 2.0) is None
 
 
 def test_gates_table_marks_failures() -> None:
@@ -60,7 +67,8 @@ def test_document_is_self_contained_and_escaped() -> None:
     ])
     assert "job &lt;1&gt;" in doc and "a &lt;b&gt; caption" in doc
     assert '<a href="#one">First</a>' in doc and 'id="two"' in doc
-    assert "<script" not in doc.lower()
+    scripts = re.findall(r"<script([^>]*)>", doc)
+    assert scripts and all("src" not in attrs for attrs in scripts)  # inline only
     sources = re.findall(r'src="([^"]+)"', doc)
     assert len(sources) == 1 and sources[0].startswith("data:image/png;base64,")
     assert base64.b64decode(sources[0].split(",", 1)[1]) == png

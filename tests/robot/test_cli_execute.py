@@ -46,3 +46,19 @@ def test_unreachable_program_exits_3_naming_the_line(tmp_path):
     assert len(err.splitlines()) == 1 and "Traceback" not in err
     line = next(i for i, l in enumerate(text.splitlines(), 1) if l.strip().startswith("LMOVE p0005"))
     assert f"line {line}" in err
+
+
+def test_speed_png_shows_the_sprayed_stretch_not_the_approach():
+    """The window of speed.png: the gun-open stretch and the curve proper, a small margin around."""
+    import numpy as np
+
+    from coatsim.robot.plots import sprayed_window
+    from coatsim.robot.trajectory_log import TrajectoryLog
+
+    progress = np.linspace(0.0, 1000.0, 1001)  # 600 mm approach from home, then 300 mm sprayed, 100 mm away
+    spray = (progress >= 600.0) & (progress <= 900.0)
+    log = TrajectoryLog(t=progress / 100, position=np.zeros((1001, 3)), axis=np.tile([0, 0, -1.0], (1001, 1)),
+                        speed=np.full(1001, 100.0), spray=spray, progress=progress, path_error=np.zeros(1001),
+                        q=np.zeros((1001, 6)))
+    lo, hi = sprayed_window(log, (610.0, 890.0))
+    assert 570.0 < lo < 600.0 and 900.0 < hi < 930.0

@@ -1,0 +1,136 @@
+"""What every report section reads: the run's variants, its metrics document, its events, the
+one thickness colour scale and the track's centre line on the part.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, Mapping, Optional, Sequence
+
+import numpy as np
+
+from coatsim.report.events import Event, run_events
+from coatsim.spray.locate import SurfacePoints, locate
+
+SCALE_PERCENTILE = 99.5  # the colour scale's top: the largest of the variants' 99.5th percentiles
+CENTRE_STEP_MM = 0.5     # sampling of the centre line
+
+
+def aim_paths(log: Any, standoff_mm: float, max_points: Optional[int] = None) -> list[np.ndarray]:
+    """The sprayed aim points (tool centre point + stand-off along the spray axis, mm), one (k, 3)
+    polyline per stretch of the gun open; at most about ``max_points`` points over all."""
+    rows = np.flatnonzero(np.asarray(log.spray, bool))
+    if not len(rows):
+        return []
+    aim = log.position + standoff_mm * log.axis
+    step = max(1, len(rows) // max_points) if max_points else 1
+    stretches = np.split(rows, np.flatnonzero(np.diff(rows) > 1) + 1)
+    return [aim[np.append(stretch[::step], stretch[-1])] for stretch in stretches]
+
+
+def thickness_scale(thickness_um: Sequence[np.ndarray]) -> tuple[float, float]:
+    """One colour scale (µm) for every variant: 0 to the largest 99.5th percentile (thicker
+    spots saturate); (0, 1) when nothing was deposited."""
+    top = max((float(np.percentile(t, SCALE_PERCENTILE)) for t in thickness_um if len(t)), default=0.0)
+    return 0.0, top if top > 0.0 else 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class CentreLine:
+    """The track's centre line on the part: arc length (n,) mm from the start of the curve
+    proper (negative on the run-in), the closest surface points (aim points of the reference
+    variant's tool: TCP + stand-off along the spray axis), the curve proper's length and
+    whether the contour is closed."""
+
+    s_mm: np.ndarray
+    points: SurfacePoints
+    curve_length_mm: float
+    closed: bool
+
+
+def centre_line(run: Any, surface: Any, standoff_mm: float, lead_in_mm: float, lead_out_mm: float,
+                closed: bool) -> CentreLine:
+    """Sample the reference run's aim points from the run-in start to the run-out end."""
+    log, (a, b) = run.execution.log, run.execution.curve
+    reach = np.maximum.accumulate(log.progress)
+    i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
+    i1 = int(np.searchsorted(reach, b + lead_out_mm - 1e-6, side="left"))
+    rows = np.arange(min(i0, len(reach) - 1), min(i1, len(reach) - 1) + 1)
+    rows = rows[np.concatenate(([True], np.diff(reach[rows]) > 1e-9))]
+    aim = log.position[rows] + standoff_mm * log.axis[rows]
+    s = reach[rows] - a
+    grid = np.arange(s[0], s[-1] + 1e-9, CENTRE_STEP_MM)
+    pts = np.column_stack([np.interp(grid, s, aim[:, k]) for k in range(3)])
+    return CentreLine(grid, locate(surface, pts), float(b - a), closed)
+
+
+@dataclass(frozen=True, eq=False)
+class ReportData:
+    """A finished run as the report sections see it. ``runs`` are the pipeline's variant runs
+    (name, program, execution, coating, toolpath); ``contours`` the segmentations of the
+    input (one, or one per contour of a part); ``notes`` what reading a drawing noted."""
+
+    loaded: Any
+    contours: tuple[Any, ...]
+    runs: tuple[Any, ...]
+    document: Mapping[str, Any]
+    notes: tuple[str, ...] = ()
+
+    @property
+    def spec(self) -> Any:
+        return self.loaded.spec
+
+    @property
+    def surface(self) -> Any:
+        return self.runs[0].coating.surface
+
+    @property
+    def reference(self) -> Any:
+        """The variant the others are compared with: the polysegment, else the first."""
+        return next((r for r in self.runs if r.name == "polysegment"), self.runs[0])
+
+    @property
+    def best_polyline(self) -> Optional[Any]:
+        """The other variant with the lowest thickness CV (None when there is no other)."""
+        others = [r for r in self.runs if r is not self.reference]
+        cv = lambda r: self.document["variants"][r.name]["coating"]["thickness_cv"]  # noqa: E731
+        return min(others, key=lambda r: (cv(r) is None, cv(r) if cv(r) is not None else 0.0), default=None)
+
+    @cached_property
+    def scale_um(self) -> tuple[float, float]:
+        return thickness_scale([r.coating.thickness_um for r in self.runs])
+
+    @cached_property
+    def events(self) -> tuple[Event, ...]:
+        return tuple(e for r in self.runs for e in run_events(r.name, r.execution, getattr(r, "toolpath", None)))
+
+    @cached_property
+    def numbers(self) -> dict[Event, int]:
+        """Each event's number in the Warnings section (1, 2, ...)."""
+        return {e: k + 1 for k, e in enumerate(dict.fromkeys(self.events))}
+
+    @cached_property
+    def centre(self) -> CentreLine:
+        spec = self.spec
+        closed = len(self.contours) == 1 and bool(self.contours[0].curve.closed)
+        return centre_line(self.reference, self.surface, spec.gun.standoff_mm, spec.motion.lead_in_mm,
+                           spec.motion.lead_out_mm, closed)
+
+    def track_view(self, run: Any) -> np.ndarray:
+        """The sprayed aim points of ``run`` in the heat maps' view coordinates (k, 2) mm, NaN
+        rows where the gun is closed (lines break there)."""
+        return self._track_views[run.name]
+
+    @cached_property
+    def _track_views(self) -> dict[str, np.ndarray]:
+        return {r.name: self._view_of(r) for r in self.runs}
+
+    def _view_of(self, run: Any) -> np.ndarray:
+        log = run.execution.log
+        step = max(1, len(log.t) // 4000)
+        rows = np.arange(0, len(log.t), step)
+        aim = log.position[rows] + self.spec.gun.standoff_mm * log.axis[rows]
+        view = locate(self.surface, aim).field(self.surface, self.surface.view)
+        view[~np.asarray(log.spray[rows], bool)] = np.nan
+        return view
