@@ -16,7 +16,6 @@ import os
 import time
 from pathlib import Path
 
-
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -28,7 +27,7 @@ def programs(path: Path, fast: bool, cell):
     import numpy as np
 
     from coatsim.geometry import make_curve, segment_curve
-    from coatsim.pipeline import FULL_SAMPLE_STEP_MM, curve_frame, load_input_curve, read_user_program
+    from coatsim.pipeline import FULL_SAMPLE_STEP_MM
     from coatsim.program import read_toolpath
     from coatsim.program.as_lang.names import program_name
     from coatsim.program.build import ProgramOptions, build_program
@@ -37,6 +36,7 @@ def programs(path: Path, fast: bool, cell):
     from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.tooling import gun_tool
     from coatsim.scenario import load_scenario
+    from coatsim.scenario_inputs import curve_frame, load_input_curve, read_user_program
 
     loaded = load_scenario(path)
     spec = loaded.spec

@@ -244,7 +244,7 @@ def test_every_shipped_scenario_gates_the_polysegment_against_both_polylines() -
     """Thickness CV and lowest speed, each against the best of the two polylines, within a small
     margin (at most 5 %); a shipped scenario at process speed closes on itself."""
     folder = Path(__file__).resolve().parents[1] / "scenarios"
-    from coatsim.pipeline import load_input_curve
+    from coatsim.scenario_inputs import load_input_curve
 
     closed_at_process_speed = 0
     for path in sorted(folder.glob("*.yaml")):
