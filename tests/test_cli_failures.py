@@ -3,8 +3,6 @@ inputs the reliability audit used."""
 
 from __future__ import annotations
 
-import contextlib
-import io
 import os
 import signal
 import subprocess
@@ -15,22 +13,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import cli
 
-from coatsim.cli import main
 from coatsim.outputs_guard import LOCK_NAME
 
 PLATE = "workpiece: {kind: plate, size_mm: [120.0, 80.0]}\nvariants: [polysegment]\n"
 
 
-def cli(*args: object) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    argv, sys.argv = sys.argv, ["coatsim", *map(str, args)]
-    try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
-            main()
-    finally:
-        sys.argv = argv
-    return int(info.value.code or 0), out.getvalue(), err.getvalue()
 
 
 def one_line(result: tuple[int, str, str], code: int, *fragments: str) -> str:

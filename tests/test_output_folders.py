@@ -3,9 +3,7 @@ taken over), and only files coatsim wrote there are replaced (a manifest); other
 
 from __future__ import annotations
 
-import contextlib
 import errno
-import io
 import json
 import os
 import socket
@@ -16,8 +14,8 @@ import time
 from pathlib import Path
 
 import pytest
+from cli_helpers import cli
 
-from coatsim.cli import main
 from coatsim.errors import CoatsimWarning, InputError
 from coatsim.outputs_guard import LOCK_NAME, MANIFEST_NAME, FolderInUse, output_folder
 
@@ -31,15 +29,6 @@ fast: {coating_spacing_mm: 4.0, sample_step_mm: 2.0}
 """
 
 
-def cli(*args: object) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    argv, sys.argv = sys.argv, ["coatsim", *map(str, args)]
-    try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
-            main()
-    finally:
-        sys.argv = argv
-    return int(info.value.code or 0), out.getvalue(), err.getvalue()
 
 
 def coatsim(*args: object, **kwargs) -> subprocess.Popen:

@@ -3,34 +3,19 @@ inputs and with each other, by resolved path and by file identity, before it wri
 
 from __future__ import annotations
 
-import contextlib
-import io
 import os
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 import pytest
 import trimesh
+from cli_helpers import cli
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coatsim.cli import main
 from coatsim.errors import InputError
 from coatsim.outputs_guard import check_distinct
-
-
-def cli(*args: str) -> tuple[int, str, str]:
-    """The console entry point in-process: (exit code, stdout, stderr)."""
-    out, err = io.StringIO(), io.StringIO()
-    argv, sys.argv = sys.argv, ["coatsim", *map(str, args)]
-    try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
-            main()
-    finally:
-        sys.argv = argv
-    return int(info.value.code or 0), out.getvalue(), err.getvalue()
 
 
 def write_arc(path: Path, n: int = 60) -> bytes:
