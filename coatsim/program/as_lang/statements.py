@@ -353,7 +353,7 @@ PARSERS: dict[str, Parser] = {
     **dict.fromkeys(("TYPE", "PRINT", "PROMPT"), _output),
     **dict.fromkeys(("CALL", "SCALL"), _call),
     "GOTO": lambda c, op, line: ast.Goto(line, c.label()),
-    "RETURN": _simple(ast.Return),
+    **dict.fromkeys(("RETURN", "RETURNE"), _simple(ast.Return)),  # RETURNE: from an error program
     **dict.fromkeys(("STOP", "HALT", "PAUSE"), lambda c, op, line: ast.Stop(line, op)),
     "EXIT": _simple(ast.Exit),
     "IF": _if,
