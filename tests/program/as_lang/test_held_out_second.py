@@ -53,3 +53,20 @@ def test_controller_suffixes_after_a_program_name_are_still_read(suffix):
 def test_returne_returns_from_an_error_program():
     run = run_globals(".PROGRAM t()\n  CALL trap\n  a = 2\n.END\n.PROGRAM trap()\n  b = 1\n  RETURNE\n  b = 3\n.END\n")
     assert (run.globals.get("real", "a"), run.globals.get("real", "b")) == (2.0, 1.0)
+
+
+def test_a_sprayed_stretch_traced_by_a_goto_loop_spans_all_its_lines(tmp_path):
+    """The stretch of a GOTO raster ends on the loop's first line: it was reported as lines
+    13-13 although its moves are on lines 13, 17 and 19."""
+    from coatsim.program.check import check_program
+
+    text = (".PROGRAM r()\n  TOOL TRANS(0,0,250)\n  POINT .a = TRANS(560,-40,300,0,180,0)\n"
+            "  POINT .b = TRANS(640,-40,300,0,180,0)\n  .n = 0\n  JMOVE .a\n  BREAK\n  SIGNAL 1\n"
+            "10 LMOVE .b\n  .n = .n + 1\n  IF .n >= 3 GOTO 20\n  POINT .b = SHIFT(.b BY 0, 20)\n  LMOVE .b\n"
+            "  POINT .a = SHIFT(.a BY 0, 20)\n  LMOVE .a\n  POINT .c = .a\n  POINT .a = .b\n  POINT .b = .c\n"
+            "  GOTO 10\n20 BREAK\n  SIGNAL -1\n.END\n")
+    path = tmp_path / "r.as"
+    path.write_text(text)
+    (stretch,) = check_program(path).spray_runs
+    assert (stretch.first_line, stretch.last_line, stretch.moves) == (9, 15, 7)
+    assert stretch.length_mm == pytest.approx(3 * 80 + 2 * 20)  # after a swap, LMOVE .b is where the arm is
