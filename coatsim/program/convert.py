@@ -240,7 +240,8 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0,
                       replaces or "the standalone program")
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
-              f"{r.moves_before}; an arc sweeping more than {MAX_ARC_SWEEP_DEG:g} deg is written in pieces)"
+              f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over {MAX_ARC_SWEEP_DEG:g} deg takes "
+              "several C1MOVE/C2MOVE pairs)"
               for r in reports if r.moves_after >= r.moves_before]
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
 
