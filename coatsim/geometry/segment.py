@@ -203,6 +203,7 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
     pts = curve.points
     exact = recover_exact(pts, curve.closed, tol)
     if exact is not None:  # before corners: a large tolerance must not turn a fillet into one
+        exact = split_long_arcs(exact)  # an open run that ends where it starts: one full circle
         return Polysegment(exact, closed=curve.closed), hausdorff(pts, Polysegment(exact)).hausdorff, None, True
     corners = detect_corners(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)

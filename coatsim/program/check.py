@@ -129,7 +129,9 @@ def spray_runs(toolpath: ToolPath, sources: list[str]) -> tuple[SprayRun, ...]:
             continue
         if current:
             moves = [toolpath.moves[k] for k in current]
-            runs.append(SprayRun(moves[0].line, moves[-1].line, float(sum(move_length(x) for x in moves)),
+            # a loop's moves come back to earlier lines: the span of the lines, in the first move's file
+            lines = [toolpath.moves[k].line for k in current if sources[k] == sources[current[0]]]
+            runs.append(SprayRun(min(lines), max(lines), float(sum(move_length(x) for x in moves)),
                                  len(moves), sources[current[0]]))
             current = []
     return tuple(runs)

@@ -224,6 +224,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
         text, replaces, counts, ranges = _standalone(run, fitted, options), None, None, [f.lines for f in fitted]
         data = text.encode("ascii")
         new_files = (parse_as_bytes(data, "converted.as"),)
+        notes += _dwells_dropped(run, fitted)
         if any(d.extra for f in files for d in f.trans.values()):
             notes.append("the original's poses hold external axis values (a rail, a positioner); the standalone "
                          "program's poses have none: add them before loading it on such a cell")
@@ -239,9 +240,24 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
     reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0,
                       replaces or "the standalone program")
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
-              f"{r.moves_before}; an arc sweeping more than {MAX_ARC_SWEEP_DEG:g} deg is written in pieces)"
+              f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over {MAX_ARC_SWEEP_DEG:g} deg takes "
+              "several C1MOVE/C2MOVE pairs)"
               for r in reports if r.moves_after >= r.moves_before]
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
+
+
+def _dwells_dropped(run: Run, fitted: list[Fitted]) -> list[str]:
+    """Notes for the waits inside a process path (TWAIT, DELAY between two sprayed moves: a
+    thick spot in the original) that the standalone program, moving on, does not have."""
+    notes = []
+    for f in fitted:
+        first, last = f.path.moves[0], f.path.moves[-1]
+        inside = [d for d in run.toolpath.dwells if first <= d.after < last and d.seconds > 0]
+        if inside:
+            waits = ", ".join(f"line {d.line} ({d.seconds:g} s)" for d in inside)
+            notes.append(f"lines {f.lines[0]}-{f.lines[1]}: the original waits on the path at {waits}; the "
+                         "standalone program sprays the path without stopping")
+    return notes
 
 
 def _is_utf8(data: bytes) -> bool:

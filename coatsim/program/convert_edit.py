@@ -50,6 +50,19 @@ def _goto_loops(body: Sequence[ast.Statement], lo: int, hi: int) -> tuple[int, i
     return lo, hi
 
 
+def _keyword(st: ast.Statement) -> str:
+    """The statement as a user wrote it, by its AS keyword: ``a CALL statement``."""
+    if isinstance(st, ast.Switch):
+        word = f"{st.name} {'ON' if st.on else 'OFF'}"
+    elif isinstance(st, ast.Case):
+        word = "SCASE" if st.string else "CASE"
+    else:
+        word = (getattr(st, "op", None) or (st.name if isinstance(st, ast.Command) else None)
+                or (st.kind if isinstance(st, ast.BlockStep) else None)
+                or ("CALL" if isinstance(st, ast.CallProgram) else type(st).__name__.upper()))
+    return f"a{'n' if word[0] in 'AEIOU' else ''} {word} statement"
+
+
 def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: int) -> bool:
     """Whether the replaced statements hold the gun's switch; InputError on one that cannot go
     (a GOTO in or out of them among them)."""
@@ -72,8 +85,7 @@ def _check_statements(body: Sequence[ast.Statement], program: ast.Program, gun: 
         elif isinstance(st, ast.Signal) and _gun_on(st, gun) and not switch:
             switch = True
         elif not isinstance(st, (ast.Assign, ast.PointAssign, ast.For, ast.While, ast.DoUntil, ast.If)):
-            kind = type(st).__name__ if not isinstance(st, ast.Command) else st.name
-            raise InputError(f"{where}: the process path holds a {kind.upper()} statement that an arc program "
+            raise InputError(f"{where}: the process path holds {_keyword(st)} that an arc program "
                              f"cannot keep in place{_HINT}")
     return switch
 

@@ -79,7 +79,7 @@ def check_summary(check: ProgramCheck) -> str:
         f"path length {check.path_length_mm:.3f} mm (sprayed {check.spray_length_mm:.3f} mm)",
     ]
     lines += [f"signal: {s}" for s in check.signals]
-    lines += [f"sprayed: lines {r.first_line}-{r.last_line} of {r.source}, {r.moves} moves, {r.length_mm:.3f} mm"
+    lines += [f"sprayed: lines {r.first_line}-{r.last_line} of {r.source}, {r.moves} move{'' if r.moves == 1 else 's'}, {r.length_mm:.3f} mm"
               for r in check.spray_runs]
     lines += [f"warning: {w}" for w in check.warnings]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]

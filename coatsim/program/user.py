@@ -16,6 +16,9 @@ from coatsim.program.placement import Frame
 from coatsim.program.process_path import spray_runs
 from coatsim.program.toolpath import CircularMove, ToolPath
 
+# a sprayed move whose far end is further than this from the path's plane approaches or leaves it (mm)
+PLANE_MM = 1.0
+
 
 @dataclass(frozen=True, eq=False)
 class UserProgram:
@@ -42,6 +45,23 @@ def _local(frame: Frame, p: np.ndarray) -> np.ndarray:
     return frame.rotation.T @ (np.asarray(p, dtype=float) - frame.origin)
 
 
+def _in_plane(moves: list, frame: Frame) -> tuple[list, tuple[str, ...]]:
+    """The sprayed moves without a first one that comes down to the path's plane or a last one
+    that leaves it (the gun switched on above the part, ``SIGNAL`` before the approach ends):
+    flattened, they would add a stretch the program sprays in the air to the compared path."""
+    height = float(np.median([_local(frame, m.end.position)[2] for m in moves]))
+    notes = []
+    if len(moves) > 1 and abs(_local(frame, moves[0].start.position)[2] - height) > PLANE_MM:
+        notes.append(f"line {moves[0].line}: the first sprayed move comes to the path's plane from "
+                     f"{_local(frame, moves[0].start.position)[2] - height:+.1f} mm; the compared path starts after it")
+        moves = moves[1:]
+    if len(moves) > 1 and abs(_local(frame, moves[-1].end.position)[2] - height) > PLANE_MM:
+        notes.append(f"line {moves[-1].line}: the last sprayed move leaves the path's plane by "
+                     f"{_local(frame, moves[-1].end.position)[2] - height:+.1f} mm; the compared path ends before it")
+        moves = moves[:-1]
+    return moves, tuple(notes)
+
+
 def user_program(toolpath: ToolPath, frame: Frame, text: str, step_mm: float = 0.5) -> UserProgram:
     """The longest sprayed stretch of ``toolpath`` expressed in ``frame`` (its XY plane)."""
     runs = [r for r in spray_runs(toolpath) if r]
@@ -51,11 +71,14 @@ def user_program(toolpath: ToolPath, frame: Frame, text: str, step_mm: float = 0
     lengths = [sum(move_length(toolpath.moves[i]) for i in r) for r in runs]
     longest = runs[int(np.argmax(lengths))]
     moves = [toolpath.moves[i] for i in longest]
-    notes = ()
+    notes: tuple[str, ...] = ()
     if len(runs) > 1:
+        lines = [m.line for m in moves]  # a loop's moves come back to earlier lines
         notes = (f"{toolpath.name} sprays {len(runs)} stretches ({sum(lengths):.1f} mm in all); its path here is the "
-                 f"longest, lines {moves[0].line}-{moves[-1].line} ({max(lengths):.1f} mm), which the other variants "
+                 f"longest, lines {min(lines)}-{max(lines)} ({max(lengths):.1f} mm), which the other variants "
                  "spray alone",)
+    moves, off_plane = _in_plane(moves, frame)
+    notes += off_plane
     segments, points, heights = [], [_local(frame, moves[0].start.position)[:2]], []
     for m in moves:
         a, b = _local(frame, m.start.position), _local(frame, m.end.position)

@@ -144,3 +144,15 @@ def test_curves_with_cusps_have_them_as_corners(cusps, tol):
     seg = segment_curve(make_curve(pts, "cusps"), tol)
     assert len(seg.polysegment.corners) == cusps
     assert_sane(seg, tol)
+
+
+@pytest.mark.parametrize("n,tol", [(36, 0.2), (12, 2.0), (200, 0.01)])
+def test_an_open_polygon_that_ends_where_it_starts_on_a_circle_is_split_below_a_full_turn(n, tol):
+    """The process path of a program that traces a circle point by point (an open curve whose
+    last point is its first) was recovered as one exact arc of 2π and refused."""
+    k = np.arange(n + 1) * 2 * math.pi / n
+    pts = np.c_[600 + 40 * np.cos(k), 40 * np.sin(k)]
+    seg = segment_curve(make_curve(pts, "circle", "no"), tol)
+    arcs = [s for s in seg.polysegment.segments if isinstance(s, Arc)]
+    assert arcs and all(abs(a.sweep) < 2 * math.pi - 1e-6 for a in arcs)
+    assert seg.max_deviation_mm <= tol and brute_hausdorff(pts, seg.polysegment, tol / 20) <= tol * 1.05

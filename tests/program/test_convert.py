@@ -126,7 +126,7 @@ def test_not_planar_is_one_line(tmp_path):
 
 @pytest.mark.parametrize("inside,words", [
     ("  TWAIT 0.5\n", "TWAIT"), ("  SIGNAL 5\n", "SIGNAL"), ("  SPEED 50 MM/S ALWAYS\n", "SPEED"),
-    ("  CALL noop\n", "CALLPROGRAM"),
+    ("  CALL noop\n", "a CALL statement"), ("  ACCURACY 2\n", "an ACCURACY statement"), ("  CP OFF\n", "a CP OFF statement"),
 ])
 def test_statements_that_cannot_stay_are_refused(tmp_path, inside, words):
     pts = rounded_rectangle_points(80, 40, 10, step=2.0)
@@ -295,3 +295,21 @@ def test_poses_with_an_external_axis_keep_it(tmp_path, kin):
     assert new and all(line.endswith(" 180.000000 0.000000 1250.000") for line in new)
     with pytest.raises(InputError, match="different external axis values"):
         convert_program(program(lambda i: 1250.0 + i), ConvertOptions(TOL), kinematics=kin)
+
+
+@pytest.mark.parametrize("wait,seconds", [("TWAIT 0.5", 0.5), ("DELAY 0.25", 0.25), ("TWAIT(1.5)", 1.5)])
+def test_standalone_names_the_waits_on_the_path_it_does_not_keep(tmp_path, wait, seconds):
+    """A wait between two sprayed moves (a thick spot in the original) is not in the standalone
+    program: the note says where, and how long the original stood."""
+    pts = rounded_rectangle_points(80, 40, 10, step=2.0)
+    trans = "\n".join(f"c[{i}] {700 + x:.4f} {y:.4f} 300 0 180 0" for i, (x, y) in enumerate(pts))
+    moves = [f"  LMOVE c[{i}]" for i in range(1, len(pts))]
+    moves.insert(30, f"  BREAK\n  {wait}")
+    text = (".PROGRAM x()\n  JMOVE c[0]\n  BREAK\n  SIGNAL 1\n  TWAIT 0.2\n" + "\n".join(moves)
+            + "\n  BREAK\n  SIGNAL -1\n  TWAIT 3\n.END\n" f".TRANS\n{trans}\n.END\n")
+    result = convert_program(write(tmp_path, text.encode()), ConvertOptions(TOL, standalone=True))
+    (note,) = [n for n in result.notes if "waits on the path" in n]
+    assert f"line 37 ({seconds:g} s)" in note and "line 5 " not in note and note.count("line ") == 1
+    plain = text.replace(f"  BREAK\n  {wait}\n", "")
+    assert not any("waits" in n for n in convert_program(write(tmp_path, plain.encode(), "b.as"),
+                                                         ConvertOptions(TOL, standalone=True)).notes)

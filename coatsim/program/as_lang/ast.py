@@ -13,97 +13,34 @@ gives (a real, a string, a pose or a joint value). Names keep their prefixes: ``
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping, Optional, Union
+from typing import Optional, Union
+
+# the expressions and the file structure live in their own modules; ``ast.X`` names them all
+from coatsim.program.as_lang.ast_expr import (  # noqa: F401
+    Binary,
+    Call,
+    Expr,
+    Format,
+    JointLiteral,
+    Name,
+    Num,
+    Ref,
+    Shift,
+    Str,
+    Unary,
+)
+from coatsim.program.as_lang.ast_files import (  # noqa: F401
+    AsFile,
+    JointDef,
+    Param,
+    Program,
+    RawSection,
+    RealDef,
+    StringDef,
+    TransDef,
+)
 
 MAX_AXES = 18  # values a pose or joint value may hold: six arm axes, then external axes (rails, positioners)
-
-
-# --- expressions ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Num:
-    value: float
-
-
-@dataclass(frozen=True)
-class Str:
-    value: str
-
-
-@dataclass(frozen=True)
-class Name:
-    """A variable, ``index`` holding the expressions of ``name[i, j]``."""
-
-    name: str
-    index: tuple["Expr", ...] = ()
-
-    @property
-    def base(self) -> str:
-        """The name without the local prefix: what tells its kind ('$', '#')."""
-        return self.name[1:] if self.name.startswith(".") else self.name
-
-    @property
-    def is_local(self) -> bool:
-        return self.name.startswith(".")
-
-    @property
-    def kind(self) -> str:
-        """'string', 'joint' or 'value' (a real or a pose; the context decides)."""
-        first = self.base[:1]
-        return "string" if first == "$" else "joint" if first == "#" else "value"
-
-
-@dataclass(frozen=True)
-class Ref:
-    """``&x`` / ``.&x``: a variable passed by reference (CALL and $DECODE arguments)."""
-
-    target: Name
-
-
-@dataclass(frozen=True)
-class Unary:
-    op: str  # "-", "+", "NOT"
-    operand: "Expr"
-
-
-@dataclass(frozen=True)
-class Binary:
-    op: str  # + - * / ^ MOD == <> < > <= >= AND OR XOR BAND BOR BXOR
-    left: "Expr"
-    right: "Expr"
-
-
-@dataclass(frozen=True)
-class Call:
-    """A built-in function (upper-case ``name``, prefix kept: ``$MID``, ``#HERE``); an
-    argument is None where it is left empty (``TRANS(,,50)``)."""
-
-    name: str
-    args: tuple[Optional["Expr"], ...]
-
-
-@dataclass(frozen=True)
-class Shift:
-    """``SHIFT(base BY dx, dy, dz)``; empty offsets are None (zero)."""
-
-    base: "Expr"
-    delta: tuple[Optional["Expr"], Optional["Expr"], Optional["Expr"]]
-
-
-@dataclass(frozen=True)
-class JointLiteral:
-    """``#[j1, ..., jn]`` (deg); empty components are None."""
-
-    values: tuple[Optional["Expr"], ...]
-
-
-@dataclass(frozen=True)
-class Format:
-    """A format item of ``$ENCODE`` / ``TYPE``: ``/D``, ``/F8.3``, ``/E``, ``/G``, ``/X2`` ..."""
-
-    spec: str
-
-
-Expr = Union[Num, Str, Name, Ref, Unary, Binary, Call, Shift, JointLiteral, Format]
 
 
 # --- statements ----------------------------------------------------------------------------
@@ -425,90 +362,3 @@ class BlockStep(Stmt):
 Statement = Union[Label, Assign, PointAssign, Decompose, Here, Move, Appro, Depart, Draw, Home, Delay, Speed,
                   Accuracy, Accel, Switch, Break, Brake, Tool, Base, Signal, Pulse, Bits, Swait, Wait, Twait,
                   Output, CallProgram, Goto, Return, Stop, Exit, If, While, DoUntil, For, Case, Command, BlockStep]
-
-
-# --- files ---------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Param:
-    """A parameter of a ``.PROGRAM``: a local name, ``by_ref`` for ``.&x``."""
-
-    name: str
-    by_ref: bool
-
-
-@dataclass(frozen=True)
-class Program:
-    """One ``.PROGRAM`` block; ``metadata`` from its ``; coatsim: key=value`` comments."""
-
-    name: str
-    params: tuple[Param, ...]
-    line: int
-    body: tuple[Statement, ...]
-    metadata: tuple[tuple[str, str], ...]
-    source: str
-    end_line: int
-
-
-@dataclass(frozen=True)
-class TransDef:
-    """A ``.TRANS`` line: x, y, z (mm), o, a, t (deg), then external axes if any."""
-
-    name: str
-    values: tuple[float, float, float, float, float, float]
-    extra: tuple[float, ...]
-    line: int
-
-
-@dataclass(frozen=True)
-class JointDef:
-    """A ``.JOINTS`` line (deg, mm for linear axes)."""
-
-    name: str
-    values: tuple[float, ...]
-    line: int
-
-
-@dataclass(frozen=True)
-class RealDef:
-    """A ``.REALS`` line ``name = value``."""
-
-    name: str
-    value: float
-    line: int
-
-
-@dataclass(frozen=True)
-class StringDef:
-    """A ``.STRINGS`` line ``$name = "text"``."""
-
-    name: str
-    value: str
-    line: int
-
-
-@dataclass(frozen=True)
-class RawSection:
-    """A section coatsim keeps as written (controller data, or one unknown to it)."""
-
-    name: str
-    line: int
-    lines: tuple[str, ...]
-
-
-@dataclass(frozen=True)
-class AsFile:
-    """A parsed AS file. Variable keys are names as written (``p[3]`` for an array element)."""
-
-    source: str
-    programs: tuple[Program, ...]
-    trans: Mapping[str, TransDef]
-    joints: Mapping[str, JointDef]
-    reals: Mapping[str, RealDef]
-    strings: Mapping[str, StringDef]
-    sections: tuple[RawSection, ...]
-    n_lines: int
-
-    @property
-    def skipped(self) -> tuple[tuple[str, int], ...]:
-        """(name, line) of the sections coatsim does not read."""
-        return tuple((s.name, s.line) for s in self.sections)

@@ -9,7 +9,7 @@ from typing import Optional
 
 from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.source import AsSyntaxError, syntax_error
-from coatsim.program.as_lang.statements import Item, Marker, Open
+from coatsim.program.as_lang.statements_flow import Item, Marker, Open
 
 MAX_NESTING = 64
 

@@ -16,7 +16,13 @@ import numpy as np
 
 from coatsim.errors import ExecutionError, InputError
 from coatsim.program.as_lang import ast
-from coatsim.program.as_lang.values import IDENTITY, Frame, frame_from_points, rotation_about
+from coatsim.program.as_lang.evaluate_strings import encode, string_call, val
+from coatsim.program.as_lang.values import (
+    IDENTITY,
+    Frame,
+    frame_from_points,
+    rotation_about,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from coatsim.program.as_lang.interpreter import Interpreter
@@ -171,7 +177,7 @@ class Evaluator:
             i = self.integer(args[1], "ASC position") if len(args) > 1 and args[1] is not None else 1
             return float(ord(text[i - 1])) if 1 <= i <= len(text) else -1.0
         if name in ("VAL", "STRTOVAL"):
-            return self.val(self.string(self.arg(e, 0)))
+            return val(self.string(self.arg(e, 0)))
         if name == "INSTR":
             return self.instr(e)
         if name == "SIG":
@@ -226,17 +232,6 @@ class Evaluator:
             return arg.name.upper()
         return self.string(arg).upper()
 
-    def val(self, text: str) -> float:
-        text = text.strip()
-        best = 0.0
-        for end in range(len(text), 0, -1):
-            try:
-                best = float(text[:end])
-                break
-            except ValueError:
-                continue
-        return best if math.isfinite(best) else 0.0
-
     def instr(self, e: ast.Call) -> float:
         if len(e.args) == 3:
             start = self.integer(self.arg(e, 0), "INSTR start")
@@ -277,71 +272,12 @@ class Evaluator:
         raise self.error(f"expected a string, found {self.describe(e)}")
 
     def string_call(self, e: ast.Call) -> str:
-        name = e.name
-        if name == "$MID":
-            text = self.string(self.arg(e, 0))
-            start = self.integer(self.arg(e, 1), "$MID start")
-            count = self.integer(e.args[2], "$MID length") if len(e.args) > 2 and e.args[2] is not None else len(text)
-            return text[max(start, 1) - 1:max(start, 1) - 1 + max(count, 0)]
-        if name == "$LEFT":
-            return self.string(self.arg(e, 0))[:max(self.integer(self.arg(e, 1), "$LEFT length"), 0)]
-        if name == "$RIGHT":
-            n = max(self.integer(self.arg(e, 1), "$RIGHT length"), 0)
-            text = self.string(self.arg(e, 0))
-            return text[len(text) - n:] if n else ""
-        if name == "$CHR":
-            code = self.integer(self.arg(e, 0), "$CHR code")
-            if not 0 <= code <= 255:
-                raise self.error(f"$CHR code {code} out of range 0..255")
-            return chr(code)
-        if name == "$SPACE":
-            return " " * min(max(self.integer(self.arg(e, 0), "$SPACE count"), 0), 10_000)
-        if name == "$ENCODE":
-            return self.encode(e.args)
-        if name == "$DECODE":
-            return self.decode(e)
-        if name in ("$DATE", "$TIME", "$ERROR", "$SYSDATA"):
-            self.run.unknown(f"function:{name}", f"{name} is not simulated; it gives an empty string")
-            return ""
-        raise self.error(f"{name} is not a string function coatsim knows")
+        return string_call(self, e)
 
     def encode(self, items: tuple[Optional[ast.Expr], ...]) -> str:
         """$ENCODE / TYPE text: values in the current format (/D, /Fw.d, /Ew.d, /Gw.d, /Xn)."""
-        out, fmt = [], "G"
-        for item in items:
-            if item is None:
-                continue
-            if isinstance(item, ast.Format):
-                spec = item.spec
-                if spec.startswith("X"):
-                    out.append(" " * min(int(spec[1:] or 1), 1000))
-                elif spec[:1] in ("D", "F", "E", "G"):
-                    fmt = spec
-                continue
-            if self.kind(item) == "string":
-                out.append(self.string(item))
-                continue
-            out.append(_format_number(self.real(item), fmt))
-        return "".join(out)
+        return encode(self, items)
 
-    def decode(self, e: ast.Call) -> str:
-        """$DECODE($s, $separators, mode): the leading characters of $s up to a separator
-        (mode 0, the default) or the leading separators (mode 1), removed from $s (a string
-        variable, written plain as cells do or as a reference ``&$s``)."""
-        target = self.arg(e, 0)
-        if isinstance(target, ast.Ref):
-            target = target.target
-        if not isinstance(target, ast.Name) or target.kind != "string":
-            raise self.error("$DECODE takes a string variable first (it removes what it returns), as in "
-                             "$DECODE($s, \",\", 0)")
-        text = self.run.get_string(target)
-        seps = self.string(self.arg(e, 1))
-        mode = self.integer(self.arg(e, 2), "the $DECODE mode") if len(e.args) > 2 else 0
-        i = 0
-        while i < len(text) and ((text[i] in seps) == (mode != 0)):
-            i += 1
-        self.run.set_string(target, text[i:])
-        return text[:i]
 
     # --- poses ---------------------------------------------------------------------------
     def pose(self, e: ast.Expr) -> Frame:
@@ -419,17 +355,3 @@ class Evaluator:
             raise self.failure("a joint value from a pose needs the inverse kinematics of the arm, which the "
                                "interpreter does not solve; move to the pose with JMOVE instead")
         raise self.error(f"expected a joint value, found {self.describe(e)}")
-
-
-def _format_number(x: float, fmt: str) -> str:
-    kind, spec = fmt[0], fmt[1:]
-    width, _, digits = spec.partition(".")
-    w = int(width) if width.isdigit() else 0
-    d = int(digits) if digits.isdigit() else None
-    if kind == "D":
-        return f"{int(round(x)):{w}d}"
-    if kind == "F":
-        return f"{x:{w}.{3 if d is None else d}f}"
-    if kind == "E":
-        return f"{x:{w}.{3 if d is None else d}e}"
-    return f"{x:{w}.{6 if d is None else d}g}"

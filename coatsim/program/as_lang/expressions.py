@@ -32,6 +32,9 @@ FUNCTIONS = {
 WORD_OPERATORS = {"AND", "OR", "XOR", "NOT", "MOD", "BAND", "BOR", "BXOR"}
 # Words that end an expression inside a statement.
 STOP_WORDS = {"THEN", "DO", "TO", "STEP", "OF", "GOTO", "BY", "ALWAYS", "FINE", "TILL", "MM", "CM", "DEG", "S"}
+# Unit words end an expression only where an operator could follow; as an operand they are names
+# (a pose array `s[1]`, a real `mm`).
+UNIT_WORDS = {"MM", "CM", "DEG", "S"}
 
 _BINARY = {  # operator -> (binding power, right-associative)
     "OR": (1, False), "XOR": (1, False), "AND": (2, False),
@@ -170,7 +173,7 @@ class Cursor:
                 return ast.JointLiteral(self.nested(lambda: self.arguments("]", "a joint value")))
             raise self.error(f"expected {what}, found {tok.show()}", tok)
         word = tok.upper
-        if word in WORD_OPERATORS or word in STOP_WORDS:
+        if word in WORD_OPERATORS or (word in STOP_WORDS and word not in UNIT_WORDS):
             raise self.error(f"expected {what}, found {tok.show()}", tok)
         if tok.text.startswith("&") or tok.text.startswith(".&"):
             raise self.error(f"{tok.show()}: a by-reference argument is allowed only in CALL and $DECODE arguments", tok)

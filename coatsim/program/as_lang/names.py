@@ -33,7 +33,8 @@ def program_name(text: str) -> str:
     return name[:MAX_NAME_LENGTH].rstrip("_") or "coat"
 
 
-def sanitize_comment(text: str) -> str:
-    """``text`` as one line of printable ASCII (anything else becomes '?'), at most 200 characters."""
+def sanitize_comment(text: str, limit: int | None = MAX_COMMENT) -> str:
+    """``text`` as one line of printable ASCII (anything else becomes '?'), at most ``limit``
+    characters (None: any length, for the header fields coatsim reads back)."""
     clean = "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in text)
-    return clean if len(clean) <= MAX_COMMENT else clean[:MAX_COMMENT - 3] + "..."
+    return clean if limit is None or len(clean) <= limit else clean[:limit - 3] + "..."

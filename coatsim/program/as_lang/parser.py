@@ -118,10 +118,13 @@ class _Reader:
         if m is None:
             raise self.error(line, col + 1, "expected a program name after '.PROGRAM', as in '.PROGRAM name()'")
         name = m.group(1)
+        after = rest[m.end():]
+        if after[:1] not in ("", " ", "\t", "(", "@", "#", ";"):
+            raise self.error(line, col + m.end(), f"program name '{name}' is followed by {after[:1]!r}; "
+                             "a name has letters, digits, '.' and '_' only")
         if name.lower() in self.names:
             raise self.error(line, 1, f"program '{name}' is defined twice (first at line {self.names[name.lower()]})")
         self.names[name.lower()] = line
-        after = rest[m.end():]
         params: tuple[ast.Param, ...] = ()
         if after.lstrip(" \t").startswith("("):
             params = self._params(line, col + m.end() + len(after) - len(after.lstrip(" \t")), after.lstrip(" \t"))

@@ -1,13 +1,12 @@
 """One AS program line -> its label and statement (or block marker).
 
-Every instruction word is parsed into its typed statement; block statements (IF/THEN, ELSE,
-END, WHILE/DO, DO/UNTIL, FOR, CASE/VALUE/ANY) come back as markers that
+Every instruction word is parsed into its typed statement; block statements come back as
+markers (:mod:`~coatsim.program.as_lang.statements_flow`) that
 :mod:`~coatsim.program.as_lang.blocks` nests into blocks.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable, Optional, Union
 
 from coatsim.program.as_lang import ast
@@ -15,28 +14,8 @@ from coatsim.program.as_lang.expressions import Cursor
 from coatsim.program.as_lang.instructions import BLOCK_STEPS, COMMANDS, RAW_TEXT, SWITCHES
 from coatsim.program.as_lang.lexer import Token
 from coatsim.program.as_lang.source import AsSyntaxError
+from coatsim.program.as_lang.statements_flow import FLOW_PARSERS, Item
 
-
-# --- block markers -------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Open:
-    """Opens a block: kind IF, WHILE, DO, FOR or CASE; ``data`` what the block needs."""
-
-    kind: str
-    line: int
-    data: tuple
-
-
-@dataclass(frozen=True)
-class Marker:
-    """Inside or at the end of a block: ELSE, ELSEIF (cond), END, UNTIL (cond), VALUE (values), ANY."""
-
-    kind: str
-    line: int
-    data: tuple = ()
-
-
-Item = Union[ast.Statement, Open, Marker]
 
 _UNITS = {"MM": ("S", "MIN"), "CM": ("S", "MIN"), "DEG": ("S", "MIN")}
 _POINT_PARTS = ("X", "Y", "Z", "O", "A", "T", "OAT")
@@ -237,68 +216,6 @@ def _call(c: StatementParser, op: str, line: int) -> Item:
     return ast.CallProgram(line, program, args)
 
 
-def _if(c: StatementParser, op: str, line: int) -> Item:
-    condition = c.condition()
-    if c.word("GOTO"):
-        label = c.label()
-        c.end("IF ... GOTO statement")
-        return ast.Goto(line, label, condition)
-    if not c.at_end():  # THEN may be left out, as controllers save some blocks
-        c.expect_word("THEN", "after the IF condition (or GOTO label)")
-    c.end("IF ... THEN")
-    return Open("IF", line, (condition,))
-
-
-def _elseif(c: StatementParser, op: str, line: int) -> Item:
-    condition = c.condition()
-    if not c.at_end():
-        c.expect_word("THEN", "after the ELSEIF condition")
-    c.end("ELSEIF ... THEN")
-    return Marker("ELSEIF", line, (condition,))
-
-
-def _while(c: StatementParser, op: str, line: int) -> Item:
-    condition = c.condition()
-    c.expect_word("DO", "after the WHILE condition")
-    c.end("WHILE ... DO")
-    return Open("WHILE", line, (condition,))
-
-
-def _for(c: StatementParser, op: str, line: int) -> Item:
-    var = c.target_name("a loop variable")
-    if var.kind != "value":
-        raise c.error(f"the FOR variable must be a real, not {var.name}")
-    c.op("=", "after the FOR variable")
-    start = c.expr("a start value")
-    c.expect_word("TO", "in FOR v = start TO end")
-    stop = c.expr("an end value")
-    step = c.expr("a step") if c.word("STEP") else None
-    c.end("FOR statement")
-    return Open("FOR", line, (var, start, stop, step))
-
-
-def _case(c: StatementParser, op: str, line: int) -> Item:
-    subject = c.expr("a value")
-    c.expect_word("OF", f"after the {op} value")
-    c.end(f"{op} ... OF")
-    return Open("CASE", line, (subject, op == "SCASE"))
-
-
-def _value(c: StatementParser, op: str, line: int) -> Item:
-    values = c.expr_list("a value")
-    if c.is_op(":"):
-        c.take()
-    c.end(f"{op} list")
-    return Marker("VALUE", line, (values, op == "SVALUE"))
-
-
-def _any(c: StatementParser, op: str, line: int) -> Item:
-    if c.is_op(":"):
-        c.take()
-    c.end("ANY")
-    return Marker("ANY", line)
-
-
 def _command(c: StatementParser, op: str, line: int) -> Item:
     text = c.rest_text()
     args: tuple[ast.Expr, ...] = ()
@@ -353,20 +270,10 @@ PARSERS: dict[str, Parser] = {
     **dict.fromkeys(("TYPE", "PRINT", "PROMPT"), _output),
     **dict.fromkeys(("CALL", "SCALL"), _call),
     "GOTO": lambda c, op, line: ast.Goto(line, c.label()),
-    "RETURN": _simple(ast.Return),
+    **dict.fromkeys(("RETURN", "RETURNE"), _simple(ast.Return)),  # RETURNE: from an error program
     **dict.fromkeys(("STOP", "HALT", "PAUSE"), lambda c, op, line: ast.Stop(line, op)),
     "EXIT": _simple(ast.Exit),
-    "IF": _if,
-    "ELSEIF": _elseif,
-    "ELSE": _simple(lambda line: Marker("ELSE", line)),
-    "END": _simple(lambda line: Marker("END", line)),
-    "WHILE": _while,
-    "DO": _simple(lambda line: Open("DO", line, ())),
-    "UNTIL": lambda c, op, line: Marker("UNTIL", line, (c.condition(),)),
-    "FOR": _for,
-    **dict.fromkeys(("CASE", "SCASE"), _case),
-    **dict.fromkeys(("VALUE", "SVALUE"), _value),
-    "ANY": _any,
+    **FLOW_PARSERS,
     **dict.fromkeys(COMMANDS, _command),
 }
 _NOT_LABELS = {"VALUE", "SVALUE", "ANY"}

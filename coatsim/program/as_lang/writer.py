@@ -182,7 +182,7 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     for text in plan.comments:
         out.add(f"; {sanitize_comment(text)}")
     for key, value in plan.metadata:
-        out.add(f"; coatsim: {sanitize_comment(key)}={sanitize_comment(value)}")
+        out.add(f"; coatsim: {sanitize_comment(key)}={sanitize_comment(value, None)}")  # read back whole
     out.add("BASE NULL", "poses are in the robot base frame")
     out.add(f"TOOL {_trans_literal(plan.tool)}", "spray gun TCP")
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
