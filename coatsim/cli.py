@@ -221,10 +221,14 @@ def coat(
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Spray a logged trajectory onto a surface: thickness.ply, coating.json, heatmap.png, section.png."""
+    from coatsim.errors import EmptyRegionOfInterest, InputError
     from coatsim.spray.coat import run_coat
 
-    result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
-                             edge_band, de_exponent, occlusion, section, out, force)
+    try:
+        result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
+                                 edge_band, de_exponent, occlusion, section, out, force)
+    except EmptyRegionOfInterest as exc:
+        raise InputError(f"{exc}; try --roi part or a smaller --edge-band") from None
     m = result.metrics
     typer.echo(f"{result.surface.n_vertices} vertices, spray {m['spray_time_s']:.3f} s; ROI ({roi}) "
                f"mean {m['thickness_mean_um']:.3f} um, CV {m['thickness_cv']:.4f}, "

@@ -20,6 +20,11 @@ class InputError(CoatsimError):
     exit_code = 2
 
 
+class EmptyRegionOfInterest(InputError):
+    """No part of the surface is measured: the spray misses the part or the edge band covers it
+    (each command says which of its settings to change)."""
+
+
 class ExecutionError(CoatsimError):
     """The program cannot execute: unreachable pose, joint limit, infeasible timing (exit 3)."""
 

@@ -17,7 +17,7 @@ from typing import Callable, Iterator, Mapping, Optional
 
 import numpy as np
 
-from coatsim.errors import CoatsimError, InputError
+from coatsim.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.fileio import write_text
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
 from coatsim.geometry.deviation import hausdorff
@@ -211,9 +211,13 @@ def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: To
     execution = execute(toolpath, job.cell, step_mm=job.sample_step_mm)
     execution.log.write_csv(out / f"{name}.trajectory.csv")
     step(f"{name}: spraying")
-    result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
-                  edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
-                  spacing=job.spacing_mm, away=job.away_mm)
+    try:
+        result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
+                      edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
+                      spacing=job.spacing_mm, away=job.away_mm)
+    except EmptyRegionOfInterest as exc:
+        raise EmptyRegionOfInterest(f"{job.loaded.where('workpiece')}: {exc}; check the workpiece pose against the "
+                                    "sprayed path and coating.edge_band_mm") from None
     segmentation = _segmentation_groups(job, program)
     groups = {
         "segmentation": combine_segmentation(segmentation),

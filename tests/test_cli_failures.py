@@ -222,3 +222,19 @@ def test_extreme_coat_values_are_input_errors_without_warnings(tmp_path, args, w
 
 def test_a_curve_of_no_size_is_an_input_error():
     one_line(cli("segment", "builtin:polygon:radius=1e-300", "--tol", "0.1"), 2, "the curve is", "at least 1e-06 mm")
+
+
+def test_an_empty_region_of_interest_names_each_commands_own_settings(tmp_path):
+    """The library names edge_band_mm; `coat` adds its flags, `run` the scenario's keys and line."""
+    code, _, err = cli("coat", _trajectory(tmp_path), "--surface", "plate:120x80@0,0,0", "--spacing", "2",
+                       "--edge-band", "45", "-o", tmp_path / "coat")
+    assert code == 2 and err.count("\n") == 1, err
+    assert "region of interest is empty" in err and "try --roi part or a smaller --edge-band" in err
+    from small_scenario import SMALL
+
+    scenario = tmp_path / "banded.yaml"
+    scenario.write_text(SMALL.replace("coating: {spacing_mm: 2.0, band_halfwidth_mm: 2.5}",
+                                      "coating: {spacing_mm: 2.0, band_halfwidth_mm: 2.5, edge_band_mm: 50.0}"))
+    code, _, err = cli("run", scenario, "--fast", "-o", tmp_path / "run")
+    assert code == 2 and err.count("\n") == 1, err
+    assert "banded.yaml:" in err and "coating.edge_band_mm" in err and "--roi" not in err and "--edge-band" not in err

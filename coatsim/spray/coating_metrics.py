@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.surfaces import Surface, border_distance
 
@@ -115,8 +115,8 @@ def coating_metrics(surface: Surface, deposit: Deposit, model: SprayModel, roi: 
     if spray_time <= 0:
         raise InputError("trajectory never sprays (spray column is 0 on every row); nothing to coat")
     if not np.any(roi):
-        raise InputError("region of interest is empty: the spray misses the part or the edge band covers it; "
-                         "try --roi part or a smaller --edge-band")
+        raise EmptyRegionOfInterest("region of interest is empty: the spray misses the part or the edge band "
+                                    "(edge_band_mm) covers it")
     if target_um is not None and not (np.isfinite(target_um) and target_um > 0):
         raise InputError(f"target thickness must be positive, found {target_um:g} um")
     thickness = deposit.thickness_um
