@@ -7,7 +7,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import mujoco
 import numpy as np
@@ -26,11 +26,9 @@ from coatsim.robot.primitives3d import line
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import JointPiece, min_motion_time_s, plan_pieces, step_label
+from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
-
-if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads only when a program is timed
-    from coatsim.robot.timing import TimedPiece
 
 _WINDOW_MM = 10.0  # progress search window around the commanded point (plus blend radii)
 
@@ -147,8 +145,6 @@ def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
 
 def _rest(cell: Cell, q: np.ndarray, dwell: Dwell, offset: float) -> _Segment | None:
     """The arm standing still at ``q`` for the dwell (None if shorter than half a time step)."""
-    from coatsim.robot.timing import TimedPiece
-
     m = int(round(dwell.seconds / cell.timestep))
     if m == 0:
         return None
@@ -183,11 +179,6 @@ def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
     return out
 
 
-def steps_left(segments: list[_Segment]) -> int:
-    """Simulation steps the pieces timed so far leave of MAX_SIM_STEPS."""
-    return MAX_SIM_STEPS - sum(len(s.timed.t) for s in segments)
-
-
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
     """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration.
 
@@ -196,8 +187,6 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
     ExecutionError when it diverged, warnings for small excesses.
     """
-    from coatsim.robot.timing import time_cartesian, time_joint
-
     cell = cell or load_cell()
     wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
     t_start = time.perf_counter()
@@ -213,19 +202,25 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     fk = mujoco.MjData(cell.model)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
+    steps = [0]  # simulation steps of the segments so far (the budget left is MAX_SIM_STEPS - steps)
     chunks: list = []
     events: list[str] = tool_mismatches(toolpath, cell) + [e for e in (accuracy_event(toolpath, pieces),) if e]
+    known = set(events)
     too_fast: list[str] = []
     worst = [0.0, 0.0, 0]
     offset = 0.0
     max_blend = 0.0
     dwells = list(toolpath.dwells)
 
+    def add(segment: _Segment) -> None:
+        segments.append(segment)
+        steps[0] += len(segment.timed.t)
+
     def rest_until(before: float) -> None:
         while dwells and dwells[0].after < before:
             segment = _rest(cell, q_now, dwells.pop(0), offset)
             if segment is not None:
-                segments.append(segment)
+                add(segment)
 
     for k, piece in enumerate(pieces):
         rest_until(_first_move(piece))
@@ -243,15 +238,14 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
             t0 = time.perf_counter()
-            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=steps_left(segments))
+            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=MAX_SIM_STEPS - steps[0])
             wall["timing_s"] += time.perf_counter() - t0
             tcp = np.array([cell.forward(fk, q)[0] for q in timed.q])
             chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
             owner = -1 if piece.move is None else piece.move
             chunks.append((chords, (owner,) * len(chords)))
             along = np.concatenate(([0.0], np.cumsum([c.length for c in chords])))
-            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray),
-                                     np.full(len(timed.t), owner)))
+            add(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray), np.full(len(timed.t), owner)))
             offset += float(along[-1])
             q_now = q_goal
             continue
@@ -264,15 +258,17 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
         qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
         wall["ik_s"] += time.perf_counter() - t0
         worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
-        events.extend(e for e in joint_path_events(cell, qs, wrist, labels) if e not in events)
+        for e in joint_path_events(cell, qs, wrist, labels):
+            if e not in known:
+                known.add(e)
+                events.append(e)
         too_fast.extend(filter(None, [speed_event(cell, piece, qs, labels[int(np.argmax(piece.speed))])]))
         t0 = time.perf_counter()
         timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0],
-                               max_steps=steps_left(segments))
+                               max_steps=MAX_SIM_STEPS - steps[0])
         wall["timing_s"] += time.perf_counter() - t0
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
-        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
-                                 piece.move[idx]))
+        add(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx], piece.move[idx]))
         chunks.append((piece.reference, piece.reference_moves))
         offset += float(sum(p.length for p in piece.reference))
         max_blend = max(max_blend, max(toolpath.moves[m].settings.accuracy_mm for m in piece.reference_moves))
