@@ -31,7 +31,8 @@ _MAX_TRACK_ITERS = 8   # ... or this many QP steps per sample
 _MAX_POSE_ITERS = 400  # for isolated targets (joint-move end points)
 _PREDICTOR_POINTS = 2  # linear extrapolation of the previous solutions
 KNOT_MM = 20.0         # spacing of the samples mink solves where the path is smooth
-_MIN_KNOT_SAMPLES = 8  # shorter pieces start from the first-order prediction, without knots
+_MIN_KNOT_SAMPLES = 8  # shorter pieces start from the first-order prediction, without knots ...
+_MIN_KNOTS = 3         # ... and so do pieces shorter than two knot spacings (no knot inside)
 _MAX_NEWTON_ITERS = 6  # batched Newton steps on the samples between the knots ...
 _POLISH_MM = 1e-6      # ... until this close
 _POLISH_DEG = 1e-6
@@ -121,8 +122,9 @@ class Tracker:
         singularity symptom and shows up as a residual).
 
         Where the arm's kinematics are available vectorised, mink solves only knots about
-        ``KNOT_MM`` apart (none on pieces under 8 samples, which start from the first-order
-        prediction at ``q_start``); the samples between start from a cubic through the knot
+        ``KNOT_MM`` apart (none on pieces under 8 samples or without a knot between their ends,
+        which start from the first-order prediction at ``q_start``: the short moves of an
+        exact-stop polyline); the samples between start from a cubic through the knot
         solutions, and batched Newton steps bring every sample to 10^-6 mm / 10^-6 deg. The
         result is kept when every sample converged, stays inside the joint limits and within one
         speed-bounded QP step of the per-sample prediction; otherwise every sample is solved as
@@ -172,26 +174,30 @@ class Tracker:
         return qs, wrist, Residual(worst[0], worst[1], int(worst[2]))
 
     def _track_fast(self, q_start, s_mm, positions_mm, rotations, step_time) -> tuple | None:
-        """Knots with mink (or the first-order prediction on a short piece), every sample
-        polished by batched Newton; None where that is not the path the per-sample tracker
-        would follow."""
-        cell, chain = self.cell, self.chain
-        if len(s_mm) >= _MIN_KNOT_SAMPLES:
-            knots = _knots(s_mm, KNOT_MM)
-            solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots,
-                                         strict=False)
-            if solved is None:
-                return None
-            q_knots, _, knot_residual = solved
-            guess = _interpolate(s_mm[knots], q_knots, s_mm)
-            guess[knots] = q_knots
-            qp_iterations = knot_residual.iterations
-        else:
-            guess, qp_iterations = first_order(chain, np.asarray(q_start, float), positions_mm, rotations), 0
-        # every sample, the knots too, polished well below the QP's convergence: a joint path
-        # without residual noise between neighbouring samples
-        q, dp, dr, wrist = refine(chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS,
-                                  cell.wrist_site)
+        """Knots with mink (or the first-order prediction on a short piece, then the knots if
+        that does not converge), every sample polished by batched Newton; None where that is not
+        the path the per-sample tracker would follow."""
+        knots = _knots(s_mm, KNOT_MM) if len(s_mm) >= _MIN_KNOT_SAMPLES else np.zeros(0, int)
+        if len(knots) < _MIN_KNOTS:
+            fast = self._polish(first_order(self.chain, np.asarray(q_start, float), positions_mm, rotations), 0,
+                                s_mm, positions_mm, rotations, step_time)
+            if fast is not None or len(knots) == 0:
+                return fast
+        solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots, strict=False)
+        if solved is None:
+            return None
+        q_knots, _, knot_residual = solved
+        guess = _interpolate(s_mm[knots], q_knots, s_mm)
+        guess[knots] = q_knots
+        return self._polish(guess, knot_residual.iterations, s_mm, positions_mm, rotations, step_time)
+
+    def _polish(self, guess, qp_iterations, s_mm, positions_mm, rotations, step_time) -> tuple | None:
+        """Every sample, the knots too, polished well below the QP's convergence (a joint path
+        without residual noise between neighbouring samples); None unless every sample
+        converged inside the joint limits on a path the per-sample tracker would follow."""
+        cell = self.cell
+        q, dp, dr, wrist = refine(self.chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG,
+                                  _MAX_NEWTON_ITERS, cell.wrist_site)
         margin = 1e-3  # as the QP's ConfigurationLimit
         if dp.max() > _CONVERGED_MM or dr.max() > _CONVERGED_DEG \
                 or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \

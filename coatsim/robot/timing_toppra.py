@@ -118,7 +118,9 @@ def parametrize(cell: Cell, path: AbstractGeometricPath, extra: list, gridpoints
                 planning_fraction: float):
     """Gridpoints and path speeds sd >= 0 of the time-optimal parametrisation; ExecutionError naming
     ``label`` when toppra finds none."""
-    logging.getLogger("toppra").setLevel(logging.ERROR)  # coatsim reports a failure itself
+    toppra_log = logging.getLogger("toppra")
+    if toppra_log.level != logging.ERROR:  # coatsim reports a failure itself (setLevel clears caches)
+        toppra_log.setLevel(logging.ERROR)
     algo = _TOPPRA([*joint_limits(cell, planning_fraction), *extra], path, gridpoints)
     algo.compute_parameterization(0.0, 0.0)
     data = algo.problem_data
