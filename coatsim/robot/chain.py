@@ -10,12 +10,20 @@ is not a hinge on the way to the TCP, say) gets no chain and the callers use MuJ
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
 
+from coatsim.robot.cell import M_TO_MM
+
+if TYPE_CHECKING:
+    from coatsim.robot.cell import Cell
+
 _CHECK_M = 1e-9  # agreement with MuJoCo required at build time (m, and rad via the rotation)
+_BLOCK = 4096    # configurations per vectorised call (bounds the temporaries of long trajectories)
 
 
 def _quat_matrix(quat_wxyz: np.ndarray) -> np.ndarray:
@@ -159,3 +167,26 @@ class Chain:
         sites = {i: (frames[k][0] + frames[k][1] @ offset) if k >= 0 else np.broadcast_to(offset, (n, 3))
                  for i, (k, offset) in self._extra.items()}
         return Poses(p + r @ self._site_pos, r @ self._site_rot, sites, axes, anchors)
+
+
+@functools.lru_cache(maxsize=8)
+def cell_chain(cell: Cell) -> Chain | None:
+    """The cell's chain to its TCP site (with the wrist centre), built and checked once per cell."""
+    return Chain.build(cell.model, cell.tcp_site, (cell.wrist_site,))
+
+
+def tcp_positions_mm(cell: Cell, q: np.ndarray) -> np.ndarray:
+    """TCP positions (n, 3) mm of configurations q (n, 6): the vectorised chain, in blocks; MuJoCo
+    row by row for a model without one."""
+    q = np.asarray(q, float)
+    chain = cell_chain(cell)
+    if chain is None:
+        data = mujoco.MjData(cell.model)
+        out = np.empty((len(q), 3))
+        for k in range(len(q)):
+            data.qpos[:] = q[k]
+            mujoco.mj_kinematics(cell.model, data)
+            out[k] = data.site_xpos[cell.tcp_site]
+        return out * M_TO_MM
+    blocks = [chain.poses(q[i:i + _BLOCK]).tcp for i in range(0, len(q), _BLOCK)]
+    return np.concatenate(blocks) * M_TO_MM if blocks else np.zeros((0, 3))

@@ -9,7 +9,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping, Sequence
 
-import mujoco
 import numpy as np
 
 from coatsim.budgets import MAX_SIM_STEPS, check_budget
@@ -18,6 +17,7 @@ from coatsim.fileio import write_text
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
 from coatsim.program.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
+from coatsim.robot.chain import tcp_positions_mm
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
 from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
@@ -199,7 +199,6 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
                  "shorten the dwells")
     mount_r, mount_p = _mounts(toolpath, cell)
     tracker = Tracker(cell)
-    fk = mujoco.MjData(cell.model)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
     steps = [0]  # simulation steps of the segments so far (the budget left is MAX_SIM_STEPS - steps)
@@ -240,7 +239,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             t0 = time.perf_counter()
             timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=MAX_SIM_STEPS - steps[0])
             wall["timing_s"] += time.perf_counter() - t0
-            tcp = np.array([cell.forward(fk, q)[0] for q in timed.q])
+            tcp = tcp_positions_mm(cell, timed.q)
             chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
             owner = -1 if piece.move is None else piece.move
             chunks.append((chords, (owner,) * len(chords)))

@@ -19,9 +19,9 @@ import mujoco
 import numpy as np
 
 from coatsim.errors import ExecutionError
-from coatsim.robot.cell import JOINTS, MM, M_TO_MM, Cell
+from coatsim.robot.cell import JOINTS, M_TO_MM, MM, Cell
+from coatsim.robot.chain import cell_chain
 from coatsim.robot.ik_batch import continuity_ok, first_order, refine
-from coatsim.robot.chain import Chain
 
 POS_TOL_MM = 0.05
 ROT_TOL_DEG = 0.05
@@ -74,7 +74,9 @@ class Tracker:
         self.tasks = [self.frame, self.posture]
         self.config_limit = mink.ConfigurationLimit(cell.model, min_distance_from_limits=1e-3)
         self.velocity_limit = mink.VelocityLimit(cell.model, dict(zip(JOINTS, cell.v_max)))
-        self.chain = Chain.build(cell.model, cell.tcp_site, (cell.wrist_site,))
+        self.chain = cell_chain(cell)
+        self._single = mujoco.MjData(cell.model)  # one configuration's kinematics, in C
+        self._jac = np.zeros((6, cell.model.nv))
 
     def _target(self, quat_wxyz: np.ndarray, p_mm: np.ndarray) -> None:
         self.frame.set_target(mink.SE3(np.concatenate((quat_wxyz, p_mm * MM))))
@@ -179,7 +181,7 @@ class Tracker:
         the path the per-sample tracker would follow."""
         knots = _knots(s_mm, KNOT_MM) if len(s_mm) >= _MIN_KNOT_SAMPLES else np.zeros(0, int)
         if len(knots) < _MIN_KNOTS:
-            fast = self._polish(first_order(self.chain, np.asarray(q_start, float), positions_mm, rotations), 0,
+            fast = self._polish(self._first_order(np.asarray(q_start, float), positions_mm, rotations), 0,
                                 s_mm, positions_mm, rotations, step_time)
             if fast is not None or len(knots) == 0:
                 return fast
@@ -190,6 +192,17 @@ class Tracker:
         guess = _interpolate(s_mm[knots], q_knots, s_mm)
         guess[knots] = q_knots
         return self._polish(guess, knot_residual.iterations, s_mm, positions_mm, rotations, step_time)
+
+    def _first_order(self, q0: np.ndarray, positions_mm: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+        """The first-order prediction from q0 for every sample, with MuJoCo's kinematics and
+        Jacobian at q0 (one configuration: cheaper in C than the vectorised chain)."""
+        model, data, site = self.cell.model, self._single, self.cell.tcp_site
+        data.qpos[:] = q0
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_comPos(model, data)
+        mujoco.mj_jacSite(model, data, self._jac[:3], self._jac[3:], site)
+        return first_order(q0, data.site_xpos[site], data.site_xmat[site].reshape(3, 3), self._jac, positions_mm,
+                           rotations)
 
     def _polish(self, guess, qp_iterations, s_mm, positions_mm, rotations, step_time) -> tuple | None:
         """Every sample, the knots too, polished well below the QP's convergence (a joint path

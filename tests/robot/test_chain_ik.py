@@ -182,6 +182,7 @@ def test_first_order_prediction_errs_by_the_square_of_the_step(q0, seed):
     errors = []
     for h in (1e-3, 2e-3):
         target = CHAIN.poses((q0 + h * direction)[None])
-        guess = first_order(CHAIN, q0, target.tcp * M_TO_MM, target.rotation)
+        guess = first_order(q0, poses.tcp[0], poses.rotation[0], poses.jacobian()[0], target.tcp * M_TO_MM,
+                            target.rotation)
         errors.append(np.abs(guess[0] - (q0 + h * direction)).max())
     assert errors[0] < 1e-4 and errors[1] / max(errors[0], 1e-15) == pytest.approx(4.0, rel=0.2)
