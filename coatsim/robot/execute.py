@@ -25,7 +25,7 @@ from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
-from coatsim.robot.sampling import JointPiece, min_motion_time_s, plan_pieces, step_label
+from coatsim.robot.sampling import CartesianPiece, JointPiece, min_motion_time_s, plan_pieces, step_label
 from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
@@ -179,6 +179,24 @@ def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
     return out
 
 
+def _ik_targets(piece: CartesianPiece, mount_r: np.ndarray, mount_p: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """What the IK tracks on a Cartesian piece: the time the programmed speed allows to each
+    sample (s), and the gun's position (mm) and rotation there."""
+    m = piece.move
+    step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
+    return step_time, piece.position + np.einsum("nij,nj->ni", piece.rotation, mount_p[m]), piece.rotation @ mount_r[m]
+
+
+def _batchable_run(tracker: Tracker, pieces: tuple, k: int) -> list[int]:
+    """Indices of the consecutive Cartesian pieces from ``k`` whose IK ``track_run`` can solve together."""
+    run = []
+    while k < len(pieces) and isinstance(pieces[k], CartesianPiece) and tracker.batchable(pieces[k].s):
+        run.append(k)
+        k += 1
+    return run
+
+
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
     """Run ``toolpath`` on the simulated arm, starting from the cell's home configuration.
 
@@ -205,6 +223,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     chunks: list = []
     events: list[str] = tool_mismatches(toolpath, cell) + [e for e in (accuracy_event(toolpath, pieces),) if e]
     known = set(events)
+    solved: dict[int, tuple] = {}  # IK of pieces solved ahead (runs of short exact-stop moves)
     too_fast: list[str] = []
     worst = [0.0, 0.0, 0]
     offset = 0.0
@@ -249,12 +268,18 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             q_now = q_goal
             continue
         labels = [step_label(toolpath, int(m)) for m in piece.move]
-        step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
-        m = piece.move
-        p_gun = piece.position + np.einsum("nij,nj->ni", piece.rotation, mount_p[m])
-        r_gun = piece.rotation @ mount_r[m]
+        step_time, p_gun, r_gun = _ik_targets(piece, mount_r, mount_p)
         t0 = time.perf_counter()
-        qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
+        if k not in solved and tracker.batchable(piece.s):
+            run = _batchable_run(tracker, pieces, k)
+            if len(run) > 1:  # the next pieces' IK too, in one go
+                targets = [(pieces[j].s, *_ik_targets(pieces[j], mount_r, mount_p)) for j in run]
+                results = tracker.track_run(q_now, [(s, p, r, dt) for s, dt, p, r in targets])
+                solved.update(zip(run, results))
+        if k in solved:
+            qs, wrist, res = solved.pop(k)
+        else:
+            qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
         wall["ik_s"] += time.perf_counter() - t0
         worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
         for e in joint_path_events(cell, qs, wrist, labels):

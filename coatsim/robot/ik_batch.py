@@ -15,7 +15,7 @@ import numpy as np
 from coatsim.robot.cell import M_TO_MM, MM
 from coatsim.robot.chain import Chain
 
-_DAMPING = 1e-12  # Levenberg-Marquardt term (m^2): keeps the 6x6 solves finite at a singularity
+DAMPING_M2 = 1e-12  # Levenberg-Marquardt term (m^2): keeps the 6x6 solves finite at a singularity
 
 
 def row_norms(x: np.ndarray) -> np.ndarray:
@@ -48,7 +48,7 @@ def first_order(q0: np.ndarray, tcp_m: np.ndarray, rotation: np.ndarray, jac: np
     """Configurations (N, 6) predicted for the targets from q0 (6,) by the Jacobian ``jac``
     (6, 6) at q0, where the TCP is at ``tcp_m`` (3,) m with ``rotation`` (3, 3)."""
     e = np.hstack((p_mm * MM - tcp_m, rotation_vectors(r, np.broadcast_to(rotation, r.shape))))
-    return q0 + np.linalg.solve(jac @ jac.T + _DAMPING * np.eye(6), e.T).T @ jac
+    return q0 + np.linalg.solve(jac @ jac.T + DAMPING_M2 * np.eye(6), e.T).T @ jac
 
 
 def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converged_mm: float, converged_deg: float,
@@ -75,7 +75,7 @@ def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converg
             break
         jac = poses.jacobian(open_)
         todo, e = todo[open_], e[open_]
-        jjt = jac @ np.swapaxes(jac, 1, 2) + _DAMPING * np.eye(6)
+        jjt = jac @ np.swapaxes(jac, 1, 2) + DAMPING_M2 * np.eye(6)
         q[todo] += np.einsum("nji,nj->ni", jac, np.linalg.solve(jjt, e[..., None])[..., 0])
     return q, dp, dr, at_site
 
