@@ -22,7 +22,7 @@ def loaded(modules: list[str], watch: tuple[str, ...]) -> list[str]:
     ["coatsim.geometry", "coatsim.geometry.segment", "coatsim.geometry.builtin_curves", "coatsim.geometry.polysegment_json"],
     ["coatsim.program", "coatsim.program.check", "coatsim.program.build", "coatsim.program.run"],
     ["coatsim.robot.execute", "coatsim.robot.ik", "coatsim.robot.sampling", "coatsim.robot.playback",
-     "coatsim.robot.cell", "coatsim.robot.motion_metrics", "coatsim.robot.reference"],
+     "coatsim.robot.cell", "coatsim.robot.motion_metrics", "coatsim.robot.reference", "coatsim.robot.timing"],
 ])
 def test_geometry_program_and_robot_stages_load_no_plotting_library(modules):
     assert loaded(modules, PLOTTING) == []

@@ -10,12 +10,20 @@ is not a hinge on the way to the TCP, say) gets no chain and the callers use MuJ
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
 
+from coatsim.robot.cell import M_TO_MM
+
+if TYPE_CHECKING:
+    from coatsim.robot.cell import Cell
+
 _CHECK_M = 1e-9  # agreement with MuJoCo required at build time (m, and rad via the rotation)
+_BLOCK = 4096    # configurations per vectorised call (bounds the temporaries of long trajectories)
 
 
 def _quat_matrix(quat_wxyz: np.ndarray) -> np.ndarray:
@@ -72,9 +80,17 @@ class Chain:
     def __init__(self, links: tuple[_Link, ...], site_pos: np.ndarray, site_rot: np.ndarray,
                  extra: dict[int, tuple[int, np.ndarray]]):
         self._links, self._site_pos, self._site_rot, self._extra = links, site_pos, site_rot, extra
-        self._products = [link.products() for link in links]
         self._joints = np.array([link.joint for link in links])
         self._zeros = np.array([link.zero for link in links])
+        # per link, stacked (L, ...): rot, A, B (3, 3); pos, A anchor, B anchor, the axis in the
+        # rotated frame and the anchor (3,): every link's turn for N configurations in one go
+        products = [link.products() for link in links]
+        self._rot = np.array([link.rot for link in links])
+        self._a, self._b = np.array([pr[0] for pr in products]), np.array([pr[1] for pr in products])
+        self._pos = np.array([link.pos for link in links])
+        self._a_anchor, self._b_anchor = np.array([pr[2] for pr in products]), np.array([pr[3] for pr in products])
+        self._rot_axis = np.array([pr[4] for pr in products])
+        self._anchor = np.array([link.anchor for link in links])
 
     @classmethod
     def build(cls, model: mujoco.MjModel, site: int, extra_sites: tuple[int, ...] = ()) -> Chain | None:
@@ -131,18 +147,46 @@ class Chain:
         q = np.atleast_2d(np.asarray(q, float))
         n, nq = q.shape
         angle = q[:, self._joints] - self._zeros
-        sin, vers = np.sin(angle), 1.0 - np.cos(angle)
-        p = np.zeros((n, 3))
-        r = np.broadcast_to(np.eye(3), (n, 3, 3))
+        sin, vers = np.sin(angle)[..., None], 1.0 - np.cos(angle)[..., None]
+        turns = self._rot + sin[..., None] * self._a + vers[..., None] * self._b  # (n, L, 3, 3)
+        shifts = (self._pos - sin * self._a_anchor - vers * self._b_anchor)[..., None]  # (n, L, 3, 1)
         axes, anchors = np.empty((n, nq, 3)), np.empty((n, nq, 3))
         frames = []
-        for k, (link, (a, b, a_anchor, b_anchor, rot_axis)) in enumerate(zip(self._links, self._products)):
-            s, v = sin[:, k, None], vers[:, k, None]
-            axes[:, link.joint] = r @ rot_axis
-            p = p + np.einsum("nij,nj->ni", r, link.pos - s * a_anchor - v * b_anchor)
-            r = r @ (link.rot + s[..., None] * a + v[..., None] * b)
-            anchors[:, link.joint] = p + r @ link.anchor
+        p, r = np.zeros((n, 3)), None
+        for k, joint in enumerate(self._joints):
+            if r is None:  # the world frame: no rotation to apply
+                axes[:, joint] = self._rot_axis[k]
+                p = p + shifts[:, k, :, 0]
+                r = turns[:, k]
+            else:
+                axes[:, joint] = r @ self._rot_axis[k]
+                p = p + (r @ shifts[:, k])[..., 0]
+                r = r @ turns[:, k]
+            anchors[:, joint] = p + r @ self._anchor[k]
             frames.append((p, r))
         sites = {i: (frames[k][0] + frames[k][1] @ offset) if k >= 0 else np.broadcast_to(offset, (n, 3))
                  for i, (k, offset) in self._extra.items()}
         return Poses(p + r @ self._site_pos, r @ self._site_rot, sites, axes, anchors)
+
+
+@functools.lru_cache(maxsize=8)
+def cell_chain(cell: Cell) -> Chain | None:
+    """The cell's chain to its TCP site (with the wrist centre), built and checked once per cell."""
+    return Chain.build(cell.model, cell.tcp_site, (cell.wrist_site,))
+
+
+def tcp_positions_mm(cell: Cell, q: np.ndarray) -> np.ndarray:
+    """TCP positions (n, 3) mm of configurations q (n, 6): the vectorised chain, in blocks; MuJoCo
+    row by row for a model without one."""
+    q = np.asarray(q, float)
+    chain = cell_chain(cell)
+    if chain is None:
+        data = mujoco.MjData(cell.model)
+        out = np.empty((len(q), 3))
+        for k in range(len(q)):
+            data.qpos[:] = q[k]
+            mujoco.mj_kinematics(cell.model, data)
+            out[k] = data.site_xpos[cell.tcp_site]
+        return out * M_TO_MM
+    blocks = [chain.poses(q[i:i + _BLOCK]).tcp for i in range(0, len(q), _BLOCK)]
+    return np.concatenate(blocks) * M_TO_MM if blocks else np.zeros((0, 3))

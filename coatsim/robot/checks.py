@@ -24,7 +24,8 @@ import mujoco
 import numpy as np
 
 from coatsim.errors import ExecutionError
-from coatsim.robot.cell import M_TO_MM, Cell
+from coatsim.robot.cell import Cell
+from coatsim.robot.chain import tcp_positions_mm
 
 TRACKING_FAIL_MM = 1.0    # the simulated tool is off the commanded path by more: failure
 TRACKING_WARN_MM = 0.25   # ... by more than this: a warning (normal runs stay below 0.15 mm)
@@ -44,17 +45,6 @@ class Finding:
     limit: float
     row: int
     joint: int = -1
-
-
-def commanded_tcp(cell: Cell, q: np.ndarray) -> np.ndarray:
-    """TCP positions (n, 3) mm of the commanded joint trajectory."""
-    data = mujoco.MjData(cell.model)
-    out = np.empty((len(q), 3))
-    for k in range(len(q)):
-        data.qpos[:] = q[k]
-        mujoco.mj_kinematics(cell.model, data)
-        out[k] = data.site_xpos[cell.tcp_site]
-    return out * M_TO_MM
 
 
 def tracking_error(simulated_mm: np.ndarray, commanded_mm: np.ndarray, window: int) -> np.ndarray:
@@ -106,7 +96,7 @@ def check_playback(cell: Cell, t: np.ndarray, q_sim: np.ndarray, tcp_sim_mm: np.
                    label: Callable[[int], str]) -> list[str]:
     """Warnings for small excesses; ExecutionError naming the step (``label(row)``) for large ones."""
     dt = float(np.median(np.diff(t))) if len(t) > 1 else cell.timestep
-    error = tracking_error(tcp_sim_mm, commanded_tcp(cell, q_cmd), max(1, int(round(WINDOW_S / dt))))
+    error = tracking_error(tcp_sim_mm, tcp_positions_mm(cell, q_cmd), max(1, int(round(WINDOW_S / dt))))
     speed, accel, sustained = joint_ratios(q_sim, dt, cell.v_max, cell.a_max, max(1, int(round(SUSTAINED_S / dt / 2))))
     checks = (("tracking", error[:, None], TRACKING_FAIL_MM, TRACKING_WARN_MM),
               ("joint speed", speed, LIMIT_FAIL_RATIO, LIMIT_WARN_RATIO),

@@ -7,9 +7,8 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import Mapping, Sequence
 
-import mujoco
 import numpy as np
 
 from coatsim.budgets import MAX_SIM_STEPS, check_budget
@@ -18,6 +17,7 @@ from coatsim.fileio import write_text
 from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
 from coatsim.program.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
+from coatsim.robot.chain import tcp_positions_mm
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
 from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
@@ -25,12 +25,10 @@ from coatsim.robot.playback import play
 from coatsim.robot.primitives3d import line
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
-from coatsim.robot.sampling import JointPiece, min_motion_time_s, plan_pieces, step_label
+from coatsim.robot.sampling import CartesianPiece, JointPiece, min_motion_time_s, plan_pieces, step_label
+from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches, with_tool_changes
 from coatsim.robot.trajectory_log import TrajectoryLog
-
-if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads only when a program is timed
-    from coatsim.robot.timing import TimedPiece
 
 _WINDOW_MM = 10.0  # progress search window around the commanded point (plus blend radii)
 
@@ -147,8 +145,6 @@ def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
 
 def _rest(cell: Cell, q: np.ndarray, dwell: Dwell, offset: float) -> _Segment | None:
     """The arm standing still at ``q`` for the dwell (None if shorter than half a time step)."""
-    from coatsim.robot.timing import TimedPiece
-
     m = int(round(dwell.seconds / cell.timestep))
     if m == 0:
         return None
@@ -183,9 +179,22 @@ def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
     return out
 
 
-def steps_left(segments: list[_Segment]) -> int:
-    """Simulation steps the pieces timed so far leave of MAX_SIM_STEPS."""
-    return MAX_SIM_STEPS - sum(len(s.timed.t) for s in segments)
+def _ik_targets(piece: CartesianPiece, mount_r: np.ndarray, mount_p: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """What the IK tracks on a Cartesian piece: the time the programmed speed allows to each
+    sample (s), and the gun's position (mm) and rotation there."""
+    m = piece.move
+    step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
+    return step_time, piece.position + np.einsum("nij,nj->ni", piece.rotation, mount_p[m]), piece.rotation @ mount_r[m]
+
+
+def _batchable_run(tracker: Tracker, pieces: tuple, k: int) -> list[int]:
+    """Indices of the consecutive Cartesian pieces from ``k`` whose IK ``track_run`` can solve together."""
+    run = []
+    while k < len(pieces) and isinstance(pieces[k], CartesianPiece) and tracker.batchable(pieces[k].s):
+        run.append(k)
+        k += 1
+    return run
 
 
 def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) -> Execution:
@@ -196,8 +205,6 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
     ExecutionError when it diverged, warnings for small excesses.
     """
-    from coatsim.robot.timing import time_cartesian, time_joint
-
     cell = cell or load_cell()
     wall: dict[str, float] = {"ik_s": 0.0, "timing_s": 0.0}
     t_start = time.perf_counter()
@@ -210,22 +217,28 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
                  "shorten the dwells")
     mount_r, mount_p = _mounts(toolpath, cell)
     tracker = Tracker(cell)
-    fk = mujoco.MjData(cell.model)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
+    steps = [0]  # simulation steps of the segments so far (the budget left is MAX_SIM_STEPS - steps)
     chunks: list = []
     events: list[str] = tool_mismatches(toolpath, cell) + [e for e in (accuracy_event(toolpath, pieces),) if e]
+    known = set(events)
+    solved: dict[int, tuple] = {}  # IK of pieces solved ahead (runs of short exact-stop moves)
     too_fast: list[str] = []
     worst = [0.0, 0.0, 0]
     offset = 0.0
     max_blend = 0.0
     dwells = list(toolpath.dwells)
 
+    def add(segment: _Segment) -> None:
+        segments.append(segment)
+        steps[0] += len(segment.timed.t)
+
     def rest_until(before: float) -> None:
         while dwells and dwells[0].after < before:
             segment = _rest(cell, q_now, dwells.pop(0), offset)
             if segment is not None:
-                segments.append(segment)
+                add(segment)
 
     for k, piece in enumerate(pieces):
         rest_until(_first_move(piece))
@@ -243,36 +256,43 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
             t0 = time.perf_counter()
-            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=steps_left(segments))
+            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=MAX_SIM_STEPS - steps[0])
             wall["timing_s"] += time.perf_counter() - t0
-            tcp = np.array([cell.forward(fk, q)[0] for q in timed.q])
+            tcp = tcp_positions_mm(cell, timed.q)
             chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
             owner = -1 if piece.move is None else piece.move
             chunks.append((chords, (owner,) * len(chords)))
             along = np.concatenate(([0.0], np.cumsum([c.length for c in chords])))
-            segments.append(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray),
-                                     np.full(len(timed.t), owner)))
+            add(_Segment(timed, offset + along, np.full(len(timed.t), piece.spray), np.full(len(timed.t), owner)))
             offset += float(along[-1])
             q_now = q_goal
             continue
         labels = [step_label(toolpath, int(m)) for m in piece.move]
-        step_time = np.concatenate(([0.0], np.diff(piece.s))) / piece.speed
-        m = piece.move
-        p_gun = piece.position + np.einsum("nij,nj->ni", piece.rotation, mount_p[m])
-        r_gun = piece.rotation @ mount_r[m]
+        step_time, p_gun, r_gun = _ik_targets(piece, mount_r, mount_p)
         t0 = time.perf_counter()
-        qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
+        if k not in solved and tracker.batchable(piece.s):
+            run = _batchable_run(tracker, pieces, k)
+            if len(run) > 1:  # the next pieces' IK too, in one go
+                targets = [(pieces[j].s, *_ik_targets(pieces[j], mount_r, mount_p)) for j in run]
+                results = tracker.track_run(q_now, [(s, p, r, dt) for s, dt, p, r in targets])
+                solved.update(zip(run, results))
+        if k in solved:
+            qs, wrist, res = solved.pop(k)
+        else:
+            qs, wrist, res = tracker.track(q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
         wall["ik_s"] += time.perf_counter() - t0
         worst = [max(worst[0], res.position_mm), max(worst[1], res.rotation_deg), max(worst[2], res.iterations)]
-        events.extend(e for e in joint_path_events(cell, qs, wrist, labels) if e not in events)
+        for e in joint_path_events(cell, qs, wrist, labels):
+            if e not in known:
+                known.add(e)
+                events.append(e)
         too_fast.extend(filter(None, [speed_event(cell, piece, qs, labels[int(np.argmax(piece.speed))])]))
         t0 = time.perf_counter()
         timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0],
-                               max_steps=steps_left(segments))
+                               max_steps=MAX_SIM_STEPS - steps[0])
         wall["timing_s"] += time.perf_counter() - t0
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
-        segments.append(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
-                                 piece.move[idx]))
+        add(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx], piece.move[idx]))
         chunks.append((piece.reference, piece.reference_moves))
         offset += float(sum(p.length for p in piece.reference))
         max_blend = max(max_blend, max(toolpath.moves[m].settings.accuracy_mm for m in piece.reference_moves))

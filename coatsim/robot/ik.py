@@ -19,9 +19,9 @@ import mujoco
 import numpy as np
 
 from coatsim.errors import ExecutionError
-from coatsim.robot.cell import JOINTS, MM, M_TO_MM, Cell
-from coatsim.robot.ik_batch import continuity_ok, first_order, refine
-from coatsim.robot.chain import Chain
+from coatsim.robot.cell import JOINTS, M_TO_MM, MM, Cell
+from coatsim.robot.chain import cell_chain
+from coatsim.robot.ik_batch import DAMPING_M2, continuity_ok, first_order, refine, rotation_vectors
 
 POS_TOL_MM = 0.05
 ROT_TOL_DEG = 0.05
@@ -31,7 +31,8 @@ _MAX_TRACK_ITERS = 8   # ... or this many QP steps per sample
 _MAX_POSE_ITERS = 400  # for isolated targets (joint-move end points)
 _PREDICTOR_POINTS = 2  # linear extrapolation of the previous solutions
 KNOT_MM = 20.0         # spacing of the samples mink solves where the path is smooth
-_MIN_KNOT_SAMPLES = 8  # shorter pieces start from the first-order prediction, without knots
+_MIN_KNOT_SAMPLES = 8  # shorter pieces start from the first-order prediction, without knots ...
+_MIN_KNOTS = 3         # ... and so do pieces shorter than two knot spacings (no knot inside)
 _MAX_NEWTON_ITERS = 6  # batched Newton steps on the samples between the knots ...
 _POLISH_MM = 1e-6      # ... until this close
 _POLISH_DEG = 1e-6
@@ -73,7 +74,9 @@ class Tracker:
         self.tasks = [self.frame, self.posture]
         self.config_limit = mink.ConfigurationLimit(cell.model, min_distance_from_limits=1e-3)
         self.velocity_limit = mink.VelocityLimit(cell.model, dict(zip(JOINTS, cell.v_max)))
-        self.chain = Chain.build(cell.model, cell.tcp_site, (cell.wrist_site,))
+        self.chain = cell_chain(cell)
+        self._single = mujoco.MjData(cell.model)  # one configuration's kinematics, in C
+        self._jac = np.zeros((6, cell.model.nv))
 
     def _target(self, quat_wxyz: np.ndarray, p_mm: np.ndarray) -> None:
         self.frame.set_target(mink.SE3(np.concatenate((quat_wxyz, p_mm * MM))))
@@ -121,8 +124,9 @@ class Tracker:
         singularity symptom and shows up as a residual).
 
         Where the arm's kinematics are available vectorised, mink solves only knots about
-        ``KNOT_MM`` apart (none on pieces under 8 samples, which start from the first-order
-        prediction at ``q_start``); the samples between start from a cubic through the knot
+        ``KNOT_MM`` apart (none on pieces under 8 samples or without a knot between their ends,
+        which start from the first-order prediction at ``q_start``: the short moves of an
+        exact-stop polyline); the samples between start from a cubic through the knot
         solutions, and batched Newton steps bring every sample to 10^-6 mm / 10^-6 deg. The
         result is kept when every sample converged, stays inside the joint limits and within one
         speed-bounded QP step of the per-sample prediction; otherwise every sample is solved as
@@ -172,26 +176,112 @@ class Tracker:
         return qs, wrist, Residual(worst[0], worst[1], int(worst[2]))
 
     def _track_fast(self, q_start, s_mm, positions_mm, rotations, step_time) -> tuple | None:
-        """Knots with mink (or the first-order prediction on a short piece), every sample
-        polished by batched Newton; None where that is not the path the per-sample tracker
-        would follow."""
+        """Knots with mink (or the first-order prediction on a short piece, then the knots if
+        that does not converge), every sample polished by batched Newton; None where that is not
+        the path the per-sample tracker would follow."""
+        knots = _knots(s_mm, KNOT_MM) if len(s_mm) >= _MIN_KNOT_SAMPLES else np.zeros(0, int)
+        if len(knots) < _MIN_KNOTS:
+            fast = self._polish(self._first_order(np.asarray(q_start, float), positions_mm, rotations), 0,
+                                s_mm, positions_mm, rotations, step_time)
+            if fast is not None or len(knots) == 0:
+                return fast
+        solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots, strict=False)
+        if solved is None:
+            return None
+        q_knots, _, knot_residual = solved
+        guess = _interpolate(s_mm[knots], q_knots, s_mm)
+        guess[knots] = q_knots
+        return self._polish(guess, knot_residual.iterations, s_mm, positions_mm, rotations, step_time)
+
+    def batchable(self, s_mm: np.ndarray) -> bool:
+        """Whether ``track`` starts a piece at these samples from the first-order prediction
+        (a piece without a knot between its ends), so ``track_run`` can solve it with others."""
+        return self.chain is not None and len(s_mm) >= 2 and \
+            (len(s_mm) < _MIN_KNOT_SAMPLES or len(_knots(s_mm, KNOT_MM)) < _MIN_KNOTS)
+
+    def track_run(self, q_start: np.ndarray, pieces: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
+                  ) -> list[tuple[np.ndarray, np.ndarray, Residual]]:
+        """``track`` on consecutive rest-to-rest pieces (s_mm, positions_mm, rotations,
+        step_time), each ``batchable``, the first starting at ``q_start``: the results of the
+        leading pieces, as many as converge, the others left to ``track``.
+
+        An exact-stop polyline is hundreds of such pieces, each a handful of samples, where the
+        vectorised steps cost more in calls than in arithmetic. Each piece depends on the one
+        before only through its start, the configuration at the rest point between them; those
+        are solved one after the other with MuJoCo (a first-order prediction and Newton steps
+        on one sample), then every sample of every piece starts from the first-order
+        prediction at its piece's start and is polished by one batched Newton refinement, and
+        each piece is checked as ``track`` checks it."""
         cell, chain = self.cell, self.chain
-        if len(s_mm) >= _MIN_KNOT_SAMPLES:
-            knots = _knots(s_mm, KNOT_MM)
-            solved = self._track_samples(q_start, s_mm, positions_mm, rotations, step_time, None, knots,
-                                         strict=False)
-            if solved is None:
-                return None
-            q_knots, _, knot_residual = solved
-            guess = _interpolate(s_mm[knots], q_knots, s_mm)
-            guess[knots] = q_knots
-            qp_iterations = knot_residual.iterations
-        else:
-            guess, qp_iterations = first_order(chain, np.asarray(q_start, float), positions_mm, rotations), 0
-        # every sample, the knots too, polished well below the QP's convergence: a joint path
-        # without residual noise between neighbouring samples
-        q, dp, dr, wrist = refine(chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS,
+        starts = [np.asarray(q_start, float)]
+        for s_mm, positions_mm, rotations, _ in pieces[:-1]:
+            q_end = self._newton_one(self._first_order(starts[-1], positions_mm[-1:], rotations[-1:])[0],
+                                     positions_mm[-1], rotations[-1])
+            if q_end is None:
+                break
+            starts.append(q_end)
+        pieces = pieces[:len(starts)]
+        owner = np.concatenate([np.full(len(piece[0]), k) for k, piece in enumerate(pieces)])
+        positions = np.concatenate([piece[1] for piece in pieces])
+        rotations = np.concatenate([piece[2] for piece in pieces])
+        q0 = np.array(starts)
+        at = chain.poses(q0)
+        jac = at.jacobian()
+        e = np.hstack((positions * MM - at.tcp[owner], rotation_vectors(rotations, at.rotation[owner])))
+        step = np.linalg.solve((jac @ np.swapaxes(jac, 1, 2) + DAMPING_M2 * np.eye(6))[owner], e[..., None])[..., 0]
+        guess = q0[owner] + np.einsum("nji,nj->ni", jac[owner], step)
+        q, dp, dr, wrist = refine(chain, guess, positions, rotations, _POLISH_MM, _POLISH_DEG, _MAX_NEWTON_ITERS,
                                   cell.wrist_site)
+        out = []
+        margin = 1e-3  # as the QP's ConfigurationLimit
+        for k, (s_mm, _, _, step_time) in enumerate(pieces):
+            rows = owner == k
+            qk, dpk, drk = q[rows], dp[rows], dr[rows]
+            if dpk.max() > _CONVERGED_MM or drk.max() > _CONVERGED_DEG \
+                    or np.any(qk < cell.q_min + margin - 1e-9) or np.any(qk > cell.q_max - margin + 1e-9) \
+                    or not continuity_ok(s_mm, qk, step_time, cell.v_max):
+                break
+            out.append((qk, wrist[rows], Residual(float(dpk.max()), float(drk.max()), 0)))
+        return out
+
+    def _newton_one(self, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> np.ndarray | None:
+        """Newton steps (MuJoCo's kinematics) on one configuration until its TCP is within
+        10^-6 mm / 10^-6 deg of the pose; None when it does not get there."""
+        model, data, site = self.cell.model, self._single, self.cell.tcp_site
+        q = np.array(q, float)
+        for it in range(_MAX_NEWTON_ITERS + 1):
+            data.qpos[:] = q
+            mujoco.mj_kinematics(model, data)
+            e = np.concatenate((p_mm * MM - data.site_xpos[site],
+                                rotation_vectors(r[None], data.site_xmat[site].reshape(1, 3, 3))[0]))
+            if float(np.sqrt(e[:3] @ e[:3])) * M_TO_MM <= _POLISH_MM \
+                    and math.degrees(float(np.sqrt(e[3:] @ e[3:]))) <= _POLISH_DEG:
+                return q
+            if it == _MAX_NEWTON_ITERS:
+                return None
+            mujoco.mj_comPos(model, data)
+            mujoco.mj_jacSite(model, data, self._jac[:3], self._jac[3:], site)
+            q += self._jac.T @ np.linalg.solve(self._jac @ self._jac.T + DAMPING_M2 * np.eye(6), e)
+        return None
+
+    def _first_order(self, q0: np.ndarray, positions_mm: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+        """The first-order prediction from q0 for every sample, with MuJoCo's kinematics and
+        Jacobian at q0 (one configuration: cheaper in C than the vectorised chain)."""
+        model, data, site = self.cell.model, self._single, self.cell.tcp_site
+        data.qpos[:] = q0
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_comPos(model, data)
+        mujoco.mj_jacSite(model, data, self._jac[:3], self._jac[3:], site)
+        return first_order(q0, data.site_xpos[site], data.site_xmat[site].reshape(3, 3), self._jac, positions_mm,
+                           rotations)
+
+    def _polish(self, guess, qp_iterations, s_mm, positions_mm, rotations, step_time) -> tuple | None:
+        """Every sample, the knots too, polished well below the QP's convergence (a joint path
+        without residual noise between neighbouring samples); None unless every sample
+        converged inside the joint limits on a path the per-sample tracker would follow."""
+        cell = self.cell
+        q, dp, dr, wrist = refine(self.chain, guess, positions_mm, rotations, _POLISH_MM, _POLISH_DEG,
+                                  _MAX_NEWTON_ITERS, cell.wrist_site)
         margin = 1e-3  # as the QP's ConfigurationLimit
         if dp.max() > _CONVERGED_MM or dr.max() > _CONVERGED_DEG \
                 or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \

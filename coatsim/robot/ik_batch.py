@@ -15,14 +15,20 @@ import numpy as np
 from coatsim.robot.cell import M_TO_MM, MM
 from coatsim.robot.chain import Chain
 
-_DAMPING = 1e-12  # Levenberg-Marquardt term (m^2): keeps the 6x6 solves finite at a singularity
+DAMPING_M2 = 1e-12  # Levenberg-Marquardt term (m^2): keeps the 6x6 solves finite at a singularity
+
+
+def row_norms(x: np.ndarray) -> np.ndarray:
+    """Euclidean norm of each row of ``x`` (N, k): numpy.linalg.norm's arithmetic, without its
+    per-call checks (called a few times per path piece)."""
+    return np.sqrt(np.add.reduce(x * x, axis=1))
 
 
 def rotation_vectors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     """World-frame rotation vectors (N, 3) rad taking ``current`` (N, 3, 3) onto ``target``."""
     err = target @ np.swapaxes(current, 1, 2)
     vee = 0.5 * np.stack((err[:, 2, 1] - err[:, 1, 2], err[:, 0, 2] - err[:, 2, 0], err[:, 1, 0] - err[:, 0, 1]), axis=1)
-    sin = np.linalg.norm(vee, axis=1)
+    sin = row_norms(vee)
     cos = np.clip((np.trace(err, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
     angle = np.arctan2(sin, cos)
     scale = np.where(sin > 1e-12, angle / np.maximum(sin, 1e-300), 1.0)
@@ -32,17 +38,17 @@ def rotation_vectors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
 def pose_errors(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Position (mm) and rotation (deg) distance of the TCP from the targets, per configuration."""
     poses = chain.poses(q)
-    dp = np.linalg.norm(poses.tcp * M_TO_MM - p_mm, axis=1)
+    dp = row_norms(poses.tcp * M_TO_MM - p_mm)
     cos = (np.einsum("nij,nij->n", poses.rotation, r) - 1.0) / 2.0
     return dp, np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
 
 
-def first_order(chain: Chain, q0: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """Configurations (N, 6) predicted for the targets from q0 (6,) by the Jacobian at q0."""
-    poses = chain.poses(q0[None])
-    jac = poses.jacobian()[0]
-    e = np.hstack((p_mm * MM - poses.tcp, rotation_vectors(r, np.broadcast_to(poses.rotation, r.shape))))
-    return q0 + np.linalg.solve(jac @ jac.T + _DAMPING * np.eye(6), e.T).T @ jac
+def first_order(q0: np.ndarray, tcp_m: np.ndarray, rotation: np.ndarray, jac: np.ndarray, p_mm: np.ndarray,
+                r: np.ndarray) -> np.ndarray:
+    """Configurations (N, 6) predicted for the targets from q0 (6,) by the Jacobian ``jac``
+    (6, 6) at q0, where the TCP is at ``tcp_m`` (3,) m with ``rotation`` (3, 3)."""
+    e = np.hstack((p_mm * MM - tcp_m, rotation_vectors(r, np.broadcast_to(rotation, r.shape))))
+    return q0 + np.linalg.solve(jac @ jac.T + DAMPING_M2 * np.eye(6), e.T).T @ jac
 
 
 def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converged_mm: float, converged_deg: float,
@@ -60,8 +66,8 @@ def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converg
     for it in range(max_iters + 1):
         poses = chain.poses(q[todo])
         e = np.hstack((target_m[todo] - poses.tcp, rotation_vectors(r[todo], poses.rotation)))
-        dp[todo] = np.linalg.norm(e[:, :3], axis=1) * M_TO_MM
-        dr[todo] = np.degrees(np.linalg.norm(e[:, 3:], axis=1))
+        dp[todo] = row_norms(e[:, :3]) * M_TO_MM
+        dr[todo] = np.degrees(row_norms(e[:, 3:]))
         if at_site is not None:
             at_site[todo] = poses.sites[site] * M_TO_MM
         open_ = (dp[todo] > converged_mm) | (dr[todo] > converged_deg)
@@ -69,7 +75,7 @@ def refine(chain: Chain, q: np.ndarray, p_mm: np.ndarray, r: np.ndarray, converg
             break
         jac = poses.jacobian(open_)
         todo, e = todo[open_], e[open_]
-        jjt = jac @ np.swapaxes(jac, 1, 2) + _DAMPING * np.eye(6)
+        jjt = jac @ np.swapaxes(jac, 1, 2) + DAMPING_M2 * np.eye(6)
         q[todo] += np.einsum("nji,nj->ni", jac, np.linalg.solve(jjt, e[..., None])[..., 0])
     return q, dp, dr, at_site
 

@@ -37,12 +37,13 @@ def feed_forward(cell: Cell, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> 
     """Joint torques (n, 6) that realise (q, qd, qdd) exactly (passive forces included)."""
     model, data = cell.model, mujoco.MjData(cell.model)
     out = np.empty_like(q)
+    qpos, qvel, qacc, force = data.qpos, data.qvel, data.qacc, data.qfrc_inverse  # views, bound once
     for k in range(len(q)):
-        data.qpos[:] = q[k]
-        data.qvel[:] = qd[k]
-        data.qacc[:] = qdd[k]
+        qpos[:] = q[k]
+        qvel[:] = qd[k]
+        qacc[:] = qdd[k]
         mujoco.mj_inverse(model, data)
-        out[k] = data.qfrc_inverse
+        out[k] = force
     return out
 
 

@@ -26,6 +26,7 @@ import numpy as np
 from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
 from coatsim.errors import ExecutionError, InputError
 from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
+from coatsim.robot.ik_batch import row_norms
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
 TANGENT_TOL_RAD = math.radians(0.5)
@@ -152,28 +153,34 @@ def _blend(a: np.ndarray, ta: np.ndarray, b: np.ndarray, tb: np.ndarray, d: floa
     the first sample (a) excluded.
     """
     ctrl = np.array([a, a + (2 * d / 3) * ta, b - (2 * d / 3) * tb, b])
-    w = np.linspace(0.0, 1.0, 257)
-    dense = _bezier(ctrl, w, 0)
-    arc = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))))
+    dense = _DENSE_BASIS @ ctrl
+    arc = np.concatenate(([0.0], np.cumsum(row_norms(np.diff(dense, axis=0)))))
     # at least 8 intervals, so the curvature peak of a short blend is resolved for timing
     s = _uniform(float(arc[-1]), min(step, float(arc[-1]) / 8))[1:]
-    u = np.interp(s, arc, w)
-    d1, d2 = _bezier(ctrl, u, 1), _bezier(ctrl, u, 2)
-    speed = np.linalg.norm(d1, axis=1)
-    curv = np.linalg.norm(np.cross(d1, d2), axis=1) / speed**3
-    pts = _bezier(ctrl, u, 0)
+    u = np.interp(s, arc, _DENSE_W)
+    d1, d2 = _bezier_basis(u, 1) @ ctrl, _bezier_basis(u, 2) @ ctrl
+    speed = row_norms(d1)
+    cross = np.column_stack((d1[:, 1] * d2[:, 2] - d1[:, 2] * d2[:, 1], d1[:, 2] * d2[:, 0] - d1[:, 0] * d2[:, 2],
+                             d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]))
+    curv = row_norms(cross) / speed**3
+    pts = _bezier_basis(u, 0) @ ctrl
     pts[-1] = b
     return pts, d1 / speed[:, None], curv, s / arc[-1], float(arc[-1])
 
 
-def _bezier(ctrl: np.ndarray, u: np.ndarray, order: int) -> np.ndarray:
-    u = u[:, None]
-    p0, p1, p2, p3 = ctrl
+def _bezier_basis(u: np.ndarray, order: int) -> np.ndarray:
+    """Weights (n, 4) of the control points in a cubic Bezier's point (order 0) or its first or
+    second derivative at parameters ``u`` (n,)."""
+    v = 1.0 - u
     if order == 0:
-        return (1 - u) ** 3 * p0 + 3 * (1 - u) ** 2 * u * p1 + 3 * (1 - u) * u**2 * p2 + u**3 * p3
+        return np.column_stack((v**3, 3 * v**2 * u, 3 * v * u**2, u**3))
     if order == 1:
-        return 3 * (1 - u) ** 2 * (p1 - p0) + 6 * (1 - u) * u * (p2 - p1) + 3 * u**2 * (p3 - p2)
-    return 6 * (1 - u) * (p2 - 2 * p1 + p0) + 6 * u * (p3 - 2 * p2 + p1)
+        return np.column_stack((-3 * v**2, 3 * v**2 - 6 * v * u, 6 * v * u - 3 * u**2, 3 * u**2))
+    return np.column_stack((6 * v, 6 * u - 12 * v, 6 * v - 12 * u, 6 * u))
+
+
+_DENSE_W = np.linspace(0.0, 1.0, 257)  # the parameters where a blend's arc length is tabulated
+_DENSE_BASIS = _bezier_basis(_DENSE_W, 0)
 
 
 def _heading_change(a: Primitive, b: Primitive) -> float:

@@ -12,34 +12,25 @@ A program with exact stops has hundreds of short pieces, so the per-piece overhe
 joint-limit constraints are built once per cell (toppra formats every limit into a string when
 one is built), the tool-acceleration facets once per limit, the seidel solver is chosen without
 probing for the other solvers on every piece, one spline serves every derivative, and the
-sampling is vectorised.
+sampling is vectorised. toppra itself is imported only when a piece is timed
+(:mod:`coatsim.robot.timing_toppra`): importing this module costs no plotting library.
 """
 
 from __future__ import annotations
 
-import functools
-import logging
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
-import toppra
-from scipy.interpolate import CubicSpline, make_interp_spline
-import toppra.algorithm
-import toppra.constraint as tc
-from toppra.algorithm.algorithm import ParameterizationAlgorithm
-from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
-from toppra.interpolator import AbstractGeometricPath
-from toppra.solverwrapper.cy_seidel_solverwrapper import seidelWrapper
 
 from coatsim.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 
-logging.getLogger("toppra").setLevel(logging.ERROR)
-
-_FACETS = 8  # the tool-acceleration disc is approximated by an inscribed 16-gon
+if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads when a piece is timed
+    from coatsim.robot.timing_toppra import Spline
 # The planner commands at most this fraction of each joint's speed and acceleration limit: the
 # servo's transients at an acceleration step overshoot the commanded acceleration by 1.5 % to 5 %
 # (more on some wrist configurations), and the simulated arm must stay within the limits, not
@@ -71,107 +62,7 @@ class TimedPiece:
         return float(self.t[-1])
 
 
-class _PathSpeedBound(tc.LinearConstraint):
-    """First-order bound sd <= bound(s) on the path speed (toppra's x = sd^2 <= bound^2)."""
-
-    def __init__(self, s: np.ndarray, bound: np.ndarray):
-        super().__init__()
-        self._s, self._bound = s, bound
-
-    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
-        xbound = np.zeros((len(gridpoints), 2))
-        xbound[:, 1] = np.interp(gridpoints, self._s, self._bound) ** 2
-        return None, None, None, None, None, None, xbound
-
-
-@functools.lru_cache(maxsize=16)
-def _facets(accel: float) -> tuple[np.ndarray, np.ndarray]:
-    """The tool-acceleration disc of radius ``accel`` as an inscribed polygon: (F, g) with F x <= g."""
-    phi = np.linspace(0.0, math.pi, _FACETS + 1)
-    return np.column_stack((np.cos(phi), np.sin(phi))), np.full(_FACETS + 1, accel * math.cos(math.pi / (2 * _FACETS)))
-
-
-class _ToolAcceleration(tc.LinearConstraint):
-    """|(sdd, kappa * sd^2)| <= a_max: tangential and centripetal TCP acceleration together.
-
-    Valid when s is the TCP arc length; the disc is replaced by an inscribed polygon, which is
-    linear in (u, x) = (sdd, sd^2) as toppra requires.
-    """
-
-    def __init__(self, s: np.ndarray, kappa: np.ndarray, accel: float):
-        super().__init__()
-        self._s, self._kappa = s, np.abs(kappa)
-        self._F, self._g = _facets(float(accel))
-        self.identical = True
-        self.set_discretization_type(tc.DiscretizationType.Interpolation)
-
-    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
-        n = len(gridpoints)
-        kappa = np.interp(gridpoints, self._s, self._kappa)
-        a = np.column_stack((np.ones(n), np.zeros(n)))
-        b = np.column_stack((np.zeros(n), kappa))
-        return canlinear_colloc_to_interpolate(a, b, np.zeros((n, 2)), self._F, self._g, None, None,
-                                               gridpoints, identical=True)
-
-
-@functools.lru_cache(maxsize=8)
-def _joint_limits(cell: Cell) -> tuple[tc.LinearConstraint, tc.LinearConstraint]:
-    """The cell's joint speed and acceleration constraints at the planning fraction (they hold
-    no path state)."""
-    return (tc.JointVelocityConstraint(PLANNING_FRACTION * cell.v_max),
-            tc.JointAccelerationConstraint(PLANNING_FRACTION * cell.a_max,
-                                           discretization_scheme=tc.DiscretizationType.Interpolation))
-
-
-class _Spline(AbstractGeometricPath):
-    """Cubic spline (not-a-knot) through the samples, every derivative evaluated from the one
-    spline (a B-spline: three times cheaper to build than scipy's CubicSpline, the same curve)."""
-
-    def __init__(self, s: np.ndarray, q: np.ndarray):
-        self._spline = make_interp_spline(s, q, k=3) if len(s) >= 4 else CubicSpline(s, q)
-        self._s, self._q = s, q
-
-    def __call__(self, path_positions, order=0):
-        return self._spline(path_positions, order)
-
-    @property
-    def dof(self) -> int:
-        return self._q.shape[1]
-
-    @property
-    def path_interval(self) -> np.ndarray:
-        return np.array([self._s[0], self._s[-1]])
-
-    @property
-    def waypoints(self):
-        return self._s, self._q
-
-
-class _TOPPRA(toppra.algorithm.TOPPRA):
-    """TOPPRA with the seidel solver, chosen directly: the stock constructor probes for every
-    other solver (cvxpy, qpOASES) on each call."""
-
-    def __init__(self, constraints: list, path: AbstractGeometricPath, gridpoints: np.ndarray):
-        ParameterizationAlgorithm.__init__(self, constraints, path, gridpoints=gridpoints,
-                                           parametrizer="ParametrizeConstAccel")
-        self.solver_wrapper = seidelWrapper(self.constraints, self.path, self.gridpoints, solve_lp1d=True)
-
-
-def _parametrize(cell: Cell, path: AbstractGeometricPath, extra: list, gridpoints: np.ndarray, label: str):
-    algo = _TOPPRA([*_joint_limits(cell), *extra], path, gridpoints)
-    algo.compute_parameterization(0.0, 0.0)
-    data = algo.problem_data
-    code = data.return_code
-    if code != toppra.algorithm.ParameterizationReturnCode.Ok or data.sd_vec is None \
-            or not np.all(np.isfinite(data.sd_vec)):
-        raise ExecutionError(
-            f"{label}: timing failed (toppra {code.name if hasattr(code, 'name') else code}); the path is "
-            "not feasible under the joint limits, e.g. it passes too close to a singularity"
-        )
-    return data.gridpoints, np.maximum(data.sd_vec, 0.0)
-
-
-def _sample(path: _Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
+def _sample(path: Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
             max_steps: int) -> TimedPiece:
     """Evaluate the piecewise-constant path acceleration between gridpoints (toppra's
     ParametrizeConstAccel, vectorised) on the time grid k*dt; at most ``max_steps`` steps
@@ -203,11 +94,13 @@ def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
     return np.any(np.abs(piece.qd) > limit * cell.v_max, axis=1) | np.any(np.abs(piece.qdd) > limit * cell.a_max, axis=1)
 
 
-def _timed(cell: Cell, path: _Spline, extra: list, grid: np.ndarray, s_scale: float, label: str,
+def _timed(cell: Cell, path: Spline, extra: list, grid: np.ndarray, s_scale: float, label: str,
            max_steps: int) -> TimedPiece:
     """Parametrise and sample, halving the grid intervals where the command exceeds a joint bound."""
+    from coatsim.robot.timing_toppra import parametrize
+
     for _ in range(_MAX_REFINEMENTS):
-        grid_out, sd = _parametrize(cell, path, extra, grid, label)
+        grid_out, sd = parametrize(cell, path, extra, grid, label, PLANNING_FRACTION)
         piece = _sample(path, grid_out, sd, cell.timestep, s_scale, label, max_steps)
         bad = _over_bound(cell, piece)
         if not bad.any():
@@ -215,15 +108,17 @@ def _timed(cell: Cell, path: _Spline, extra: list, grid: np.ndarray, s_scale: fl
         k = np.searchsorted(grid_out, piece.s[bad] / s_scale, side="right") - 1
         k = np.unique(np.clip(np.concatenate((k - 1, k, k + 1)), 0, len(grid_out) - 2))
         grid = np.union1d(grid_out, (grid_out[k] + grid_out[k + 1]) / 2)
-    return _sample(path, *_parametrize(cell, path, extra, grid, label), cell.timestep, s_scale, label, max_steps)
+    return _sample(path, *parametrize(cell, path, extra, grid, label, PLANNING_FRACTION), cell.timestep, s_scale, label, max_steps)
 
 
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
                    curvature_per_mm: np.ndarray, label: str, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
+    from coatsim.robot.timing_toppra import PathSpeedBound, Spline, ToolAcceleration
+
     s = s_mm * MM
-    extra = [_PathSpeedBound(s, speed_mm_s * MM), _ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
-    return _timed(cell, _Spline(s, q), extra, s, 1.0 / MM, label, max_steps)
+    extra = [PathSpeedBound(s, speed_mm_s * MM), ToolAcceleration(s, curvature_per_mm / MM, cell.tool_accel_mm_s2 * MM)]
+    return _timed(cell, Spline(s, q), extra, s, 1.0 / MM, label, max_steps)
 
 
 # Below this joint travel (rad) a move is timed by a bang-bang profile: toppra's solver fails
@@ -252,10 +147,12 @@ def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, la
     """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
     if float(np.max(np.abs(q1 - q0))) < TINY_JOINT_MOVE_RAD:
         return _bang_bang(cell, np.asarray(q0, float), np.asarray(q1, float))
+    from coatsim.robot.timing_toppra import PathSpeedBound, Spline
+
     u = np.linspace(0.0, 1.0, n_grid)
     qs = q0 + u[:, None] * (q1 - q0)
     data = mujoco.MjData(cell.model)
     tcp = np.array([cell.forward(data, qk)[0] for qk in qs]) * MM
     dp_du = np.linalg.norm(np.gradient(tcp, u, axis=0), axis=1)
     bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
-    return _timed(cell, _Spline(u, qs), [_PathSpeedBound(u, bound)], u, 1.0, label, max_steps)
+    return _timed(cell, Spline(u, qs), [PathSpeedBound(u, bound)], u, 1.0, label, max_steps)

@@ -9,7 +9,7 @@ import mink
 import mujoco
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from coatsim.errors import ExecutionError
@@ -182,6 +182,57 @@ def test_first_order_prediction_errs_by_the_square_of_the_step(q0, seed):
     errors = []
     for h in (1e-3, 2e-3):
         target = CHAIN.poses((q0 + h * direction)[None])
-        guess = first_order(CHAIN, q0, target.tcp * M_TO_MM, target.rotation)
+        guess = first_order(q0, poses.tcp[0], poses.rotation[0], poses.jacobian()[0], target.tcp * M_TO_MM,
+                            target.rotation)
         errors.append(np.abs(guess[0] - (q0 + h * direction)).max())
     assert errors[0] < 1e-4 and errors[1] / max(errors[0], 1e-15) == pytest.approx(4.0, rel=0.2)
+
+
+def polygon_pieces(seed: int, sides: int, radius: float, tilt: float):
+    """The rest-to-rest pieces of an exact-stop polygon (1 mm samples, the tool tilting about x
+    by up to ``tilt`` rad, a different angle at every corner): (s, positions, rotations, step
+    times)."""
+    rng = np.random.default_rng(seed)
+    corners = np.column_stack((700.0 + radius * np.cos(np.linspace(0, 2 * math.pi, sides + 1)),
+                               radius * np.sin(np.linspace(0, 2 * math.pi, sides + 1)), np.full(sides + 1, 300.0)))
+    corners[:, :2] += rng.uniform(-2.0, 2.0, (sides + 1, 2))
+    tilts = tilt * np.sin(np.linspace(0.0, 2 * math.pi, sides + 1))
+    pieces = []
+    for a, b, t0, t1 in zip(corners[:-1], corners[1:], tilts[:-1], tilts[1:]):
+        n = max(3, int(math.ceil(np.linalg.norm(b - a))) + 1)
+        f = np.linspace(0.0, 1.0, n)
+        p = a + f[:, None] * (b - a)
+        angle = t0 + f * (t1 - t0)
+        turn = np.array([[[1, 0, 0], [0, math.cos(t), -math.sin(t)], [0, math.sin(t), math.cos(t)]] for t in angle])
+        s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
+        pieces.append((s, p, DOWN @ turn, np.concatenate(([0.0], np.diff(s))) / 200.0))
+    return pieces
+
+
+@settings(max_examples=10, deadline=None, derandomize=True)
+@given(st.integers(0, 2**32 - 1), st.integers(3, 24), st.floats(10.0, 120.0), st.floats(0.0, 0.3))
+@example(seed=1, sides=20, radius=60.0, tilt=0.2)
+def test_a_run_of_short_pieces_solves_as_each_piece_alone(seed, sides, radius, tilt):
+    """track_run gives what track gives piece after piece (to the Newton tolerance)."""
+    pieces = polygon_pieces(seed, sides, radius, tilt)
+    tracker = ik.Tracker(CELL)
+    assume(all(tracker.batchable(piece[0]) for piece in pieces))
+    q0 = start_on(tracker, pieces[0][1][0], pieces[0][2][0])
+    together = tracker.track_run(q0, pieces)
+    q = q0
+    assert len(together) == len(pieces)
+    for (s, p, r, dt), (q_run, wrist_run, res_run) in zip(pieces, together):
+        q_one, wrist_one, res_one = tracker.track(q, s, p, r, dt, lambda i: f"sample {i}")
+        np.testing.assert_allclose(q_run, q_one, atol=1e-8)
+        np.testing.assert_allclose(wrist_run, wrist_one, atol=1e-6)
+        assert res_run.position_mm <= 1e-6 and res_run.rotation_deg <= 1e-6
+        q = q_one[-1]
+
+
+def test_a_run_stops_before_a_piece_out_of_reach():
+    pieces = polygon_pieces(0, 12, 80.0, 0.0)
+    s, p, r, dt = pieces[5]
+    pieces[5] = (s, p + np.array([0.0, 0.0, 3000.0]) * (s / s[-1])[:, None], r, dt)  # climbs out of reach
+    tracker = ik.Tracker(CELL)
+    q0 = start_on(tracker, pieces[0][1][0], pieces[0][2][0])
+    assert len(tracker.track_run(q0, pieces)) == 5

@@ -15,7 +15,8 @@ from toppra.parametrizer import ParametrizeConstAccel
 
 from coatsim.budgets import MAX_SIM_STEPS
 from coatsim.robot.cell import load_cell
-from coatsim.robot.timing import PLANNING_FRACTION, _joint_limits, _sample, _Spline, time_cartesian
+from coatsim.robot.timing import PLANNING_FRACTION, _sample, time_cartesian
+from coatsim.robot.timing_toppra import Spline as _Spline, joint_limits
 
 
 @pytest.fixture(scope="module")
@@ -70,8 +71,8 @@ def test_a_piece_at_rest_throughout_is_an_execution_error():
 
 
 def test_joint_limit_constraints_are_built_once_per_cell(cell):
-    assert _joint_limits(cell) is _joint_limits(cell)
-    velocity, acceleration = _joint_limits(cell)
+    assert joint_limits(cell, PLANNING_FRACTION) is joint_limits(cell, PLANNING_FRACTION)
+    velocity, acceleration = joint_limits(cell, PLANNING_FRACTION)
     np.testing.assert_array_equal(velocity.vlim[:, 1], PLANNING_FRACTION * cell.v_max)
     np.testing.assert_array_equal(acceleration.alim[:, 1], PLANNING_FRACTION * cell.a_max)
 
