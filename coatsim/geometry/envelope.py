@@ -22,6 +22,7 @@ WINDOW_SIGMAS = 3.0  # the window is at least this many σ ...
 WINDOW_EDGES = 1.0  # ... and at least one median input edge
 NOISE_SHARE = 0.2  # noise may move the estimate by this share of the curve's typical |κ| (4 std)
 MAX_GRID = 200_000  # estimate points per run, at most
+SPARSE_EDGE_SIGMAS = 2.0  # a kink is a vertex between edges this many σ long, at least
 
 
 @dataclass(frozen=True, eq=False)
@@ -120,7 +121,8 @@ def _estimate(points: np.ndarray, closed: bool, window: float, grid: np.ndarray)
 
 def kink_demand(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
     """Arc lengths (mm) of the input's kinks and the curvature (1/mm) each may ask of a
-    chain within ``tolerance``: a vertex h > σ off the chord c of its neighbours makes the
+    chain within ``tolerance``: a vertex between two edges of at least 2 σ (sparse there:
+    dense noisy input has no say) h > σ off the chord c of its neighbours makes the
     chain bulge by at least h − σ over about that chord (8 (h − σ) / c²) while it also
     keeps to both edges; twice that, but never more than the circle through the three
     vertices (8 h / c²). Smooth dense input has no such vertex (its offsets are far below
@@ -132,12 +134,14 @@ def kink_demand(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.
         before, here, after, at = np.roll(pts[:-1], 1, axis=0), pts[:-1], np.roll(pts[:-1], -1, axis=0), s[:-1]
     else:
         before, here, after, at = pts[:-2], pts[1:-1], pts[2:], s[1:-1]
+    edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    shorter = np.minimum(edges, np.roll(edges, 1)) if closed else np.minimum(edges[1:], edges[:-1])
     chord = after - before
     c = np.linalg.norm(chord, axis=1)
     w = here - before
     with np.errstate(divide="ignore", invalid="ignore"):
         h = np.abs(w[:, 0] * chord[:, 1] - w[:, 1] * chord[:, 0]) / c
-        kink = (c > 0) & (h > tolerance)
+        kink = (c > 0) & (h > tolerance) & (shorter >= SPARSE_EDGE_SIGMAS * tolerance)
     h, c = h[kink], c[kink]
     return at[kink], np.minimum(16 * (h - tolerance), 8 * h) / c**2
 
