@@ -42,6 +42,7 @@ QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its fir
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
+BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,7 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     turn = total_turn(pts) if closed_loop else None
     if start_heading is not None and end_heading is not None:
         turn = _pinned_turn(pts, start_heading, end_heading)
-    prob, ref = BandProblem.from_points(pts, limits)
+    prob, ref = BandProblem.from_points(_band_knots(pts), limits)
     pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
@@ -164,6 +165,15 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
                 band *= shrink
             splits, params, landed = 0, None, not landed and not single
     return None
+
+
+def _band_knots(pts: np.ndarray) -> np.ndarray:
+    """The points the band fit works on: all of them up to BAND_KNOTS, else every k-th one
+    (and the last), so its cost stays linear; the refinement and the exact check see all."""
+    step = -(-len(pts) // BAND_KNOTS)
+    if step == 1:
+        return pts
+    return np.vstack((pts[:-1:step], pts[-1:]))
 
 
 def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool:
