@@ -42,7 +42,7 @@ def fail(message: str, code: int = 2) -> None:
     raise typer.Exit(code)
 
 
-SEGMENT_FLAGS = {"min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
+SEGMENT_FLAGS = {"tolerance_mm": "--tol", "min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
 
 
 def _segment_flags(message: str) -> str:

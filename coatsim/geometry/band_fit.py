@@ -17,7 +17,7 @@ picks each piece's end and curvature by one step of look-ahead: the choice that 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import linprog
@@ -43,6 +43,7 @@ class BandProblem:
     min_length: float
     points: np.ndarray
     tangent: np.ndarray
+    first_steps: dict = field(default_factory=dict, repr=False)  # see _first_step
 
     @classmethod
     def from_points(cls, points: np.ndarray, limits: FitLimits) -> tuple["BandProblem", float]:
@@ -290,19 +291,23 @@ def _closing_pair(prob: BandProblem, a: int, value: float, slope: float, band: f
     return None
 
 
-def fit_band(
-    prob: BandProblem, ref: float, band: float, start_slope: float | None = None, end_turn: float | None = None,
-    landed: bool = False,
-) -> tuple[float, list[Piece]]:
-    """Greedy C1 piecewise-quadratic fit of Φ within ±band over the whole run.
+def _first_step(prob: BandProblem, band: float, start_slope: float | None) -> tuple[float, Piece, float, float]:
+    """The start slope and first piece of a fit within ``band`` (see fit_band), remembered
+    per band on ``prob``: the fitter retries a band with its states re-measured, and the
+    first step does not depend on that."""
+    key = (band, start_slope)
+    if key not in prob.first_steps:
+        try:
+            prob.first_steps[key] = _choose_first_step(prob, band, start_slope)
+        except _Stuck as stuck:
+            prob.first_steps[key] = stuck
+    found = prob.first_steps[key]
+    if isinstance(found, _Stuck):
+        raise found
+    return found
 
-    The run starts on the curve (Φ̂(0) = Φ(0)); its start slope is ``start_slope`` if given,
-    otherwise chosen by look-ahead. With ``landed``, the state after every piece is
-    re-measured on the real arc (``ref``: the heading Φ is taken against), which helps on
-    long runs whose chain drifts along the curve. With ``end_turn`` (closed loops) the last
-    pieces are chosen to end with the start slope plus that turn where the band allows it.
-    Returns (start slope, pieces).
-    """
+
+def _choose_first_step(prob: BandProblem, band: float, start_slope: float | None) -> tuple[float, Piece, float, float]:
     if start_slope is None:
         lo, hi = _start_heading_range(prob, band)
         options = np.linspace(lo, hi, N_HEADING_CANDIDATES)
@@ -320,6 +325,23 @@ def fit_band(
     if best is None:
         raise _Stuck(0)
     _, slope0, piece, v, t = best
+    return slope0, piece, v, t
+
+
+def fit_band(
+    prob: BandProblem, ref: float, band: float, start_slope: float | None = None, end_turn: float | None = None,
+    landed: bool = False,
+) -> tuple[float, list[Piece]]:
+    """Greedy C1 piecewise-quadratic fit of Φ within ±band over the whole run.
+
+    The run starts on the curve (Φ̂(0) = Φ(0)); its start slope is ``start_slope`` if given,
+    otherwise chosen by look-ahead. With ``landed``, the state after every piece is
+    re-measured on the real arc (``ref``: the heading Φ is taken against), which helps on
+    long runs whose chain drifts along the curve. With ``end_turn`` (closed loops) the last
+    pieces are chosen to end with the start slope plus that turn where the band allows it.
+    Returns (start slope, pieces).
+    """
+    slope0, piece, v, t = _first_step(prob, band, start_slope)
     last = len(prob.s) - 1
     pose = _Pose(float(prob.points[0][0]), float(prob.points[0][1]), ref + slope0)
     pieces: list[Piece] = []

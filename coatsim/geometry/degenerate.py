@@ -19,11 +19,24 @@ from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 
 LONGEST_SWEEP = 1.5 * math.pi  # arcs turning more are cut into equal parts (all within (-2π, 2π))
+RESOLVED = 1e-11  # the finest tolerance, relative to the coordinates (float64 resolves 2.2e-16 of them;
+#                   arc centres, sincs and running sums of lengths lose the rest)
 
 
 def extent_mm(points: np.ndarray) -> float:
     """Diagonal of the points' bounding box (mm)."""
     return float(np.linalg.norm(np.ptp(points, axis=0)))
+
+
+def check_resolvable(points: np.ndarray, tolerance: float) -> None:
+    """Raise InputError if ``tolerance`` is finer than float64 arithmetic can resolve at
+    the points' coordinates (the fit could not be verified, only fail after a long search)."""
+    pts = np.asarray(points, dtype=float)
+    scale = max(float(np.abs(pts).max()), extent_mm(pts))
+    floor = RESOLVED * scale
+    if tolerance < floor:
+        raise InputError(f"tolerance_mm {tolerance:g} is below what float64 resolves at these coordinates "
+                         f"(up to {scale:.3g} mm from the origin or across): give at least {floor:.3g} mm")
 
 
 def obvious_answer(points: np.ndarray, closed: bool, tolerance: float) -> Polysegment | None:

@@ -22,6 +22,7 @@ WINDOW_SIGMAS = 3.0  # the window is at least this many σ ...
 WINDOW_EDGES = 1.0  # ... and at least one median input edge
 NOISE_SHARE = 0.2  # noise may move the estimate by this share of the curve's typical |κ| (4 std)
 MAX_GRID = 200_000  # estimate points per run, at most
+SPARSE_EDGE_SIGMAS = 2.0  # a kink is a vertex between edges this many σ long, at least
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,6 +45,16 @@ class CurvatureProfile:
 
         size = 2 * int(math.ceil(neighbourhood_mm / self.step)) + 1
         return maximum_filter1d(np.abs(self.kappa), size, mode="wrap" if self.closed else "nearest")
+
+    def spread(self, s: np.ndarray, values: np.ndarray, neighbourhood_mm: float) -> np.ndarray:
+        """Grid of the largest of ``values`` (given at arc lengths ``s``) within
+        ± ``neighbourhood_mm`` of every grid point (0 where there is none)."""
+        from scipy.ndimage import maximum_filter1d
+
+        grid = np.zeros(len(self.kappa))
+        np.maximum.at(grid, np.clip(np.rint(s / self.step).astype(int), 0, len(grid) - 1), values)
+        size = 2 * int(math.ceil(neighbourhood_mm / self.step)) + 1
+        return maximum_filter1d(grid, size, mode="wrap" if self.closed else "nearest")
 
     def at(self, values: np.ndarray, s: np.ndarray) -> np.ndarray:
         """Grid ``values`` at arc lengths ``s`` (the nearest grid point)."""
@@ -106,6 +117,33 @@ def _estimate(points: np.ndarray, closed: bool, window: float, grid: np.ndarray)
     a, b = here - before, after - here
     turn = np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b))
     return turn / window
+
+
+def kink_demand(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Arc lengths (mm) of the input's kinks and the curvature (1/mm) each may ask of a
+    chain within ``tolerance``: a vertex between two edges of at least 2 σ (sparse there:
+    dense noisy input has no say) h > σ off the chord c of its neighbours makes the
+    chain bulge by at least h − σ over about that chord (8 (h − σ) / c²) while it also
+    keeps to both edges; twice that, but never more than the circle through the three
+    vertices (8 h / c²). Smooth dense input has no such vertex (its offsets are far below
+    σ), nor has noise below σ; sparse or kinked input has, and the windowed estimate
+    smooths it away."""
+    pts = np.asarray(points, dtype=float)
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))))
+    if closed:  # every vertex of the loop, its neighbours across the seam
+        before, here, after, at = np.roll(pts[:-1], 1, axis=0), pts[:-1], np.roll(pts[:-1], -1, axis=0), s[:-1]
+    else:
+        before, here, after, at = pts[:-2], pts[1:-1], pts[2:], s[1:-1]
+    edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    shorter = np.minimum(edges, np.roll(edges, 1)) if closed else np.minimum(edges[1:], edges[:-1])
+    chord = after - before
+    c = np.linalg.norm(chord, axis=1)
+    w = here - before
+    with np.errstate(divide="ignore", invalid="ignore"):
+        h = np.abs(w[:, 0] * chord[:, 1] - w[:, 1] * chord[:, 0]) / c
+        kink = (c > 0) & (h > tolerance) & (shorter >= SPARSE_EDGE_SIGMAS * tolerance)
+    h, c = h[kink], c[kink]
+    return at[kink], np.minimum(16 * (h - tolerance), 8 * h) / c**2
 
 
 def _offset_spread(points: np.ndarray) -> float:

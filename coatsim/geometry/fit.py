@@ -28,6 +28,7 @@ from coatsim.geometry.fillet import fillet_chain
 from coatsim.geometry.limits import FitLimits, arc_excess, fit_limits
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
+from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 
@@ -41,6 +42,7 @@ QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its fir
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
+BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
 
 
 @dataclass(frozen=True)
@@ -70,11 +72,6 @@ def _params_from_band(prob: BandProblem, ref: float, slope: float, pieces) -> Ch
     kappa = np.array([p.kappa for p in pieces])
     length = np.array([p.length for p in pieces])
     return ChainParams(ref + slope, kappa, length)
-
-
-def _check(points: np.ndarray, params: ChainParams, end: np.ndarray) -> tuple[float, tuple[Segment, ...]]:
-    segs = build_chain(points[0], params, end)
-    return hausdorff(points, Polysegment(segs)).hausdorff, segs
 
 
 def _near_chord(pts: np.ndarray, tolerance: float) -> bool:
@@ -124,7 +121,7 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     turn = total_turn(pts) if closed_loop else None
     if start_heading is not None and end_heading is not None:
         turn = _pinned_turn(pts, start_heading, end_heading)
-    prob, ref = BandProblem.from_points(pts, limits)
+    prob, ref = BandProblem.from_points(_band_knots(pts), limits)
     pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
@@ -145,26 +142,38 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
         params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target,
                                        fixed_heading=start_heading is not None)
         params = close_exactly(pts[0], params, end, turn)
-        dev, segs = _check(pts, params, end)
+        segs = build_chain(pts[0], params, end)
         honest = _honest(params, limits, total) and _pins_kept(segs, start_heading, end_heading)
+        dev = hausdorff(pts, Polysegment(segs)).hausdorff if honest else math.inf  # unused when not honest
         if dev <= tolerance and honest:
             return segs, dev
         if honest and sampled <= target:
             # The samples met the target but the exact check did not (chords of the input
             # cut inside the chain): aim lower with the same segments.
             target *= 0.99 * tolerance / dev
-        elif (honest and sampled < SPLIT_BELOW * tolerance and splits < MAX_SPLITS
+        elif (honest and (sampled < SPLIT_BELOW * tolerance or len(params.length) == 1) and splits < MAX_SPLITS
               and _splittable(params, pts, limits)):
+            # (one refined segment is the best single arc: no narrower band makes it fit)
             params = split_segment(params, worst_segment(pts[0], params, pts))
             splits += 1
         else:
             # A new band fit: the same band with states re-measured on the real arcs, then
             # a band narrower by what the deviation asks for.
             shrink = float(np.clip(0.97 * tolerance / dev, 0.5, 0.95)) if honest else 0.9
-            if landed:
+            single = len(params.length) == 1 and splits == 0  # re-measuring one piece changes nothing
+            if landed or single:
                 band *= shrink
-            splits, params, landed = 0, None, not landed
+            splits, params, landed = 0, None, not landed and not single
     return None
+
+
+def _band_knots(pts: np.ndarray) -> np.ndarray:
+    """The points the band fit works on: all of them up to BAND_KNOTS, else every k-th one
+    (and the last), so its cost stays linear; the refinement and the exact check see all."""
+    step = -(-len(pts) // BAND_KNOTS)
+    if step == 1:
+        return pts
+    return np.vstack((pts[:-1:step], pts[-1:]))
 
 
 def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool:
@@ -224,12 +233,20 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     if not fillet:
         raise InputError(f"no chain within {tolerance:g} mm keeps every segment at least "
                          f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one")
-    # Sparse or kinked input the band fit cannot follow: round every vertex instead.
-    segs = fillet_chain(pts, tolerance, closed_loop)
-    dev = hausdorff(pts, Polysegment(segs)).hausdorff
-    if dev > tolerance:
-        raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
-    return RunFit(segs, dev, limits_kept=False)
+    # Sparse or kinked input the band fit cannot follow: round the vertices instead, first
+    # those of the input simplified within half the tolerance (rounded within the other half).
+    for keep, share in ((_simplified(pts, closed_loop, tolerance / 2), 0.5), (np.arange(len(pts)), 1.0)):
+        segs = fillet_chain(pts[keep], share * tolerance, closed_loop)
+        dev = hausdorff(pts, Polysegment(segs)).hausdorff
+        if dev <= tolerance:
+            return RunFit(segs, dev, limits_kept=False)
+    raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
+
+
+def _simplified(pts: np.ndarray, closed_loop: bool, tolerance: float) -> np.ndarray:
+    """Indices of the vertices RDP keeps within ``tolerance`` (at least a triangle of a loop)."""
+    keep = simplify_closed(pts, tolerance) if closed_loop else rdp_indices(pts, tolerance)
+    return keep if not closed_loop or len(keep) >= 4 else np.arange(len(pts))
 
 
 def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,

@@ -1,7 +1,8 @@
 """How tight and how short the fitted arcs of one run may be.
 
 An arc may be at most ``TIGHTER`` times as tight as the input's robust curvature envelope
-over the stretch it covers and a neighbourhood around it (coatsim.geometry.envelope). Given a
+over the stretch it covers and a neighbourhood around it (coatsim.geometry.envelope), or
+than the kinks of sparse input there force (kink_demand). Given a
 programmed speed v and a tool acceleration limit a, where the input allows v (its envelope at
 most a / v²) no arc may need more than a either (|κ| <= a / v²), and where the input needs a
 tighter turn, no arc may be tighter than the input there. Every fitted segment but the only
@@ -15,7 +16,7 @@ from functools import cached_property
 
 import numpy as np
 
-from coatsim.geometry.envelope import CurvatureProfile, curvature_profile
+from coatsim.geometry.envelope import CurvatureProfile, curvature_profile, kink_demand
 
 TIGHTER = 1.22  # an arc may be this much tighter than the input near it (1.25 with the fit's 2 % slack)
 MIN_LENGTH_SIGMAS = 5.0  # the default shortest segment, in σ ...
@@ -66,7 +67,8 @@ def fit_limits(points: np.ndarray, closed_loop: bool, tolerance: float, min_leng
     """The limits of one run; ``speed_kappa`` = a / v² (1/mm) when the speed is given."""
     profile = curvature_profile(points, closed_loop, tolerance)
     min_length = max(MIN_LENGTH_SIGMAS * tolerance, MIN_LENGTH_SHARE * profile.length) if min_length_mm is None else min_length_mm
-    near = profile.envelope(max(NEIGHBOURHOOD_WINDOWS * profile.window_mm, min_length))
+    neighbourhood = max(NEIGHBOURHOOD_WINDOWS * profile.window_mm, min_length)
+    near = np.maximum(profile.envelope(neighbourhood), profile.spread(*kink_demand(points, closed_loop, tolerance), neighbourhood))
     # An arc that bulges σ/8 from its chord over the whole run is as good as a line: the
     # floor keeps straight stretches (envelope ~ 0) from forbidding every curvature.
     floor = tolerance / max(profile.length, tolerance) ** 2

@@ -12,7 +12,7 @@ import numpy as np
 from coatsim.errors import InputError
 from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.curves import Curve
-from coatsim.geometry.degenerate import check_chain, extent_mm, obvious_answer, split_long_arcs
+from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.dynamics import max_curvature_jump, speed_limited
 from coatsim.geometry.fit import fit_free, fit_run
@@ -166,6 +166,10 @@ def segment_curve(
         raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither")
     started = time.perf_counter()
     pts = curve.points
+    try:
+        check_resolvable(pts, tol)
+    except InputError as exc:
+        raise InputError(f"{curve.name}: {exc}") from None
     theta = theta_of_polyline(pts)
     if method == "paper":
         poly, approx, eps = _paper(curve, tol, theta_tolerance)

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from coatsim.geometry import Arc, Line, load_curve, make_curve, read_polysegment_json, segment_curve
+from coatsim.errors import InputError
 from coatsim.geometry.deviation import hausdorff
 
 from geometry_helpers import brute_hausdorff, tangent_breaks
@@ -156,3 +157,73 @@ def test_an_open_polygon_that_ends_where_it_starts_on_a_circle_is_split_below_a_
     arcs = [s for s in seg.polysegment.segments if isinstance(s, Arc)]
     assert arcs and all(abs(a.sweep) < 2 * math.pi - 1e-6 for a in arcs)
     assert seg.max_deviation_mm <= tol and brute_hausdorff(pts, seg.polysegment, tol / 20) <= tol * 1.05
+
+
+# ---------------------------------------------------------------- tolerances past float64, sparse kinks
+
+
+@pytest.mark.parametrize("tol", [1e-300, 1e-12, 1e-10])
+def test_a_tolerance_finer_than_float64_resolves_is_refused(tol):
+    """Regression: 1e-300 mm searched for 28 s, printed overflow warnings and then failed."""
+    with pytest.raises(InputError, match=r"tolerance_mm .* below what float64 resolves .* give at least"):
+        segment_curve(load_curve("builtin:ellipse"), tol)
+
+
+def test_the_float64_floor_scales_with_the_coordinates():
+    """The same tolerance is fine near the origin and refused 500 km away."""
+    pts = np.column_stack((np.linspace(0.0, 100.0, 50), np.zeros(50)))
+    assert segment_curve(make_curve(pts, "near"), 1e-6).polysegment.n_segments == 1
+    with pytest.raises(InputError, match="tolerance_mm"):
+        segment_curve(make_curve(pts + 5e8, "far"), 1e-6)
+
+
+def test_the_cli_refuses_a_tolerance_below_the_float64_floor_in_one_line(run_cli):
+    code, out, err = run_cli(["segment", "builtin:ellipse", "--tol", "1e-300"])
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith("coatsim: error: builtin:ellipse: --tol 1e-300 is below")
+    assert "Warning" not in err
+
+
+def test_a_huge_tolerance_on_a_closed_curve_is_two_half_circles():
+    seg = segment_curve(load_curve("builtin:ellipse"), 1e300)
+    assert seg.polysegment.n_segments == 2 and seg.polysegment.n_arcs == 2
+    assert_sane(seg, 1e300)
+
+
+def count_refinements(monkeypatch) -> list[int]:
+    """A counter of the fitter's refinement attempts (calls of refine_chain)."""
+    from coatsim.geometry import fit
+
+    calls = [0]
+    original = fit.refine_chain
+
+    def counted(*args, **kwargs):
+        calls[0] += 1
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(fit, "refine_chain", counted)
+    return calls
+
+
+def test_a_sparse_steep_sine_fits_its_flanks_without_fillets(monkeypatch):
+    """Regression: a sine of wavelength 3 mm and amplitude 20 mm sampled every 1.75 mm (the
+    peaks are kinks) took 69 s: the curvature estimate smoothed the kinks next to the peaks
+    away, so each flank exhausted every try and fell back to fillets (505 segments, some
+    1e-9 mm long). The kinks now admit the curvature they force."""
+    calls = count_refinements(monkeypatch)
+    seg = segment_curve(load_curve("builtin:sine:wavelength=3,length=30,points=450"), 0.1)
+    assert_sane(seg, 0.1)
+    runs = len(seg.polysegment.corners) + 1
+    assert seg.limits_kept
+    assert seg.polysegment.n_segments <= 2 * runs
+    assert min(s.length for s in seg.polysegment.segments) >= 0.25
+    assert calls[0] <= 4 * runs
+
+
+def test_a_flat_ellipse_of_a_kilometre_falls_back_to_few_fillets():
+    """Regression: a = 1e9 mm, b = 20 mm: the ends are kinks at its 1.3e6 mm edges; the fit
+    fell back to a fillet at each of the 3000 vertices, collinear ones too (3001 segments).
+    The fillets now round the vertices of the input simplified within σ/2."""
+    seg = segment_curve(load_curve("builtin:ellipse:a=1e9,b=20"), 0.1)
+    assert_sane(seg, 0.1)
+    assert seg.polysegment.n_segments <= 200

@@ -40,3 +40,28 @@ def test_fitter_memory_per_input_point(tmp_path, name, points):
     assert figures["n"] == points
     assert figures["rss_bytes"] <= BUDGET_BYTES_PER_POINT * points, figures
     assert figures["traced_bytes"] <= BUDGET_BYTES_PER_POINT * points, figures
+
+
+@pytest.mark.parametrize("points", [10, 100_000, 100_001, 250_000])
+def test_the_band_fit_sees_a_bounded_subsample_with_both_ends(points):
+    """Past BAND_KNOTS points the band fit works on every k-th point (its cost stays linear;
+    the refinement and the exact check see every point)."""
+    from coatsim.geometry.fit import BAND_KNOTS, _band_knots
+
+    pts = np.column_stack((np.arange(points, dtype=float), np.zeros(points)))
+    knots = _band_knots(pts)
+    assert len(knots) <= BAND_KNOTS + 1
+    assert (knots[0] == pts[0]).all() and (knots[-1] == pts[-1]).all()
+    assert np.all(np.diff(knots[:, 0]) > 0)
+    if points <= BAND_KNOTS:
+        assert knots is pts
+
+
+def test_a_subsampled_band_fit_keeps_the_contract():
+    """250 000 points of the paper's spiral: the fit from a subsampled band still meets σ
+    (exactly verified on every point), G1, and the limits."""
+    from coatsim.geometry import segment_curve
+
+    seg = segment_curve(builtin_curve("paper-spiral", points=250_000), 0.05)
+    assert seg.max_deviation_mm <= 0.05 and seg.limits_kept
+    assert seg.polysegment.max_tangent_break() <= 1e-9
