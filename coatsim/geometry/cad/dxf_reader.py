@@ -278,8 +278,10 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     doc = _open(path)
     msp = doc.modelspace()
     entities = list(msp)
+    paper = _paperspace_geometry(doc)
     if not entities:
-        raise InputError(f"{path}: the modelspace is empty (no entities)")
+        raise InputError(f"{path}: the modelspace is empty (no entities)"
+                         + (f"; {_paper_note(paper)}" if paper else ""))
     known = [layer.dxf.name for layer in doc.layers]
     used = sorted({e.dxf.get("layer", "0") for e in entities} - set(known))
     walk = _Walk(doc, check_layers(str(path), layers, known + used), flatten_mm)
@@ -296,6 +298,8 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         _walk(entities, walk, None, "", 0)
         notes.append(f"the drawing lies in a plane tilted from XY (normal {', '.join(f'{c:.6g}' for c in normal)}): "
                      "read in that plane's own coordinates (its OCS)")
+    if paper:
+        notes.append(_paper_note(paper))
     if code == 0:
         notes.append("no $INSUNITS in the header: coordinates taken as mm")
     if walk.ignored:
@@ -310,6 +314,22 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     pieces = tuple(p.transformed(np.eye(2), np.zeros(2), factor) for p in walk.pieces) if factor != 1.0 else tuple(walk.pieces)
     units = "mm" if code in (0, 4) else f"{unit} (x {factor:g} to mm)"
     return Drawing(str(path), pieces, units, tuple(notes))
+
+
+def _paperspace_geometry(doc) -> Counter:
+    """Geometry entities (and block references) per paperspace layout, which coatsim does not read."""
+    found: Counter = Counter()
+    for name in doc.layout_names():
+        layout = doc.layouts.get(name)
+        if layout.is_modelspace:
+            continue
+        found[name] += sum(1 for e in layout if e.dxftype() in GEOMETRY or e.dxftype() == "INSERT")
+    return +found
+
+
+def _paper_note(paper: Counter) -> str:
+    return (f"left out {sum(paper.values())} entities in paperspace layouts "
+            f"({', '.join(sorted(paper))}): coatsim reads the modelspace only")
 
 
 def _nothing(walk: _Walk, layers: Sequence[str] | None) -> str:
