@@ -22,7 +22,7 @@ import numpy as np
 
 from coatsim.errors import InputError
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
-from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, flatten, heading_of, line_piece, tangent_heading
+from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, free_or_native, heading_of, line_piece
 
 # $INSUNITS code -> (name, mm per unit); exact values, not ezdxf's rounded ones
 UNITS_MM = {
@@ -182,9 +182,8 @@ def _spline(entity, label: str, walk: _Walk) -> None:
         def at(t: np.ndarray, a: float = a, b: float = b) -> np.ndarray:
             return np.array([xy(v) for v in curve.points(a + np.asarray(t, float) * (b - a))])
 
-        pts = flatten(at, walk.flatten)
         sub = label if len(spans) == 1 else f"{label} span {k + 1}"
-        walk.pieces.append(FreePiece(pts, tangent_heading(at, False), tangent_heading(at, True), sub))
+        walk.pieces.append(free_or_native(at, walk.flatten, sub))
 
 
 def _line(entity, label: str, walk: _Walk) -> None:

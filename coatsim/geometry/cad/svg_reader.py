@@ -29,7 +29,7 @@ import numpy as np
 
 from coatsim.errors import InputError
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
-from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, flatten, line_piece, tangent_heading
+from coatsim.geometry.cad.pieces import Piece, arc_piece, free_or_native, line_piece
 
 MM_PER_USER_UNIT = 25.4 / 96.0
 # svgelements converts mm and cm with 0.0393701 inch per mm (rounded); its px of a document
@@ -267,9 +267,7 @@ def _shape_pieces(shape, label: str, flatten_mm: float, mm_px: float) -> list[Pi
             pieces.append(arc_piece(to_mm(seg.center), radius, a, b, sweep, sub))
         else:
             at = lambda t, seg=seg: np.asarray(seg.npoint(np.asarray(t, float)), float) @ matrix.T + offset  # noqa: E731
-            pts = flatten(at, flatten_mm)
-            pts[0], pts[-1] = a, b
-            pieces.append(FreePiece(pts, tangent_heading(at, False), tangent_heading(at, True), sub))
+            pieces.append(free_or_native(at, flatten_mm, sub).with_ends(a, b))
     return pieces
 
 
