@@ -168,7 +168,7 @@ def _spline(entity, label: str, walk: _Walk) -> None:
         walk.tilt(entity, label)
         return
     try:
-        curve = entity.construction_tool()
+        curve = _closed_fit_spline(entity) or entity.construction_tool()
         knots = np.asarray(curve.knots(), dtype=float)
         degree = int(curve.degree)
     except Exception as exc:  # ezdxf raises assorted errors on malformed splines
@@ -184,6 +184,24 @@ def _spline(entity, label: str, walk: _Walk) -> None:
 
         sub = label if len(spans) == 1 else f"{label} span {k + 1}"
         walk.pieces.append(free_or_native(at, walk.flatten, sub))
+
+
+def _closed_fit_spline(entity):
+    """The curve of a closed SPLINE given by fit points only, smooth across its seam (CAD
+    programs draw it periodic; ezdxf's interpolation would leave a corner there): closed
+    onto its first fit point, with the seam's tangent from the fit points either side of it.
+    None for any other spline."""
+    if not entity.closed or entity.control_point_count() or entity.fit_point_count() < 3:
+        return None
+    if entity.dxf.hasattr("start_tangent") and entity.dxf.hasattr("end_tangent"):
+        return None
+    from ezdxf.math import Vec3, fit_points_to_cad_cv
+
+    pts = [Vec3(p) for p in entity.fit_points]
+    if not pts[0].isclose(pts[-1], abs_tol=1e-12):
+        pts.append(pts[0])
+    seam = (pts[1] - pts[-2]).normalize()
+    return fit_points_to_cad_cv(pts, tangents=[seam, seam])
 
 
 def _line(entity, label: str, walk: _Walk) -> None:

@@ -75,3 +75,21 @@ def test_rational_quarter_arc_spline_joins_lines_exactly(tmp_path):
     kinds = [type(s) for s in contour.polysegment.segments]
     assert kinds.count(Arc) == 1 and kinds.count(Line) == 3  # the two quarter arcs merge into one half circle
     assert contour.max_deviation_mm < EXACT
+
+
+def test_closed_fit_point_spline_is_smooth_across_its_seam(tmp_path):
+    """A closed SPLINE given by fit points only (AutoCAD, Fusion) is periodic: no corner where
+    it closes, and it passes through every fit point."""
+    fit = [(0, 0), (30, -10), (60, 0), (60, 30), (30, 40), (0, 30)]
+
+    def draw(msp, doc):
+        msp.add_spline(fit_points=fit).closed = True
+
+    (contour,) = segment_drawing(write_dxf(tmp_path, draw), TOL).contours
+    poly = contour.polysegment
+    assert poly.closed and poly.corners == ()
+    from cad_helpers import points_along
+
+    dense = points_along(poly, 0.01)
+    for p in fit:
+        assert np.linalg.norm(dense - p, axis=1).min() <= TOL
