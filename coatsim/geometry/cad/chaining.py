@@ -30,6 +30,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from coatsim.errors import InputError
+from coatsim.geometry.cad.overlaps import overlapping_lines
 from coatsim.geometry.cad.pieces import NativePiece, Piece
 from coatsim.geometry.primitives import Arc
 
@@ -251,6 +252,10 @@ def chain_pieces(pieces: Sequence[Piece], join_tol_mm: float, source: str = "dra
     kept = _drop_degenerate(pieces, join_tol_mm, notes)
     if not kept:
         raise InputError(f"{source}: every piece is shorter than the join tolerance {join_tol_mm:g} mm")
+    overlaps = overlapping_lines(kept, join_tol_mm)
+    if overlaps:
+        notes.append(f"{len(overlaps)} pairs of lines overlap along one line, kept and sprayed twice there "
+                     f"(first: {overlaps[0][0].source} and {overlaps[0][1].source})")
     partner = _pair_ends(kept, join_tol_mm, notes)
     seen = np.zeros(len(kept), dtype=bool)
     chains: list[tuple[list[Piece], bool]] = []

@@ -31,9 +31,11 @@ from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.fit import fit_run
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
-from coatsim.geometry.primitives import Arc, Line, Segment
+from coatsim.geometry.primitives import Arc, Line, Segment, snap_end
 
 MERGE_EPS = 1e-9
+DENSE_STEP_SIGMAS = 1.0  # the fitter gets free-form stretches with points at most this many σ apart
+CACHE_GRID_MM = 1e-9  # stretches equal to this after a translation share one fit
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,18 +89,68 @@ def _free_points(block: _Block) -> np.ndarray:
 
 
 def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None,
-              end_heading: float | None, speed_kappa: float | None = None) -> tuple[tuple[Segment, ...], float]:
+              end_heading: float | None, speed_kappa: float | None = None,
+              cache: dict | None = None) -> tuple[tuple[Segment, ...], float]:
     """The fitter on one free-form stretch, its end tangents pinned where given (a stretch
     pinned at its end only is fitted backwards with its start pinned); ``speed_kappa`` = a / v²
-    caps its arcs for the programmed speed."""
+    caps its arcs for the programmed speed. The fitter gets the stretch's polyline with extra
+    points on its chords (``densified``). A stretch that is a translated copy of one fitted
+    before (``cache``, one per drawing) gets that chain, moved."""
+    key = _cache_key(points, tolerance, closed_loop, start_heading, end_heading, speed_kappa) if cache is not None else None
+    if key is not None and key in cache:
+        return _moved(cache[key], points)
+    dense = densified(points, DENSE_STEP_SIGMAS * tolerance)
     if start_heading is None and end_heading is not None:
-        back = points[::-1]
+        back = dense[::-1]
         fit = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, speed_kappa),
                       start_heading=end_heading + math.pi)
-        return tuple(s.reversed() for s in reversed(fit.segments)), fit.deviation_mm
-    fit = fit_run(points, tolerance, closed_loop, fit_limits(points, closed_loop, tolerance, None, speed_kappa),
-                  start_heading=start_heading, end_heading=end_heading)
-    return fit.segments, fit.deviation_mm
+        segments, dev = tuple(s.reversed() for s in reversed(fit.segments)), fit.deviation_mm
+    else:
+        fit = fit_run(dense, tolerance, closed_loop, fit_limits(dense, closed_loop, tolerance, None, speed_kappa),
+                      start_heading=start_heading, end_heading=end_heading)
+        segments, dev = tuple(fit.segments), fit.deviation_mm
+    if key is not None:
+        cache[key] = (points.copy(), segments, dev)
+    return segments, dev
+
+
+def densified(points: np.ndarray, step_mm: float) -> np.ndarray:
+    """The same polyline with points added on its chords, none farther than ``step_mm``
+    apart. Flattened curves are sampled sparsely where they are straight and densely where
+    they bend; the fitter's curvature estimate (made for evenly sampled curves) misreads
+    long sparse chords, fails its caps and retries for seconds, or falls back."""
+    edges = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    parts = np.maximum(1, np.ceil(edges / step_mm).astype(np.int64))
+    if parts.max() == 1:
+        return points
+    edge = np.repeat(np.arange(len(edges)), parts)
+    first = np.repeat(np.cumsum(parts) - parts, parts)
+    frac = (np.arange(int(parts.sum())) - first + 1) / np.repeat(parts, parts)
+    dense = np.vstack((points[:1], points[edge] + frac[:, None] * (points[edge + 1] - points[edge])))
+    dense[np.cumsum(parts)] = points[1:]  # the original vertices exactly
+    return dense
+
+
+def _cache_key(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None,
+               end_heading: float | None, speed_kappa: float | None) -> tuple:
+    """Equal for stretches that are translated copies of each other (to ``CACHE_GRID_MM``)
+    fitted the same way."""
+    rel = np.round((points - points[0]) / CACHE_GRID_MM).astype(np.int64)
+    pin = lambda h: None if h is None else round(math.remainder(h, 2 * math.pi), 12)  # noqa: E731
+    return (rel.tobytes(), len(points), tolerance, closed_loop, pin(start_heading), pin(end_heading), speed_kappa)
+
+
+def _moved(entry: tuple, points: np.ndarray) -> tuple[tuple[Segment, ...], float]:
+    """A cached chain moved onto ``points`` (a translated copy of the cached stretch), its
+    ends exactly on theirs; the deviation grows by how far the copy differs from the
+    moved original."""
+    original, segments, dev = entry
+    shift = points[0] - original[0]
+    moved = tuple(s.transformed(np.eye(2), shift, 1.0) for s in segments)
+    start = (float(points[0][0]), float(points[0][1]))
+    moved = tuple(s.reversed() for s in reversed(snap_end(tuple(s.reversed() for s in reversed(moved)), start)))
+    moved = snap_end(moved, (float(points[-1][0]), float(points[-1][1])))
+    return moved, dev + float(np.linalg.norm(points - original - shift, axis=1).max())
 
 
 def _corner_vertices(points: np.ndarray, tolerance: float, corner_deg: float, closed: bool = False) -> list[int]:
@@ -130,7 +182,7 @@ def _corner_vertices(points: np.ndarray, tolerance: float, corner_deg: float, cl
 
 def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None, start_heading: float | None,
                  end_heading: float | None, cuts: list[int] | None = None,
-                 speed_kappa: float | None = None) -> tuple[list[Segment], list[bool], float]:
+                 speed_kappa: float | None = None, cache: dict | None = None) -> tuple[list[Segment], list[bool], float]:
     """An open free-form stretch split at its true corners (cusps inside a piece; the rule of
     point curves, see detect_corners; or at ``cuts``), each run fitted, the stretch's ends
     pinned where given. Returns the segments, the corner flag of every join between them,
@@ -142,7 +194,7 @@ def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None,
     worst = 0.0
     for k, (a, b) in enumerate(zip(cuts[:-1], cuts[1:])):
         fitted, dev = _fit_free(points[a:b + 1], tolerance, False, start_heading if k == 0 else None,
-                                end_heading if b == len(points) - 1 else None, speed_kappa)
+                                end_heading if b == len(points) - 1 else None, speed_kappa, cache)
         if segments:
             corner_after.append(True)
         segments.extend(fitted)
@@ -152,17 +204,17 @@ def _fit_stretch(points: np.ndarray, tolerance: float, corner_deg: float | None,
 
 
 def _free_loop(points: np.ndarray, tolerance: float, corner_deg: float,
-               speed_kappa: float | None) -> tuple[Polysegment, float]:
+               speed_kappa: float | None, cache: dict | None = None) -> tuple[Polysegment, float]:
     """A closed contour that is one free-form loop: fitted as a closed loop, or, where it has
     true corners, from its first corner on, run by run between them."""
     corners = _corner_vertices(points, tolerance, corner_deg, closed=True)
     if not corners:
-        segs, dev = _fit_free(points, tolerance, True, None, None, speed_kappa)
+        segs, dev = _fit_free(points, tolerance, True, None, None, speed_kappa, cache)
         return Polysegment(tuple(segs), closed=True), dev
     body, first = points[:-1], corners[0]
     rotated = np.vstack((body[first:], body[:first], body[first:first + 1]))
     segs, inner, dev = _fit_stretch(rotated, tolerance, None, None, None,
-                                    cuts=[(c - first) % len(body) for c in corners[1:]], speed_kappa=speed_kappa)
+                                    cuts=[(c - first) % len(body) for c in corners[1:]], speed_kappa=speed_kappa, cache=cache)
     flags = inner + [True]  # the seam is the first corner
     return Polysegment(tuple(segs), closed=True, corners=tuple(k for k, c in enumerate(flags) if c)), dev
 
@@ -220,19 +272,20 @@ def _samples(contour: Contour, flatten_mm: float) -> np.ndarray:
 
 
 def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner_deg: float = 20.0,
-                speed_kappa: float | None = None) -> ContourFit:
+                speed_kappa: float | None = None, cache: dict | None = None) -> ContourFit:
     """The polysegment of one contour; see the module docstring. Free-form samples lie
     within ``flatten_mm`` of the drawn curves, so stretches are fitted to them within
     ``tolerance_mm - flatten_mm`` and their deviation is reported plus ``flatten_mm``: an
     upper bound of the distance to the drawn curve, at most ``tolerance_mm``. ``speed_kappa``
     = a / v² keeps fitted arcs no tighter than the programmed speed allows where the drawn
-    curve allows it."""
+    curve allows it. ``cache`` (a dict kept over the contours of one drawing) lets
+    translated copies of a free-form stretch share one fit."""
     if not 0 < flatten_mm < tolerance_mm:
         raise ValueError("flatten_mm must be between 0 and the tolerance")
     fit_tol = tolerance_mm - flatten_mm
     blocks, tangent_after, loop = _blocks(contour)
     if loop:
-        poly, dev = _free_loop(_free_points(blocks[0]), fit_tol, corner_deg, speed_kappa)
+        poly, dev = _free_loop(_free_points(blocks[0]), fit_tol, corner_deg, speed_kappa, cache)
         return ContourFit(poly, dev + flatten_mm, _samples(contour, flatten_mm), len(contour.pieces))
     segments: list[Segment] = []
     corner_after: list[bool] = []
@@ -246,7 +299,7 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner
             fitted, inner, dev = _fit_stretch(_free_points(block), fit_tol, corner_deg,
                                               before.pieces[-1].end_heading if pin_start else None,
                                               after.pieces[0].start_heading if pin_end else None,
-                                              speed_kappa=speed_kappa)
+                                              speed_kappa=speed_kappa, cache=cache)
             worst = max(worst, dev + flatten_mm)
         else:
             fitted, inner = [block.pieces[0].segment], []

@@ -22,7 +22,7 @@ import numpy as np
 
 from coatsim.errors import InputError
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
-from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, flatten, heading_of, line_piece, tangent_heading
+from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, free_or_native, heading_of, line_piece
 
 # $INSUNITS code -> (name, mm per unit); exact values, not ezdxf's rounded ones
 UNITS_MM = {
@@ -168,7 +168,7 @@ def _spline(entity, label: str, walk: _Walk) -> None:
         walk.tilt(entity, label)
         return
     try:
-        curve = entity.construction_tool()
+        curve = _closed_fit_spline(entity) or entity.construction_tool()
         knots = np.asarray(curve.knots(), dtype=float)
         degree = int(curve.degree)
     except Exception as exc:  # ezdxf raises assorted errors on malformed splines
@@ -182,9 +182,26 @@ def _spline(entity, label: str, walk: _Walk) -> None:
         def at(t: np.ndarray, a: float = a, b: float = b) -> np.ndarray:
             return np.array([xy(v) for v in curve.points(a + np.asarray(t, float) * (b - a))])
 
-        pts = flatten(at, walk.flatten)
         sub = label if len(spans) == 1 else f"{label} span {k + 1}"
-        walk.pieces.append(FreePiece(pts, tangent_heading(at, False), tangent_heading(at, True), sub))
+        walk.pieces.append(free_or_native(at, walk.flatten, sub))
+
+
+def _closed_fit_spline(entity):
+    """The curve of a closed SPLINE given by fit points only, smooth across its seam (CAD
+    programs draw it periodic; ezdxf's interpolation would leave a corner there): closed
+    onto its first fit point, with the seam's tangent from the fit points either side of it.
+    None for any other spline."""
+    if not entity.closed or entity.control_point_count() or entity.fit_point_count() < 3:
+        return None
+    if entity.dxf.hasattr("start_tangent") and entity.dxf.hasattr("end_tangent"):
+        return None
+    from ezdxf.math import Vec3, fit_points_to_cad_cv
+
+    pts = [Vec3(p) for p in entity.fit_points]
+    if not pts[0].isclose(pts[-1], abs_tol=1e-12):
+        pts.append(pts[0])
+    seam = (pts[1] - pts[-2]).normalize()
+    return fit_points_to_cad_cv(pts, tangents=[seam, seam])
 
 
 def _line(entity, label: str, walk: _Walk) -> None:
@@ -278,8 +295,10 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     doc = _open(path)
     msp = doc.modelspace()
     entities = list(msp)
+    paper = _paperspace_geometry(doc)
     if not entities:
-        raise InputError(f"{path}: the modelspace is empty (no entities)")
+        raise InputError(f"{path}: the modelspace is empty (no entities)"
+                         + (f"; {_paper_note(paper)}" if paper else ""))
     known = [layer.dxf.name for layer in doc.layers]
     used = sorted({e.dxf.get("layer", "0") for e in entities} - set(known))
     walk = _Walk(doc, check_layers(str(path), layers, known + used), flatten_mm)
@@ -296,6 +315,8 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         _walk(entities, walk, None, "", 0)
         notes.append(f"the drawing lies in a plane tilted from XY (normal {', '.join(f'{c:.6g}' for c in normal)}): "
                      "read in that plane's own coordinates (its OCS)")
+    if paper:
+        notes.append(_paper_note(paper))
     if code == 0:
         notes.append("no $INSUNITS in the header: coordinates taken as mm")
     if walk.ignored:
@@ -310,6 +331,22 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     pieces = tuple(p.transformed(np.eye(2), np.zeros(2), factor) for p in walk.pieces) if factor != 1.0 else tuple(walk.pieces)
     units = "mm" if code in (0, 4) else f"{unit} (x {factor:g} to mm)"
     return Drawing(str(path), pieces, units, tuple(notes))
+
+
+def _paperspace_geometry(doc) -> Counter:
+    """Geometry entities (and block references) per paperspace layout, which coatsim does not read."""
+    found: Counter = Counter()
+    for name in doc.layout_names():
+        layout = doc.layouts.get(name)
+        if layout.is_modelspace:
+            continue
+        found[name] += sum(1 for e in layout if e.dxftype() in GEOMETRY or e.dxftype() == "INSERT")
+    return +found
+
+
+def _paper_note(paper: Counter) -> str:
+    return (f"left out {sum(paper.values())} entities in paperspace layouts "
+            f"({', '.join(sorted(paper))}): coatsim reads the modelspace only")
 
 
 def _nothing(walk: _Walk, layers: Sequence[str] | None) -> str:

@@ -16,6 +16,7 @@ import numpy as np
 
 from coatsim.geometry.primitives import Arc, Line, Point, Segment
 
+NATIVE_MIN_FLATTENINGS = 100  # free-form pieces shorter than this stay free-form (5 σ at the default flattening)
 _ROUND_OFF = 1e-9  # relative: end moves this small are round-off, not geometry
 
 
@@ -202,3 +203,57 @@ def tangent_heading(point_at: Callable[[np.ndarray], np.ndarray], at_end: bool) 
             return heading_of(d)
     p = point_at(np.array([0.0, 1.0]))
     return heading_of(p[1] - p[0])
+
+
+def free_or_native(point_at: Callable[[np.ndarray], np.ndarray], flatten_mm: float, source: str) -> Piece:
+    """A parametric curve on [0, 1] as a free-form piece, or as the native line or arc it
+    exactly is (a Bézier with its handles on the chord, a NURBS circle): every sample and
+    every point half way between samples on that line or circle to round-off, running along
+    it without turning back. A curve of low degree meeting a line or circle at that many
+    points lies on it. Pieces shorter than ``NATIVE_MIN_FLATTENINGS`` flattening distances
+    stay free-form, to be fitted with their neighbours rather than cut a stretch in two."""
+    pts = flatten(point_at, flatten_mm)
+    if float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()) < NATIVE_MIN_FLATTENINGS * flatten_mm:
+        return FreePiece(pts, tangent_heading(point_at, False), tangent_heading(point_at, True), source)
+    t = np.linspace(0.0, 1.0, len(pts))  # not the samples' parameters: probes between and beyond them
+    probe = np.vstack((pts, point_at(t), point_at((t[:-1] + t[1:]) / 2)))
+    exact = _exact_line(pts, probe) or _exact_arc(pts, probe)
+    if exact is not None:
+        return NativePiece(exact, source)
+    return FreePiece(pts, tangent_heading(point_at, False), tangent_heading(point_at, True), source)
+
+
+def _exact_line(pts: np.ndarray, probe: np.ndarray) -> Line | None:
+    a, b = pts[0], pts[-1]
+    chord = b - a
+    norm = float(np.linalg.norm(chord))
+    scale = _ROUND_OFF * max(1.0, float(np.abs(probe).max()))
+    if norm <= scale:
+        return None
+    along = (pts - a) @ chord / norm
+    off = np.abs((probe - a) @ np.array([-chord[1], chord[0]])) / norm
+    if off.max() > scale or np.diff(along).min() < -scale:
+        return None
+    return Line(_xy(a), _xy(b))
+
+
+def _exact_arc(pts: np.ndarray, probe: np.ndarray) -> Arc | None:
+    if len(pts) < 3:
+        return None
+    a, m, b = pts[0], pts[len(pts) // 2], pts[-1]
+    d = 2.0 * ((m[0] - a[0]) * (b[1] - a[1]) - (m[1] - a[1]) * (b[0] - a[0]))
+    if abs(d) <= 1e-300:
+        return None
+    am, ab = float(np.dot(m - a, m - a)), float(np.dot(b - a, b - a))
+    ux = ((b[1] - a[1]) * am - (m[1] - a[1]) * ab) / d
+    uy = ((m[0] - a[0]) * ab - (b[0] - a[0]) * am) / d
+    center = a + np.array([ux, uy])
+    radius = float(np.linalg.norm(a - center))
+    scale = _ROUND_OFF * max(1.0, float(np.abs(probe).max()), radius)
+    if np.abs(np.linalg.norm(probe - center, axis=1) - radius).max() > scale * 10:
+        return None
+    phi = np.unwrap(np.arctan2(pts[:, 1] - center[1], pts[:, 0] - center[0]))
+    step = np.diff(phi)
+    if not (np.all(step > 0) or np.all(step < 0)) or abs(phi[-1] - phi[0]) > 2 * math.pi + 1e-9:
+        return None
+    return Arc(_xy(a), _xy(b), _xy(center), radius, float(phi[-1] - phi[0]))

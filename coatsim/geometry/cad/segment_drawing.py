@@ -129,9 +129,10 @@ def segment_drawing(
         pieces = tuple(p.transformed(matrix, np.zeros(2), scale) for p in pieces)
     chaining = chain_pieces(pieces, join, drawing.source, near_mm=tolerance_mm)
     contours = []
+    cache: dict = {}  # translated copies of a free-form stretch share one fit
     for k, contour in enumerate(chaining.contours):
         t0 = time.perf_counter()
-        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm, corner_deg, speed_kappa)
+        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm, corner_deg, speed_kappa, cache)
         poly = fit.polysegment
         if speed_mm_s is not None:
             poly = replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))

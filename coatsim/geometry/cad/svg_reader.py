@@ -18,6 +18,7 @@ are left out. Text and images are ignored with a note.
 
 from __future__ import annotations
 
+import math
 import re
 import xml.etree.ElementTree as ET
 from collections import Counter
@@ -28,7 +29,7 @@ import numpy as np
 
 from coatsim.errors import InputError
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
-from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, flatten, line_piece, tangent_heading
+from coatsim.geometry.cad.pieces import Piece, arc_piece, free_or_native, line_piece
 
 MM_PER_USER_UNIT = 25.4 / 96.0
 # svgelements converts mm and cm with 0.0393701 inch per mm (rounded); its px of a document
@@ -36,6 +37,7 @@ MM_PER_USER_UNIT = 25.4 / 96.0
 _SVGELEMENTS_INCH_PER_MM = 0.0393701
 _INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_ROUND = 1e-9  # relative: differences below this are round-off
 _ARITY = {"m": 2, "l": 2, "t": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "a": 7, "z": 0}
 
 
@@ -87,11 +89,15 @@ def path_data_error(d: str) -> Optional[str]:
 
 
 def _parse(path: Path):
+    import io
+
     import svgelements as se
 
     try:
-        with path.open("rb") as handle:
-            svg = se.SVG.parse(handle, ppi=96.0)
+        data = path.read_bytes()
+        if b"<symbol" in data:
+            data = symbols_placed(data)
+        svg = se.SVG.parse(io.BytesIO(data), ppi=96.0, reify=False)
     except ET.ParseError as exc:
         line, col = exc.position
         raise InputError(f"{path}:{line}:{col}: not well-formed SVG ({str(exc).split(':')[0]})") from None
@@ -100,6 +106,71 @@ def _parse(path: Path):
     if not isinstance(svg, se.SVG):
         raise InputError(f"{path}: not an SVG (the root element is not <svg>)")
     return svg
+
+
+_SVG_NS = "{http://www.w3.org/2000/svg}"
+_HREFS = ("href", "{http://www.w3.org/1999/xlink}href")
+_CSS_PX = {"px": 1.0, "": 1.0, "mm": 96 / 25.4, "cm": 96 / 2.54, "in": 96.0, "pt": 96 / 72, "pc": 16.0}
+
+
+def _length_px(text: str | None, whole: float) -> float | None:
+    """An SVG length in user units; a percentage of ``whole``; None if absent or unreadable."""
+    m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(px|mm|cm|in|pt|pc|%)?\s*", text or "")
+    if m is None:
+        return None
+    unit = m.group(2) or ""
+    return float(m.group(1)) * (whole / 100 if unit == "%" else _CSS_PX[unit])
+
+
+def _viewbox_transform(viewbox: str, width: float, height: float, aspect: str) -> str:
+    """The transform placing a viewBox into a width x height viewport (preserveAspectRatio)."""
+    x, y, w, h = (float(v) for v in re.split(r"[\s,]+", viewbox.strip()))
+    if not (w > 0 and h > 0):
+        raise ValueError(f"viewBox {viewbox!r} has no area")
+    sx, sy = width / w, height / h
+    align = (aspect or "xMidYMid meet").split()
+    if align[0] != "none":
+        sx = sy = max(sx, sy) if align[-1] == "slice" else min(sx, sy)
+        fx = {"xMin": 0.0, "xMid": 0.5, "xMax": 1.0}.get(align[0][:4], 0.5)
+        fy = {"YMin": 0.0, "YMid": 0.5, "YMax": 1.0}.get(align[0][4:], 0.5)
+    else:
+        fx = fy = 0.0
+    tx, ty = fx * (width - w * sx) - x * sx, fy * (height - h * sy) - y * sy
+    return f"translate({tx!r},{ty!r}) scale({sx!r},{sy!r})"
+
+
+def symbols_placed(data: bytes) -> bytes:
+    """The document with every ``<symbol>`` drawn only where a ``<use>`` places it, its
+    viewBox fitted into the use's width and height (svgelements draws a symbol in place as
+    well, and ignores its viewBox)."""
+    root = ET.fromstring(data)
+    parents = {child: parent for parent in root.iter() for child in parent}
+    symbols = {el.get("id"): el for el in root.iter(f"{_SVG_NS}symbol")}
+    if not symbols:
+        return data
+    defs = ET.SubElement(root, f"{_SVG_NS}defs")
+    for el in symbols.values():
+        parents[el].remove(el)
+    box = (root.get("viewBox") or "").replace(",", " ").split()
+    whole_w = float(box[2]) if len(box) == 4 else _length_px(root.get("width"), 0.0) or 0.0
+    whole_h = float(box[3]) if len(box) == 4 else _length_px(root.get("height"), 0.0) or 0.0
+    for k, use in enumerate(root.iter(f"{_SVG_NS}use")):
+        href = next((use.get(h) for h in _HREFS if use.get(h)), "")
+        symbol = symbols.get(href.lstrip("#")) if href.startswith("#") else None
+        if symbol is None:
+            continue
+        group = ET.SubElement(defs, f"{_SVG_NS}g", {"id": f"{href[1:]}--placed-{k}"})
+        group.extend(list(symbol))
+        if symbol.get("viewBox"):
+            width = _length_px(use.get("width") or symbol.get("width") or "100%", whole_w)
+            height = _length_px(use.get("height") or symbol.get("height") or "100%", whole_h)
+            if width and height:
+                group.set("transform", _viewbox_transform(symbol.get("viewBox"), width, height,
+                                                          symbol.get("preserveAspectRatio", "")))
+        for h in _HREFS:
+            if use.get(h):
+                use.set(h, f"#{group.get('id')}")
+    return ET.tostring(root)
 
 
 def hidden_layers(path: Path) -> list[str]:
@@ -152,32 +223,57 @@ def _circular(arc) -> bool:
     return abs(rx - ry) <= 1e-9 * max(rx, ry) and rx > 0 and abs(float(arc.sweep)) > 0
 
 
+def _affine_mm(shape, mm_px: float) -> tuple[np.ndarray, np.ndarray]:
+    """The map from the shape's own coordinates to the workpiece plane (mm, y up): every
+    transform above it (viewBox included), then the flip."""
+    m = shape.transform
+    flip = np.diag([mm_px, -mm_px])
+    return flip @ np.array([[m.a, m.c], [m.b, m.d]], float), flip @ np.array([m.e, m.f], float)
+
+
+def _similarity(matrix: np.ndarray) -> bool:
+    """Whether a 2 x 2 map keeps circles circles (a rotation or reflection times a scale)."""
+    u, v = matrix[:, 0], matrix[:, 1]
+    scale = max(float(np.abs(matrix).max()), 1e-300)
+    return abs(float(u @ u) - float(v @ v)) <= _ROUND * scale**2 and abs(float(u @ v)) <= _ROUND * scale**2
+
+
 def _shape_pieces(shape, label: str, flatten_mm: float, mm_px: float) -> list[Piece]:
     """The pieces of one shape (every subpath, Close as a line back to its start), with
-    ``mm_px`` mm per pixel."""
+    ``mm_px`` mm per pixel. Segments are taken in the shape's own coordinates and mapped
+    here: a circular arc stays a native arc only through a similarity (svgelements' own
+    transformed arcs are wrong under a skew); a degenerate arc (a radius or sweep of 0) is
+    the line SVG draws for it."""
     import svgelements as se
 
-    flip = np.array([mm_px, -mm_px])
-    _to_mm = lambda p: np.array([float(p[0]), float(p[1])]) * flip  # noqa: E731
+    matrix, offset = _affine_mm(shape, mm_px)
+    to_mm = lambda p: matrix @ np.array([float(p[0]), float(p[1])]) + offset  # noqa: E731
+    keeps_circles = _similarity(matrix)
     pieces: list[Piece] = []
-    for index, seg in enumerate(se.Path(shape).segments()):
+    for index, seg in enumerate(se.Path(shape).segments(transformed=False)):
         sub = f"{label} segment {index}"
         if isinstance(seg, se.Move) or seg.start is None or seg.end is None:
             continue
-        a, b = _to_mm(seg.start), _to_mm(seg.end)
+        a, b = to_mm(seg.start), to_mm(seg.end)
         if not (np.isfinite(a).all() and np.isfinite(b).all()):
             raise InputError(f"{label}: a coordinate is not finite")
-        if isinstance(seg, (se.Line, se.Close)):
+        if isinstance(seg, se.Close) and float(np.linalg.norm(b - a)) <= _ROUND * max(1.0, float(np.abs(a).max())):
+            continue  # the path already ends where it started (to round-off): nothing is drawn
+        if isinstance(seg, (se.Line, se.Close)) or isinstance(seg, se.Arc) and _degenerate(seg):
             pieces.append(line_piece(a, b, sub))
-        elif isinstance(seg, se.Arc) and _circular(seg):
-            # y flips, so the sense of rotation does too
-            pieces.append(arc_piece(_to_mm(seg.center), (float(seg.rx) + float(seg.ry)) / 2 * mm_px, a, b, -float(seg.sweep), sub))
+        elif isinstance(seg, se.Arc) and _circular(seg) and keeps_circles:
+            radius = (float(seg.rx) + float(seg.ry)) / 2 * math.sqrt(abs(float(np.linalg.det(matrix))))
+            sweep = float(seg.sweep) * (1.0 if np.linalg.det(matrix) > 0 else -1.0)
+            pieces.append(arc_piece(to_mm(seg.center), radius, a, b, sweep, sub))
         else:
-            at = lambda t, seg=seg: np.asarray(seg.npoint(t), float) * flip  # noqa: E731
-            pts = flatten(at, flatten_mm)
-            pts[0], pts[-1] = a, b
-            pieces.append(FreePiece(pts, tangent_heading(at, False), tangent_heading(at, True), sub))
+            at = lambda t, seg=seg: np.asarray(seg.npoint(np.asarray(t, float)), float) @ matrix.T + offset  # noqa: E731
+            pieces.append(free_or_native(at, flatten_mm, sub).with_ends(a, b))
     return pieces
+
+
+def _degenerate(arc) -> bool:
+    """An arc SVG draws as a straight line: a radius of zero, or no sweep."""
+    return float(arc.rx) == 0.0 or float(arc.ry) == 0.0 or float(arc.sweep) == 0.0
 
 
 def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Drawing:

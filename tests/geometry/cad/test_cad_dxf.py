@@ -476,3 +476,23 @@ def test_reader_keeps_drawing_order_and_names(tmp_path):
     assert drawing.pieces[0].source.startswith("CIRCLE #")
     part = segment_drawing(write_dxf(tmp_path, draw), TOL)
     assert part.contours[0].polysegment.n_segments == 1 and part.contours[1].polysegment.n_segments == 4
+
+
+def test_paperspace_geometry_is_noted_not_dropped_silently(tmp_path):
+    def draw(msp, doc):
+        msp.add_circle((0, 0), 10)
+        paper = doc.paperspace("Layout1")
+        paper.add_circle((5, 5), 100)
+        paper.add_line((0, 0), (200, 0))
+
+    drawing = read_drawing(write_dxf(tmp_path, draw))
+    assert len(drawing.pieces) == 1
+    assert any("2 entities in paperspace layouts (Layout1)" in n for n in drawing.notes)
+
+
+def test_only_paperspace_geometry_is_an_error_that_says_so(tmp_path):
+    def draw(msp, doc):
+        doc.paperspace("Layout1").add_circle((5, 5), 10)
+
+    with pytest.raises(InputError, match="modelspace is empty.*paperspace"):
+        read_drawing(write_dxf(tmp_path, draw))
