@@ -25,7 +25,7 @@ from coatsim.geometry.cad.drawing import is_drawing
 from coatsim.program.build import VARIANTS
 from coatsim.report.catalogue import METRICS
 from coatsim.spray.footprints import parse_footprint_spec
-from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
+from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
 
 VariantName = Literal[VARIANTS]  # type: ignore[valid-type]
 VariantLabel = Annotated[str, Field(pattern=r"^[A-Za-z][A-Za-z0-9_.-]*$", max_length=40)]
@@ -337,10 +337,7 @@ class ScenarioFile:
 
     def where(self, *loc: str | int) -> str:
         """``file:line`` of the deepest key path prefix of ``loc`` that the file spells out."""
-        for n in range(len(loc), -1, -1):
-            if tuple(loc[:n]) in self.lines:
-                return f"{self.path}:{self.lines[tuple(loc[:n])]}"
-        return str(self.path)
+        return where_in(self.path, self.lines, loc)
 
     def resolve(self, relative: str) -> Path:
         """A file named in the scenario, relative to the scenario's folder."""

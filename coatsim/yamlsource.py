@@ -189,6 +189,14 @@ def load_yaml_with_lines(path: Path, expected: str = "a scenario (name, curve, w
     return data, lines
 
 
+def where_in(path: Path, lines: Mapping[Loc, int], loc: Loc) -> str:
+    """``file:line`` of the deepest key path prefix of ``loc`` that the file spells out."""
+    for n in range(len(loc), -1, -1):
+        if tuple(loc[:n]) in lines:
+            return f"{path}:{lines[tuple(loc[:n])]}"
+    return str(path)
+
+
 def data_path(loc: Loc, data: Any) -> Loc:
     """The part of a pydantic error location that indexes the data: union tags and
     validator names are dropped; a missing key (the last item) is kept."""

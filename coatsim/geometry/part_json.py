@@ -18,7 +18,11 @@ from coatsim.errors import InputError
 from coatsim.fileio import write_text
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.polysegment_json import FORMAT as POLYSEGMENT_FORMAT
-from coatsim.geometry.polysegment_json import polysegment_document, polysegment_from_document
+from coatsim.geometry.polysegment_json import (
+    polysegment_document,
+    polysegment_from_document,
+    read_json_document,
+)
 
 FORMAT = "coatsim.part/1"
 
@@ -82,15 +86,4 @@ def part_from_document(doc: Any, source: str) -> PartFile:
 
 def read_part_json(path: str | Path) -> PartFile:
     """Read and validate a part (or polysegment) JSON file."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
-    try:
-        doc = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"{path}:{exc.lineno}: invalid JSON ({exc.msg})") from None
-    return part_from_document(doc, str(path))
+    return part_from_document(read_json_document(Path(path)), str(path))

@@ -121,9 +121,8 @@ def _speed_limited(value: Any, length: float, source: str) -> tuple[tuple[float,
     return tuple(out)
 
 
-def read_polysegment_json(path: str | Path) -> Polysegment:
-    """Read and validate a polysegment JSON file."""
-    path = Path(path)
+def read_json_document(path: Path) -> Any:
+    """The parsed JSON of ``path``; a missing, unreadable or invalid file is an InputError."""
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -131,7 +130,11 @@ def read_polysegment_json(path: str | Path) -> Polysegment:
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
     try:
-        doc = json.loads(text)
+        return json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(f"{path}:{exc.lineno}: invalid JSON ({exc.msg})") from None
-    return polysegment_from_document(doc, str(path))
+
+
+def read_polysegment_json(path: str | Path) -> Polysegment:
+    """Read and validate a polysegment JSON file."""
+    return polysegment_from_document(read_json_document(Path(path)), str(path))

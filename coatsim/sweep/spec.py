@@ -20,7 +20,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from coatsim.errors import InputError
 from coatsim.report.catalogue import METRICS
 from coatsim.report.summary import HEADLINE
-from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines
+from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
 
 # a dotted scenario key: names (letters, digits, _) and list indices, e.g. gates.0.threshold
 _KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(\.(?:[A-Za-z_][A-Za-z0-9_]*|[0-9]+))*$")
@@ -87,10 +87,7 @@ class SweepFile:
 
     def where(self, *loc: str | int) -> str:
         """``file:line`` of the deepest prefix of ``loc`` that the file spells out."""
-        for n in range(len(loc), -1, -1):
-            if tuple(loc[:n]) in self.lines:
-                return f"{self.path}:{self.lines[tuple(loc[:n])]}"
-        return str(self.path)
+        return where_in(self.path, self.lines, loc)
 
     @property
     def base_path(self) -> Path:
