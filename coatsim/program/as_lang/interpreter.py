@@ -19,9 +19,8 @@ from collections import Counter
 from dataclasses import dataclass
 from typing import Mapping, Optional, Sequence, Union
 
-import numpy as np
 
-from coatsim.errors import CoatsimError, ExecutionError, InputError
+from coatsim.errors import ExecutionError, InputError
 from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
@@ -29,6 +28,7 @@ from coatsim.program.as_lang.evaluate import Evaluator
 from coatsim.program.as_lang.io_model import Signals, Warnings, is_input
 from coatsim.program.as_lang.motion import FULL_SPEED_MM_S, Controller
 from coatsim.program.as_lang.parser import key as norm
+from coatsim.program.as_lang.robot_queries import RobotQueries
 from coatsim.program.as_lang.scope import Scope
 from coatsim.program.as_lang.statements_exec import ReturnFromProgram, StopProgram, execute_statement
 from coatsim.program.as_lang.values import IDENTITY, Frame
@@ -62,7 +62,7 @@ class _Frame:
     loops: dict
 
 
-class Interpreter:
+class Interpreter(RobotQueries):
     """State of one run: variables, signals, the controller, the call stack, the budget."""
 
     def __init__(self, files: Sequence[ast.AsFile], gun: int, inputs: Mapping[int, bool],
@@ -174,59 +174,6 @@ class Interpreter:
             return text.lower() in self.programs
         name = ast.Name(text)
         return self.scope_of(name).has(kind, norm(text)) if text else False
-
-    # --- robot state ---------------------------------------------------------------------
-    def need_kinematics(self, what: str) -> Kinematics:
-        if self.kinematics is None:
-            raise self.failure(f"{what} needs the cell's kinematics; run it with a cell model")
-        return self.kinematics
-
-    def fk(self, q: np.ndarray, what: str):
-        """Forward kinematics of ``q`` (rad): the TCP pose in the robot base frame."""
-        kin = self.need_kinematics(what)
-        try:
-            return kin.forward(q, self.controller.tool)
-        except CoatsimError as exc:
-            raise type(exc)(f"{self.where()}: {exc}") from None
-
-    def home_joints(self, number: int) -> np.ndarray:
-        kin = self.need_kinematics("HOME")
-        try:
-            return np.asarray(kin.home(number), dtype=float)
-        except CoatsimError as exc:
-            raise type(exc)(f"{self.where()}: {exc}") from None
-
-    def home_pose(self):
-        """The pose and joints every program starts from: the cell's home."""
-        q = self.home_joints(1)
-        return self.fk(q, "the start pose"), q
-
-    def joints_rad(self, values: tuple[float, ...]) -> np.ndarray:
-        if len(values) < 6:
-            raise self.error(f"a joint value for this six-axis arm needs 6 values, found {len(values)}")
-        if len(values) > 6:
-            self.warn("external-axes", f"joint values beyond the 6th (external axes) are ignored ({len(values)} given)")
-        return np.radians(np.array(values[:6], dtype=float))
-
-    def joint_frame(self, values: tuple[float, ...]) -> Frame:
-        """A joint value as a transformation relative to BASE (forward kinematics)."""
-        pose = self.fk(self.joints_rad(values), "a joint value used as a pose")
-        return self.base.inverse() * Frame.from_pose(pose)
-
-    def here(self) -> Frame:
-        if self.controller.current is None and self.kinematics is None:
-            raise self.failure("HERE before the first motion needs the cell's kinematics (the home pose)")
-        current = self.controller.need_current("HERE", self.line)
-        return self.base.inverse() * Frame.from_pose(current)
-
-    def here_joints(self) -> tuple[float, ...]:
-        if self.controller.current is None and self.kinematics is not None:
-            self.controller.need_current("#HERE", self.line)
-        q = self.controller.current_joints
-        if q is None:
-            raise self.failure("the joint angles after a Cartesian motion need the inverse kinematics of the arm, "
-                               "which the interpreter does not solve")
-        return tuple(float(v) for v in np.degrees(q))
 
     def sig(self, numbers: list[int]) -> float:
         result = True
