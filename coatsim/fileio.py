@@ -14,16 +14,28 @@ from typing import IO, Iterator
 from coatsim.errors import InputError
 
 
+def _temporary_beside(target: Path) -> tuple[int, str]:
+    """A new temporary file in ``target``'s folder (created if missing): (descriptor, name)."""
+    folder = target.parent if str(target.parent) else Path(".")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        return tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+    except OSError as exc:
+        raise InputError(f"{target}: cannot write ({exc.strerror or exc})") from None
+
+
+def _rename(tmp: str, target: Path) -> None:
+    try:
+        os.replace(tmp, target)
+    except OSError as exc:  # e.g. the target is an existing folder
+        raise InputError(f"{target}: cannot write ({exc.strerror or exc})") from None
+
+
 @contextmanager
 def atomic_open(path: str | Path, mode: str = "w") -> Iterator[IO]:
     """Open a temporary file beside ``path``; rename it onto ``path`` on success."""
     target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
-    except OSError as exc:
-        raise InputError(f"{target}: cannot write ({exc.strerror or exc})") from None
+    fd, tmp = _temporary_beside(target)
     umask = os.umask(0)
     os.umask(umask)
     os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the file the usual mode
@@ -31,10 +43,7 @@ def atomic_open(path: str | Path, mode: str = "w") -> Iterator[IO]:
     try:
         with os.fdopen(fd, mode, encoding=encoding, newline="" if encoding else None) as handle:
             yield handle
-        try:
-            os.replace(tmp, target)
-        except OSError as exc:  # e.g. the target is an existing folder
-            raise InputError(f"{target}: cannot write ({exc.strerror or exc})") from None
+        _rename(tmp, target)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
@@ -52,25 +61,16 @@ def write_bytes(path: str | Path, data: bytes) -> None:
         handle.write(data)
 
 
-
 @contextmanager
 def temporary_path(path: str | Path) -> Iterator[Path]:
     """A temporary file name beside ``path`` for a writer that takes a file name (an encoder);
     renamed onto ``path`` on success, removed on failure."""
     target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
-    except OSError as exc:
-        raise InputError(f"{target}: cannot write ({exc.strerror or exc})") from None
+    fd, tmp = _temporary_beside(target)
     os.close(fd)
     try:
         yield Path(tmp)
-        try:
-            os.replace(tmp, target)
-        except OSError as exc:
-            raise InputError(f"{target}: cannot write ({exc.strerror or exc})") from None
+        _rename(tmp, target)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise

@@ -162,3 +162,25 @@ def brute_hausdorff(polyline: np.ndarray, poly: Polysegment, step: float) -> flo
     d_ab = cKDTree(b).query(a)[0].max()
     d_ba = cKDTree(a).query(b)[0].max()
     return float(max(d_ab, d_ba))
+
+
+G1_RAD = 1e-9  # a junction turning less than this is tangent-continuous
+
+
+def assert_contract(seg, tol: float, points: np.ndarray | None = None) -> None:
+    """The fitter's contract on ``points`` (default: the segmented curve's): tolerance (the exact
+    check, and brute force to within its step), G1 everywhere but at listed corners, shared end
+    points, a closed chain ending where it starts."""
+    from coatsim.geometry.deviation import hausdorff
+
+    poly = seg.polysegment
+    pts = seg.curve.points if points is None else points
+    assert seg.max_deviation_mm <= tol
+    assert hausdorff(pts, poly).hausdorff <= tol
+    assert brute_hausdorff(pts, poly, tol / 10) <= tol * 1.05
+    for k, turn in tangent_breaks(poly):
+        assert k in poly.corners or turn <= G1_RAD, f"junction {k} breaks the tangent by {turn:.3g} rad"
+    segs = poly.segments
+    assert all(a.end == b.start for a, b in zip(segs[:-1], segs[1:]))
+    if poly.closed:
+        assert poly.end == poly.start

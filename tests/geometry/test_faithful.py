@@ -12,10 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from coatsim.geometry import Arc, load_curve, make_curve, segment_curve
-from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.envelope import curvature_profile, noise_mm
 
-from geometry_helpers import brute_hausdorff, tangent_breaks
+from geometry_helpers import assert_contract, tangent_breaks
 from smooth_curves import smooth_closed, smooth_open
 
 G1 = 1e-9
@@ -26,20 +25,6 @@ FEW = settings(max_examples=8, deadline=None, derandomize=True, database=None)
 def arcs(poly):
     return [s for s in poly.segments if isinstance(s, Arc)]
 
-
-def assert_contract(seg, tol):
-    """Tolerance (exact check, and brute force to within its step), G1 everywhere but at
-    listed corners, shared end points."""
-    poly, pts = seg.polysegment, seg.curve.points
-    assert seg.max_deviation_mm <= tol
-    assert hausdorff(pts, poly).hausdorff <= tol
-    assert brute_hausdorff(pts, poly, tol / 10) <= tol * 1.05
-    for k, turn in tangent_breaks(poly):
-        assert k in poly.corners or turn <= G1, f"junction {k} breaks the tangent by {turn:.3g} rad"
-    segs = poly.segments
-    assert all(a.end == b.start for a, b in zip(segs[:-1], segs[1:]))
-    if poly.closed:
-        assert poly.end == poly.start
 
 
 def assert_faithful(seg, tol, tightest):

@@ -17,9 +17,9 @@ from hypothesis import Phase, given, settings
 from hypothesis import strategies as st
 
 from coatsim.geometry import Arc, make_curve, segment_curve
-from coatsim.geometry.deviation import hausdorff
 
-from geometry_helpers import brute_hausdorff, tangent_breaks
+from geometry_helpers import assert_contract as assert_fitter_contract
+from geometry_helpers import tangent_breaks
 
 G1 = 1e-9
 FEW = settings(max_examples=4, deadline=None, derandomize=True, database=None,
@@ -104,16 +104,11 @@ def _kidney(scale: float) -> Style:
 
 
 def assert_contract(curve, seg, tol: float) -> None:
-    poly, pts = seg.polysegment, curve.points
-    assert seg.max_deviation_mm <= tol
-    assert hausdorff(pts, poly).hausdorff <= tol
-    assert brute_hausdorff(pts, poly, tol / 10) <= tol * 1.05
-    for k, turn in tangent_breaks(poly):
-        assert k in poly.corners or turn <= G1, f"junction {k} breaks the tangent by {turn:.3g} rad"
-    segs = poly.segments
-    assert all(a.end == b.start for a, b in zip(segs[:-1], segs[1:]))
+    """The fitter's contract on the curve's points, and a closed chain's seam tangent-continuous
+    unless the curve has corners."""
+    assert_fitter_contract(seg, tol, curve.points)
+    poly = seg.polysegment
     if poly.closed:
-        assert poly.end == poly.start
         assert len(poly.corners) > 0 or tangent_breaks(poly)[-1][1] <= G1
 
 
@@ -220,3 +215,14 @@ def test_sparse_polygons_of_a_circle_keep_the_contract(points):
     seg = segment_curve(curve, 0.05)
     assert_contract(curve, seg, 0.05)
     assert len(seg.polysegment.corners) == 0
+
+
+@pytest.mark.xfail(strict=True, reason="measured: scanned jitter at share 0.041 (seed 1250) gives one arc of r 17.6 mm "
+                   "on an ellipse whose tightest radius is 22.9 mm (0.77 of it, below the 0.8 asked)")
+def test_scanned_jitter_seed_1250_keeps_honest_arcs():
+    tol = 0.1
+    style, pts = scanned_ellipse(1250, 0.040862052389780024, tol)
+    curve = make_curve(pts, "scan", "yes")
+    seg = segment_curve(curve, tol)
+    assert_contract(curve, seg, tol)
+    assert_honest(seg, tol, style.tightest_radius())
