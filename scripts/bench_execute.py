@@ -29,7 +29,8 @@ def programs(path: Path, fast: bool, cell):
 
     import numpy as np
 
-    from coatsim.geometry import make_curve, segment_curve
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+from coatsim.geometry import make_curve, segment_curve
     from coatsim.run.pipeline import FULL_SAMPLE_STEP_MM
     from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.languages.kawasaki_as.names import program_name
@@ -68,7 +69,7 @@ def programs(path: Path, fast: bool, cell):
         options = ProgramOptions(variant=entry, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
                                  gun_signal=spec.gun.signal, tool=gun_tool(cell), name=program_name(spec.name))
         built = build_part_program([c.polysegment for c in contours], placement, options,
-                                   tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
+                                   language=KAWASAKI_AS, tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
                                    points=[c.curve.points for c in contours], order=spec.motion.contour_order,
                                    polylines=polylines)
         with tempfile.TemporaryDirectory() as tmp:

@@ -74,3 +74,25 @@ def temporary_path(path: str | Path) -> Iterator[Path]:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+UTF8_BOM = b"\xef\xbb\xbf"
+
+
+def read_input_bytes(path: str | Path, what: str) -> bytes:
+    """The bytes of an input file; InputError naming ``what`` (e.g. "program") if it cannot be read."""
+    try:
+        return Path(path).read_bytes()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read {what} ({exc.strerror or exc})") from None
+
+
+def decode_text(data: bytes) -> str:
+    """Text of a program file: UTF-8 (a leading byte-order mark dropped) if valid, else Latin-1
+    (controllers save 8-bit text)."""
+    if data.startswith(UTF8_BOM):
+        data = data[len(UTF8_BOM):]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")

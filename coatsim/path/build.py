@@ -23,11 +23,9 @@ import numpy as np
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
-from coatsim.languages.kawasaki_as.dialect import KAWASAKI_AS
-from coatsim.languages.kawasaki_as.names import check_name, program_name
-from coatsim.languages.kawasaki_as.writer import MAX_COORDINATE_MM
 from coatsim.core.numbers import fmt_short
-from coatsim.path.dialect import Dialect, ProgramPlan
+from coatsim.path.language import Language
+from coatsim.path.plan import ProgramPlan
 from coatsim.path.frames import DEFAULT_TOOL, Frame
 from coatsim.path.placement import PlacedPath, Placement, place, polyline_polysegment
 from coatsim.path.process import ProcessInfo, SprayedContour
@@ -60,8 +58,6 @@ class ProgramOptions:
                 raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}")
         if not 1 <= self.gun_signal <= 9999:
             raise InputError(f"--gun {self.gun_signal}: expected an output number from 1 to 9999")
-        if self.name is not None:
-            check_name(self.name, "--name")
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,9 +89,9 @@ def dense_points(poly: Polysegment, tolerance_mm: float) -> np.ndarray:
 
 
 def build_program(poly: Polysegment, placement: Placement, options: ProgramOptions, *, tolerance_mm: float,
-                  source: str, points: Optional[np.ndarray] = None, dialect: Dialect = KAWASAKI_AS,
+                  source: str, language: Language, points: Optional[np.ndarray] = None,
                   polyline: Optional[Polysegment] = None) -> BuiltProgram:
-    """Write the ``options.variant`` program of a curve in ``dialect``.
+    """Write the ``options.variant`` program of a curve in ``language``.
 
     ``poly`` is the curve's polysegment; the polyline variants simplify ``points`` (the input
     curve, (n, 2)) or, without them, dense samples of ``poly``, unless ``polyline`` (that simplification, computed once for
@@ -116,8 +112,9 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
     limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly))
     path = place(curve, placement)
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
-    if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_COORDINATE_MM):
-        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_COORDINATE_MM:g} mm)")
+    reach = language.capabilities.max_coordinate_mm
+    if not (np.isfinite(corners).all() and np.abs(corners).max() <= reach):
+        raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {reach:g} mm)")
     process = ProcessInfo(
         variant=options.variant,
         source=source,
@@ -136,7 +133,8 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         contours=(SprayedContour(closed=curve.closed, leads_sprayed=not curve.closed, speed_limits=limits),),
     )
     plan = ProgramPlan(
-        name=options.name or program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
+        name=language.check_name(options.name, "--name") if options.name is not None else
+        language.program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
         paths=(path,),
         speed_mm_s=options.speed_mm_s,
         accuracy_mm=options.accuracy_mm,
@@ -147,4 +145,4 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         process=process,
         comments=(f"coatsim {options.variant} program: {summary}, tolerance {fmt_short(tolerance_mm)} mm",),
     )
-    return BuiltProgram(dialect.write(plan), plan, curve)
+    return BuiltProgram(language.write(plan), plan, curve)

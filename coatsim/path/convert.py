@@ -26,7 +26,7 @@ from coatsim.languages.kawasaki_as.interpreter import Run
 from coatsim.languages.kawasaki_as.names import check_name
 from coatsim.languages.kawasaki_as.parser import parse_as_bytes
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, write_as
-from coatsim.path.dialect import ProgramPlan
+from coatsim.path.plan import ProgramPlan
 from coatsim.path.frames import DEFAULT_TOOL, Frame
 from coatsim.path.placement import PlacedArc, PlacedLine, PlacedPath
 from coatsim.path.process import ProcessInfo

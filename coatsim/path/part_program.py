@@ -20,9 +20,9 @@ import numpy as np
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.polysegment import Polysegment
-from coatsim.languages.kawasaki_as.dialect import KAWASAKI_AS
 from coatsim.path.build import BuiltProgram, ProgramOptions, build_program
-from coatsim.path.dialect import Dialect, ProgramPlan
+from coatsim.path.language import Language
+from coatsim.path.plan import ProgramPlan
 from coatsim.path.placement import PlacedPath, Placement, centering_offset
 
 ORDERS = ("as-drawn", "nearest")
@@ -76,8 +76,8 @@ def part_centering_offset(contours: Sequence[Polysegment]) -> tuple[float, float
 
 
 def build_part_program(contours: Sequence[Polysegment], placement: Placement, options: ProgramOptions, *,
-                       tolerance_mm: float, source: str, points: Optional[Sequence[Optional[np.ndarray]]] = None,
-                       order: str = "as-drawn", dialect: Dialect = KAWASAKI_AS,
+                       tolerance_mm: float, source: str, language: Language,
+                       points: Optional[Sequence[Optional[np.ndarray]]] = None, order: str = "as-drawn",
                        polylines: Optional[Sequence[Optional[Polysegment]]] = None) -> PartProgram:
     """The ``options.variant`` program spraying every contour of a part; see the module
     docstring. ``points`` are the contours' input points (for the polyline variants), ``polylines``
@@ -91,7 +91,8 @@ def build_part_program(contours: Sequence[Polysegment], placement: Placement, op
     pts = list(points) if points is not None else [None] * len(contours)
     lines = list(polylines) if polylines is not None else [None] * len(contours)
     built: list[BuiltProgram] = [build_program(contours[k], placement, options, tolerance_mm=tolerance_mm,
-                                               source=source, points=pts[k], dialect=dialect, polyline=lines[k])
+                                               source=source, language=language, points=pts[k],
+                                               polyline=lines[k])
                                  for k in sequence]
     if len(built) == 1:
         return PartProgram(built[0].text, built[0].plan, (built[0].curve,), sequence)
@@ -111,5 +112,5 @@ def build_part_program(contours: Sequence[Polysegment], placement: Placement, op
                f"{','.join(str(k + 1) for k in sequence)} ({order}), segments per contour {summary}; "
                f"gun off between contours, travel {fmt_short(options.approach_mm)} mm above the stand-off")
     plan = replace(first, paths=tuple(b.plan.paths[0] for b in built), process=process, comments=(comment,))
-    return PartProgram(dialect.write(plan), plan, curves, sequence)
+    return PartProgram(language.write(plan), plan, curves, sequence)
 

@@ -9,6 +9,7 @@ from typing import Optional
 
 from coatsim.core.errors import CoatsimWarning
 from coatsim.core.fileio import write_text
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import BuiltProgram, ProgramOptions
 from coatsim.path.check import ProgramCheck
@@ -39,8 +40,8 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     inp = load_part_input(spec, tol, layers, join_tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
     if inp.builtin if center is None else center:
         placement = replace(placement, offset_xy=part_centering_offset(inp.contours))
-    built = build_part_program(inp.contours, placement, options, tolerance_mm=inp.tolerance_mm, source=inp.source,
-                               points=inp.points, order=order)
+    built = build_part_program(inp.contours, placement, options, language=KAWASAKI_AS, tolerance_mm=inp.tolerance_mm,
+                               source=inp.source, points=inp.points, order=order)
     parse_as(built.text)  # what goes to disk must read back (raises InputError otherwise)
     longest = max(max(s.length for path in built.plan.paths for s in path.segments), options.approach_mm)
     if options.accuracy_mm > longest:

@@ -24,9 +24,9 @@ from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.segment import Segmentation
-from coatsim.languages.kawasaki_as.files import read_toolpath
-from coatsim.languages.kawasaki_as.names import program_name
+from coatsim.languages.registry import DEFAULT_LANGUAGE, language
 from coatsim.path.build import ProgramOptions, polyline_of
+from coatsim.path.language import ReadOptions
 from coatsim.path.part_program import (
     PartProgram,
     build_part_program,
@@ -149,14 +149,16 @@ def run_variant(name: str, job: Job, step: Step) -> VariantRun:
     """Program, execute and coat one variant; writes ``name.as`` and ``name.trajectory.csv``."""
     spec, out = job.loaded.spec, job.outdir
     polys = [c.polysegment for c in job.contours]
+    writer = language(DEFAULT_LANGUAGE)
     options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name(spec.name))
-    program = build_part_program(polys, job.placement, options, tolerance_mm=spec.segmentation.tolerance_mm,
-                                 source=f"scenario:{spec.name}", points=[c.curve.points for c in job.contours],
-                                 order=spec.motion.contour_order, polylines=job.polylines or None)
-    program_path = out / f"{name}.as"
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=writer.program_name(spec.name))
+    program = build_part_program(polys, job.placement, options, language=writer,
+                                 tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
+                                 points=[c.curve.points for c in job.contours], order=spec.motion.contour_order,
+                                 polylines=job.polylines or None)
+    program_path = out / f"{name}{writer.suffixes[0]}"
     write_text(program_path, program.text)
-    toolpath = read_toolpath(program_path, gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell))
+    toolpath = writer.read([program_path], ReadOptions(gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell)))
     return simulate_variant(name, program, toolpath, job, step)
 
 

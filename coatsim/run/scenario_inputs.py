@@ -10,6 +10,7 @@ from typing import Optional
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, InputError
+from coatsim.core.fileio import decode_text, read_input_bytes
 from coatsim.geometry import (
     Curve,
     builtin_curve,
@@ -19,10 +20,10 @@ from coatsim.geometry import (
 )
 from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
 from coatsim.geometry.segment import Segmentation
-from coatsim.languages.kawasaki_as.files import read_program_bytes, read_toolpath
-from coatsim.languages.kawasaki_as.source import decode
+from coatsim.languages.registry import language_of
 from coatsim.path.oat import oat_to_matrix
 from coatsim.path.frames import Frame
+from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.kinematics import CellKinematics
@@ -149,11 +150,12 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
     """The ToolPath of a program variant and its text (the files one after the other)."""
     files = [loaded.resolve(f) for f in entry.files]
     try:
-        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
-                                 kinematics=CellKinematics(cell))
+        options = ReadOptions(gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states or {},
+                              kinematics=CellKinematics(cell))
+        toolpath = language_of(files).read(files, options)
     except CoatsimError as exc:
         raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
-    return toolpath, "\n".join(decode(read_program_bytes(f)) for f in files)
+    return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
 
 
 

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, program_name
@@ -22,7 +23,7 @@ GOLDEN = Path(__file__).parent / "data" / "roundrect_polysegment.as"
 
 
 def golden_text() -> str:
-    return build_program(roundrect(), Placement(), ProgramOptions(), tolerance_mm=0.1, source="builtin:roundrect").text
+    return build_program(roundrect(), Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="builtin:roundrect").text
 
 
 def test_golden_rounded_rectangle():
@@ -68,26 +69,26 @@ def test_program_structure_and_metadata(rr):
 
 def test_arcs_above_the_sweep_limit_are_split():
     circle = Polysegment(chain((0.0, 0.0), 0.0, [0.02], [2 * math.pi * 50.0]), closed=True)
-    text = build_program(circle, Placement(), ProgramOptions(), tolerance_mm=0.1, source="circle").text
+    text = build_program(circle, Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="circle").text
     assert text.count("C1MOVE") == 3 and text.count("C2MOVE") == 3
     quarter = Polysegment(chain((0.0, 0.0), 0.0, [0.02], [math.radians(170.0) * 50.0]))
-    assert build_program(quarter, Placement(), ProgramOptions(), tolerance_mm=0.1, source="q").text.count("C1MOVE") == 1
+    assert build_program(quarter, Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="q").text.count("C1MOVE") == 1
 
 
 def test_arc_flatter_than_the_pose_resolution_becomes_a_line():
     # Sagitta 1e-9 mm: the rounded via point lies on the chord.
     flat = Polysegment(chain((0.0, 0.0), 0.0, [1e-11], [20.0]))
-    text = build_program(flat, Placement(), ProgramOptions(), tolerance_mm=0.1, source="flat").text
+    text = build_program(flat, Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="flat").text
     assert "C1MOVE" not in text
     interpret(parse_as(text))
 
 
 def test_polyline_variants(rr):
     pts = rr.sample(0.5)[0]
-    stop = build_program(rr, Placement(), ProgramOptions(variant="polyline-stop"), tolerance_mm=0.1,
+    stop = build_program(rr, Placement(), ProgramOptions(variant="polyline-stop"), language=KAWASAKI_AS, tolerance_mm=0.1,
                          source="rr", points=pts)
     blend = build_program(rr, Placement(), ProgramOptions(variant="polyline-blend", accuracy_mm=2.0),
-                          tolerance_mm=0.1, source="rr", points=pts)
+                          language=KAWASAKI_AS, tolerance_mm=0.1, source="rr", points=pts)
     assert "CP OFF" in stop.text and "CP ON" not in stop.text
     assert "CP ON" in blend.text and "ACCURACY 2 ALWAYS" in blend.text
     for built in (stop, blend):
@@ -128,17 +129,6 @@ def test_program_names(text, name):
     assert len(program_name(text)) <= MAX_NAME_LENGTH
 
 
-def test_dialect_interface_writes_and_reads(rr):
-    from coatsim.languages.registry import LANGUAGES
-
-    dialect = LANGUAGES["kawasaki-as"]
-    built = build_program(rr, Placement(), ProgramOptions(), tolerance_mm=0.1, source="builtin:roundrect",
-                          dialect=dialect)
-    assert built.text == golden_text() and dialect.suffix == ".as"
-    toolpath = dialect.read(built.text, "rr.as", gun_signal=1)
-    assert len(toolpath.spray_moves) == 8 and toolpath.name == "roundrect"
-
-
 if __name__ == "__main__":
     GOLDEN.write_text(golden_text(), encoding="ascii")
 
@@ -152,7 +142,7 @@ def test_a_header_field_longer_than_a_comment_is_written_whole(n_teeth):
 
     pts = [(10.0 * i, 20.0 * (i % 2)) for i in range(n_teeth + 1)]
     poly = Polysegment(tuple(Line(a, b) for a, b in zip(pts, pts[1:])), corners=frozenset(range(n_teeth - 1)))
-    text = build_program(poly, Placement(), ProgramOptions(), tolerance_mm=0.1, source="zigzag").text
+    text = build_program(poly, Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="zigzag").text
     (raw,) = re.findall(rf"; coatsim: {HEADER_KEY}=(.*)", text)
     limits = parse_limits(raw, "zigzag")
     assert len(limits) == n_teeth - 1 and all(lim.v_max_mm_s == 0.0 for lim in limits)

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.core.errors import InputError
 from coatsim.geometry import Arc, Line, Polysegment
 from coatsim.languages.kawasaki_as.parser import parse_as
@@ -48,7 +49,7 @@ def spray_runs(toolpath) -> list[list]:
 
 def test_part_program_sprays_each_contour_with_the_gun_off_between():
     options = ProgramOptions(approach_mm=40.0)
-    built = build_part_program(PART, PLACEMENT, options, tolerance_mm=0.1, source="part")
+    built = build_part_program(PART, PLACEMENT, options, language=KAWASAKI_AS, tolerance_mm=0.1, source="part")
     tp = toolpath_of(built.text)
     runs = spray_runs(tp)
     assert len(runs) == 3
@@ -69,14 +70,14 @@ def test_part_program_sprays_each_contour_with_the_gun_off_between():
 
 def test_one_contour_part_is_the_single_contour_program():
     options = ProgramOptions()
-    single = build_program(PART[0], PLACEMENT, options, tolerance_mm=0.1, source="part")
-    part = build_part_program(PART[:1], PLACEMENT, options, tolerance_mm=0.1, source="part")
+    single = build_program(PART[0], PLACEMENT, options, language=KAWASAKI_AS, tolerance_mm=0.1, source="part")
+    part = build_part_program(PART[:1], PLACEMENT, options, language=KAWASAKI_AS, tolerance_mm=0.1, source="part")
     assert part.text == single.text and part.curves == (single.curve,)
 
 
 @pytest.mark.parametrize("variant", ["polyline-stop", "polyline-blend"])
 def test_polyline_variants_of_a_part(variant):
-    built = build_part_program(PART, PLACEMENT, ProgramOptions(variant=variant), tolerance_mm=0.1, source="part")
+    built = build_part_program(PART, PLACEMENT, ProgramOptions(variant=variant), language=KAWASAKI_AS, tolerance_mm=0.1, source="part")
     assert len(built.curves) == 3 and all(c.n_arcs == 0 for c in built.curves)
     assert len(spray_runs(toolpath_of(built.text))) == 3
 
@@ -86,7 +87,7 @@ def test_nearest_order_goes_to_the_closest_start():
     line = Polysegment((Line((0.0, 0.0), (10.0, 0.0)),))
     assert contour_order([line, far, near], "nearest") == (0, 2, 1)
     assert contour_order([line, far, near], "as-drawn") == (0, 1, 2)
-    built = build_part_program([line, far, near], PLACEMENT, ProgramOptions(), tolerance_mm=0.1, source="p",
+    built = build_part_program([line, far, near], PLACEMENT, ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="p",
                                order="nearest")
     assert built.order == (0, 2, 1) and built.curves[1] is near
     with pytest.raises(InputError, match=r"--order 'random'"):
@@ -95,7 +96,7 @@ def test_nearest_order_goes_to_the_closest_start():
 
 def test_a_part_needs_a_travel_clearance():
     with pytest.raises(InputError, match=r"--approach 0: a part of 3 contours"):
-        build_part_program(PART, PLACEMENT, ProgramOptions(approach_mm=0.0), tolerance_mm=0.1, source="part")
+        build_part_program(PART, PLACEMENT, ProgramOptions(approach_mm=0.0), language=KAWASAKI_AS, tolerance_mm=0.1, source="part")
 
 
 def test_centering_takes_every_contour():
@@ -147,7 +148,7 @@ def test_per_contour_header_fields_of_a_mixed_part():
     """A closed contour is sprayed once around, an open one with its leads; the header says so
     per contour, in spray order."""
     stroke = Polysegment((Line((-60.0, 30.0), (60.0, 30.0)),))
-    built = build_part_program([PART[1], stroke], PLACEMENT, ProgramOptions(), tolerance_mm=0.1, source="part")
+    built = build_part_program([PART[1], stroke], PLACEMENT, ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="part")
     text = built.text
     assert "; coatsim: closed=yes | no\n" in text and "; coatsim: sprayed=curve | lead-in,curve,lead-out\n" in text
     contours = toolpath_of(text).process.contours

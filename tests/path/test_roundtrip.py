@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.geometry.benchmark import NAMES as BENCH_NAMES
 from coatsim.geometry.benchmark import bench_curve
 from coatsim.geometry.polysegment import Polysegment, chain
@@ -26,7 +27,7 @@ POSITION_MM, TANGENT_RAD, ROTATION_RAD = 1e-4, 1e-6, 1e-6
 
 
 def round_trip(poly: Polysegment, variant: str, placement: Placement = Placement(), points=None):
-    built = build_program(poly, placement, ProgramOptions(variant=variant), tolerance_mm=0.05,
+    built = build_program(poly, placement, ProgramOptions(variant=variant), language=KAWASAKI_AS, tolerance_mm=0.05,
                           source="rt", points=points)
     toolpath = interpret(parse_as(built.text, "rt.as"))
     return built, toolpath, path_errors(built.path, toolpath)

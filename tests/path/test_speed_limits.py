@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
@@ -70,7 +71,7 @@ def test_bad_header_values_name_the_field(text, words):
 @pytest.mark.parametrize("variant", VARIANTS)
 def test_every_variant_carries_the_same_stretches_scaled_to_its_curve(variant):
     d = replace(d_shape(), speed_limited=((150.0, 160.0, 120.0),))
-    built = build_program(d, Placement(), ProgramOptions(variant=variant), tolerance_mm=0.1, source="d")
+    built = build_program(d, Placement(), ProgramOptions(variant=variant), language=KAWASAKI_AS, tolerance_mm=0.1, source="d")
     limits = interpret(parse_as(built.text)).process.contours[0].speed_limits
     scale = built.curve.length / d.length
     assert [lim.v_max_mm_s for lim in limits] == [0.0, 120.0, 0.0]

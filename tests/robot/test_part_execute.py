@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.geometry import Arc, Line, Polysegment, chain
 from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import ProgramOptions
@@ -31,7 +32,7 @@ def run():
     stroke = Polysegment((Line((-40.0, -20.0), (40.0, -20.0)),))  # open: sprayed with its lead-in and lead-out
     part = [outline, circle(-25.0, 10.0, 8.0), circle(25.0, 10.0, 10.0), stroke]
     placement = Placement(frame=Frame(700, 0, 200, 0, 0, 0), standoff_mm=100.0, lead_in_mm=10.0, lead_out_mm=10.0)
-    built = build_part_program(part, placement, ProgramOptions(speed_mm_s=200.0, accuracy_mm=0.5), tolerance_mm=0.1,
+    built = build_part_program(part, placement, ProgramOptions(speed_mm_s=200.0, accuracy_mm=0.5), language=KAWASAKI_AS, tolerance_mm=0.1,
                                source="part")
     return part, execute(interpret(parse_as(built.text, "part.as")), load_cell(), step_mm=2.0)
 

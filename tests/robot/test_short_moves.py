@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
@@ -110,6 +111,6 @@ def test_blended_polyline_with_blends_meeting_mid_chord_keeps_the_speed(cell):
     poly = polyline_of(curve.points, True, 0.1)
     built = build_program(poly, Placement(lead_in_mm=20.0, lead_out_mm=20.0, offset_xy=centering_offset(poly)),
                           ProgramOptions(variant="polyline-blend", speed_mm_s=300.0, accuracy_mm=2.0),
-                          tolerance_mm=0.1, source="epitrochoid", points=curve.points)
+                          language=KAWASAKI_AS, tolerance_mm=0.1, source="epitrochoid", points=curve.points)
     result = execute(interpret(parse_as(built.text)), cell)
     assert result.metrics.min_speed_ratio > 0.98 and result.metrics.fraction_at_speed > 0.99

@@ -7,7 +7,7 @@ import re
 from collections import Counter
 from typing import Sequence
 
-from coatsim.languages.kawasaki_as.source import _BOM
+from coatsim.core.fileio import UTF8_BOM as _BOM
 
 _BREAK = re.compile(r"(\r\n|\r|\n)")
 

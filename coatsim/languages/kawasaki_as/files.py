@@ -6,6 +6,7 @@ from pathlib import Path
 from typing import Mapping, Optional, Sequence, Union
 
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import read_input_bytes
 from coatsim.languages.kawasaki_as.interpreter import Run, interpret_run
 from coatsim.languages.kawasaki_as.parser import parse_as_bytes
 from coatsim.languages.kawasaki_as.ast import AsFile
@@ -14,20 +15,12 @@ from coatsim.path.toolpath import Kinematics, ToolPath
 Paths = Union[str, Path, Sequence[Union[str, Path]]]
 
 
-def read_program_bytes(path: str | Path) -> bytes:
-    """The bytes of a program file; InputError if it cannot be read."""
-    try:
-        return Path(path).read_bytes()
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read program ({exc.strerror or exc})") from None
-
-
 def parse_files(paths: Paths) -> tuple[AsFile, ...]:
     """Parse one AS file or several loaded together (programs in one, poses in another)."""
     items = [paths] if isinstance(paths, (str, Path)) else list(paths)
     if not items:
         raise InputError("no program file given")
-    return tuple(parse_as_bytes(read_program_bytes(p), str(p)) for p in items)
+    return tuple(parse_as_bytes(read_input_bytes(p, "program"), str(p)) for p in items)
 
 
 def read_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,

@@ -18,7 +18,8 @@ from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.blocks import BlockBuilder
 from coatsim.languages.kawasaki_as.expressions import Cursor
 from coatsim.languages.kawasaki_as.lexer import MAX_LITERAL, tokenize
-from coatsim.languages.kawasaki_as.source import AsSyntaxError, decode, split_lines, syntax_error
+from coatsim.core.fileio import decode_text as decode
+from coatsim.languages.kawasaki_as.source import AsSyntaxError, split_lines, syntax_error
 from coatsim.languages.kawasaki_as.statements import parse_line
 
 _DIRECTIVE = re.compile(r"\.([A-Za-z_][A-Za-z0-9_]*)")

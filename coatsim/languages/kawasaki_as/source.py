@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from coatsim.core.errors import InputError
 
-_BOM = b"\xef\xbb\xbf"
 
 
 class AsSyntaxError(InputError):
@@ -19,16 +18,6 @@ class AsSyntaxError(InputError):
 
 def syntax_error(source: str, line: int, col: int, message: str) -> AsSyntaxError:
     return AsSyntaxError(f"{source}:{line}:{col}: {message}")
-
-
-def decode(data: bytes) -> str:
-    """Text of an AS file: UTF-8 (a leading byte-order mark dropped) if valid, else Latin-1."""
-    if data.startswith(_BOM):
-        data = data[len(_BOM):]
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError:
-        return data.decode("latin-1")
 
 
 def split_lines(text: str) -> list[str]:

@@ -30,7 +30,7 @@ from coatsim.core.numbers import MM_DECIMALS, fmt, fmt_short
 from coatsim.path.arcs import DegenerateArc, circle_through
 from coatsim.languages.kawasaki_as.header import encode as encode_header
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, sanitize_comment
-from coatsim.path.dialect import ProgramPlan
+from coatsim.path.plan import ProgramPlan
 from coatsim.path.oat import matrix_to_oat
 from coatsim.path.frames import Frame
 from coatsim.path.placement import PlacedArc, PlacedLine, PlacedSegment

@@ -11,11 +11,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.core.errors import InputError
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, program_name, sanitize_comment
 from coatsim.path.build import ProgramOptions, build_program
-from coatsim.path.dialect import ProgramPlan
+from coatsim.path.plan import ProgramPlan
 from coatsim.path.placement import Placement
 
 from program_helpers import roundrect
@@ -50,7 +51,7 @@ def test_check_name_follows_the_as_rules(text):
 
 
 def _baseline():
-    return build_program(roundrect(), Placement(), ProgramOptions(name="rr"), tolerance_mm=0.1, source="rr")
+    return build_program(roundrect(), Placement(), ProgramOptions(name="rr"), language=KAWASAKI_AS, tolerance_mm=0.1, source="rr")
 
 
 BASELINE = _baseline()
@@ -87,9 +88,11 @@ def test_any_comment_or_source_text_leaves_the_motion_alone(comment, source):
 def test_program_names_from_the_user(name):
     if not AS_NAME.match(name):
         with pytest.raises(InputError):
-            ProgramOptions(name=name)
+            build_program(roundrect(), Placement(), ProgramOptions(name=name), language=KAWASAKI_AS, tolerance_mm=0.1,
+                          source="rr")
         return
-    built = build_program(roundrect(), Placement(), ProgramOptions(name=name), tolerance_mm=0.1, source="rr")
+    built = build_program(roundrect(), Placement(), ProgramOptions(name=name), language=KAWASAKI_AS, tolerance_mm=0.1,
+                          source="rr")
     assert built.text.startswith(f".PROGRAM {name}()\n")
     _same_motion(built.text)
 
@@ -97,7 +100,7 @@ def test_program_names_from_the_user(name):
 @SETTINGS
 @given(st.text(max_size=60))
 def test_sources_with_any_text(source):
-    built = build_program(roundrect(), Placement(), ProgramOptions(), tolerance_mm=0.1, source=source or "x")
+    built = build_program(roundrect(), Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source=source or "x")
     assert AS_NAME.match(built.plan.name)
     f = parse_as(built.text)
     assert len(f.programs[0].body) == BASE_STEPS

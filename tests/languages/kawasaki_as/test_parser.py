@@ -12,7 +12,8 @@ from coatsim.core.errors import InputError
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.lexer import tokenize
 from coatsim.languages.kawasaki_as.parser import parse_as, parse_as_bytes
-from coatsim.languages.kawasaki_as.source import AsSyntaxError, decode
+from coatsim.core.fileio import decode_text as decode
+from coatsim.languages.kawasaki_as.source import AsSyntaxError
 
 from as_samples import ARC_POLISHING, BACKUP, DRAWING, MACHINE_TENDING, PALLETISING
 

@@ -1,19 +1,12 @@
-"""The common interface of robot-language dialects.
-
-A dialect writes a :class:`ProgramPlan` (what to do, independent of any language) as program
-text and reads program text back into a :class:`~coatsim.path.toolpath.ToolPath`. Kawasaki AS
-is the first; RAPID, KRL or G-code plug in by implementing the same two methods.
-"""
+"""ProgramPlan: what a coating program does, before it is written in a language."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
 
 from coatsim.path.frames import Frame
 from coatsim.path.placement import PlacedPath
 from coatsim.path.process import ProcessInfo
-from coatsim.path.toolpath import ToolPath
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,18 +39,3 @@ class ProgramPlan:
         """Every sprayed path with whether the gun covers its lead-in and lead-out."""
         contours = self.process.contours_for(len(self.paths), self.name)
         return tuple((path, contour.leads_sprayed) for path, contour in zip(self.paths, contours))
-
-
-class Dialect(Protocol):
-    """A robot language coatsim can write and read."""
-
-    name: str
-    suffix: str
-
-    def write(self, plan: ProgramPlan) -> str:
-        """Complete program text for ``plan`` (deterministic)."""
-        ...
-
-    def read(self, text: str, source: str, gun_signal: int = 1) -> ToolPath:
-        """The ToolPath the program text makes the robot execute; InputError on any defect."""
-        ...
