@@ -69,7 +69,7 @@ def bench_spiral(cell, curve: Path | None, tol: float, speed: float) -> None:
     from coatsim.geometry.benchmark import bench_points
     from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.path.build import ProgramOptions
-    from coatsim.path.run import run_program
+    from coatsim.cli.program import run_program
 
     print(f"\nspiral {curve.name if curve else 'benchmark spiral'}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
           f"{cell.tool_accel_mm_s2 / 1000:g} m/s^2")

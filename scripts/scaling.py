@@ -130,7 +130,7 @@ def spiral_per_robot_second(cell=None) -> None:
     from coatsim.geometry.benchmark import bench_curve
     from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.path.build import ProgramOptions
-    from coatsim.path.run import run_program
+    from coatsim.cli.program import run_program
     from coatsim.robot.cell import load_cell
     from coatsim.robot.execute import execute as run
 

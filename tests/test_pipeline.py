@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from coatsim.cli.app import main
+from coatsim.cli import main
 from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.report.document import SECTION_IDS
 from coatsim.report.verdict import verdict

@@ -20,6 +20,7 @@ from typing import Optional
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
@@ -42,22 +43,24 @@ class ProgramOptions:
     """Controller settings of the program; ``name`` defaults to one made from the source."""
 
     variant: str = "polysegment"
-    speed_mm_s: float = 500.0
-    accuracy_mm: float = 1.0
-    approach_mm: float = 50.0
-    gun_signal: int = 1
+    speed_mm_s: float = defaults.SPEED_MM_S
+    accuracy_mm: float = defaults.ACCURACY_MM
+    approach_mm: float = defaults.APPROACH_MM
+    gun_signal: int = defaults.GUN_SIGNAL
     tool: Frame = DEFAULT_TOOL
     name: Optional[str] = None
 
     def __post_init__(self) -> None:
         if self.variant not in VARIANTS:
-            raise InputError(f"--variant {self.variant!r}: expected one of {', '.join(VARIANTS)}")
-        for what, value, low in (("--speed", self.speed_mm_s, 0.0), ("--accuracy", self.accuracy_mm, -1.0),
-                                 ("--approach", self.approach_mm, -1.0)):
+            raise InputError(f"variant {self.variant!r}: expected one of {', '.join(VARIANTS)}", parameters=("variant",))
+        for what, value, low in (("speed_mm_s", self.speed_mm_s, 0.0), ("accuracy_mm", self.accuracy_mm, -1.0),
+                                 ("approach_mm", self.approach_mm, -1.0)):
             if not (math.isfinite(value) and (value > low if low == 0.0 else value >= 0.0)):
-                raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}")
-        if not 1 <= self.gun_signal <= 9999:
-            raise InputError(f"--gun {self.gun_signal}: expected an output number from 1 to 9999")
+                raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}",
+                                 parameters=(what,))
+        if not 1 <= self.gun_signal <= defaults.MAX_SIGNAL:
+            raise InputError(f"gun_signal {self.gun_signal}: expected an output number from 1 to {defaults.MAX_SIGNAL}",
+                             parameters=("gun_signal",))
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,7 +104,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
     so that every variant is measured over the same stretches.
     """
     if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
-        raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
+        raise InputError(f"tolerance_mm {tolerance_mm}: must be a finite number > 0", parameters=("tolerance_mm",))
     if options.variant == "polysegment":
         curve = poly
         summary = f"{poly.n_segments} segments ({poly.n_lines} lines, {poly.n_arcs} arcs)"
@@ -133,7 +136,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         contours=(SprayedContour(closed=curve.closed, leads_sprayed=not curve.closed, speed_limits=limits),),
     )
     plan = ProgramPlan(
-        name=language.check_name(options.name, "--name") if options.name is not None else
+        name=language.check_name(options.name, "name") if options.name is not None else
         language.program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
         paths=(path,),
         speed_mm_s=options.speed_mm_s,

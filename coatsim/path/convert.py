@@ -18,6 +18,7 @@ from typing import Mapping, Optional, Sequence
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import CoatsimError, InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.languages.kawasaki_as.files import Paths, parse_files
@@ -47,7 +48,7 @@ class ConvertOptions:
     program: Optional[str] = None
     lines: Optional[tuple[int, int]] = None
     standalone: bool = False
-    corner_deg: float = 20.0
+    corner_deg: float = defaults.CORNER_DEG
     approach_mm: float = 50.0
     name: Optional[str] = None
 

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.path.oat import matrix_to_oat, oat_to_matrix
 
@@ -51,8 +52,5 @@ class Frame:
         return ",".join(f"{v:g}" for v in (self.x, self.y, self.z, self.o, self.a, self.t))
 
 
-# A horizontal plate in front of a ~1.4 m reach arm, normal pointing up (the robot stage uses
-# the same default cell).
-DEFAULT_FRAME = Frame(700.0, 0.0, 200.0, 0.0, 0.0, 0.0)
-# Spray gun TCP relative to the flange, written as the program's TOOL.
-DEFAULT_TOOL = Frame(0.0, 0.0, 250.0, 0.0, 0.0, 0.0)  # the cell model's plasma gun: TCP 250 mm from the flange
+DEFAULT_FRAME = Frame(*defaults.WORKPIECE_FRAME)
+DEFAULT_TOOL = Frame(*defaults.GUN_TOOL)

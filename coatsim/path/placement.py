@@ -20,6 +20,7 @@ from typing import Union
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
@@ -40,11 +41,11 @@ class Placement:
     (see :func:`centering_offset` to centre it on the frame origin)."""
 
     frame: Frame = DEFAULT_FRAME
-    standoff_mm: float = 100.0
+    standoff_mm: float = defaults.STANDOFF_MM
     roll_deg: float = 0.0
     follow_tangent: bool = False
-    lead_in_mm: float = 30.0
-    lead_out_mm: float = 30.0
+    lead_in_mm: float = defaults.LEAD_IN_MM
+    lead_out_mm: float = defaults.LEAD_OUT_MM
     offset_xy: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:

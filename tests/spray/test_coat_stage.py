@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.special import i0e
 
-from coatsim.cli.app import main
+from coatsim.cli import main
 from coatsim.spray.coat import coat, run_coat
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import plate
