@@ -19,8 +19,9 @@ from coatsim.geometry import (
 )
 from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
 from coatsim.geometry.segment import Segmentation
-from coatsim.program import read_program_bytes, read_toolpath
+from coatsim.program import read_program, read_program_bytes
 from coatsim.program.as_lang.source import decode
+from coatsim.program.check import gun_never_on
 from coatsim.program.oat import oat_to_matrix
 from coatsim.program.placement import Frame
 from coatsim.program.toolpath import ToolPath
@@ -146,11 +147,17 @@ def load_arm(loaded: ScenarioFile, override: Optional[str | Path] = None) -> Cel
 
 
 def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
-    """The ToolPath of a program variant and its text (the files one after the other)."""
+    """The ToolPath of a program variant and its text (the files one after the other); a
+    variant needs a sprayed path: InputError naming the outputs a program that never opens the
+    gun switches."""
     files = [loaded.resolve(f) for f in entry.files]
     try:
-        toolpath = read_toolpath(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
-                                 kinematics=CellKinematics(cell))
+        run = read_program(files, gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states,
+                           kinematics=CellKinematics(cell), variables=entry.variables)
+        toolpath = run.toolpath
+        if not toolpath.spray_moves:
+            raise InputError(f"{gun_never_on(str(files[0]), loaded.spec.gun.signal, run.outputs)}; a program "
+                             "variant needs the path the gun sprays (gun.signal names the process signal)")
     except CoatsimError as exc:
         raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
     return toolpath, "\n".join(decode(read_program_bytes(f)) for f in files)

@@ -82,5 +82,10 @@ def check_summary(check: ProgramCheck) -> str:
     lines += [f"sprayed: lines {r.first_line}-{r.last_line} of {r.source}, {r.moves} move{'' if r.moves == 1 else 's'}, {r.length_mm:.3f} mm"
               for r in check.spray_runs]
     lines += [f"warning: {w}" for w in check.warnings]
+    lines += [f"note: {n}" for n in check.notes]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
+    if check.unknowns or check.skipped:
+        lines.append(f"read with {len(check.unknowns)} unknown variable{'' if len(check.unknowns) == 1 else 's'} "
+                     f"and {len(check.skipped)} statement{'' if len(check.skipped) == 1 else 's'} skipped (see "
+                     "the warnings); give values as NAME=VALUE")
     return "\n".join(lines)

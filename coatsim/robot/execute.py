@@ -338,10 +338,11 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
 
 def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
                     gun_signal: int = 1, step_mm: float = 1.0, main: str | None = None,
-                    inputs: Mapping[int, bool] | None = None, force: bool = False) -> tuple[Execution, list[Path]]:
+                    inputs: Mapping[int, bool] | None = None, force: bool = False,
+                    variables: Mapping[str, str | float] | None = None) -> tuple[Execution, list[Path]]:
     """``coatsim execute``: read AS program files, run the main program (``main``, default the
     first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.outputs_guard)."""
+    see coatsim.outputs_guard); ``variables`` gives variables no file gives."""
     from coatsim.outputs_guard import check_distinct, output_folder
     from coatsim.program import read_toolpath
     from coatsim.robot.kinematics import CellKinematics
@@ -354,7 +355,7 @@ def execute_program(program: str | Path | Sequence[str | Path], model: str | Pat
     check_distinct([*(("the program", p) for p in sources), ("--model", model)], [("output", f) for f in files])
     cell = load_cell(model)
     toolpath = read_toolpath(program, gun_signal=gun_signal, program=main, inputs=inputs,
-                             kinematics=CellKinematics(cell))
+                             kinematics=CellKinematics(cell), variables=variables)
     with output_folder(out, names, "coatsim execute", force):
         result = execute(toolpath, cell, step_mm)
         result.log.write_csv(files[0])

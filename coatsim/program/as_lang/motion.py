@@ -218,6 +218,10 @@ class Controller:
         else:
             self.acc_once, self.fine_once = value, fine
 
+    def tool_frame(self) -> Optional[Frame]:
+        """The TCP the program's last TOOL set (None before any)."""
+        return None if self.tool is None else Frame(self.tool.rotation, self.tool.offset_mm)
+
     def set_tool(self, frame: Frame, line: int) -> None:
         self._check_no_arc(line)
         if self.moves:

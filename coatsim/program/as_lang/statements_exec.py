@@ -7,9 +7,11 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from coatsim.program.as_lang import ast
+from coatsim.program.as_lang.io_model import FIRST_INPUT
 from coatsim.program.as_lang.instructions import CONFIGURATION, DISPLAY, GRIPPER, HOUSEKEEPING, NETWORK, TASKS, \
     UNSIMULATED_MOTION
-from coatsim.program.as_lang.values import IDENTITY, Frame
+from coatsim.program.as_lang.unknowns import Absent
+from coatsim.program.as_lang.values import IDENTITY, Frame, PoseJoints
 from coatsim.program.toolpath import Pose
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -43,12 +45,19 @@ def _seconds(run: Interpreter, e: ast.Expr) -> float:
 
 def _move(run: Interpreter, st: ast.Move) -> None:
     c, op = run.controller, st.op
+    if op == "C2MOVE" and run.skipped_via is not None:
+        via, run.skipped_via = run.skipped_via, None
+        raise Absent(f"the arc's C1MOVE (line {via}) was skipped")
     if st.clamp is not None:
         run.warn("clamp", f"{op} ..., clamp: clamps are not simulated")
-    if op == "HMOVE":
-        raise run.failure("HMOVE (hybrid motion) is not simulated; use JMOVE or LMOVE")
     if op == "JMOVE" and run.eval.kind(st.target) == "joint":
-        values = run.eval.joints(st.target)
+        values = run.eval.joint_value(st.target)
+        if isinstance(values, PoseJoints):
+            if values.reference is not None:
+                run.warn(f"ik:{st.line}", "JMOVE to a joint value taken from a pose with a reference: the cell's "
+                         "inverse kinematics picks the configuration, not the reference")
+            c.joint(_target(run, run.base.inverse() * values.frame), st.line)
+            return
         q = run.joints_rad(values)
         c.joint(run.fk(q, "JMOVE to a joint value"), st.line, joints=q)
         return
@@ -109,7 +118,12 @@ def _home(run: Interpreter, st: ast.Home) -> None:
 
 def _point(run: Interpreter, st: ast.PointAssign) -> None:
     if st.target.kind == "joint":
-        run.set("joint", st.target, run.eval.joints(st.value))
+        if run.eval.kind(st.value) == "joint":
+            run.set("joint", st.target, run.eval.joint_value(st.value))
+            return
+        frame = run.base * run.eval.pose(st.value)  # (the joint value reaches this pose in the base frame)
+        reference = None if st.reference is None else run.eval.joints(st.reference)
+        run.set("joint", st.target, PoseJoints(frame, reference))
         return
     value = run.eval.pose(st.value)
     if st.component is not None and st.component.isdigit():
@@ -161,7 +175,11 @@ def _pulse(run: Interpreter, st: ast.Pulse) -> None:
         _seconds(run, st.seconds)
     if abs(n) == run.gun:
         raise run.failure(f"{st.op} of the gun output {run.gun} is not simulated; switch it with SIGNAL")
+    if n == 0:
+        raise run.error(f"{st.op}: signal number 0 does not exist")
     run.warn(f"pulse:{st.line}", f"{st.op} {n}: the delay is not simulated; the output takes its final state at once")
+    if abs(n) < FIRST_INPUT:
+        run.outputs.add(abs(n))
     run.signals.set(abs(n), n > 0 if st.op == "DLYSIG" else False)
 
 
@@ -189,9 +207,10 @@ def _swait(run: Interpreter, st: ast.Swait) -> None:
 
 def _wait(run: Interpreter, st: ast.Wait) -> None:
     run.signals.unknown_read = False
+    before = run.unknowns.reads
     if run.eval.truth(st.condition):
         return
-    if run.signals.unknown_read:
+    if run.signals.unknown_read or run.unknowns.reads != before:
         run.warn(f"wait:{st.line}", "WAIT: the condition depends on what the simulation does not know; taken as satisfied")
         return
     raise run.failure("WAIT condition is false and nothing changes it in the simulation")
@@ -208,7 +227,11 @@ def _output(run: Interpreter, st: ast.Output) -> None:
 
 def _call(run: Interpreter, st: ast.CallProgram) -> None:
     name = st.program if isinstance(st.program, str) else run.eval.string(st.program)
-    run.call(run.program(name), st.args)
+    program = run.programs.get(name.lower())
+    if program is None:
+        raise Absent(f"no program named '{name}' is loaded (one kept on the controller?; loaded: "
+                     f"{', '.join(p.name for p in run.programs.values())})")
+    run.call(program, st.args)
 
 
 def _stop(run: Interpreter, st: ast.Stop) -> None:
@@ -248,7 +271,7 @@ def _network_defaults(run: Interpreter, st: ast.Command) -> None:
 def _command(run: Interpreter, st: ast.Command) -> None:
     name = st.name
     if name in UNSIMULATED_MOTION:
-        raise run.failure(f"{name} moves the arm in a way coatsim does not simulate")
+        raise Absent(f"{name} moves the arm in a way coatsim does not simulate")
     if name in NETWORK:
         _network_defaults(run, st)
         run.warn(f"cmd:{name}", f"{name}: network and serial I/O are not simulated; the status is 0 and nothing is "
@@ -260,7 +283,7 @@ def _command(run: Interpreter, st: ast.Command) -> None:
     elif name in CONFIGURATION:
         run.warn(f"cmd:{name}", f"{name}: arm configuration, payload and limits come from the cell model")
     elif name in HOUSEKEEPING:
-        run.warn(f"cmd:{name}", f"{name}: interrupts, timers and signal masks are not simulated")
+        run.warn(f"cmd:{name}", f"{name}: interrupts, timers, signal housekeeping and sensing are not simulated")
     elif name not in DISPLAY:
         run.warn(f"cmd:{name}", f"{name} is not simulated")
 
@@ -284,8 +307,8 @@ def _brake(run: Interpreter, st: ast.Brake) -> None:
 
 
 def _block_step(run: Interpreter, st: ast.BlockStep) -> None:
-    raise run.failure(f"teach-pendant block step ({st.kind} ...) is not simulated; write it as JMOVE/LMOVE with "
-                      "SPEED and ACCURACY")
+    raise Absent(f"a teach-pendant block step ({st.kind} ...) is not simulated; write it as JMOVE/LMOVE with "
+                 "SPEED and ACCURACY")
 
 
 def _assign(run: Interpreter, st: ast.Assign) -> None:
@@ -331,3 +354,16 @@ HANDLERS: dict[type, Callable] = {
 
 def execute_statement(run: Interpreter, st: ast.Statement) -> None:
     HANDLERS[type(st)](run, st)
+
+
+_NAMES = {ast.Assign: "assignment", ast.PointAssign: "POINT", ast.CallProgram: "CALL", ast.Home: "HOME",
+          ast.Signal: "SIGNAL", ast.Bits: "BITS", ast.Swait: "SWAIT", ast.Wait: "WAIT", ast.Twait: "TWAIT"}
+
+
+def statement_name(st: ast.Statement) -> str:
+    """The instruction word of a statement, for notes."""
+    for attr in ("op", "name", "kind"):
+        value = getattr(st, attr, None)
+        if isinstance(value, str):
+            return value
+    return _NAMES.get(type(st), type(st).__name__.upper())

@@ -6,8 +6,8 @@
   FOR .l = 1 TO layers
     CALL calc.layer(.l, .&pos[,])
     FOR .k = 1 TO 4
-      JAPPRO pos[.l, .k], 100
-      LMOVE pos[.l, .k]
+      JAPPRO .pos[.l, .k], 100
+      LMOVE .pos[.l, .k]
       BREAK
       SIGNAL -5
       TWAIT 0.2
