@@ -29,7 +29,7 @@ from coatsim.program.as_lang import ast
 from coatsim.program.as_lang.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
 from coatsim.program.as_lang.evaluate import Evaluator
-from coatsim.program.as_lang.io_model import FIRST_INPUT, Signals, Warnings, is_input
+from coatsim.program.as_lang.io_model import SignalIO, Signals, Warnings
 from coatsim.program.as_lang.memory import Memory
 from coatsim.program.as_lang.motion import FULL_SPEED_MM_S, Controller
 from coatsim.program.as_lang.parser import key as norm
@@ -70,7 +70,8 @@ class Run:
         simulates or rewrites the path needs all of it."""
         if self.skipped:
             more = f" (and {len(self.skipped) - 1} more)" if len(self.skipped) > 1 else ""
-            raise InputError(f"{self.skipped[0]}{more}; give the missing values (NAME=VALUE) to run the whole program")
+            raise InputError(f"{self.skipped[0]}{more}; a simulation runs every statement (give missing values as "
+                             "NAME=VALUE)")
 
 
 @dataclass
@@ -80,7 +81,7 @@ class _Frame:
     loops: dict
 
 
-class Interpreter(Memory, RobotQueries):
+class Interpreter(Memory, SignalIO, RobotQueries):
     """State of one run: variables, signals, the controller, the call stack, the budget."""
 
     def __init__(self, files: Sequence[ast.AsFile], gun: int, inputs: Mapping[int, bool],
@@ -145,38 +146,6 @@ class Interpreter(Memory, RobotQueries):
         self.unknowns.skipped.append(text)
         self.warnings.add(f"skip:{self.where()}", text)
 
-    def sig(self, numbers: list[int]) -> float:
-        result = True
-        for n in numbers:
-            if n == 0:
-                raise self.error("signal number 0 does not exist")
-            on, known = self.signals.state(abs(n))
-            if not known:
-                self.warn(f"input:{abs(n)}", f"input {abs(n)} is not given; taken as OFF (set it with --inputs or "
-                          "the scenario's inputs)")
-            result = result and (on == (n > 0))
-        return -1.0 if result else 0.0
-
-    def read_bits(self, start: int, count: int) -> int:
-        if not 1 <= count <= 32:
-            raise self.error(f"BITS count must be 1 to 32, got {count}")
-        value = 0
-        for i in range(count):
-            on, known = self.signals.state(start + i)
-            if not known:
-                self.warn(f"input:{start + i}", f"input {start + i} is not given; taken as OFF")
-            value |= int(on) << i
-        return value
-
-    def set_signal(self, number: int, on: bool) -> None:
-        if number == self.gun:
-            self.controller.switch_gun(on)
-        elif is_input(number):
-            self.warn(f"set-input:{number}", f"signal {number} is an input; the program sets it here")
-        if number < FIRST_INPUT:
-            self.outputs.add(number)
-        self.signals.set(number, on)
-
     def switch_state(self, name: str) -> bool:
         return self.controller.cp if name == "CP" else self.switches.get(name, False)
 
@@ -231,14 +200,14 @@ class Interpreter(Memory, RobotQueries):
                     self.set(kind, actual, value)
 
     def cycle(self) -> str:
-        """The message for CALLs nested too deep, naming the cycle of programs that repeats."""
+        """The message for CALLs nested too deep, naming the first cycle of programs that repeats."""
         names = [f.program.name for f in self.stack]
-        last = names[-1]
-        back = len(names) - 2 - names[-2::-1].index(last) if last in names[:-1] else None
-        if back is None:
-            return f"CALLs nested more than {MAX_CALL_DEPTH} deep ({' -> '.join(names[:3])} -> ...)"
-        return (f"CALLs nested more than {MAX_CALL_DEPTH} deep: the CALL cycle {' -> '.join(names[back:])} never "
-                "ends (a program calling itself, directly or through others)")
+        for i, name in enumerate(names):
+            if name in names[i + 1:]:
+                j = names.index(name, i + 1)
+                return (f"CALLs nested more than {MAX_CALL_DEPTH} deep: the CALL cycle {' -> '.join(names[i:j + 1])} "
+                        "never ends (a program calling itself, directly or through others)")
+        return f"CALLs nested more than {MAX_CALL_DEPTH} deep ({' -> '.join(names[:3])} -> ...)"
 
     def compiled(self, program: ast.Program) -> Code:
         code = self.code.get(program.name.lower())

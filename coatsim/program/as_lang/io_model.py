@@ -1,4 +1,4 @@
-"""Signals as the twin sees them, and the warnings of one run.
+"""Signals as the twin sees them, what a program does with them, and the warnings of one run.
 
 Numbering (Kawasaki): outputs 1..1000, inputs 1001..2000, internal signals 2001 and up. The
 program sets outputs and internal signals; inputs come from the cell: the values given (a
@@ -48,6 +48,43 @@ class Warnings:
         if key not in self.seen:
             self.seen.add(key)
             self.lines.append(message)
+
+
+class SignalIO:
+    """Signal reads and writes of a running program (a part of the interpreter, which provides
+    ``signals``, ``gun``, ``controller``, ``outputs`` and its ``error``/``warn``)."""
+
+    def sig(self, numbers: list[int]) -> float:
+        result = True
+        for n in numbers:
+            if n == 0:
+                raise self.error("signal number 0 does not exist")
+            on, known = self.signals.state(abs(n))
+            if not known:
+                self.warn(f"input:{abs(n)}", f"input {abs(n)} is not given; taken as OFF (set it with --inputs or "
+                          "the scenario's inputs)")
+            result = result and (on == (n > 0))
+        return -1.0 if result else 0.0
+
+    def read_bits(self, start: int, count: int) -> int:
+        if not 1 <= count <= 32:
+            raise self.error(f"BITS count must be 1 to 32, got {count}")
+        value = 0
+        for i in range(count):
+            on, known = self.signals.state(start + i)
+            if not known:
+                self.warn(f"input:{start + i}", f"input {start + i} is not given; taken as OFF")
+            value |= int(on) << i
+        return value
+
+    def set_signal(self, number: int, on: bool) -> None:
+        if number == self.gun:
+            self.controller.switch_gun(on)
+        elif is_input(number):
+            self.warn(f"set-input:{number}", f"signal {number} is an input; the program sets it here")
+        if number < FIRST_INPUT:
+            self.outputs.add(number)
+        self.signals.set(number, on)
 
 
 class Signals:

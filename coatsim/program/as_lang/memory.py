@@ -121,7 +121,7 @@ class Memory:
         for raw, given in variables.items():
             name = str(raw).strip()
             if not _VARIABLE.match(name):
-                raise InputError(f"variable {name!r}: not an AS variable name (a global such as direction, $mode, "
+                raise InputError(f"variable {name}: not an AS variable name (a global such as direction, $mode, "
                                  "#park or cnt[2])")
             target = Cursor(tokenize(name, f"variable {name}", 1), f"variable {name}", 1, len(name))
             target_name = target.variable(target.take())

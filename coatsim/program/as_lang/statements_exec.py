@@ -277,11 +277,13 @@ def _command(run: Interpreter, st: ast.Command) -> None:
         run.warn(f"cmd:{name}", f"{name}: network and serial I/O are not simulated; the status is 0 and nothing is "
                  "received")
     elif name in TASKS:
-        run.warn(f"cmd:{name}", f"{name} {st.text}: other programs, tasks and monitor commands are not run")
+        run.warn(f"cmd:{name}", f"{name} {st.text}: not simulated (other programs, tasks and monitor commands are "
+                 "not run)")
     elif name in GRIPPER:
         run.warn("gripper", f"{name}: grippers, clamps and spot guns are not simulated")
     elif name in CONFIGURATION:
-        run.warn(f"cmd:{name}", f"{name}: arm configuration, payload and limits come from the cell model")
+        run.warn(f"cmd:{name}", f"{name}: not simulated (arm configuration, payload and limits come from the cell "
+                 "model)")
     elif name in HOUSEKEEPING:
         run.warn(f"cmd:{name}", f"{name}: interrupts, timers, signal housekeeping and sensing are not simulated")
     elif name not in DISPLAY:

@@ -8,8 +8,10 @@
   Speed 100 mm/s Always
   Jmove k.start
   Lmove k.start
+  Break
   Signal 1
   Lmove Shift(k.start By 80, 0, 0)
+  Break
   Signal -1
 .End
 .Trans
