@@ -16,7 +16,7 @@ import math
 import sys
 import time
 
-from coatsim.program import interpret_run, parse_as
+from coatsim.languages.kawasaki_as.files import interpret_run, parse_as
 
 REPEATS = 3
 

@@ -21,9 +21,9 @@ from pathlib import Path
 
 from coatsim.geometry import load_curve, segment_curve
 from coatsim.geometry.benchmark import NAMES, bench_curve
-from coatsim.program import interpret, interpret_run, parse_as
-from coatsim.program.build import VARIANTS, ProgramOptions, build_program
-from coatsim.program.placement import Placement, centering_offset
+from coatsim.languages.kawasaki_as import interpret, interpret_run, parse_as
+from coatsim.path.build import VARIANTS, ProgramOptions, build_program
+from coatsim.path.placement import Placement, centering_offset
 
 TOL = 0.1
 REPEATS = 5

@@ -1,6 +1,6 @@
 """Read / partly / refused: ``coatsim check-program`` on AS programs written in field styles.
 
-Runs the check on every program of a folder (default: tests/program/data/field) with the shipped
+Runs the check on every program of a folder (default: tests/languages/kawasaki_as/data/field) with the shipped
 cell and prints one line per program and a count per style (the file name's first letter: b
 controller backup, k K-IDE project, m mixed case, n step numbers, u upper case). A program is
 *read* when the check ends with exit 0 and skipped nothing, *partly* when it ends with exit 0
@@ -16,13 +16,13 @@ import sys
 from collections import Counter
 from pathlib import Path
 
-from coatsim.errors import CoatsimError
+from coatsim.core.errors import CoatsimError
 
 STYLES = {"b": "backup", "k": "K-IDE", "m": "mixed case", "n": "step numbers", "u": "upper case"}
 
 
 def classify(path: Path, kinematics, gun_tcp) -> tuple[str, str]:
-    from coatsim.program.check import check_program
+    from coatsim.path.check import check_program
 
     try:
         done = check_program(path, kinematics=kinematics, gun_tcp=gun_tcp)
@@ -42,8 +42,8 @@ def main() -> None:
     from coatsim.robot.cell import load_cell
     from coatsim.robot.kinematics import CellKinematics
 
-    folder = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[1] / "tests" / "program" \
-        / "data" / "field"
+    folder = Path(sys.argv[1]) if len(sys.argv) > 1 else \
+        Path(__file__).resolve().parents[1] / "tests" / "languages" / "kawasaki_as" / "data" / "field"
     files = sorted(p for p in folder.iterdir() if p.suffix.lower() in (".as", ".pg"))
     if not files:
         sys.exit(f"field_programs: no .as/.pg files in {folder}")

@@ -94,7 +94,7 @@ def coat(spacing: float = 1.0) -> None:
 
 def _polygon(sides: int, radius: float = 80.0, speed: float = 200.0):
     """An exact-stop polygon program: a joint move to the start, then one LMOVE per side."""
-    from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
+    from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
 
     down = np.diag([-1.0, 1.0, -1.0])
     a = np.linspace(0.0, 2 * math.pi, sides + 1)
@@ -127,9 +127,9 @@ def execute(n: int = 20, factor: int = 10) -> None:
 def spiral_per_robot_second(cell=None) -> None:
     """CPU per robot second of each variant on the paper's spiral (sigma 0.1 mm, 200 mm/s)."""
     from coatsim.geometry.benchmark import bench_curve
-    from coatsim.program import read_toolpath
-    from coatsim.program.build import ProgramOptions
-    from coatsim.program.run import run_program
+    from coatsim.languages.kawasaki_as.files import read_toolpath
+    from coatsim.path.build import ProgramOptions
+    from coatsim.path.run import run_program
     from coatsim.robot.cell import load_cell
     from coatsim.robot.execute import execute as run
 
@@ -156,9 +156,9 @@ def spiral_per_robot_second(cell=None) -> None:
 def program(n: int = 500, factor: int = 10) -> None:
     """Writing, parsing and interpreting a polyline program of N and 10 N moves."""
     from coatsim.geometry import make_curve
-    from coatsim.program import interpret, parse_as
-    from coatsim.program.build import ProgramOptions, build_program, polyline_of
-    from coatsim.program.placement import Placement
+    from coatsim.languages.kawasaki_as import interpret, parse_as
+    from coatsim.path.build import ProgramOptions, build_program, polyline_of
+    from coatsim.path.placement import Placement
 
     timed = {}
     for size in (n, factor * n):

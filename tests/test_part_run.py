@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from coatsim.geometry.part_json import read_part_json
-from coatsim.program import read_toolpath
+from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.robot.trajectory_log import read_trajectory_csv
 
 SCENARIO = """\

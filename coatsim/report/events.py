@@ -18,9 +18,9 @@ from typing import TYPE_CHECKING, Optional, Sequence
 
 import numpy as np
 
-from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
-from coatsim.program.speed_limits import parse_limits
-from coatsim.program.toolpath import PART_SEPARATOR, ToolPath
+from coatsim.path.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
+from coatsim.path.speed_limits import parse_limits
+from coatsim.path.toolpath import PART_SEPARATOR, ToolPath
 
 if TYPE_CHECKING:
     from coatsim.robot.execute import Execution

@@ -11,11 +11,11 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from coatsim.budgets import MAX_SIM_STEPS, check_budget
-from coatsim.errors import ExecutionError, InputError
-from coatsim.fileio import write_text
-from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
-from coatsim.program.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
+from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.core.fileio import write_text
+from coatsim.path.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
+from coatsim.path.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.chain import tcp_positions_mm
 from coatsim.robot.checks import check_playback
@@ -342,9 +342,9 @@ def execute_program(program: str | Path | Sequence[str | Path], model: str | Pat
                     variables: Mapping[str, str | float] | None = None) -> tuple[Execution, list[Path]]:
     """``coatsim execute``: read AS program files, run the main program (``main``, default the
     first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.outputs_guard); ``variables`` gives variables no file gives."""
-    from coatsim.outputs_guard import check_distinct, output_folder
-    from coatsim.program import read_toolpath
+    see coatsim.core.outputs_guard); ``variables`` gives variables no file gives."""
+    from coatsim.core.outputs_guard import check_distinct, output_folder
+    from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.plots import plot_speed
 

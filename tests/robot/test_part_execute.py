@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from coatsim.geometry import Arc, Line, Polysegment, chain
-from coatsim.program.as_lang.parser import parse_as
-from coatsim.program.build import ProgramOptions
-from coatsim.program.as_lang.interpreter import interpret
-from coatsim.program.part_program import build_part_program
-from coatsim.program.placement import Frame, Placement
+from coatsim.languages.kawasaki_as.parser import parse_as
+from coatsim.path.build import ProgramOptions
+from coatsim.languages.kawasaki_as.interpreter import interpret
+from coatsim.path.part_program import build_part_program
+from coatsim.path.placement import Frame, Placement
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 

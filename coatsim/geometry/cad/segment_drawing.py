@@ -11,7 +11,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.cad.chaining import chain_pieces
 from coatsim.geometry.cad.contour_fit import fit_contour
 from coatsim.geometry.cad.drawing import read_drawing
