@@ -16,7 +16,7 @@ import math
 import sys
 import time
 
-from coatsim.languages.kawasaki_as.files import interpret_run, parse_as
+from coatsim.languages.kawasaki_as import interpret_run, parse_as
 
 REPEATS = 3
 
@@ -42,7 +42,7 @@ def contour(n: int) -> str:
 def field(n: int) -> str:
     body = [".PROGRAM trace() ; K-IDE", "  spe 150 mm/s always", "  accu 1 always", "  tw 0.1",
             "  point .mid = ave_trans(c[0], c[1])", "  .chk = " + "+".join(["1"] * 300),
-            "  if mode == 2 then", "    ty \"mode 2\"", "  end", "  lmove c[0]", "  call gun.on(.$msg[], 1)"]
+            "  if mode == 2 then", "    ty \"mode 2\"", "  end", "  jm c[0]", "  call gun.on(.$msg[], 1)"]
     body += [f"  lm c[{i}]" for i in range(1, n)]
     body += ["  bre", "  signal -1", ".END", ".PROGRAM gun.on(.$m[], .k)", "  bre", "  signal 1", ".END", ".TRANS"]
     body += [f"c[{i}] {700 + 80 * math.cos(i / n * 2 * math.pi):.3f} {40 * math.sin(i / n * 2 * math.pi):.3f} "
