@@ -407,7 +407,8 @@ def check_program(
                    kinematics=CellKinematics(cell), gun_tcp=(cell.gun_rotation, cell.gun_offset_mm),
                    variables=_settings(settings))
     plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
-    typer.echo(check_summary(result) + ("\nnote: --gun N picks the process signal" if result.notes else ""))
+    never = not result.toolpath.spray_moves
+    typer.echo(check_summary(result) + ("\nnote: --gun N picks the process signal" if never else ""))
 
 
 def main() -> None:

@@ -171,13 +171,16 @@ class Interpreter(Memory, SignalIO, RobotQueries):
             if isinstance(actual, ast.Name) and actual.whole:  # an entire array: every element
                 for kind, suffix, value in self.scope_of(actual).array(norm(actual.name)):
                     scope.set(kind, norm(formal.name) + suffix, value)
+            elif isinstance(actual, ast.Name):  # its values as they are (none: the parameter is unknown)
+                k, source = self.key(actual), self.scope_of(actual)
+                for kind in KINDS:
+                    if source.has(kind, k):
+                        scope.set(kind, norm(formal.name), source.get(kind, k))
             else:
-                given = [k for k in KINDS if self.scope_of(actual).has(k, self.key(actual))] \
-                    if isinstance(actual, ast.Name) and (by_ref or actual.kind == "value") else [self.eval.kind(actual)]
-                for kind in given:  # (none: a variable without a value leaves the parameter unknown)
-                    value = {"real": self.eval.real, "string": self.eval.string, "pose": self.eval.pose,
-                             "joint": self.eval.joint_value}[kind](actual)
-                    scope.set(kind, norm(formal.name), value)
+                kind = self.eval.kind(actual)
+                value = {"real": self.eval.real, "string": self.eval.string, "pose": self.eval.pose,
+                         "joint": self.eval.joint_value}[kind](actual)
+                scope.set(kind, norm(formal.name), value)
             if by_ref:
                 copy_back.append((formal, actual))
         caller_line = self.line

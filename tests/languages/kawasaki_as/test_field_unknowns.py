@@ -167,3 +167,23 @@ def test_check_program_names_unknowns_and_reads_with_set(tmp_path, run_cli):
     code, out, err = run_cli(["check-program", str(path), "--set", "x=TRANS(1,"])
     assert code == 2 and err.startswith("coatsim: error: variable x=TRANS(1,: ") and err.count("\n") == 1
 
+
+
+def test_a_scenario_variant_reads_its_program_with_the_variables_it_gives(tmp_path):
+    from coatsim.robot.cell import load_cell
+    from coatsim.run.scenario import load_scenario
+    from coatsim.run.scenario_inputs import read_user_program
+
+    (tmp_path / "mine.as").write_text(".PROGRAM mine()\n  SPEED spray.speed MM/S ALWAYS\n  JMOVE p.home\n  LMOVE b1\n"
+                                      "  BREAK\n  SIGNAL 1\n  LMOVE b2\n  BREAK\n  SIGNAL -1\n.END\n" + POSES)
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("name: s\nworkpiece: {kind: plate, size_mm: [100, 100]}\nvariants:\n"
+                        "  - {name: mine, program: mine.as, variables: {spray.speed: 150, "
+                        "p.home: 'TRANS(650, 0, 400, 0, 180, 0)'}}\n  - polysegment\n")
+    loaded = load_scenario(scenario)
+    toolpath, _ = read_user_program(loaded, loaded.spec.programs[0], load_cell())
+    assert len(toolpath.moves) == 3 and toolpath.moves[1].settings.speed_mm_s == 150.0
+    scenario.write_text(scenario.read_text().replace("spray.speed: 150, ", ""))
+    loaded = load_scenario(scenario)
+    with pytest.raises(InputError, match=r"variant mine: .*mine\.as:2: SPEED skipped: it reads spray\.speed"):
+        read_user_program(loaded, loaded.spec.programs[0], load_cell())
