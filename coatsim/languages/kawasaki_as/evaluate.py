@@ -20,7 +20,7 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.evaluate_calls import POSE_FUNCTIONS, joint_call, pose_call, real_call
 from coatsim.languages.kawasaki_as.evaluate_strings import encode, string_call
-from coatsim.languages.kawasaki_as.unknowns import Absent
+from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import Frame, PoseJoints
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -257,7 +257,7 @@ class Evaluator:
         """The angles (deg) of a joint value."""
         value = self.run.get_joints(e) if isinstance(e, ast.Name) and e.kind == "joint" and not e.whole else None
         if isinstance(value, PoseJoints):
-            raise Absent(f"the joint angles of {e.name} (taken from a pose) need the arm's inverse kinematics")
+            raise NotSimulated(f"the joint angles of {e.name} (taken from a pose) need the arm's inverse kinematics")
         if value is not None:
             return value
         if isinstance(e, ast.JointLiteral):
@@ -268,6 +268,6 @@ class Evaluator:
         if isinstance(e, ast.Call) and e.name.startswith("#"):
             return joint_call(self, e)
         if self.kind(e) == "pose":
-            raise Absent("a joint value from a pose needs the arm's inverse kinematics (POINT #j = pose keeps the pose; "
-                         "JMOVE #j moves to it)")
+            raise NotSimulated("a joint value from a pose needs the arm's inverse kinematics (POINT #j = pose keeps "
+                               "the pose; JMOVE #j moves to it)")
         raise self.error(f"expected a joint value, found {self.describe(e)}")

@@ -16,7 +16,7 @@ import numpy as np
 
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.evaluate_strings import val
-from coatsim.languages.kawasaki_as.unknowns import Absent
+from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import IDENTITY, Frame, average, frame_from_points, rotation_about
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -183,7 +183,7 @@ def pose_call(ev: Evaluator, e: ast.Call) -> Frame:
     if name in REAL_FUNCTIONS or name.startswith("$"):
         raise ev.error(f"{name} gives {ev.describe(e)}, expected a pose")
     not_simulated(ev, e, "no pose")
-    raise Absent(f"{name}(...) is not simulated, so its pose is unknown")
+    raise NotSimulated(f"{name}(...) is not simulated, so its pose is unknown")
 
 
 def joint_call(ev: Evaluator, e: ast.Call) -> tuple[float, ...]:
@@ -197,4 +197,4 @@ def joint_call(ev: Evaluator, e: ast.Call) -> tuple[float, ...]:
         number = ev.integer(e.args[0], "the HOME number") if e.args and e.args[0] is not None else 1
         return tuple(float(v) for v in np.degrees(ev.run.home_joints(number)))
     not_simulated(ev, e, "no joint value")
-    raise Absent(f"{name}(...) is not simulated, so its joint value is unknown")
+    raise NotSimulated(f"{name}(...) is not simulated, so its joint value is unknown")

@@ -37,7 +37,7 @@ from coatsim.languages.kawasaki_as.robot_queries import RobotQueries
 from coatsim.languages.kawasaki_as.scope import KINDS, Scope
 from coatsim.languages.kawasaki_as.statements_exec import ReturnFromProgram, StopProgram, execute_statement, \
     statement_name
-from coatsim.languages.kawasaki_as.unknowns import ABSENT, Absent, UnknownRead, Unknowns
+from coatsim.languages.kawasaki_as.unknowns import ABSENT, Absent, NotSimulated, UnknownRead, Unknowns
 from coatsim.languages.kawasaki_as.values import IDENTITY, Frame
 from coatsim.path.toolpath import Kinematics, ToolPath
 
@@ -64,14 +64,19 @@ class Run:
     unknowns: tuple[UnknownRead, ...] = ()
     skipped: tuple[str, ...] = ()
     outputs: tuple[int, ...] = ()
+    unsimulated: tuple[str, ...] = ()
 
     def require_complete(self) -> None:
-        """InputError naming the first statement the run skipped for want of a value: what
-        simulates or rewrites the path needs all of it."""
-        if self.skipped:
-            more = f" (and {len(self.skipped) - 1} more)" if len(self.skipped) > 1 else ""
-            raise InputError(f"{self.skipped[0]}{more}; a simulation runs every statement (give missing values as "
-                             "NAME=VALUE)")
+        """What simulates or rewrites the path needs every statement: InputError naming the first
+        one skipped for want of a value, ExecutionError when it is one the twin does not simulate."""
+        if not self.skipped:
+            return
+        more = f" (and {len(self.skipped) - 1} more)" if len(self.skipped) > 1 else ""
+        if self.skipped[0] in self.unsimulated:
+            raise ExecutionError(f"{self.skipped[0]}{more}; a simulation runs every statement, and the twin does not "
+                                 "simulate this one")
+        raise InputError(f"{self.skipped[0]}{more}; a simulation runs every statement (give missing values as "
+                         "NAME=VALUE)")
 
 
 @dataclass
@@ -139,11 +144,13 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.unknowns.last = key.split(":", 1)[-1]
         self.warn(key, message)
 
-    def skip(self, st: ast.Statement, reason: str) -> None:
-        """A statement that cannot run for want of a value: noted, the run goes on."""
-        what = statement_name(st)
-        text = f"{self.where()}: {what} skipped: {reason}"
+    def skip(self, st: ast.Statement, reason: str, unsimulated: bool = False) -> None:
+        """A statement that cannot run for want of a value (or that the twin does not simulate):
+        noted, the run goes on."""
+        text = f"{self.where()}: {statement_name(st)} skipped: {reason}"
         self.unknowns.skipped.append(text)
+        if unsimulated:
+            self.unknowns.unsimulated.append(text)
         self.warnings.add(f"skip:{self.where()}", text)
 
     def switch_state(self, name: str) -> bool:
@@ -271,7 +278,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         try:
             execute_statement(self, st)
         except Absent as exc:
-            self.absent(st, exc.reason)
+            self.absent(st, exc.reason, isinstance(exc, NotSimulated))
         except CoatsimError as exc:
             if getattr(exc, "judged", False) or self.unknowns.reads == before:
                 exc.judged = True  # (a CALL's callee judged it: the caller does not take it for its own)
@@ -279,7 +286,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
             self.absent(st, f"it reads {self.unknowns.last}, which has no value here, and then "
                             f"{str(exc).split(': ', 1)[-1]}")
 
-    def absent(self, st: ast.Statement, reason: str) -> None:
+    def absent(self, st: ast.Statement, reason: str, unsimulated: bool = False) -> None:
         """Skip ``st``: its POINT / HERE target has no value after it, an arc whose C1MOVE is
         skipped loses its C2MOVE too."""
         if isinstance(st, (ast.PointAssign, ast.Here)) and st.target.kind != "string":
@@ -290,7 +297,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         if isinstance(st, ast.Move) and st.op in ("C1MOVE", "C2MOVE"):
             self.controller.c1 = None
             self.skipped_via = st.line if st.op == "C1MOVE" else None
-        self.skip(st, reason)
+        self.skip(st, reason, unsimulated)
 
     def guarded(self, evaluate, e: ast.Expr, default):
         """``evaluate(e)``; what depends on an unknown is reported, and taken as ``default``
@@ -377,7 +384,7 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
     toolpath = run.run(main)
     return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs),
                run.controller.gun_on, run.stopped, tuple(run.unknowns.first.values()), tuple(run.unknowns.skipped),
-               tuple(sorted(run.outputs)))
+               tuple(sorted(run.outputs)), tuple(run.unknowns.unsimulated))
 
 
 def interpret(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

@@ -40,6 +40,7 @@ import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.arcs import DegenerateArc, circle_through
+from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import Frame
 from coatsim.path.oat import matrix_to_oat
 from coatsim.path.toolpath import (CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, Pose, ToolFrame,
@@ -204,7 +205,7 @@ class Controller:
         if not value > 0.0:
             raise self.error(line, "SPEED must be > 0")
         if unit.startswith("DEG"):
-            raise self.failure(line, f"SPEED in {unit} (a rotation speed) is not simulated; give MM/S")
+            raise NotSimulated(f"SPEED in {unit} (a rotation speed) is not simulated; give MM/S")
         if always:
             self.speed_always = (value, unit)
         else:

@@ -7,10 +7,10 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from coatsim.languages.kawasaki_as import ast
-from coatsim.languages.kawasaki_as.io_model import FIRST_INPUT
+from coatsim.languages.kawasaki_as.io_model import FIRST_INPUT, signal_name
 from coatsim.languages.kawasaki_as.instructions import CONFIGURATION, DISPLAY, GRIPPER, HOUSEKEEPING, NETWORK, TASKS, \
     UNSIMULATED_MOTION
-from coatsim.languages.kawasaki_as.unknowns import Absent
+from coatsim.languages.kawasaki_as.unknowns import Absent, NotSimulated
 from coatsim.languages.kawasaki_as.values import IDENTITY, Frame, PoseJoints
 from coatsim.path.toolpath import Pose
 
@@ -68,7 +68,7 @@ def _move(run: Interpreter, st: ast.Move) -> None:
         if op == "XMOVE":
             number = run.eval.integer(st.till, "the XMOVE ... TILL signal")
             if number != 0 and run.signals.state(abs(number)) == (number > 0, True):
-                raise run.failure(f"XMOVE ... TILL {number}: the signal is already in that state, so the controller "
+                raise NotSimulated(f"XMOVE ... TILL {number}: the signal is already in that state, so the controller "
                                   "ends the move at once; coatsim does not simulate that")
             run.warn(f"xmove:{st.line}", "XMOVE ... TILL: the signal never comes in the simulation; the move runs to "
                      "its end")
@@ -103,9 +103,9 @@ def _draw(run: Interpreter, st: ast.Draw) -> None:
     here = run.controller.need_current(st.op, st.line)
     d = [0.0 if v is None else run.eval.real(v) for v in st.deltas] + [0.0] * (6 - len(st.deltas))
     if len(st.deltas) == 7 and st.deltas[6] is not None:
-        raise run.failure(f"{st.op} with its own speed is not simulated; set SPEED before it")
+        raise NotSimulated(f"{st.op} with its own speed is not simulated; set SPEED before it")
     if any(v != 0.0 for v in d[3:6]):
-        raise run.failure(f"{st.op} with a rotation is not simulated; use LMOVE to a pose")
+        raise NotSimulated(f"{st.op} with a rotation is not simulated; use LMOVE to a pose")
     axes = here.rotation if st.op == "TDRAW" else run.base.r
     run.controller.linear(st.op, Pose(here.position + axes @ np.array(d[:3]), here.rotation), st.line)
 
@@ -154,6 +154,10 @@ def _decompose(run: Interpreter, st: ast.Decompose) -> None:
 
 def _here(run: Interpreter, st: ast.Here) -> None:
     if st.target.kind == "joint":
+        if run.controller.current_joints is None and run.controller.current is not None:
+            # after a Cartesian motion the angles need the inverse kinematics: the value keeps the pose
+            run.set("joint", st.target, PoseJoints(Frame.from_pose(run.controller.current), None))
+            return
         run.set("joint", st.target, run.here_joints())
     elif st.target.kind == "value":
         run.set("pose", st.target, run.here())
@@ -174,7 +178,7 @@ def _pulse(run: Interpreter, st: ast.Pulse) -> None:
     if st.seconds is not None:
         _seconds(run, st.seconds)
     if abs(n) == run.gun:
-        raise run.failure(f"{st.op} of the gun output {run.gun} is not simulated; switch it with SIGNAL")
+        raise NotSimulated(f"{st.op} of the gun output {run.gun} is not simulated; switch it with SIGNAL")
     if n == 0:
         raise run.error(f"{st.op}: signal number 0 does not exist")
     run.warn(f"pulse:{st.line}", f"{st.op} {n}: the delay is not simulated; the output takes its final state at once")
@@ -198,8 +202,8 @@ def _swait(run: Interpreter, st: ast.Swait) -> None:
         n = run.eval.integer(e, "a signal number")
         on, known = run.signals.state(abs(n))
         if not known:
-            run.warn(f"swait:{abs(n)}", f"SWAIT {n}: input {abs(n)} is not given (--inputs or the scenario's inputs); "
-                     "taken as satisfied")
+            run.warn(f"swait:{abs(n)}", f"SWAIT {n}: {signal_name(abs(n))} is not given (--inputs or the scenario's "
+                     "inputs); taken as satisfied")
         elif on != (n > 0):
             raise run.failure(f"SWAIT {n} is never satisfied: signal {abs(n)} is {'ON' if on else 'OFF'} and nothing "
                               "changes it in the simulation")
@@ -271,7 +275,7 @@ def _network_defaults(run: Interpreter, st: ast.Command) -> None:
 def _command(run: Interpreter, st: ast.Command) -> None:
     name = st.name
     if name in UNSIMULATED_MOTION:
-        raise Absent(f"{name} moves the arm in a way coatsim does not simulate")
+        raise NotSimulated(f"{name} moves the arm in a way coatsim does not simulate")
     if name in NETWORK:
         _network_defaults(run, st)
         run.warn(f"cmd:{name}", f"{name}: network and serial I/O are not simulated; the status is 0 and nothing is "
@@ -305,11 +309,11 @@ def _accel(run: Interpreter, st: ast.Accel) -> None:
 
 def _brake(run: Interpreter, st: ast.Brake) -> None:
     if not run.controller.at_rest:
-        raise run.failure("BRAKE stops the motion in progress at once; coatsim cannot tell where the arm stands then")
+        raise NotSimulated("BRAKE stops the motion in progress at once; coatsim cannot tell where the arm stands then")
 
 
 def _block_step(run: Interpreter, st: ast.BlockStep) -> None:
-    raise Absent(f"a teach-pendant block step ({st.kind} ...) is not simulated; write it as JMOVE/LMOVE with "
+    raise NotSimulated(f"a teach-pendant block step ({st.kind} ...) is not simulated; write it as JMOVE/LMOVE with "
                  "SPEED and ACCURACY")
 
 

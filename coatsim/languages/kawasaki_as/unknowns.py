@@ -23,6 +23,12 @@ class Absent(Exception):
         self.reason = reason
 
 
+class NotSimulated(Absent):
+    """What the twin does not simulate (a motion it cannot follow, a pose function it does not
+    compute): the statement is skipped with a note, as for a missing value, but no value given
+    from outside brings it back, and a simulation refuses it as a run it cannot execute."""
+
+
 # The value a POINT / HERE target takes when its value is absent (reading it raises Absent again).
 ABSENT = object()
 
@@ -55,6 +61,7 @@ class Unknowns:
     reads: int = 0
     last: str = ""
     skipped: list[str] = field(default_factory=list)
+    unsimulated: list[str] = field(default_factory=list)  # the skipped ones the twin does not simulate
 
     def read(self, name: str, kind: str, where: str, shown: str) -> bool:
         """Count a read of the unknown ``name``; True when it is the first."""

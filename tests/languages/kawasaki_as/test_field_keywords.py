@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from coatsim.core.errors import ExecutionError
 from coatsim.languages.kawasaki_as import ast, parse_as
 from coatsim.languages.kawasaki_as.instructions import COMMANDS, DISPLAY
 from coatsim.languages.kawasaki_as.interpreter import Interpreter
@@ -133,5 +134,5 @@ def test_instructions_of_the_index_parse_and_are_noted(line):
 def test_motions_the_twin_does_not_simulate_are_skipped_with_a_note(line, words):
     run = run_text(f".PROGRAM t()\n  JMOVE pick\n  {line}\n  LMOVE place\n.END\n" + POSES)
     assert len(run.toolpath.moves) == 2 and words in run.skipped[0]
-    with pytest.raises(Exception, match="a simulation runs every statement"):
+    with pytest.raises(ExecutionError, match="a simulation runs every statement, and the twin does not simulate"):
         run.require_complete()

@@ -187,3 +187,17 @@ def test_a_scenario_variant_reads_its_program_with_the_variables_it_gives(tmp_pa
     loaded = load_scenario(scenario)
     with pytest.raises(InputError, match=r"variant mine: .*mine\.as:2: SPEED skipped: it reads spray\.speed"):
         read_user_program(loaded, loaded.spec.programs[0], load_cell())
+
+
+def test_a_signal_another_task_sets_is_unknown_until_the_program_sets_it():
+    """An internal signal a PC program sets, an output set before the program starts: read as
+    OFF with a note, a wait for one taken as satisfied; once the program sets it, it is known."""
+    run = run_text(".PROGRAM t()\n  WAIT SIG(2010)\n  SWAIT 2011\n  IF SIG(9) THEN\n    JMOVE b1\n  END\n  SIGNAL 9\n"
+                   "  IF SIG(9) THEN\n    JMOVE b2\n  END\n.END\n" + POSES)
+    assert ys(run) == [-150] and run.skipped == ()
+    text = notes(run)
+    assert "f.as:2: WAIT: the condition depends on what the simulation does not know" in text
+    assert "f.as:3: SWAIT 2011: internal signal 2011 is not given" in text
+    assert "f.as:4: output 9 is not given; taken as OFF" in text
+    given = run_text(".PROGRAM t()\n  IF SIG(2010) THEN\n    JMOVE b1\n  END\n.END\n" + POSES, inputs={2010: True})
+    assert ys(given) == [-150] and notes(given) == ""
