@@ -114,8 +114,8 @@ def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
         switched = f"it switches output{'s' if len(run.outputs) > 1 else ''} {', '.join(map(str, run.outputs))}" \
             if run.outputs else "it switches no output"
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
-                         f"consecutive LMOVE/C1MOVE/C2MOVE moves ({switched}: is the process signal one of them?); name "
-                         "the moves with --lines FIRST-LAST")
+                         f"consecutive LMOVE/C1MOVE/C2MOVE moves ({switched}: is the process signal one of "
+                         "them?); name the moves with --lines FIRST-LAST")
     return runs
 
 

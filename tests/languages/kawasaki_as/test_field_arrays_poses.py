@@ -108,7 +108,8 @@ def test_ave_trans_is_the_midpoint_with_the_rotation_halfway():
 
 
 def test_tool_and_base_as_values_are_the_frames_in_force():
-    run = run_text(".PROGRAM t()\n  TOOL TRANS(0, 0, 200)\n  BASE TRANS(100, 0, 0)\n  POINT .t = TOOL\n  POINT .b = base\n"
+    run = run_text(".PROGRAM t()\n  TOOL TRANS(0, 0, 200)\n  BASE TRANS(100, 0, 0)\n  POINT .t = TOOL\n"
+                   "  POINT .b = base\n"
                    "  JMOVE .b + TRANS(500, 0, DZ(.t), 0, 180, 0)\n.END\n")
     assert np.allclose(ends(run)[0].position, [700, 0, 200]) and run.unknowns == ()
     before = run_text(".PROGRAM t()\n  POINT .t = TOOL\n  JMOVE TRANS(600, 0, 300, 0, 180, 0)\n.END\n")
@@ -120,7 +121,8 @@ def test_tool_and_base_as_values_are_the_frames_in_force():
     ("STRTOPOS(\"1,2,3\")", "STRTOPOS is not simulated"), ("zz.pose(1)", "ZZ.POSE is not a function of the AS index"),
 ])
 def test_pose_functions_the_twin_does_not_compute_give_no_pose(call, words):
-    run = run_text(f".PROGRAM t()\n  JMOVE a\n  LMOVE {call}\n.END\n.TRANS\na 600 0 300 0 180 0\nb 0 0 10 0 0 0\n.END\n")
+    run = run_text(f".PROGRAM t()\n  JMOVE a\n  LMOVE {call}\n.END\n"
+                   ".TRANS\na 600 0 300 0 180 0\nb 0 0 10 0 0 0\n.END\n")
     assert len(run.toolpath.moves) == 1 and words in notes(run) and run.skipped[0].startswith("f.as:3: LMOVE skipped")
 
 

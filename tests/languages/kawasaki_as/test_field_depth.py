@@ -24,7 +24,8 @@ from styles import STYLES, run_text, styled
 
 def value_of(expression: str, kind: str = "real"):
     target = "x" if kind == "real" else "$x"
-    f = parse_as(f".PROGRAM t()\n  {target} = {expression}\n.END\n.TRANS\np 1 2 3 0 0 0\nq 10 0 0 0 0 0\n.END\n", "f.as")
+    f = parse_as(f".PROGRAM t()\n  {target} = {expression}\n.END\n.TRANS\np 1 2 3 0 0 0\nq 10 0 0 0 0 0\n.END\n",
+                 "f.as")
     run = Interpreter((f,), 1, {}, None, 1000.0, 100_000)
     run.run(f.programs[0])
     return run.globals.get(kind, target)

@@ -130,11 +130,12 @@ SNIPPETS = [
 BROKEN = ["FOR .k = 1 TO 2", "ACC 1", "x = " + "(" * 80 + "1" + ")" * 80, "IF x THEN", "LMOVE a,"]
 EXTRA = (".PROGRAM fill(.&p[,])\n  POINT .p[1,1] = SHIFT(a BY 10, 0, 0)\n.END\n"
          ".PROGRAM send(.$m[], .n)\n  $last = .$m[.n]\n.END\n")
+SLOW = [HealthCheck.too_slow, HealthCheck.function_scoped_fixture]
 POSES = ".TRANS\na 620 -60 300 0 180 0\nb 720 -60 300 0 180 0\nc 720 60 300 0 180 0\n.END\n" \
         ".JOINTS\n#h 0 10 40 0 50 0\n.END\n"
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+@settings(max_examples=150, deadline=None, suppress_health_check=SLOW)
 @given(snippets=st.lists(st.sampled_from(SNIPPETS), min_size=1, max_size=12), style=st.sampled_from(STYLES),
        broken=st.booleans(), defect=st.sampled_from(BROKEN), gun=st.integers(1, 12), data=st.data())
 def test_random_mixes_read_or_fail_in_one_line(snippets, style, broken, defect, gun, data, cell, tmp_path):
@@ -150,3 +151,18 @@ def test_random_mixes_read_or_fail_in_one_line(snippets, style, broken, defect, 
         return
     assert not broken, "a defect was read"
     assert all(u.count("\n") == 0 for u in (*done.unknowns, *done.skipped, *done.warnings))
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=SLOW)
+@given(snippets=st.lists(st.sampled_from(SNIPPETS), min_size=1, max_size=8), style=st.sampled_from(STYLES),
+       broken=st.booleans(), defect=st.sampled_from(BROKEN))
+def test_the_command_exits_0_or_prints_one_line(snippets, style, broken, defect, run_cli, tmp_path):
+    path = tmp_path / "mix.as"
+    body = "\n".join(["JMOVE a", *snippets] + ([defect] if broken else []))
+    path.write_bytes(styled(body, style, POSES, extra=EXTRA).encode("latin-1"))
+    code, out, err = run_cli(["check-program", str(path), "--set", "direction=8"])
+    if broken:
+        assert code == 2 and err.startswith(f"coatsim: error: {path}:") and err.count("\n") == 1, err
+    else:
+        assert code in (0, 3) and (err == "" if code == 0 else err.count("\n") == 1), err
+        assert code == 0 or "coatsim: error:" in err

@@ -27,7 +27,8 @@ def test_a_branch_on_an_unknown_is_taken_with_its_default_and_reported(style):
     first = 4 if style != "backup" else 10
     assert run.unknowns[0].where == f"f.as:{first}" and run.unknowns[1].shown.lower() == "$cnt[0]"
     text = notes(run)
-    assert f"f.as:{first}: direction (real) is read but no file gives it a value" in text.replace("Direction", "direction")
+    assert f"f.as:{first}: direction (real) is read but no file gives it a value" in \
+        text.replace("Direction", "direction")
     assert f"f.as:{first}: this condition depends on what the run does not know" in text
     assert run.skipped == ()
 
@@ -126,8 +127,8 @@ def test_a_local_read_before_its_value_is_zero_and_named_as_a_local():
 def test_a_call_of_a_program_not_loaded_is_skipped_with_a_note():
     run = run_text(".PROGRAM t()\n  CALL vision.get(.x)\n  JMOVE b1\n.END\n" + POSES)
     assert len(run.toolpath.moves) == 1
-    assert run.skipped == ("f.as:2: CALL skipped: no program named 'vision.get' is loaded (one kept on the controller?; "
-                           "loaded: t)",)
+    assert run.skipped == ("f.as:2: CALL skipped: no program named 'vision.get' is loaded (one kept on the "
+                           "controller?; loaded: t)",)
 
 
 def test_a_parameter_left_without_value_is_unknown_in_the_callee():
