@@ -25,11 +25,13 @@ from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.languages.kawasaki_as.dialect import KAWASAKI_AS
 from coatsim.languages.kawasaki_as.names import check_name, program_name
-from coatsim.languages.kawasaki_as.writer import MAX_COORDINATE_MM, fmt_short
+from coatsim.languages.kawasaki_as.writer import MAX_COORDINATE_MM
+from coatsim.core.numbers import fmt_short
 from coatsim.path.dialect import Dialect, ProgramPlan
-from coatsim.path.placement import DEFAULT_TOOL, Frame, PlacedPath, Placement, place, polyline_polysegment
-from coatsim.path.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, curve_limits, format_limits
-from coatsim.path.toolpath import SPRAYED_CURVE, SPRAYED_WITH_LEADS
+from coatsim.path.frames import DEFAULT_TOOL, Frame
+from coatsim.path.placement import PlacedPath, Placement, place, polyline_polysegment
+from coatsim.path.process import ProcessInfo, SprayedContour
+from coatsim.path.speed_limits import curve_limits
 
 VARIANTS = ("polysegment", "polyline-stop", "polyline-blend")
 
@@ -72,7 +74,7 @@ class BuiltProgram:
 
     @property
     def path(self) -> PlacedPath:
-        return self.plan.path
+        return self.plan.paths[0]
 
 
 def polyline_of(points: np.ndarray, closed: bool, tolerance_mm: float) -> Polysegment:
@@ -116,36 +118,33 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
     corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
     if not (np.isfinite(corners).all() and np.abs(corners).max() <= MAX_COORDINATE_MM):
         raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {MAX_COORDINATE_MM:g} mm)")
-    metadata = (
-        ("variant", options.variant),
-        ("source", source),
-        ("tolerance_mm", fmt_short(tolerance_mm)),
-        ("curve_length_mm", fmt_short(path.curve_length_mm)),
-        ("lead_in_mm", fmt_short(placement.lead_in_mm)),
-        ("lead_out_mm", fmt_short(placement.lead_out_mm)),
-        ("standoff_mm", fmt_short(placement.standoff_mm)),
-        ("speed_mm_s", fmt_short(options.speed_mm_s)),
-        ("accuracy_mm", fmt_short(options.accuracy_mm)),
-        ("gun_signal", str(options.gun_signal)),
-        ("frame", str(placement.frame)),
-        ("closed", "yes" if curve.closed else "no"),
-        ("sprayed", SPRAYED_CURVE if curve.closed else SPRAYED_WITH_LEADS),
-        ("n_segments", str(curve.n_segments)),
-        ("n_lines", str(curve.n_lines)),
-        ("n_arcs", str(curve.n_arcs)),
-        (SPEED_LIMITS_KEY, format_limits(limits)),
+    process = ProcessInfo(
+        variant=options.variant,
+        source=source,
+        tolerance_mm=tolerance_mm,
+        curve_length_mm=path.curve_length_mm,
+        lead_in_mm=placement.lead_in_mm,
+        lead_out_mm=placement.lead_out_mm,
+        standoff_mm=placement.standoff_mm,
+        speed_mm_s=options.speed_mm_s,
+        accuracy_mm=options.accuracy_mm,
+        gun_signal=options.gun_signal,
+        frame=placement.frame,
+        n_segments=curve.n_segments,
+        n_lines=curve.n_lines,
+        n_arcs=curve.n_arcs,
+        contours=(SprayedContour(closed=curve.closed, leads_sprayed=not curve.closed, speed_limits=limits),),
     )
     plan = ProgramPlan(
         name=options.name or program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
-        path=path,
+        paths=(path,),
         speed_mm_s=options.speed_mm_s,
         accuracy_mm=options.accuracy_mm,
         exact_stop=options.variant == "polyline-stop",
         approach_mm=options.approach_mm,
         gun_signal=options.gun_signal,
         tool=options.tool,
-        spray_leads=not curve.closed,
-        metadata=metadata,
+        process=process,
         comments=(f"coatsim {options.variant} program: {summary}, tolerance {fmt_short(tolerance_mm)} mm",),
     )
     return BuiltProgram(dialect.write(plan), plan, curve)

@@ -24,6 +24,7 @@ from coatsim.path.arcs import circle_through, move_length
 from coatsim.languages.kawasaki_as import ast, interpret_run
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH
 from coatsim.languages.kawasaki_as.printer import expr_text
+from coatsim.path.process import ProcessInfo
 from coatsim.path.tool_frames import tool_mismatches
 from coatsim.path.toolpath import CircularMove, JointMove, Kinematics, LinearMove, ToolPath
 
@@ -57,7 +58,7 @@ class ProgramCheck:
     n_arc_moves: int
     path_length_mm: float
     spray_length_mm: float
-    metadata: tuple[tuple[str, str], ...]
+    process: ProcessInfo
     problems: tuple[str, ...]
     signals: tuple[str, ...]
     spray_runs: tuple[SprayRun, ...]
@@ -214,7 +215,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         n_arc_moves=sum(isinstance(m, CircularMove) for m in toolpath.moves),
         path_length_mm=float(np.sum([move_length(m) for m in cartesian])) if cartesian else 0.0,
         spray_length_mm=float(np.sum([move_length(m) for m in cartesian if m.spray])) if cartesian else 0.0,
-        metadata=tuple(toolpath.metadata.items()),
+        process=toolpath.process,
         problems=tuple(problems),
         signals=tuple(signals),
         spray_runs=spray_runs(toolpath, [run.programs[name.lower()].source for name, _, _ in run.move_origins]),

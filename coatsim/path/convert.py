@@ -19,14 +19,17 @@ from typing import Mapping, Optional, Sequence, Union
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, InputError
+from coatsim.core.numbers import fmt_short
 from coatsim.languages.kawasaki_as.files import Paths, parse_files
 from coatsim.languages.kawasaki_as import interpret_run
 from coatsim.languages.kawasaki_as.interpreter import Run
 from coatsim.languages.kawasaki_as.names import check_name
 from coatsim.languages.kawasaki_as.parser import parse_as_bytes
-from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, fmt_short, write_as
+from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, write_as
 from coatsim.path.dialect import ProgramPlan
-from coatsim.path.placement import DEFAULT_TOOL, Frame, PlacedArc, PlacedLine, PlacedPath
+from coatsim.path.frames import DEFAULT_TOOL, Frame
+from coatsim.path.placement import PlacedArc, PlacedLine, PlacedPath
+from coatsim.path.process import ProcessInfo
 from coatsim.path.process_path import ProcessPath, PlaneFrame, dense_points, moves_in_lines, path_distance, \
     path_of, planar_frame, rotation_along, spray_runs
 from coatsim.path.toolpath import Kinematics, Pose
@@ -189,23 +192,21 @@ def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
         raise InputError(f"{len(fitted)} process paths (lines {spans}) sprayed with different speeds or accuracies; "
                          "--standalone writes them with one: choose a path with --lines FIRST-LAST")
     speed, accuracy, cp = settings.pop()
-    tool = run.toolpath.metadata.get("tool")
-    tool_frame = Frame.parse(tool, "TOOL") if tool else DEFAULT_TOOL
-    paths = [PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
-             for f in fitted]
+    tool = run.toolpath.tool
+    tool_frame = Frame.from_matrix(tool.offset_mm, tool.rotation) if tool is not None else DEFAULT_TOOL
+    paths = tuple(PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
+                  for f in fitted)
     name = options.name or run.toolpath.name[:15]
     n_moves = sum(len(f.path.moves) for f in fitted)
     n_segments = sum(len(f.segments) for f in fitted)
+    process = ProcessInfo(variant="convert", source=f"{run.toolpath.name} lines {spans}",
+                          tolerance_mm=options.tolerance_mm, curve_length_mm=sum(p.length for p in paths),
+                          gun_signal=options.gun_signal, n_segments=n_segments,
+                          n_lines=sum(f.n_lines for f in fitted), n_arcs=sum(f.n_arcs for f in fitted))
     plan = ProgramPlan(
-        name=check_name(name, "program name"), path=paths[0], further_paths=tuple((p, True) for p in paths[1:]), speed_mm_s=speed,
+        name=check_name(name, "program name"), paths=paths, speed_mm_s=speed,
         accuracy_mm=accuracy, exact_stop=not cp, approach_mm=options.approach_mm, gun_signal=options.gun_signal,
-        tool=tool_frame,
-        metadata=(("variant", "convert"), ("source", f"{run.toolpath.name} lines {spans}"),
-                  ("tolerance_mm", fmt_short(options.tolerance_mm)),
-                  ("curve_length_mm", fmt_short(sum(p.length for p in paths))),
-                  ("lead_in_mm", "0"), ("lead_out_mm", "0"), ("gun_signal", str(options.gun_signal)),
-                  ("n_segments", str(n_segments)), ("n_lines", str(sum(f.n_lines for f in fitted))),
-                  ("n_arcs", str(sum(f.n_arcs for f in fitted)))),
+        tool=tool_frame, process=process,
         comments=(f"coatsim convert: lines {spans} of {run.toolpath.name}, {n_moves} moves -> "
                   f"{n_segments} lines and arcs within {fmt_short(options.tolerance_mm)} mm",),
     )

@@ -10,7 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
-from coatsim.path.placement import Frame, PlacedPath
+from coatsim.path.frames import Frame
+from coatsim.path.placement import PlacedPath
+from coatsim.path.process import ProcessInfo
 from coatsim.path.toolpath import ToolPath
 
 
@@ -18,40 +20,32 @@ from coatsim.path.toolpath import ToolPath
 class ProgramPlan:
     """Everything a coating program says, before it is written in a language.
 
-    The program approaches the start of ``path`` from ``approach_mm`` back along the tool axis
-    and departs the same distance after its end. The gun is open along the whole path when
-    ``spray_leads`` (lead-in, curve, lead-out: an open contour), otherwise exactly along its
-    ``curve`` part (one lap of a closed contour: no double coat at the seam).
-    ``further_paths`` (the other contours of a part, each with its own ``spray_leads``) are
-    sprayed after it in order, each reached with the gun off by a straight travel at the
-    approach clearance.
-    ``exact_stop`` asks for a stop at every programmed point (no blending).
-    ``metadata`` pairs are written as machine-readable header comments and come back in
-    ``ToolPath.metadata``; ``comments`` are free header lines for people.
+    ``paths`` are sprayed in order; the program approaches the start of the first from
+    ``approach_mm`` back along the tool axis, reaches each next one with the gun off by a
+    straight travel at that clearance, and departs the same distance after each. The gun is open
+    along a whole path (lead-in, curve, lead-out: an open contour) when its contour in
+    ``process`` has ``leads_sprayed``, otherwise exactly along its curve part (one lap of a
+    closed contour: no double coat at the seam). ``exact_stop`` asks for a stop at every
+    programmed point (no blending). ``process`` is written into the program in the language's
+    own way and comes back in ``ToolPath.process``; ``comments`` are free header lines for people.
     """
 
     name: str
-    path: PlacedPath
+    paths: tuple[PlacedPath, ...]
     speed_mm_s: float
     accuracy_mm: float
     exact_stop: bool
     approach_mm: float
     gun_signal: int
     tool: Frame
-    spray_leads: bool = True
-    metadata: tuple[tuple[str, str], ...] = ()
+    process: ProcessInfo = ProcessInfo()
     comments: tuple[str, ...] = ()
-    further_paths: tuple[tuple[PlacedPath, bool], ...] = ()
-
-    @property
-    def paths(self) -> tuple[PlacedPath, ...]:
-        """Every sprayed path, in spray order."""
-        return (self.path, *(path for path, _ in self.further_paths))
 
     @property
     def legs(self) -> tuple[tuple[PlacedPath, bool], ...]:
         """Every sprayed path with whether the gun covers its lead-in and lead-out."""
-        return ((self.path, self.spray_leads), *self.further_paths)
+        contours = self.process.contours_for(len(self.paths), self.name)
+        return tuple((path, contour.leads_sprayed) for path, contour in zip(self.paths, contours))
 
 
 class Dialect(Protocol):

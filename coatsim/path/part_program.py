@@ -5,9 +5,9 @@ curve, placement, lead-in and lead-out); the program sprays them in order — as
 ``nearest`` (greedy: each next contour is the one whose start is closest to where the
 previous one ended) — with the gun off between them: depart along the tool axis by the
 approach distance, straight travel at that clearance above the next start, down, gun on
-(over the whole path of an open contour, over exactly one lap of a closed one). The header
-fields of one contour (``closed``, ``sprayed``, ``speed_limits``) hold one value per contour,
-in spray order, joined by " | ". A part of one contour gives exactly the single-contour program.
+(over the whole path of an open contour, over exactly one lap of a closed one). The process
+record holds each contour's own entry in spray order. A part of one contour gives exactly the
+single-contour program.
 """
 
 from __future__ import annotations
@@ -18,19 +18,14 @@ from typing import Optional, Sequence
 import numpy as np
 
 from coatsim.core.errors import InputError
+from coatsim.core.numbers import fmt_short
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.languages.kawasaki_as.dialect import KAWASAKI_AS
-from coatsim.languages.kawasaki_as.writer import fmt_short
 from coatsim.path.build import BuiltProgram, ProgramOptions, build_program
 from coatsim.path.dialect import Dialect, ProgramPlan
 from coatsim.path.placement import PlacedPath, Placement, centering_offset
-from coatsim.path.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
-from coatsim.path.toolpath import PART_SEPARATOR
 
 ORDERS = ("as-drawn", "nearest")
-# header fields that hold one value per contour in a part program, in spray order, joined by
-# PART_SEPARATOR (a value may itself hold commas and spaces)
-PER_CONTOUR = ("closed", "sprayed", SPEED_LIMITS_KEY)
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,7 +40,7 @@ class PartProgram:
 
     @property
     def path(self) -> PlacedPath:
-        return self.plan.path
+        return self.plan.paths[0]
 
     @property
     def curve(self) -> Polysegment:
@@ -102,21 +97,19 @@ def build_part_program(contours: Sequence[Polysegment], placement: Placement, op
         return PartProgram(built[0].text, built[0].plan, (built[0].curve,), sequence)
     curves = tuple(b.curve for b in built)
     first = built[0].plan
-    totals = {
-        "curve_length_mm": fmt_short(sum(b.plan.path.curve_length_mm for b in built)),
-        "n_segments": str(sum(c.n_segments for c in curves)),
-        "n_lines": str(sum(c.n_lines for c in curves)),
-        "n_arcs": str(sum(c.n_arcs for c in curves)),
-    }
-    each = [dict(b.plan.metadata) for b in built]
-    per_contour = {k: PART_SEPARATOR.join(m[k] for m in each) for k in PER_CONTOUR if all(k in m for m in each)}
-    metadata = tuple((k, per_contour.get(k, totals.get(k, v))) for k, v in first.metadata) + (
-        ("n_contours", str(len(curves))), ("contour_order", ",".join(str(k + 1) for k in sequence)))
+    process = replace(
+        first.process,
+        curve_length_mm=sum(b.plan.paths[0].curve_length_mm for b in built),
+        n_segments=sum(c.n_segments for c in curves),
+        n_lines=sum(c.n_lines for c in curves),
+        n_arcs=sum(c.n_arcs for c in curves),
+        contours=tuple(b.plan.process.contours[0] for b in built),
+        contour_order=tuple(k + 1 for k in sequence),
+    )
     summary = ", ".join(f"{c.n_segments}" for c in curves)
     comment = (f"coatsim {options.variant} program of a part: {len(curves)} contours sprayed in order "
                f"{','.join(str(k + 1) for k in sequence)} ({order}), segments per contour {summary}; "
                f"gun off between contours, travel {fmt_short(options.approach_mm)} mm above the stand-off")
-    plan = replace(first, metadata=metadata, comments=(comment,),
-                   further_paths=tuple((b.plan.path, b.plan.spray_leads) for b in built[1:]))
+    plan = replace(first, paths=tuple(b.plan.paths[0] for b in built), process=process, comments=(comment,))
     return PartProgram(dialect.write(plan), plan, curves, sequence)
 

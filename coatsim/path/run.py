@@ -14,7 +14,8 @@ from coatsim.path.build import BuiltProgram, ProgramOptions
 from coatsim.path.check import ProgramCheck
 from coatsim.path.inputs import load_part_input
 from coatsim.path.part_program import PartProgram, build_part_program, part_centering_offset
-from coatsim.path.placement import Frame, Placement
+from coatsim.path.frames import Frame
+from coatsim.path.placement import Placement
 
 
 def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
@@ -59,10 +60,10 @@ def program_summary(built: BuiltProgram | PartProgram) -> str:
     n_lines, n_arcs = sum(c.n_lines for c in curves), sum(c.n_arcs for c in curves)
     length = sum(p.curve_length_mm for p in plan.paths)
     lines = [
-        f"program {plan.name}: {dict(plan.metadata)['variant']}, {n_lines} lines + {n_arcs} arcs, "
+        f"program {plan.name}: {plan.process.variant}, {n_lines} lines + {n_arcs} arcs, "
         f"{n_steps} steps, {built.text.count(chr(10))} lines of text",
-        f"path: curve {length:.3f} mm + lead-in {plan.path.lead_in_mm:g} + lead-out "
-        f"{plan.path.lead_out_mm:g} mm at stand-off {plan.path.standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s",
+        f"path: curve {length:.3f} mm + lead-in {plan.paths[0].lead_in_mm:g} + lead-out "
+        f"{plan.paths[0].lead_out_mm:g} mm at stand-off {plan.paths[0].standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s",
     ]
     if len(curves) > 1:
         lines[1] += f"; {len(curves)} contours, lead-in and lead-out on each, gun off between them"

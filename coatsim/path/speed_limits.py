@@ -1,28 +1,21 @@
-"""Where the input curve does not allow the programmed speed, as a program header carries it.
+"""Where the input curve does not allow the programmed speed.
 
 The fitter knows the input curve; the robot stage only sees the program. So that the twin can
 measure the lowest speed "where the curve allows the speed" (``motion.min_speed_ratio``) from the
-program file alone, the writer lists those stretches in the header:
-
-    ; coatsim: speed_limits=S0:S1:V S0:S1:V ...
-
+program file alone, a program's process record (coatsim.path.process) lists those stretches:
 S0 <= S1 in mm of arc length along the curve proper (from its first point), V the largest speed
-the curve allows there in mm/s: the fitter's speed-limited stretches (v = sqrt(a / curvature)) and
-every true corner as ``S:S:0``. ``none`` when the curve allows the programmed speed everywhere. A
-program without the field (written by hand or by another tool) is measured over its whole curve.
+the curve allows there in mm/s — the fitter's speed-limited stretches (v = sqrt(a / curvature))
+and every true corner as a zero-length stretch at speed 0. A program without the record (written
+by hand or by another tool) is measured over its whole curve.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
-
-HEADER_KEY = "speed_limits"
-_NONE = "none"
 
 
 @dataclass(frozen=True)
@@ -64,33 +57,3 @@ def curve_limits(poly: Polysegment) -> tuple[SpeedLimit, ...]:
 
     corners = [c for c in corner_limits(poly) if not listed(c)]
     return tuple(sorted(stretches + corners, key=lambda lim: (lim.s0_mm, lim.s1_mm)))
-
-
-def format_limits(limits: Sequence[SpeedLimit]) -> str:
-    """The header value (mm and mm/s with 4 decimals)."""
-    if not limits:
-        return _NONE
-    return " ".join(f"{lim.s0_mm:.4f}:{lim.s1_mm:.4f}:{lim.v_max_mm_s:.4f}" for lim in limits)
-
-
-def parse_limits(text: str, where: str) -> tuple[SpeedLimit, ...]:
-    """Read a header value; InputError naming ``where`` on anything else."""
-    text = text.strip()
-    if text == _NONE:
-        return ()
-    limits = []
-    for item in text.split():
-        parts = item.split(":")
-        try:
-            values = [float(p) for p in parts]
-        except ValueError:
-            values = []
-        if len(values) != 3:
-            raise InputError(f"{where}: header field {HEADER_KEY}: {item!r} is not S0:S1:V (mm, mm, mm/s)")
-        try:
-            limits.append(SpeedLimit(*values))
-        except InputError as exc:
-            raise InputError(f"{where}: header field {HEADER_KEY}: {exc}") from None
-    if not limits:
-        raise InputError(f"{where}: header field {HEADER_KEY} is empty; write '{_NONE}' for no limit")
-    return tuple(limits)

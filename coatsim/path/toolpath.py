@@ -8,20 +8,11 @@ a rotation is a 3x3 matrix whose columns are the tool x, y, z axes (z = spray ax
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Mapping, Optional, Protocol, Union
+from typing import Optional, Protocol, Union
 
 import numpy as np
 
-
-# Values of the ``sprayed`` header field (``; coatsim: sprayed=...``): which parts of the path
-# the gun covers. A closed contour is sprayed exactly once around, from the seam to the seam
-# (no double coat there); an open one along its lead-in and lead-out too. A program without the
-# field is read as SPRAYED_WITH_LEADS.
-SPRAYED_CURVE = "curve"
-SPRAYED_WITH_LEADS = "lead-in,curve,lead-out"
-# A program of a part sprays several contours: its per-contour header fields (closed, sprayed,
-# speed_limits) hold one value per contour, in spray order, joined by this.
-PART_SEPARATOR = " | "
+from coatsim.path.process import ProcessInfo
 
 
 @dataclass(frozen=True, eq=False)
@@ -140,18 +131,20 @@ class ToolPath:
 
     ``spray`` on a move is true when the gun output is on for the whole move: signals switch
     at move boundaries, as a move starts (see the interpreter for the forward-processing rule).
-    ``metadata`` holds ``; coatsim: key=value`` header comments of the program (e.g. lead-in
-    and lead-out lengths in mm, ``sprayed``) so downstream stages can tell the curve proper
-    from the run-in and run-out without the in-memory polysegment. ``dwells`` are the rests
-    between moves in program order; ``warnings`` what the interpreter did not simulate, one
-    line each.
+    ``process`` is the program's record of how coatsim made it (lead-in and lead-out, sprayed
+    contours, speed limits), decoded by the language's reader, so downstream stages can tell the
+    curve proper from the run-in and run-out without the in-memory polysegment; empty for a
+    program written by anyone else. ``dwells`` are the rests between moves in program order;
+    ``warnings`` what the interpreter did not simulate, one line each; ``tool`` the TOOL in
+    force when the program ends (None: the controller's own).
     """
 
     name: str
     moves: tuple[Move, ...]
-    metadata: Mapping[str, str] = field(default_factory=dict)
+    process: ProcessInfo = ProcessInfo()
     dwells: tuple[Dwell, ...] = ()
     warnings: tuple[str, ...] = ()
+    tool: ToolFrame | None = None
 
     @property
     def spray_moves(self) -> tuple[Move, ...]:

@@ -12,7 +12,7 @@ from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
 from coatsim.path.arcs import circle_through, move_length, sample_move
-from coatsim.path.placement import Frame
+from coatsim.path.frames import Frame
 from coatsim.path.process_path import spray_runs
 from coatsim.path.toolpath import CircularMove, ToolPath
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from coatsim.path import tool_frames
 from coatsim.path.oat import matrix_to_oat
-from coatsim.path.placement import Frame
+from coatsim.path.frames import Frame
 from coatsim.path.toolpath import JointMove, Pose, ToolFrame, ToolPath
 from coatsim.robot.cell import Cell
 

@@ -23,7 +23,7 @@ from coatsim.languages.kawasaki_as.files import read_program, read_program_bytes
 from coatsim.languages.kawasaki_as.source import decode
 from coatsim.path.check import gun_never_on
 from coatsim.path.oat import oat_to_matrix
-from coatsim.path.placement import Frame
+from coatsim.path.frames import Frame
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.kinematics import CellKinematics

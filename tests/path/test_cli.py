@@ -70,9 +70,9 @@ def test_program_from_polysegment_json(tmp_path, run_cli):
     assert code == 0, err
     assert "program rr: polysegment, 4 lines + 4 arcs" in out and f"wrote {out_file}" in out
     tp = read_toolpath(out_file)
-    assert tp.metadata["tolerance_mm"] == "0.1" and tp.metadata["lead_in_mm"] == "20"
+    assert tp.process.tolerance_mm == 0.1 and tp.process.lead_in_mm == 20.0
     assert tp.spray_moves[0].start.position[2] == pytest.approx(330.0)
-    assert tp.metadata["sprayed"] == "curve"
+    assert not tp.process.contours[0].leads_sprayed
     assert all(m.settings.speed_mm_s == 300.0 for m in tp.moves)
     code, text, err = run_cli(["program", str(src), "--variant", "polyline-stop", "--tol", "0.5"])
     assert code == 0 and text.startswith(".PROGRAM rr()") and "CP OFF" in text and "program rr" in err
@@ -158,18 +158,19 @@ def test_program_segments_a_curve_for_its_speed(tmp_path, run_cli):
     out_file = tmp_path / "naca.as"
     code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--speed", "300", "-o", str(out_file)])
     assert code == 0, err
-    limits = read_toolpath(out_file).metadata["speed_limits"].split()
-    assert len(limits) == 2 and limits[-1].endswith(":0.0000") and 0.0 < float(limits[0].split(":")[2]) < 300.0
+    (contour,) = read_toolpath(out_file).process.contours
+    limits = contour.speed_limits
+    assert len(limits) == 2 and limits[-1].v_max_mm_s == 0.0 and 0.0 < limits[0].v_max_mm_s < 300.0
     code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--speed", "300", "--tool-accel", "50",
                             "-o", str(out_file)])
     assert code == 0, err
-    assert len(read_toolpath(out_file).metadata["speed_limits"].split()) == 1
+    assert len(read_toolpath(out_file).process.contours[0].speed_limits) == 1
     code, _, err = run_cli(["program", "builtin:naca", "--tol", "0.1", "--tool-accel", "0"])
     assert code == 2 and "--tool-accel" in err
     # a polysegment JSON gets its stretches listed again for the program's speed
     src = polysegment_json(tmp_path / "rr.json")
     code, _, err = run_cli(["program", str(src), "--speed", "300", "-o", str(out_file)])
     assert code == 0, err
-    assert len(read_toolpath(out_file).metadata["speed_limits"].split()) == 4  # the 10 mm corner arcs
+    assert len(read_toolpath(out_file).process.contours[0].speed_limits) == 4  # the 10 mm corner arcs
     code, _, err = run_cli(["program", str(src), "--speed", "200", "-o", str(out_file)])
-    assert read_toolpath(out_file).metadata["speed_limits"] == "none"
+    assert read_toolpath(out_file).process.contours[0].speed_limits == ()

@@ -58,7 +58,7 @@ def test_user_style_contour_in_place(tmp_path, kin):
     before, after = read_toolpath(src, kinematics=kin), read_toolpath(out, kinematics=kin)
     assert len(after.moves) == len(before.moves) - report.moves_before + report.moves_after
     assert sum(m.spray for m in after.moves) == report.moves_after
-    assert after.metadata == before.metadata and after.dwells[0].seconds == pytest.approx(0.1)
+    assert after.process == before.process and after.dwells[0].seconds == pytest.approx(0.1)
 
 
 def test_contour_in_a_tilted_plane(tmp_path, kin):
@@ -74,7 +74,8 @@ def test_standalone(tmp_path, kin):
     out = tmp_path / "arcs.as"
     out.write_text(result.text)
     tp = read_toolpath(out)
-    assert tp.metadata["tool"] == "0,0,250,0,0,0" and tp.metadata["variant"] == "convert"
+    np.testing.assert_allclose(tp.tool.offset_mm, [0, 0, 250])
+    assert tp.process.variant == "convert"
     assert result.paths[0].deviation_mm <= TOL
     assert all(m.settings.speed_mm_s == 150.0 for m in tp.spray_moves)
 

@@ -16,7 +16,8 @@ from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import ProgramOptions, build_program
 from coatsim.languages.kawasaki_as.interpreter import interpret
 from coatsim.path.part_program import build_part_program, contour_order, part_centering_offset
-from coatsim.path.placement import Frame, Placement
+from coatsim.path.frames import Frame
+from coatsim.path.placement import Placement
 
 from program_helpers import roundrect
 
@@ -60,10 +61,10 @@ def test_part_program_sprays_each_contour_with_the_gun_off_between():
     travel = [m for m in tp.moves if not m.spray and m.kind == "line" and m.start is not None
               and abs(m.start.position[2] - 340.0) < 1e-6 and abs(m.end.position[2] - 340.0) < 1e-6]
     assert len(travel) == 2  # one straight gun-off travel at the clearance between each pair of contours
-    meta = tp.metadata
-    assert meta["n_contours"] == "3" and meta["contour_order"] == "1,2,3"
-    assert float(meta["curve_length_mm"]) == pytest.approx(sum(p.length for p in PART), abs=1e-6)
-    assert int(meta["n_segments"]) == sum(p.n_segments for p in PART)
+    process = tp.process
+    assert len(process.contours) == 3 and process.contour_order == (1, 2, 3)
+    assert process.curve_length_mm == pytest.approx(sum(p.length for p in PART), abs=1e-6)
+    assert process.n_segments == sum(p.n_segments for p in PART)
 
 
 def test_one_contour_part_is_the_single_contour_program():
@@ -147,9 +148,9 @@ def test_per_contour_header_fields_of_a_mixed_part():
     per contour, in spray order."""
     stroke = Polysegment((Line((-60.0, 30.0), (60.0, 30.0)),))
     built = build_part_program([PART[1], stroke], PLACEMENT, ProgramOptions(), tolerance_mm=0.1, source="part")
-    meta = toolpath_of(built.text).metadata
-    assert meta["closed"] == "yes | no"
-    assert meta["sprayed"] == "curve | lead-in,curve,lead-out"
-    assert len(meta["speed_limits"].split(" | ")) == 2
+    text = built.text
+    assert "; coatsim: closed=yes | no\n" in text and "; coatsim: sprayed=curve | lead-in,curve,lead-out\n" in text
+    contours = toolpath_of(text).process.contours
+    assert [(c.closed, c.leads_sprayed) for c in contours] == [(True, False), (False, True)]
     runs = spray_runs(toolpath_of(built.text))
     assert [len(r) for r in runs][1] == 3  # lead-in, line, lead-out

@@ -10,9 +10,8 @@ import pytest
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.path.oat import oat_to_matrix, rotation_angle
-from coatsim.path.placement import (
-    DEFAULT_FRAME, Frame, PlacedArc, PlacedLine, Placement, centering_offset, place, polyline_polysegment,
-)
+from coatsim.path.frames import DEFAULT_FRAME, Frame
+from coatsim.path.placement import PlacedArc, PlacedLine, Placement, centering_offset, place, polyline_polysegment
 
 from program_helpers import arc_spiral, roundrect
 

@@ -17,7 +17,8 @@ from coatsim.geometry.benchmark import bench_curve
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.path.build import VARIANTS, ProgramOptions, build_program
-from coatsim.path.placement import Frame, Placement, centering_offset
+from coatsim.path.frames import Frame
+from coatsim.path.placement import Placement, centering_offset
 
 from program_helpers import arc_spiral, path_errors, roundrect
 
@@ -41,8 +42,8 @@ def assert_same_path(errors):
 def test_constructed_curves(poly, variant):
     built, toolpath, errors = round_trip(poly, variant)
     assert_same_path(errors)
-    assert toolpath.metadata["variant"] == variant
-    assert float(toolpath.metadata["lead_in_mm"]) == 30.0
+    assert toolpath.process.variant == variant
+    assert toolpath.process.lead_in_mm == 30.0
 
 
 @pytest.mark.parametrize("frame", [Frame(700, 0, 200, 0, 0, 0), Frame(600, -300, 900, 90, 90, 0),
@@ -72,7 +73,7 @@ def test_closed_contour_is_sprayed_exactly_once_around(rr, variant):
     assert [m.spray for m in path_moves] == [False] + [True] * (len(path_moves) - 2) + [False]
     assert sum(move_length(m) for m in toolpath.spray_moves) == pytest.approx(built.curve.length, abs=1e-5)
     assert np.allclose(toolpath.spray_moves[0].start.position, toolpath.spray_moves[-1].end.position, atol=1e-6)
-    assert toolpath.metadata["sprayed"] == "curve"
+    assert not toolpath.process.contours[0].leads_sprayed
     # on the fly: no stop where the gun switches, unless the variant stops at every point
     stop = variant == "polyline-stop"
     assert all(m.settings.stop_at_end == stop for m in path_moves[:-1]) and path_moves[-1].settings.stop_at_end
@@ -97,7 +98,7 @@ def test_open_curve_is_sprayed_with_its_leads_and_nothing_else():
 
     sprayed = sum(move_length(m) for m in toolpath.spray_moves)
     assert sprayed == pytest.approx(poly.length + 19.0, abs=1e-5)
-    assert toolpath.metadata["sprayed"] == "lead-in,curve,lead-out"
+    assert toolpath.process.contours[0].leads_sprayed
     assert toolpath.spray_moves[-1].settings.stop_at_end
     assert not any(m.settings.stop_at_end for m in toolpath.spray_moves[:-1])
     _approach_and_depart_are_dry(toolpath)
@@ -145,7 +146,7 @@ def test_benchmark_curves_segmented(name, tol):
         if variant == "polysegment":
             arcs_written = sum(m.kind == "arc" for m in toolpath.spray_moves)
             assert arcs_written >= poly.n_arcs
-            assert np.isclose(float(toolpath.metadata["curve_length_mm"]), poly.length, atol=1e-6)
+            assert np.isclose(toolpath.process.curve_length_mm, poly.length, atol=1e-6)
 
 
 def test_a_full_circle_split_into_arc_pairs_is_sprayed_from_its_first_pair():

@@ -15,7 +15,8 @@ from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.path.build import VARIANTS, ProgramOptions, build_program
 from coatsim.path.placement import Placement
-from coatsim.path.speed_limits import SpeedLimit, corner_limits, curve_limits, format_limits, parse_limits
+from coatsim.languages.kawasaki_as.header import format_limits, parse_limits
+from coatsim.path.speed_limits import SpeedLimit, corner_limits, curve_limits
 
 from program_helpers import roundrect
 
@@ -70,8 +71,7 @@ def test_bad_header_values_name_the_field(text, words):
 def test_every_variant_carries_the_same_stretches_scaled_to_its_curve(variant):
     d = replace(d_shape(), speed_limited=((150.0, 160.0, 120.0),))
     built = build_program(d, Placement(), ProgramOptions(variant=variant), tolerance_mm=0.1, source="d")
-    header = interpret(parse_as(built.text)).metadata["speed_limits"]
-    limits = parse_limits(header, "d.as")
+    limits = interpret(parse_as(built.text)).process.contours[0].speed_limits
     scale = built.curve.length / d.length
     assert [lim.v_max_mm_s for lim in limits] == [0.0, 120.0, 0.0]
     assert limits[1].s0_mm == pytest.approx(150.0 * scale, abs=1e-4)

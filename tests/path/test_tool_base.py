@@ -41,7 +41,7 @@ def test_every_motion_carries_the_tool_in_force_and_its_line():
     assert tools[3].line == 6
     np.testing.assert_allclose(tools[3].offset_mm, [10, 0, 300])
     np.testing.assert_allclose(tools[3].rotation, np.eye(3), atol=1e-15)
-    assert tp.metadata["tool"] == "10,0,300,0,0,0"
+    assert tp.tool is tools[3]
 
 
 def test_a_tool_change_after_motion_stops_it_and_keeps_the_flange():

@@ -14,7 +14,8 @@ from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import ProgramOptions
 from coatsim.languages.kawasaki_as.interpreter import interpret
 from coatsim.path.part_program import build_part_program
-from coatsim.path.placement import Frame, Placement
+from coatsim.path.frames import Frame
+from coatsim.path.placement import Placement
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 

@@ -28,7 +28,7 @@ reference; the parts marked there as unconfirmed are modelled as stated here):
   it (``MotionSettings.tool``; the robot stage puts the flange where that TCP reaches the
   programmed poses). A TOOL after motion ends that motion at rest (like BREAK) and re-expresses
   the current pose with the new TCP, the flange staying put (when the previous TOOL is known).
-  The last TOOL is also metadata ``tool`` = "x,y,z,o,a,t".
+  The TOOL in force at the end is ``ToolPath.tool``.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.arcs import DegenerateArc, circle_through
 from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import Frame
-from coatsim.path.oat import matrix_to_oat
+from coatsim.path.process import ProcessInfo
 from coatsim.path.toolpath import (CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, Pose, ToolFrame,
                                       ToolPath)
 
@@ -261,7 +261,7 @@ class Controller:
             return m.speed[0]
         return self.length(m) / self.speed_mm_s(m)
 
-    def toolpath(self, name: str, metadata: dict[str, str], warnings: tuple[str, ...]) -> ToolPath:
+    def toolpath(self, name: str, process: ProcessInfo, warnings: tuple[str, ...]) -> ToolPath:
         if self.moves:
             self.moves[-1].stop = True
         moves: list[Move] = []
@@ -273,8 +273,5 @@ class Controller:
                 moves.append(LinearMove(m.start, m.end, settings, m.spray, m.line))
             else:
                 moves.append(CircularMove(m.start, m.via, m.end, settings, m.spray, m.line))
-        if self.tool is not None:
-            values = (*self.tool.offset_mm, *matrix_to_oat(self.tool.rotation))
-            metadata = {**metadata, "tool": ",".join(f"{v:.6g}" for v in values)}
         dwells = tuple(Dwell(d.after, d.seconds, d.spray, d.line) for d in self.dwells)
-        return ToolPath(name, tuple(moves), metadata, dwells, warnings)
+        return ToolPath(name, tuple(moves), process, dwells, warnings, self.tool)

@@ -1,7 +1,7 @@
 """Kawasaki AS writer: a ProgramPlan becomes a complete, loadable .as file.
 
 Layout: ``.PROGRAM name()`` with header comments, BASE/TOOL/SPEED/ACCURACY/CP set explicitly,
-then per path (the plan's path and its ``more_paths`` in turn): a joint approach above the
+then per path of the plan in turn: a joint approach above the
 start, a linear move down to the stand-off and ``BREAK`` (at rest at the start of the lead-in),
 one LMOVE per line and one C1MOVE (arc middle) + C2MOVE (arc end) pair per arc, ``BREAK``, a
 linear depart; ``.END``, then every pose in a ``.TRANS`` section. Only straight-line code
@@ -26,22 +26,17 @@ from typing import Callable, Sequence
 import numpy as np
 
 from coatsim.core.errors import InputError
+from coatsim.core.numbers import MM_DECIMALS, fmt, fmt_short
 from coatsim.path.arcs import DegenerateArc, circle_through
+from coatsim.languages.kawasaki_as.header import encode as encode_header
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, sanitize_comment
 from coatsim.path.dialect import ProgramPlan
 from coatsim.path.oat import matrix_to_oat
-from coatsim.path.placement import Frame, PlacedArc, PlacedLine, PlacedSegment
+from coatsim.path.frames import Frame
+from coatsim.path.placement import PlacedArc, PlacedLine, PlacedSegment
 from coatsim.path.toolpath import Pose
 
-# Coordinates are the program's only record of the path, and the twin executes the text.
-# Rounding a coordinate by e tilts the tangent of a segment of length L by up to ~10 e / L
-# (three-point arcs are the worst case), and fitted polysegments can hold segments of
-# 0.1 mm. 4 decimals would keep positions within 1e-4 mm but tilt the tangent of a 1 mm arc
-# by ~2e-4 rad; 8 decimals (e <= 5e-9 mm, 11 significant digits at a metre, well within a
-# double) keep positions within 1e-8 mm and tangents within 1e-6 rad down to 0.05 mm
-# segments. 6 decimals in degrees round an angle by <= 5e-7 deg (9e-9 rad).
-# (Controllers save 3 decimals and store less; the extra digits are for the twin.)
-MM_DECIMALS = 8
+# 6 decimals in degrees round an angle by <= 5e-7 deg (9e-9 rad).
 DEG_DECIMALS = 6
 # Longest arc one C1MOVE/C2MOVE pair may sweep; a pair cannot describe 180 deg or more reliably.
 MAX_ARC_SWEEP_DEG = 170.0
@@ -49,18 +44,6 @@ MAX_ARC_SWEEP_DEG = 170.0
 MAX_COORDINATE_MM = 1e9
 INDENT = "  "
 _COMMENT_COLUMN = 30
-
-
-def fmt(value: float, decimals: int) -> str:
-    """Fixed-point text without negative zero."""
-    text = f"{value:.{decimals}f}"
-    return text[1:] if text.startswith("-") and float(text) == 0.0 else text
-
-
-def fmt_short(value: float, decimals: int = MM_DECIMALS) -> str:
-    """Fixed-point text with trailing zeros removed ("50", "0.5")."""
-    text = fmt(value, decimals)
-    return text.rstrip("0").rstrip(".") if "." in text else text
 
 
 def pose_values(pose: Pose) -> tuple[str, ...]:
@@ -181,7 +164,7 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out = _Lines()
     for text in plan.comments:
         out.add(f"; {sanitize_comment(text)}")
-    for key, value in plan.metadata:
+    for key, value in encode_header(plan.process):
         out.add(f"; coatsim: {sanitize_comment(key)}={sanitize_comment(value, None)}")  # read back whole
     out.add("BASE NULL", "poses are in the robot base frame")
     out.add(f"TOOL {_trans_literal(plan.tool)}", "spray gun TCP")

@@ -14,6 +14,7 @@ from coatsim.languages.kawasaki_as import interpret, interpret_run, parse_as
 from coatsim.path.arcs import circle_through, move_length
 from coatsim.languages.kawasaki_as.motion import FULL_SPEED_MM_S
 from coatsim.path.oat import oat_to_matrix
+from coatsim.path.process import ProcessInfo
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove
 
 TRANS = """.TRANS
@@ -77,7 +78,8 @@ def test_reference_example_a_draws_the_rounded_square():
     assert sprayed == pytest.approx(4 * 160 + 2 * math.pi * 20, abs=0.01)
     depart = tp.moves[-1]
     assert np.allclose(depart.end.position, [520, -100, 250])   # tool z points down: depart goes up
-    assert tp.metadata["tool"] == "0,0,150,0,0,0"
+    np.testing.assert_allclose(tp.tool.offset_mm, [0, 0, 150])
+    np.testing.assert_allclose(tp.tool.rotation, np.eye(3), atol=1e-15)
 
 
 def test_signal_after_break_switches_at_the_next_move():
@@ -169,7 +171,7 @@ def test_metadata_and_program_selection():
     text = ".PROGRAM a()\n  ; coatsim: lead_in_mm=12.5\n  JMOVE p\n.END\n.PROGRAM b()\n  JMOVE p\n  LMOVE q\n.END\n" \
            ".TRANS\np 0 0 0 0 0 0\nq 1 0 0 0 0 0\n.END\n"
     f = parse_as(text)
-    assert interpret(f).metadata == {"lead_in_mm": "12.5"}
+    assert interpret(f).process == ProcessInfo(lead_in_mm=12.5)
     assert len(interpret(f, program="B").moves) == 2
     with pytest.raises(InputError, match="no program named 'c'"):
         interpret(f, program="c")

@@ -70,13 +70,14 @@ def _same_motion(text: str) -> None:
 
 
 @SETTINGS
-@given(st.text(max_size=80), st.text(max_size=40), st.text(max_size=40))
-def test_any_comment_or_source_text_leaves_the_motion_alone(comment, key, value):
+@given(st.text(max_size=80), st.text(max_size=40))
+def test_any_comment_or_source_text_leaves_the_motion_alone(comment, source):
     plan: ProgramPlan = BASELINE.plan
     from dataclasses import replace
     from coatsim.languages.kawasaki_as.writer import write_as
 
-    text = write_as(replace(plan, comments=(comment, comment + "\n  SIGNAL 1"), metadata=(*plan.metadata, (key, value))))
+    text = write_as(replace(plan, comments=(comment, comment + "\n  SIGNAL 1"),
+                            process=replace(plan.process, source=source + "\n  SIGNAL 1")))
     assert all(32 <= ord(ch) < 127 for line in text.splitlines() for ch in line)
     _same_motion(text)
 
