@@ -1,11 +1,12 @@
 """Read / partly / refused: ``coatsim check-program`` on AS programs written in field styles.
 
-Runs the check on every program of a folder (default: tests/languages/kawasaki_as/data/field) with the shipped
-cell and prints one line per program and a count per style (the file name's first letter: b
-controller backup, k K-IDE project, m mixed case, n step numbers, u upper case). A program is
-*read* when the check ends with exit 0 and skipped nothing, *partly* when it ends with exit 0
-but skipped statements (a motion to a pose it never defines, an unknown program CALLed) or
-stopped at a statement it cannot run, *refused* when it ends with an error (or an internal error). Never asserts.
+Runs the check on every program of a folder (default: tests/languages/kawasaki_as/data/field)
+with the shipped cell and prints one line per program and a count per style (the file name's
+first letter: b controller backup, k K-IDE project, m mixed case, n step numbers, u upper case).
+A program is *read* when the check ends with exit 0 and skipped nothing, *partly* when it ends
+with exit 0 but skipped statements (a motion to a pose no file gives, a program CALLed but not
+loaded, a motion the twin does not simulate), *refused* when it ends with an error (or an
+internal error). Never asserts.
 
     python scripts/field_programs.py [DIR]
 """
@@ -30,7 +31,7 @@ def classify(path: Path, kinematics, gun_tcp) -> tuple[str, str]:
         return "refused", str(exc).splitlines()[0][:150]
     except Exception as exc:  # what the command reports as an internal error (exit 70)
         return "refused", f"internal error: {type(exc).__name__}"
-    if getattr(done, "errors", ()):
+    if getattr(done, "errors", ()):  # (the check before: a gun that never opens was an error)
         return "refused", done.errors[0][:150]
     skipped = tuple(getattr(done, "skipped", ()))
     if skipped:
