@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping, Optional, Sequence
+from typing import Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -115,8 +115,11 @@ def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
         return [moves]
     runs = [r for r in spray_runs(run.toolpath) if len(r) >= 2]
     if not runs:
+        switched = f"it switches output{'s' if len(run.outputs) > 1 else ''} {', '.join(map(str, run.outputs))}" \
+            if run.outputs else "it switches no output"
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
-                         "consecutive LMOVE/C1MOVE/C2MOVE moves; name the moves with --lines FIRST-LAST")
+                         f"consecutive LMOVE/C1MOVE/C2MOVE moves ({switched}: is the process signal one of "
+                         "them?); name the moves with --lines FIRST-LAST")
     return runs
 
 
@@ -212,14 +215,18 @@ def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
 
 
 def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[Mapping[int, bool]] = None,
-                    kinematics: Optional[Kinematics] = None) -> Conversion:
+                    kinematics: Optional[Kinematics] = None,
+                    variables: Optional[Mapping[str, Union[str, float]]] = None) -> Conversion:
     """Convert the process path(s) of AS files loaded together; InputError on what cannot be
-    converted (not planar, not editable in place), with the reason."""
+    converted (not planar, not editable in place, a statement skipped for want of a value that
+    ``variables`` does not give), with the reason."""
     from coatsim.path.convert_edit import edit_in_place
 
     items = [paths] if isinstance(paths, (str, Path)) else list(paths)
     files = parse_files(items)
-    run = interpret_run(files, options.gun_signal, options.program, inputs=inputs, kinematics=kinematics)
+    run = interpret_run(files, options.gun_signal, options.program, inputs=inputs, kinematics=kinematics,
+                        variables=variables)
+    run.require_complete()
     fitted = [fit_path(run, c, options) for c in _candidates(run, options)]
     notes = [n for f in fitted for n in f.notes]
     if options.standalone:
@@ -236,7 +243,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
         new_files = tuple(parse_as_bytes(data, f.source) if f.source == replaces else f for f in files)
     try:
         new_run = interpret_run(new_files, options.gun_signal, None if options.standalone else options.program,
-                                inputs=inputs, kinematics=kinematics)
+                                inputs=inputs, kinematics=kinematics, variables=variables)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
     reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0,

@@ -193,13 +193,17 @@ class FastSpec(_Strict):
 class ProgramVariantSpec(_Strict):
     """A program of the user's own run as a variant beside coatsim's: its AS file(s) relative
     to the scenario (data files such as poses after the program), the main program (default:
-    the first), and the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off)."""
+    the first), the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off), and
+    the variables no file gives (the controller keeps them): ``{direction: 8, $mode: auto,
+    pick: "TRANS(600,0,300,0,180,0)"}`` (a number, a string's text, or an AS expression)."""
 
     name: VariantLabel
     program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
     main: Optional[str] = None
     inputs: list[Annotated[int, Field(ge=-defaults.MAX_SIGNAL, le=defaults.MAX_SIGNAL)]] = Field(
         default_factory=list, description="input signals the cell sets: n on, -n off")
+    variables: dict[str, Union[float, str]] = Field(
+        default_factory=dict, description="variables the files do not give: NAME: number, text or AS expression")
 
     @field_validator("program", mode="before")
     @classmethod

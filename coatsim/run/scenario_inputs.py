@@ -147,14 +147,17 @@ def load_arm(loaded: ScenarioFile, override: Optional[str | Path] = None) -> Cel
 
 
 def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
-    """The ToolPath of a program variant and its text (the files one after the other)."""
+    """The ToolPath of a program variant and its text (the files one after the other); a
+    variant needs a sprayed path: InputError naming the outputs a program that never opens the
+    gun switches."""
     files = [loaded.resolve(f) for f in entry.files]
     try:
         options = ReadOptions(gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states or {},
-                              kinematics=CellKinematics(cell))
+                              kinematics=CellKinematics(cell), variables=entry.variables, needs_spray=True)
         toolpath = language_of(files).read(files, options)
     except CoatsimError as exc:
-        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+        said = exc.reworded({"gun_signal": "gun.signal"})
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {said}") from None
     return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
 
 

@@ -40,6 +40,7 @@ import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.arcs import DegenerateArc, circle_through
+from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import Frame
 from coatsim.path.process import ProcessInfo
 from coatsim.path.toolpath import (CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, Pose, ToolFrame,
@@ -204,7 +205,7 @@ class Controller:
         if not value > 0.0:
             raise self.error(line, "SPEED must be > 0")
         if unit.startswith("DEG"):
-            raise self.failure(line, f"SPEED in {unit} (a rotation speed) is not simulated; give MM/S")
+            raise NotSimulated(f"SPEED in {unit} (a rotation speed) is not simulated; give MM/S")
         if always:
             self.speed_always = (value, unit)
         else:
@@ -217,6 +218,10 @@ class Controller:
             self.acc_always, self.fine_always = value, fine
         else:
             self.acc_once, self.fine_once = value, fine
+
+    def tool_frame(self) -> Optional[Frame]:
+        """The TCP the program's last TOOL set (None before any)."""
+        return None if self.tool is None else Frame(self.tool.rotation, self.tool.offset_mm)
 
     def set_tool(self, frame: Frame, line: int) -> None:
         self._check_no_arc(line)

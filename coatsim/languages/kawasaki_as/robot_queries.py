@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from coatsim.core.errors import CoatsimError
-from coatsim.languages.kawasaki_as.values import Frame
+from coatsim.languages.kawasaki_as.values import Frame, PoseJoints
 from coatsim.path.toolpath import Kinematics
 
 
@@ -47,8 +47,11 @@ class RobotQueries:
             self.warn("external-axes", f"joint values beyond the 6th (external axes) are ignored ({len(values)} given)")
         return np.radians(np.array(values[:6], dtype=float))
 
-    def joint_frame(self, values: tuple[float, ...]) -> Frame:
-        """A joint value as a transformation relative to BASE (forward kinematics)."""
+    def joint_frame(self, values: tuple[float, ...] | PoseJoints) -> Frame:
+        """A joint value as a transformation relative to BASE (forward kinematics, or the pose
+        a POINT #j = p gave it)."""
+        if isinstance(values, PoseJoints):
+            return self.base.inverse() * values.frame
         pose = self.fk(self.joints_rad(values), "a joint value used as a pose")
         return self.base.inverse() * Frame.from_pose(pose)
 

@@ -33,6 +33,16 @@ class Scope:
     def has(self, kind: str, key: str) -> bool:
         return key in self.tables[kind] or (kind == "pose" and key in self.trans)
 
+    def array(self, name: str) -> list[tuple[str, str, object]]:
+        """(kind, index "[i,j]", value) of every element of the array ``name`` (a key)."""
+        prefix = name + "["
+        out = []
+        for kind in KINDS:
+            keys = list(self.tables[kind]) + ([k for k in self.trans if k not in self.tables[kind]]
+                                              if kind == "pose" else [])
+            out += [(kind, k[len(name):], self.get(kind, k)) for k in keys if k.startswith(prefix)]
+        return out
+
     def set(self, kind: str, key: str, value) -> None:
         self.tables[kind][key] = value
 

@@ -51,6 +51,17 @@ class Frame:
 IDENTITY = Frame(np.eye(3), np.zeros(3))
 
 
+@dataclass(frozen=True, eq=False)
+class PoseJoints:
+    """A joint value known by the pose it reaches (``POINT #j = p [, #ref]``): ``frame`` in the
+    robot base frame, ``reference`` the joint value (deg) the program gave to pick the arm's
+    configuration. A JMOVE to it moves to the pose (the cell's inverse kinematics picks the
+    configuration); its joint angles are unknown to the interpreter."""
+
+    frame: Frame
+    reference: tuple[float, ...] | None
+
+
 def rotation_about(axis: int, degrees: float) -> Frame:
     """RX / RY / RZ: a pure rotation about the x (0), y (1) or z (2) axis."""
     c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
@@ -58,6 +69,14 @@ def rotation_about(axis: int, degrees: float) -> Frame:
     r = np.eye(3)
     r[i, i], r[i, j], r[j, i], r[j, j] = c, -s, s, c
     return Frame(r, np.zeros(3))
+
+
+def average(a: Frame, b: Frame) -> Frame:
+    """AVE_TRANS(a, b): the mean of the positions and the rotation halfway from a's to b's."""
+    from scipy.spatial.transform import Rotation, Slerp
+
+    half = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a.r, b.r])))([0.5]).as_matrix()[0]
+    return Frame(half, (a.p + b.p) / 2.0)
 
 
 def frame_from_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, origin: np.ndarray) -> Frame | None:

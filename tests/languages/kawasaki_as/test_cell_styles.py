@@ -107,9 +107,13 @@ def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compare
 def test_xmove_till_a_signal_already_on_is_not_run_to_its_end():
     from coatsim.core.errors import ExecutionError
 
+    from coatsim.languages.kawasaki_as import interpret_run
+
     f = parse_as(".PROGRAM t()\n  JMOVE a\n  XMOVE b TILL 1005\n.END\n" + POSES, "t.as")
-    with pytest.raises(ExecutionError, match=r"t.as:3: XMOVE \.\.\. TILL 1005: the signal is already in that state"):
-        Interpreter((f,), 1, {1005: True}, None, 1000.0, 100_000).run(f.programs[0])
+    run = interpret_run(f, inputs={1005: True})  # skipped with a note; a simulation refuses it (exit 3)
+    assert len(run.toolpath.moves) == 1
+    with pytest.raises(ExecutionError, match=r"t.as:3: XMOVE skipped: XMOVE \.\.\. TILL 1005: the signal is already"):
+        run.require_complete()
     tp = Interpreter((f,), 1, {1005: False}, None, 1000.0, 100_000).run(f.programs[0])
     assert len(tp.moves) == 2 and any("runs to its end" in w for w in tp.warnings)
 
