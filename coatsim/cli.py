@@ -42,7 +42,7 @@ def fail(message: str, code: int = 2) -> None:
     raise typer.Exit(code)
 
 
-SEGMENT_FLAGS = {"tolerance_mm": "--tol", "min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
+SEGMENT_FLAGS = {"tolerance_mm": "--tol", "corner_deg": "--corner-deg", "min_segment_mm": "--min-segment", "speed_mm_s": "--speed", "tool_accel_mm_s2": "--tool-accel"}
 
 
 def _segment_flags(message: str) -> str:
@@ -52,9 +52,32 @@ def _segment_flags(message: str) -> str:
     return message
 
 
+def _segment_space(curve, tol: float, method: str, theta_tol: Optional[float], plot: Optional[Path], corner_deg: float,
+                   min_segment: Optional[float], speed: Optional[float], accel_mm_s2: Optional[float],
+                   output: Optional[Path], timings: bool) -> None:
+    """`coatsim segment` on a 3-D curve: the G1 chain of 3-D lines and arcs, polysegment/2."""
+    from coatsim.errors import InputError
+    from coatsim.geometry.space.polysegment_json import write_chain_json
+    from coatsim.geometry.space.segment import segment_space_curve
+
+    if method != "optimal" or theta_tol is not None or plot is not None:
+        fail(f"{curve.name}: a 3-D curve is fitted by the default method only (no --method paper, --theta-tol or --plot)")
+    try:
+        seg = segment_space_curve(curve, tol, corner_deg, min_segment, speed, accel_mm_s2)
+    except InputError as exc:
+        fail(_segment_flags(str(exc)))
+    if output is not None:
+        write_chain_json(output, seg.chain, seg.tolerance_mm, seg.stats())
+    typer.echo(seg.summary())
+    if output is not None:
+        typer.echo(f"wrote {output}")
+    if timings:
+        typer.echo(f"timings: fitter {seg.seconds:.3f} s", err=True)
+
+
 @app.command()
 def segment(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns, or x,y,z for a 3-D curve), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
     tol: float = typer.Option(0.1, "--tol", help="Tolerance sigma: max two-sided deviation, mm."),
     method: str = typer.Option("optimal", "--method", help="optimal (guaranteed tolerance, few segments) | paper (literal RDP on θ)."),
     corner_deg: float = typer.Option(20.0, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
@@ -107,8 +130,21 @@ def segment(
         return
     if layer or join_tol is not None:
         fail("--layer and --join-tol apply to drawings (DXF, SVG)")
+    # --- a curve file with x,y,z columns is a space curve: fitted in 3-D (polysegment/2)
+    curve = None
+    if not input.startswith("builtin:"):
+        from coatsim.geometry.space.curve import SpaceCurve, read_any_curve
+
+        try:
+            curve = read_any_curve(input, closed)
+        except InputError as exc:
+            fail(_segment_flags(str(exc)))
+        if isinstance(curve, SpaceCurve):
+            _segment_space(curve, tol, method, theta_tol, plot, corner_deg, min_segment, speed, accel_mm_s2, output, timings)
+            return
+    # --- end of the space-curve route
     try:
-        seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
+        seg = segment_curve(curve if curve is not None else load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
                             theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
                             tool_accel_mm_s2=accel_mm_s2)
     except InputError as exc:
