@@ -1,0 +1,201 @@
+"""The 3-D fit: planar curves in any orientation give their 2-D fit; space curves within σ,
+G1, honest; the certified 3-D deviation against a brute-force dense oracle; polysegment/2."""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from coatsim.errors import InputError
+from coatsim.geometry import builtin_curve, make_curve, segment_curve
+from coatsim.geometry.curves import read_curve_file
+from coatsim.geometry.space.biarc import biarc
+from coatsim.geometry.space.chain import SpaceChain
+from coatsim.geometry.space.curve import SpaceCurve, make_space_curve, read_any_curve
+from coatsim.geometry.space.deviation import hausdorff3
+from coatsim.geometry.space.families import FAMILIES
+from coatsim.geometry.space.polysegment_json import chain_document, chain_from_document, read_chain_json, write_chain_json
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.primitives import Arc3
+from coatsim.geometry.space.segment import segment_space_curve
+
+from strategies import poses, unit_vectors
+
+
+@functools.lru_cache(maxsize=None)
+def fitted(name: str, tol: float):
+    return segment_space_curve(make_space_curve(FAMILIES[name](1500), name), tol)
+
+
+def brute_hausdorff(points: np.ndarray, chain: SpaceChain, step: float) -> float:
+    """Both directions between dense samples of the polyline and of the chain (KD-trees)."""
+    from scipy.spatial import cKDTree
+
+    dense = [points[:1]]
+    for a, b in zip(points[:-1], points[1:]):
+        n = max(1, int(math.ceil(np.linalg.norm(b - a) / step)))
+        dense.append(a + np.linspace(0, 1, n + 1)[1:, None] * (b - a))
+    poly = np.vstack(dense)
+    ours = chain.sample(step)[0]
+    return max(cKDTree(ours).query(poly)[0].max(), cKDTree(poly).query(ours)[0].max())
+
+
+def assert_g1(chain: SpaceChain) -> None:
+    breaks = chain.junction_breaks()
+    smooth = [k for k in range(len(breaks)) if k not in chain.corners]
+    assert np.all(breaks[smooth] < 1e-9), breaks[smooth].max()
+    for a, b in zip(chain.segments[:-1], chain.segments[1:]):
+        assert np.array_equal(a.end, b.start)
+
+
+@pytest.mark.parametrize("name", ["paper-spiral", "ellipse", "cam", "rounded-rectangle"])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_planar_curve_in_any_orientation_gives_its_2d_fit(name, seed):
+    curve = builtin_curve(name)
+    flat = segment_curve(curve, 0.1)
+    rng = np.random.default_rng(seed)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    pose = Pose(q * np.sign(np.linalg.det(q)), rng.normal(scale=300, size=3))
+    pts = pose.apply(np.column_stack((curve.points, np.zeros(len(curve.points)))))
+    fit = segment_space_curve(make_space_curve(pts, name, "yes" if curve.closed else "no"), 0.1)
+    assert fit.planar_pose is not None
+    assert fit.chain.n_segments == flat.polysegment.n_segments
+    assert fit.chain.n_arcs == flat.polysegment.n_arcs and len(fit.chain.corners) == len(flat.polysegment.corners)
+    assert fit.max_deviation_mm <= 0.1
+    assert_g1(fit.chain)
+
+
+@settings(max_examples=10, deadline=None)
+@given(poses(), st.floats(5.0, 200.0))
+def test_circle_in_a_random_plane_is_one_circle(pose, radius):
+    t = np.linspace(0, 2 * math.pi, 800)
+    flat = np.column_stack((radius * np.cos(t), radius * np.sin(t), np.zeros_like(t)))
+    fit = segment_space_curve(make_space_curve(pose.apply(flat), "circle"), 0.05)
+    arcs = fit.chain.segments
+    assert all(isinstance(a, Arc3) for a in arcs) and fit.chain.closed
+    centre = pose.translation_mm
+    for a in arcs:  # every arc on the one circle
+        assert np.linalg.norm(a.center - centre) < 0.05 and abs(a.radius - radius) < 0.05
+        assert abs(abs(a.normal @ pose.rotation[:, 2]) - 1) < 1e-9 and a.normal @ arcs[0].normal > 0
+    assert math.fsum(a.sweep for a in arcs) == pytest.approx(2 * math.pi, abs=1e-6)
+    assert fit.chain.n_segments == segment_curve(make_curve(flat[:, :2], "c"), 0.05).polysegment.n_segments
+
+
+def test_helix_within_tolerance_with_fewer_segments_as_it_grows():
+    counts = []
+    for tol in (0.05, 0.1, 0.5):
+        fit = fitted("helix", tol)
+        assert fit.planar_pose is None and fit.max_deviation_mm <= tol and fit.limits_kept
+        counts.append(fit.chain.n_segments)
+        assert_g1(fit.chain)
+    assert counts[0] > counts[1] > counts[2]
+
+
+@pytest.mark.parametrize("name", sorted(FAMILIES))
+def test_space_families_within_tolerance_g1_and_honest(name):
+    fit = fitted(name, 0.1)
+    assert fit.max_deviation_mm <= 0.1
+    assert brute_hausdorff(fit.curve.points, fit.chain, 0.005) <= 0.1 + 0.005
+    assert_g1(fit.chain)
+    assert fit.limits_kept
+    profile_radius = fit.input_min_radius_mm
+    tightest = min((s.radius for s in fit.chain.segments if isinstance(s, Arc3)), default=math.inf)
+    assert tightest >= profile_radius / 1.25  # no arc much tighter than the curve anywhere
+
+
+@st.composite
+def chains_and_polylines(draw):
+    """A random G1 chain of biarcs and a polyline wandering near it."""
+    rng = np.random.default_rng(draw(st.integers(0, 2**31)))
+    knots = np.cumsum(rng.normal(scale=20, size=(4, 3)) + [25, 0, 0], axis=0)
+    tangents = [draw(unit_vectors()) for _ in knots]
+    segments = []
+    for k in range(3):
+        pair = biarc(knots[k], tangents[k], knots[k + 1], tangents[k + 1], draw(st.sampled_from([0.5, 1.0, 2.0])))
+        assume(pair is not None)
+        segments.extend(s for s in pair if s.length > 1e-6)
+    chain = SpaceChain(tuple(segments))
+    s = np.sort(rng.uniform(0, 1, draw(st.integers(5, 60)))) * chain.length
+    base = chain.sample(chain.length / 400)
+    pts = np.array([base[0][np.argmin(np.abs(base[1] - v))] for v in s])
+    pts = pts + rng.normal(scale=draw(st.sampled_from([0.01, 0.3, 3.0])), size=pts.shape)
+    return chain, pts
+
+
+@settings(max_examples=30, deadline=None)
+@given(chains_and_polylines())
+def test_deviation_against_a_dense_oracle(data):
+    chain, pts = data
+    assume(len(np.unique(pts, axis=0)) >= 2)
+    exact = hausdorff3(pts, chain, 0.1).hausdorff
+    step = 0.01
+    oracle = brute_hausdorff(pts, chain, step)
+    assert oracle - step <= exact <= oracle + step  # both within half a sample step of the truth
+
+
+def test_polysegment2_round_trip(tmp_path):
+    fit = fitted("torus", 0.1)
+    path = tmp_path / "torus.json"
+    write_chain_json(path, fit.chain, 0.1, fit.stats())
+    doc = json.loads(path.read_text())
+    assert doc["format"] == "coatsim.polysegment/2" and doc["segments"][0]["kind"] == "arc"
+    back = read_chain_json(path)
+    assert back.n_segments == fit.chain.n_segments and back.closed == fit.chain.closed
+    for a, b in zip(back.segments, fit.chain.segments):
+        assert np.array_equal(a.start, b.start) and np.array_equal(a.end, b.end)
+        if isinstance(a, Arc3):
+            assert np.array_equal(a.center, b.center) and a.sweep == b.sweep and a.radius == b.radius
+    assert chain_document(back, 0.1, fit.stats()) == doc
+
+
+@pytest.mark.parametrize("edit, field", [
+    (lambda d: d["segments"][0].update(normal=[0, 0, 2]), "segments[0].normal"),
+    (lambda d: d["segments"][0].update(sweep=-1.0), "segments[0]"),
+    (lambda d: d["segments"][1].update(start=[0, 0, 0]), "segments[1].start"),
+    (lambda d: d["segments"][0].update(radius=d["segments"][0]["radius"] * 1.01), "segments[0].start"),
+    (lambda d: d.update(format="coatsim.polysegment/1"), "not a 3-D polysegment"),
+])
+def test_polysegment2_defects_name_their_field(edit, field):
+    doc = chain_document(fitted("torus", 0.1).chain, 0.1, {})
+    edit(doc)
+    with pytest.raises(InputError, match=field.replace("[", r"\[").replace("]", r"\]")):
+        chain_from_document(doc, "t.json")
+
+
+def test_three_columns_make_a_space_curve(tmp_path):
+    path = tmp_path / "xyz.csv"
+    path.write_text("x,y,z\n0,0,0\n1,1,5\n2,4,9\n")
+    curve = read_any_curve(path)
+    assert isinstance(curve, SpaceCurve) and curve.points.shape == (3, 3)
+    with pytest.raises(InputError, match="3-D curve"):
+        read_curve_file(path)
+    np.save(tmp_path / "xyz.npy", curve.points)
+    assert isinstance(read_any_curve(tmp_path / "xyz.npy"), SpaceCurve)
+    (tmp_path / "four.csv").write_text("0,0,0\n1,1,5,7\n")
+    with pytest.raises(InputError, match=r"four.csv:2: 4 numeric columns"):
+        read_any_curve(tmp_path / "four.csv")
+    (tmp_path / "mixed.csv").write_text("0,0,0\n1,1\n")
+    with pytest.raises(InputError, match=r"mixed.csv:2: 2 columns where the rows above have 3"):
+        read_any_curve(tmp_path / "mixed.csv")
+    np.save(tmp_path / "wide.npy", np.zeros((4, 5)))
+    with pytest.raises(InputError, match=r"\(n, 2\) or \(n, 3\)"):
+        read_any_curve(tmp_path / "wide.npy")
+
+
+def test_segment_command_on_a_3d_curve(tmp_path, run_cli):
+    path = tmp_path / "helix.csv"
+    np.savetxt(path, FAMILIES["helix"](1500), delimiter=",")
+    out = tmp_path / "helix.json"
+    code, stdout, stderr = run_cli(["segment", str(path), "--tol", "0.1", "-o", str(out)])
+    assert code == 0, stderr
+    assert "not planar" in stdout and json.loads(out.read_text())["format"] == "coatsim.polysegment/2"
+    code, _, stderr = run_cli(["segment", str(path), "--method", "paper"])
+    assert code == 2 and stderr.count("\n") == 1 and "default method only" in stderr
+    code, _, stderr = run_cli(["segment", str(path), "--tol", "-1"])
+    assert code == 2 and "--tol" in stderr
