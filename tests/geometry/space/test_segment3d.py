@@ -199,3 +199,31 @@ def test_segment_command_on_a_3d_curve(tmp_path, run_cli):
     assert code == 2 and stderr.count("\n") == 1 and "default method only" in stderr
     code, _, stderr = run_cli(["segment", str(path), "--tol", "-1"])
     assert code == 2 and "--tol" in stderr
+
+
+def test_speed_limits_on_a_space_curve():
+    """At v²/a below the helix's radius (40.5 mm) nothing is limited; above it every arc is a
+    speed-limited stretch whose v_max is √(a·r)."""
+    curve = make_space_curve(FAMILIES["helix"](1500), "helix")
+    free = segment_space_curve(curve, 0.1, speed_mm_s=300.0, tool_accel_mm_s2=5000.0)  # v²/a = 18 mm
+    assert free.chain.speed_limited == () and free.max_deviation_mm <= 0.1
+    fast = segment_space_curve(curve, 0.1, speed_mm_s=600.0, tool_accel_mm_s2=5000.0)  # v²/a = 72 mm
+    (s0, s1, v_max), = fast.chain.speed_limited
+    assert s0 == 0.0 and s1 == pytest.approx(fast.chain.length)
+    assert v_max == pytest.approx(math.sqrt(5000.0 * min(s.radius for s in fast.chain.segments)))
+    assert "speed-limited" in fast.summary()
+    with pytest.raises(InputError, match="go together"):
+        segment_space_curve(curve, 0.1, speed_mm_s=600.0)
+
+
+def test_a_true_corner_in_space_is_kept():
+    """Two helical arcs meeting at 90 degrees: one listed corner there, G1 everywhere else."""
+    t = np.linspace(0.0, math.pi, 800)
+    first = np.column_stack((40 * np.cos(t), 40 * np.sin(t), 10 * t))
+    turn = Pose(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]), np.zeros(3))
+    second = turn.apply(first - first[0]) + first[-1]
+    fit = segment_space_curve(make_space_curve(np.vstack((first, second[1:])), "kinked"), 0.1)
+    assert len(fit.chain.corners) == 1 and fit.max_deviation_mm <= 0.1
+    k = fit.chain.corners[0]
+    assert np.allclose(fit.chain.segments[k].end, first[-1])
+    assert_g1(fit.chain)
