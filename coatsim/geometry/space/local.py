@@ -18,6 +18,7 @@ import numpy as np
 from coatsim.geometry.envelope import MAX_GRID, WINDOW_EDGES, WINDOW_SIGMAS, CurvatureProfile
 
 CONCENTRATED = 2.0  # a corner turns at most this much more over 3w than over w
+SPARSE = 10.0  # a polyline whose median edge is this many σ long has only its vertices to go by
 
 
 def arc_length(points: np.ndarray) -> np.ndarray:
@@ -100,6 +101,8 @@ def detect_corners3(points: np.ndarray, closed: bool, corner_deg: float, toleran
     text); detections within 2w collapse to the largest turn; an open curve's ends never are."""
     pts = np.asarray(points, dtype=float)
     edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    if float(np.median(edges)) >= SPARSE * tolerance:
+        return _vertex_corners(pts, closed, corner_deg)
     w = max(3.0 * float(np.median(edges)), tolerance)
     ext, ext_s, offset = _unrolled(pts, closed)
     s = arc_length(pts)
@@ -127,3 +130,15 @@ def detect_corners3(points: np.ndarray, closed: bool, corner_deg: float, toleran
         if all(min(abs(s[i] - s[j]), total - abs(s[i] - s[j]) if closed else math.inf) > 2 * w for j in found):
             found.append(i)
     return np.array(sorted(found), dtype=int)
+
+
+def _vertex_corners(points: np.ndarray, closed: bool, corner_deg: float) -> np.ndarray:
+    """The vertices of a sparse polyline where it turns by more than ``corner_deg``."""
+    body = points[:-1] if closed else points
+    before = body - np.roll(body, 1, axis=0)
+    after = np.roll(body, -1, axis=0) - body
+    turn = np.arctan2(np.linalg.norm(np.cross(before, after), axis=1), np.einsum("ij,ij->i", before, after))
+    hit = turn > math.radians(corner_deg)
+    if not closed:
+        hit[[0, -1]] = False
+    return np.flatnonzero(hit)

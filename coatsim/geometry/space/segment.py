@@ -32,6 +32,7 @@ from coatsim.geometry.space.primitives import Arc3, place
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
 NARROWER = (0.9, 0.75, 0.5, 0.3)  # working tolerances (shares of σ) tried in turn
+KINK_RAD = 1e-9  # a junction breaking its tangent by more is listed as a corner
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,7 +179,8 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
             kept = kept and fitted.limits_kept
             radii.append(limits.profile.tightest_radius_mm)
         corner_junctions = tuple(junctions[:-1]) + ((junctions[-1],) if curve.closed and len(corners) else ())
-        chain = SpaceChain(tuple(segments), curve.closed, corner_junctions)
+        chain, kinked = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
+        kept = kept and not kinked
         dev = hausdorff3(pts, chain, tol).hausdorff
         if dev <= tol:
             break
@@ -187,6 +189,17 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
                          "the input may be too noisy for tolerance_mm")
     tightest = min(radii)
     return chain, dev, tightest if math.isfinite(tightest) else None, kept
+
+
+def _with_kinks(chain: SpaceChain) -> tuple[SpaceChain, bool]:
+    """The chain with every junction whose tangent breaks (a run the biarcs could not follow
+    between two input points, joined by a line) listed as a corner, and whether there was one:
+    a break is never left unlisted."""
+    breaks = chain.junction_breaks()
+    kinks = {int(k) for k in np.flatnonzero(breaks > KINK_RAD)} - set(chain.corners)
+    if not kinks:
+        return chain, False
+    return replace(chain, corners=tuple(sorted(set(chain.corners) | kinks))), True
 
 
 def _seam_view(points: np.ndarray, window: float) -> tuple[np.ndarray, np.ndarray, int]:

@@ -227,3 +227,26 @@ def test_a_true_corner_in_space_is_kept():
     k = fit.chain.corners[0]
     assert np.allclose(fit.chain.segments[k].end, first[-1])
     assert_g1(fit.chain)
+
+
+def test_a_sparse_polyline_keeps_its_vertices_as_corners():
+    pts = np.array([[0, 0, 0], [10, 0, 0], [10, 10, 5], [0, 10, 10.0]])
+    fit = segment_space_curve(make_space_curve(pts, "sparse"), 0.1)
+    assert [s.kind for s in fit.chain.segments] == ["line"] * 3 and fit.chain.corners == (0, 1)
+    assert fit.max_deviation_mm < 1e-9
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 2**31), st.integers(4, 40), st.sampled_from([0.05, 0.5, 2.0]))
+def test_no_tangent_break_is_left_unlisted(seed, n, tol):
+    """Whatever the input (random walks in space, sparse or dense), the chain is within σ and
+    every junction is tangent-continuous or a listed corner."""
+    rng = np.random.default_rng(seed)
+    pts = np.cumsum(rng.normal(scale=rng.choice([0.2, 5.0, 30.0]), size=(n, 3)), axis=0)
+    try:
+        curve = make_space_curve(pts, "walk")
+    except InputError:
+        return
+    fit = segment_space_curve(curve, tol)
+    assert fit.max_deviation_mm <= tol
+    assert fit.chain.max_tangent_break() <= 1e-9
