@@ -56,7 +56,7 @@ def _segment_space(curve, tol: float, method: str, theta_tol: Optional[float], p
                    min_segment: Optional[float], speed: Optional[float], accel_mm_s2: Optional[float],
                    output: Optional[Path], timings: bool) -> None:
     """`coatsim segment` on a 3-D curve: the G1 chain of 3-D lines and arcs, polysegment/2."""
-    from coatsim.errors import InputError
+    from coatsim.core.errors import InputError
     from coatsim.geometry.space.polysegment_json import write_chain_json
     from coatsim.geometry.space.segment import segment_space_curve
 

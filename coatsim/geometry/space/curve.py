@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.curves import ClosedMode, Curve, clean_points, make_curve, read_points_file
 
 

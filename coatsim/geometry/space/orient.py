@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import make_space_curve
 from coatsim.geometry.space.nearest import polyline_index

@@ -18,8 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from coatsim.errors import InputError
-from coatsim.fileio import write_text
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_text
 from coatsim.geometry.polysegment_json import _number, _speed_limited, read_json_document
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3

@@ -29,7 +29,7 @@ from coatsim.geometry.space.pose import exp_rotation, log_rotation
 
 # Below this sin(A) (or cos(B)) the orientation is treated as exactly singular: the last
 # angle is 0. At 1e-12 the rebuilt matrix differs by about 1e-12, far below the 6 decimals
-# of degrees a program carries. (Kawasaki: coatsim.program.oat's choice, kept bit for bit.)
+# of degrees a program carries. (Kawasaki: coatsim.path.oat's choice, kept bit for bit.)
 GIMBAL_SIN = 1e-12
 # Between GIMBAL_SIN and this, the O-A-T pair is corrected from the well-conditioned block
 # (O and T alone are ill-conditioned there: their errors grow as 1e-16 / sin A).

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.space.orient import fit_surface_pass, slerp_axes
 from coatsim.geometry.space.polysegment_json import chain_document, chain_from_document
 

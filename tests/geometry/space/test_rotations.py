@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from coatsim.geometry.space import rotations as rot
 from coatsim.geometry.space.pose import exp_rotation
-from coatsim.program import oat as legacy
+from coatsim.path import oat as legacy
 
 angle = st.floats(-180.0, 180.0, allow_nan=False)
 unit = st.floats(-1.0, 1.0, allow_nan=False)

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import builtin_curve, make_curve, segment_curve
 from coatsim.geometry.curves import read_curve_file
 from coatsim.geometry.space.biarc import biarc
