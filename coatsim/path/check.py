@@ -193,7 +193,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         problems.append(f"sections not read (controller data): {', '.join(sections)}")
     for move, (name, _, _) in zip(toolpath.moves, run.move_origins):
         if isinstance(move, CircularMove):
-            sweep = circle_through(move.start.position, move.via.position, move.end.position).sweep
+            sweep = circle_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm).sweep
             if sweep >= math.pi:
                 problems.append(f"{run.programs[name.lower()].source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
                                 "pair below 180 deg")

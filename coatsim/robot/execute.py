@@ -203,7 +203,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             label = step_label(toolpath, piece.move)
             # the implicit first move goes to the start of the first Cartesian move, with its TOOL
             tool_move = piece.move if piece.move is not None else int(pieces[k + 1].move[0])
-            p_gun, r_gun = to_gun(piece.target.position, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
+            p_gun, r_gun = to_gun(piece.target.translation_mm, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
             t0 = time.perf_counter()
             if piece.joints_rad is not None:
                 q_goal = _joint_target(cell, piece.joints_rad, label)

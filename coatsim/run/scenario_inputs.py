@@ -21,8 +21,9 @@ from coatsim.geometry import (
 from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
 from coatsim.geometry.segment import Segmentation
 from coatsim.languages.registry import language_of
-from coatsim.path.oat import oat_to_matrix
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.rotations import oat_to_matrix
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
@@ -91,13 +92,13 @@ def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:
 
 
 
-def curve_frame(spec: Scenario) -> Frame:
+def curve_frame(spec: Scenario) -> Pose:
     """The frame whose XY plane holds the curve: the workpiece frame, lifted to the top of a
     cylinder."""
     wp = spec.workpiece
     pose = _pose_matrix(wp.pose.position_mm, wp.pose.oat_deg)
     origin = pose[:3, 3] + (wp.radius_mm * pose[:3, 2] if wp.kind == "cylinder" else 0.0)
-    return Frame(*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg))
+    return pose_from_xyzoat((*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg)))
 
 
 

@@ -14,10 +14,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat, xyzoat
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.evaluate_strings import val
 from coatsim.languages.kawasaki_as.unknowns import NotSimulated
-from coatsim.languages.kawasaki_as.values import IDENTITY, Frame, average, frame_from_points, rotation_about
+from coatsim.geometry.space.pose import Pose
+from coatsim.languages.kawasaki_as.values import IDENTITY, average, frame_from_points, rotation_about
 
 if TYPE_CHECKING:  # pragma: no cover
     from coatsim.languages.kawasaki_as.evaluate import Evaluator
@@ -80,10 +82,10 @@ def real_call(ev: Evaluator, e: ast.Call) -> float:
         return float(ev.run.read_bits(start, count))
     if name == "DISTANCE":
         ev.arity(e, 2)
-        return float(np.linalg.norm(ev.pose(ev.arg(e, 0)).p - ev.pose(ev.arg(e, 1)).p))
+        return float(np.linalg.norm(ev.pose(ev.arg(e, 0)).translation_mm - ev.pose(ev.arg(e, 1)).translation_mm))
     if name in ("DX", "DY", "DZ"):
         ev.arity(e, 1)
-        return float(ev.pose(ev.arg(e, 0)).p["XYZ".index(name[1])])
+        return float(ev.pose(ev.arg(e, 0)).translation_mm["XYZ".index(name[1])])
     if name == "DEXT":
         return _dext(ev, e)
     if name in ("MSPEED", "MSPEED2"):
@@ -142,13 +144,13 @@ def _dext(ev: Evaluator, e: ast.Call) -> float:
     ev.arity(e, 2)
     n = ev.integer(ev.arg(e, 1), "the DEXT component")
     target = ev.arg(e, 0)
-    values = ev.joints(target) if ev.kind(target) == "joint" else ev.pose(target).xyzoat()
+    values = ev.joints(target) if ev.kind(target) == "joint" else xyzoat(ev.pose(target))
     if not 1 <= n <= len(values):
         raise ev.error(f"DEXT component {n} out of range 1..{len(values)}")
     return float(values[n - 1])
 
 
-def pose_call(ev: Evaluator, e: ast.Call) -> Frame:
+def pose_call(ev: Evaluator, e: ast.Call) -> Pose:
     """The transformation a function gives."""
     name = e.name
     if name == "TRANS":
@@ -157,13 +159,13 @@ def pose_call(ev: Evaluator, e: ast.Call) -> Frame:
         if any(a is not None for a in e.args[6:]):
             ev.run.warn("trans-external-axes", "TRANS values beyond the 6th (external axes) are ignored")
         values = [0.0 if a is None else ev.real(a) for a in e.args[:6]] + [0.0] * (6 - len(e.args[:6]))
-        return Frame.from_xyzoat(*values)
+        return pose_from_xyzoat(values)
     if name in ("RX", "RY", "RZ"):
         ev.arity(e, 1)
         return rotation_about("XYZ".index(name[1]), ev.real(ev.arg(e, 0)))
     if name == "FRAME":
         ev.arity(e, 4)
-        p = [ev.pose(ev.arg(e, i)).p for i in range(4)]
+        p = [ev.pose(ev.arg(e, i)).translation_mm for i in range(4)]
         frame = frame_from_points(*p)
         if frame is None:
             raise ev.failure("FRAME: the first three points do not span a plane")

@@ -6,13 +6,14 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat, xyzoat
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.io_model import FIRST_INPUT, signal_name
 from coatsim.languages.kawasaki_as.instructions import CONFIGURATION, DISPLAY, GRIPPER, HOUSEKEEPING, NETWORK, TASKS, \
     UNSIMULATED_MOTION
 from coatsim.languages.kawasaki_as.unknowns import Absent, NotSimulated
-from coatsim.languages.kawasaki_as.values import IDENTITY, Frame, PoseJoints
-from coatsim.path.toolpath import Pose
+from coatsim.languages.kawasaki_as.values import IDENTITY, PoseJoints
+from coatsim.geometry.space.pose import Pose
 
 if TYPE_CHECKING:  # pragma: no cover
     from coatsim.languages.kawasaki_as.interpreter import Interpreter
@@ -29,11 +30,8 @@ _SILENT_SWITCHES = {"ABS.SPEED"}  # no effect at monitor speed 100 %
 _COMPONENTS = {"X": (0,), "Y": (1,), "Z": (2,), "O": (3,), "A": (4,), "T": (5,), "OAT": (3, 4, 5)}
 
 
-def _target(run: Interpreter, frame: Frame) -> Pose:
-    out = frame if run.base is IDENTITY else run.base * frame
-    if not out.is_finite():
-        raise run.failure("the target pose is not finite")
-    return out.pose()
+def _target(run: Interpreter, frame: Pose) -> Pose:
+    return frame if run.base is IDENTITY else run.base @ frame
 
 
 def _seconds(run: Interpreter, e: ast.Expr) -> float:
@@ -56,7 +54,7 @@ def _move(run: Interpreter, st: ast.Move) -> None:
             if values.reference is not None:
                 run.warn(f"ik:{st.line}", "JMOVE to a joint value taken from a pose with a reference: the cell's "
                          "inverse kinematics picks the configuration, not the reference")
-            c.joint(_target(run, run.base.inverse() * values.frame), st.line)
+            c.joint(_target(run, run.base.inverse() @ values.frame), st.line)
             return
         q = run.joints_rad(values)
         c.joint(run.fk(q, "JMOVE to a joint value"), st.line, joints=q)
@@ -82,7 +80,7 @@ def _move(run: Interpreter, st: ast.Move) -> None:
 def _appro(run: Interpreter, st: ast.Appro) -> None:
     goal = _target(run, run.eval.pose(st.target))
     distance = run.eval.real(st.distance)
-    back = Pose(goal.position - distance * goal.rotation[:, 2], goal.rotation)
+    back = Pose(goal.rotation, goal.translation_mm - distance * goal.rotation[:, 2])
     if st.op == "JAPPRO":
         run.controller.joint(back, st.line)
     else:
@@ -92,7 +90,7 @@ def _appro(run: Interpreter, st: ast.Appro) -> None:
 def _depart(run: Interpreter, st: ast.Depart) -> None:
     here = run.controller.need_current(st.op, st.line)
     distance = run.eval.real(st.distance)
-    end = Pose(here.position - distance * here.rotation[:, 2], here.rotation)
+    end = Pose(here.rotation, here.translation_mm - distance * here.rotation[:, 2])
     if st.op == "JDEPART":
         run.controller.joint(end, st.line)
     else:
@@ -106,8 +104,8 @@ def _draw(run: Interpreter, st: ast.Draw) -> None:
         raise NotSimulated(f"{st.op} with its own speed is not simulated; set SPEED before it")
     if any(v != 0.0 for v in d[3:6]):
         raise NotSimulated(f"{st.op} with a rotation is not simulated; use LMOVE to a pose")
-    axes = here.rotation if st.op == "TDRAW" else run.base.r
-    run.controller.linear(st.op, Pose(here.position + axes @ np.array(d[:3]), here.rotation), st.line)
+    axes = here.rotation if st.op == "TDRAW" else run.base.rotation
+    run.controller.linear(st.op, Pose(here.rotation, here.translation_mm + axes @ np.array(d[:3])), st.line)
 
 
 def _home(run: Interpreter, st: ast.Home) -> None:
@@ -121,7 +119,7 @@ def _point(run: Interpreter, st: ast.PointAssign) -> None:
         if run.eval.kind(st.value) == "joint":
             run.set("joint", st.target, run.eval.joint_value(st.value))
             return
-        frame = run.base * run.eval.pose(st.value)  # (the joint value reaches this pose in the base frame)
+        frame = run.base @ run.eval.pose(st.value)  # (the joint value reaches this pose in the base frame)
         reference = None if st.reference is None else run.eval.joints(st.reference)
         run.set("joint", st.target, PoseJoints(frame, reference))
         return
@@ -130,20 +128,20 @@ def _point(run: Interpreter, st: ast.PointAssign) -> None:
         run.warn(f"point/{st.component}", f"POINT/{st.component}: external axes are not simulated; {st.target.name} keeps "
                  "its x, y, z, o, a, t")
         old = run.scope_of(st.target).get("pose", run.key(st.target))
-        run.set("pose", st.target, old if old is not None else Frame(np.eye(3), np.zeros(3)))
+        run.set("pose", st.target, old if old is not None else IDENTITY)
         return
     if st.component is not None:
         old = run.scope_of(st.target).get("pose", run.key(st.target))
-        parts = list((old if old is not None else Frame(np.eye(3), np.zeros(3))).xyzoat())
-        new = value.xyzoat()
+        parts = list(xyzoat(old if old is not None else IDENTITY))
+        new = xyzoat(value)
         for i in _COMPONENTS[st.component]:
             parts[i] = new[i]
-        value = Frame.from_xyzoat(*parts)
+        value = pose_from_xyzoat(parts)
     run.set("pose", st.target, value)
 
 
 def _decompose(run: Interpreter, st: ast.Decompose) -> None:
-    values = run.eval.joints(st.value) if run.eval.kind(st.value) == "joint" else run.eval.pose(st.value).xyzoat()
+    values = run.eval.joints(st.value) if run.eval.kind(st.value) == "joint" else xyzoat(run.eval.pose(st.value))
     target = st.target
     if len(target.index) != 1:
         raise run.error("DECOMPOSE stores into a one-dimensional array element, as in a[1]")
@@ -156,7 +154,7 @@ def _here(run: Interpreter, st: ast.Here) -> None:
     if st.target.kind == "joint":
         if run.controller.current_joints is None and run.controller.current is not None:
             # after a Cartesian motion the angles need the inverse kinematics: the value keeps the pose
-            run.set("joint", st.target, PoseJoints(Frame.from_pose(run.controller.current), None))
+            run.set("joint", st.target, PoseJoints(run.controller.current, None))
             return
         run.set("joint", st.target, run.here_joints())
     elif st.target.kind == "value":
