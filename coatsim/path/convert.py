@@ -29,7 +29,7 @@ from coatsim.languages.kawasaki_as.parser import parse_as_bytes
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, write_as
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.frames import DEFAULT_TOOL
-from coatsim.path.placement import PlacedArc, PlacedLine, PlacedPath
+from coatsim.path.placement import PlacedMove, PlacedPath, placed_arc, placed_line
 from coatsim.path.process import ProcessInfo
 from coatsim.path.process_path import ProcessPath, PlaneFrame, dense_points, moves_in_lines, path_distance, \
     path_of, planar_frame, rotation_along, spray_runs
@@ -169,11 +169,11 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
     segments = []
     for k, s in enumerate(poly.segments):
         if isinstance(s, Line):
-            segments.append(PlacedLine(poses[k], poses[k + 1], "curve"))
+            segments.append(placed_line(poses[k], poses[k + 1]))
         else:
             normal = plane.normal if s.sweep > 0 else -plane.normal
-            segments.append(PlacedArc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal,
-                                      abs(s.sweep), False))
+            arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
+            segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
     return Fitted(path, plane, tuple(segments), poly.n_arcs, poly.n_lines, seg.max_deviation_mm,
                   _line_span(run, moves), tuple(notes))
 

@@ -11,7 +11,8 @@ import numpy as np
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
-from coatsim.path.arcs import circle_through, move_length, sample_move
+from coatsim.geometry.space.primitives import arc_through
+from coatsim.path.arcs import move_length, sample_move
 from coatsim.geometry.space.pose import Pose
 from coatsim.path.process_path import spray_runs
 from coatsim.path.toolpath import CircularMove, ToolPath
@@ -84,7 +85,7 @@ def user_program(toolpath: ToolPath, frame: Pose, text: str, step_mm: float = 0.
         a, b = _local(frame, m.start.translation_mm), _local(frame, m.end.translation_mm)
         heights += [a[2], b[2]]
         if isinstance(m, CircularMove):
-            c = circle_through(m.start.translation_mm, m.via.translation_mm, m.end.translation_mm)
+            c = arc_through(m.start.translation_mm, m.via.translation_mm, m.end.translation_mm)
             centre = _local(frame, c.center)
             turn = float(frame.rotation.T @ c.normal @ np.array([0.0, 0.0, 1.0]))
             sweep = math.copysign(c.sweep, turn)

@@ -10,6 +10,7 @@ import numpy as np
 
 from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.core.errors import ExecutionError, InputError
+from coatsim.geometry.space.primitives import Line3
 from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.chain import tcp_positions_mm
@@ -17,7 +18,6 @@ from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual, Tracker, joint_path_events
 from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
 from coatsim.robot.playback import play
-from coatsim.robot.primitives3d import line
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import CartesianPiece, JointPiece, min_motion_time_s, plan_pieces, step_label
@@ -216,7 +216,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=MAX_SIM_STEPS - steps[0])
             wall["timing_s"] += time.perf_counter() - t0
             tcp = tcp_positions_mm(cell, timed.q)
-            chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
+            chords = tuple(Line3(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
             owner = -1 if piece.move is None else piece.move
             chunks.append((chords, (owner,) * len(chords)))
             along = np.concatenate(([0.0], np.cumsum([c.length for c in chords])))

@@ -39,7 +39,7 @@ from typing import Callable, Optional, Union
 import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.path.arcs import DegenerateArc, circle_through
+from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.path.process import ProcessInfo
 from coatsim.geometry.space.pose import Pose
@@ -161,7 +161,7 @@ class Controller:
         via, via_line = self.c1
         self.c1 = None
         try:
-            circle_through(self.current.translation_mm, via.translation_mm, end.translation_mm)
+            arc_through(self.current.translation_mm, via.translation_mm, end.translation_mm)
         except DegenerateArc as exc:
             raise self.error(line, f"arc from the current pose through the C1MOVE pose (line {via_line}) to here "
                              f"is undefined: {exc}") from None
@@ -251,7 +251,7 @@ class Controller:
     def length(self, m: _Pending) -> float:
         start = m.start.translation_mm if m.start is not None else m.end.translation_mm
         if m.kind == "arc":
-            c = circle_through(start, m.via.translation_mm, m.end.translation_mm)
+            c = arc_through(start, m.via.translation_mm, m.end.translation_mm)
             return c.radius * c.sweep
         return float(np.linalg.norm(m.end.translation_mm - start))
 

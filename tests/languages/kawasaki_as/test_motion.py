@@ -11,7 +11,8 @@ import pytest
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.languages.kawasaki_as import interpret, interpret_run, parse_as
-from coatsim.path.arcs import circle_through, move_length
+from coatsim.geometry.space.primitives import arc_through
+from coatsim.path.arcs import move_length
 from coatsim.languages.kawasaki_as.motion import FULL_SPEED_MM_S
 from coatsim.geometry.space.rotations import oat_to_matrix
 from coatsim.path.process import ProcessInfo
@@ -72,7 +73,7 @@ def test_reference_example_a_draws_the_rounded_square():
     assert tp.moves[1].settings.stop_at_end and tp.moves[9].settings.stop_at_end
     arcs = [m for m in tp.moves if isinstance(m, CircularMove)]
     for arc in arcs:
-        c = circle_through(arc.start.translation_mm, arc.via.translation_mm, arc.end.translation_mm)
+        c = arc_through(arc.start.translation_mm, arc.via.translation_mm, arc.end.translation_mm)
         assert c.radius == pytest.approx(20.0, abs=2e-3) and c.sweep == pytest.approx(math.pi / 2, abs=1e-4)
     sprayed = sum(move_length(m) for m in tp.spray_moves)
     assert sprayed == pytest.approx(4 * 160 + 2 * math.pi * 20, abs=0.01)
@@ -162,7 +163,7 @@ def test_appro_depart_draw_tdraw():
 
 def test_circle_through_three_poses():
     tp = run("  JMOVE b\n  C1MOVE v\n  C2MOVE e\n")
-    c = circle_through(*(p.translation_mm for p in (tp.moves[1].start, tp.moves[1].via, tp.moves[1].end)))
+    c = arc_through(*(p.translation_mm for p in (tp.moves[1].start, tp.moves[1].via, tp.moves[1].end)))
     assert np.allclose(c.center, [100, 100, 0], atol=1e-6) and c.radius == pytest.approx(100.0)
     assert c.sweep == pytest.approx(math.pi / 2, abs=1e-8) and np.allclose(c.normal, [0, 0, 1])
 
