@@ -41,12 +41,12 @@ MAX_YAML_ALIASES = 100
 MAX_YAML_NODES = 100_000
 
 
-def check_budget(what: str, needed: float, budget: int, fix: str) -> None:
+def check_budget(what: str, needed: float, budget: int, fix: str, parameters: tuple[str, ...] = ()) -> None:
     """Raise an InputError when ``needed`` (a count: any int, or a float that may be inf or
-    nan) exceeds ``budget``."""
+    nan) exceeds ``budget``; ``parameters`` those the message names (see CoatsimError)."""
     if not needed <= budget:
         try:
             amount = f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"
         except OverflowError:  # an int beyond float range
             amount = "an unbounded number"
-        raise InputError(f"{what}: {amount} needed, over the budget of {budget:,}; {fix}")
+        raise InputError(f"{what}: {amount} needed, over the budget of {budget:,}; {fix}", parameters=parameters)
