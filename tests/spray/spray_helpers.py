@@ -88,3 +88,40 @@ def stationary_peak_um(t: float = 1.0, sigma: float = SIGMA) -> float:
 
 def pass_profile_um(y, speed: float = V, sigma: float = SIGMA):
     return Q / (math.sqrt(2 * math.pi) * sigma * speed) * np.exp(-np.asarray(y) ** 2 / (2 * sigma**2)) * 1000
+
+
+def mesh_surface(name: str, vertices, faces, normals) -> Surface:
+    """A surface from arrays (normals are normalised; areas from the triangles)."""
+    from coatsim.spray.surfaces import vertex_areas
+
+    vertices, faces = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    normals = np.asarray(normals, float)
+    normals = normals / np.linalg.norm(normals, axis=1)[:, None]
+    return Surface(name, "mesh", vertices, faces, normals, vertex_areas(vertices, faces), vertices[:, :2].copy(),
+                   ("x (mm)", "y (mm)"))
+
+
+def sphere(radius: float, subdivisions: int, centre=(0.0, 0.0, 0.0), inward: bool = False) -> Surface:
+    """Icosphere with its vertices on the sphere and exact normals (inward: the inside of a shell)."""
+    import trimesh
+
+    unit = trimesh.creation.icosphere(subdivisions=subdivisions)
+    faces = unit.faces[:, ::-1] if inward else unit.faces
+    normals = -unit.vertices if inward else unit.vertices
+    return mesh_surface(f"sphere:{radius:g}", radius * unit.vertices + np.asarray(centre, float), faces, normals)
+
+
+def translated(surface: Surface, offset) -> Surface:
+    return mesh_surface(surface.name, surface.vertices + np.asarray(offset, float), surface.faces, surface.normals)
+
+
+def shelf_over_floor(spacing: float, height: float = 40.0) -> tuple[Surface, int]:
+    """A 200 x 160 mm floor at z = 0 and a 100 x 160 mm shelf at z = ``height`` over its x < 0
+    half (edge along x = 0), both facing +z; returns the surface and the floor's vertex count."""
+    from coatsim.spray.surfaces import plate
+
+    floor = plate(200, 160, spacing)
+    pose = np.eye(4)
+    pose[:3, 3] = (-50.0, 0.0, height)
+    shelf = plate(100, 160, spacing, pose)
+    return merge_surfaces(floor, shelf), floor.n_vertices
