@@ -5,11 +5,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from hypothesis import strategies as st
 
 from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import Footprint, Gaussian
-from coatsim.spray.surfaces import Surface
+from coatsim.spray.surfaces import Surface, plate
 
 SIGMA = 5.0
 H0 = 100.0
@@ -59,6 +60,24 @@ def join_logs(*logs: TrajectoryLog, gap_s: float = 0.0) -> TrajectoryLog:
         s.append(spray)
         offset = t[-1][-1] + max(gap_s, 1e-3)
     return make_log(np.concatenate(t), np.concatenate(p), np.concatenate(a), np.concatenate(s))
+
+
+# Paths stay within 50 mm of the origin at heights up to 140 mm, the axis tilted by up to
+# atan(0.4 * sqrt(2)) = 29.5 deg; the 6-sigma footprint cone opens atan(30 / 100) = 16.7 deg more, so
+# spray lands up to 50 + 140 tan(46.2 deg) = 196 mm from the origin: a 400 mm plate catches all of it.
+PLATE = plate(400, 400, SIGMA / 2)
+
+
+@st.composite
+def random_paths(draw):
+    n = draw(st.integers(2, 12))
+    xy = draw(st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50)), min_size=n, max_size=n))
+    z = draw(st.lists(st.floats(80, 140), min_size=n, max_size=n))
+    tilt = draw(st.lists(st.tuples(st.floats(-0.4, 0.4), st.floats(-0.4, 0.4)), min_size=n, max_size=n))
+    dt = draw(st.lists(st.floats(0.001, 0.2), min_size=n - 1, max_size=n - 1))
+    spray = draw(st.lists(st.booleans(), min_size=n, max_size=n))
+    axis = np.array([[tx, ty, -1.0] for tx, ty in tilt])
+    return make_log(np.r_[0, np.cumsum(dt)], np.column_stack([np.array(xy), z]), axis / np.linalg.norm(axis, axis=1)[:, None], spray)
 
 
 def gun(footprint: Footprint | None = None, **kwargs) -> SprayModel:
@@ -118,8 +137,6 @@ def translated(surface: Surface, offset) -> Surface:
 def shelf_over_floor(spacing: float, height: float = 40.0) -> tuple[Surface, int]:
     """A 200 x 160 mm floor at z = 0 and a 100 x 160 mm shelf at z = ``height`` over its x < 0
     half (edge along x = 0), both facing +z; returns the surface and the floor's vertex count."""
-    from coatsim.spray.surfaces import plate
-
     floor = plate(200, 160, spacing)
     pose = np.eye(4)
     pose[:3, 3] = (-50.0, 0.0, height)

@@ -10,32 +10,13 @@ import numpy as np
 import pytest
 import trimesh
 from hypothesis import given, settings
-from hypothesis import strategies as st
 from scipy.special import i0e
 
 from coatsim.cli import main
 from coatsim.spray.coat import coat, run_coat
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import plate
-from spray_helpers import H0, Q, SIGMA, V, gun, line_log, make_log, volume
-
-# Paths stay within 50 mm of the origin at heights up to 140 mm, the axis tilted by up to
-# atan(0.4 * sqrt(2)) = 29.5 deg; the 6-sigma footprint cone opens atan(30 / 100) = 16.7 deg more, so
-# spray lands up to 50 + 140 tan(46.2 deg) = 196 mm from the origin: a 400 mm plate catches all of it.
-PLATE = plate(400, 400, SIGMA / 2)
-
-
-@st.composite
-def random_paths(draw):
-    n = draw(st.integers(2, 12))
-    xy = draw(st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50)), min_size=n, max_size=n))
-    z = draw(st.lists(st.floats(80, 140), min_size=n, max_size=n))
-    tilt = draw(st.lists(st.tuples(st.floats(-0.4, 0.4), st.floats(-0.4, 0.4)), min_size=n, max_size=n))
-    dt = draw(st.lists(st.floats(0.001, 0.2), min_size=n - 1, max_size=n - 1))
-    spray = draw(st.lists(st.booleans(), min_size=n, max_size=n))
-    axis = np.array([[tx, ty, -1.0] for tx, ty in tilt])
-    return make_log(np.r_[0, np.cumsum(dt)], np.column_stack([np.array(xy), z]), axis / np.linalg.norm(axis, axis=1)[:, None], spray)
-
+from spray_helpers import H0, PLATE, Q, SIGMA, V, gun, line_log, make_log, random_paths, volume
 
 @given(random_paths())
 @settings(max_examples=25, deadline=None)

@@ -20,7 +20,7 @@ from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import cylinder, plate
 from coatsim.spray.visibility import RayCaster, exposed_vertices
 from spray_helpers import (
-    H0, Q, V, gun, line_log, make_log, mesh_surface, shelf_over_floor, sphere, stationary_log, volume,
+    H0, Q, gun, line_log, make_log, mesh_surface, shelf_over_floor, sphere, stationary_log, volume,
 )
 
 TILT = math.radians(15)  # the gun leans towards -x, under the shelf
