@@ -126,3 +126,32 @@ def test_mass_balance_with_bouncing(log):
     deposited, lost = volume(PLATE, result.thickness_mm), volume(PLATE, result.lost_mm)
     assert deposited + lost == pytest.approx(sprayed, rel=1e-6)
     assert lost >= 0 and deposited <= sprayed * (1 + 1e-6)
+
+
+SCENARIO = """\
+name: demo
+curve:
+  builtin: raster
+  params: {passes: 3, pitch: 20}
+workpiece: {kind: plate, size_mm: [300, 200]}
+gun:
+  efficiency: EFFICIENCY
+"""
+
+
+def test_a_scenario_gun_carries_its_efficiency(tmp_path):
+    from coatsim.scenario import load_scenario
+    from coatsim.scenario_inputs import input_files, spray_model
+
+    (tmp_path / "guns").mkdir()
+    (tmp_path / "guns" / "de.csv").write_text("spray_angle_deg,efficiency\n30,0.6\n90,1\n")
+    job = tmp_path / "job.yaml"
+    job.write_text(SCENARIO.replace("EFFICIENCY", "table:guns/de.csv"))
+    loaded = load_scenario(job)
+    assert spray_model(loaded).efficiency == parse_efficiency_spec(f"table:{tmp_path / 'guns' / 'de.csv'}")
+    assert ("gun.efficiency", tmp_path / "guns" / "de.csv") in input_files(loaded)
+    job.write_text(SCENARIO.replace("EFFICIENCY", "angle"))
+    assert spray_model(load_scenario(job)).efficiency == parse_efficiency_spec("angle")
+    job.write_text(SCENARIO.replace("EFFICIENCY", "angle:45=1.5"))
+    with pytest.raises(InputError, match=r"job.yaml:7: gun.efficiency: .*efficiency must be between 0 and 1"):
+        load_scenario(job)
