@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import warnings
+import weakref
 from dataclasses import dataclass
 from typing import Callable
 
@@ -41,7 +42,7 @@ from coatsim.spray.culling import cone_pairs, vertex_tree
 from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface
-from coatsim.spray.visibility import RayCaster, check_shadow_mode, exposed_vertices, ray_caster
+from coatsim.spray.visibility import RayCaster, Visibility, check_shadow_mode, visibility
 
 MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far below float overflow
 _LEAF_TESTS_PER_BATCH = 400_000
@@ -196,20 +197,27 @@ class _Shadows:
     group: np.ndarray
 
 
+#: Each surface's Visibility (its hull and Embree scene), kept while the surface lives: the
+#: variants of a run and the report's partial coats share one.
+_VISIBILITY: weakref.WeakKeyDictionary[Surface, Visibility] = weakref.WeakKeyDictionary()
+
+
 def _shadows(surface: Surface, model: SprayModel, steps: SubSteps) -> _Shadows | None:
     """What visibility needs, or None when no vertex can be hidden or shadows are off."""
     if model.shadows == "off":
         return None
-    exposed = exposed_vertices(surface.vertices, surface.normals)
-    if exposed.all():
-        return None
-    caster = ray_caster(surface.vertices, surface.faces, model.shadows)
-    if caster is None:
+    seen = _VISIBILITY.get(surface)
+    if seen is None:
+        seen = visibility(surface.vertices, surface.normals, surface.faces, model.shadows)
+        if not seen.unavailable:
+            _VISIBILITY[surface] = seen
+    if seen.unavailable:
         warnings.warn(f"{surface.name} can shadow itself but the embreex package (Embree ray casting) cannot be "
                       f"imported: coating without shadows; install it with pip install embreex", CoatsimWarning)
+    if seen.caster is None:
         return None
     moved = np.r_[True, np.any(steps.position[1:] != steps.position[:-1], axis=1)]
-    return _Shadows(caster, exposed, np.cumsum(moved) - 1)
+    return _Shadows(seen.caster, seen.exposed, np.cumsum(moved) - 1)
 
 
 def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d: np.ndarray,

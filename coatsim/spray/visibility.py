@@ -16,6 +16,8 @@ queries directly (no hit points), about a microsecond each.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
@@ -27,7 +29,9 @@ SHADOW_MODES = ("auto", "on", "off")
 #: vertex's own triangles never block it (0.01 mm at 100 mm: ten times float32 rounding at
 #: 1 % incidence cosine), plus 1e-6 of the part's size.
 RAY_END_GAP = 1e-4
-#: Embree's scene: bytes per triangle (BVH, measured ~66) and our float32 copies, with margin.
+#: Memory of the exposure test per vertex (Qhull's hull, measured ~300 bytes per hull vertex) and
+#: of Embree's scene per triangle (its BVH, measured ~66, and our float32 copies), with margin.
+HULL_BYTES_PER_VERTEX = 400
 SCENE_BYTES_PER_TRIANGLE = 100
 SCENE_BYTES_PER_VERTEX = 16
 #: Rays are cast in batches of at most this many (28 bytes each in float32 arrays).
@@ -58,31 +62,34 @@ def _planar_exposed(vertices: np.ndarray, normals: np.ndarray, plane_normal: np.
     return exposed
 
 
-def _hull_support(points: np.ndarray, simplices: np.ndarray, directions: np.ndarray, start: np.ndarray) -> np.ndarray:
-    """max over ``points`` (a convex polytope's vertices with its triangles ``simplices``) of
-    d.p for every direction d, by steepest ascent along the polytope's edges from ``start``."""
+def _hull_climb(points: np.ndarray, simplices: np.ndarray, directions: np.ndarray, start: np.ndarray,
+                limit: np.ndarray) -> np.ndarray:
+    """Whether max over ``points`` (a convex polytope's vertices with its triangles ``simplices``)
+    of d.p stays <= ``limit`` for every direction d: steepest ascent along the polytope's edges
+    from ``start``, given up as soon as it passes the limit."""
     edges = np.unique(np.sort(simplices[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0)
     edges = np.concatenate([edges, edges[:, ::-1]])
     edges = edges[np.lexsort((edges[:, 1], edges[:, 0]))]
     indptr = np.searchsorted(edges[:, 0], np.arange(len(points) + 1))
     current = start.copy()
     value = np.einsum("ij,ij->i", directions, points[current])
-    active = np.arange(len(directions))
+    active = np.flatnonzero(value <= limit)
     while len(active):
         node = current[active]
         degree = indptr[node + 1] - indptr[node]
+        first = np.cumsum(degree) - degree
         owner = np.repeat(np.arange(len(active)), degree)
-        neighbour = edges[np.repeat(indptr[node], degree) + np.arange(int(degree.sum()))
-                          - np.repeat(np.cumsum(degree) - degree, degree), 1]
+        neighbour = edges[np.repeat(indptr[node] - first, degree) + np.arange(int(degree.sum())), 1]
         candidate = np.einsum("ij,ij->i", directions[active[owner]], points[neighbour])
-        best = np.lexsort((-candidate, owner))
-        first = best[np.searchsorted(owner[best], np.arange(len(active)))]
-        better = candidate[first] > value[active]
+        best = np.maximum.reduceat(candidate, first)
+        at_best = np.flatnonzero(candidate >= best[owner])
+        pick = at_best[np.searchsorted(owner[at_best], np.arange(len(active)))]
+        better = best > value[active]
         moved = active[better]
-        current[moved] = neighbour[first[better]]
-        value[moved] = candidate[first[better]]
-        active = moved
-    return value
+        current[moved] = neighbour[pick[better]]
+        value[moved] = best[better]
+        active = moved[value[moved] <= limit[moved]]
+    return value <= limit
 
 
 def exposed_vertices(vertices: np.ndarray, normals: np.ndarray) -> np.ndarray:
@@ -103,15 +110,15 @@ def exposed_vertices(vertices: np.ndarray, normals: np.ndarray) -> np.ndarray:
     local = np.full(len(vertices), -1, dtype=np.int64)
     local[hull.vertices] = np.arange(len(hull.vertices))
     points = vertices[hull.vertices]
-    start = cKDTree(points).query(vertices)[1]
-    support = _hull_support(points, local[hull.simplices], normals, np.asarray(start, dtype=np.int64))
-    return support <= np.einsum("ij,ij->i", normals, vertices) + tol
+    start = np.asarray(cKDTree(points).query(vertices)[1], dtype=np.int64)
+    return _hull_climb(points, local[hull.simplices], normals, start, np.einsum("ij,ij->i", normals, vertices) + tol)
 
 
 def shadow_memory_bytes(n_vertices: int, n_triangles: int) -> float:
-    """Memory the ray caster needs for a surface: Embree's scene and one batch of rays."""
-    return (SCENE_BYTES_PER_TRIANGLE * float(n_triangles) + SCENE_BYTES_PER_VERTEX * float(n_vertices)
-            + RAY_BYTES * float(RAYS_PER_BATCH))
+    """Memory shadows need for a surface: the exposure test's hull, Embree's scene and one
+    batch of rays."""
+    return (SCENE_BYTES_PER_TRIANGLE * float(n_triangles) + (SCENE_BYTES_PER_VERTEX + HULL_BYTES_PER_VERTEX)
+            * float(n_vertices) + RAY_BYTES * float(RAYS_PER_BATCH))
 
 
 class RayCaster:
@@ -122,9 +129,6 @@ class RayCaster:
         from embreex import rtcore_scene
         from embreex.mesh_construction import TriangleMesh
 
-        check_budget(f"shadows: ray-casting scene of {len(faces)} triangles, bytes",
-                     shadow_memory_bytes(len(vertices), len(faces)), MAX_SHADOW_BYTES,
-                     "use a larger spacing, or set shadows off")
         lo, hi = vertices.min(axis=0), vertices.max(axis=0)
         self.origin = 0.5 * (lo + hi)
         self.gap_mm = 1e-6 * max(float(np.max(hi - lo)), 1e-3)
@@ -145,17 +149,33 @@ class RayCaster:
         return out
 
 
-def ray_caster(vertices: np.ndarray, faces: np.ndarray, mode: str) -> RayCaster | None:
-    """The ray caster of a surface for shadows ``mode`` (see SHADOW_MODES), None when the
-    Embree binding cannot be imported: an error when shadows were asked for (``on``); in
-    ``auto`` the caller warns and coats without shadows."""
+@dataclass(frozen=True, eq=False)
+class Visibility:
+    """What shadows need on one surface: the vertices nothing can hide (n,), and a ray caster
+    for the others (None when there are none, or when the Embree binding is ``unavailable``)."""
+
+    exposed: np.ndarray
+    caster: RayCaster | None
+    unavailable: bool = False
+
+
+def visibility(vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray, mode: str) -> Visibility:
+    """The surface's Visibility for shadows ``mode`` (``auto`` or ``on``), its memory checked
+    against MAX_SHADOW_BYTES first. Without the Embree binding: an error when shadows were asked
+    for (``on``); in ``auto``, ``unavailable`` (the caller warns and coats without shadows)."""
+    check_budget(f"shadows: convex hull and ray-casting scene of {len(vertices)} vertices, {len(faces)} "
+                 f"triangles, bytes", shadow_memory_bytes(len(vertices), len(faces)), MAX_SHADOW_BYTES,
+                 "use a larger spacing, or set shadows off")
+    exposed = exposed_vertices(vertices, normals)
+    if exposed.all():
+        return Visibility(exposed, None)
     try:
-        return RayCaster(vertices, faces)
+        return Visibility(exposed, RayCaster(vertices, faces))
     except ImportError as exc:
         if mode == "on":
             raise InputError(f"shadows need the embreex package (Embree ray casting), which cannot be imported "
                              f"({type(exc).__name__}: {exc}); install it (pip install embreex) or set shadows off") from None
-        return None
+        return Visibility(exposed, None, unavailable=True)
 
 
 def check_shadow_mode(mode: str) -> str:
