@@ -73,16 +73,11 @@ def vertex_tree(points: np.ndarray) -> VertexTree:
     start, count = span[leaf_rank, 0], span[leaf_rank, 1] - span[leaf_rank, 0]
     order = np.asarray(tree.indices, dtype=np.int64)
     leaf = np.repeat(np.arange(len(start)), count)
-    pts = points[order]
-    lo = np.full((len(start), 3), np.inf)
-    hi = np.full((len(start), 3), -np.inf)
-    np.minimum.at(lo, leaf, pts)
-    np.maximum.at(hi, leaf, pts)
+    pts = points[order]  # leaf by leaf: each leaf a contiguous run from its start
     centre = np.zeros((len(nodes), 3))
     radius = np.zeros(len(nodes))
-    centre[: len(start)] = 0.5 * (lo + hi)
-    np.maximum.at(radius, leaf, np.linalg.norm(pts - centre[leaf], axis=1))
-    radius[: len(start)] = radius[: len(start)] * (1 + _SLACK) + _SLACK
+    centre[: len(start)] = 0.5 * (np.minimum.reduceat(pts, start) + np.maximum.reduceat(pts, start))
+    radius[: len(start)] = np.maximum.reduceat(np.linalg.norm(pts - centre[leaf], axis=1), start) * (1 + _SLACK) + _SLACK
     children = np.full((len(nodes), 2), -1, dtype=np.int64)
     parent = np.asarray(links[1:], dtype=np.int64)
     child = ids[np.arange(1, len(nodes))]
@@ -132,11 +127,28 @@ def cone_leaves(tree: VertexTree, position: np.ndarray, axis: np.ndarray, slope:
     return step[first], leaf[first]
 
 
-def cone_pairs(tree: VertexTree, position: np.ndarray, axis: np.ndarray, slope: float,
-               steps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(sub-step, vertex) pairs of every vertex in a leaf that may meet each sub-step's cone."""
+@dataclass(frozen=True, eq=False)
+class Pairs:
+    """(sub-step, vertex) pairs of every vertex in a leaf that may meet a sub-step's cone; the
+    vertices they touch, each once (``touched``), and each pair's index into it (``slot``), so
+    sums per vertex take work in proportion to the pairs, not to the mesh."""
+
+    step: np.ndarray
+    vertex: np.ndarray
+    slot: np.ndarray
+    touched: np.ndarray
+
+
+def cone_pairs(tree: VertexTree, position: np.ndarray, axis: np.ndarray, slope: float, steps: np.ndarray) -> Pairs:
+    """The pairs of ``steps`` (indices into ``position`` and ``axis``), ordered by sub-step, then
+    leaf, then the vertex's place in its leaf."""
     step, leaf = cone_leaves(tree, position, axis, slope, steps)
     counts = tree.count[leaf]
     offset = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
     vertex = tree.order[np.repeat(tree.start[leaf], counts) + offset]
-    return np.repeat(step, counts), vertex
+    hit = np.unique(leaf)
+    size = tree.count[hit]
+    base = np.zeros(tree.n_leaves, dtype=np.int64)
+    base[hit] = np.cumsum(size) - size
+    touched = tree.order[np.repeat(tree.start[hit] - base[hit], size) + np.arange(int(size.sum()))]
+    return Pairs(np.repeat(step, counts), vertex, np.repeat(base[leaf], counts) + offset, touched)

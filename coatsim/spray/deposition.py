@@ -38,7 +38,7 @@ import numpy as np
 from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
 from coatsim.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
-from coatsim.spray.culling import cone_pairs, vertex_tree
+from coatsim.spray.culling import Pairs, cone_pairs, vertex_tree
 from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface
@@ -46,6 +46,7 @@ from coatsim.spray.visibility import RayCaster, Visibility, check_shadow_mode, v
 
 MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far below float overflow
 _LEAF_TESTS_PER_BATCH = 400_000
+_MIN_STEPS_PER_SEARCH = 64
 _PAIRS_PER_BATCH = 1_000_000
 
 
@@ -254,45 +255,45 @@ def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray, mode
 
 
 class _Totals:
-    """Per-vertex sums over the batches (bincount per batch, in pair order)."""
+    """Per-vertex sums over the batches: each batch's sums (bincount in pair order) over the
+    vertices it touches, added to them."""
 
     def __init__(self, n: int):
-        self.n = n
         # separate arrays, as numpy allocates them: a row of one block may be aligned differently,
         # and BLAS sums (the volumes) round differently with the alignment
         self.thickness, self.exposure, self.shadowed, self.lost, self.angle, self.standoff = (np.zeros(n) for _ in range(6))
         self.r2_min = np.full(n, np.inf)
         self.evaluations = self.rays = 0
 
-    def add(self, i: np.ndarray, weights: np.ndarray) -> np.ndarray:
-        return np.bincount(i, weights=weights, minlength=self.n)
 
-
-def _batch(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
+def _batch(surface: Surface, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
            shadows: _Shadows | None, totals: _Totals) -> None:
-    """Evaluate the pairs (s, i) and add them to ``totals``."""
+    """Evaluate the pairs ``sel`` and add them to ``totals``."""
+    s, i, slot, touched = pairs.step[sel], pairs.vertex[sel], pairs.slot[sel], pairs.touched
+    add = lambda where, w: np.bincount(slot[where], weights=w, minlength=len(touched))  # noqa: E731
+    every = slice(None)
     d, dist, da, cos_gamma, rate, r2 = _rates(surface, steps, s, i, model)
     totals.evaluations += len(s)
     dt = steps.dt[s]
     if shadows is not None:
         aimed = np.flatnonzero((rate > 0) & ~shadows.exposed[i])
-        hidden, rays = _blocked(shadows, steps, s[aimed], i[aimed], d[aimed], dist[aimed], totals.n)
+        hidden, rays = _blocked(shadows, steps, s[aimed], i[aimed], d[aimed], dist[aimed], len(totals.thickness))
         totals.rays += rays
         blocked = aimed[hidden]
-        totals.shadowed += np.bincount(i[blocked], weights=rate[blocked] * dt[blocked], minlength=totals.n)
+        totals.shadowed[touched] += add(blocked, rate[blocked] * dt[blocked])
         rate[blocked] = 0.0
         r2[blocked] = np.inf
     stuck = rate if model.efficiency is None else rate * model.efficiency.factor(cos_gamma)
     if model.efficiency is not None:
-        totals.lost += totals.add(i, (rate - stuck) * dt)
+        totals.lost[touched] += add(every, (rate - stuck) * dt)
     weight = stuck * dt
-    totals.thickness += totals.add(i, weight)
-    totals.exposure += totals.add(i, np.where(stuck > 0, dt, 0.0))
+    totals.thickness[touched] += add(every, weight)
+    totals.exposure[touched] += add(every, np.where(stuck > 0, dt, 0.0))
     np.minimum.at(totals.r2_min, i, r2)
     on = np.flatnonzero(weight > 0)
     angle = np.degrees(np.arcsin(np.minimum(cos_gamma[on], 1.0)))
-    totals.angle += np.bincount(i[on], weights=weight[on] * angle, minlength=totals.n)
-    totals.standoff += np.bincount(i[on], weights=weight[on] * da[on], minlength=totals.n)
+    totals.angle[touched] += add(on, weight[on] * angle)
+    totals.standoff[touched] += add(on, weight[on] * da[on])
 
 
 def _deposit(totals: _Totals, steps: SubSteps, shadows: bool) -> Deposit:
@@ -312,11 +313,13 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
     tree = vertex_tree(surface.vertices)
     shadows = _shadows(surface, model, steps)
     slope = model.footprint.cutoff_mm / model.standoff_mm
-    chunk = max(1, _LEAF_TESTS_PER_BATCH // tree.n_leaves)  # sub-steps per search: bounds its memory
+    # sub-steps per search (the batches' sums are grouped by it, so it stays what it was for meshes
+    # of up to 6250 leaves: the same thickness to the last bit)
+    chunk = max(_MIN_STEPS_PER_SEARCH, _LEAF_TESTS_PER_BATCH // tree.n_leaves)
     for lo in range(0, len(steps), chunk):
-        s_all, i_all = cone_pairs(tree, steps.position, steps.axis, slope, np.arange(lo, min(lo + chunk, len(steps))))
-        for b in range(0, len(s_all), _PAIRS_PER_BATCH):
-            _batch(surface, steps, s_all[b:b + _PAIRS_PER_BATCH], i_all[b:b + _PAIRS_PER_BATCH], model, shadows, totals)
+        pairs = cone_pairs(tree, steps.position, steps.axis, slope, np.arange(lo, min(lo + chunk, len(steps))))
+        for b in range(0, len(pairs.step), _PAIRS_PER_BATCH):
+            _batch(surface, steps, pairs, slice(b, b + _PAIRS_PER_BATCH), model, shadows, totals)
         if progress is not None:
             progress(min(lo + chunk, len(steps)) / len(steps))
     return _deposit(totals, steps, shadows is not None)

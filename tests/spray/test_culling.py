@@ -1,4 +1,5 @@
-"""The culling tree's top-down search returns exactly the leaves a test of every leaf returns."""
+"""The culling tree's top-down search returns exactly the leaves a test of every leaf returns, and
+the pairs index the vertices they touch."""
 
 from __future__ import annotations
 
@@ -31,7 +32,10 @@ def test_the_search_finds_exactly_the_leaves_that_meet_the_cone(seed, n, slope):
     expected = every_leaf(tree, position, axis, slope)
     np.testing.assert_array_equal(found[0], expected[0])
     np.testing.assert_array_equal(found[1], expected[1])
-    step, vertex = cone_pairs(tree, position, axis, slope, np.arange(30))
+    pairs = cone_pairs(tree, position, axis, slope, np.arange(30))
+    step, vertex = pairs.step, pairs.vertex
+    np.testing.assert_array_equal(pairs.touched[pairs.slot], vertex)  # every touched vertex once
+    assert len(np.unique(pairs.touched)) == len(pairs.touched) and set(pairs.touched) == set(vertex)
     for s in range(30):  # every vertex strictly inside a cone is among its pairs
         d_all = points - position[s]
         w_all = d_all @ axis[s]
