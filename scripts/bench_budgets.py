@@ -1,4 +1,4 @@
-"""What the resource budgets of coatsim/budgets.py cost: time and peak memory per unit of each
+"""What the resource budgets of coatsim/core/budgets.py cost: time and peak memory per unit of each
 bounded quantity, measured on a moderate case in a fresh process, and extrapolated to the budget;
 then how fast an over-budget input is refused.
 
@@ -18,7 +18,7 @@ from coatsim import budgets
 CHILD = r"""
 import resource, sys, time
 t0 = time.perf_counter()
-from coatsim.cli import main
+from coatsim.cli.app import main
 sys.argv = ["coatsim", *sys.argv[1:]]
 try:
     main()
@@ -51,7 +51,7 @@ def main() -> None:
     print(f"baseline (import + tiny segment): {base_s:.2f} s, {base_mb:.0f} MB peak RSS\n")
     print("| quantity | measured on | time | peak RSS | per unit | at the budget |")
     print("|---|---|---|---|---|---|")
-    from coatsim.program import read_toolpath
+    from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.robot.sampling import CartesianPiece, plan_pieces
 
     samples = sum(len(p.s) for p in plan_pieces(read_toolpath(d / "p.as"), 0.01) if isinstance(p, CartesianPiece))

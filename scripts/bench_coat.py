@@ -205,7 +205,7 @@ def ball(subdivisions: int):
 def _case(name: str, arg: float, shadows: str) -> dict:
     """One measured case (run in a fresh process): CPU seconds of the deposition, of the whole
     in-process coat (deposition, region of interest, metrics) and the peak resident memory."""
-    from coatsim.runtime import single_threaded_numerics
+    from coatsim.core.runtime import single_threaded_numerics
 
     single_threaded_numerics()
     from coatsim.spray.coat import coat

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from coatsim.budgets import MAX_CURVE_FILE_BYTES, MAX_TRAJECTORY_BYTES, MAX_YAML_BYTES
+from coatsim.core.budgets import MAX_CURVE_FILE_BYTES, MAX_TRAJECTORY_BYTES, MAX_YAML_BYTES
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 CAP_BYTES = 1536 << 20
@@ -28,7 +28,7 @@ variants: [polysegment]
 CHILD = r"""
 import contextlib, io, json, resource, sys
 resource.setrlimit(resource.RLIMIT_AS, (CAP, CAP))
-from coatsim.cli import main
+from coatsim.cli.app import main
 results = []
 for argv in json.loads(sys.argv[1]):
     err = io.StringIO()

@@ -9,7 +9,7 @@ from typing import Literal
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs

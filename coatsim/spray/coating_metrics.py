@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from coatsim.errors import EmptyRegionOfInterest, InputError
+from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
 from coatsim.spray.surfaces import Surface, border_distance

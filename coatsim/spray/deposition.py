@@ -35,8 +35,8 @@ from typing import Callable
 
 import numpy as np
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
-from coatsim.errors import CoatsimWarning, InputError
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
+from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.culling import Pairs, cone_pairs, vertex_tree
 from coatsim.spray.efficiency import Efficiency

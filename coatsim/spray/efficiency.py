@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from coatsim.errors import InputError, shown
+from coatsim.core.errors import InputError, shown
 
 #: Knots (spray angle deg, DE) of the default ``angle`` curve; see the module docstring.
 DEFAULT_ANGLE_KNOTS: tuple[tuple[float, float], ...] = ((0.0, 0.0), (30.0, 0.75), (45.0, 0.9), (60.0, 1.0), (90.0, 1.0))

@@ -21,8 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
-from coatsim.budgets import MAX_SHADOW_BYTES, check_budget
-from coatsim.errors import InputError
+from coatsim.core.budgets import MAX_SHADOW_BYTES, check_budget
+from coatsim.core.errors import InputError
 
 SHADOW_MODES = ("auto", "on", "off")
 #: A ray from the nozzle stops this fraction of its length before the vertex it aims at, so the

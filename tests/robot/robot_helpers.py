@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, Pose, ToolPath
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, Pose, ToolPath
 
 DOWN = np.diag([-1.0, 1.0, -1.0])  # O-A-T (0, 180, 0): tool z along base -z
 

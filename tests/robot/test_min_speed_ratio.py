@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
-from coatsim.program.toolpath import ToolPath
+from coatsim.core.errors import InputError
+from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 from coatsim.robot.motion_metrics import RAMP_FACTOR, CurveAllowance, allowed_by_curve

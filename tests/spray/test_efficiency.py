@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.spray.coating_metrics import coating_metrics
 from coatsim.spray.deposition import deposit
 from coatsim.spray.efficiency import DEFAULT_ANGLE_KNOTS, AngleTable, CosinePower, parse_efficiency_spec
@@ -140,8 +140,8 @@ gun:
 
 
 def test_a_scenario_gun_carries_its_efficiency(tmp_path):
-    from coatsim.scenario import load_scenario
-    from coatsim.scenario_inputs import input_files, spray_model
+    from coatsim.run.scenario import load_scenario
+    from coatsim.run.scenario_inputs import input_files, spray_model
 
     (tmp_path / "guns").mkdir()
     (tmp_path / "guns" / "de.csv").write_text("spray_angle_deg,efficiency\n30,0.6\n90,1\n")

@@ -13,7 +13,7 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import CoatsimWarning, InputError
+from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.spray import visibility
 from coatsim.spray.coating_metrics import coating_metrics
 from coatsim.spray.deposition import deposit

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Optional, Sequence
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 
 
 def segment_drawing_command(path: str, tol: float, layers: Optional[Sequence[str]], join_tol: Optional[float],

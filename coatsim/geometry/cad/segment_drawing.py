@@ -11,10 +11,10 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.cad.chaining import chain_pieces
 from coatsim.geometry.cad.contour_fit import fit_contour
-from coatsim.geometry.cad.drawing import read_drawing
+from coatsim.geometry.cad.read import read_drawing
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.dynamics import speed_limited
 from coatsim.geometry.segment import Segmentation
