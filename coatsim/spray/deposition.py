@@ -233,10 +233,11 @@ def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d
     return shadows.caster.blocked(steps.position[s], d, dist), len(s)
 
 
-def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel):
-    """For the pairs (s, i): offsets d = x − p (mm), axial distance d·a (mm), cosine of the
-    incidence (0 where unseen), thickness rate before deposition efficiency (mm/s) and squared
-    reference-plane radius (mm², inf where unseen)."""
+def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray,
+           model: SprayModel) -> tuple[np.ndarray, ...]:
+    """For the pairs (s, i): offsets d = x − p and their lengths (mm), axial distance d·a (mm),
+    cosine of the incidence (0 where unseen), thickness rate before deposition efficiency (mm/s)
+    and squared reference-plane radius (mm², inf where unseen)."""
     h0 = model.standoff_mm
     d = surface.vertices[i] - steps.position[s]
     a = steps.axis[s]

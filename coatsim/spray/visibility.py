@@ -47,7 +47,8 @@ def _relative_tolerance(vertices: np.ndarray) -> float:
 def _planar_exposed(vertices: np.ndarray, normals: np.ndarray, plane_normal: np.ndarray, tol: float) -> np.ndarray:
     """Exposure on a flat surface: n.(y - x) over the plane's points, by their 2-D hull."""
     in_plane = normals - (normals @ plane_normal)[:, None] * plane_normal
-    exposed = np.linalg.norm(in_plane, axis=1) <= tol
+    extent = max(float(np.ptp(vertices, axis=0).max()), 1.0)
+    exposed = np.linalg.norm(in_plane, axis=1) * extent <= tol  # |n.(y - x)| <= |in-plane n| |y - x|
     if exposed.all():
         return exposed
     basis = np.linalg.svd(np.eye(3) - np.outer(plane_normal, plane_normal))[0][:, :2]

@@ -184,3 +184,12 @@ def test_without_embreex_auto_warns_and_on_refuses(monkeypatch):
 def test_bad_shadow_mode():
     with pytest.raises(InputError, match="shadows must be one of auto, on, off"):
         gun(shadows="sometimes")
+
+
+def test_on_a_flat_sheet_with_leaning_normals_only_the_far_edge_is_exposed():
+    """n.(y - x) = sin(10 deg) (y_x - x_x): positive towards +x, so only the +x edge is a support point."""
+    sheet = plate(100, 60, 5.0)
+    lean = math.radians(10)
+    normals = np.tile((math.sin(lean), 0.0, math.cos(lean)), (sheet.n_vertices, 1))
+    exposed = exposed_vertices(sheet.vertices, normals)
+    np.testing.assert_array_equal(exposed, np.isclose(sheet.vertices[:, 0], 50.0))
