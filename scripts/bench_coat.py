@@ -267,8 +267,11 @@ if __name__ == "__main__":
     if sys.argv[1:2] == ["--case"]:
         print(json.dumps(_case(sys.argv[2], float(sys.argv[3]), sys.argv[4])))
         sys.exit(0)
-    import scaling  # scripts/scaling.py: the exponent of every coating stage
+    def stages() -> None:
+        import scaling  # scripts/scaling.py: the exponent of every coating stage
+
+        scaling.coat()
 
     parts = sys.argv[1:] or ["validation", "performance", "shadows", "stages"]
     for part in parts:
-        {"validation": validation, "performance": performance, "shadows": shadows, "stages": scaling.coat}[part]()
+        {"validation": validation, "performance": performance, "shadows": shadows, "stages": stages}[part]()

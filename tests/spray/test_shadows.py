@@ -193,3 +193,25 @@ def test_on_a_flat_sheet_with_leaning_normals_only_the_far_edge_is_exposed():
     normals = np.tile((math.sin(lean), 0.0, math.cos(lean)), (sheet.n_vertices, 1))
     exposed = exposed_vertices(sheet.vertices, normals)
     np.testing.assert_array_equal(exposed, np.isclose(sheet.vertices[:, 0], 50.0))
+
+
+def test_a_solid_step_shadows_the_floor_behind_it():
+    """A 40 mm high block on a floor (x from -40 to 0), the gun at x = 30 leaning 25 deg towards
+    it: its reach on the floor, x in (-59, 15), holds the block's foot and the floor behind it
+    (x < 0: under or behind the block, hidden), and the open floor in front (x > 0, untouched)."""
+    from spray_helpers import merge_surfaces
+
+    floor = plate(200, 160, 1.0)
+    block = trimesh.creation.box(extents=(40.0, 160.0, 40.0))
+    block.apply_translation((-20.0, 0.0, 20.0))
+    scene = merge_surfaces(floor, from_trimesh(block))
+    lean = math.radians(25)
+    log = line_log((30, -40, H0), (30, 40, H0))
+    log = make_log(log.t, log.position, (-math.sin(lean), 0.0, -math.cos(lean)))
+    bare, shaded = deposit(scene, log, gun(shadows="off")), deposit(scene, log, gun())
+    x = floor.vertices[:, 0]
+    n = floor.n_vertices
+    behind = (x < -0.05) & (bare.thickness_um[:n] > 0)
+    assert np.count_nonzero(behind & (x < -40)) > 1000  # the spray reaches past the block
+    assert np.all(shaded.thickness_um[:n][behind] == 0.0)
+    np.testing.assert_array_equal(shaded.thickness_um[:n][x > 0.05], bare.thickness_um[:n][x > 0.05])
