@@ -235,9 +235,9 @@ def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d
 
 def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray,
            model: SprayModel) -> tuple[np.ndarray, ...]:
-    """For the pairs (s, i): offsets d = x − p and their lengths (mm), axial distance d·a (mm),
-    cosine of the incidence (0 where unseen), thickness rate before deposition efficiency (mm/s)
-    and squared reference-plane radius (mm², inf where unseen)."""
+    """For the pairs (s, i): offsets d = x − p (mm), axial distance d·a (mm), −d·n (mm, 0 where
+    unseen), thickness rate before deposition efficiency (mm/s) and squared reference-plane
+    radius (mm², inf where unseen)."""
     h0 = model.standoff_mm
     d = surface.vertices[i] - steps.position[s]
     a = steps.axis[s]
@@ -248,11 +248,10 @@ def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray,
     u = np.einsum("ij,ij->i", d, steps.e1[s]) * scale
     v = np.einsum("ij,ij->i", d, steps.e2[s]) * scale
     g = model.footprint.density(u, v)
-    rate = model.rate_mm3_s * g * scale**3 * np.where(seen, dn, 0.0) / h0
-    dist = np.linalg.norm(d, axis=1)
-    cos_gamma = np.where(seen, dn, 0.0) / dist
+    facing = np.where(seen, dn, 0.0)
+    rate = model.rate_mm3_s * g * scale**3 * facing / h0
     r2 = np.where(seen, u * u + v * v, np.inf)
-    return d, dist, da, cos_gamma, rate, r2
+    return d, da, facing, rate, r2
 
 
 class _Totals:
@@ -269,30 +268,36 @@ class _Totals:
 
 def _batch(surface: Surface, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
            shadows: _Shadows | None, totals: _Totals) -> None:
-    """Evaluate the pairs ``sel`` and add them to ``totals``."""
+    """Evaluate the pairs ``sel`` and add them to ``totals``; distances, incidence, rays and
+    deposition efficiency only for the pairs that receive spray (``on``)."""
     s, i, slot, touched = pairs.step[sel], pairs.vertex[sel], pairs.slot[sel], pairs.touched
     add = lambda where, w: np.bincount(slot[where], weights=w, minlength=len(touched))  # noqa: E731
-    every = slice(None)
-    d, dist, da, cos_gamma, rate, r2 = _rates(surface, steps, s, i, model)
+    d, da, facing, rate, r2 = _rates(surface, steps, s, i, model)
     totals.evaluations += len(s)
     dt = steps.dt[s]
+    on = np.flatnonzero(rate > 0)
+    d_on = d[on]
+    dist = np.sqrt(np.einsum("ij,ij->i", d_on, d_on))
     if shadows is not None:
-        aimed = np.flatnonzero((rate > 0) & ~shadows.exposed[i])
-        hidden, rays = _blocked(shadows, steps, s[aimed], i[aimed], d[aimed], dist[aimed], len(totals.thickness))
+        aim = np.flatnonzero(~shadows.exposed[i[on]])
+        hidden, rays = _blocked(shadows, steps, s[on[aim]], i[on[aim]], d_on[aim], dist[aim], len(totals.thickness))
         totals.rays += rays
-        blocked = aimed[hidden]
+        blocked = on[aim[hidden]]
         totals.shadowed[touched] += add(blocked, rate[blocked] * dt[blocked])
         rate[blocked] = 0.0
         r2[blocked] = np.inf
-    stuck = rate if model.efficiency is None else rate * model.efficiency.factor(cos_gamma)
+    cos_gamma = facing[on] / dist
+    stuck = rate
     if model.efficiency is not None:
-        totals.lost[touched] += add(every, (rate - stuck) * dt)
+        stuck = rate.copy()
+        stuck[on] = rate[on] * model.efficiency.factor(cos_gamma)
+        totals.lost[touched] += add(on, (rate[on] - stuck[on]) * dt[on])
     weight = stuck * dt
+    every = slice(None)
     totals.thickness[touched] += add(every, weight)
     totals.exposure[touched] += add(every, np.where(stuck > 0, dt, 0.0))
     np.minimum.at(totals.r2_min, i, r2)
-    on = np.flatnonzero(weight > 0)
-    angle = np.degrees(np.arcsin(np.minimum(cos_gamma[on], 1.0)))
+    angle = np.degrees(np.arcsin(np.minimum(cos_gamma, 1.0)))
     totals.angle[touched] += add(on, weight[on] * angle)
     totals.standoff[touched] += add(on, weight[on] * da[on])
 
