@@ -216,7 +216,7 @@ def coat(
     edge_band: Optional[float] = typer.Option(None, "--edge-band", help="Edge band left out of the ROI, mm (default: 3 sigma)."),
     tolerance_pct: Optional[float] = typer.Option(None, "--tolerance-pct", help="Specification band: thickness within this % of the target (default 10)."),
     efficiency: str = typer.Option("none", "--efficiency", help="Deposition efficiency by spray angle: none | angle (1 down to 60 deg, the documented curve below) | angle:60=1,45=0.9,... | table:FILE.csv | cosine:n=N."),
-    shadows: str = typer.Option("auto", "--shadows", help="auto (ray-cast where the part can shadow itself) | on | off."),
+    shadows: str = typer.Option("auto", "--shadows", help="auto (ray-cast where the part can shadow itself; without embreex: a warning, no shadows) | on (the same; without embreex: an error) | off."),
     section: Optional[str] = typer.Option(None, "--section", help="Cross-section line x0,y0,x1,y1 in heat-map coordinates, mm."),
     out: Path = typer.Option(Path("out/coat"), "-o", "--out", help="Output folder."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),

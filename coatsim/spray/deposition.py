@@ -54,8 +54,9 @@ _PAIRS_PER_BATCH = 1_000_000
 class SprayModel:
     """Gun and numerics: footprint at reference stand-off h0 (mm), deposited rate Q (mm³/s) of
     material landing on a surface, deposition efficiency (None: all that lands sticks) and
-    shadows: ``auto`` casts rays only on a surface that can shadow itself, ``on`` always when
-    it can, ``off`` never (see coatsim.spray.visibility)."""
+    shadows: ``auto`` and ``on`` cast rays for the vertices the surface can hide (none on a
+    surface that cannot shadow itself); without the Embree binding ``on`` is an error and
+    ``auto`` warns and coats without shadows; ``off`` never casts (see coatsim.spray.visibility)."""
 
     footprint: Footprint
     rate_mm3_s: float = 40.0
