@@ -18,7 +18,7 @@ from coatsim import budgets
 CHILD = r"""
 import resource, sys, time
 t0 = time.perf_counter()
-from coatsim.cli.app import main
+from coatsim.cli import main
 sys.argv = ["coatsim", *sys.argv[1:]]
 try:
     main()

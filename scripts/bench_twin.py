@@ -34,7 +34,7 @@ DOWN = np.diag([-1.0, 1.0, -1.0])
 
 def straight_metre(speed: float) -> ToolPath:
     def pose(y: float) -> Pose:
-        return Pose(np.array([700.0, y, 300.0]), DOWN)
+        return Pose(DOWN, np.array([700.0, y, 300.0]))
 
     s = MotionSettings(speed, 1.0, True, False)
     stop = MotionSettings(speed, 1.0, True, True)
@@ -69,7 +69,7 @@ def bench_spiral(cell, curve: Path | None, tol: float, speed: float) -> None:
     from coatsim.geometry.benchmark import bench_points
     from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.path.build import ProgramOptions
-    from coatsim.path.run import run_program
+    from coatsim.cli.program import run_program
 
     print(f"\nspiral {curve.name if curve else 'benchmark spiral'}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
           f"{cell.tool_accel_mm_s2 / 1000:g} m/s^2")

@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from coatsim.cli.app import main
+from coatsim.cli import main
 
 
 def cli(*args: object) -> tuple[int, str, str]:

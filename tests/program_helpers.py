@@ -9,7 +9,7 @@ import numpy as np
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG
 from coatsim.path.arcs import sample_move
-from coatsim.path.oat import rotation_angle
+from coatsim.geometry.space.pose import rotation_angle
 from coatsim.path.placement import PlacedArc, PlacedPath
 from coatsim.path.toolpath import ToolPath
 

@@ -28,7 +28,7 @@ variants: [polysegment]
 CHILD = r"""
 import contextlib, io, json, resource, sys
 resource.setrlimit(resource.RLIMIT_AS, (CAP, CAP))
-from coatsim.cli.app import main
+from coatsim.cli import main
 results = []
 for argv in json.loads(sys.argv[1]):
     err = io.StringIO()

@@ -57,7 +57,7 @@ def test_deeply_nested_yaml_is_one_line(tmp_path):
 def test_out_of_memory_under_a_memory_cap_is_one_line(tmp_path):
     """1.4 M vertices are within the budget but not within 700 MB of address space."""
     cap = 700 << 20
-    code = ("import resource, sys; resource.setrlimit(resource.RLIMIT_AS, (%d, %d)); from coatsim.cli.app import main; "
+    code = ("import resource, sys; resource.setrlimit(resource.RLIMIT_AS, (%d, %d)); from coatsim.cli import main; "
             "sys.argv = ['coatsim'] + sys.argv[1:]; main()" % (cap, cap))
     child = subprocess.run([sys.executable, "-c", code, "coat", str(_trajectory(tmp_path)), "--surface",
                             "plate:300x300@0,0,0", "--spacing", "0.25", "-o", str(tmp_path / "out")],

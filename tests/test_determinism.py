@@ -23,7 +23,7 @@ COMMANDS = [
 ]
 DRIVER = """
 import sys
-from coatsim.cli.app import main
+from coatsim.cli import main
 for argv in {commands!r}:
     sys.argv = ["coatsim", *argv]
     try:

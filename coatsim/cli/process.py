@@ -14,25 +14,6 @@ import typer
 from coatsim.core.errors import CoatsimError, CoatsimWarning
 
 
-def _click_errors() -> tuple[type, ...]:
-    """Usage-error classes: recent typer raises those of its own bundled click, older typer
-    (or a separately installed click) the standalone package's."""
-    found: list[type] = []
-    try:
-        from typer._click import exceptions as bundled
-
-        found.append(bundled.ClickException)
-    except ImportError:
-        pass
-    try:
-        import click
-
-        found.append(click.ClickException)
-    except ImportError:
-        pass
-    return tuple(found)
-
-
 class _Signalled(BaseException):
     """Raised by the SIGINT/SIGTERM handlers; a BaseException of our own, so that neither click
     nor a library swallows it, while every ``finally`` (temporary files, folder locks) runs."""
@@ -79,11 +60,11 @@ def _run(app: typer.Typer) -> int:
         typer.echo("coatsim: error: out of memory; use coarser settings (a larger step, spacing or tolerance) "
                    "or allow the process more memory", err=True)
         return 3
-    except Exception as exc:  # click usage errors and the like
-        if isinstance(exc, _click_errors()):
-            # one line, like every other error; `coatsim COMMAND --help` shows the usage
-            typer.echo(f"coatsim: error: {exc.format_message()} (see --help)", err=True)
-            return exc.exit_code
+    except typer.TyperException as exc:  # usage errors
+        # one line, like every other error; `coatsim COMMAND --help` shows the usage
+        typer.echo(f"coatsim: error: {exc.format_message()} (see --help)", err=True)
+        return exc.exit_code
+    except Exception as exc:
         if os.environ.get("COATSIM_TRACEBACK"):
             raise
         first = (str(exc).strip().splitlines() or [""])[0][:200]

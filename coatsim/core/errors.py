@@ -5,13 +5,35 @@ Exit codes: 0 success; 1 a gate failed; 2 invalid input; 3 cannot execute.
 
 from __future__ import annotations
 
+import copy
 import re
+from typing import Mapping
 
 
 class CoatsimError(Exception):
-    """Base of every error coatsim reports to a user; the message is one line."""
+    """Base of every error coatsim reports to a user; the message is one line.
+
+    ``parameters`` names the parameters the message speaks of, in the library's terms (e.g.
+    ``tolerance_mm``), so that a caller with other words for them (the command line's flags, a
+    scenario's keys) can say them its own way.
+    """
 
     exit_code: int = 2
+
+    def __init__(self, message: str, *, parameters: tuple[str, ...] = ()) -> None:
+        super().__init__(message)
+        self.parameters = parameters
+
+    def reworded(self, words: Mapping[str, str]) -> CoatsimError:
+        """The same error with each of its parameters that ``words`` names said that way (where
+        the message first names it)."""
+        text = str(self)
+        for name in self.parameters:
+            if name in words:
+                text = re.sub(rf"(?<![\w.-]){re.escape(name)}(?![\w])", words[name], text, count=1)
+        new = copy.copy(self)
+        new.args = (text,)
+        return new
 
 
 class InputError(CoatsimError):

@@ -70,26 +70,26 @@ def arc_offsets(radial: np.ndarray, axis: np.ndarray, angles: np.ndarray) -> np.
 def move_length(move: Move) -> float:
     """Length of the TCP path of a move in mm (chord for a joint move)."""
     if isinstance(move, CircularMove):
-        circle = circle_through(move.start.position, move.via.position, move.end.position)
+        circle = circle_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm)
         return circle.radius * circle.sweep
     if isinstance(move, LinearMove):
-        return float(np.linalg.norm(move.end.position - move.start.position))
-    start = move.start.position if move.start is not None else move.target.position
-    return float(np.linalg.norm(move.target.position - start))
+        return float(np.linalg.norm(move.end.translation_mm - move.start.translation_mm))
+    start = move.start.translation_mm if move.start is not None else move.target.translation_mm
+    return float(np.linalg.norm(move.target.translation_mm - start))
 
 
 def sample_move(move: LinearMove | CircularMove, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` (n,) of the move's length."""
     u = np.atleast_1d(np.asarray(u, dtype=float))
     if isinstance(move, CircularMove):
-        circle = circle_through(move.start.position, move.via.position, move.end.position)
-        radial0 = move.start.position - circle.center
+        circle = circle_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm)
+        radial0 = move.start.translation_mm - circle.center
         offsets = arc_offsets(radial0, circle.normal, u * circle.sweep)
         tangents = np.cross(circle.normal, radial0 + offsets) / circle.radius
-        return move.start.position + offsets, tangents
+        return move.start.translation_mm + offsets, tangents
     if isinstance(move, JointMove):
         raise TypeError("a joint move has no Cartesian path")
-    delta = move.end.position - move.start.position
+    delta = move.end.translation_mm - move.start.translation_mm
     length = float(np.linalg.norm(delta))
     direction = delta / length if length > 0.0 else np.zeros(3)
-    return move.start.position + np.outer(u, delta), np.tile(direction, (len(u), 1))
+    return move.start.translation_mm + np.outer(u, delta), np.tile(direction, (len(u), 1))

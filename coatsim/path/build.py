@@ -20,13 +20,15 @@ from typing import Optional
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.core.numbers import fmt_short
 from coatsim.path.language import Language
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.frames import DEFAULT_TOOL, Frame
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.frames import DEFAULT_TOOL
 from coatsim.path.placement import PlacedPath, Placement, place, polyline_polysegment
 from coatsim.path.process import ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import curve_limits
@@ -42,22 +44,24 @@ class ProgramOptions:
     """Controller settings of the program; ``name`` defaults to one made from the source."""
 
     variant: str = "polysegment"
-    speed_mm_s: float = 500.0
-    accuracy_mm: float = 1.0
-    approach_mm: float = 50.0
-    gun_signal: int = 1
-    tool: Frame = DEFAULT_TOOL
+    speed_mm_s: float = defaults.SPEED_MM_S
+    accuracy_mm: float = defaults.ACCURACY_MM
+    approach_mm: float = defaults.APPROACH_MM
+    gun_signal: int = defaults.GUN_SIGNAL
+    tool: Pose = DEFAULT_TOOL
     name: Optional[str] = None
 
     def __post_init__(self) -> None:
         if self.variant not in VARIANTS:
-            raise InputError(f"--variant {self.variant!r}: expected one of {', '.join(VARIANTS)}")
-        for what, value, low in (("--speed", self.speed_mm_s, 0.0), ("--accuracy", self.accuracy_mm, -1.0),
-                                 ("--approach", self.approach_mm, -1.0)):
+            raise InputError(f"variant {self.variant!r}: expected one of {', '.join(VARIANTS)}", parameters=("variant",))
+        for what, value, low in (("speed_mm_s", self.speed_mm_s, 0.0), ("accuracy_mm", self.accuracy_mm, -1.0),
+                                 ("approach_mm", self.approach_mm, -1.0)):
             if not (math.isfinite(value) and (value > low if low == 0.0 else value >= 0.0)):
-                raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}")
-        if not 1 <= self.gun_signal <= 9999:
-            raise InputError(f"--gun {self.gun_signal}: expected an output number from 1 to 9999")
+                raise InputError(f"{what} {value}: must be a finite number {'> 0' if low == 0.0 else '>= 0'}",
+                                 parameters=(what,))
+        if not 1 <= self.gun_signal <= defaults.MAX_SIGNAL:
+            raise InputError(f"gun_signal {self.gun_signal}: expected an output number from 1 to {defaults.MAX_SIGNAL}",
+                             parameters=("gun_signal",))
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,7 +105,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
     so that every variant is measured over the same stretches.
     """
     if not (math.isfinite(tolerance_mm) and tolerance_mm > 0.0):
-        raise InputError(f"--tol {tolerance_mm}: must be a finite number > 0")
+        raise InputError(f"tolerance_mm {tolerance_mm}: must be a finite number > 0", parameters=("tolerance_mm",))
     if options.variant == "polysegment":
         curve = poly
         summary = f"{poly.n_segments} segments ({poly.n_lines} lines, {poly.n_arcs} arcs)"
@@ -111,7 +115,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
     limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly))
     path = place(curve, placement)
-    corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
+    corners = np.array([p.translation_mm for s in path.segments for p in (s.start, s.end)])
     reach = language.capabilities.max_coordinate_mm
     if not (np.isfinite(corners).all() and np.abs(corners).max() <= reach):
         raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {reach:g} mm)")
@@ -133,7 +137,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         contours=(SprayedContour(closed=curve.closed, leads_sprayed=not curve.closed, speed_limits=limits),),
     )
     plan = ProgramPlan(
-        name=language.check_name(options.name, "--name") if options.name is not None else
+        name=language.check_name(options.name, "name") if options.name is not None else
         language.program_name(source.split(":")[-1].split("/")[-1].rsplit(".", 1)[0]),
         paths=(path,),
         speed_mm_s=options.speed_mm_s,

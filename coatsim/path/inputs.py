@@ -11,6 +11,7 @@ from typing import Optional
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 
@@ -34,7 +35,7 @@ def _json_tolerance(path: str) -> Optional[float]:
     return float(value) if isinstance(value, (int, float)) and math.isfinite(value) and value > 0 else None
 
 
-def load_program_input(spec: str, tol: Optional[float], corner_deg: float = 20.0, speed_mm_s: Optional[float] = None,
+def load_program_input(spec: str, tol: Optional[float], corner_deg: float = defaults.CORNER_DEG, speed_mm_s: Optional[float] = None,
                        tool_accel_mm_s2: Optional[float] = None) -> ProgramInput:
     """Read ``spec``; a curve is segmented within ``tol`` mm (required), a polysegment JSON is
     taken as is (``tol`` defaults to the file's ``tolerance_mm``). With the programmed speed and
@@ -77,7 +78,7 @@ class PartInput:
 
 
 def load_part_input(spec: str, tol: Optional[float], layers: Optional[list[str]] = None,
-                    join_tol: Optional[float] = None, corner_deg: float = 20.0, speed_mm_s: Optional[float] = None,
+                    join_tol: Optional[float] = None, corner_deg: float = defaults.CORNER_DEG, speed_mm_s: Optional[float] = None,
                     tool_accel_mm_s2: Optional[float] = None) -> PartInput:
     """Read ``spec``: a drawing (DXF/SVG, segmented here within ``tol``), a part or
     polysegment JSON, or a curve (as :func:`load_program_input`, also for the speed)."""

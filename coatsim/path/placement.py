@@ -20,13 +20,14 @@ from typing import Union
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
 from coatsim.path.arcs import DegenerateArc, arc_offsets, circle_through
-from coatsim.path.frames import DEFAULT_FRAME, Frame
-from coatsim.path.oat import rot_y, rot_z
-from coatsim.path.toolpath import Pose
+from coatsim.path.frames import DEFAULT_FRAME
+from coatsim.geometry.space.rotations import rot_y, rot_z
+from coatsim.geometry.space.pose import Pose
 
 
 # An arc that bulges less than this from its chord is placed as the chord (far below the
@@ -39,12 +40,12 @@ class Placement:
     """Where and how the curve is sprayed; ``offset_xy`` is added to the curve before placing
     (see :func:`centering_offset` to centre it on the frame origin)."""
 
-    frame: Frame = DEFAULT_FRAME
-    standoff_mm: float = 100.0
+    frame: Pose = DEFAULT_FRAME
+    standoff_mm: float = defaults.STANDOFF_MM
     roll_deg: float = 0.0
     follow_tangent: bool = False
-    lead_in_mm: float = 30.0
-    lead_out_mm: float = 30.0
+    lead_in_mm: float = defaults.LEAD_IN_MM
+    lead_out_mm: float = defaults.LEAD_OUT_MM
     offset_xy: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:
@@ -72,13 +73,13 @@ class PlacedLine:
 
     @property
     def length(self) -> float:
-        return float(np.linalg.norm(self.end.position - self.start.position))
+        return float(np.linalg.norm(self.end.translation_mm - self.start.translation_mm))
 
     def point_tangent(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the length."""
         u = np.atleast_1d(np.asarray(u, dtype=float))
-        delta = self.end.position - self.start.position
-        return self.start.position + np.outer(u, delta), np.tile(delta / np.linalg.norm(delta), (len(u), 1))
+        delta = self.end.translation_mm - self.start.translation_mm
+        return self.start.translation_mm + np.outer(u, delta), np.tile(delta / np.linalg.norm(delta), (len(u), 1))
 
 
 def _axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
@@ -102,7 +103,7 @@ class PlacedArc:
 
     @property
     def radius(self) -> float:
-        return float(np.linalg.norm(self.start.position - self.center))
+        return float(np.linalg.norm(self.start.translation_mm - self.center))
 
     @property
     def length(self) -> float:
@@ -115,8 +116,8 @@ class PlacedArc:
         rotation = self.start.rotation
         if self.follow_tangent:
             rotation = _axis_rotation(self.normal, u * self.sweep) @ rotation
-        offset = arc_offsets(self.start.position - self.center, self.normal, np.array([u * self.sweep]))[0]
-        return Pose(self.start.position + offset, rotation)
+        offset = arc_offsets(self.start.translation_mm - self.center, self.normal, np.array([u * self.sweep]))[0]
+        return Pose(rotation, self.start.translation_mm + offset)
 
     @property
     def via(self) -> Pose:
@@ -126,9 +127,9 @@ class PlacedArc:
     def point_tangent(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the sweep."""
         u = np.atleast_1d(np.asarray(u, dtype=float))
-        radial0 = self.start.position - self.center
+        radial0 = self.start.translation_mm - self.center
         offsets = arc_offsets(radial0, self.normal, u * self.sweep)
-        return self.start.position + offsets, np.cross(self.normal, radial0 + offsets) / self.radius
+        return self.start.translation_mm + offsets, np.cross(self.normal, radial0 + offsets) / self.radius
 
     def split(self, max_sweep: float) -> tuple[PlacedArc, ...]:
         """Equal pieces of at most ``max_sweep`` rad each."""
@@ -191,7 +192,7 @@ class _Mapper:
     def __init__(self, placement: Placement) -> None:
         self.rotation = placement.frame.rotation
         self.normal = self.rotation[:, 2].copy()
-        self.lift = placement.frame.origin + placement.standoff_mm * self.normal
+        self.lift = placement.frame.translation_mm + placement.standoff_mm * self.normal
         self.offset = np.asarray(placement.offset_xy, dtype=float)
         self.roll = math.radians(placement.roll_deg)
         self.follow = placement.follow_tangent
@@ -203,7 +204,7 @@ class _Mapper:
 
     def pose(self, xy: tuple[float, float] | np.ndarray, heading: float) -> Pose:
         gamma = (math.pi - heading + self.roll) if self.follow else self.roll
-        return Pose(self.point(xy), self.tool_down @ rot_z(gamma))
+        return Pose(self.tool_down @ rot_z(gamma), self.point(xy))
 
 
 def _extension(m: _Mapper, anchor: np.ndarray, heading: float, length: float, part: str) -> PlacedLine:
@@ -232,7 +233,7 @@ def _placed_arc(m: _Mapper, arc: Arc, follow_tangent: bool) -> PlacedSegment:
     left = np.array([-chord[1], chord[0]]) / float(np.linalg.norm(chord))
     middle = m.point((a + b) / 2.0 - math.copysign(sagitta, arc.sweep) * left)
     try:
-        circle = circle_through(start.position, middle, end.position)
+        circle = circle_through(start.translation_mm, middle, end.translation_mm)
     except DegenerateArc:
         return PlacedLine(start, end, "curve")
     return PlacedArc(start, end, circle.center, circle.normal, circle.sweep, follow_tangent)

@@ -2,18 +2,14 @@
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Mapping, Sequence
 
 import numpy as np
 
 from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.core.fileio import write_text
 from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.chain import tcp_positions_mm
@@ -207,7 +203,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             label = step_label(toolpath, piece.move)
             # the implicit first move goes to the start of the first Cartesian move, with its TOOL
             tool_move = piece.move if piece.move is not None else int(pieces[k + 1].move[0])
-            p_gun, r_gun = to_gun(piece.target.position, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
+            p_gun, r_gun = to_gun(piece.target.translation_mm, piece.target.rotation, mount_r[tool_move], mount_p[tool_move])
             t0 = time.perf_counter()
             if piece.joints_rad is not None:
                 q_goal = _joint_target(cell, piece.joints_rad, label)
@@ -295,42 +291,3 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
                      curve=(spans[0][0], spans[-1][1]), wall=wall, warnings=toolpath.warnings, curves=tuple(spans),
                      contour_metrics=per_contour)
-
-
-def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
-                    gun_signal: int = 1, step_mm: float = 1.0, main: str | None = None,
-                    inputs: Mapping[int, bool] | None = None, force: bool = False) -> tuple[Execution, list[Path]]:
-    """``coatsim execute``: read AS program files, run the main program (``main``, default the
-    first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.core.outputs_guard)."""
-    from coatsim.core.outputs_guard import check_distinct, output_folder
-    from coatsim.languages.kawasaki_as.files import read_toolpath
-    from coatsim.robot.kinematics import CellKinematics
-    from coatsim.robot.plots import plot_speed
-
-    sources = [program] if isinstance(program, (str, Path)) else list(program)
-    out = Path(outdir)
-    names = ["trajectory.csv", "motion.json", "speed.png"]
-    files = [out / name for name in names]
-    check_distinct([*(("the program", p) for p in sources), ("--model", model)], [("output", f) for f in files])
-    cell = load_cell(model)
-    toolpath = read_toolpath(program, gun_signal=gun_signal, program=main, inputs=inputs,
-                             kinematics=CellKinematics(cell))
-    with output_folder(out, names, "coatsim execute", force):
-        result = execute(toolpath, cell, step_mm)
-        result.log.write_csv(files[0])
-        doc = {
-            "format": "coatsim.motion/1",
-            "program": str(sources[0]) if len(sources) == 1 else [str(p) for p in sources],
-            "model": str(model) if model is not None else "default",
-            "step_mm": step_mm,
-            "motion": result.metrics.as_dict(),
-            "events": list(result.events),
-            "warnings": list(result.warnings),
-        }
-        write_text(files[1], json.dumps(doc, indent=2) + "\n")
-        variant = toolpath.process.variant
-        label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(sources[0]).name})"
-        plot_speed(result.log, result.metrics, result.curves, files[2],
-                   title=f"{label}: tool speed over the sprayed stretch")
-    return result, files

@@ -25,7 +25,8 @@ import numpy as np
 
 from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, ToolPath
 from coatsim.robot.ik_batch import row_norms
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 
@@ -105,10 +106,10 @@ def step_label(toolpath: ToolPath, index: int | None) -> str:
 
 def _span(toolpath: ToolPath, index: int) -> _Span:
     move = toolpath.moves[index]
-    a = np.asarray(move.start.position, float)
-    b = np.asarray(move.end.position, float)
+    a = np.asarray(move.start.translation_mm, float)
+    b = np.asarray(move.end.translation_mm, float)
     if isinstance(move, CircularMove):
-        prim = arc_through(a, np.asarray(move.via.position, float), b)
+        prim = arc_through(a, np.asarray(move.via.translation_mm, float), b)
         if prim is None:
             raise ExecutionError(
                 f"{step_label(toolpath, index)}: start, via and end points are collinear or coincide, "
@@ -307,7 +308,7 @@ def min_motion_time_s(toolpath: ToolPath, pieces: tuple[Piece, ...]) -> float:
     total, here = sum(d.seconds for d in toolpath.dwells), None
     for piece in pieces:
         if isinstance(piece, JointPiece):
-            target = np.asarray(piece.target.position, float)
+            target = np.asarray(piece.target.translation_mm, float)
             distance = 0.0 if here is None else float(np.linalg.norm(target - here))
             total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
             here = target

@@ -19,6 +19,7 @@ from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, ValidationError, field_validator, model_validator
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.builtin_curves import BUILTINS
 from coatsim.geometry.cad.drawing import is_drawing
@@ -86,9 +87,9 @@ class CurveSpec(_Strict):
 class SegmentationSpec(_Strict):
     """Fitter options: tolerance in mm (guaranteed), fitting method, corner threshold."""
 
-    tolerance_mm: Positive = 0.1
+    tolerance_mm: Positive = defaults.TOLERANCE_MM
     method: Literal["optimal", "paper"] = "optimal"
-    corner_deg: Annotated[float, Field(gt=0, lt=180)] = 20.0
+    corner_deg: Annotated[float, Field(gt=0, lt=180)] = defaults.CORNER_DEG
 
 
 class PoseSpec(_Strict):
@@ -96,8 +97,8 @@ class PoseSpec(_Strict):
     O-A-T Euler angles (deg, z-y'-z''). The curve lies in the frame's XY plane and the
     sprayed side faces the frame's +z axis."""
 
-    position_mm: Vec3 = Field(default_factory=lambda: [700.0, 0.0, 200.0])
-    oat_deg: Vec3 = Field(default_factory=lambda: [0.0, 0.0, 0.0])
+    position_mm: Vec3 = Field(default_factory=lambda: list(defaults.WORKPIECE_FRAME[:3]))
+    oat_deg: Vec3 = Field(default_factory=lambda: list(defaults.WORKPIECE_FRAME[3:]))
 
 
 class PlateSpec(_Strict):
@@ -141,15 +142,15 @@ class GunSpec(_Strict):
     the thickness the job aims for, the output signal that opens the gun, and the tool roll
     about the spray axis (fixed, or turning with the path when ``follow_tangent``)."""
 
-    standoff_mm: Positive = 100.0
-    footprint: str = Field("gaussian:sigma=5", description="gaussian:sigma=S, elliptic:sx=A,sy=B, beta:radius=R,beta=B, "
+    standoff_mm: Positive = defaults.STANDOFF_MM
+    footprint: str = Field(defaults.FOOTPRINT, description="gaussian:sigma=S, elliptic:sx=A,sy=B, beta:radius=R,beta=B, "
                            "double-beta:a=A,b=B,beta1=P,beta2=Q or table:FILE.csv (mm; FILE relative to the scenario)")
-    flow_mm3_s: Positive = 40.0
+    flow_mm3_s: Positive = defaults.FLOW_MM3_S
     target_thickness_um: Positive = 10.0
-    signal: Annotated[int, Field(ge=1, le=999)] = 1
+    signal: Annotated[int, Field(ge=1, le=defaults.MAX_SIGNAL)] = defaults.GUN_SIGNAL
     roll_deg: float = 0.0
     follow_tangent: bool = False
-    efficiency: str = Field("none", description="deposition efficiency by spray angle: none, angle (1 down to 60 deg, "
+    efficiency: str = Field(defaults.EFFICIENCY, description="deposition efficiency by spray angle: none, angle (1 down to 60 deg, "
                             "the documented curve below), angle:DEG=DE,..., table:FILE.csv or cosine:n=N")
 
     @field_validator("footprint")
@@ -177,10 +178,10 @@ class MotionSpec(_Strict):
     """Programmed tool speed, blending accuracy, straight run-in/run-out lengths, and the
     order in which the contours of a part are sprayed."""
 
-    speed_mm_s: Positive = 200.0
-    accuracy_mm: NonNegative = 1.0
-    lead_in_mm: NonNegative = 20.0
-    lead_out_mm: NonNegative = 20.0
+    speed_mm_s: Positive = defaults.SPEED_MM_S
+    accuracy_mm: NonNegative = defaults.ACCURACY_MM
+    lead_in_mm: NonNegative = defaults.LEAD_IN_MM
+    lead_out_mm: NonNegative = defaults.LEAD_OUT_MM
     contour_order: Literal["as-drawn", "nearest"] = Field("as-drawn", description="parts: spray the contours as drawn, "
                                                           "or each next one whose start is nearest the last end")
 
@@ -205,13 +206,17 @@ class FastSpec(_Strict):
 class ProgramVariantSpec(_Strict):
     """A program of the user's own run as a variant beside coatsim's: its AS file(s) relative
     to the scenario (data files such as poses after the program), the main program (default:
-    the first), and the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off)."""
+    the first), the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off), and
+    the variables no file gives (the controller keeps them): ``{direction: 8, $mode: auto,
+    pick: "TRANS(600,0,300,0,180,0)"}`` (a number, a string's text, or an AS expression)."""
 
     name: VariantLabel
     program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
     main: Optional[str] = None
-    inputs: list[Annotated[int, Field(ge=-9999, le=9999)]] = Field(
+    inputs: list[Annotated[int, Field(ge=-defaults.MAX_SIGNAL, le=defaults.MAX_SIGNAL)]] = Field(
         default_factory=list, description="input signals the cell sets: n on, -n off")
+    variables: dict[str, Union[float, str]] = Field(
+        default_factory=dict, description="variables the files do not give: NAME: number, text or AS expression")
 
     @field_validator("program", mode="before")
     @classmethod

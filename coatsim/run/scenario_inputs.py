@@ -21,8 +21,9 @@ from coatsim.geometry import (
 from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
 from coatsim.geometry.segment import Segmentation
 from coatsim.languages.registry import language_of
-from coatsim.path.oat import oat_to_matrix
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.rotations import oat_to_matrix
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
@@ -92,13 +93,13 @@ def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:
 
 
 
-def curve_frame(spec: Scenario) -> Frame:
+def curve_frame(spec: Scenario) -> Pose:
     """The frame whose XY plane holds the curve: the workpiece frame, lifted to the top of a
     cylinder."""
     wp = spec.workpiece
     pose = _pose_matrix(wp.pose.position_mm, wp.pose.oat_deg)
     origin = pose[:3, 3] + (wp.radius_mm * pose[:3, 2] if wp.kind == "cylinder" else 0.0)
-    return Frame(*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg))
+    return pose_from_xyzoat((*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg)))
 
 
 
@@ -147,14 +148,17 @@ def load_arm(loaded: ScenarioFile, override: Optional[str | Path] = None) -> Cel
 
 
 def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cell) -> tuple[ToolPath, str]:
-    """The ToolPath of a program variant and its text (the files one after the other)."""
+    """The ToolPath of a program variant and its text (the files one after the other); a
+    variant needs a sprayed path: InputError naming the outputs a program that never opens the
+    gun switches."""
     files = [loaded.resolve(f) for f in entry.files]
     try:
         options = ReadOptions(gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states or {},
-                              kinematics=CellKinematics(cell))
+                              kinematics=CellKinematics(cell), variables=entry.variables, needs_spray=True)
         toolpath = language_of(files).read(files, options)
     except CoatsimError as exc:
-        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+        said = exc.reworded({"gun_signal": "gun.signal"})
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {said}") from None
     return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
 
 

@@ -17,11 +17,12 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import write_text
 from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
-from coatsim.spray.coating_metrics import TOLERANCE_PCT, coating_metrics, edge_band_width, region_of_interest
+from coatsim.spray.coating_metrics import coating_metrics, edge_band_width, region_of_interest
 from coatsim.spray.deposition import Deposit, SprayModel, deposit
 from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
@@ -54,7 +55,7 @@ def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "ba
          target_um: float | None = None, edge_band_mm: float | None = None,
          band_halfwidth_mm: float | None = None, spacing: float | None = None,
          progress: Callable[[float], None] | None = None, away: np.ndarray | None = None,
-         tolerance_pct: float = TOLERANCE_PCT) -> CoatingResult:
+         tolerance_pct: float = defaults.TOLERANCE_PCT) -> CoatingResult:
     """Deposit the sprayed part of ``log`` on ``surface`` and measure it over the ROI
     (``away``: the surface's vertices clear of the edge band, if already computed;
     ``tolerance_pct``: the specification band around the target)."""
@@ -65,7 +66,7 @@ def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "ba
 
 
 def remeasured(result: CoatingResult, roi: np.ndarray, target_um: float | None = None,
-               tolerance_pct: float = TOLERANCE_PCT) -> CoatingResult:
+               tolerance_pct: float = defaults.TOLERANCE_PCT) -> CoatingResult:
     """``result`` measured over another region of interest (a boolean vertex mask), e.g. the
     one every variant of a run shares."""
     metrics = coating_metrics(result.surface, result.deposit, result.model, roi, target_um, tolerance_pct)
@@ -122,16 +123,15 @@ def _progress(label: str) -> Iterator[Callable[[float], None] | None]:
 def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = None,
              footprint: str = "gaussian:sigma=5", rate: float = 40.0, standoff: float = 100.0,
              target_um: float | None = None, roi: str = "band", edge_band_mm: float | None = None,
-             efficiency: str = "none", shadows: str = "auto", section: str | None = None,
+             efficiency: str = defaults.EFFICIENCY, shadows: str = defaults.SHADOWS, section: str | None = None,
              outdir: str | Path = "out/coat", force: bool = False,
-             tolerance_pct: float | None = None) -> tuple[CoatingResult, list[Path]]:
-    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default,
-    tolerance: TOLERANCE_PCT); the output folder is held for the run (see coatsim.core.outputs_guard)."""
+             tolerance_pct: float = defaults.TOLERANCE_PCT) -> tuple[CoatingResult, list[Path]]:
+    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default);
+    the output folder is held for the run (see coatsim.core.outputs_guard)."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
 
     fp = parse_footprint_spec(footprint)
     de = parse_efficiency_spec(efficiency)
-    tolerance_pct = TOLERANCE_PCT if tolerance_pct is None else tolerance_pct
     model = SprayModel(fp, rate, standoff, de, shadows)
     spacing = fp.spacing_mm if spacing is None else spacing
     if edge_band_mm is not None and not (math.isfinite(edge_band_mm) and edge_band_mm >= 0):

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
@@ -27,8 +28,6 @@ from coatsim.spray.surfaces import Surface, border_distance
 ROI_KINDS = ("band", "part")
 COVERAGE_FRACTION = 0.8
 THICK_SPOT_FRACTION = 1.2
-#: The specification band: thickness within this many per cent of the target.
-TOLERANCE_PCT = 10.0
 
 
 def _stretch_ends(deposit: Deposit, closing_mm: float) -> list[int]:
@@ -96,7 +95,7 @@ def weighted_quantile(values: np.ndarray, weights: np.ndarray, q: float) -> floa
 
 
 def thickness_statistics(thickness_um: np.ndarray, areas: np.ndarray, mask: np.ndarray,
-                         target_um: float, tolerance_pct: float = TOLERANCE_PCT) -> dict[str, float]:
+                         target_um: float, tolerance_pct: float = defaults.TOLERANCE_PCT) -> dict[str, float]:
     """Area-weighted mean, std, CV, extremes, P05/P95, coverage, thick-spot, coated and
     within-specification (target ± tolerance_pct %) fractions."""
     t, w = thickness_um[mask], areas[mask]
@@ -138,7 +137,7 @@ def spray_conditions(deposit: Deposit, areas: np.ndarray, mask: np.ndarray) -> d
 
 
 def coating_metrics(surface: Surface, deposit: Deposit, model: SprayModel, roi: np.ndarray,
-                    target_um: float | None = None, tolerance_pct: float = TOLERANCE_PCT) -> dict[str, float]:
+                    target_um: float | None = None, tolerance_pct: float = defaults.TOLERANCE_PCT) -> dict[str, float]:
     """All coating metrics; the target defaults to the ROI mean (coverage then measures evenness)."""
     spray_time = deposit.steps.spray_time_s
     if spray_time <= 0:
@@ -149,7 +148,8 @@ def coating_metrics(surface: Surface, deposit: Deposit, model: SprayModel, roi: 
     if target_um is not None and not (np.isfinite(target_um) and target_um > 0):
         raise InputError(f"target thickness must be positive, found {target_um:g} um")
     if not (np.isfinite(tolerance_pct) and tolerance_pct >= 0):
-        raise InputError(f"thickness tolerance must be a percentage >= 0, found {tolerance_pct:g} (tolerance_pct)")
+        raise InputError(f"tolerance_pct: the thickness tolerance must be a percentage >= 0, found {tolerance_pct:g}",
+                         parameters=("tolerance_pct",))
     thickness = deposit.thickness_um
     mean = float(np.sum(surface.areas[roi] * thickness[roi]) / surface.areas[roi].sum())
     if not mean > 0:

@@ -35,6 +35,7 @@ from typing import Callable
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
@@ -62,7 +63,7 @@ class SprayModel:
     rate_mm3_s: float = 40.0
     standoff_mm: float = 100.0
     efficiency: Efficiency | None = None
-    shadows: str = "auto"
+    shadows: str = defaults.SHADOWS
     substep_mm: float | None = None
     major_axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
 

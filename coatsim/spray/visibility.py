@@ -175,11 +175,12 @@ def visibility(vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray, mod
     except ImportError as exc:
         if mode == "on":
             raise InputError(f"shadows need the embreex package (Embree ray casting), which cannot be imported "
-                             f"({type(exc).__name__}: {exc}); install it (pip install embreex) or set shadows off") from None
+                             f"({type(exc).__name__}: {exc}); install it (pip install embreex) or set shadows off",
+                             parameters=("shadows",)) from None
         return Visibility(exposed, None, unavailable=True)
 
 
 def check_shadow_mode(mode: str) -> str:
     if mode not in SHADOW_MODES:
-        raise InputError(f"shadows must be one of {', '.join(SHADOW_MODES)}, found {mode!r}")
+        raise InputError(f"shadows must be one of {', '.join(SHADOW_MODES)}, found {mode!r}", parameters=("shadows",))
     return mode

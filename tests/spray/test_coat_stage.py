@@ -12,7 +12,7 @@ import trimesh
 from hypothesis import given, settings
 from scipy.special import i0e
 
-from coatsim.cli.app import main
+from coatsim.cli import main
 from coatsim.spray.coat import coat, run_coat
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import plate
@@ -168,10 +168,10 @@ def test_cli_on_a_mesh_part_with_a_leaning_gun_and_shadows(tmp_path, monkeypatch
 
 
 @pytest.mark.parametrize("args, words", [
-    (["--shadows", "sometimes"], "shadows must be one of auto, on, off"),
+    (["--shadows", "sometimes"], "--shadows must be one of auto, on, off"),
     (["--efficiency", "angle:100=1"], "spray angle must be between 0 and 90"),
     (["--efficiency", "table:missing.csv"], "missing.csv: cannot read efficiency table"),
-    (["--tolerance-pct", "-1"], "tolerance must be a percentage >= 0"),
+    (["--tolerance-pct", "-1"], "--tolerance-pct: the thickness tolerance must be a percentage >= 0"),
 ])
 def test_bad_coating_options_exit_2_with_one_line(tmp_path, monkeypatch, capsys, args, words):
     csv = write_pass_csv(tmp_path / "pass.csv")

@@ -19,6 +19,7 @@ from typing import Optional, Union
 from coatsim.languages.kawasaki_as.ast_expr import (  # noqa: F401
     Binary,
     Call,
+    Chain,
     Expr,
     Format,
     JointLiteral,
@@ -69,11 +70,13 @@ class Assign(Stmt):
 @dataclass(frozen=True)
 class PointAssign(Stmt):
     """``POINT p = expr`` (pose), ``POINT #j = expr`` (joints); ``component`` for
-    ``POINT/X p = q`` (X, Y, Z, O, A, T or OAT: only that part of q is copied)."""
+    ``POINT/X p = q`` (X, Y, Z, O, A, T or OAT: only that part of q is copied); ``reference``
+    the joint value that picks the arm's configuration in ``POINT #j = p, #ref``."""
 
     target: Name
     value: Expr
     component: Optional[str] = None
+    reference: Optional[Expr] = None
 
 
 @dataclass(frozen=True)

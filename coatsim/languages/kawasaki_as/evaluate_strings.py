@@ -13,6 +13,10 @@ if TYPE_CHECKING:  # pragma: no cover
     from coatsim.languages.kawasaki_as.evaluate import Evaluator
 
 
+# $-functions of the index the twin does not compute (clock, errors, system data): "".
+_NOT_SIMULATED = {"$DATE", "$TIME", "$ERROR", "$ERRORS", "$ERRLOG", "$SYSDATA"}
+
+
 def val(text: str) -> float:
     """VAL: the longest number at the start of ``text`` (0 if none)."""
     text = text.strip()
@@ -51,10 +55,10 @@ def string_call(ev: Evaluator, e: ast.Call) -> str:
         return encode(ev, e.args)
     if name == "$DECODE":
         return decode(ev, e)
-    if name in ("$DATE", "$TIME", "$ERROR", "$SYSDATA"):
-        ev.run.unknown(f"function:{name}", f"{name} is not simulated; it gives an empty string")
-        return ""
-    raise ev.error(f"{name} is not a string function coatsim knows")
+    what = "is not simulated" if name in _NOT_SIMULATED else \
+        "is not a function of the AS index coatsim knows (an array takes [ ], not ( ))"
+    ev.run.not_simulated(f"function:{name}", f"{name} {what}; it gives an empty string")
+    return ""
 
 
 def encode(ev: Evaluator, items: tuple[Optional[ast.Expr], ...]) -> str:

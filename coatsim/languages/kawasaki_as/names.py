@@ -20,7 +20,7 @@ def check_name(name: str, what: str = "program name") -> str:
     """``name`` if it is a valid AS identifier; InputError (one line) otherwise."""
     if not isinstance(name, str) or not _NAME.match(name) or len(name) > MAX_NAME_LENGTH:
         raise InputError(f"{what} {sanitize_comment(str(name))!r} is not a valid AS name: letters, digits, '.' and "
-                         f"'_', first a letter, at most {MAX_NAME_LENGTH} characters")
+                         f"'_', first a letter, at most {MAX_NAME_LENGTH} characters", parameters=(what,))
     return name
 
 

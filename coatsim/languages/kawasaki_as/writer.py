@@ -31,10 +31,10 @@ from coatsim.path.arcs import DegenerateArc, circle_through
 from coatsim.languages.kawasaki_as.header import encode as encode_header
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, sanitize_comment
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.oat import matrix_to_oat
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.rotations import matrix_to_oat
+from coatsim.geometry.space.xyzoat import xyzoat
 from coatsim.path.placement import PlacedArc, PlacedLine, PlacedSegment
-from coatsim.path.toolpath import Pose
+from coatsim.geometry.space.pose import Pose
 
 # 6 decimals in degrees round an angle by <= 5e-7 deg (9e-9 rad).
 DEG_DECIMALS = 6
@@ -49,12 +49,13 @@ _COMMENT_COLUMN = 30
 def pose_values(pose: Pose) -> tuple[str, ...]:
     """x y z (mm) o a t (deg) as the writer formats them."""
     o, a, t = matrix_to_oat(pose.rotation)
-    return tuple(fmt(v, MM_DECIMALS) for v in pose.position) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
+    return tuple(fmt(v, MM_DECIMALS) for v in pose.translation_mm) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
 
 
-def _trans_literal(frame: Frame) -> str:
-    mm = ",".join(fmt(v, MM_DECIMALS) for v in (frame.x, frame.y, frame.z))
-    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (frame.o, frame.a, frame.t))
+def _trans_literal(frame: Pose) -> str:
+    x, y, z, o, a, t = xyzoat(frame)
+    mm = ",".join(fmt(v, MM_DECIMALS) for v in (x, y, z))
+    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (o, a, t))
     return f"TRANS({mm},{deg})"
 
 

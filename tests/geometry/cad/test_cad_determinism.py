@@ -12,7 +12,7 @@ from cad_helpers import write_dxf
 
 DRIVER = """
 import sys
-from coatsim.cli.app import main
+from coatsim.cli import main
 for argv in ([["segment", "../part.dxf", "-o", "part.json", "--plot", "part.png"],
               ["program", "../part.dxf", "--tol", "0.1", "--order", "nearest", "-o", "part.as"]]):
     sys.argv = ["coatsim", *argv]
