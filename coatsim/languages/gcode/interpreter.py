@@ -47,6 +47,7 @@ from coatsim.path.toolpath_builder import ToolPathBuilder
 RAPID_MM_S = 1000.0
 MM_PER_INCH = 25.4
 _AXES = "XYZ"
+_SAME_POINT_MM = 1e-9  # a move this short goes nowhere (a control skips it)
 _TILT_AXES = "ABCUVW"
 _PASS_WORDS = set("FSTNPQRLHDE") | set("IJK") | set(_AXES)
 _SYSTEMS = {54.0: 1, 55.0: 2, 56.0: 3, 57.0: 4, 58.0: 5, 59.0: 6, 59.1: 7, 59.2: 8, 59.3: 9}
@@ -294,13 +295,16 @@ class Interpreter:
         end = self.target(frame, w, f"G{self.motion:g}")
         if self.motion == 1.0:
             start = self.program_position(frame, "G1")
-            if float(np.linalg.norm(end - start)) > 0.0:
+            if float(np.linalg.norm(end - start)) > _SAME_POINT_MM:
                 self.feed_line(frame, end, settings)
             return
         self.feed_arc(frame, end, w, settings)
 
     def rapid(self, frame: Pose, w: dict[str, float]) -> None:
         end = self.target(frame, w, "G0")
+        here = self.builder.current
+        if here is not None and float(np.linalg.norm(here.translation_mm - frame.apply(end))) <= _SAME_POINT_MM:
+            return  # a rapid to where the tool is (a G43 Z line, say) does not move
         settings = MotionSettings(RAPID_MM_S, 0.0, False, True)
         self.builder.joint(self.tool_pose(frame.apply(end)), settings, self.line)
         self.controls.append(None)

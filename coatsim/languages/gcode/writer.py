@@ -212,5 +212,5 @@ def _check_range(lines: list[str], name: str) -> None:
     for line in lines:
         for word in line.split("(")[0].split():
             if word[0] in "XYZIJK" and abs(float(word[1:])) > MAX_COORDINATE_MM:
-                raise InputError(f"{name}: {word} is beyond the {MAX_COORDINATE_MM:g} mm a G-code word holds; "
+                raise InputError(f"{name}: {word} is beyond the {num(MAX_COORDINATE_MM)} mm a G-code word holds; "
                                  "place the part nearer the work frame's origin")
