@@ -1,0 +1,67 @@
+"""Fanuc TP behind coatsim's language interface."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Sequence
+
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.languages.fanuc_tp.blend import DECEL_MM_S2
+from coatsim.languages.fanuc_tp.interpreter import FanucRun
+from coatsim.languages.fanuc_tp.names import MAX_NAME_LENGTH, check_name, program_name
+from coatsim.languages.fanuc_tp.program import LsProgram, parse_ls
+from coatsim.languages.fanuc_tp.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_ls
+from coatsim.path.language import Capabilities, ReadOptions
+from coatsim.path.plan import ProgramPlan
+from coatsim.path.toolpath import ToolPath
+
+
+class FanucTp:
+    """Writes and reads Fanuc TP programs in their ASCII form (``.ls``; one program a file, CALLed
+    programs from the other files read together). ``decel_mm_s2`` is the braking the CNT model
+    assumes (:mod:`.blend`)."""
+
+    name = "fanuc-tp"
+    title = "Fanuc TP (.LS)"
+    suffixes = (".ls",)
+
+    def __init__(self, decel_mm_s2: float = DECEL_MM_S2) -> None:
+        self.decel_mm_s2 = decel_mm_s2
+        self.capabilities = Capabilities(arc_planes="any", max_arc_sweep_deg=MAX_ARC_SWEEP_DEG,
+                                         blend="FINE, or CNT n (n % of the speed kept through the point)",
+                                         max_name_length=MAX_NAME_LENGTH, max_coordinate_mm=MAX_COORDINATE_MM,
+                                         rotation="W-P-R (fixed x-y-z, deg)")
+
+    def write(self, plan: ProgramPlan) -> str:
+        return write_ls(plan, self.decel_mm_s2)
+
+    def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
+        if not files:
+            raise InputError("no program file given")
+        programs: dict[str, LsProgram] = {}
+        for path in files:
+            program = parse_ls(decode_text(read_input_bytes(path, "program")), str(path))
+            if program.name in programs:
+                raise InputError(f"{path}: program {program.name} is also in {programs[program.name].source}")
+            programs[program.name] = program
+        main = options.program.upper() if options.program is not None else next(iter(programs))
+        if main not in programs:
+            raise InputError(f"program {options.program!r} is not among the files read ({', '.join(programs)})",
+                             parameters=("program",))
+        run = FanucRun(programs, options, self.decel_mm_s2)
+        toolpath = run.run(main)
+        if options.needs_spray and not toolpath.spray_moves:
+            switched = ", ".join(dict.fromkeys(run.switched)) or "no output"
+            raise InputError(f"{files[0]}: the gun (DO[{options.gun_signal}]) is never on during a motion; the program "
+                             f"switches {switched}", parameters=("gun_signal",))
+        return toolpath
+
+    def check_name(self, name: str, what: str) -> str:
+        return check_name(name, what)
+
+    def program_name(self, text: str) -> str:
+        return program_name(text)
+
+
+FANUC_TP = FanucTp()
