@@ -163,6 +163,8 @@ def _speed(t: Tokens) -> tuple[Optional[Expr], str]:
 
 
 def _termination(t: Tokens) -> tuple[str, Optional[Expr]]:
+    if t.done():
+        raise t.error("a motion ends FINE, CNT n or CR n")
     word = t.name()
     if word == "FINE":
         return "FINE", None
@@ -197,7 +199,9 @@ def _options(t: Tokens) -> tuple[tuple[tuple[str, Optional[Expr]], ...], str]:
             if t.peek() is not None and t.peek().kind == "num":
                 t.i += 1
         else:
-            return tuple(options), t.rest()
+            rest = t.rest()
+            t.i = len(t.t)
+            return tuple(options), rest
     return tuple(options), ""
 
 

@@ -132,7 +132,7 @@ def test_the_gun_codes_are_an_option():
 
 
 def test_names_and_ranges():
-    assert GCODE.program_name("paper spiral (v2).dxf") == "PAPER_SPIRAL_V2"
+    assert GCODE.program_name("paper spiral (v2)") == "PAPER_SPIRAL_V2"
     assert len(GCODE.program_name("x" * 40)) == 16 and GCODE.program_name("3d") == "C3D"
     with pytest.raises(InputError, match="not a valid G-code program name"):
         GCODE.check_name("has space", "name")
