@@ -13,9 +13,10 @@ from coatsim.core.errors import InputError
 from coatsim.languages.fanuc_tp.language import FANUC_TP
 from coatsim.languages.gcode.language import GCODE
 from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+from coatsim.languages.urscript.language import URSCRIPT
 from coatsim.path.language import Language
 
-LANGUAGES: dict[str, Language] = {language.name: language for language in (KAWASAKI_AS, FANUC_TP, GCODE)}
+LANGUAGES: dict[str, Language] = {language.name: language for language in (KAWASAKI_AS, FANUC_TP, URSCRIPT, GCODE)}
 #: The language coatsim writes when none is asked for.
 DEFAULT_LANGUAGE = KAWASAKI_AS.name
 
