@@ -136,8 +136,12 @@ class Registers:
             return float(table[op])
         if op in ("/", "MOD", "DIV") and b == 0.0:
             return math.nan
-        return {"+": a + b, "-": a - b, "*": a * b, "/": a / b if b else math.nan,
-                "MOD": math.fmod(a, b) if b else math.nan, "DIV": float(math.trunc(a / b)) if b else math.nan}[op]
+        try:
+            if op in ("+", "-", "*"):
+                return a + b if op == "+" else a - b if op == "-" else a * b
+            return a / b if op == "/" else math.fmod(a, b) if op == "MOD" else float(math.trunc(a / b))
+        except (ValueError, OverflowError):
+            return math.nan
 
     def _register(self, expr: Expr, args: tuple) -> float:
         kind, number = expr[1], self.index(expr[2], args)

@@ -42,9 +42,11 @@ def _binary(op: str, a: float, b: float) -> float:
     comparisons = {"EQ": a == b, "NE": a != b, "GT": a > b, "GE": a >= b, "LT": a < b, "LE": a <= b}
     if op in comparisons:
         return float(comparisons[op])
-    if op == "MOD":
-        return math.fmod(a, b) if b else math.nan
-    return {"+": a + b, "-": a - b, "*": a * b, "/": a / b if b else math.nan, "**": a ** b}[op]
+    if op in ("MOD", "/") and not b:
+        return math.nan
+    if op in ("+", "-", "*"):
+        return a + b if op == "+" else a - b if op == "-" else a * b
+    return math.fmod(a, b) if op == "MOD" else a / b if op == "/" else a ** b
 
 
 class Parameters:
@@ -101,7 +103,7 @@ class Parameters:
         if kind == "bin":
             try:
                 result = _binary(expr[1], self.evaluate(expr[2]), self.evaluate(expr[3]))
-            except (OverflowError, ZeroDivisionError):
+            except (OverflowError, ZeroDivisionError, ValueError):
                 result = math.nan
             result = math.nan if isinstance(result, complex) else result
         elif expr[1] == "EXISTS":

@@ -3,7 +3,8 @@
 Which code runs: the script's top-level statements, in order; when they call none of the
 functions the script defines (a file holding ``def prog(): … end`` alone, as Polyscope exports
 and as the controller runs a script sent to it), the main function then runs too: the one the
-reading names, else the first one defined. Variables: top-level assignments and ``global`` ones
+reading names, else the function without parameters no other function calls (the last such).
+Functions may be defined inside others (Polyscope defines a program's functions inside it). Variables: top-level assignments and ``global`` ones
 are global; inside a function an assignment is local unless the name is global already or
 declared ``global`` (as Polyscope programs rely on). Threads (``thread``/``run``) are noted, not
 run. The robot's functions (motions, the TCP, outputs, waits) are in :mod:`.robot_calls`.
@@ -78,20 +79,29 @@ class UrRun:
             if wanted not in self.functions or self.functions[wanted].scope != "def":
                 raise InputError(f"{self.source}: the script defines no function {wanted!r}", parameters=("program",))
             return self.functions[wanted]
-        if any(self._calls_defined(st) for st in self.statements if st.kind != "def"):
+        if self._callees(tuple(st for st in self.statements if st.kind != "def")) & set(self.functions):
             return None
-        return next((st for st in self.statements if st.kind == "def" and st.scope == "def" and not st.params), None)
+        called = {name for st in self.statements if st.kind == "def" for name in self._callees(st.body)}
+        roots = [st for st in self.statements if st.kind == "def" and st.scope == "def" and not st.params
+                 and st.name not in called]
+        return roots[-1] if roots else None
 
-    def _calls_defined(self, st: Statement) -> bool:
-        def walk(expr) -> bool:
-            if not isinstance(expr, tuple) or not expr:
-                return False
-            if expr[0] == "call" and expr[1] in self.functions:
-                return True
-            return any(walk(e) for e in expr[1:] if isinstance(e, tuple))
-        exprs = [st.value, st.target, *(c for c, _ in st.branches), *st.args]
-        return any(walk(e) for e in exprs if e is not None) or any(self._calls_defined(s) for s in st.body) or \
-            any(self._calls_defined(s) for _, body in st.branches for s in body)
+    def _callees(self, body: tuple[Statement, ...]) -> set[str]:
+        """Names of the functions a body calls."""
+        found: set[str] = set()
+
+        def walk(expr) -> None:
+            if isinstance(expr, tuple) and expr:
+                if expr[0] == "call":
+                    found.add(expr[1])
+                for item in expr[1:]:
+                    walk(item)
+
+        for st in body:
+            for expr in (st.value, st.target, *(c for c, _ in st.branches), *st.args):
+                walk(expr)
+            found |= self._callees(st.body) | {n for _, b in st.branches for n in self._callees(b)}
+        return found
 
     def block(self, statements: tuple[Statement, ...], scope: Optional[dict]) -> Optional[str]:
         for st in statements:
@@ -105,8 +115,7 @@ class UrRun:
     def statement(self, st: Statement, scope: Optional[dict]) -> Optional[str]:
         kind = st.kind
         if kind == "def":
-            if scope is not None:
-                raise self.error("a function is defined inside another; define it at the top level")
+            self.functions[st.name] = st  # Polyscope defines a program's functions inside it
             return None
         if kind == "assign":
             self.assign(st, scope)
@@ -286,7 +295,11 @@ class UrRun:
             return {"<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y}[op]
         if op in ("/", "%") and y == 0:
             raise self.error("division by zero")
-        result = {"+": x + y, "-": x - y, "*": x * y, "/": x / y, "%": math.fmod(x, y) if y else 0}[op]
+        try:
+            result = x + y if op == "+" else x - y if op == "-" else x * y if op == "*" else x / y if op == "/" \
+                else math.fmod(x, y)
+        except (ValueError, OverflowError):
+            result = math.nan
         if isinstance(result, float) and not math.isfinite(result):
             raise self.error("the value is not a finite number")
         return result

@@ -3,8 +3,9 @@
 A pose ``p[x, y, z, rx, ry, rz]`` is metres and a rotation vector (radians, axis · angle) in the
 frame it is given in; :class:`PoseValue` holds it and converts to coatsim's :class:`Pose` (mm).
 Pose functions follow the URScript manual: ``pose_trans(a, b)`` is the frame product a·b,
-``pose_inv``, ``pose_add(a, b)`` adds the positions and turns by b's rotation after a's (R_b·R_a),
-``pose_sub(a, b)`` undoes it, ``interpolate_pose`` is linear in position and spherical in rotation;
+``pose_inv``, ``pose_add(a, b)`` adds the positions and multiplies the rotations (R_a·R_b),
+``pose_sub(to, from)`` subtracts the positions and gives R_fromᵀ·R_to (so that
+``pose_add(from, pose_sub(to, from))`` is ``to``), ``interpolate_pose`` is linear in position and spherical in rotation;
 ``rpy2rotvec`` / ``rotvec2rpy`` use roll-pitch-yaw about the fixed x, y, z axes.
 """
 
@@ -78,12 +79,12 @@ def pose_inv(a) -> PoseValue:
 
 def pose_add(a, b) -> PoseValue:
     pa, pb = _poses(a, b)
-    return PoseValue.of(Pose(pb.rotation @ pa.rotation, pa.translation_mm + pb.translation_mm))
+    return PoseValue.of(Pose(pa.rotation @ pb.rotation, pa.translation_mm + pb.translation_mm))
 
 
 def pose_sub(a, b) -> PoseValue:
     pa, pb = _poses(a, b)
-    return PoseValue.of(Pose(pa.rotation @ pb.rotation.T, pa.translation_mm - pb.translation_mm))
+    return PoseValue.of(Pose(pb.rotation.T @ pa.rotation, pa.translation_mm - pb.translation_mm))
 
 
 def interpolate_pose(a, b, alpha) -> PoseValue:
