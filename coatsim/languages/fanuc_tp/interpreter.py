@@ -122,7 +122,9 @@ class FanucRun:
         program = self.programs[name]
         caller = self.program
         self.program, self.source = program, program.source
-        structure = self.structures.setdefault(name, _Structure(program))
+        if name not in self.structures:
+            self.structures[name] = _Structure(program)
+        structure = self.structures[name]
         pc, statements = 0, program.statements
         while pc < len(statements):
             st = statements[pc]

@@ -98,19 +98,21 @@ def _group_one(body: str, where: str, line: int) -> Position:
 def parse_positions(text: str, source: str, first_line: int) -> dict[int, Position]:
     """Every position of a ``/POS`` section (``text`` starts on file line ``first_line``)."""
     positions: dict[int, Position] = {}
-    covered = 0
+    covered, line = 0, first_line  # the file line at ``covered``
     for match in _BLOCK.finditer(text):
-        line = first_line + text.count("\n", 0, match.start())
-        gap = text[covered:match.start()].strip()
-        if gap:
-            raise InputError(f"{source}:{first_line + text.count(chr(10), 0, covered)}: expected a position "
-                             "P[n]{ ... }; in /POS")
+        gap = text[covered:match.start()]
+        if gap.strip():
+            raise InputError(f"{source}:{line + gap[:len(gap) - len(gap.lstrip())].count(chr(10))}: expected a "
+                             "position P[n]{ ... }; in /POS")
+        line += gap.count("\n")
         covered = match.end()
         index = int(match.group(1))
         if index in positions:
             raise InputError(f"{source}:{line}: P[{index}] is given twice")
         positions[index] = _group_one(match.group(2), f"{source}:{line}", line)
-    if text[covered:].strip():
-        raise InputError(f"{source}:{first_line + text.count(chr(10), 0, covered)}: expected a position "
-                         "P[n]{ ... }; in /POS")
+        line += match.group(0).count("\n")
+    rest = text[covered:]
+    if rest.strip():
+        raise InputError(f"{source}:{line + rest[:len(rest) - len(rest.lstrip())].count(chr(10))}: expected a "
+                         "position P[n]{ ... }; in /POS")
     return positions

@@ -14,6 +14,7 @@ from coatsim.languages.fanuc_tp.positions import Position, parse_positions
 from coatsim.languages.fanuc_tp.statements import Select, Statement, parse_instruction
 
 _NUMBERED = re.compile(r"\s*(\d+)?\s*:(.*)\Z", re.S)
+_CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")  # a tab is text; a line holds no other control character
 _SECTION = re.compile(r"\s*/(PROG|ATTR|APPL|MN|POS|END)\b(.*)\Z", re.I | re.S)
 
 
@@ -62,7 +63,7 @@ def parse_ls(text: str, source: str) -> LsProgram:
     pos_lines: list[str] = []
     pos_start = 0
     for number, raw in enumerate(text.splitlines(), start=1):
-        if any(ord(ch) < 32 and ch != "\t" for ch in raw):
+        if _CONTROL.search(raw):
             raise InputError(f"{source}:{number}: a control character in the line; an .LS file is plain text")
         head = _SECTION.match(raw)
         if head:

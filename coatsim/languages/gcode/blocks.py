@@ -20,6 +20,7 @@ from coatsim.core.errors import InputError
 
 # An expression: ("num", v) | ("par", index_expr | name) | ("neg", e) | ("bin", op, a, b) | ("fn", name, a[, b])
 Expr = tuple
+_CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")  # a tab is text; a line holds no other control character
 _NUMBER = re.compile(r"[0-9]+\.?[0-9]*|\.[0-9]+")
 _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP", "LN", "ROUND", "SIN", "SQRT",
               "TAN")
@@ -146,7 +147,7 @@ def _split_comments(text: str, where: str) -> tuple[str, list[str]]:
 
 def parse_block(text: str, line: int, where: str) -> Optional[Block]:
     """The block of one line (None for an empty line or a ``%``)."""
-    if any(ord(ch) < 32 and ch != "\t" for ch in text):
+    if _CONTROL.search(text):
         raise InputError(f"{where}: a control character in the line; G-code is plain text")
     code, comments = _split_comments(text, where)
     code = re.sub(r"[ \t]+", "", code).upper()

@@ -359,8 +359,9 @@ class Parser:
 def parse_script(text: str, source: str) -> tuple[tuple[Statement, ...], tuple[str, ...]]:
     """The statements and the comments of a URScript file (InputError naming file:line on a syntax
     error)."""
-    if any(ord(ch) < 32 and ch not in "\t\r\n" for ch in text):
-        line = text[:next(k for k, ch in enumerate(text) if ord(ch) < 32 and ch not in "\t\r\n")].count("\n") + 1
+    control = re.search(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]", text)
+    if control:
+        line = text[:control.start()].count("\n") + 1
         raise InputError(f"{source}:{line}: a control character; a script is plain text")
     comments: list[str] = []
     parser = Parser(tokenize(text, source, comments), source)

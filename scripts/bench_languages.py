@@ -1,0 +1,147 @@
+"""Robot languages: figures of the Fanuc TP, URScript and G-code writers and readers.
+
+Part 1, parse + interpret speed (CPU s, best of 2) of programs of N and 2N moves and the exponent
+against N: a program coatsim wrote (a zigzag polyline, blended) and one in a person's style whose
+poses are computed in a loop (Fanuc FOR with position register arithmetic, URScript while with
+pose_add, G-code incremental moves with parameters). Part 2, lines of text and moves read back
+for the shipped scenarios' curves, polysegment and polyline variants, per language (Kawasaki AS
+for reference). Prints only; never asserts.
+
+    python scripts/bench_languages.py [N]   (default 5000 moves)
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+FANUC_UR_GCODE = ("fanuc-tp", "urscript", "gcode")
+
+
+def cpu(fn, repeat: int = 3):
+    """(best CPU seconds, last result) of ``fn()``."""
+    best, out = math.inf, None
+    for _ in range(repeat):
+        t0 = time.process_time()
+        out = fn()
+        best = min(best, time.process_time() - t0)
+    return best, out
+
+
+def exponent(n1: float, t1: float, n2: float, t2: float) -> float:
+    return math.log(max(t2, 1e-9) / max(t1, 1e-9)) / math.log(n2 / n1)
+
+
+def zigzag(n_moves: int):
+    """A polyline of ``n_moves`` lines (a zigzag of 2 mm steps) as a polysegment."""
+    import numpy as np
+
+    from coatsim.path.placement import polyline_polysegment
+
+    x = np.arange(n_moves + 1) * 2.0
+    y = np.where(np.arange(n_moves + 1) % 2 == 0, 0.0, 1.0)
+    return polyline_polysegment(np.column_stack((x - x.mean(), y)), False)
+
+
+def looped(name: str, n: int) -> str:
+    """A program of ``n`` moves whose targets a loop computes, in a person's style."""
+    if name == "fanuc-tp":
+        return ("/PROG  LOOPED\n/MN\n   1:  UFRAME_NUM=0 ;\n   2:  UTOOL_NUM=0 ;\n   3:J P[1] 50% FINE ;\n"
+                "   4:  PR[1]=LPOS ;\n   5:  PR[2,1]=0 ;\n   6:  PR[2,2]=0.1 ;\n"
+                f"   7:  FOR R[1]=1 TO {n - 1} ;\n   8:  PR[1]=PR[1]+PR[2] ;\n   9:  R[2]=R[1] MOD 2 ;\n"
+                "  10:  IF R[2]=0,JMP LBL[1] ;\n  11:L PR[1] 200mm/sec CNT50 ;\n  12:  JMP LBL[2] ;\n"
+                "  13:  LBL[1] ;\n  14:L PR[1] 250mm/sec CNT50 ;\n  15:  LBL[2] ;\n  16:  ENDFOR ;\n/POS\n"
+                "P[1]{GP1: UF : 0, UT : 0, X = 700 mm, Y = -200 mm, Z = 300 mm, W = 180 deg, P = 0 deg, "
+                "R = 0 deg};\n/END\n")
+    if name == "urscript":
+        return ("def looped():\n  start = p[0.7, -0.2, 0.3, 3.14159265359, 0, 0]\n  movej(start)\n  i = 1\n"
+                f"  while (i < {n}):\n    target = pose_add(start, p[0, 0.0001 * i, 0, 0, 0, 0])\n"
+                "    if (i % 2 == 0):\n      movel(target, v=0.2, r=0.00005)\n    else:\n"
+                "      movel(target, v=0.25, r=0.00005)\n    end\n    i = i + 1\n  end\nend\n")
+    return ("G21 G90 G64 P0.05\nG0 X700 Y-200 Z300\nG91\n#1 = 0\n"
+            + "".join(f"G1 Y[0.1 + #1 * 0] F{12000 + 3000 * (k % 2)}\n#1 = [#1 + 1]\n" for k in range(n - 1)))
+
+
+def read_speed(n: int) -> None:
+    from coatsim.languages.registry import language
+    from coatsim.path.build import ProgramOptions
+    from coatsim.path.language import ReadOptions
+    from coatsim.path.part_program import build_part_program
+    from coatsim.path.placement import Placement
+
+    print(f"# Fanuc TP, URScript, G-code: parse + interpret (CPU s, best of 2), ~{n} and ~{2 * n} moves")
+    print(f"  {'language':<10} {'program':<9} {'moves':>7} {'lines':>7} {'t1 s':>7} {'moves':>7} {'t2 s':>7} "
+          f"{'moves/s':>9} {'exponent':>9}")
+    with tempfile.TemporaryDirectory() as folder:
+        for name in FANUC_UR_GCODE:
+            lang = language(name)
+            for kind in ("written", "looped"):
+                row = []
+                for size in (n, 2 * n):
+                    if kind == "written":
+                        text = build_part_program([zigzag(size)], Placement(lead_in_mm=10.0, lead_out_mm=10.0),
+                                                  ProgramOptions(variant="polyline-blend"), tolerance_mm=0.1,
+                                                  source="bench", language=lang).text
+                    else:
+                        text = looped(name, size)
+                    path = Path(folder) / f"b{size}{lang.suffixes[0]}"
+                    path.write_text(text)
+                    t, toolpath = cpu(lambda: lang.read([path], ReadOptions()), repeat=2)
+                    row.append((len(toolpath.moves), text.count("\n"), t))
+                (m1, l1, t1), (m2, _, t2) = row
+                print(f"  {name:<10} {kind:<9} {m1:>7} {l1:>7} {t1:>7.3f} {m2:>7} {t2:>7.3f} {m2 / t2:>9.0f} "
+                      f"{exponent(m1, t1, m2, t2):>9.2f}")
+
+
+def scenario_sizes() -> None:
+    """Lines of text / moves read back of each shipped scenario's program, per variant and language."""
+    from coatsim.core.errors import CoatsimError
+    from coatsim.languages.registry import language
+    from coatsim.path.build import ProgramOptions, polyline_of
+    from coatsim.path.language import ReadOptions
+    from coatsim.path.part_program import build_part_program
+    from coatsim.path.placement import Placement
+    from coatsim.run.scenario import load_scenario
+    from coatsim.run.scenario_inputs import curve_frame, load_arm, segment_input
+
+    names = ("kawasaki-as", *FANUC_UR_GCODE)
+    root = Path(__file__).resolve().parents[1] / "scenarios"
+    print("\n# shipped scenarios: lines of text / moves read back")
+    print(f"  {'scenario':<20} {'variant':<15} " + " ".join(f"{n:>13}" for n in names))
+    for path in sorted(root.glob("*.yaml")):
+        loaded = load_scenario(path)
+        spec = loaded.spec
+        if spec.curve is None:
+            print(f"  {path.stem:<20} (a user's program: no curve to write)")
+            continue
+        contours, _ = segment_input(loaded, load_arm(loaded, None))
+        polylines = [polyline_of(c.curve.points, c.polysegment.closed, spec.segmentation.tolerance_mm) for c in contours]
+        place = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, lead_in_mm=spec.motion.lead_in_mm,
+                          lead_out_mm=spec.motion.lead_out_mm, offset_xy=(0.0, 0.0))
+        for variant in ("polysegment", "polyline-stop", "polyline-blend"):
+            cells = []
+            for name in names:
+                lang = language(name)
+                options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s,
+                                         accuracy_mm=spec.motion.accuracy_mm)
+                try:
+                    built = build_part_program([c.polysegment for c in contours], place, options,
+                                               tolerance_mm=spec.segmentation.tolerance_mm, source=path.stem,
+                                               language=lang, points=[c.curve.points for c in contours],
+                                               polylines=polylines)
+                    with tempfile.TemporaryDirectory() as folder:
+                        file = Path(folder) / f"p{lang.suffixes[0]}"
+                        file.write_text(built.text)
+                        moves = len(lang.read([file], ReadOptions()).moves)
+                    cells.append(f"{built.text.count(chr(10))}/{moves}")
+                except CoatsimError as exc:
+                    cells.append("refused" if "tool orientation" in str(exc) else type(exc).__name__)
+            print(f"  {path.stem:<20} {variant:<15} " + " ".join(f"{c:>13}" for c in cells))
+
+
+if __name__ == "__main__":
+    read_speed(int(sys.argv[1]) if len(sys.argv) > 1 else 5000)
+    scenario_sizes()
