@@ -399,7 +399,7 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
             movie = write_video(out / f"{reference.name}.mp4", data, cell)
         if report and runs:
             write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
-                         cell=cell, video=None if movie is None else movie.name)
+                         video=None if movie is None else movie.name)
         report_s = time.perf_counter() - report_started
     unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply", "thickness.glb", "mp4")}
     unwritten |= set() if report and runs else {"report.html"}

@@ -20,7 +20,7 @@ SECTION_IDS = ("verdict", "speed", "thickness-along-track", "maps", "warnings", 
                "summary", "gates")
 
 
-def build_sections(data: ReportData, cell: Optional[Any] = None, video: Optional[str] = None) -> list[Section]:
+def build_sections(data: ReportData, video: Optional[str] = None) -> list[Section]:
     """Every section of the report, in order."""
     from coatsim.report.sections import (
         maps,
@@ -40,7 +40,7 @@ def build_sections(data: ReportData, cell: Optional[Any] = None, video: Optional
         track.section(data),
         maps.section(data),
         warnings.section(data),
-        view3d.section(data, cell, video),
+        view3d.section(data, video),
         program.section(data),
         tables.metrics_section(data),
         tables.summary_section(data),
@@ -49,12 +49,12 @@ def build_sections(data: ReportData, cell: Optional[Any] = None, video: Optional
 
 
 def write_report(path: Path, loaded: Any, contours: Sequence[Any], runs: Sequence[Any], document: Mapping[str, Any],
-                 notes: Sequence[str] = (), *, cell: Optional[Any] = None, video: Optional[str] = None) -> None:
-    """Write the self-contained report.html of a run: ``contours`` are the segmentations of the
-    curve (one) or of the contours of a part, ``runs`` the variants' runs, ``notes`` what reading
-    a drawing noted, ``cell`` the robot cell (for the 3-D pictures), ``video`` the name of the
-    run's MP4 beside the report, if one was made."""
+                 notes: Sequence[str] = (), *, video: Optional[str] = None) -> None:
+    """Write the self-contained report.html of a run from its results and its metrics document
+    alone (no stage is run again): ``contours`` are the segmentations of the curve (one) or of
+    the contours of a part, ``runs`` the variants' runs, ``notes`` what reading a drawing noted,
+    ``video`` the name of the run's MP4 beside the report, if one was made."""
     data = ReportData(loaded, tuple(contours), tuple(runs), document, tuple(notes))
-    sections = build_sections(data, cell, video)
+    sections = build_sections(data, video)
     subtitle = f"coatsim {__version__}, scenario {loaded.path.name}, {document['mode']} mode"
     write_text(path, render_html(f"coatsim report: {loaded.spec.name}", subtitle, sections))

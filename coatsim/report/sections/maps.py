@@ -1,6 +1,7 @@
 """The maps section: thickness heat maps of every variant on one colour scale with the sprayed
 tool path drawn, and the difference map polysegment − best polyline (the other variant with the
-lowest thickness CV) on a symmetric scale."""
+lowest thickness CV) on a symmetric scale. Each map is an image of the part's 2-D view on the
+report's pixel grid (:mod:`coatsim.report.raster`), drawn once."""
 
 from __future__ import annotations
 
@@ -9,57 +10,71 @@ from typing import Any
 import numpy as np
 
 from coatsim.report.html import Figure, Section, esc, figure_html
-from coatsim.report.plots import png_bytes, pyplot
-from coatsim.spray.outputs import COLOUR_MAP, view_faces
+from coatsim.report.plots import figure, lean, png_bytes, title
+from coatsim.spray.outputs import COLOUR_MAP
 
 DIFF_MAP = "RdBu_r"
+PANEL_HEIGHT_IN = 2.8
 
 
-def _axes_grid(plt, n: int, width: float = 4.4):
-    fig, axes = plt.subplots(1, n, figsize=(width * n + 1.3, 4.1), squeeze=False, layout="constrained",
-                             sharex=True, sharey=True)
-    return fig, axes[0]
+def _panels(data: Any, n: int) -> tuple[Any, list, Any]:
+    """n map panels side by side, each as wide as the view's aspect asks, and a colour-bar
+    axis on the right, laid out by hand (a layout engine would measure every artist)."""
+    x0, x1, y0, y1 = data.raster.extent
+    width = float(np.clip(PANEL_HEIGHT_IN * (x1 - x0) / max(y1 - y0, 1e-9), 1.5, 6.0))
+    fig = figure(0.75 + n * (width + 0.15) + 1.0, PANEL_HEIGHT_IN + 0.85)
+    w, h = fig.get_size_inches()
+    axes = []
+    for k in range(n):
+        ax = fig.add_axes(((0.75 + k * (width + 0.15)) / w, 0.55 / h, width / w, PANEL_HEIGHT_IN / h),
+                          sharex=axes[0] if axes else None, sharey=axes[0] if axes else None)
+        lean(ax)
+        if axes:
+            ax.tick_params(labelleft=False)
+        axes.append(ax)
+    bar = fig.add_axes(((0.75 + n * (width + 0.15)) / w, 0.55 / h, 0.12 / w, PANEL_HEIGHT_IN / h))
+    bar.tick_params(labelsize=8)
+    return fig, axes, bar
+
+
+def _image(ax: Any, data: Any, values: np.ndarray, **style: Any) -> Any:
+    raster = data.raster
+    image = ax.imshow(raster.image(values), origin="lower", extent=raster.extent, interpolation="nearest",
+                      aspect="auto", **style)
+    ax.set_xlim(*raster.extent[:2])
+    ax.set_ylim(*raster.extent[2:])
+    ax.set_autoscale_on(False)  # the tracks drawn next leave the view where they leave the part
+    return image
 
 
 def heat_figure(data: Any) -> bytes:
-    surface = data.surface
-    faces = view_faces(surface)
     vmin, vmax = data.scale_um
-    plt = pyplot()
-    fig, axes = _axes_grid(plt, len(data.runs))
+    fig, axes, bar = _panels(data, len(data.runs))
     image = None
     for ax, run in zip(axes, data.runs):
-        image = ax.tripcolor(surface.view[:, 0], surface.view[:, 1], faces, run.coating.thickness_um,
-                             shading="gouraud", cmap=COLOUR_MAP, vmin=vmin, vmax=vmax)
+        image = _image(ax, data, run.coating.thickness_um, cmap=COLOUR_MAP, vmin=vmin, vmax=vmax)
         path = data.track_view(run)
         ax.plot(path[:, 0], path[:, 1], color="white", lw=0.5, alpha=0.8)
-        ax.set_aspect("equal")
-        ax.set_title(run.name, fontsize=10)
-        ax.set_xlabel(surface.view_labels[0])
-    axes[0].set_ylabel(surface.view_labels[1])
-    fig.colorbar(image, ax=list(axes), label="thickness (µm)", shrink=0.9)
-    return png_bytes(fig, dpi=110)
+        title(ax, run.name)
+        ax.set_xlabel(data.surface.view_labels[0], fontsize=8)
+    axes[0].set_ylabel(data.surface.view_labels[1], fontsize=8)
+    fig.colorbar(image, cax=bar).set_label("thickness (µm)", fontsize=8)
+    return png_bytes(fig)
 
 
 def difference_figure(data: Any, other: Any) -> tuple[bytes, float]:
     """The difference map and its scale (µm)."""
-    surface = data.surface
-    faces = view_faces(surface)
     diff = data.reference.coating.thickness_um - other.coating.thickness_um
     limit = float(np.percentile(np.abs(diff), 99.5)) or 1.0
-    plt = pyplot()
-    fig, axes = _axes_grid(plt, 1, 6.0)
-    ax = axes[0]
-    image = ax.tripcolor(surface.view[:, 0], surface.view[:, 1], faces, diff, shading="gouraud", cmap=DIFF_MAP,
-                         vmin=-limit, vmax=limit)
+    fig, (ax,), bar = _panels(data, 1)
+    image = _image(ax, data, diff, cmap=DIFF_MAP, vmin=-limit, vmax=limit)
     path = data.track_view(data.reference)
     ax.plot(path[:, 0], path[:, 1], color="black", lw=0.4, alpha=0.6)
-    ax.set_aspect("equal")
-    ax.set_title(f"{data.reference.name} − {other.name}", fontsize=10)
-    ax.set_xlabel(surface.view_labels[0])
-    ax.set_ylabel(surface.view_labels[1])
-    fig.colorbar(image, ax=ax, label="thickness difference (µm)", shrink=0.9)
-    return png_bytes(fig, dpi=110), limit
+    title(ax, f"{data.reference.name} − {other.name}")
+    ax.set_xlabel(data.surface.view_labels[0], fontsize=8)
+    ax.set_ylabel(data.surface.view_labels[1], fontsize=8)
+    fig.colorbar(image, cax=bar).set_label("thickness difference (µm)", fontsize=8)
+    return png_bytes(fig), limit
 
 
 def section(data: Any) -> Section:
