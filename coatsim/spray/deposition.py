@@ -220,22 +220,29 @@ def _candidate_pairs(leaves: _Leaves, steps: SubSteps, sel: slice, slope: float)
     return np.repeat(step + sel.start, counts), vertex
 
 
+def _dot(x: tuple[np.ndarray, ...], y: tuple[np.ndarray, ...]) -> np.ndarray:
+    """Row-wise dot products of two vector arrays given as their three component arrays."""
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+
+
 def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
            ) -> tuple[np.ndarray, np.ndarray]:
-    """Thickness rate (mm/s) and squared reference-plane radius (mm², inf where unseen) of pairs."""
+    """Thickness rate (mm/s) and squared reference-plane radius (mm², inf where unseen) of pairs.
+    Vectors are gathered component by component (a gather of one column of an (n, 3) array is
+    cheaper than of its rows, and no (pairs, 3) array is made)."""
     h0 = model.standoff_mm
-    d = surface.vertices[i] - steps.position[s]
-    a = steps.axis[s]
-    da = np.einsum("ij,ij->i", d, a)
-    dn = -np.einsum("ij,ij->i", d, surface.normals[i])
+    pick = lambda rows, index: tuple(column[index] for column in rows.T)  # noqa: E731
+    d = tuple(v - p for v, p in zip(pick(surface.vertices, i), pick(steps.position, s)))
+    da = _dot(d, pick(steps.axis, s))
+    dn = -_dot(d, pick(surface.normals, i))
     seen = (da > 1e-9) & (dn > 0)
     scale = np.where(seen, h0 / np.where(seen, da, 1.0), 0.0)
-    u = np.einsum("ij,ij->i", d, steps.e1[s]) * scale
-    v = np.einsum("ij,ij->i", d, steps.e2[s]) * scale
+    u = _dot(d, pick(steps.e1, s)) * scale
+    v = _dot(d, pick(steps.e2, s)) * scale
     g = model.footprint.density(u, v)
     rate = model.rate_mm3_s * g * scale**3 * np.where(seen, dn, 0.0) / h0
     if model.de_exponent != 1.0:
-        cos_gamma = np.where(seen, dn, 0.0) / np.linalg.norm(d, axis=1)
+        cos_gamma = np.where(seen, dn, 0.0) / np.sqrt(_dot(d, d))
         rate *= cos_gamma ** (model.de_exponent - 1.0)
     r2 = np.where(seen, u * u + v * v, np.inf)
     return rate, r2
