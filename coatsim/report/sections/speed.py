@@ -56,7 +56,7 @@ def speed_figure(runs: Sequence[Any], events: Sequence[Event], numbers: Mapping[
             ax.plot([e.s_mm for e in warned], [1.08 * top] * len(warned), "v", color="#b3121f", ms=5)
             for e in warned:
                 ax.text(e.s_mm, 1.08 * top, f"  #{numbers[e]}", va="center", fontsize=6.5, color="#b3121f")
-        title(ax, run.name, loc="left", fontweight="bold", color=colour(run.name, k))
+        title(ax, run.name, loc="left", color=colour(run.name, k))
         ax.set_ylabel("mm/s", fontsize=8)
     axes[0].set_ylim(0.0, 1.15 * top)
     axes[-1].set_xlabel("along the curve proper (mm); grey: run-in and run-out", fontsize=8)
