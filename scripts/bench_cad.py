@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 import coatsim.geometry.cad.contour_fit as contour_fit
-from coatsim.errors import CoatsimError
+from coatsim.core.errors import CoatsimError
 from coatsim.geometry.cad import segment_drawing
 from coatsim.geometry.cad.drawing import DRAWING_SUFFIXES
 

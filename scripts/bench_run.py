@@ -4,8 +4,9 @@ each stage's exponent against its size, then the comparison the runs lead with.
 Stages: start-up (importing coatsim, before the run), segmentation, meshing (the coating mesh
 and its edge distances), programs (written and read back), execution (the simulated arm and
 its trajectory file), coat, metrics (deviations, the shared region of interest, gates,
-metrics.json), thickness files (PLY and GLB) and report (report.html, with the libraries it
-imports first), and what is left (other). CPU seconds are this process's (load on the machine
+metrics.json), thickness files (PLY and GLB; the first to import matplotlib, for its colour
+map) and report (report.html, with the plotting it imports), and what is left (other: the
+scenario and the arm model loaded, the output folder held). CPU seconds are this process's (load on the machine
 counts less than in wall time). The exponent of a stage is log(t_full / t_fast) / log(n_full /
 n_fast) between the scenario's fast and full runs, n the stage's own size: trajectory rows for
 the execution, coating-mesh vertices for meshing, coat, thickness files and report; a stage
@@ -27,23 +28,23 @@ import math  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from coatsim.runtime import single_threaded_numerics  # noqa: E402
+from coatsim.core.runtime import single_threaded_numerics  # noqa: E402
 
 single_threaded_numerics()  # as `coatsim` does, before the numerical libraries load
 
-import coatsim.pipeline as pipeline  # noqa: E402
 import coatsim.report.document as document  # noqa: E402
-from coatsim.errors import CoatsimError  # noqa: E402
+import coatsim.run.pipeline as pipeline  # noqa: E402
+from coatsim.core.errors import CoatsimError  # noqa: E402
 from coatsim.report.summary import summary_text  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 STARTUP_S = time.process_time() - STARTED
-# stage -> the functions of coatsim.pipeline (or of its report module) whose CPU it is
+# stage -> the functions of coatsim.run.pipeline whose CPU it is, less that of the stages they call
 STAGES = {
     "segmentation": ("segment_input", "segment_curve"),
     "meshing": ("build_surface", "away_from_border"),
-    "programs": ("build_part_program", "read_toolpath", "read_user_program"),
-    "execution": ("execute",),
+    "programs": ("run_variant", "run_program_variant"),
+    "execution": ("simulate_variant",),
     "coat": ("coat",),
     "metrics": ("_segmentation_groups", "polyline_of", "hausdorff", "on_common_roi", "evaluate_gates", "assemble",
                 "to_json"),
@@ -54,11 +55,12 @@ SIZE = {"execution": "rows", "meshing": "vertices", "coat": "vertices", "thickne
 
 
 class Clock:
-    """CPU seconds per stage, by wrapping the pipeline's functions (nested calls count once)."""
+    """CPU seconds per stage, by wrapping the pipeline's functions; a call's time goes to its
+    stage less the time of the wrapped calls inside it."""
 
     def __init__(self) -> None:
         self.seconds: dict[str, float] = {}
-        self.depth = 0
+        self.inner: list[float] = []  # per open call: CPU seconds of the wrapped calls inside it
         for stage, names in STAGES.items():
             for name in names:
                 setattr(pipeline, name, self.wrap(stage, getattr(pipeline, name)))
@@ -66,15 +68,16 @@ class Clock:
 
     def wrap(self, stage: str, function):
         def timed(*args, **kwargs):
-            if self.depth:
-                return function(*args, **kwargs)
-            self.depth += 1
+            self.inner.append(0.0)
             started = time.process_time()
             try:
                 return function(*args, **kwargs)
             finally:
-                self.seconds[stage] = self.seconds.get(stage, 0.0) + time.process_time() - started
-                self.depth -= 1
+                elapsed = time.process_time() - started
+                own = elapsed - self.inner.pop()
+                self.seconds[stage] = self.seconds.get(stage, 0.0) + own
+                if self.inner:
+                    self.inner[-1] += elapsed
         return timed
 
 

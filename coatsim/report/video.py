@@ -14,8 +14,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from coatsim.errors import InputError
-from coatsim.fileio import temporary_path
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import temporary_path
 
 FPS = 25
 LEAD_S = 0.5

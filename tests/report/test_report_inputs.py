@@ -17,16 +17,16 @@ import coatsim.report.document as document
 from coatsim.geometry import segment_curve
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fit import fit_run
-from coatsim.pipeline import run_scenario
-from coatsim.program import read_toolpath
-from coatsim.program.part_program import build_part_program
+from coatsim.languages.kawasaki_as.language import KawasakiAs
+from coatsim.path.part_program import build_part_program
 from coatsim.robot.execute import execute
+from coatsim.run.pipeline import run_scenario
 from coatsim.spray.coat import coat, remeasured
 from coatsim.spray.coating_metrics import coating_metrics, region_of_interest
 from coatsim.spray.deposition import deposit
 
 STAGES = {f.__code__: f.__qualname__ for f in (deposit, coat, remeasured, coating_metrics, region_of_interest,
-                                                  execute, segment_curve, fit_run, hausdorff, read_toolpath,
+                                                  execute, segment_curve, fit_run, hausdorff, KawasakiAs.read,
                                                   build_part_program)}
 
 
