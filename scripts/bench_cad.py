@@ -27,8 +27,8 @@ from coatsim.core.errors import CoatsimError
 from coatsim.geometry.cad import segment_drawing
 from coatsim.geometry.cad.drawing import DRAWING_SUFFIXES
 
-GREETING = "Happy birthday, Wanda!\nJoyeux anniversaire"
-SHORT_GREETING = "Happy birthday!"
+GREETING = "Season's greetings\nfrom coatsim"  # 568 pieces: 396 Béziers and 172 lines, 40 outlines
+SHORT_GREETING = "Season's greetings"
 
 
 def generated_native(folder: Path, n_entities: int = 1000) -> Path:
