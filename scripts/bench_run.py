@@ -111,7 +111,6 @@ def print_split(name: str, full: dict[str, float], fast: dict[str, float] | None
         line = f"  {stage:<16} {t:>7.2f} {t / full['total']:>6.0%}"
         if fast is not None and sizes is not None:
             unit = SIZE.get(stage)
-            n = "" if unit is None else f"{sizes[0][unit]}>{sizes[1][unit]}"
             e = "-" if unit is None else exponent(fast.get(stage, 0.0), t, sizes[0][unit], sizes[1][unit])
             line += f" {fast.get(stage, 0.0):>7.2f} {unit or '':>9} {e:>9}"
         print(line)
