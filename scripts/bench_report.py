@@ -49,8 +49,9 @@ class Clock:
         for name in ("metrics_section", "summary_section", "gates_section"):
             setattr(tables, name, self.wrap("tables", getattr(tables, name)))
         for name in SHARED:
-            prop = getattr(data.ReportData, name)
-            prop.func = self.wrap(f"shared: {name.strip('_')}", prop.func)
+            prop = getattr(data.ReportData, name, None)  # (older versions of the report lack some)
+            if prop is not None:
+                prop.func = self.wrap(f"shared: {name.strip('_')}", prop.func)
         pipeline.write_thickness_files = self.wrap("PLY + GLB files", pipeline.write_thickness_files)
         document.write_report = self.wrap("page", document.write_report)
 
