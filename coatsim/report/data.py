@@ -1,7 +1,7 @@
 """What every report section reads: the run's variants, its metrics document, its events, the
 one thickness colour scale, the track's centre line on the part, and what several sections
-draw from (the tracks in the heat maps' view, the coarse mesh of the 3-D pictures, the heat
-maps' pixel grid), each computed once from the run's results: the report recomputes no stage.
+draw from (the tracks in the heat maps' view, the coarse mesh of the 3-D view and the video,
+the heat maps' pixel grid), each computed once from the run's results: the report recomputes no stage.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from coatsim.spray.outputs import view_faces
 SCALE_PERCENTILE = 99.5  # the colour scale's top: the largest of the variants' 99.5th percentiles
 CENTRE_STEP_MM = 0.5     # sampling of the centre line
 TRACK_POINTS = 1500      # aim points per variant drawn on the heat maps (about: 4 per pixel across)
-VIEW_FACES = 12_000      # the coarse mesh of the 3-D pictures and the viewer (about this many triangles)
+VIEW_FACES = 12_000      # the coarse mesh of the 3-D view and the video (about this many triangles)
 HEAT_COLUMNS = 320       # pixels across a heat map's view
 
 
@@ -162,7 +162,7 @@ class ReportData:
 
     @cached_property
     def coarse(self) -> Coarse:
-        """The coating mesh clustered to about VIEW_FACES triangles: the 3-D pictures' part."""
+        """The coating mesh clustered to about VIEW_FACES triangles: the 3-D view's and the video's part."""
         return decimate(self.surface, VIEW_FACES)
 
     @cached_property
