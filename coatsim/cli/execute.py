@@ -16,8 +16,7 @@ from coatsim.core.fileio import write_text
 if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
 
-FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs",
-         "speed_mm_s": "--speed"}
+FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs"}
 
 
 def execute(

@@ -32,3 +32,9 @@ FOOTPRINT = "gaussian:sigma=5"
 FLOW_MM3_S = 40.0
 #: Cartesian sampling step of the inverse kinematics along a path, mm.
 STEP_MM = 1.0
+#: Deposition efficiency by spray angle (coatsim.spray.efficiency): none, every particle that lands sticks.
+EFFICIENCY = "none"
+#: Shadows (coatsim.spray.visibility): auto, ray-cast where the part can shadow itself.
+SHADOWS = "auto"
+#: The specification band: thickness within this many per cent of the target.
+TOLERANCE_PCT = 10.0

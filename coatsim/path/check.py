@@ -20,7 +20,8 @@ import numpy as np
 
 from coatsim.core.errors import ExecutionError
 from coatsim.languages.kawasaki_as.files import parse_files, Paths
-from coatsim.path.arcs import circle_through, move_length
+from coatsim.geometry.space.primitives import arc_through
+from coatsim.path.arcs import move_length
 from coatsim.languages.kawasaki_as import ast, interpret_run
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH
 from coatsim.languages.kawasaki_as.printer import expr_text
@@ -193,7 +194,7 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         problems.append(f"sections not read (controller data): {', '.join(sections)}")
     for move, (name, _, _) in zip(toolpath.moves, run.move_origins):
         if isinstance(move, CircularMove):
-            sweep = circle_through(move.start.position, move.via.position, move.end.position).sweep
+            sweep = arc_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm).sweep
             if sweep >= math.pi:
                 problems.append(f"{run.programs[name.lower()].source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
                                 "pair below 180 deg")

@@ -28,12 +28,13 @@ from coatsim.languages.kawasaki_as.names import check_name
 from coatsim.languages.kawasaki_as.parser import parse_as_bytes
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, write_as
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.frames import DEFAULT_TOOL, Frame
-from coatsim.path.placement import PlacedArc, PlacedLine, PlacedPath
+from coatsim.path.frames import DEFAULT_TOOL
+from coatsim.path.placement import PlacedMove, PlacedPath, placed_arc, placed_line
 from coatsim.path.process import ProcessInfo
 from coatsim.path.process_path import ProcessPath, PlaneFrame, dense_points, moves_in_lines, path_distance, \
     path_of, planar_frame, rotation_along, spray_runs
-from coatsim.path.toolpath import Kinematics, Pose
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import Kinematics
 
 PLANE_SHARE = 0.5  # the part of the tolerance a path may leave its plane by
 
@@ -164,15 +165,15 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
     ends = np.array([s.start for s in poly.segments] + [poly.end], dtype=float)
     space = plane.to_space(ends)
     rotations = rotation_along(path, space)
-    poses = [Pose(p, r) for p, r in zip(space, rotations)]
+    poses = [Pose(r, p) for p, r in zip(space, rotations)]
     segments = []
     for k, s in enumerate(poly.segments):
         if isinstance(s, Line):
-            segments.append(PlacedLine(poses[k], poses[k + 1], "curve"))
+            segments.append(placed_line(poses[k], poses[k + 1]))
         else:
             normal = plane.normal if s.sweep > 0 else -plane.normal
-            segments.append(PlacedArc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal,
-                                      abs(s.sweep), False))
+            arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
+            segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
     return Fitted(path, plane, tuple(segments), poly.n_arcs, poly.n_lines, seg.max_deviation_mm,
                   _line_span(run, moves), tuple(notes))
 
@@ -180,7 +181,7 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
 def _settings(run: Run, f: Fitted) -> tuple[float, float, bool]:
     """Speed (of the longest move), accuracy and CP a path was sprayed with."""
     moves = [run.toolpath.moves[i] for i in f.path.moves]
-    lengths = np.array([float(np.linalg.norm(m.end.position - m.start.position)) for m in moves])
+    lengths = np.array([float(np.linalg.norm(m.end.translation_mm - m.start.translation_mm)) for m in moves])
     first = moves[0].settings
     return float(moves[int(np.argmax(lengths))].settings.speed_mm_s), float(first.accuracy_mm), first.cp
 
@@ -194,7 +195,7 @@ def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
                          "--standalone writes them with one: choose a path with --lines FIRST-LAST")
     speed, accuracy, cp = settings.pop()
     tool = run.toolpath.tool
-    tool_frame = Frame.from_matrix(tool.offset_mm, tool.rotation) if tool is not None else DEFAULT_TOOL
+    tool_frame = Pose(tool.rotation, tool.offset_mm) if tool is not None else DEFAULT_TOOL
     paths = tuple(PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
                   for f in fitted)
     name = options.name or run.toolpath.name[:15]
@@ -280,7 +281,7 @@ def _is_utf8(data: bytes) -> bool:
 def _same(a, b) -> bool:
     end_a = a.target if a.kind == "joint" else a.end
     end_b = b.target if b.kind == "joint" else b.end
-    return a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.position, end_b.position, atol=1e-6)
+    return a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.translation_mm, end_b.translation_mm, atol=1e-6)
 
 
 def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[int]], ranges: list[tuple[int, int]],

@@ -25,6 +25,7 @@ from coatsim.geometry.builtin_curves import BUILTINS
 from coatsim.geometry.cad.drawing import is_drawing
 from coatsim.path.build import VARIANTS
 from coatsim.report.catalogue import METRICS
+from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.core.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
 
@@ -149,6 +150,8 @@ class GunSpec(_Strict):
     signal: Annotated[int, Field(ge=1, le=defaults.MAX_SIGNAL)] = defaults.GUN_SIGNAL
     roll_deg: float = 0.0
     follow_tangent: bool = False
+    efficiency: str = Field(defaults.EFFICIENCY, description="deposition efficiency by spray angle: none, angle (1 down to 60 deg, "
+                            "the documented curve below), angle:DEG=DE,..., table:FILE.csv or cosine:n=N")
 
     @field_validator("footprint")
     @classmethod
@@ -156,6 +159,16 @@ class GunSpec(_Strict):
         if not spec.strip().lower().startswith("table:"):
             try:
                 parse_footprint_spec(spec)
+            except InputError as exc:
+                raise ValueError(str(exc)) from None
+        return spec
+
+    @field_validator("efficiency")
+    @classmethod
+    def _efficiency(cls, spec: str) -> str:
+        if not spec.strip().lower().startswith("table:"):
+            try:
+                parse_efficiency_spec(spec)
             except InputError as exc:
                 raise ValueError(str(exc)) from None
         return spec
