@@ -1,0 +1,112 @@
+"""Geodesic passes (the seed authors' method): level sets of the heat-method distance from a start.
+
+The start is the region's border (``FromBoundary``), the section of a plane (``FromPlane``) or a
+list of points (``FromPoints``). A plane's section and the points are first inserted into the mesh
+as vertices, so the heat method starts exactly on them. Passes are the level sets at
+(k + 1/2) spacing from a border or points (the first pass half a spacing in, so the start is
+covered) and at k spacing on both sides of a plane (its section is a pass; the distance is signed
+by the side of the plane). Where holes or a genus split a level set, it has several pieces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Union
+
+import numpy as np
+
+from coatsim.errors import InputError
+from coatsim.geometry.surface.cuts import cut_at_level, insert_points
+from coatsim.geometry.surface.distance import distance_levels, heat_distance
+from coatsim.geometry.surface.passes import barycentric
+from coatsim.geometry.surface.piece import Piece
+
+
+@dataclass(frozen=True)
+class FromBoundary:
+    """Start at the region's border."""
+
+
+@dataclass(frozen=True)
+class FromPlane:
+    """Start at the section of the plane through ``point_mm`` with normal ``normal`` (part frame)."""
+
+    point_mm: tuple[float, float, float]
+    normal: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class FromPoints:
+    """Start at points on the surface (part frame, mm); each is moved to the nearest surface point."""
+
+    points_mm: tuple[tuple[float, float, float], ...]
+
+
+Start = Union[FromBoundary, FromPlane, FromPoints]
+
+
+def geodesic_piece(piece: Piece, start: Start, spacing_mm: float, band_mm: float,
+                   points: dict[int, np.ndarray] | None = None) -> Piece | None:
+    """The piece with the signed or unsigned heat distance from the start and its levels; None
+    when the start does not touch this piece. ``points`` are the start points on this piece
+    (face id -> barycentric weights rows), from ``assign_points``."""
+    if isinstance(start, FromBoundary):
+        sources = np.flatnonzero(piece.on_border)
+        if not len(sources):
+            raise InputError("geodesic passes from the border: a piece of the region is closed (it has no border); "
+                             "start from a plane or from points")
+        distance = heat_distance(piece.vertices, piece.faces, sources)
+        return _levelled(piece, distance, band_mm + 0.5 * spacing_mm, spacing_mm, band_mm)
+    if isinstance(start, FromPlane):
+        side = (piece.vertices - np.asarray(start.point_mm)) @ np.asarray(start.normal)
+        if side.min() >= 0 or side.max() < 0:
+            return None
+        values = np.column_stack([piece.carried(), side])
+        cut = cut_at_level(piece.vertices, piece.faces, side, 0.0, values)
+        cut_piece = piece.after(cut)
+        distance = heat_distance(cut.vertices, cut.faces, cut.on_cut)
+        signed = np.where(cut.values[:, 4] < 0, -distance, distance)
+        return _levelled(cut_piece, signed, 0.0, spacing_mm, band_mm)
+    if not points:
+        return None
+    faces_ids = np.concatenate([np.full(len(b), f) for f, b in points.items()])
+    bary = np.concatenate(list(points.values()))
+    cut = insert_points(piece.vertices, piece.faces, faces_ids, bary, piece.carried())
+    distance = heat_distance(cut.vertices, cut.faces, cut.on_cut)
+    return _levelled(piece.after(cut), distance, 0.5 * spacing_mm, spacing_mm, band_mm)
+
+
+def _levelled(piece: Piece, field: np.ndarray, first: float, spacing_mm: float, band_mm: float) -> Piece:
+    inside = piece.inside(band_mm)
+    if not inside.any():
+        return piece.with_field(field, np.zeros(0))
+    levels = distance_levels(float(field[inside].min()), float(field[inside].max()), first, spacing_mm)
+    return piece.with_field(field, levels)
+
+
+def assign_points(pieces: list[Piece], start: FromPoints, tolerance_mm: float) -> list[dict[int, np.ndarray]]:
+    """Each start point on its nearest piece: per piece, face id -> barycentric weights (k, 3).
+    A point farther than ``tolerance_mm`` from every piece is an InputError."""
+    import trimesh
+
+    points = np.asarray(start.points_mm, dtype=float).reshape(-1, 3)
+    best = np.full(len(points), np.inf)
+    where: list[tuple[int, int]] = [(-1, -1)] * len(points)
+    for k, piece in enumerate(pieces):
+        mesh = trimesh.Trimesh(piece.vertices, piece.faces, process=False)
+        _, distance, face = trimesh.proximity.closest_point(mesh, points)
+        for i in np.flatnonzero(distance < best):
+            best[i], where[i] = distance[i], (k, int(face[i]))
+    assigned: list[dict[int, np.ndarray]] = [{} for _ in pieces]
+    for i, (k, face) in enumerate(where):
+        if not best[i] <= tolerance_mm:
+            raise InputError(f"start point {tuple(round(float(x), 3) for x in points[i])} lies "
+                             f"{best[i]:.3g} mm from the region (more than {tolerance_mm:.3g} mm); "
+                             "give points on the coated surface")
+        piece = pieces[k]
+        bary = barycentric(piece.vertices, piece.faces, np.array([face]), points[i][None])[0]
+        bary = np.clip(bary, 0.0, None)
+        bary /= bary.sum()
+        rows = assigned[k].get(face)
+        assigned[k][face] = bary[None] if rows is None else np.vstack([rows, bary])
+    return assigned

@@ -1,0 +1,61 @@
+"""A connected piece of the coated region, with what every pattern needs at its vertices.
+
+Patterns turn a piece into a field whose level sets are its passes; where a start needs
+vertices (a plane's section, start points) the piece is cut first, and its per-vertex values
+are carried over linearly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from coatsim.geometry.surface.cuts import Cut
+
+_FAR = 1e300  # a finite stand-in for "no border" while values are interpolated
+
+
+@dataclass(frozen=True, eq=False)
+class Piece:
+    """Vertices (n, 3) mm and faces (m, 3) of one connected piece of the region, its smoothed
+    unit normals (n, 3), the distance along the surface to the region's border (n,) mm (inf on a
+    closed piece), and once a pattern has run, the ``field`` (n,) and the ``levels`` of its passes."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray
+    border_mm: np.ndarray
+    field: np.ndarray | None = None
+    levels: np.ndarray | None = None
+
+    def inside(self, band_mm: float) -> np.ndarray:
+        """Vertices passes must cover: at least ``band_mm`` from the border."""
+        return self.border_mm >= band_mm
+
+    @property
+    def on_border(self) -> np.ndarray:
+        return self.border_mm <= 0.0
+
+    @property
+    def area_mm2(self) -> float:
+        return float(self.vertex_areas_mm2().sum())
+
+    def vertex_areas_mm2(self) -> np.ndarray:
+        """A third of the area of every face around each vertex."""
+        a, b, c = (self.vertices[self.faces[:, k]] for k in range(3))
+        area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+        return np.bincount(self.faces.ravel(), weights=np.repeat(area / 3, 3), minlength=len(self.vertices))
+
+    def with_field(self, field: np.ndarray, levels: np.ndarray) -> Piece:
+        return replace(self, field=field, levels=levels)
+
+    def carried(self) -> np.ndarray:
+        """Per-vertex values a cut carries over: normals and border distance, (n, 4)."""
+        return np.column_stack([self.normals, np.minimum(self.border_mm, _FAR)])
+
+    def after(self, cut: Cut) -> Piece:
+        """This piece on a cut mesh (values from ``carried``)."""
+        normals = cut.values[:, :3] / np.linalg.norm(cut.values[:, :3], axis=1)[:, None]
+        border = np.where(cut.values[:, 3] >= _FAR, np.inf, cut.values[:, 3])
+        return Piece(cut.vertices, cut.faces, normals, border)

@@ -1,0 +1,269 @@
+"""Planning passes on a part: ``plan(part, options) -> SurfacePaths``.
+
+1. The part is refined so that no edge exceeds the smoothing length (or 1/200 of the part),
+   wound consistently and outward (an open scan toward the gun's side), its normals smoothed.
+2. The region is selected (facing, box or all; only what the gun sees), refined to edges of at
+   most ``max_edge_mm`` (a sixth of the spacing by default), split into connected pieces
+   (islands smaller than a spacing squared are dropped), its normals smoothed again within the
+   region, and the distance to its border measured along the surface.
+3. Each piece gets the pattern's field and levels (raster, geodesic, boundary); the level curves
+   lose the edge band and become passes in spraying order with lead-in and lead-out.
+4. The gaps between passes and the coverage are measured along the surface, and the result is
+   checked independently (``verify``) before it is returned.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from coatsim.errors import EmptyRegionOfInterest, InputError
+from coatsim.geometry.surface.boundary import boundary_piece
+from coatsim.geometry.surface.contours import level_curves
+from coatsim.geometry.surface.distance import marching_distance
+from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
+from coatsim.geometry.surface.mesh import Part, refined
+from coatsim.geometry.surface.normals import (Orientation, closed_faces, face_normals, largest_angle_deg, orient,
+                                              smooth_normals)
+from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
+from coatsim.geometry.surface.piece import Piece
+from coatsim.geometry.surface.raster import raster_levels
+from coatsim.geometry.surface.region import (Everything, Facing, RegionSpec, check_region, default_toward,
+                                             principal_axes, select_faces, sign_fixed, unit_vector)
+from coatsim.geometry.surface.spacing import DEFAULT_SPACING_SIGMAS, measure, ripple_pct, spacing_for_ripple
+from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
+from coatsim.geometry.surface.topology import border_vertices, face_components, face_pairs, mesh_edges, submesh
+from coatsim.geometry.surface.verify import verify
+
+Pattern = Literal["raster", "geodesic", "boundary"]
+#: lead-in/out past the region's edge, in footprint standard deviations (the footprint clears the edge)
+MARGIN_SIGMAS = 3.0
+#: region edges are refined to at most spacing / this
+EDGES_PER_SPACING = 6.0
+#: the whole part is refined to at most max(smoothing length, extent / this) before selection
+SELECTION_CELLS = 200.0
+
+
+@dataclass(frozen=True)
+class PlanOptions:
+    """What to plan. The footprint's standard deviation sets the defaults: spacing 2 sigma
+    (ripple 2.9 %) unless ``spacing_mm`` or ``ripple_pct`` is given, normals smoothed over sigma,
+    lead-in/out of 3 sigma. ``step_direction`` (raster) is the planes' normal (default: the
+    region's middle principal axis); ``start`` (geodesic) defaults to the region's border."""
+
+    footprint_sigma_mm: float
+    standoff_mm: float
+    pattern: Pattern = "raster"
+    spacing_mm: float | None = None
+    ripple_pct: float | None = None
+    step_direction: tuple[float, float, float] | None = None
+    start: Start = field(default_factory=FromBoundary)
+    region: RegionSpec = field(default_factory=Facing)
+    margin_mm: float | None = None
+    edge_band_mm: float = 0.0
+    order: Order = "serpentine"
+    max_edge_mm: float | None = None
+    pose: tuple[float, float, float, float, float, float] = (0.0,) * 6
+
+
+@dataclass(frozen=True)
+class _Settings:
+    spacing_mm: float
+    margin_mm: float
+    max_edge_mm: float
+    smoothing_mm: float
+
+
+def _positive(name: str, value: float, allow_zero: bool = False) -> float:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and (value > 0 or (allow_zero and value == 0))):
+        raise InputError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, found {value!r}")
+    return float(value)
+
+
+def _settings(o: PlanOptions) -> _Settings:
+    """The options checked, with their defaults filled in."""
+    sigma = _positive("footprint_sigma_mm", o.footprint_sigma_mm)
+    _positive("standoff_mm", o.standoff_mm)
+    if o.pattern not in PATTERNS:
+        raise InputError(f"pattern must be one of {', '.join(PATTERNS)}, found {o.pattern!r}")
+    if o.order not in ORDERS:
+        raise InputError(f"order must be one of {', '.join(ORDERS)}, found {o.order!r}")
+    if o.spacing_mm is not None and o.ripple_pct is not None:
+        raise InputError("give spacing_mm or ripple_pct, not both")
+    if o.step_direction is not None:
+        if o.pattern != "raster":
+            raise InputError("step_direction applies to the raster pattern")
+        unit_vector(o.step_direction, "step_direction")
+    if not isinstance(o.start, FromBoundary) and o.pattern != "geodesic":
+        raise InputError("start applies to the geodesic pattern")
+    check_region(o.region)
+    if len(o.pose) != 6 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in o.pose):
+        raise InputError("pose must be six finite numbers x, y, z (mm), o, a, t (deg)")
+    if o.spacing_mm is not None:
+        spacing = _positive("spacing_mm", o.spacing_mm)
+    elif o.ripple_pct is not None:
+        spacing = spacing_for_ripple(o.ripple_pct, sigma)
+    else:
+        spacing = DEFAULT_SPACING_SIGMAS * sigma
+    margin = MARGIN_SIGMAS * sigma if o.margin_mm is None else _positive("margin_mm", o.margin_mm, True)
+    _positive("edge_band_mm", o.edge_band_mm, True)
+    max_edge = spacing / EDGES_PER_SPACING if o.max_edge_mm is None else _positive("max_edge_mm", o.max_edge_mm)
+    return _Settings(spacing, margin, max_edge, sigma)
+
+
+class _Clock:
+    """Wall time per stage (reported on stderr by the command, never written to the file)."""
+
+    def __init__(self) -> None:
+        self.marks: list[tuple[str, float]] = []
+        self._last = time.perf_counter()
+
+    def lap(self, name: str) -> None:
+        now = time.perf_counter()
+        self.marks.append((name, now - self._last))
+        self._last = now
+
+
+def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """The coated region: vertices and faces, oriented outward, refined to ``max_edge_mm``."""
+    coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
+    v, f, _ = refined(part.vertices_mm, part.faces, coarse, part.file, "use a coarser footprint or a smaller part")
+    oriented = orient(v, f, None)
+    toward = _toward(o.region, v, oriented)
+    oriented = orient(v, f, toward)
+    notes.extend(oriented.notes)
+    if oriented.flipped:
+        notes.append(f"turned {oriented.flipped} triangle(s) to the consistent outward winding")
+    normals = smooth_normals(v, oriented.faces, s.smoothing_mm)
+    selection = normals[oriented.faces].sum(axis=1)
+    selection /= np.maximum(np.linalg.norm(selection, axis=1), 1e-300)[:, None]
+    mask = select_faces(v, oriented.faces, selection, o.region, toward, s.smoothing_mm)
+    if not mask.any():
+        raise EmptyRegionOfInterest(f"the region ({describe_region(o.region, toward)}) holds no face of the part "
+                                    "that the gun sees; choose another region")
+    rv, rf, _ = submesh(v, oriented.faces, mask)
+    rv, rf, _ = refined(rv, rf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a smaller region")
+    return rv, rf
+
+
+def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
+    """The gun's side: the facing direction, or the part's default (see region.default_toward)."""
+    if isinstance(region, Facing) and region.direction is not None:
+        return unit_vector(region.direction, "region facing direction")
+    return default_toward(vertices, oriented.faces, closed_faces(oriented.faces))
+
+
+def describe_region(region: RegionSpec, toward: np.ndarray) -> str:
+    """The region in words, for messages."""
+    if isinstance(region, Everything):
+        return "all"
+    if isinstance(region, Facing):
+        return f"facing ({', '.join(f'{x:.3g}' for x in toward)}) within {region.max_angle_deg:g} deg"
+    return f"box {tuple(region.low_mm)} .. {tuple(region.high_mm)}"
+
+
+def _pieces(rv: np.ndarray, rf: np.ndarray, s: _Settings, notes: list[str]) -> tuple[list[Piece], float, float]:
+    """The region's connected pieces (largest first, small islands dropped), with smoothed
+    normals and border distances; also the region's area and the largest normal angle."""
+    normals = smooth_normals(rv, rf, s.smoothing_mm)
+    face_n, face_area = face_normals(rv, rf)
+    angle = largest_angle_deg(normals, rf, face_n)
+    edges = mesh_edges(rf)
+    border = marching_distance(rv, rf, source_vertices=np.flatnonzero(border_vertices(len(rv), edges)))
+    count, label = face_components(len(rf), face_pairs(rf, edges)[0])
+    area = np.bincount(label, weights=face_area, minlength=count)
+    small = area < s.spacing_mm**2
+    if small.any():
+        notes.append(f"left out {int(small.sum())} island(s) of the region smaller than a spacing squared "
+                     f"({float(area[small].sum()):.4g} mm2 in all)")
+    pieces = []
+    for k in sorted(np.flatnonzero(~small), key=lambda k: (-area[k], k)):
+        v, f, parent = submesh(rv, rf, label == k)
+        pieces.append(Piece(v, f, normals[parent], border[parent]))
+    if not pieces:
+        raise EmptyRegionOfInterest("every piece of the region is smaller than a spacing squared; "
+                                    "use a smaller spacing_mm or a larger region")
+    return pieces, float(face_area.sum()), angle
+
+
+def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarray | None) -> list[Piece]:
+    """Each piece with its pattern's field and levels (pieces a geodesic start misses are left out)."""
+    band = o.edge_band_mm
+    if o.pattern == "raster":
+        return [p.with_field(p.vertices @ step, raster_levels(p.vertices, p.faces, p.normals, step, p.inside(band),
+                                                             s.spacing_mm)) for p in pieces]
+    if o.pattern == "boundary":
+        return [boundary_piece(p, s.spacing_mm, band) for p in pieces]
+    points = (assign_points(pieces, o.start, s.spacing_mm) if isinstance(o.start, FromPoints)
+              else [None] * len(pieces))
+    done = [geodesic_piece(p, o.start, s.spacing_mm, band, pts) for p, pts in zip(pieces, points)]
+    if all(p is None for p in done):
+        raise EmptyRegionOfInterest("the geodesic start does not touch the region; choose a start plane that cuts it")
+    return [p for p in done if p is not None]
+
+
+def _traces(piece: Piece, index: int, band: float, spacing: float) -> list[Trace]:
+    """The piece's level curves without the edge band, tagged with their level's rank; loops
+    shorter than a spacing (crumbs of a noisy field) are dropped."""
+    traces = []
+    for rank, level in enumerate(piece.levels):
+        for curve in level_curves(piece.vertices, piece.faces, piece.field, float(level)):
+            for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces):
+                if not (part.closed and part.length_mm < spacing):
+                    traces.append(Trace(part, rank, index))
+    return traces
+
+
+def _passes(pieces: list[Piece], traces: list[Trace], o: PlanOptions, s: _Settings) -> tuple[Pass, ...]:
+    """Passes in spraying order with their normals and leads."""
+    passes = []
+    for curve, piece in spraying_order(traces, o.order):
+        normals = curve.sample(pieces[piece].faces, pieces[piece].normals)
+        normals /= np.linalg.norm(normals, axis=1)[:, None]
+        if curve.closed:
+            lead_in = lead_out = np.zeros((0, 3))
+        else:
+            lead_in, lead_out = leads(curve.points, normals, s.margin_mm, 0.5 * s.spacing_mm)
+        passes.append(Pass(curve.points, normals, curve.closed, lead_in, lead_out))
+    return tuple(passes)
+
+
+def plan(part: Part, options: PlanOptions) -> SurfacePaths:
+    """Passes covering the region of ``part`` (see the module docstring)."""
+    s = _settings(options)
+    clock, notes = _Clock(), list(part.notes)
+    rv, rf = _region_mesh(part, options, s, notes)
+    clock.lap("region")
+    pieces, region_area, angle = _pieces(rv, rf, s, notes)
+    clock.lap("normals and border")
+    step = None
+    if options.pattern == "raster":
+        step = (unit_vector(options.step_direction, "step_direction") if options.step_direction is not None
+                else sign_fixed(principal_axes(rv[rf].mean(axis=1), face_normals(rv, rf)[1] + 1e-300)[1]))
+    pieces = _patterned(pieces, options, s, step)
+    clock.lap(options.pattern)
+    traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm, s.spacing_mm)]
+    gaps, covered = [np.zeros(0)], 0.0
+    for k, p in enumerate(pieces):
+        measured = measure(p.vertices, p.faces, p.normals, [t for t in traces if t.piece == k], s.spacing_mm,
+                           p.vertex_areas_mm2())
+        gaps.append(measured.gaps_mm)
+        covered += measured.covered_mm2
+    clock.lap("measure")
+    passes = _passes(pieces, traces, options, s)
+    if not passes:
+        raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm")
+    gap = np.concatenate(gaps)
+    spacing_stats = (float(gap.min()), float(np.median(gap)), float(gap.max())) if len(gap) else (None,) * 3
+    stats = PlanStats(len(passes), region_area, min(1.0, covered / region_area), *spacing_stats, s.smoothing_mm, angle)
+    info = MeshInfo(part.file, part.sha256, len(part.vertices_mm), len(part.faces), tuple(map(float, options.pose)))
+    paths = SurfacePaths(info, options.pattern, s.spacing_mm, options.standoff_mm,
+                         ripple_pct(s.spacing_mm, options.footprint_sigma_mm), passes, stats, tuple(notes))
+    verify(part, paths)
+    clock.lap("verify")
+    return SurfacePaths(paths.mesh, paths.pattern, paths.spacing_mm, paths.standoff_mm, paths.ripple_pct,
+                        paths.passes, paths.stats, paths.notes, tuple(clock.marks))

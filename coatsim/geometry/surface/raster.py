@@ -1,0 +1,149 @@
+"""Raster passes: sections of the region by parallel planes, spaced along the surface.
+
+The planes are the level sets of h = s . x for the step direction s (the planes' normal). On a
+flat region facing the planes edge-on their step is the spacing; on a tilted or curved region
+the gap between two sections measured along the surface is larger than the step, so each plane
+is placed by measurement: the distance along the surface from the last pass (the arc through
+the nearest pass point, checked by fast marching, see distance.NearestOnCurves) is read on
+candidate sections, and the next plane is the one whose section lies at most the spacing from
+it (bisection on h). Points whose nearest point on the last pass is one of its open ends do not
+count (beyond a shorter pass's end the gap is a coverage question, not a spacing one).
+
+The first plane lies half a spacing (along the surface) from the region's lowest point, the
+last half a spacing from its highest, and passes follow until every point of the region lies
+within half a spacing of one. A region narrower than a spacing gets one pass through its middle.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from coatsim.budgets import MAX_PLAN_PASSES, check_budget
+from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
+from coatsim.geometry.surface.distance import NearestOnCurves, marching_distance
+from coatsim.geometry.surface.topology import submesh
+
+#: bisection stops when the plane is known to this fraction of the spacing
+BISECTION_FRACTION = 1e-9
+#: the smallest plane step, as a fraction of the spacing (a region almost parallel to the planes)
+MIN_STEP_FRACTION = 1e-3
+
+
+def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, step_direction: np.ndarray,
+                  inside: np.ndarray, spacing_mm: float) -> np.ndarray:
+    """Heights h = step_direction . x of the raster planes for one connected region piece with
+    unit vertex ``normals``; ``inside`` (n,) marks the vertices passes must cover (the region
+    without its edge band)."""
+    h = vertices @ step_direction
+    if not inside.any():
+        return np.zeros(0)
+    low, high = float(h[inside].min()), float(h[inside].max())
+    mesh = _Mesh(vertices, faces, normals, h, inside)
+    first = _end_level(mesh, low, +1, spacing_mm)
+    last = _end_level(mesh, high, -1, spacing_mm)
+    if last <= first:
+        return np.array([0.5 * (low + high)])
+    levels = [first]
+    while True:
+        check_budget("raster passes", len(levels), MAX_PLAN_PASSES, "use a larger spacing_mm")
+        step = _next_level(mesh, levels[-1], spacing_mm)
+        if step is None:
+            break
+        if step >= last - BISECTION_FRACTION * spacing_mm * 10:
+            if last > levels[-1] + MIN_STEP_FRACTION * spacing_mm:
+                levels.append(last)
+            break
+        levels.append(step)
+    return np.array(levels)
+
+
+@dataclass(frozen=True, eq=False)
+class _Mesh:
+    """A piece (or a band of it) with its normals, heights and inside vertices."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray
+    h: np.ndarray
+    inside: np.ndarray
+
+    def band(self, lo: float, hi: float) -> _Mesh:
+        """The faces that reach into lo <= h <= hi."""
+        fh = self.h[self.faces]
+        v, f, parent = submesh(self.vertices, self.faces, (fh.max(axis=1) >= lo) & (fh.min(axis=1) <= hi))
+        return _Mesh(v, f, self.normals[parent], self.h[parent], self.inside[parent])
+
+    def section(self, level: float, values: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points of the section at ``level`` between inside vertices, their unit normals, and
+        ``values`` interpolated there."""
+        edges = crossing_edges(self.faces, self.h, level)
+        edges = edges[self.inside[edges].all(axis=1)] if len(edges) else edges
+        if not len(edges):
+            return np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0)
+        points, t = edge_points(self.vertices, self.h, level, edges)
+        n = self.normals[edges[:, 0]] * (1 - t)[:, None] + self.normals[edges[:, 1]] * t[:, None]
+        return points, n / np.linalg.norm(n, axis=1)[:, None], values[edges[:, 0]] * (1 - t) + values[edges[:, 1]] * t
+
+
+def _bisect(predicate, lo: float, hi: float, tolerance: float) -> float:
+    """The largest x in [lo, hi] (to ``tolerance``) where ``predicate`` holds, assuming it holds at lo."""
+    while hi - lo > tolerance:
+        mid = 0.5 * (lo + hi)
+        if predicate(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def _end_level(mesh: _Mesh, extreme: float, sign: int, spacing: float) -> float:
+    """The plane half a spacing along the surface in from the region's lowest (sign +1) or
+    highest (sign -1) inside point: the nearest point of its section to the extreme lies half
+    a spacing away."""
+    half = 0.5 * spacing
+    band = mesh.band(*((extreme, extreme + half) if sign > 0 else (extreme - half, extreme)))
+    at = np.flatnonzero(band.inside & (np.abs(band.h - extreme) <= 1e-9 * max(1.0, abs(extreme))))
+    marching = marching_distance(band.vertices, band.faces, source_vertices=at)
+    nearest = NearestOnCurves([(band.vertices[[k]], band.normals[[k]], True) for k in at])
+
+    def within(offset: float) -> bool:
+        points, normals, d = band.section(extreme + sign * offset, marching)
+        d = nearest.distance(points, normals, d, spacing)[0]
+        d = d[np.isfinite(d)]
+        return not len(d) or float(d.min()) <= half
+
+    return extreme + sign * _bisect(within, 0.0, half, BISECTION_FRACTION * spacing)
+
+
+def _next_level(mesh: _Mesh, level: float, spacing: float) -> float | None:
+    """The next plane after ``level``: its section lies at most ``spacing`` from the pass at
+    ``level``; None when every inside point beyond lies within half a spacing of that pass."""
+    band = mesh.band(level, level + spacing)
+    passes = level_curves(band.vertices, band.faces, band.h, level)
+    if not passes:
+        return level + spacing
+    marching = marching_distance(band.vertices, band.faces, curves=passes)
+    nearest = NearestOnCurves([(c.points, _unit(c.sample(band.faces, band.normals)), c.closed) for c in passes])
+    beyond = np.flatnonzero(band.inside & (band.h > level))
+    reach = nearest.distance(band.vertices[beyond], band.normals[beyond], marching[beyond], spacing)[0]
+    if float(mesh.h[mesh.inside].max()) <= level + 0.5 * spacing * (1 + 1e-6) and (
+            not len(beyond) or float(reach.max()) <= 0.5 * spacing * (1 + 1e-6)):
+        return None
+
+    def close_enough(height: float) -> bool:
+        points, normals, d = band.section(height, marching)
+        d, on_end = nearest.distance(points, normals, d, spacing)
+        ok = np.isfinite(d)
+        if not ok.any():
+            return False
+        d = d[ok & ~on_end] if (ok & ~on_end).any() else d[ok]
+        return float(d.max()) <= spacing
+
+    found = _bisect(close_enough, level, level + spacing, BISECTION_FRACTION * spacing)
+    return max(found, level + MIN_STEP_FRACTION * spacing)
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    return vectors / np.linalg.norm(vectors, axis=1)[:, None]
