@@ -12,6 +12,8 @@ from typing import Optional
 
 import typer
 
+from coatsim.cli_plan import plan_command
+
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
@@ -389,6 +391,9 @@ def check_program(
     typer.echo(check_summary(result))
     if result.errors:
         raise InputError(result.errors[0])
+
+
+app.command("plan")(plan_command)  # passes on 3-D parts (coatsim/cli_plan.py)
 
 
 def main() -> None:

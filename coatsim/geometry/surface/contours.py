@@ -15,6 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.geometry.surface.topology import unique_pairs
+
+#: consecutive points of a level curve closer than this fraction of its extent are one point
+DUPLICATE_FRACTION = 1e-8
+
 
 @dataclass(frozen=True, eq=False)
 class SurfaceCurve:
@@ -82,7 +87,7 @@ def edge_points(vertices: np.ndarray, field: np.ndarray, level: float,
 def crossing_edges(faces: np.ndarray, field: np.ndarray, level: float) -> np.ndarray:
     """Every edge the level set crosses, unordered (E, 2) sorted: for quick criteria."""
     _, start, end = crossings(faces, field, level)
-    return np.unique(np.sort(np.concatenate([start, end]), axis=1), axis=0)
+    return unique_pairs(np.concatenate([start, end]))[0]
 
 
 def level_curves(vertices: np.ndarray, faces: np.ndarray, field: np.ndarray, level: float) -> list[SurfaceCurve]:
@@ -91,8 +96,7 @@ def level_curves(vertices: np.ndarray, faces: np.ndarray, field: np.ndarray, lev
     if not len(crossed):
         return []
     n_seg = len(crossed)
-    keys, node = np.unique(np.sort(np.concatenate([start, end]), axis=1), axis=0, return_inverse=True)
-    node = node.ravel()
+    keys, node = unique_pairs(np.concatenate([start, end]))
     a, b = node[:n_seg], node[n_seg:]
     succ = np.full(len(keys), -1)
     seg = np.full(len(keys), -1)
@@ -142,16 +146,16 @@ def _chains(succ: list[int], pred: list[int]):
 
 def _curve(points: np.ndarray, edges: np.ndarray, t: np.ndarray, faces: np.ndarray, point_face: np.ndarray,
            closed: bool) -> SurfaceCurve | None:
-    """A curve from edge points, with consecutive coincident points (a level through a vertex)
-    merged; None when fewer than two distinct points remain."""
+    """A curve from edge points, with consecutive points closer than DUPLICATE_FRACTION of its
+    extent merged (a level through or next to a vertex); None when fewer than two remain."""
     bary = np.zeros((len(points), 3))
     tri = faces[point_face]
     bary += (tri == edges[:, :1]) * (1.0 - t)[:, None]
     bary += (tri == edges[:, 1:]) * t[:, None]
     step = np.linalg.norm(np.diff(points, axis=0), axis=1)
     scale = max(float(np.ptp(points, axis=0).max()), 1e-300)
-    keep = np.r_[True, step > 1e-12 * scale]
-    if closed and keep.sum() > 1 and np.linalg.norm(points[-1] - points[0]) <= 1e-12 * scale:
+    keep = np.r_[True, step > DUPLICATE_FRACTION * scale]
+    if closed and keep.sum() > 1 and np.linalg.norm(points[-1] - points[0]) <= DUPLICATE_FRACTION * scale:
         keep[-1] = False
     if keep.sum() < 2:
         return None

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.geometry.surface.contours import crossings, edge_points
+from coatsim.geometry.surface.topology import unique_pairs
 
 #: an edge point this close to a vertex (fraction of the edge) is that vertex
 SNAP_FRACTION = 1e-6
@@ -34,7 +35,7 @@ def cut_at_level(vertices: np.ndarray, faces: np.ndarray, field: np.ndarray, lev
                  values: np.ndarray) -> Cut:
     """Insert the level set ``field == level`` as vertices and edges."""
     crossed, start, end = crossings(faces, field, level)
-    keys, node = np.unique(np.sort(np.concatenate([start, end]), axis=1), axis=0, return_inverse=True)
+    keys, node = unique_pairs(np.concatenate([start, end]))
     points, t = edge_points(vertices, field, level, keys)
     new_id = len(vertices) + np.arange(len(keys))
     new_id = np.where(t <= SNAP_FRACTION, keys[:, 0], np.where(t >= 1 - SNAP_FRACTION, keys[:, 1], new_id))
@@ -45,7 +46,6 @@ def cut_at_level(vertices: np.ndarray, faces: np.ndarray, field: np.ndarray, lev
     carried = values[keys[:, 0]] + t.reshape(-1, *([1] * (values.ndim - 1))) * (values[keys[:, 1]] - values[keys[:, 0]])
     vertices2 = np.vstack([vertices, points[fresh]])
     values2 = np.concatenate([values, carried[fresh]])
-    node = node.ravel()
     x, y = new_id[node[: len(crossed)]], new_id[node[len(crossed):]]
     # each crossed face (L, P, Q) with X on L-P and Y on Q-L becomes (L, X, Y), (X, P, Q), (X, Q, Y)
     above = (field >= level)[faces[crossed]]

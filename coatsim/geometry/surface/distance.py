@@ -1,16 +1,19 @@
 """Geodesic distance on a triangle mesh, and the levels at which passes follow a distance field.
 
-Two solvers, both from potpourri3d (geometry-central):
-- the heat method (Crane et al.), the discrete-exterior-calculus solve the seed's authors use:
-  heat flows from the sources for a time t = (mean edge length)^2, its normalised gradient is
-  integrated back by one Poisson solve. It is smooth but first-order: on the meshes ``plan``
-  builds (edges up to 1/6 of the spacing) its error is about half an edge inside the part and
-  grows to 2-3 edges along open borders, where only the natural (Neumann) condition holds and
-  the level sets bend to meet the border at right angles (tests/geometry/surface measure both).
-- fast marching, which takes sources anywhere on a face and is used to measure: the gap
-  between passes, the distance from the region's border (edge band, boundary passes) and the
-  coverage. It is also first-order (about a tenth of an edge near a source on the meshes
-  ``plan`` builds, more far away and where wave fronts from a source's ends meet a border).
+Two solvers:
+- the heat method (Crane, Weischedel, Wardetzky), the discrete-exterior-calculus solve the seed's
+  authors use: heat flows from the sources for a time t = (mean edge length)^2, its normalised
+  gradient is integrated back by one Poisson solve, here with the sources held at zero. (The
+  operators are potpourri3d's; its own solver instead shifts a free Poisson solution to zero
+  at the sources, and with a start of several curves, such as a border with a hole, the values
+  on the start then differ by up to two edge lengths, so passes near it shift by as much.) It
+  is first-order: on the meshes ``plan`` builds (edges up to a quarter of the spacing) its error
+  is a few tenths of an edge inside the region and grows toward open borders that are not part
+  of the start, where only the natural (Neumann) condition holds and the level sets bend to
+  meet the border at right angles; it also rounds the distance's ridges (tests and
+  scripts/bench_plan.py measure both against exact distances).
+- fast marching (potpourri3d), which takes sources anywhere on a face: the distance from the
+  region's border (edge band, boundary passes) and the guard of the arc estimate below.
 """
 
 from __future__ import annotations
@@ -21,39 +24,97 @@ from typing import Sequence
 import numpy as np
 
 from coatsim.geometry.surface.contours import SurfaceCurve
+from coatsim.geometry.surface.topology import manifold_split
 
 #: the heat method's time step in units of the mean edge length squared (geometry-central's default)
 HEAT_TIME_COEFFICIENT = 1.0
 
 
 def heat_distance(vertices: np.ndarray, faces: np.ndarray, sources: np.ndarray) -> np.ndarray:
-    """Heat-method geodesic distance (mm) from the vertices ``sources`` to every vertex."""
+    """Heat-method geodesic distance (mm) from the vertices ``sources`` to every vertex of a
+    connected mesh: (M + t L) u = delta, X = -grad u / |grad u|, L phi = -div X with phi = 0 at
+    the sources (cotangent Laplacian L and lumped masses M from potpourri3d)."""
     import potpourri3d as pp3d
+    from scipy.sparse import diags
+    from scipy.sparse.linalg import splu
 
-    solver = pp3d.MeshHeatMethodDistanceSolver(vertices, faces, t_coef=HEAT_TIME_COEFFICIENT, use_robust=True)
-    distance = np.asarray(solver.compute_distance_multisource([int(v) for v in sources]), dtype=float)
+    laplacian = pp3d.cotan_laplacian(vertices, faces, denom_eps=1e-12).tocsr()
+    mass = pp3d.vertex_areas(vertices, faces)
+    lengths = np.linalg.norm(vertices[faces] - vertices[np.roll(faces, 1, axis=1)], axis=2)
+    t = HEAT_TIME_COEFFICIENT * float(lengths.mean()) ** 2
+    delta = np.zeros(len(vertices))
+    delta[sources] = 1.0
+    heat = splu((diags(mass) + t * laplacian).tocsc(), permc_spec="COLAMD").solve(delta)
+    divergence = _divergence(vertices, faces, _unit_descent(vertices, faces, heat))
+    free = np.ones(len(vertices), dtype=bool)
+    free[sources] = False
+    # a tiny mass term keeps the system definite should a piece hold no source
+    system = (laplacian[free][:, free] + diags(1e-12 * mass[free] / t)).tocsc()
+    distance = np.zeros(len(vertices))
+    distance[free] = splu(system, permc_spec="COLAMD").solve(-divergence[free])
     return np.maximum(distance, 0.0)
+
+
+def _unit_descent(vertices: np.ndarray, faces: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """-grad u / |grad u| per face (m, 3) for u linear on each face."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    normal = np.cross(b - a, c - a)
+    double_area = np.maximum(np.linalg.norm(normal, axis=1), 1e-300)
+    unit = normal / double_area[:, None]
+    gradient = sum(u[faces[:, k]][:, None] * np.cross(unit, edge)
+                   for k, edge in enumerate((c - b, a - c, b - a))) / double_area[:, None]
+    return -gradient / np.maximum(np.linalg.norm(gradient, axis=1), 1e-300)[:, None]
+
+
+def _divergence(vertices: np.ndarray, faces: np.ndarray, field: np.ndarray) -> np.ndarray:
+    """Integrated divergence at the vertices of a per-face vector field: for vertex i of a
+    face, (cot(angle at k) (x_j - x_i) + cot(angle at j) (x_k - x_i)) . X / 2."""
+    corners = [vertices[faces[:, k]] for k in range(3)]
+    cot = []
+    for k in range(3):
+        p, q, r = corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]
+        e1, e2 = q - p, r - p
+        cot.append(np.einsum("ij,ij->i", e1, e2) / np.maximum(np.linalg.norm(np.cross(e1, e2), axis=1), 1e-300))
+    total = np.zeros(len(vertices))
+    for k in range(3):
+        i, j, l_ = k, (k + 1) % 3, (k + 2) % 3
+        flux = cot[l_] * np.einsum("ij,ij->i", corners[j] - corners[i], field)
+        flux += cot[j] * np.einsum("ij,ij->i", corners[l_] - corners[i], field)
+        np.add.at(total, faces[:, i], 0.5 * flux)
+    return total
 
 
 def marching_distance(vertices: np.ndarray, faces: np.ndarray, curves: Sequence[SurfaceCurve] = (),
                       source_vertices: np.ndarray | None = None) -> np.ndarray:
     """Fast-marching geodesic distance (mm) from points on faces (the points of ``curves``, in
-    faces of this mesh) and from the vertices ``source_vertices``; inf where no source reaches."""
+    faces of this mesh) and from the vertices ``source_vertices``; inf where no source reaches.
+    Fast marching needs a manifold mesh: bow-tie vertices and non-manifold edges are split
+    first (a split vertex gets the smallest distance of its copies)."""
     import potpourri3d as pp3d
 
+    split, parent = manifold_split(faces)
+    copies = np.full(len(vertices), -1)
+    copies[parent[::-1]] = np.arange(len(parent))[::-1]  # a copy of each vertex (the first)
     sources = [[(int(f), [float(w[0]), float(w[1])]) for f, w in zip(c.faces, c.bary)] for c in curves if len(c.faces)]
     if source_vertices is not None and len(source_vertices):
-        sources.append([(int(v), []) for v in source_vertices])
+        sources.append([(int(copies[v]), []) for v in source_vertices])
+    distance = np.full(len(vertices), np.inf)
     if not sources:
-        return np.full(len(vertices), np.inf)
-    solver = pp3d.MeshFastMarchingDistanceSolver(vertices, faces)
-    distance = np.asarray(solver.compute_distance(sources, [], False), dtype=float)
-    reached = _reached(faces, len(vertices), curves, source_vertices)
-    distance[~reached] = np.inf
+        return distance
+    solver = pp3d.MeshFastMarchingDistanceSolver(vertices[parent], split)
+    value = np.asarray(solver.compute_distance(sources, [], False), dtype=float)
+    value[~_reached(split, len(parent), [_on(c, split) for c in curves],
+                    None if source_vertices is None else copies[source_vertices])] = np.inf
+    np.minimum.at(distance, parent, value)
     return distance
 
 
-def _reached(faces: np.ndarray, n_vertices: int, curves: Sequence[SurfaceCurve],
+def _on(curve: SurfaceCurve, faces: np.ndarray) -> np.ndarray:
+    """Vertices of the faces a curve lies in."""
+    return faces[curve.faces[:1]].ravel()
+
+
+def _reached(faces: np.ndarray, n_vertices: int, curve_vertices: list[np.ndarray],
              source_vertices: np.ndarray | None) -> np.ndarray:
     """Vertices connected to a source (fast marching leaves the others at an arbitrary value)."""
     from scipy.sparse import coo_matrix
@@ -63,9 +124,7 @@ def _reached(faces: np.ndarray, n_vertices: int, curves: Sequence[SurfaceCurve],
     cols = np.concatenate([faces[:, 1], faces[:, 2]])
     _, label = connected_components(coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_vertices,) * 2),
                                     directed=False)
-    seeds = [faces[c.faces[:1], 0] for c in curves if len(c.faces)]
-    if source_vertices is not None:
-        seeds.append(np.asarray(source_vertices, dtype=np.int64))
+    seeds = list(curve_vertices) + ([np.asarray(source_vertices, dtype=np.int64)] if source_vertices is not None else [])
     hit = np.unique(label[np.concatenate(seeds)]) if seeds else np.zeros(0, dtype=np.int64)
     return np.isin(label, hit)
 

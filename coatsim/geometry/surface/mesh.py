@@ -158,23 +158,3 @@ def _repaired(vertices: np.ndarray, faces: np.ndarray, name: str, notes: list[st
     used, local = np.unique(faces, return_inverse=True)
     return vertices[used], local.reshape(-1, 3).astype(np.int64)
 
-
-def refined(vertices: np.ndarray, faces: np.ndarray, max_edge_mm: float, what: str,
-            fix: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The mesh with every edge longer than ``max_edge_mm`` bisected (crack-free, shared
-    midpoints): (vertices, faces, index of the original face of each new face). The triangle
-    count is checked against the budget before anything is built; ``fix`` says what to change."""
-    import trimesh.remesh
-
-    a, b, c = (vertices[faces[:, k]] for k in range(3))
-    area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
-    lengths = np.linalg.norm(np.stack([b - a, c - b, a - c]), axis=2)
-    if not (lengths > max_edge_mm).any():
-        return vertices, faces, np.arange(len(faces))
-    # bisected triangles end with edges between max_edge/2 and max_edge: at least a quarter of max_edge^2 each
-    estimate = max(len(faces), 4.0 * area / max_edge_mm**2)
-    check_budget(f"{what} refined to edges of {max_edge_mm:.3g} mm: triangles", estimate, MAX_PLAN_TRIANGLES, fix)
-    iterations = int(np.ceil(np.log2(max(lengths.max() / max_edge_mm, 1.0)))) + 2
-    v, f, index = trimesh.remesh.subdivide_to_size(vertices, faces, max_edge=max_edge_mm, max_iter=iterations,
-                                                   return_index=True)
-    return np.asarray(v, dtype=float), np.asarray(f, dtype=np.int64), np.asarray(index, dtype=np.int64)

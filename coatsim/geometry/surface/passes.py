@@ -3,8 +3,7 @@
 Every pattern yields, per connected piece of the region, curves on the surface tagged with the
 rank of their level (0, 1, 2, ... from one end of the field to the other). Here they lose what
 lies within the edge band of the region's border (cut exactly where the border distance equals
-the band), loops shorter than a spacing (crumbs of a noisy field) are dropped, and the rest is
-put in spraying order: level by level, within a level each next curve the one starting nearest
+the band), and are put in spraying order: level by level, within a level each next curve the one starting nearest
 to where the last ended; ``serpentine`` reverses the open curves of every other level,
 ``oneway`` keeps them all running one way (higher field values on their left). A closed loop
 starts at its point nearest to the last pass's end. Open passes get a straight lead-in and

@@ -1,11 +1,13 @@
 """Planning passes on a part: ``plan(part, options) -> SurfacePaths``.
 
 1. The part is refined so that no edge exceeds the smoothing length (or 1/200 of the part),
-   wound consistently and outward (an open scan toward the gun's side), its normals smoothed.
-2. The region is selected (facing, box or all; only what the gun sees), refined to edges of at
-   most ``max_edge_mm`` (a sixth of the spacing by default), split into connected pieces
-   (islands smaller than a spacing squared are dropped), its normals smoothed again within the
-   region, and the distance to its border measured along the surface.
+   and wound consistently and outward (an open scan toward the gun's side).
+2. The region is selected by its face normals (facing, box or all; only what the gun sees) and
+   refined to edges of at most ``max_edge_mm`` (a quarter of the spacing by default); its normals
+   are smoothed over the region and over the surface running on past its border (up to two
+   smoothing lengths, not across a sharp edge, region.smoothing_ring); it is split into
+   connected pieces (islands smaller than a spacing squared are dropped) and the distance to its
+   border is measured along the surface.
 3. Each piece gets the pattern's field and levels (raster, geodesic, boundary); the level curves
    lose the edge band and become passes in spraying order with lead-in and lead-out.
 4. The gaps between passes and the coverage are measured along the surface, and the result is
@@ -26,14 +28,15 @@ from coatsim.geometry.surface.boundary import boundary_piece
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import marching_distance
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
-from coatsim.geometry.surface.mesh import Part, refined
+from coatsim.geometry.surface.mesh import Part
+from coatsim.geometry.surface.refine import refined
 from coatsim.geometry.surface.normals import (Orientation, closed_faces, face_normals, largest_angle_deg, orient,
                                               smooth_normals)
 from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
 from coatsim.geometry.surface.piece import Piece
 from coatsim.geometry.surface.raster import raster_levels
 from coatsim.geometry.surface.region import (Everything, Facing, RegionSpec, check_region, default_toward,
-                                             principal_axes, select_faces, sign_fixed, unit_vector)
+                                             principal_axes, select_faces, sign_fixed, smoothing_ring, unit_vector)
 from coatsim.geometry.surface.spacing import DEFAULT_SPACING_SIGMAS, measure, ripple_pct, spacing_for_ripple
 from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
 from coatsim.geometry.surface.topology import border_vertices, face_components, face_pairs, mesh_edges, submesh
@@ -43,9 +46,11 @@ Pattern = Literal["raster", "geodesic", "boundary"]
 #: lead-in/out past the region's edge, in footprint standard deviations (the footprint clears the edge)
 MARGIN_SIGMAS = 3.0
 #: region edges are refined to at most spacing / this
-EDGES_PER_SPACING = 6.0
+EDGES_PER_SPACING = 4.0
 #: the whole part is refined to at most max(smoothing length, extent / this) before selection
 SELECTION_CELLS = 200.0
+#: normals are smoothed over the surface running on past the region this many smoothing lengths
+RING_SMOOTHING_LENGTHS = 2.0
 
 
 @dataclass(frozen=True)
@@ -128,8 +133,9 @@ class _Clock:
         self._last = now
 
 
-def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> tuple[np.ndarray, np.ndarray]:
-    """The coated region: vertices and faces, oriented outward, refined to ``max_edge_mm``."""
+def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``) and
+    smoothed unit vertex normals (smoothed over the region and the surface running on past it)."""
     coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
     v, f, _ = refined(part.vertices_mm, part.faces, coarse, part.file, "use a coarser footprint or a smaller part")
     oriented = orient(v, f, None)
@@ -138,16 +144,17 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> 
     notes.extend(oriented.notes)
     if oriented.flipped:
         notes.append(f"turned {oriented.flipped} triangle(s) to the consistent outward winding")
-    normals = smooth_normals(v, oriented.faces, s.smoothing_mm)
-    selection = normals[oriented.faces].sum(axis=1)
-    selection /= np.maximum(np.linalg.norm(selection, axis=1), 1e-300)[:, None]
-    mask = select_faces(v, oriented.faces, selection, o.region, toward, s.smoothing_mm)
+    mask = select_faces(v, oriented.faces, face_normals(v, oriented.faces)[0], o.region, toward, s.smoothing_mm)
     if not mask.any():
         raise EmptyRegionOfInterest(f"the region ({describe_region(o.region, toward)}) holds no face of the part "
                                     "that the gun sees; choose another region")
-    rv, rf, _ = submesh(v, oriented.faces, mask)
-    rv, rf, _ = refined(rv, rf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a smaller region")
-    return rv, rf
+    both = mask | smoothing_ring(v, oriented.faces, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
+    sv, sf, _ = submesh(v, oriented.faces, both)
+    sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
+                             "smaller region", labels=mask[both])
+    normals = smooth_normals(sv, sf, s.smoothing_mm)
+    rv, rf, parent = submesh(sv, sf, inside.astype(bool))
+    return rv, rf, normals[parent]
 
 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
@@ -166,10 +173,10 @@ def describe_region(region: RegionSpec, toward: np.ndarray) -> str:
     return f"box {tuple(region.low_mm)} .. {tuple(region.high_mm)}"
 
 
-def _pieces(rv: np.ndarray, rf: np.ndarray, s: _Settings, notes: list[str]) -> tuple[list[Piece], float, float]:
-    """The region's connected pieces (largest first, small islands dropped), with smoothed
-    normals and border distances; also the region's area and the largest normal angle."""
-    normals = smooth_normals(rv, rf, s.smoothing_mm)
+def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
+            notes: list[str]) -> tuple[list[Piece], float, float]:
+    """The region's connected pieces (largest first, small islands dropped), with their normals
+    and border distances; also the region's area and the largest normal angle."""
     face_n, face_area = face_normals(rv, rf)
     angle = largest_angle_deg(normals, rf, face_n)
     edges = mesh_edges(rf)
@@ -206,16 +213,11 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
     return [p for p in done if p is not None]
 
 
-def _traces(piece: Piece, index: int, band: float, spacing: float) -> list[Trace]:
-    """The piece's level curves without the edge band, tagged with their level's rank; loops
-    shorter than a spacing (crumbs of a noisy field) are dropped."""
-    traces = []
-    for rank, level in enumerate(piece.levels):
-        for curve in level_curves(piece.vertices, piece.faces, piece.field, float(level)):
-            for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces):
-                if not (part.closed and part.length_mm < spacing):
-                    traces.append(Trace(part, rank, index))
-    return traces
+def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
+    """The piece's level curves without the edge band, tagged with their level's rank."""
+    return [Trace(part, rank, index) for rank, level in enumerate(piece.levels)
+            for curve in level_curves(piece.vertices, piece.faces, piece.field, float(level))
+            for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces)]
 
 
 def _passes(pieces: list[Piece], traces: list[Trace], o: PlanOptions, s: _Settings) -> tuple[Pass, ...]:
@@ -236,17 +238,17 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     """Passes covering the region of ``part`` (see the module docstring)."""
     s = _settings(options)
     clock, notes = _Clock(), list(part.notes)
-    rv, rf = _region_mesh(part, options, s, notes)
-    clock.lap("region")
-    pieces, region_area, angle = _pieces(rv, rf, s, notes)
-    clock.lap("normals and border")
+    rv, rf, normals = _region_mesh(part, options, s, notes)
+    clock.lap("region and normals")
+    pieces, region_area, angle = _pieces(rv, rf, normals, s, notes)
+    clock.lap("border")
     step = None
     if options.pattern == "raster":
         step = (unit_vector(options.step_direction, "step_direction") if options.step_direction is not None
                 else sign_fixed(principal_axes(rv[rf].mean(axis=1), face_normals(rv, rf)[1] + 1e-300)[1]))
     pieces = _patterned(pieces, options, s, step)
     clock.lap(options.pattern)
-    traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm, s.spacing_mm)]
+    traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
     gaps, covered = [np.zeros(0)], 0.0
     for k, p in enumerate(pieces):
         measured = measure(p.vertices, p.faces, p.normals, [t for t in traces if t.piece == k], s.spacing_mm,

@@ -9,9 +9,11 @@ candidate sections, and the next plane is the one whose section lies at most the
 it (bisection on h). Points whose nearest point on the last pass is one of its open ends do not
 count (beyond a shorter pass's end the gap is a coverage question, not a spacing one).
 
-The first plane lies half a spacing (along the surface) from the region's lowest point, the
-last half a spacing from its highest, and passes follow until every point of the region lies
-within half a spacing of one. A region narrower than a spacing gets one pass through its middle.
+The first plane lies half a spacing (along the surface) from the region's lowest point and the
+last half a spacing from its highest; in between the planes follow each other at the spacing,
+and the last gap is what is left (no plane is added within a tenth of a step of the last one:
+the end then lies a little more than half a spacing from a pass). A region narrower than a
+spacing gets one pass through its middle.
 """
 
 from __future__ import annotations
@@ -29,6 +31,8 @@ from coatsim.geometry.surface.topology import submesh
 BISECTION_FRACTION = 1e-9
 #: the smallest plane step, as a fraction of the spacing (a region almost parallel to the planes)
 MIN_STEP_FRACTION = 1e-3
+#: no last plane is added within this fraction of a full step of the one before (a sliver of a pass)
+END_SLIVER_FRACTION = 0.1
 
 
 def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, step_direction: np.ndarray,
@@ -49,14 +53,13 @@ def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, 
     while True:
         check_budget("raster passes", len(levels), MAX_PLAN_PASSES, "use a larger spacing_mm")
         step = _next_level(mesh, levels[-1], spacing_mm)
-        if step is None:
-            break
-        if step >= last - BISECTION_FRACTION * spacing_mm * 10:
-            if last > levels[-1] + MIN_STEP_FRACTION * spacing_mm:
-                levels.append(last)
-            break
-        levels.append(step)
-    return np.array(levels)
+        if step < last:
+            levels.append(step)
+            continue
+        # the last plane: unless the one before already lies within a sliver of it
+        if last - levels[-1] > END_SLIVER_FRACTION * (step - levels[-1]):
+            levels.append(last)
+        return np.array(levels)
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,20 +120,15 @@ def _end_level(mesh: _Mesh, extreme: float, sign: int, spacing: float) -> float:
     return extreme + sign * _bisect(within, 0.0, half, BISECTION_FRACTION * spacing)
 
 
-def _next_level(mesh: _Mesh, level: float, spacing: float) -> float | None:
+def _next_level(mesh: _Mesh, level: float, spacing: float) -> float:
     """The next plane after ``level``: its section lies at most ``spacing`` from the pass at
-    ``level``; None when every inside point beyond lies within half a spacing of that pass."""
+    ``level`` (beyond the region's top when nothing of it lies that far)."""
     band = mesh.band(level, level + spacing)
     passes = level_curves(band.vertices, band.faces, band.h, level)
     if not passes:
         return level + spacing
     marching = marching_distance(band.vertices, band.faces, curves=passes)
     nearest = NearestOnCurves([(c.points, _unit(c.sample(band.faces, band.normals)), c.closed) for c in passes])
-    beyond = np.flatnonzero(band.inside & (band.h > level))
-    reach = nearest.distance(band.vertices[beyond], band.normals[beyond], marching[beyond], spacing)[0]
-    if float(mesh.h[mesh.inside].max()) <= level + 0.5 * spacing * (1 + 1e-6) and (
-            not len(beyond) or float(reach.max()) <= 0.5 * spacing * (1 + 1e-6)):
-        return None
 
     def close_enough(height: float) -> bool:
         points, normals, d = band.section(height, marching)

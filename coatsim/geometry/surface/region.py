@@ -4,8 +4,9 @@ The gun comes from one side, ``toward`` (a unit vector from the part to the gun)
 it is the part's thinnest principal axis, on the side the part's normals face (an open scan) or
 with its largest coordinate positive (a closed part: +Z for a part lying in the XY plane).
 
-- ``Facing(direction, max_angle_deg)``: faces whose smoothed outward normal lies within the
-  angle of the direction (which is then the gun's side);
+- ``Facing(direction, max_angle_deg)``: faces whose outward normal lies within the angle of the
+  direction (which is then the gun's side); face normals, not smoothed ones, so that a CAD
+  part's sharp edge bounds the region exactly;
 - ``Box(low_mm, high_mm)``: faces whose centre lies in the box;
 - ``Everything()``: every face; on a closed part, passes then run round it.
 
@@ -23,9 +24,14 @@ from typing import Union
 import numpy as np
 
 from coatsim.errors import InputError
+from coatsim.geometry.surface.normals import face_normals
+from coatsim.geometry.surface.topology import face_pairs, mesh_edges
 
 #: faces within this angle of the gun's side are coated by default
 DEFAULT_FACING_DEG = 80.0
+#: an edge whose faces' normals differ by more than this is sharp: normals are not smoothed across
+#: it from outside the region
+SHARP_EDGE_DEG = 40.0
 
 
 @dataclass(frozen=True)
@@ -136,3 +142,26 @@ def check_region(spec: RegionSpec) -> None:
             raise InputError("region box must be six finite numbers xmin,ymin,zmin,xmax,ymax,zmax (mm)")
         if not np.all(high > low):
             raise InputError(f"region box must have max > min on every axis, found {tuple(low)} .. {tuple(high)}")
+
+
+def smoothing_ring(vertices: np.ndarray, faces: np.ndarray, mask: np.ndarray, reach_mm: float) -> np.ndarray:
+    """Faces outside the region within ``reach_mm`` of it, reached without crossing a sharp edge:
+    normals are smoothed over them too, so that where the surface runs on past the region's
+    border the normals at the border are not biased inward."""
+    from scipy.spatial import cKDTree
+
+    normals, _ = face_normals(vertices, faces)
+    pairs, _ = face_pairs(faces, mesh_edges(faces))
+    smooth = np.einsum("ij,ij->i", normals[pairs[:, 0]], normals[pairs[:, 1]]) > math.cos(math.radians(SHARP_EDGE_DEG))
+    pairs = pairs[smooth]
+    centres = vertices[faces].mean(axis=1)
+    near = cKDTree(centres[mask]).query(centres, distance_upper_bound=reach_mm)[0] <= reach_mm
+    grown = mask.copy()
+    while True:
+        touch = np.zeros(len(faces), dtype=bool)
+        touch[pairs[grown[pairs[:, 0]], 1]] = True
+        touch[pairs[grown[pairs[:, 1]], 0]] = True
+        new = touch & near & ~grown
+        if not new.any():
+            return grown & ~mask
+        grown |= new

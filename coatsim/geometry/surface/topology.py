@@ -32,24 +32,37 @@ class Edges:
         return np.flatnonzero(self.face_count > 2)
 
 
+def unique_pairs(pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unordered vertex pairs (k, 2) made unique: (sorted unique pairs (E, 2), index of each
+    input pair among them (k,))."""
+    low, high = pairs.min(axis=1), pairs.max(axis=1)
+    base = int(high.max()) + 1 if len(pairs) else 1
+    keys, inverse = np.unique(low * base + high, return_inverse=True)
+    return np.column_stack([keys // base, keys % base]), inverse.ravel()
+
+
 def mesh_edges(faces: np.ndarray) -> Edges:
     """The edges of ``faces`` (m, 3)."""
     directed = np.stack([faces, np.roll(faces, -1, axis=1)], axis=2).reshape(-1, 2)
-    pairs, inverse, counts = np.unique(np.sort(directed, axis=1), axis=0, return_inverse=True, return_counts=True)
-    return Edges(pairs.reshape(-1, 2), inverse.reshape(-1, 3), counts)
+    low, high = directed.min(axis=1), directed.max(axis=1)
+    base = int(faces.max()) + 1 if len(faces) else 1
+    keys, inverse, counts = np.unique(low * base + high, return_inverse=True, return_counts=True)
+    return Edges(np.column_stack([keys // base, keys % base]), inverse.reshape(-1, 3), counts)
 
 
-def face_pairs(faces: np.ndarray, edges: Edges) -> tuple[np.ndarray, np.ndarray]:
+def face_pairs(faces: np.ndarray, edges: Edges, slots: bool = False):
     """Faces that share a manifold edge, (K, 2), and whether each pair is wound consistently
-    (the shared edge runs in opposite directions in the two faces), (K,) bool."""
+    (the shared edge runs in opposite directions in the two faces), (K,) bool; with ``slots``
+    also the shared edge's index (0-2) in each of the two faces."""
     manifold = edges.face_count[edges.of_face.ravel()] == 2
-    slots = np.flatnonzero(manifold)  # face * 3 + k of every manifold face edge
-    order = np.argsort(edges.of_face.ravel()[slots], kind="stable")
-    first, second = slots[order[0::2]], slots[order[1::2]]
+    where = np.flatnonzero(manifold)  # face * 3 + k of every manifold face edge
+    order = np.argsort(edges.of_face.ravel()[where], kind="stable")
+    first, second = where[order[0::2]], where[order[1::2]]
     flat = faces.ravel()
     forward_1 = flat[first] < flat[first - first % 3 + (first % 3 + 1) % 3]
     forward_2 = flat[second] < flat[second - second % 3 + (second % 3 + 1) % 3]
-    return np.column_stack([first // 3, second // 3]), forward_1 != forward_2
+    pairs, consistent = np.column_stack([first // 3, second // 3]), forward_1 != forward_2
+    return (pairs, consistent, first % 3, second % 3) if slots else (pairs, consistent)
 
 
 def face_components(n_faces: int, pairs: np.ndarray) -> tuple[int, np.ndarray]:
@@ -74,3 +87,26 @@ def submesh(vertices: np.ndarray, faces: np.ndarray, keep: np.ndarray) -> tuple[
     kept = faces[keep]
     used, local = np.unique(kept, return_inverse=True)
     return vertices[used], local.reshape(-1, 3), used
+
+
+def manifold_split(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Faces on vertices made manifold: each vertex is split into one copy per fan of faces
+    around it joined by manifold edges (a bow-tie vertex becomes two, the faces of a
+    non-manifold edge part along it). Returns (new faces, original vertex of each new vertex),
+    new vertices numbered in order of their first face corner."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    pairs, _ = face_pairs(faces, mesh_edges(faces))
+    f, g = pairs[:, 0], pairs[:, 1]
+    rows, cols = [], []
+    for k in range(3):  # the corners of f and g at each vertex they share are one corner group
+        match = faces[g] == faces[f, k][:, None]
+        has = match.any(axis=1)
+        rows.append(f[has] * 3 + k)
+        cols.append(g[has] * 3 + np.argmax(match[has], axis=1))
+    n = 3 * len(faces)
+    graph = coo_matrix((np.ones(sum(map(len, rows))), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n))
+    _, group = connected_components(graph, directed=False)
+    _, first = np.unique(group, return_index=True)
+    return group.reshape(-1, 3).astype(np.int64), faces.ravel()[first].astype(np.int64)
