@@ -1,4 +1,4 @@
-"""What the resource budgets of coatsim/budgets.py cost: time and peak memory per unit of each
+"""What the resource budgets of coatsim/core/budgets.py cost: time and peak memory per unit of each
 bounded quantity, measured on a moderate case in a fresh process, and extrapolated to the budget;
 then how fast an over-budget input is refused.
 
@@ -51,7 +51,7 @@ def main() -> None:
     print(f"baseline (import + tiny segment): {base_s:.2f} s, {base_mb:.0f} MB peak RSS\n")
     print("| quantity | measured on | time | peak RSS | per unit | at the budget |")
     print("|---|---|---|---|---|---|")
-    from coatsim.program import read_toolpath
+    from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.robot.sampling import CartesianPiece, plan_pieces
 
     samples = sum(len(p.s) for p in plan_pieces(read_toolpath(d / "p.as"), 0.01) if isinstance(p, CartesianPiece))

@@ -17,7 +17,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from coatsim.errors import CoatsimError
+from coatsim.core.errors import CoatsimError
 from coatsim.geometry.cad import segment_drawing
 from coatsim.geometry.cad.drawing import DRAWING_SUFFIXES
 

@@ -7,6 +7,7 @@ LMOVEs to a pose array, and one that computes its poses in loops, CASEs and CALL
 scaling exponent of writing, parsing and interpreting (scripts/scaling.py, N and 10 N moves).
 Never asserts. The curves are the benchmark curves (coatsim.geometry.benchmark), or the CSV
 files of a folder given as the argument (exit non-zero when it has none); the polysegment comes
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.geometry.segment_curve at TOL mm.
 
     python scripts/bench_program.py [DIR]
@@ -21,9 +22,9 @@ from pathlib import Path
 
 from coatsim.geometry import load_curve, segment_curve
 from coatsim.geometry.benchmark import NAMES, bench_curve
-from coatsim.program import interpret, interpret_run, parse_as
-from coatsim.program.build import VARIANTS, ProgramOptions, build_program
-from coatsim.program.placement import Placement, centering_offset
+from coatsim.languages.kawasaki_as import interpret, interpret_run, parse_as
+from coatsim.path.build import VARIANTS, ProgramOptions, build_program
+from coatsim.path.placement import Placement, centering_offset
 
 TOL = 0.1
 REPEATS = 5
@@ -99,7 +100,7 @@ def main() -> None:
         placement = Placement(offset_xy=centering_offset(poly))
         for variant in VARIANTS:
             options = ProgramOptions(variant=variant)
-            t_write, built = best(lambda: build_program(poly, placement, options, tolerance_mm=TOL,
+            t_write, built = best(lambda: build_program(poly, placement, options, language=KAWASAKI_AS, tolerance_mm=TOL,
                                                         source=name, points=curve.points))
             t_parse, parsed = best(lambda: parse_as(built.text))
             t_interp, toolpath = best(lambda: interpret(parsed))

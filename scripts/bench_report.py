@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def main() -> None:
-    import coatsim.pipeline as pipeline
+    import coatsim.run.pipeline as pipeline
     from coatsim.report import document
     from coatsim.report.sections import (
         maps,

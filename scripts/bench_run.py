@@ -13,12 +13,12 @@ import sys
 import time
 from pathlib import Path
 
-from coatsim.runtime import single_threaded_numerics
+from coatsim.core.runtime import single_threaded_numerics
 
 single_threaded_numerics()  # as `coatsim` does, before the numerical libraries load
 
-from coatsim.errors import CoatsimError  # noqa: E402
-from coatsim.pipeline import run_scenario  # noqa: E402
+from coatsim.core.errors import CoatsimError  # noqa: E402
+from coatsim.run.pipeline import run_scenario  # noqa: E402
 from coatsim.report.summary import summary_text  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

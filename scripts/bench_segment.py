@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.errors import CoatsimError
+from coatsim.core.errors import CoatsimError
 from coatsim.geometry import load_curve, make_curve, segment_curve
 from coatsim.geometry.benchmark import NAMES, TOLERANCES_MM, bench_curve, reference_count
 

@@ -20,8 +20,8 @@ from pathlib import Path
 
 HEAVY = ("matplotlib", "toppra", "mujoco", "mink", "scipy.optimize", "scipy.special", "scipy.spatial", "trimesh",
          "dask", "distributed", "pyarrow", "pandas", "pydantic", "rich")
-STAGES = ("coatsim.cli", "coatsim.geometry", "coatsim.geometry.segment", "coatsim.program", "coatsim.robot.execute",
-          "coatsim.spray.coat", "coatsim.report.document", "coatsim.pipeline", "coatsim.sweep.run")
+STAGES = ("coatsim.cli.app", "coatsim.geometry", "coatsim.geometry.segment", "coatsim.path", "coatsim.robot.execute",
+          "coatsim.spray.coat", "coatsim.report.document", "coatsim.run.pipeline", "coatsim.sweep.run")
 
 
 def cpu_of(argv: list[str], repeat: int) -> float:

@@ -25,7 +25,7 @@ def main() -> None:
     parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--repeat", type=int, default=1, help="best of N runs per worker count")
     args = parser.parse_args()
-    from coatsim.runtime import single_threaded_numerics
+    from coatsim.core.runtime import single_threaded_numerics
 
     single_threaded_numerics()  # as `coatsim` does (the workers get it from Dask's nanny)
     from coatsim.sweep.run import run_sweep

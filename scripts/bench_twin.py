@@ -19,13 +19,13 @@ import tempfile
 import time
 from pathlib import Path
 
-from coatsim.runtime import single_threaded_numerics
+from coatsim.core.runtime import single_threaded_numerics
 
 single_threaded_numerics()  # as `coatsim` does, before the numerical libraries load
 
 import numpy as np  # noqa: E402
 
-from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath  # noqa: E402
+from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath  # noqa: E402
 from coatsim.robot.cell import load_cell  # noqa: E402
 from coatsim.robot.execute import execute  # noqa: E402
 
@@ -67,9 +67,9 @@ def bench_speed(cell, speed: float) -> None:
 
 def bench_spiral(cell, curve: Path | None, tol: float, speed: float) -> None:
     from coatsim.geometry.benchmark import bench_points
-    from coatsim.program import read_toolpath
-    from coatsim.program.build import ProgramOptions
-    from coatsim.program.run import run_program
+    from coatsim.languages.kawasaki_as.files import read_toolpath
+    from coatsim.path.build import ProgramOptions
+    from coatsim.cli.program import run_program
 
     print(f"\nspiral {curve.name if curve else 'benchmark spiral'}, sigma {tol} mm, {speed:g} mm/s, tool acceleration limit "
           f"{cell.tool_accel_mm_s2 / 1000:g} m/s^2")

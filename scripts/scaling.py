@@ -42,7 +42,8 @@ def report(title: str, rows: list[tuple[str, float, float, float, float]], unit:
 
 def segment(n: int = 100_000, factor: int = 10) -> None:
     """Built-in curve generation, the exact deviation check and the whole fit at N and 10 N points."""
-    from coatsim.geometry import builtin_curve, segment_curve
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+from coatsim.geometry import builtin_curve, segment_curve
     from coatsim.geometry.deviation import hausdorff
 
     rows = []
@@ -94,7 +95,7 @@ def coat(spacing: float = 1.0) -> None:
 
 def _polygon(sides: int, radius: float = 80.0, speed: float = 200.0):
     """An exact-stop polygon program: a joint move to the start, then one LMOVE per side."""
-    from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
+    from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
 
     down = np.diag([-1.0, 1.0, -1.0])
     a = np.linspace(0.0, 2 * math.pi, sides + 1)
@@ -127,9 +128,9 @@ def execute(n: int = 20, factor: int = 10) -> None:
 def spiral_per_robot_second(cell=None) -> None:
     """CPU per robot second of each variant on the paper's spiral (sigma 0.1 mm, 200 mm/s)."""
     from coatsim.geometry.benchmark import bench_curve
-    from coatsim.program import read_toolpath
-    from coatsim.program.build import ProgramOptions
-    from coatsim.program.run import run_program
+    from coatsim.languages.kawasaki_as.files import read_toolpath
+    from coatsim.path.build import ProgramOptions
+    from coatsim.cli.program import run_program
     from coatsim.robot.cell import load_cell
     from coatsim.robot.execute import execute as run
 
@@ -156,9 +157,9 @@ def spiral_per_robot_second(cell=None) -> None:
 def program(n: int = 500, factor: int = 10) -> None:
     """Writing, parsing and interpreting a polyline program of N and 10 N moves."""
     from coatsim.geometry import make_curve
-    from coatsim.program import interpret, parse_as
-    from coatsim.program.build import ProgramOptions, build_program, polyline_of
-    from coatsim.program.placement import Placement
+    from coatsim.languages.kawasaki_as import interpret, parse_as
+    from coatsim.path.build import ProgramOptions, build_program, polyline_of
+    from coatsim.path.placement import Placement
 
     timed = {}
     for size in (n, factor * n):
@@ -166,7 +167,7 @@ def program(n: int = 500, factor: int = 10) -> None:
         curve = make_curve(np.column_stack((80 * np.cos(a), 80 * np.sin(a))), "circle")
         poly = polyline_of(curve.points, curve.closed, 1e-9)
         options = ProgramOptions(variant="polyline-blend")
-        t_write, built = cpu(lambda: build_program(poly, Placement(), options, tolerance_mm=1e-9, source="circle",
+        t_write, built = cpu(lambda: build_program(poly, Placement(), options, language=KAWASAKI_AS, tolerance_mm=1e-9, source="circle",
                                                    points=curve.points), 3)
         t_parse, parsed = cpu(lambda: parse_as(built.text), 3)
         t_interp, _ = cpu(lambda: interpret(parsed), 3)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from coatsim.pipeline import RunResult, VariantRun, run_scenario
+from coatsim.run.pipeline import RunResult, VariantRun, run_scenario
 
 SIGMA_MM = 5.0
 SCENARIO = """\

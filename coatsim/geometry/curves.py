@@ -10,8 +10,8 @@ from typing import Literal
 
 import numpy as np
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_CURVE_FILE_BYTES, MAX_CURVE_POINTS, check_budget
-from coatsim.errors import InputError, shown
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_CURVE_FILE_BYTES, MAX_CURVE_POINTS, check_budget
+from coatsim.core.errors import InputError, shown
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed

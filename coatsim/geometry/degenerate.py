@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 

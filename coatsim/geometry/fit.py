@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
@@ -232,7 +232,8 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
             return RunFit(*found, limits_kept=False)
     if not fillet:
         raise InputError(f"no chain within {tolerance:g} mm keeps every segment at least "
-                         f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one")
+                         f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one",
+                         parameters=("min_segment_mm",))
     # Sparse or kinked input the band fit cannot follow: round the vertices instead, first
     # those of the input simplified within half the tolerance (rounded within the other half).
     for keep, share in ((_simplified(pts, closed_loop, tolerance / 2), 0.5), (np.arange(len(pts)), 1.0)):

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
 from coatsim import __version__
-from coatsim.fileio import write_text
+from coatsim.core.fileio import write_text
 from coatsim.report.data import ReportData
 from coatsim.report.html import Section, render_html
 

@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from coatsim.errors import InputError
-from coatsim.fileio import temporary_path
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import temporary_path
 
 FPS = 25
 LEAD_S = 0.5

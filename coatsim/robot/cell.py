@@ -13,7 +13,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 
 MM = 1e-3  # metres per millimetre
 M_TO_MM = 1e3

@@ -2,20 +2,15 @@
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Mapping, Sequence
 
 import numpy as np
 
-from coatsim.budgets import MAX_SIM_STEPS, check_budget
-from coatsim.errors import ExecutionError, InputError
-from coatsim.fileio import write_text
-from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY, parse_limits
-from coatsim.program.toolpath import PART_SEPARATOR, SPRAYED_CURVE, SPRAYED_WITH_LEADS, Dwell, ToolPath
+from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.chain import tcp_positions_mm
 from coatsim.robot.checks import check_playback
@@ -63,42 +58,6 @@ class _Segment:
     move: np.ndarray      # program move per row (-1: the implicit move from home)
 
 
-def _metadata_mm(toolpath: ToolPath, key: str) -> float:
-    raw = toolpath.metadata.get(key)
-    if raw is None:
-        return 0.0
-    try:
-        value = float(raw)
-    except ValueError:
-        raise InputError(f"{toolpath.name}: header field {key}={raw!r} is not a number (mm)") from None
-    if not (math.isfinite(value) and value >= 0):
-        raise InputError(f"{toolpath.name}: header field {key}={raw!r} must be a length >= 0 mm")
-    return value
-
-
-def _per_contour(toolpath: ToolPath, key: str, default: str, n: int) -> list[str]:
-    """A header field per curve proper: a part program holds one value per contour, joined by
-    PART_SEPARATOR; a single value holds for every one."""
-    raw = toolpath.metadata.get(key, default)
-    values = [v.strip() for v in raw.split(PART_SEPARATOR.strip())] if PART_SEPARATOR.strip() in raw else [raw]
-    if len(values) == 1:
-        return values * n
-    if len(values) != n:
-        raise InputError(f"{toolpath.name}: header field {key} holds {len(values)} values for {n} sprayed contours")
-    return values
-
-
-def _leads_sprayed(toolpath: ToolPath, n: int) -> list[bool]:
-    """Whether the gun covers the lead-in and lead-out of each curve proper (header
-    ``sprayed``, default yes)."""
-    out = []
-    for raw in _per_contour(toolpath, "sprayed", SPRAYED_WITH_LEADS, n):
-        if raw not in (SPRAYED_CURVE, SPRAYED_WITH_LEADS):
-            raise InputError(f"{toolpath.name}: header field sprayed={raw!r}: expected {SPRAYED_CURVE!r} or {SPRAYED_WITH_LEADS!r}")
-        out.append(raw == SPRAYED_WITH_LEADS)
-    return out
-
-
 def _spray_runs(toolpath: ToolPath, cartesian: list[int]) -> list[list[int]]:
     """Indices of the Cartesian moves of each unbroken run of spray-on moves (the contours of a
     part); every Cartesian move as one run if none sprays."""
@@ -119,11 +78,12 @@ def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[f
     if not cartesian:
         raise ExecutionError(f"{toolpath.name}: the program has no Cartesian motion to measure")
     runs = _spray_runs(toolpath, cartesian)
-    lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
+    process = toolpath.process
+    lead_in, lead_out = process.lead_in_mm, process.lead_out_mm
     spans, inside = [], []
-    for run, leads in zip(runs, _leads_sprayed(toolpath, len(runs))):
-        a = ref.move_span(run[0])[0] + (lead_in if leads else 0.0)
-        b = ref.move_span(run[-1])[1] - (lead_out if leads else 0.0)
+    for run, contour in zip(runs, process.contours_for(len(runs), toolpath.name)):
+        a = ref.move_span(run[0])[0] + (lead_in if contour.leads_sprayed else 0.0)
+        b = ref.move_span(run[-1])[1] - (lead_out if contour.leads_sprayed else 0.0)
         if b <= a:
             raise InputError(f"{toolpath.name}: lead_in_mm + lead_out_mm leave no curve between them")
         spans.append((a, b))
@@ -168,15 +128,12 @@ def _mounts(toolpath: ToolPath, cell: Cell) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
-    """Where the program header says each curve proper allows the programmed speed (no header:
+    """Where the program's record says each curve proper allows the programmed speed (no record:
     everywhere but near the rest points at the ends)."""
-    lead_in, lead_out = _metadata_mm(toolpath, "lead_in_mm"), _metadata_mm(toolpath, "lead_out_mm")
-    out = []
-    for raw, closed in zip(_per_contour(toolpath, SPEED_LIMITS_KEY, "none", n), _per_contour(toolpath, "closed", "no", n)):
-        limits = parse_limits(raw, toolpath.name)
-        out.append(CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in limits), closed == "yes",
-                                  lead_in, lead_out))
-    return out
+    process = toolpath.process
+    return [CurveAllowance(tuple((lim.s0_mm, lim.s1_mm, lim.v_max_mm_s) for lim in contour.speed_limits),
+                           contour.closed, process.lead_in_mm, process.lead_out_mm)
+            for contour in process.contours_for(n, toolpath.name)]
 
 
 def _ik_targets(piece: CartesianPiece, mount_r: np.ndarray, mount_p: np.ndarray
@@ -334,42 +291,3 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     return Execution(log=log, metrics=metrics, events=tuple(events), residual=Residual(*worst), reference=ref,
                      curve=(spans[0][0], spans[-1][1]), wall=wall, warnings=toolpath.warnings, curves=tuple(spans),
                      contour_metrics=per_contour)
-
-
-def execute_program(program: str | Path | Sequence[str | Path], model: str | Path | None, outdir: str | Path,
-                    gun_signal: int = 1, step_mm: float = 1.0, main: str | None = None,
-                    inputs: Mapping[int, bool] | None = None, force: bool = False) -> tuple[Execution, list[Path]]:
-    """``coatsim execute``: read AS program files, run the main program (``main``, default the
-    first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.outputs_guard)."""
-    from coatsim.outputs_guard import check_distinct, output_folder
-    from coatsim.program import read_toolpath
-    from coatsim.robot.kinematics import CellKinematics
-    from coatsim.robot.plots import plot_speed
-
-    sources = [program] if isinstance(program, (str, Path)) else list(program)
-    out = Path(outdir)
-    names = ["trajectory.csv", "motion.json", "speed.png"]
-    files = [out / name for name in names]
-    check_distinct([*(("the program", p) for p in sources), ("--model", model)], [("output", f) for f in files])
-    cell = load_cell(model)
-    toolpath = read_toolpath(program, gun_signal=gun_signal, program=main, inputs=inputs,
-                             kinematics=CellKinematics(cell))
-    with output_folder(out, names, "coatsim execute", force):
-        result = execute(toolpath, cell, step_mm)
-        result.log.write_csv(files[0])
-        doc = {
-            "format": "coatsim.motion/1",
-            "program": str(sources[0]) if len(sources) == 1 else [str(p) for p in sources],
-            "model": str(model) if model is not None else "default",
-            "step_mm": step_mm,
-            "motion": result.metrics.as_dict(),
-            "events": list(result.events),
-            "warnings": list(result.warnings),
-        }
-        write_text(files[1], json.dumps(doc, indent=2) + "\n")
-        variant = toolpath.metadata.get("variant")
-        label = f"{toolpath.name} ({variant})" if variant else f"{toolpath.name} ({Path(sources[0]).name})"
-        plot_speed(result.log, result.metrics, result.curves, files[2],
-                   title=f"{label}: tool speed over the sprayed stretch")
-    return result, files

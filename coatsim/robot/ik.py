@@ -18,7 +18,7 @@ import mink
 import mujoco
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, M_TO_MM, MM, Cell
 from coatsim.robot.chain import cell_chain
 from coatsim.robot.ik_batch import DAMPING_M2, continuity_ok, first_order, refine, rotation_vectors

@@ -8,9 +8,9 @@ from typing import Optional
 
 import numpy as np
 
-from coatsim.errors import ExecutionError, InputError
-from coatsim.program.tool_frames import gun_in_tcp
-from coatsim.program.toolpath import Pose, ToolFrame
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.path.tool_frames import gun_in_tcp
+from coatsim.path.toolpath import Pose, ToolFrame
 
 
 class CellKinematics:

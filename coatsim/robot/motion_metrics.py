@@ -9,7 +9,7 @@ rest at either end of the window is not counted as a stop.
 
 ``min_speed_ratio`` looks only where the curve allows the programmed speed: outside the
 stretches the program header lists as limited by the curve itself (true corners, turns tighter
-than v² / a; see :mod:`coatsim.program.speed_limits`), and outside the distance the tool needs
+than v² / a; see :mod:`coatsim.path.speed_limits`), and outside the distance the tool needs
 to brake to, or speed up from, each of them and the rest points at the start of the lead-in and
 the end of the lead-out (RAMP_FACTOR x (v² - v_limit²) / 2a at the tool acceleration limit a;
 around the seam of a closed curve). Every variant of a curve carries the same stretches, so the figure compares
@@ -23,7 +23,7 @@ from typing import Sequence
 
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 END_TOLERANCE_MM = 0.1  # the curve proper counts as covered this close to its end

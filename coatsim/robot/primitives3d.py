@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coatsim.program.arcs import DegenerateArc, circle_through
+from coatsim.path.arcs import DegenerateArc, circle_through
 
 
 @dataclass(frozen=True, eq=False)

@@ -23,9 +23,9 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
-from coatsim.errors import ExecutionError, InputError
-from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
+from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
 from coatsim.robot.ik_batch import row_norms
 from coatsim.robot.primitives3d import Primitive, arc_through, line
 

@@ -25,8 +25,8 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
-from coatsim.budgets import MAX_SIM_STEPS, check_budget
-from coatsim.errors import ExecutionError
+from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 
 if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads when a piece is timed

@@ -1,5 +1,5 @@
 """The program's TOOL in the robot stage: the IK targets the gun site where the controller's TOOL
-puts the flange (see :mod:`coatsim.program.tool_frames` for the frames), motions after a TOOL
+puts the flange (see :mod:`coatsim.path.tool_frames` for the frames), motions after a TOOL
 change start where the flange is, and a TOOL that is not the cell's gun is a warning.
 """
 
@@ -9,10 +9,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from coatsim.program import tool_frames
-from coatsim.program.oat import matrix_to_oat
-from coatsim.program.placement import Frame
-from coatsim.program.toolpath import JointMove, Pose, ToolFrame, ToolPath
+from coatsim.path import tool_frames
+from coatsim.path.oat import matrix_to_oat
+from coatsim.path.frames import Frame
+from coatsim.path.toolpath import JointMove, Pose, ToolFrame, ToolPath
 from coatsim.robot.cell import Cell
 
 

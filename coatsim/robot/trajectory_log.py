@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from coatsim.budgets import MAX_TRAJECTORY_BYTES, check_budget
-from coatsim.errors import InputError, shown
-from coatsim.fileio import write_text
+from coatsim.core.budgets import MAX_TRAJECTORY_BYTES, check_budget
+from coatsim.core.errors import InputError, shown
+from coatsim.core.fileio import write_text
 
 COLUMNS = (
     "t_s", "x_mm", "y_mm", "z_mm", "ax", "ay", "az", "speed_mm_s", "spray",

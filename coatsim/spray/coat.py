@@ -17,9 +17,9 @@ from typing import Callable, Iterator
 
 import numpy as np
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM
-from coatsim.errors import InputError
-from coatsim.fileio import write_text
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_text
 from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
 from coatsim.spray.coating_metrics import coating_metrics, edge_band_width, region_of_interest
 from coatsim.spray.deposition import Deposit, SprayModel, deposit
@@ -121,8 +121,8 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
              de_exponent: float = 1.0, occlusion: bool = False, section: str | None = None,
              outdir: str | Path = "out/coat", force: bool = False) -> tuple[CoatingResult, list[Path]]:
     """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default);
-    the output folder is held for the run (see coatsim.outputs_guard)."""
-    from coatsim.outputs_guard import check_distinct, output_folder
+    the output folder is held for the run (see coatsim.core.outputs_guard)."""
+    from coatsim.core.outputs_guard import check_distinct, output_folder
 
     fp = parse_footprint_spec(footprint)
     model = SprayModel(fp, rate, standoff, de_exponent, occlusion)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.errors import EmptyRegionOfInterest, InputError
+from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.surfaces import Surface, border_distance
 

@@ -31,8 +31,8 @@ from typing import Callable
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
-from coatsim.errors import InputError
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
+from coatsim.core.errors import InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface

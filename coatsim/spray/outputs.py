@@ -16,7 +16,7 @@ from typing import Sequence
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.fileio import write_bytes
+from coatsim.core.fileio import write_bytes
 from coatsim.spray.surfaces import Surface
 
 COLOUR_MAP = "viridis"

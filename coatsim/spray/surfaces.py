@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
-from coatsim.errors import InputError
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
+from coatsim.core.errors import InputError
 
 #: refinement refuses to build meshes with more triangles than this (about two per vertex)
 MAX_TRIANGLES = 2 * MAX_MESH_VERTICES

@@ -17,8 +17,8 @@ from pathlib import Path
 from typing import Mapping, Optional, Sequence
 
 from coatsim import __version__
-from coatsim.errors import CoatsimError, InputError
-from coatsim.fileio import write_text
+from coatsim.core.errors import CoatsimError, InputError
+from coatsim.core.fileio import write_text
 from coatsim.sweep.inputs import bundle, with_absolute_paths
 from coatsim.sweep.points import Point, canonical_json, expand
 from coatsim.sweep.spec import SweepFile, load_sweep
@@ -85,7 +85,7 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
     fast = sweep.spec.fast
     outcomes: dict[str, PointOutcome] = {}
     pending: list[tuple[PointTask, dict[str, Path], Point, dict]] = []
-    from coatsim.scenario import as_dict, load_scenario
+    from coatsim.run.scenario import as_dict, load_scenario
 
     base_variants = variant_names(as_dict(load_scenario(sweep.base_path).spec)["variants"])
     variants_of = {p.id: variant_names(p.scenario["variants"]) if p.scenario else base_variants for p in points}
@@ -193,7 +193,7 @@ def reused_count(points: Sequence[Point], ran: Sequence[str]) -> int:
 
 def sweep_problems(result: SweepResult) -> Optional[CoatsimError]:
     """The error a sweep exits with: a failed point or gate (exit 1), else None."""
-    from coatsim.errors import GateFailure
+    from coatsim.core.errors import GateFailure
 
     failed_points = result.failed_points
     if not failed_points and not result.gate_failures:

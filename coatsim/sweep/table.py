@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
-from coatsim.fileio import atomic_open, write_text
+from coatsim.core.fileio import atomic_open, write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.sweep.points import Point
 from coatsim.sweep.task import PointOutcome

@@ -81,7 +81,7 @@ def failed(task: PointTask, variants: tuple[str, ...], error: str, *, exit_code:
 def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
     """Run every variant of one point in a scratch folder (the function a Dask worker runs)."""
     from coatsim import __version__
-    from coatsim.errors import CoatsimError
+    from coatsim.core.errors import CoatsimError
 
     started, cpu_started = time.perf_counter(), time.process_time()
     variants = variant_names(task.scenario.get("variants", ()))
@@ -99,7 +99,7 @@ def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
             return text
 
         try:
-            from coatsim.pipeline import run_scenario
+            from coatsim.run.pipeline import run_scenario
 
             for name, data in inputs.items():
                 target = scratch / name

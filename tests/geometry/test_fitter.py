@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import Arc, Line, Polysegment, chain, load_curve, make_curve, segment_curve
 from coatsim.geometry.deviation import hausdorff
 

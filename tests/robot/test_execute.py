@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from coatsim.errors import ExecutionError
-from coatsim.program.toolpath import ToolPath
+from coatsim.core.errors import ExecutionError
+from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 from coatsim.robot.ik import POS_TOL_MM, ROT_TOL_DEG, Tracker

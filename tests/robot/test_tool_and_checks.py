@@ -16,8 +16,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from coatsim.errors import ExecutionError
-from coatsim.program import read_toolpath
+from coatsim.core.errors import ExecutionError
+from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.checks import (LIMIT_FAIL_RATIO, TRACKING_FAIL_MM, check_playback, joint_ratios,
                                   tracking_error)

@@ -86,7 +86,7 @@ def test_cli_writes_every_output_deterministically(tmp_path, monkeypatch, capsys
         assert code == 0, err
         assert "deposited" in out
         outputs.append({p.name: p.read_bytes() for p in sorted((tmp_path / run).iterdir())})
-    # the outputs and the folder's record of what coatsim wrote (coatsim.outputs_guard)
+    # the outputs and the folder's record of what coatsim wrote (coatsim.core.outputs_guard)
     assert sorted(outputs[0]) == [".coatsim-outputs.json", "coating.json", "heatmap.png", "section.png", "thickness.ply"]
     assert outputs[0] == outputs[1]
     doc = json.loads(outputs[0]["coating.json"])

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.spray.coating_metrics import (
     coating_metrics, region_of_interest, thickness_statistics, weighted_quantile,
 )

@@ -152,7 +152,7 @@ def test_a_folder_that_is_not_a_sweep_is_left_alone(tmp_path):
     keep = tmp_path / "mine"
     keep.mkdir()
     (keep / "notes.txt").write_text("mine")
-    from coatsim.errors import InputError
+    from coatsim.core.errors import InputError
 
     with pytest.raises(InputError, match="not a sweep's output folder"):
         run_sweep(path, keep, progress=False)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.surface.distance import distance_levels
 from coatsim.geometry.surface.piece import Piece
 
@@ -20,7 +20,8 @@ def boundary_piece(piece: Piece, spacing_mm: float, band_mm: float) -> Piece:
     """The piece with its border distance as the field and the levels of its loops."""
     if not piece.on_border.any():
         raise InputError("boundary passes: a piece of the region is closed (it has no border); "
-                         "choose a region with a border or the raster or geodesic pattern")
+                         "choose a region with a border or the raster or geodesic pattern",
+                         parameters=("region", "pattern"))
     inside = piece.inside(band_mm)
     if not inside.any():
         return piece.with_field(piece.border_mm, np.zeros(0))

@@ -159,4 +159,4 @@ def _curve(points: np.ndarray, edges: np.ndarray, t: np.ndarray, faces: np.ndarr
         keep[-1] = False
     if keep.sum() < 2:
         return None
-    return SurfaceCurve(points[keep], point_face[keep], bary[keep], closed and keep.sum() > 2)
+    return SurfaceCurve(points[keep], point_face[keep], bary[keep], bool(closed and keep.sum() > 2))

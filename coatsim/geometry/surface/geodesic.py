@@ -15,7 +15,7 @@ from typing import Union
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.surface.cuts import cut_at_level, insert_points
 from coatsim.geometry.surface.distance import distance_levels, heat_distance
 from coatsim.geometry.surface.passes import barycentric
@@ -53,8 +53,8 @@ def geodesic_piece(piece: Piece, start: Start, spacing_mm: float, band_mm: float
     if isinstance(start, FromBoundary):
         sources = np.flatnonzero(piece.on_border)
         if not len(sources):
-            raise InputError("geodesic passes from the border: a piece of the region is closed (it has no border); "
-                             "start from a plane or from points")
+            raise InputError("geodesic passes from the border: a piece of the region is closed (it has no border to "
+                             "start from); give a plane or points as the start", parameters=("start",))
         distance = heat_distance(piece.vertices, piece.faces, sources)
         return _levelled(piece, distance, band_mm + 0.5 * spacing_mm, spacing_mm, band_mm)
     if isinstance(start, FromPlane):
@@ -102,7 +102,7 @@ def assign_points(pieces: list[Piece], start: FromPoints, tolerance_mm: float) -
         if not best[i] <= tolerance_mm:
             raise InputError(f"start point {tuple(round(float(x), 3) for x in points[i])} lies "
                              f"{best[i]:.3g} mm from the region (more than {tolerance_mm:.3g} mm); "
-                             "give points on the coated surface")
+                             "give points on the coated surface", parameters=("start",))
         piece = pieces[k]
         bary = barycentric(piece.vertices, piece.faces, np.array([face]), points[i][None])[0]
         bary = np.clip(bary, 0.0, None)

@@ -15,8 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
-from coatsim.budgets import MAX_PLAN_MESH_BYTES, MAX_PLAN_TRIANGLES, check_budget
-from coatsim.errors import InputError
+from coatsim.core import defaults
+from coatsim.core.budgets import MAX_PLAN_MESH_BYTES, MAX_PLAN_TRIANGLES, check_budget
+from coatsim.core.errors import InputError
 
 #: millimetres per unit of a mesh file
 UNITS_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -51,13 +52,13 @@ class Part:
         return float(np.ptp(self.vertices_mm, axis=0).max())
 
 
-def load_part(path: str | Path, units: str = "auto") -> Part:
+def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     """Read a mesh file (see the module docstring); ``units`` is mm, cm, m, in or auto."""
     import trimesh
 
     path = Path(path)
     if units not in UNIT_CHOICES:
-        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}")
+        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}", parameters=("units",))
     if path.suffix.lower() not in MESH_SUFFIXES:
         raise InputError(f"{path}: not a mesh file this reader knows (suffix {path.suffix or 'none'}); "
                          f"export the part as {', '.join(s[1:].upper() for s in MESH_SUFFIXES)}")
@@ -88,7 +89,7 @@ def part_from_arrays(vertices: np.ndarray, faces: np.ndarray, name: str = "mesh"
     vertices = np.ascontiguousarray(vertices, dtype=float).reshape(-1, 3)
     faces = np.ascontiguousarray(faces, dtype=np.int64).reshape(-1, 3)
     if units not in UNIT_CHOICES:
-        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}")
+        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}", parameters=("units",))
     if len(faces) == 0:
         raise InputError(f"{name}: the mesh holds no triangles")
     if faces.min() < 0 or faces.max() >= len(vertices):

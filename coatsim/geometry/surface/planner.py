@@ -23,7 +23,8 @@ from typing import Literal
 
 import numpy as np
 
-from coatsim.errors import EmptyRegionOfInterest, InputError
+from coatsim.core import defaults
+from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.geometry.surface.boundary import boundary_piece
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import marching_distance
@@ -37,16 +38,12 @@ from coatsim.geometry.surface.piece import Piece
 from coatsim.geometry.surface.raster import raster_levels
 from coatsim.geometry.surface.region import (Everything, Facing, RegionSpec, check_region, default_toward,
                                              principal_axes, select_faces, sign_fixed, smoothing_ring, unit_vector)
-from coatsim.geometry.surface.spacing import DEFAULT_SPACING_SIGMAS, measure, ripple_pct, spacing_for_ripple
+from coatsim.geometry.surface.spacing import measure, ripple_pct, spacing_for_ripple
 from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
 from coatsim.geometry.surface.topology import border_vertices, face_components, face_pairs, mesh_edges, submesh
 from coatsim.geometry.surface.verify import verify
 
 Pattern = Literal["raster", "geodesic", "boundary"]
-#: lead-in/out past the region's edge, in footprint standard deviations (the footprint clears the edge)
-MARGIN_SIGMAS = 3.0
-#: region edges are refined to at most spacing / this
-EDGES_PER_SPACING = 4.0
 #: the whole part is refined to at most max(smoothing length, extent / this) before selection
 SELECTION_CELLS = 200.0
 #: normals are smoothed over the surface running on past the region this many smoothing lengths
@@ -62,15 +59,15 @@ class PlanOptions:
 
     footprint_sigma_mm: float
     standoff_mm: float
-    pattern: Pattern = "raster"
+    pattern: Pattern = defaults.PLAN_PATTERN
     spacing_mm: float | None = None
     ripple_pct: float | None = None
     step_direction: tuple[float, float, float] | None = None
     start: Start = field(default_factory=FromBoundary)
     region: RegionSpec = field(default_factory=Facing)
     margin_mm: float | None = None
-    edge_band_mm: float = 0.0
-    order: Order = "serpentine"
+    edge_band_mm: float = defaults.PLAN_EDGE_BAND_MM
+    order: Order = defaults.PLAN_ORDER
     max_edge_mm: float | None = None
     pose: tuple[float, float, float, float, float, float] = (0.0,) * 6
 
@@ -85,7 +82,8 @@ class _Settings:
 
 def _positive(name: str, value: float, allow_zero: bool = False) -> float:
     if not (isinstance(value, (int, float)) and math.isfinite(value) and (value > 0 or (allow_zero and value == 0))):
-        raise InputError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, found {value!r}")
+        raise InputError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, found {value!r}",
+                         parameters=(name,))
     return float(value)
 
 
@@ -94,29 +92,29 @@ def _settings(o: PlanOptions) -> _Settings:
     sigma = _positive("footprint_sigma_mm", o.footprint_sigma_mm)
     _positive("standoff_mm", o.standoff_mm)
     if o.pattern not in PATTERNS:
-        raise InputError(f"pattern must be one of {', '.join(PATTERNS)}, found {o.pattern!r}")
+        raise InputError(f"pattern must be one of {', '.join(PATTERNS)}, found {o.pattern!r}", parameters=("pattern",))
     if o.order not in ORDERS:
-        raise InputError(f"order must be one of {', '.join(ORDERS)}, found {o.order!r}")
+        raise InputError(f"order must be one of {', '.join(ORDERS)}, found {o.order!r}", parameters=("order",))
     if o.spacing_mm is not None and o.ripple_pct is not None:
-        raise InputError("give spacing_mm or ripple_pct, not both")
+        raise InputError("give spacing_mm or ripple_pct, not both", parameters=("spacing_mm", "ripple_pct"))
     if o.step_direction is not None:
         if o.pattern != "raster":
-            raise InputError("step_direction applies to the raster pattern")
-        unit_vector(o.step_direction, "step_direction")
+            raise InputError("step_direction applies to the raster pattern", parameters=("step_direction", "pattern"))
+        unit_vector(o.step_direction, "step_direction", "step_direction")
     if not isinstance(o.start, FromBoundary) and o.pattern != "geodesic":
-        raise InputError("start applies to the geodesic pattern")
+        raise InputError("start applies to the geodesic pattern", parameters=("start", "pattern"))
     check_region(o.region)
     if len(o.pose) != 6 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in o.pose):
-        raise InputError("pose must be six finite numbers x, y, z (mm), o, a, t (deg)")
+        raise InputError("pose must be six finite numbers x, y, z (mm), o, a, t (deg)", parameters=("pose",))
     if o.spacing_mm is not None:
         spacing = _positive("spacing_mm", o.spacing_mm)
     elif o.ripple_pct is not None:
         spacing = spacing_for_ripple(o.ripple_pct, sigma)
     else:
-        spacing = DEFAULT_SPACING_SIGMAS * sigma
-    margin = MARGIN_SIGMAS * sigma if o.margin_mm is None else _positive("margin_mm", o.margin_mm, True)
+        spacing = defaults.PLAN_SPACING_SIGMAS * sigma
+    margin = defaults.PLAN_MARGIN_SIGMAS * sigma if o.margin_mm is None else _positive("margin_mm", o.margin_mm, True)
     _positive("edge_band_mm", o.edge_band_mm, True)
-    max_edge = spacing / EDGES_PER_SPACING if o.max_edge_mm is None else _positive("max_edge_mm", o.max_edge_mm)
+    max_edge = spacing / defaults.PLAN_EDGES_PER_SPACING if o.max_edge_mm is None else _positive("max_edge_mm", o.max_edge_mm)
     return _Settings(spacing, margin, max_edge, sigma)
 
 
@@ -137,7 +135,7 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> 
     """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``) and
     smoothed unit vertex normals (smoothed over the region and the surface running on past it)."""
     coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
-    v, f, _ = refined(part.vertices_mm, part.faces, coarse, part.file, "use a coarser footprint or a smaller part")
+    v, f, _ = refined(part.vertices_mm, part.faces, coarse, part.file, "use a wider footprint or decimate the part")
     oriented = orient(v, f, None)
     toward = _toward(o.region, v, oriented)
     oriented = orient(v, f, toward)
@@ -146,12 +144,13 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> 
         notes.append(f"turned {oriented.flipped} triangle(s) to the consistent outward winding")
     mask = select_faces(v, oriented.faces, face_normals(v, oriented.faces)[0], o.region, toward, s.smoothing_mm)
     if not mask.any():
-        raise EmptyRegionOfInterest(f"the region ({describe_region(o.region, toward)}) holds no face of the part "
-                                    "that the gun sees; choose another region")
+        raise EmptyRegionOfInterest(f"no face of the part that the gun sees lies in the region "
+                                    f"{describe_region(o.region, toward)}; choose another region",
+                                    parameters=("region",))
     both = mask | smoothing_ring(v, oriented.faces, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
     sv, sf, _ = submesh(v, oriented.faces, both)
     sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
-                             "smaller region", labels=mask[both])
+                             "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm", "region"))
     normals = smooth_normals(sv, sf, s.smoothing_mm)
     rv, rf, parent = submesh(sv, sf, inside.astype(bool))
     return rv, rf, normals[parent]
@@ -160,7 +159,7 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
     """The gun's side: the facing direction, or the part's default (see region.default_toward)."""
     if isinstance(region, Facing) and region.direction is not None:
-        return unit_vector(region.direction, "region facing direction")
+        return unit_vector(region.direction, "region facing direction", "region")
     return default_toward(vertices, oriented.faces, closed_faces(oriented.faces))
 
 
@@ -193,7 +192,7 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
         pieces.append(Piece(v, f, normals[parent], border[parent]))
     if not pieces:
         raise EmptyRegionOfInterest("every piece of the region is smaller than a spacing squared; "
-                                    "use a smaller spacing_mm or a larger region")
+                                    "use a smaller spacing_mm or a larger region", parameters=("spacing_mm", "region"))
     return pieces, float(face_area.sum()), angle
 
 
@@ -209,7 +208,8 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
               else [None] * len(pieces))
     done = [geodesic_piece(p, o.start, s.spacing_mm, band, pts) for p, pts in zip(pieces, points)]
     if all(p is None for p in done):
-        raise EmptyRegionOfInterest("the geodesic start does not touch the region; choose a start plane that cuts it")
+        raise EmptyRegionOfInterest("the start does not touch the region; give a plane that cuts it or points on it "
+                                    "as the start", parameters=("start",))
     return [p for p in done if p is not None]
 
 
@@ -230,7 +230,7 @@ def _passes(pieces: list[Piece], traces: list[Trace], o: PlanOptions, s: _Settin
             lead_in = lead_out = np.zeros((0, 3))
         else:
             lead_in, lead_out = leads(curve.points, normals, s.margin_mm, 0.5 * s.spacing_mm)
-        passes.append(Pass(curve.points, normals, curve.closed, lead_in, lead_out))
+        passes.append(Pass(curve.points, normals, bool(curve.closed), lead_in, lead_out))
     return tuple(passes)
 
 
@@ -244,7 +244,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     clock.lap("border")
     step = None
     if options.pattern == "raster":
-        step = (unit_vector(options.step_direction, "step_direction") if options.step_direction is not None
+        step = (unit_vector(options.step_direction, "step_direction", "step_direction") if options.step_direction is not None
                 else sign_fixed(principal_axes(rv[rf].mean(axis=1), face_normals(rv, rf)[1] + 1e-300)[1]))
     pieces = _patterned(pieces, options, s, step)
     clock.lap(options.pattern)
@@ -258,7 +258,8 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     clock.lap("measure")
     passes = _passes(pieces, traces, options, s)
     if not passes:
-        raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm")
+        raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm",
+                                    parameters=("edge_band_mm",))
     gap = np.concatenate(gaps)
     spacing_stats = (float(gap.min()), float(np.median(gap)), float(gap.max())) if len(gap) else (None,) * 3
     stats = PlanStats(len(passes), region_area, min(1.0, covered / region_area), *spacing_stats, s.smoothing_mm, angle)

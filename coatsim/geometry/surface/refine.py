@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.budgets import MAX_PLAN_TRIANGLES, check_budget
+from coatsim.core.budgets import MAX_PLAN_TRIANGLES, check_budget
 from coatsim.geometry.surface.topology import face_pairs, mesh_edges
 
 #: two faces count as coplanar when their unit normals' dot product exceeds 1 minus this
@@ -22,12 +22,13 @@ MAX_FLIP_ROUNDS = 200
 
 
 def refined(vertices: np.ndarray, faces: np.ndarray, max_edge_mm: float, what: str, fix: str,
-            labels: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            labels: np.ndarray | None = None,
+            parameters: tuple[str, ...] = ()) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The mesh with every edge longer than ``max_edge_mm`` bisected, then flipped toward
     Delaunay (see the module docstring): (vertices, faces, the ``labels`` (m,) of the original
     face each new face lies in; edges between differently labelled faces are not flipped). The
     triangle count is checked against the budget before anything is built;
-    ``fix`` says what to change."""
+    ``fix`` says what to change (naming ``parameters``)."""
     import trimesh.remesh
 
     a, b, c = (vertices[faces[:, k]] for k in range(3))
@@ -38,7 +39,7 @@ def refined(vertices: np.ndarray, faces: np.ndarray, max_edge_mm: float, what: s
         return vertices, faces, labels
     # bisected triangles end with edges between max_edge/2 and max_edge: at least a quarter of max_edge^2 each
     estimate = max(len(faces), 4.0 * area / max_edge_mm**2)
-    check_budget(f"{what} refined to edges of {max_edge_mm:.3g} mm: triangles", estimate, MAX_PLAN_TRIANGLES, fix)
+    check_budget(f"{what} refined to edges of {max_edge_mm:.3g} mm: triangles", estimate, MAX_PLAN_TRIANGLES, fix, parameters)
     iterations = int(np.ceil(np.log2(max(lengths.max() / max_edge_mm, 1.0)))) + 2
     v, f, index = trimesh.remesh.subdivide_to_size(vertices, faces, max_edge=max_edge_mm, max_iter=iterations,
                                                    return_index=True)

@@ -23,12 +23,11 @@ from typing import Union
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core import defaults
+from coatsim.core.errors import InputError
 from coatsim.geometry.surface.normals import face_normals
 from coatsim.geometry.surface.topology import face_pairs, mesh_edges
 
-#: faces within this angle of the gun's side are coated by default
-DEFAULT_FACING_DEG = 80.0
 #: an edge whose faces' normals differ by more than this is sharp: normals are not smoothed across
 #: it from outside the region
 SHARP_EDGE_DEG = 40.0
@@ -40,7 +39,7 @@ class Facing:
     None: the default gun side)."""
 
     direction: tuple[float, float, float] | None = None
-    max_angle_deg: float = DEFAULT_FACING_DEG
+    max_angle_deg: float = defaults.PLAN_FACING_DEG
 
 
 @dataclass(frozen=True)
@@ -59,12 +58,14 @@ class Everything:
 RegionSpec = Union[Facing, Box, Everything]
 
 
-def unit_vector(vector: tuple[float, float, float] | np.ndarray, what: str) -> np.ndarray:
-    """``vector`` normalised; an InputError naming ``what`` if it is not a finite non-zero 3-vector."""
+def unit_vector(vector: tuple[float, float, float] | np.ndarray, what: str, parameter: str) -> np.ndarray:
+    """``vector`` normalised; an InputError naming ``what`` (the option ``parameter``) if it is
+    not a finite non-zero 3-vector."""
     v = np.asarray(vector, dtype=float).ravel()
     norm = float(np.linalg.norm(v)) if v.shape == (3,) else math.nan
     if not (math.isfinite(norm) and norm > 1e-12):
-        raise InputError(f"{what} must be three finite numbers, not all zero, found {tuple(np.ravel(vector))}")
+        raise InputError(f"{what} must be three finite numbers, not all zero, found {', '.join(f'{x:g}' for x in np.ravel(np.asarray(vector, dtype=float)))}",
+                         parameters=(parameter,))
     return v / norm
 
 
@@ -133,15 +134,18 @@ def check_region(spec: RegionSpec) -> None:
     """An InputError for a region that cannot select anything."""
     if isinstance(spec, Facing):
         if spec.direction is not None:
-            unit_vector(spec.direction, "region facing direction")
+            unit_vector(spec.direction, "region facing direction", "region")
         if not (math.isfinite(spec.max_angle_deg) and 0 < spec.max_angle_deg <= 180):
-            raise InputError(f"region facing angle must be in (0, 180] degrees, found {spec.max_angle_deg:g}")
+            raise InputError(f"region facing angle must be in (0, 180] degrees, found {spec.max_angle_deg:g}",
+                             parameters=("region",))
     elif isinstance(spec, Box):
         low, high = np.asarray(spec.low_mm, dtype=float), np.asarray(spec.high_mm, dtype=float)
         if low.shape != (3,) or high.shape != (3,) or not np.all(np.isfinite(low) & np.isfinite(high)):
-            raise InputError("region box must be six finite numbers xmin,ymin,zmin,xmax,ymax,zmax (mm)")
+            raise InputError("region box must be six finite numbers xmin,ymin,zmin,xmax,ymax,zmax (mm)",
+                             parameters=("region",))
         if not np.all(high > low):
-            raise InputError(f"region box must have max > min on every axis, found {tuple(low)} .. {tuple(high)}")
+            raise InputError(f"region box must have max > min on every axis, found {tuple(low)} .. {tuple(high)}",
+                             parameters=("region",))
 
 
 def smoothing_ring(vertices: np.ndarray, faces: np.ndarray, mask: np.ndarray, reach_mm: float) -> np.ndarray:

@@ -20,12 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.surface.distance import NearestOnCurves, marching_distance
 from coatsim.geometry.surface.passes import Trace
 
-#: spacing when neither a spacing nor a ripple is given, in footprint standard deviations (ripple 2.9 %)
-DEFAULT_SPACING_SIGMAS = 2.0
 #: a vertex counts as covered up to this fraction beyond half a spacing (rounding, not method error)
 COVERAGE_SLACK = 1e-6
 
@@ -38,7 +36,7 @@ def ripple_pct(spacing_mm: float, sigma_mm: float) -> float:
 def spacing_for_ripple(ripple: float, sigma_mm: float) -> float:
     """The largest spacing (mm) whose ripple stays at or below ``ripple`` %."""
     if not (math.isfinite(ripple) and 0 < ripple < 100):
-        raise InputError(f"ripple_pct must be between 0 and 100 %, found {ripple:g}")
+        raise InputError(f"ripple_pct must be between 0 and 100 %, found {ripple:g}", parameters=("ripple_pct",))
     return math.pi * sigma_mm * math.sqrt(2.0 / math.log(400.0 / ripple))
 
 

@@ -18,8 +18,8 @@ from typing import Any, Optional
 
 import numpy as np
 
-from coatsim.errors import InputError
-from coatsim.fileio import write_text
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_text
 
 FORMAT = "coatsim.surfacepaths/1"
 PATTERNS = ("raster", "geodesic", "boundary")
@@ -116,7 +116,7 @@ def to_document(paths: SurfacePaths) -> dict[str, Any]:
         "pattern": paths.pattern, "spacing_mm": _number(paths.spacing_mm), "standoff_mm": _number(paths.standoff_mm),
         "ripple_pct": _number(paths.ripple_pct, 4),
         "passes": [{"points": _round(p.points, LENGTH_DECIMALS), "normals": _round(p.normals, NORMAL_DECIMALS),
-                    "closed": p.closed, "lead_in": _round(p.lead_in, LENGTH_DECIMALS),
+                    "closed": bool(p.closed), "lead_in": _round(p.lead_in, LENGTH_DECIMALS),
                     "lead_out": _round(p.lead_out, LENGTH_DECIMALS)} for p in paths.passes],
         "stats": {"passes": s.passes, "region_area_mm2": _number(s.region_area_mm2, 3),
                   "coverage": _number(s.coverage, 6),

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.normals import face_normals
 from coatsim.geometry.surface.surfacepaths import SurfacePaths

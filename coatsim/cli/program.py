@@ -1,0 +1,136 @@
+"""``coatsim program``: a curve, a drawing or a polysegment in, a robot program out."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Optional
+
+import typer
+
+from coatsim.cli.flags import speaking_flags
+from coatsim.core import defaults
+
+if TYPE_CHECKING:
+    from coatsim.path.build import BuiltProgram, ProgramOptions
+    from coatsim.path.language import Language
+    from coatsim.path.part_program import PartProgram
+
+FLAGS = {"tolerance_mm": "--tol", "speed_mm_s": "--speed", "accuracy_mm": "--accuracy", "approach_mm": "--approach",
+         "gun_signal": "--gun", "variant": "--variant", "name": "--name", "order": "--order", "frame": "--frame",
+         "standoff_mm": "--standoff", "lead_in_mm": "--lead-in", "lead_out_mm": "--lead-out", "roll_deg": "--roll-deg",
+         "join_tolerance_mm": "--join-tol", "layers": "--layer", "tool_accel_mm_s2": "--tool-accel"}
+
+
+def program(
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY), builtin:NAME, a drawing (DXF/SVG), or a polysegment or part JSON (coatsim segment -o)."),
+    tol: Optional[float] = typer.Option(None, "--tol", help="Tolerance sigma, mm (required for a curve; default for a JSON: its tolerance_mm)."),
+    speed: float = typer.Option(defaults.SPEED_MM_S, "--speed", help="Programmed tool speed, mm/s."),
+    standoff: float = typer.Option(defaults.STANDOFF_MM, "--standoff", help="Stand-off of the TCP above the surface, mm."),
+    frame: str = typer.Option(",".join(f"{v:g}" for v in defaults.WORKPIECE_FRAME), "--frame", help="Workpiece frame x,y,z,o,a,t in the robot base frame (mm, deg O-A-T)."),
+    variant: str = typer.Option("polysegment", "--variant", help="polysegment | polyline-stop | polyline-blend."),
+    accuracy: float = typer.Option(defaults.ACCURACY_MM, "--accuracy", help="ACCURACY (blend zone radius), mm."),
+    lead_in: float = typer.Option(defaults.LEAD_IN_MM, "--lead-in", help="Tangent lead-in before the curve, mm (sprayed on an open curve; a closed one is sprayed exactly once around)."),
+    lead_out: float = typer.Option(defaults.LEAD_OUT_MM, "--lead-out", help="Tangent lead-out after the curve, mm (sprayed on an open curve)."),
+    approach: float = typer.Option(defaults.APPROACH_MM, "--approach", help="Approach and depart distance along the tool axis, mm."),
+    roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
+    follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it)."),
+    center: Optional[bool] = typer.Option(None, "--center/--no-center", help="Move the curve's bounding-box centre to the frame origin [default: on for builtin curves]."),
+    gun: int = typer.Option(defaults.GUN_SIGNAL, "--gun", help="Gun output signal number."),
+    name: Optional[str] = typer.Option(None, "--name", help="Program name (AS: <= 15 characters) [default: from the input]."),
+    output: Optional[Path] = typer.Option(None, "-o", "--output", help="Program file to write [default: the text goes to stdout]."),
+    tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit the curve is segmented for at --speed, m/s² [default: the cell model's]."),
+    layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
+    join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
+    order: str = typer.Option("as-drawn", "--order", help="Parts: spray the contours as-drawn | nearest (next start closest to the last end)."),
+) -> None:
+    """Write the robot program (polysegment or polyline variant) of a curve, or of every
+    contour of a drawing one after the other (gun off between them)."""
+    from coatsim.cli.common import tool_accel_mm_s2
+    from coatsim.path.build import ProgramOptions
+
+    accel_mm_s2 = tool_accel_mm_s2(tool_accel)
+    with speaking_flags(FLAGS):
+        options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
+                                 gun_signal=gun, name=name)
+        built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
+                            lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
+                            output=output, layers=layer, join_tol=join_tol, order=order, tool_accel_mm_s2=accel_mm_s2)
+    if output is None:
+        typer.echo(built.text, nl=False)
+    typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
+
+
+def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, frame: str, standoff_mm: float,
+                lead_in_mm: float, lead_out_mm: float, roll_deg: float = 0.0, follow_tangent: bool = False,
+                center: Optional[bool] = None, output: Optional[Path] = None, layers: Optional[list[str]] = None,
+                join_tol: Optional[float] = None, order: str = "as-drawn",
+                tool_accel_mm_s2: Optional[float] = None, language: Optional[Language] = None) -> PartProgram:
+    """Load ``spec`` (a curve, a drawing or a polysegment/part JSON), place it, write the
+    program (to ``output`` if given); a part's contours are sprayed in ``order``.
+
+    ``center`` None centres built-in curves on the frame origin and leaves file curves where
+    their coordinates put them. With ``tool_accel_mm_s2`` the curve is segmented for the
+    programmed speed (see :func:`load_program_input`).
+    """
+    import warnings
+    from dataclasses import replace
+
+    from coatsim.core.errors import CoatsimWarning
+    from coatsim.core.fileio import write_text
+    from coatsim.core.outputs_guard import check_distinct
+    from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
+    from coatsim.path.frames import Frame
+    from coatsim.path.inputs import load_part_input
+    from coatsim.path.part_program import build_part_program, part_centering_offset
+    from coatsim.path.placement import Placement
+
+    language = language or language_named(DEFAULT_LANGUAGE)
+    placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
+                          follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
+    check_distinct([("the input", None if spec.startswith("builtin:") else spec)], [("-o", output)])
+    speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
+    inp = load_part_input(spec, tol, layers, join_tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
+    if inp.builtin if center is None else center:
+        placement = replace(placement, offset_xy=part_centering_offset(inp.contours))
+    built = build_part_program(inp.contours, placement, options, language=language, tolerance_mm=inp.tolerance_mm,
+                               source=inp.source, points=inp.points, order=order)
+    _reads_back(built.text, language)
+    longest = max(max(s.length for path in built.plan.paths for s in path.segments), options.approach_mm)
+    if options.accuracy_mm > longest:
+        warnings.warn(f"--accuracy {options.accuracy_mm:g} mm is longer than every move (the longest is {longest:.4g} "
+                      "mm); blended corners are rounded as far as the controller allows, half their shorter "
+                      "neighbouring move", CoatsimWarning, stacklevel=2)
+    if output is not None:
+        write_text(output, built.text)
+    return built
+
+
+def _reads_back(text: str, language: Language) -> None:
+    """What goes to disk must read back in its own language (InputError otherwise)."""
+    import tempfile
+
+    from coatsim.path.language import ReadOptions
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"program{language.suffixes[0]}"
+        path.write_text(text, encoding="utf-8")
+        language.read([path], ReadOptions())
+
+
+def program_summary(built: BuiltProgram | PartProgram) -> str:
+    """Two lines (and one per contour of a part) describing a written program."""
+    plan = built.plan
+    curves = getattr(built, "curves", None) or (built.curve,)
+    n_lines, n_arcs = sum(c.n_lines for c in curves), sum(c.n_arcs for c in curves)
+    length = sum(p.curve_length_mm for p in plan.paths)
+    lines = [
+        f"program {plan.name}: {plan.process.variant}, {n_lines} lines + {n_arcs} arcs, "
+        f"{built.text.count(chr(10))} lines of text",
+        f"path: curve {length:.3f} mm + lead-in {plan.paths[0].lead_in_mm:g} + lead-out "
+        f"{plan.paths[0].lead_out_mm:g} mm at stand-off {plan.paths[0].standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s",
+    ]
+    if len(curves) > 1:
+        lines[1] += f"; {len(curves)} contours, lead-in and lead-out on each, gun off between them"
+        lines += [f"  contour {k + 1} (drawn {i + 1}): {c.n_segments} segments, {p.curve_length_mm:.3f} mm"
+                  for k, (i, c, p) in enumerate(zip(built.order, curves, plan.paths))]
+    return "\n".join(lines)

@@ -1,0 +1,77 @@
+"""What a robot language must offer coatsim: write a plan, read program files back.
+
+A language is a plug-in (one package under ``coatsim.languages``, one line in its registry)
+implementing :class:`Language`. The program core (this package) only ever sees this interface:
+it builds language-neutral :class:`~coatsim.path.plan.ProgramPlan` values and hands them to a
+language; the twin only ever runs what a language's reader makes of the text.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal, Mapping, Optional, Protocol, Sequence
+
+from coatsim.path.plan import ProgramPlan
+from coatsim.path.toolpath import Kinematics, ToolPath
+
+#: Where a language's native circular move may lie: in any plane, only in the principal planes
+#: of its frame (G-code G17/G18/G19), or nowhere (arcs are written as lines).
+ArcPlanes = Literal["any", "principal", "none"]
+
+
+@dataclass(frozen=True)
+class Capabilities:
+    """What a language can express, so that the program core plans what it can write.
+
+    ``arc_planes`` where native arcs may lie; ``max_arc_sweep_deg`` the longest arc one
+    circular move may turn (longer arcs are split); ``blend`` how the controller rounds a
+    corner between blended moves, in the language's terms; ``max_name_length`` the longest
+    program name; ``max_coordinate_mm`` the largest coordinate a program may hold;
+    ``rotation`` the convention its poses are written in.
+    """
+
+    arc_planes: ArcPlanes
+    max_arc_sweep_deg: float
+    blend: str
+    max_name_length: int
+    max_coordinate_mm: float
+    rotation: str
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """How to read program files: the process output (``gun_signal``), the main program
+    (None: the language's rule, e.g. the first one loaded), the state of inputs a program waits
+    for, and the cell's kinematics (for poses given in joints)."""
+
+    gun_signal: int = 1
+    program: Optional[str] = None
+    inputs: Mapping[int, bool] = field(default_factory=dict)
+    kinematics: Optional[Kinematics] = None
+
+
+class Language(Protocol):
+    """A robot language coatsim writes and reads."""
+
+    name: str
+    title: str
+    suffixes: tuple[str, ...]
+    capabilities: Capabilities
+
+    def write(self, plan: ProgramPlan) -> str:
+        """Complete program text for ``plan`` (deterministic)."""
+        ...
+
+    def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
+        """The ToolPath the program files, loaded together, make the robot execute;
+        InputError naming file:line on any defect, ExecutionError where it cannot run."""
+        ...
+
+    def check_name(self, name: str, what: str) -> str:
+        """``name`` if it is a valid program name; InputError naming ``what`` otherwise."""
+        ...
+
+    def program_name(self, text: str) -> str:
+        """A valid program name made from any text."""
+        ...

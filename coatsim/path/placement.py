@@ -1,0 +1,281 @@
+"""Placement: a planar polysegment becomes a 3-D tool path in the robot base frame.
+
+The curve lies in the XY plane of the workpiece frame, whose pose in the base frame is given as
+x, y, z (mm) and O-A-T (deg). The surface normal is the workpiece +z axis; the tool centre point
+runs ``standoff_mm`` above the surface along it, with the spray axis (tool z) pointing at the
+surface. Tangent extensions before and after the curve (lead-in, lead-out) let the gun reach
+its speed before it reaches the curve; the spray is on along them and along the curve.
+
+Tool orientation is ``R_frame . Ry(180 deg) . Rz(gamma)``. With a fixed roll gamma is the roll
+angle, so an unrotated frame and zero roll give O-A-T = (0, 180, 0). With ``follow_tangent``
+gamma = 180 deg - heading + roll, so at zero roll the tool x axis points along the direction
+of travel and turns with the path on arcs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Union
+
+import numpy as np
+
+from coatsim.core import defaults
+from coatsim.core.errors import InputError
+from coatsim.geometry.polysegment import Polysegment
+from coatsim.geometry.primitives import Arc, Line
+from coatsim.path.arcs import DegenerateArc, arc_offsets, circle_through
+from coatsim.path.frames import DEFAULT_FRAME, Frame
+from coatsim.path.oat import rot_y, rot_z
+from coatsim.path.toolpath import Pose
+
+
+# An arc that bulges less than this from its chord is placed as the chord (far below the
+# 1e-7 mm a written coordinate carries).
+_MIN_SAGITTA_MM = 1e-8
+
+
+@dataclass(frozen=True)
+class Placement:
+    """Where and how the curve is sprayed; ``offset_xy`` is added to the curve before placing
+    (see :func:`centering_offset` to centre it on the frame origin)."""
+
+    frame: Frame = DEFAULT_FRAME
+    standoff_mm: float = defaults.STANDOFF_MM
+    roll_deg: float = 0.0
+    follow_tangent: bool = False
+    lead_in_mm: float = defaults.LEAD_IN_MM
+    lead_out_mm: float = defaults.LEAD_OUT_MM
+    offset_xy: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        checks = (
+            ("standoff_mm", self.standoff_mm, self.standoff_mm > 0.0),
+            ("lead_in_mm", self.lead_in_mm, self.lead_in_mm >= 0.0),
+            ("lead_out_mm", self.lead_out_mm, self.lead_out_mm >= 0.0),
+        )
+        if not math.isfinite(self.roll_deg):
+            raise InputError(f"roll_deg = {self.roll_deg}: must be a finite number of degrees")
+        if not all(math.isfinite(v) for v in self.offset_xy):
+            raise InputError(f"offset_xy = {self.offset_xy}: must be finite (mm)")
+        for name, value, ok in checks:
+            if not (ok and math.isfinite(value)):
+                raise InputError(f"{name} = {value}: must be a finite number {'> 0' if name == 'standoff_mm' else '>= 0'}")
+
+
+@dataclass(frozen=True, eq=False)
+class PlacedLine:
+    """Straight TCP move; ``part`` is "lead_in", "curve" or "lead_out"."""
+
+    start: Pose
+    end: Pose
+    part: str
+
+    @property
+    def length(self) -> float:
+        return float(np.linalg.norm(self.end.position - self.start.position))
+
+    def point_tangent(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the length."""
+        u = np.atleast_1d(np.asarray(u, dtype=float))
+        delta = self.end.position - self.start.position
+        return self.start.position + np.outer(u, delta), np.tile(delta / np.linalg.norm(delta), (len(u), 1))
+
+
+def _axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rotation matrix about a unit axis (Rodrigues)."""
+    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
+
+
+@dataclass(frozen=True, eq=False)
+class PlacedArc:
+    """Circular TCP move turning by ``sweep`` (> 0) rad about the unit ``normal`` around
+    ``center``; with ``follow_tangent`` the tool turns with the path."""
+
+    start: Pose
+    end: Pose
+    center: np.ndarray
+    normal: np.ndarray
+    sweep: float
+    follow_tangent: bool
+    part: str = "curve"
+
+    @property
+    def radius(self) -> float:
+        return float(np.linalg.norm(self.start.position - self.center))
+
+    @property
+    def length(self) -> float:
+        return self.radius * self.sweep
+
+    def pose_at(self, u: float) -> Pose:
+        """Pose at fraction ``u`` of the sweep (u = 1 gives ``end`` exactly)."""
+        if u == 1.0:
+            return self.end
+        rotation = self.start.rotation
+        if self.follow_tangent:
+            rotation = _axis_rotation(self.normal, u * self.sweep) @ rotation
+        offset = arc_offsets(self.start.position - self.center, self.normal, np.array([u * self.sweep]))[0]
+        return Pose(self.start.position + offset, rotation)
+
+    @property
+    def via(self) -> Pose:
+        """The arc's middle, the C1MOVE point."""
+        return self.pose_at(0.5)
+
+    def point_tangent(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the sweep."""
+        u = np.atleast_1d(np.asarray(u, dtype=float))
+        radial0 = self.start.position - self.center
+        offsets = arc_offsets(radial0, self.normal, u * self.sweep)
+        return self.start.position + offsets, np.cross(self.normal, radial0 + offsets) / self.radius
+
+    def split(self, max_sweep: float) -> tuple[PlacedArc, ...]:
+        """Equal pieces of at most ``max_sweep`` rad each."""
+        n = max(1, math.ceil(self.sweep / max_sweep - 1e-12))
+        if n == 1:
+            return (self,)
+        poses = [self.pose_at(k / n) for k in range(n)] + [self.end]
+        return tuple(
+            PlacedArc(poses[k], poses[k + 1], self.center, self.normal, self.sweep / n, self.follow_tangent, self.part)
+            for k in range(n)
+        )
+
+
+PlacedSegment = Union[PlacedLine, PlacedArc]
+
+
+@dataclass(frozen=True, eq=False)
+class PlacedPath:
+    """The sprayed tool path in the base frame: lead-in, curve, lead-out, end to end."""
+
+    segments: tuple[PlacedSegment, ...]
+    normal: np.ndarray
+    standoff_mm: float
+    lead_in_mm: float
+    lead_out_mm: float
+    curve_length_mm: float
+
+    @property
+    def start(self) -> Pose:
+        return self.segments[0].start
+
+    @property
+    def end(self) -> Pose:
+        return self.segments[-1].end
+
+    @property
+    def length(self) -> float:
+        return float(sum(s.length for s in self.segments))
+
+
+def centering_offset(poly: Polysegment) -> tuple[float, float]:
+    """The shift that moves the centre of the exact bounding box of ``poly`` (arcs included)
+    to the origin."""
+    pts = [np.asarray(s.start, dtype=float) for s in poly.segments] + [np.asarray(poly.end, dtype=float)]
+    for seg in poly.segments:
+        if isinstance(seg, Arc):
+            lo = min(seg.start_angle, seg.start_angle + seg.sweep)
+            hi = max(seg.start_angle, seg.start_angle + seg.sweep)
+            for k in range(math.ceil(lo / (math.pi / 2)), math.floor(hi / (math.pi / 2)) + 1):
+                phi = k * math.pi / 2
+                pts.append(np.asarray(seg.center) + seg.radius * np.array([math.cos(phi), math.sin(phi)]))
+    arr = np.array(pts)
+    mid = (arr.min(axis=0) + arr.max(axis=0)) / 2.0
+    return (float(-mid[0]) + 0.0, float(-mid[1]) + 0.0)
+
+
+class _Mapper:
+    """Maps workpiece-plane points and headings to base-frame TCP poses."""
+
+    def __init__(self, placement: Placement) -> None:
+        self.rotation = placement.frame.rotation
+        self.normal = self.rotation[:, 2].copy()
+        self.lift = placement.frame.origin + placement.standoff_mm * self.normal
+        self.offset = np.asarray(placement.offset_xy, dtype=float)
+        self.roll = math.radians(placement.roll_deg)
+        self.follow = placement.follow_tangent
+        self.tool_down = self.rotation @ rot_y(math.pi)
+
+    def point(self, xy: tuple[float, float] | np.ndarray) -> np.ndarray:
+        p = np.asarray(xy, dtype=float) + self.offset
+        return self.lift + self.rotation @ np.array([p[0], p[1], 0.0])
+
+    def pose(self, xy: tuple[float, float] | np.ndarray, heading: float) -> Pose:
+        gamma = (math.pi - heading + self.roll) if self.follow else self.roll
+        return Pose(self.point(xy), self.tool_down @ rot_z(gamma))
+
+
+def _extension(m: _Mapper, anchor: np.ndarray, heading: float, length: float, part: str) -> PlacedLine:
+    """Tangent line of ``length`` ending (lead-in) or starting (lead-out) at ``anchor``."""
+    direction = np.array([math.cos(heading), math.sin(heading)])
+    far = anchor + (-length if part == "lead_in" else length) * direction
+    a, b = (far, anchor) if part == "lead_in" else (anchor, far)
+    return PlacedLine(m.pose(a, heading), m.pose(b, heading), part)
+
+
+def _placed_arc(m: _Mapper, arc: Arc, follow_tangent: bool) -> PlacedSegment:
+    """An arc up to a half turn becomes the circle through its start, middle and end, which
+    is exactly what a program can say even if the arc's end is off its circle by rounding;
+    a longer arc (up to full turns) keeps its centre and sweep; an arc too flat to define a
+    circle becomes its chord."""
+    start, end = m.pose(arc.start, arc.start_heading), m.pose(arc.end, arc.end_heading)
+    if abs(arc.sweep) > math.pi:
+        normal = m.normal if arc.sweep > 0 else -m.normal
+        return PlacedArc(start, end, m.point(arc.center), normal, abs(arc.sweep), follow_tangent)
+    a, b = np.asarray(arc.start, dtype=float), np.asarray(arc.end, dtype=float)
+    chord = b - a
+    sagitta = 2.0 * arc.radius * math.sin(arc.sweep / 4.0) ** 2
+    if sagitta < _MIN_SAGITTA_MM:
+        return PlacedLine(start, end, "curve")
+    # The arc bulges away from its centre: to the right of the chord when turning left.
+    left = np.array([-chord[1], chord[0]]) / float(np.linalg.norm(chord))
+    middle = m.point((a + b) / 2.0 - math.copysign(sagitta, arc.sweep) * left)
+    try:
+        circle = circle_through(start.position, middle, end.position)
+    except DegenerateArc:
+        return PlacedLine(start, end, "curve")
+    return PlacedArc(start, end, circle.center, circle.normal, circle.sweep, follow_tangent)
+
+
+def place(poly: Polysegment, placement: Placement) -> PlacedPath:
+    """The 3-D sprayed path of ``poly``: lead-in line, one placed segment per segment, lead-out."""
+    m = _Mapper(placement)
+    segments: list[PlacedSegment] = []
+    first, last = poly.segments[0], poly.segments[-1]
+    if placement.lead_in_mm > 0.0:
+        segments.append(_extension(m, np.asarray(first.start, float), first.start_heading, placement.lead_in_mm, "lead_in"))
+    for seg in poly.segments:
+        if isinstance(seg, Line):
+            if seg.length > 0.0:
+                h = seg.start_heading
+                segments.append(PlacedLine(m.pose(seg.start, h), m.pose(seg.end, h), "curve"))
+            continue
+        segments.append(_placed_arc(m, seg, placement.follow_tangent))
+    if placement.lead_out_mm > 0.0:
+        segments.append(_extension(m, np.asarray(last.end, float), last.end_heading, placement.lead_out_mm, "lead_out"))
+    return PlacedPath(
+        segments=tuple(segments),
+        normal=m.normal,
+        standoff_mm=placement.standoff_mm,
+        lead_in_mm=placement.lead_in_mm,
+        lead_out_mm=placement.lead_out_mm,
+        curve_length_mm=poly.length,
+    )
+
+
+def polyline_polysegment(points: np.ndarray, closed: bool) -> Polysegment:
+    """The polysegment of straight lines through ``points`` (n, 2), zero-length steps dropped;
+    for a closed polyline the last point is joined back to the first if it is not already."""
+    pts = np.asarray(points, dtype=float)
+    if closed and len(pts) > 2 and not np.array_equal(pts[0], pts[-1]):
+        pts = np.vstack((pts, pts[:1]))
+    lines = tuple(
+        Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1])))
+        for a, b in zip(pts[:-1], pts[1:])
+        if not np.array_equal(a, b)
+    )
+    if not lines:
+        raise InputError("the polyline has no segment of non-zero length")
+    return Polysegment(lines, closed=closed)
