@@ -37,10 +37,11 @@ class SurfaceCurve:
         return float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
 
     def sample(self, mesh_faces: np.ndarray, values: np.ndarray) -> np.ndarray:
-        """Per-vertex ``values`` (n_vertices, ...) interpolated at the points."""
+        """Per-vertex ``values`` (n_vertices, ...) interpolated at the points (a corner of zero
+        weight does not count, even where its value is infinite)."""
         corner = values[mesh_faces[self.faces]]  # (n, 3, ...)
         weights = self.bary.reshape(self.bary.shape + (1,) * (corner.ndim - 2))
-        return (weights * corner).sum(axis=1)
+        return np.where(weights != 0, weights * corner, 0.0).sum(axis=1)
 
     def take(self, index: np.ndarray, closed: bool | None = None) -> SurfaceCurve:
         """The points ``index`` (in that order) as a new curve."""

@@ -67,6 +67,8 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     check_budget(f"{path}: file size in bytes", path.stat().st_size, MAX_PLAN_MESH_BYTES,
                  "decimate the mesh (e.g. MeshLab quadric edge collapse) or export it as binary STL")
     data = path.read_bytes()
+    if path.suffix.lower() == ".stl":
+        _check_binary_stl(path, data)
     try:
         mesh = trimesh.load(str(path), force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for malformed files
@@ -82,6 +84,18 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     file_units = _TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
     vertices = np.asarray(mesh.vertices, dtype=float)
     return _part(str(path), hashlib.sha256(data).hexdigest(), vertices, faces, units, file_units)
+
+
+def _check_binary_stl(path: Path, data: bytes) -> None:
+    """A binary STL states its triangle count: refuse a truncated file, and one over the budget
+    before it is read. (A file that starts with 'solid' and is not binary-sized is ASCII.)"""
+    if len(data) < 84 or (data[:5].lower() == b"solid" and (len(data) - 84) % 50 != 0):
+        return
+    count = int.from_bytes(data[80:84], "little")
+    if len(data) != 84 + 50 * count:
+        raise InputError(f"{path}: a binary STL of {count} triangles should be {84 + 50 * count} bytes, the file has "
+                         f"{len(data)}; the file is truncated or damaged, export it again")
+    check_budget(f"{path}: triangles", count, MAX_PLAN_TRIANGLES, "decimate the mesh (e.g. MeshLab quadric edge collapse)")
 
 
 def part_from_arrays(vertices: np.ndarray, faces: np.ndarray, name: str = "mesh", units: str = "mm") -> Part:

@@ -40,7 +40,8 @@ from coatsim.geometry.surface.region import (Everything, Facing, RegionSpec, che
                                              principal_axes, select_faces, sign_fixed, smoothing_ring, unit_vector)
 from coatsim.geometry.surface.spacing import measure, ripple_pct, spacing_for_ripple
 from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
-from coatsim.geometry.surface.topology import border_vertices, face_components, face_pairs, mesh_edges, submesh
+from coatsim.geometry.surface.topology import (border_vertices, face_components, face_pairs, manifold_split, mesh_edges,
+                                               submesh)
 from coatsim.geometry.surface.verify import verify
 
 Pattern = Literal["raster", "geodesic", "boundary"]
@@ -153,7 +154,12 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> 
                              "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm", "region"))
     normals = smooth_normals(sv, sf, s.smoothing_mm)
     rv, rf, parent = submesh(sv, sf, inside.astype(bool))
-    return rv, rf, normals[parent]
+    # from here on the region is manifold: a bow-tie vertex or a non-manifold edge is split
+    rf, copies = manifold_split(rf)
+    if len(copies) > len(rv):
+        notes.append(f"split {len(copies) - len(rv)} vertices where the region is not manifold (bow-tie vertices, "
+                     "edges with more than two triangles); the region's border runs along them")
+    return rv[copies], rf, normals[parent][copies]
 
 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
