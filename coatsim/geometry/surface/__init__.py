@@ -7,7 +7,7 @@
 - mesh: reading, units, repair; topology: edges, borders, pieces; normals: orientation, smoothing
 - region: which faces are coated; piece: a connected piece of the region
 - raster, geodesic, boundary: the patterns; distance: heat method and fast marching;
-  contours: level sets; cuts: start curves as vertices
+  contours: level sets
 - passes: edge band, spraying order, leads; spacing: ripple and measured gaps
 - surfacepaths: the result and its file; verify: the independent check; planner: the pipeline
 """

@@ -2,11 +2,13 @@
 
 Two solvers:
 - the heat method (Crane, Weischedel, Wardetzky), the discrete-exterior-calculus solve the seed's
-  authors use: heat flows from the sources for a time t = (mean edge length)^2, its normalised
-  gradient is integrated back by one Poisson solve, here with the sources held at zero. (The
-  operators are potpourri3d's; its own solver instead shifts a free Poisson solution to zero
-  at the sources, and with a start of several curves, such as a border with a hole, the values
-  on the start then differ by up to two edge lengths, so passes near it shift by as much.) It
+  authors use: heat flows from the start for a time t = (mean edge length)^2, its normalised
+  gradient is integrated back by one Poisson solve, here with the distance held at the
+  vertices next to the start (zero on a border; the arc to a start curve or point that runs
+  between vertices). (The operators are potpourri3d's; its own solver instead shifts a free
+  Poisson solution to zero at its source vertices, and with a start of several curves, such as
+  a border with a hole, the values on the start then differ by up to two edge lengths, so
+  passes near it shift by as much.) It
   is first-order: on the meshes ``plan`` builds (edges up to a quarter of the spacing) its error
   is a few tenths of an edge inside the region and grows toward open borders that are not part
   of the start, where only the natural (Neumann) condition holds and the level sets bend to
@@ -30,10 +32,13 @@ from coatsim.geometry.surface.topology import manifold_split
 HEAT_TIME_COEFFICIENT = 1.0
 
 
-def heat_distance(vertices: np.ndarray, faces: np.ndarray, sources: np.ndarray) -> np.ndarray:
-    """Heat-method geodesic distance (mm) from the vertices ``sources`` to every vertex of a
-    connected mesh: (M + t L) u = delta, X = -grad u / |grad u|, L phi = -div X with phi = 0 at
-    the sources (cotangent Laplacian L and lumped masses M from potpourri3d)."""
+def heat_distance(vertices: np.ndarray, faces: np.ndarray, sources: np.ndarray, values: np.ndarray | None = None,
+                  weights: np.ndarray | None = None) -> np.ndarray:
+    """Heat-method geodesic distance (mm) to every vertex of a connected mesh from a start known
+    at the vertices ``sources`` (its distance there: ``values``, zero by default): (M + t L) u =
+    delta (the start's heat at the sources: ``weights``, one by default), X = -grad u / |grad u|,
+    L phi = -div X with phi held at the sources (cotangent Laplacian L and lumped masses M from
+    potpourri3d)."""
     import potpourri3d as pp3d
     from scipy.sparse import diags
     from scipy.sparse.linalg import splu
@@ -43,15 +48,17 @@ def heat_distance(vertices: np.ndarray, faces: np.ndarray, sources: np.ndarray) 
     lengths = np.linalg.norm(vertices[faces] - vertices[np.roll(faces, 1, axis=1)], axis=2)
     t = HEAT_TIME_COEFFICIENT * float(lengths.mean()) ** 2
     delta = np.zeros(len(vertices))
-    delta[sources] = 1.0
+    delta[sources] = 1.0 if weights is None else weights
     heat = splu((diags(mass) + t * laplacian).tocsc(), permc_spec="COLAMD").solve(delta)
     divergence = _divergence(vertices, faces, _unit_descent(vertices, faces, heat))
     free = np.ones(len(vertices), dtype=bool)
     free[sources] = False
+    held = np.zeros(len(sources)) if values is None else np.asarray(values, dtype=float)
     # a tiny mass term keeps the system definite should a piece hold no source
     system = (laplacian[free][:, free] + diags(1e-12 * mass[free] / t)).tocsc()
     distance = np.zeros(len(vertices))
-    distance[free] = splu(system, permc_spec="COLAMD").solve(-divergence[free])
+    distance[sources] = held
+    distance[free] = splu(system, permc_spec="COLAMD").solve(-divergence[free] - laplacian[free][:, sources] @ held)
     return np.maximum(distance, 0.0)
 
 
@@ -206,6 +213,12 @@ class NearestOnCurves:
             normal[rows] = n[better] / np.linalg.norm(n[better], axis=1)[:, None]
             on_end[rows] = False
         return foot, normal, on_end
+
+    def arc(self, points: np.ndarray, normals: np.ndarray) -> np.ndarray:
+        """The arc from each point (with its unit normal) through the nearest curve point: the
+        distance along the surface over short ranges (exact on planes, cylinders, spheres)."""
+        foot, foot_normal, _ = self.query(points)
+        return arc_length(points - foot, normals, foot_normal)
 
     def distance(self, points: np.ndarray, normals: np.ndarray, marching: np.ndarray,
                  spacing_mm: float) -> tuple[np.ndarray, np.ndarray]:

@@ -1,8 +1,9 @@
 """Geodesic passes (the seed authors' method): level sets of the heat-method distance from a start.
 
 The start is the region's border (``FromBoundary``), the section of a plane (``FromPlane``) or a
-list of points (``FromPoints``). A plane's section and the points are first inserted into the mesh
-as vertices, so the heat method starts exactly on them. Passes are the level sets at
+list of points (``FromPoints``). The heat method holds the distance at the vertices next to the
+start (the arc to it, distance.NearestOnCurves), so the start need not run along edges and the
+mesh is not cut. Passes are the level sets at
 (k + 1/2) spacing from a border or points (the first pass half a spacing in, so the start is
 covered) and at k spacing on both sides of a plane (its section is a pass; the distance is signed
 by the side of the plane). Where holes or a genus split a level set, it has several pieces.
@@ -16,8 +17,8 @@ from typing import Union
 import numpy as np
 
 from coatsim.core.errors import InputError
-from coatsim.geometry.surface.cuts import cut_at_level, insert_points
-from coatsim.geometry.surface.distance import distance_levels, heat_distance
+from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
+from coatsim.geometry.surface.distance import NearestOnCurves, arc_length, distance_levels, heat_distance
 from coatsim.geometry.surface.passes import barycentric
 from coatsim.geometry.surface.piece import Piece
 
@@ -59,21 +60,43 @@ def geodesic_piece(piece: Piece, start: Start, spacing_mm: float, band_mm: float
         return _levelled(piece, distance, band_mm + 0.5 * spacing_mm, spacing_mm, band_mm)
     if isinstance(start, FromPlane):
         side = (piece.vertices - np.asarray(start.point_mm)) @ np.asarray(start.normal)
-        if side.min() >= 0 or side.max() < 0:
+        section = level_curves(piece.vertices, piece.faces, side, 0.0)
+        if not section:
             return None
-        values = np.column_stack([piece.carried(), side])
-        cut = cut_at_level(piece.vertices, piece.faces, side, 0.0, values)
-        cut_piece = piece.after(cut)
-        distance = heat_distance(cut.vertices, cut.faces, cut.on_cut)
-        signed = np.where(cut.values[:, 4] < 0, -distance, distance)
-        return _levelled(cut_piece, signed, 0.0, spacing_mm, band_mm)
+        edges = crossing_edges(piece.faces, side, 0.0)
+        t = edge_points(piece.vertices, side, 0.0, edges)[1]
+        heat = np.bincount(edges.ravel(), weights=np.column_stack([1 - t, t]).ravel(), minlength=len(side))
+        sources = np.flatnonzero(heat > 0)
+        nearest = NearestOnCurves([(c.points, _unit(c.sample(piece.faces, piece.normals)), c.closed) for c in section])
+        held = nearest.arc(piece.vertices[sources], piece.normals[sources])
+        distance = heat_distance(piece.vertices, piece.faces, sources, held, heat[sources])
+        return _levelled(piece, np.where(side < 0, -distance, distance), 0.0, spacing_mm, band_mm)
     if not points:
         return None
-    faces_ids = np.concatenate([np.full(len(b), f) for f, b in points.items()])
+    sources, held, heat = _around_points(piece, points)
+    distance = heat_distance(piece.vertices, piece.faces, sources, held, heat)
+    return _levelled(piece, distance, 0.5 * spacing_mm, spacing_mm, band_mm)
+
+
+def _around_points(piece: Piece, points: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The corners of the faces holding start points, their distance (the arc) to the nearest
+    start point, and each point's heat spread over them by its barycentric weights."""
+    faces = np.concatenate([np.full(len(b), f) for f, b in points.items()])
     bary = np.concatenate(list(points.values()))
-    cut = insert_points(piece.vertices, piece.faces, faces_ids, bary, piece.carried())
-    distance = heat_distance(cut.vertices, cut.faces, cut.on_cut)
-    return _levelled(piece.after(cut), distance, 0.5 * spacing_mm, spacing_mm, band_mm)
+    corners = piece.faces[faces]
+    at = np.einsum("ij,ijk->ik", bary, piece.vertices[corners])
+    normal = _unit(np.einsum("ij,ijk->ik", bary, piece.normals[corners]))
+    sources, where = np.unique(corners, return_inverse=True)
+    heat = np.bincount(where.ravel(), weights=bary.ravel(), minlength=len(sources))
+    held = np.full(len(sources), np.inf)
+    for p, n in zip(at, normal):
+        chord = piece.vertices[sources] - p
+        held = np.minimum(held, arc_length(chord, piece.normals[sources], np.tile(n, (len(sources), 1))))
+    return sources, held, heat
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    return vectors / np.linalg.norm(vectors, axis=1)[:, None]
 
 
 def _levelled(piece: Piece, field: np.ndarray, first: float, spacing_mm: float, band_mm: float) -> Piece:

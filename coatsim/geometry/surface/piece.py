@@ -1,8 +1,6 @@
 """A connected piece of the coated region, with what every pattern needs at its vertices.
 
-Patterns turn a piece into a field whose level sets are its passes; where a start needs
-vertices (a plane's section, start points) the piece is cut first, and its per-vertex values
-are carried over linearly.
+Patterns turn a piece into a field whose level sets are its passes.
 """
 
 from __future__ import annotations
@@ -10,10 +8,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-
-from coatsim.geometry.surface.cuts import Cut
-
-_FAR = 1e300  # a finite stand-in for "no border" while values are interpolated
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,13 +43,3 @@ class Piece:
 
     def with_field(self, field: np.ndarray, levels: np.ndarray) -> Piece:
         return replace(self, field=field, levels=levels)
-
-    def carried(self) -> np.ndarray:
-        """Per-vertex values a cut carries over: normals and border distance, (n, 4)."""
-        return np.column_stack([self.normals, np.minimum(self.border_mm, _FAR)])
-
-    def after(self, cut: Cut) -> Piece:
-        """This piece on a cut mesh (values from ``carried``)."""
-        normals = cut.values[:, :3] / np.linalg.norm(cut.values[:, :3], axis=1)[:, None]
-        border = np.where(cut.values[:, 3] >= _FAR, np.inf, cut.values[:, 3])
-        return Piece(cut.vertices, cut.faces, normals, border)
