@@ -41,7 +41,9 @@ class SurfaceCurve:
         weight does not count, even where its value is infinite)."""
         corner = values[mesh_faces[self.faces]]  # (n, 3, ...)
         weights = self.bary.reshape(self.bary.shape + (1,) * (corner.ndim - 2))
-        return np.where(weights != 0, weights * corner, 0.0).sum(axis=1)
+        weighted = np.zeros(np.broadcast_shapes(weights.shape, corner.shape))
+        np.multiply(weights, corner, out=weighted, where=weights != 0)
+        return weighted.sum(axis=1)
 
     def take(self, index: np.ndarray, closed: bool | None = None) -> SurfaceCurve:
         """The points ``index`` (in that order) as a new curve."""
