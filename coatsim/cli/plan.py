@@ -100,7 +100,7 @@ def plan(
     pose: str = typer.Option("0,0,0,0,0,0", "--pose", help="The part in the cell, X,Y,Z,O,A,T (mm, deg O-A-T); recorded in the file, paths stay in the part's frame."),
     max_edge: Optional[float] = typer.Option(None, "--max-edge", help="Refine the region to edges of at most this, mm [default: a quarter of the spacing]."),
     force: bool = typer.Option(False, "--force", help="Replace an output file that coatsim did not write."),
-    timings: bool = typer.Option(False, "--timings", help="Print wall times per stage on stderr."),
+    timings: bool = typer.Option(False, "--timings", help="Print CPU times per stage and the wall time on stderr."),
 ) -> None:
     """Plan passes on a 3-D part (raster, geodesic or boundary) and write them with their
     normals, spraying order and lead-in/out; exit 2 for a mesh or a setting it cannot use."""
@@ -127,7 +127,7 @@ def plan(
     typer.echo(f"wrote {output}")
     if timings:
         stages = ", ".join(f"{name} {seconds:.2f} s" for name, seconds in paths.timings_s)
-        typer.echo(f"timings: {stages}; total {time.perf_counter() - started:.2f} s", err=True)
+        typer.echo(f"timings: CPU {stages}; wall {time.perf_counter() - started:.2f} s in all", err=True)
 
 
 def _summary(paths, spec: str) -> str:

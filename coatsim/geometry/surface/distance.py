@@ -91,49 +91,47 @@ def _divergence(vertices: np.ndarray, faces: np.ndarray, field: np.ndarray) -> n
     return total
 
 
+class Marching:
+    """Fast-marching geodesic distance on one mesh, built once for many starts. Fast marching
+    needs a manifold mesh: bow-tie vertices and non-manifold edges are split first (a split
+    vertex gets the smallest distance of its copies)."""
+
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+        import potpourri3d as pp3d
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        self.n_vertices = len(vertices)
+        self.faces, self.parent = manifold_split(faces)
+        self.copy = np.full(len(vertices), -1)
+        self.copy[self.parent[::-1]] = np.arange(len(self.parent))[::-1]  # the first copy of each vertex
+        self.solver = pp3d.MeshFastMarchingDistanceSolver(vertices[self.parent], self.faces)
+        f = self.faces
+        rows, cols = np.concatenate([f[:, 0], f[:, 1]]), np.concatenate([f[:, 1], f[:, 2]])
+        graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(self.parent),) * 2)
+        self.label = connected_components(graph, directed=False)[1]
+
+    def distance(self, curves: Sequence[SurfaceCurve] = (), source_vertices: np.ndarray | None = None) -> np.ndarray:
+        """Distance (mm) from points on faces (the points of ``curves``, in faces of this mesh)
+        and from the vertices ``source_vertices``; inf where no source reaches."""
+        sources = [[(int(f), [float(w[0]), float(w[1])]) for f, w in zip(c.faces, c.bary)] for c in curves if len(c.faces)]
+        seeds = [self.faces[c.faces[:1], 0] for c in curves if len(c.faces)]
+        if source_vertices is not None and len(source_vertices):
+            sources.append([(int(self.copy[v]), []) for v in source_vertices])
+            seeds.append(self.copy[np.asarray(source_vertices, dtype=np.int64)])
+        distance = np.full(self.n_vertices, np.inf)
+        if not sources:
+            return distance
+        value = np.asarray(self.solver.compute_distance(sources, [], False), dtype=float)
+        value[~np.isin(self.label, self.label[np.concatenate(seeds)])] = np.inf  # unreached pieces
+        np.minimum.at(distance, self.parent, value)
+        return distance
+
+
 def marching_distance(vertices: np.ndarray, faces: np.ndarray, curves: Sequence[SurfaceCurve] = (),
                       source_vertices: np.ndarray | None = None) -> np.ndarray:
-    """Fast-marching geodesic distance (mm) from points on faces (the points of ``curves``, in
-    faces of this mesh) and from the vertices ``source_vertices``; inf where no source reaches.
-    Fast marching needs a manifold mesh: bow-tie vertices and non-manifold edges are split
-    first (a split vertex gets the smallest distance of its copies)."""
-    import potpourri3d as pp3d
-
-    split, parent = manifold_split(faces)
-    copies = np.full(len(vertices), -1)
-    copies[parent[::-1]] = np.arange(len(parent))[::-1]  # a copy of each vertex (the first)
-    sources = [[(int(f), [float(w[0]), float(w[1])]) for f, w in zip(c.faces, c.bary)] for c in curves if len(c.faces)]
-    if source_vertices is not None and len(source_vertices):
-        sources.append([(int(copies[v]), []) for v in source_vertices])
-    distance = np.full(len(vertices), np.inf)
-    if not sources:
-        return distance
-    solver = pp3d.MeshFastMarchingDistanceSolver(vertices[parent], split)
-    value = np.asarray(solver.compute_distance(sources, [], False), dtype=float)
-    value[~_reached(split, len(parent), [_on(c, split) for c in curves],
-                    None if source_vertices is None else copies[source_vertices])] = np.inf
-    np.minimum.at(distance, parent, value)
-    return distance
-
-
-def _on(curve: SurfaceCurve, faces: np.ndarray) -> np.ndarray:
-    """Vertices of the faces a curve lies in."""
-    return faces[curve.faces[:1]].ravel()
-
-
-def _reached(faces: np.ndarray, n_vertices: int, curve_vertices: list[np.ndarray],
-             source_vertices: np.ndarray | None) -> np.ndarray:
-    """Vertices connected to a source (fast marching leaves the others at an arbitrary value)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    rows = np.concatenate([faces[:, 0], faces[:, 1]])
-    cols = np.concatenate([faces[:, 1], faces[:, 2]])
-    _, label = connected_components(coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_vertices,) * 2),
-                                    directed=False)
-    seeds = list(curve_vertices) + ([np.asarray(source_vertices, dtype=np.int64)] if source_vertices is not None else [])
-    hit = np.unique(label[np.concatenate(seeds)]) if seeds else np.zeros(0, dtype=np.int64)
-    return np.isin(label, hit)
+    """Fast-marching distance (mm) on a mesh from one start (see Marching)."""
+    return Marching(vertices, faces).distance(curves, source_vertices)
 
 
 def distance_levels(low: float, high: float, first: float, spacing: float) -> np.ndarray:

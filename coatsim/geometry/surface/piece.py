@@ -9,12 +9,15 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from coatsim.geometry.surface.distance import Marching
+
 
 @dataclass(frozen=True, eq=False)
 class Piece:
     """Vertices (n, 3) mm and faces (m, 3) of one connected piece of the region, its smoothed
     unit normals (n, 3), the distance along the surface to the region's border (n,) mm (inf on a
-    closed piece), and once a pattern has run, the ``field`` (n,) and the ``levels`` of its passes."""
+    closed piece), once a pattern has run the ``field`` (n,) and the ``levels`` of its passes, and
+    its fast-marching solver."""
 
     vertices: np.ndarray
     faces: np.ndarray
@@ -22,6 +25,7 @@ class Piece:
     border_mm: np.ndarray
     field: np.ndarray | None = None
     levels: np.ndarray | None = None
+    marching: Marching | None = None
 
     def inside(self, band_mm: float) -> np.ndarray:
         """Vertices passes must cover: at least ``band_mm`` from the border."""

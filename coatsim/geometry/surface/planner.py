@@ -27,7 +27,7 @@ from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.geometry.surface.boundary import boundary_piece
 from coatsim.geometry.surface.contours import level_curves
-from coatsim.geometry.surface.distance import marching_distance
+from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.refine import refined
@@ -120,14 +120,15 @@ def _settings(o: PlanOptions) -> _Settings:
 
 
 class _Clock:
-    """Wall time per stage (reported on stderr by the command, never written to the file)."""
+    """CPU time of this process per stage (reported on stderr by the command, never written to
+    the file)."""
 
     def __init__(self) -> None:
         self.marks: list[tuple[str, float]] = []
-        self._last = time.perf_counter()
+        self._last = time.process_time()
 
     def lap(self, name: str) -> None:
-        now = time.perf_counter()
+        now = time.process_time()
         self.marks.append((name, now - self._last))
         self._last = now
 
@@ -185,7 +186,7 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
     face_n, face_area = face_normals(rv, rf)
     angle = largest_angle_deg(normals, rf, face_n)
     edges = mesh_edges(rf)
-    border = marching_distance(rv, rf, source_vertices=np.flatnonzero(border_vertices(len(rv), edges)))
+    on_border = border_vertices(len(rv), edges)
     count, label = face_components(len(rf), face_pairs(rf, edges)[0])
     area = np.bincount(label, weights=face_area, minlength=count)
     small = area < s.spacing_mm**2
@@ -195,7 +196,9 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
     pieces = []
     for k in sorted(np.flatnonzero(~small), key=lambda k: (-area[k], k)):
         v, f, parent = submesh(rv, rf, label == k)
-        pieces.append(Piece(v, f, normals[parent], border[parent]))
+        marching = Marching(v, f)
+        border = marching.distance(source_vertices=np.flatnonzero(on_border[parent]))
+        pieces.append(Piece(v, f, normals[parent], border, marching=marching))
     if not pieces:
         raise EmptyRegionOfInterest("every piece of the region is smaller than a spacing squared; "
                                     "use a smaller spacing_mm or a larger region", parameters=("spacing_mm", "region"))
@@ -257,7 +260,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
     gaps, covered = [np.zeros(0)], 0.0
     for k, p in enumerate(pieces):
-        measured = measure(p.vertices, p.faces, p.normals, [t for t in traces if t.piece == k], s.spacing_mm,
+        measured = measure(p.marching, p.vertices, p.faces, p.normals, [t for t in traces if t.piece == k], s.spacing_mm,
                            p.vertex_areas_mm2())
         gaps.append(measured.gaps_mm)
         covered += measured.covered_mm2

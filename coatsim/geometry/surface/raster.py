@@ -6,7 +6,7 @@ the gap between two sections measured along the surface is larger than the step,
 is placed by measurement: the distance along the surface from the last pass (the arc through
 the nearest pass point, checked by fast marching, see distance.NearestOnCurves) is read on
 candidate sections, and the next plane is the one whose section lies at most the spacing from
-it (bisection on h). Points whose nearest point on the last pass is one of its open ends do not
+it (false position on h). Points whose nearest point on the last pass is one of its open ends do not
 count (beyond a shorter pass's end the gap is a coverage question, not a spacing one).
 
 The first plane lies half a spacing (along the surface) from the region's lowest point and the
@@ -18,16 +18,18 @@ spacing gets one pass through its middle.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from coatsim.core.budgets import MAX_PLAN_PASSES, check_budget
 from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
-from coatsim.geometry.surface.distance import NearestOnCurves, marching_distance
+from coatsim.geometry.surface.distance import Marching, NearestOnCurves
 from coatsim.geometry.surface.topology import submesh
 
-#: bisection stops when the plane is known to this fraction of the spacing
+#: the search stops when the plane (or the gap) is known to this fraction of the spacing
 BISECTION_FRACTION = 1e-9
 #: the smallest plane step, as a fraction of the spacing (a region almost parallel to the planes)
 MIN_STEP_FRACTION = 1e-3
@@ -62,9 +64,9 @@ def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, 
         return np.array(levels)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(eq=False)
 class _Mesh:
-    """A piece (or a band of it) with its normals, heights and inside vertices."""
+    """A piece, or a band of it, with its normals, heights and inside vertices."""
 
     vertices: np.ndarray
     faces: np.ndarray
@@ -72,10 +74,16 @@ class _Mesh:
     h: np.ndarray
     inside: np.ndarray
 
+    @cached_property
+    def face_range(self) -> tuple[np.ndarray, np.ndarray]:
+        """The lowest and highest h of each face."""
+        fh = self.h[self.faces]
+        return fh.min(axis=1), fh.max(axis=1)
+
     def band(self, lo: float, hi: float) -> _Mesh:
         """The faces that reach into lo <= h <= hi."""
-        fh = self.h[self.faces]
-        v, f, parent = submesh(self.vertices, self.faces, (fh.max(axis=1) >= lo) & (fh.min(axis=1) <= hi))
+        low, high = self.face_range
+        v, f, parent = submesh(self.vertices, self.faces, (high >= lo) & (low <= hi))
         return _Mesh(v, f, self.normals[parent], self.h[parent], self.inside[parent])
 
     def section(self, level: float, values: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -90,14 +98,27 @@ class _Mesh:
         return points, n / np.linalg.norm(n, axis=1)[:, None], values[edges[:, 0]] * (1 - t) + values[edges[:, 1]] * t
 
 
-def _bisect(predicate, lo: float, hi: float, tolerance: float) -> float:
-    """The largest x in [lo, hi] (to ``tolerance``) where ``predicate`` holds, assuming it holds at lo."""
+def _root(fn, lo: float, hi: float, tolerance: float) -> float:
+    """Where ``fn`` (<= 0 at ``lo``, rising) crosses zero in [lo, hi], to ``tolerance`` in x or
+    in fn: false position with the Illinois halving while fn is finite at both ends, bisection
+    where it is not; the end where fn <= 0."""
+    f_lo, f_hi = fn(lo), fn(hi)
+    if f_hi <= 0:
+        return hi
+    kept = 0
     while hi - lo > tolerance:
-        mid = 0.5 * (lo + hi)
-        if predicate(mid):
-            lo = mid
+        finite = math.isfinite(f_lo) and math.isfinite(f_hi) and f_hi > f_lo
+        x = hi - f_hi * (hi - lo) / (f_hi - f_lo) if finite else 0.5 * (lo + hi)
+        x = min(max(x, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
+        fx = fn(x)
+        if abs(fx) <= tolerance:
+            return x
+        if fx <= 0:
+            lo, f_lo = x, fx
+            f_hi, kept = (0.5 * f_hi, -1) if kept == -1 else (f_hi, -1)
         else:
-            hi = mid
+            hi, f_hi = x, fx
+            f_lo, kept = (0.5 * f_lo, 1) if kept == 1 else (f_lo, 1)
     return lo
 
 
@@ -108,16 +129,16 @@ def _end_level(mesh: _Mesh, extreme: float, sign: int, spacing: float) -> float:
     half = 0.5 * spacing
     band = mesh.band(*((extreme, extreme + half) if sign > 0 else (extreme - half, extreme)))
     at = np.flatnonzero(band.inside & (np.abs(band.h - extreme) <= 1e-9 * max(1.0, abs(extreme))))
-    marching = marching_distance(band.vertices, band.faces, source_vertices=at)
+    marching = Marching(band.vertices, band.faces).distance(source_vertices=at)
     nearest = NearestOnCurves([(band.vertices[[k]], band.normals[[k]], True) for k in at])
 
-    def within(offset: float) -> bool:
+    def short(offset: float) -> float:
         points, normals, d = band.section(extreme + sign * offset, marching)
         d = nearest.distance(points, normals, d, spacing)[0]
         d = d[np.isfinite(d)]
-        return not len(d) or float(d.min()) <= half
+        return float(d.min()) - half if len(d) else -math.inf
 
-    return extreme + sign * _bisect(within, 0.0, half, BISECTION_FRACTION * spacing)
+    return extreme + sign * _root(short, 0.0, half, BISECTION_FRACTION * spacing)
 
 
 def _next_level(mesh: _Mesh, level: float, spacing: float) -> float:
@@ -127,19 +148,19 @@ def _next_level(mesh: _Mesh, level: float, spacing: float) -> float:
     passes = level_curves(band.vertices, band.faces, band.h, level)
     if not passes:
         return level + spacing
-    marching = marching_distance(band.vertices, band.faces, curves=passes)
+    marching = Marching(band.vertices, band.faces).distance(curves=passes)
     nearest = NearestOnCurves([(c.points, _unit(c.sample(band.faces, band.normals)), c.closed) for c in passes])
 
-    def close_enough(height: float) -> bool:
+    def excess(height: float) -> float:
         points, normals, d = band.section(height, marching)
         d, on_end = nearest.distance(points, normals, d, spacing)
         ok = np.isfinite(d)
         if not ok.any():
-            return False
+            return math.inf
         d = d[ok & ~on_end] if (ok & ~on_end).any() else d[ok]
-        return float(d.max()) <= spacing
+        return float(d.max()) - spacing
 
-    found = _bisect(close_enough, level, level + spacing, BISECTION_FRACTION * spacing)
+    found = _root(excess, level, level + spacing, BISECTION_FRACTION * spacing)
     return max(found, level + MIN_STEP_FRACTION * spacing)
 
 

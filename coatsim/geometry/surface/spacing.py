@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.core.errors import InputError
-from coatsim.geometry.surface.distance import NearestOnCurves, marching_distance
+from coatsim.geometry.surface.distance import Marching, NearestOnCurves
 from coatsim.geometry.surface.passes import Trace
 
 #: a vertex counts as covered up to this fraction beyond half a spacing (rounding, not method error)
@@ -48,20 +48,21 @@ class Measured:
     covered_mm2: float
 
 
-def measure(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, traces: list[Trace], spacing_mm: float,
-            vertex_area_mm2: np.ndarray) -> Measured:
-    """Gaps and coverage of the passes ``traces`` on one region piece's mesh (unit vertex normals)."""
+def measure(marching: Marching, vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, traces: list[Trace],
+            spacing_mm: float, vertex_area_mm2: np.ndarray) -> Measured:
+    """Gaps and coverage of the passes ``traces`` on one region piece's mesh (unit vertex normals,
+    its fast-marching solver)."""
     groups = [[t.curve for t in traces if t.rank % 2 == p] for p in (0, 1)]
-    marching = [marching_distance(vertices, faces, curves=g) for g in groups]
+    reach = [marching.distance(curves=g) for g in groups]
     nearest = [NearestOnCurves([(c.points, _unit(c.sample(faces, normals)), c.closed) for c in g]) for g in groups]
     gaps = [np.zeros(0)]
     for p in (0, 1):
         for curve in groups[p]:
             d, on_end = nearest[1 - p].distance(curve.points, _unit(curve.sample(faces, normals)),
-                                                curve.sample(faces, marching[1 - p]), spacing_mm)
+                                                curve.sample(faces, reach[1 - p]), spacing_mm)
             gaps.append(d[np.isfinite(d) & ~on_end])
-    reach = np.minimum(*(n.distance(vertices, normals, m, spacing_mm)[0] for n, m in zip(nearest, marching)))
-    covered = reach <= 0.5 * spacing_mm * (1 + COVERAGE_SLACK)
+    nearest_pass = np.minimum(*(n.distance(vertices, normals, m, spacing_mm)[0] for n, m in zip(nearest, reach)))
+    covered = nearest_pass <= 0.5 * spacing_mm * (1 + COVERAGE_SLACK)
     return Measured(np.concatenate(gaps), float(vertex_area_mm2[covered].sum()))
 
 

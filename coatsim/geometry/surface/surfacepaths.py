@@ -81,7 +81,8 @@ class PlanStats:
 @dataclass(frozen=True, eq=False)
 class SurfacePaths:
     """A plan: the mesh, the pattern, spacing, stand-off, expected ripple (%), passes, figures.
-    ``notes`` (what planning noticed) and ``timings_s`` are not part of the file."""
+    ``notes`` (what planning noticed) and ``timings_s`` (CPU seconds per stage) are not part of
+    the file."""
 
     mesh: MeshInfo
     pattern: str

@@ -3,7 +3,7 @@
 It uses only the part as read (not the refined and cut meshes the planner worked on) and the
 plan's passes: every point must lie on the part's surface, every normal must be a unit vector
 within a few degrees of the cone of the part's face normals around it (the faces whose bounding
-boxes reach within three smoothing lengths, where the smoothing draws nearly all its weight; a
+boxes reach within two smoothing lengths per axis, where the smoothing draws nearly all its weight; a
 sharp edge widens the cone, a flat face narrows it to its normal), and on a closed part every
 normal must point out of it.
 """
@@ -20,7 +20,11 @@ from coatsim.geometry.surface.surfacepaths import SurfacePaths
 #: a point farther than this fraction of the part's extent from its surface is off the mesh
 ON_MESH_FRACTION = 1e-6
 #: the cone holds the faces within this many smoothing lengths
-CONE_SMOOTHING_LENGTHS = 3.0
+CONE_SMOOTHING_LENGTHS = 2.0
+#: the cone's faces stand for cells of this fraction of its radius (verify._representatives)
+CONE_CELLS = 6.0
+#: points checked at once (bounds the memory of the point-face pairs)
+VERIFY_CHUNK = 2048
 #: a normal may leave the cone of the face normals around it by this much
 NORMAL_TOLERANCE_DEG = 5.0
 
@@ -63,11 +67,15 @@ def verify(part: Part, paths: SurfacePaths) -> None:
     off = np.flatnonzero(~(nearest <= tolerance))
     if len(off):
         _fail(paths, int(off[0]), "lies off the part's surface")
-    owner, face = _boxes_near(tree, points, CONE_SMOOTHING_LENGTHS * paths.stats.normal_smoothing_mm)
-    excess = _normal_excess_deg(part, normals, owner, face)
-    worst = int(np.argmax(excess))
-    if excess[worst] > NORMAL_TOLERANCE_DEG:
-        _fail(paths, worst, f"has a normal {excess[worst]:.3g} deg outside the faces around it")
+    radius = CONE_SMOOTHING_LENGTHS * paths.stats.normal_smoothing_mm
+    chosen, face_n, area = _representatives(part, radius / CONE_CELLS)
+    cone_tree = _box_tree(part, chosen)
+    for chunk in np.array_split(np.arange(len(points)), max(1, len(points) // VERIFY_CHUNK)):
+        owner, face = _boxes_near(cone_tree, points[chunk], radius)
+        excess = _normal_excess_deg(normals[chunk], owner, face_n[face], area[face])
+        worst = int(np.argmax(excess))
+        if excess[worst] > NORMAL_TOLERANCE_DEG:
+            _fail(paths, int(chunk[worst]), f"has a normal {excess[worst]:.3g} deg outside the faces around it")
     mesh = trimesh.Trimesh(part.vertices_mm, part.faces, process=False)
     if mesh.is_watertight:
         inward = np.flatnonzero(mesh.contains(points + 1e-4 * part.extent_mm * normals))
@@ -75,11 +83,23 @@ def verify(part: Part, paths: SurfacePaths) -> None:
             _fail(paths, int(inward[0]), "has a normal pointing into the part")
 
 
-def _box_tree(part: Part):
-    """An R-tree of the part's triangles' bounding boxes."""
+def _representatives(part: Part, cell_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One face for each cell of a grid and each direction (to about 20 deg) of the faces whose
+    centres lie in it: (their ids, unit normals, the area of all the faces they stand for). The
+    cone test then sees every direction near a point without visiting every face of a fine scan."""
+    normals, area = face_normals(part.vertices_mm, part.faces)
+    centres = part.vertices_mm[part.faces].mean(axis=1)
+    key = np.column_stack([np.floor((centres - centres.min(axis=0)) / cell_mm), np.round(normals * 3)]).astype(np.int64)
+    _, first, group = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return first, normals[first], np.bincount(group.ravel(), weights=area, minlength=len(first))
+
+
+def _box_tree(part: Part, faces: np.ndarray | None = None):
+    """An R-tree of the bounding boxes of the part's triangles (those ``faces``, numbered in that
+    order, when given)."""
     from rtree import index
 
-    triangles = part.vertices_mm[part.faces]
+    triangles = part.vertices_mm[part.faces if faces is None else part.faces[faces]]
     properties = index.Property()
     properties.dimension = 3
     return index.Index((np.arange(len(triangles)), triangles.min(axis=1), triangles.max(axis=1)),
@@ -93,14 +113,15 @@ def _boxes_near(tree, points: np.ndarray, radius: float) -> tuple[np.ndarray, np
     return owner, np.asarray(face, dtype=np.int64)
 
 
-def _normal_excess_deg(part: Part, normals: np.ndarray, owner: np.ndarray, face: np.ndarray) -> np.ndarray:
-    """By how much each normal leaves the cone of the face normals near it (deg; the cone is
-    centred on their area-weighted mean, face normals taken on the normal's side)."""
-    fn, area = face_normals(part.vertices_mm, part.faces)
-    aligned = fn[face] * np.where(np.einsum("ij,ij->i", fn[face], normals[owner]) < 0, -1.0, 1.0)[:, None]
-    mean = np.zeros_like(normals)
-    np.add.at(mean, owner, aligned * area[face][:, None])
+def _normal_excess_deg(normals: np.ndarray, owner: np.ndarray, near: np.ndarray, area: np.ndarray) -> np.ndarray:
+    """By how much each normal leaves the cone of the face normals near it (deg): ``near``
+    (k, 3) with their ``area`` for the pairs (``owner`` ascending, every point at least once);
+    the cone is centred on their area-weighted mean, face normals taken on the normal's side."""
+    aligned = near * np.where(np.einsum("ij,ij->i", near, normals[owner]) < 0, -1.0, 1.0)[:, None]
+    starts = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
+    mean = np.add.reduceat(aligned * area[:, None], starts, axis=0)
     mean /= np.maximum(np.linalg.norm(mean, axis=1), 1e-300)[:, None]
-    spread = np.zeros(len(normals))
-    np.maximum.at(spread, owner, np.arccos(np.clip(np.einsum("ij,ij->i", aligned, mean[owner]), -1, 1)))
+    cos = np.clip(np.einsum("ij,ij->i", aligned, mean[np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(owner)]))]),
+                  -1, 1)
+    spread = np.arccos(np.minimum.reduceat(cos, starts))
     return np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", normals, mean), -1, 1)) - spread)
