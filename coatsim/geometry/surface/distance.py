@@ -138,7 +138,9 @@ def distance_levels(low: float, high: float, first: float, spacing: float) -> np
     """Levels of a distance field for passes ``spacing`` apart, starting at ``first``, over the
     values [low, high] the coated area takes: every level first + k*spacing inside, and where
     more than half a spacing is left beyond the outermost one, one more level half a spacing in
-    from that end (so that every point is within half a spacing of a pass)."""
+    from that end (so that every point is within half a spacing of a pass); should that level
+    come less than half a spacing from its neighbour, the neighbour moves to the middle of its
+    own neighbour and the new level (two gaps of 1/2 to 3/4 spacing, no sliver of a pass)."""
     if not (math.isfinite(low) and math.isfinite(high)) or high < low:
         return np.zeros(0)
     k_lo, k_hi = math.ceil((low - first) / spacing - 1e-9), math.floor((high - first) / spacing + 1e-9)
@@ -146,11 +148,19 @@ def distance_levels(low: float, high: float, first: float, spacing: float) -> np
     levels = levels[(levels > low) & (levels < high)] if len(levels) else levels
     if not len(levels):
         return np.array([0.5 * (low + high)])
-    if levels[0] - low > 0.5 * spacing * (1 + 1e-9):
-        levels = np.r_[low + 0.5 * spacing, levels]
     if high - levels[-1] > 0.5 * spacing * (1 + 1e-9):
-        levels = np.r_[levels, high - 0.5 * spacing]
+        levels = _extended(levels, high - 0.5 * spacing, spacing)
+    if levels[0] - low > 0.5 * spacing * (1 + 1e-9):
+        levels = -_extended(-levels[::-1], -(low + 0.5 * spacing), spacing)[::-1]
     return levels
+
+
+def _extended(levels: np.ndarray, end: float, spacing: float) -> np.ndarray:
+    """``levels`` (ascending) with ``end`` appended, the last one re-centred if ``end`` is closer
+    than half a spacing to it."""
+    if end - levels[-1] < 0.5 * spacing and len(levels) > 1:
+        levels = np.r_[levels[:-1], 0.5 * (levels[-2] + end)]
+    return np.r_[levels, end]
 
 
 #: the arc estimate stands unless fast marching finds the way along the surface longer by this

@@ -11,9 +11,10 @@ count (beyond a shorter pass's end the gap is a coverage question, not a spacing
 
 The first plane lies half a spacing (along the surface) from the region's lowest point and the
 last half a spacing from its highest; in between the planes follow each other at the spacing,
-and the last gap is what is left (no plane is added within a tenth of a step of the last one:
-the end then lies a little more than half a spacing from a pass). A region narrower than a
-spacing gets one pass through its middle.
+and the last gap is what is left: no plane is added within a tenth of a step of the last one
+(the end then lies a little more than half a spacing from a pass), and a last gap under half a
+step is shared with the one before (the plane between moves to their middle). A region
+narrower than a spacing gets one pass through its middle.
 """
 
 from __future__ import annotations
@@ -58,8 +59,12 @@ def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, 
         if step < last:
             levels.append(step)
             continue
-        # the last plane: unless the one before already lies within a sliver of it
-        if last - levels[-1] > END_SLIVER_FRACTION * (step - levels[-1]):
+        # the last plane: unless the one before already lies within a sliver of it; closer than
+        # half a step, the one before moves to the middle of its neighbour and the last plane
+        full = step - levels[-1]
+        if last - levels[-1] > END_SLIVER_FRACTION * full:
+            if last - levels[-1] < 0.5 * full and len(levels) > 1:
+                levels[-1] = 0.5 * (levels[-2] + last)
             levels.append(last)
         return np.array(levels)
 
