@@ -13,10 +13,12 @@ sphere the normal field is an eigenfunction of the Laplacian, so smoothing leave
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.geometry.surface.boxes import TriangleBoxes
 from coatsim.geometry.surface.topology import Edges, face_components, face_pairs, mesh_edges
 
 #: relative residual at which the smoothing solve stops (normals to about 1e-8)
@@ -150,3 +152,46 @@ def largest_angle_deg(vertex_normals_: np.ndarray, faces: np.ndarray, normals_of
     """Largest angle between a vertex normal and the normal of a face around that vertex."""
     cos = np.einsum("ijk,ik->ij", vertex_normals_[faces], normals_of_faces)
     return float(np.degrees(np.arccos(np.clip(cos.min(), -1.0, 1.0)))) if len(faces) else 0.0
+
+
+def kept_outward(points: np.ndarray, normals: np.ndarray, boxes: TriangleBoxes, face_n: np.ndarray,
+                 tolerance: float) -> tuple[np.ndarray, int]:
+    """Unit normals at points made to leave the (outward-wound) part: a normal whose first step
+    (``tolerance`` long) goes behind the faces touching its point (the floor's normal at the foot
+    of an overhanging wall, smoothing across a concave crease it cannot follow) becomes the mean
+    of the touching faces' normals, or failing that the normal of the nearest face to that step.
+    ``boxes`` holds the part's faces, ``face_n`` their unit outward normals. Returns the normals
+    and how many were changed."""
+    owner, face, distance = boxes.touching(points, tolerance)
+    keep = distance <= tolerance
+    owner, face = owner[keep], face[keep]
+    bad = np.flatnonzero(_behind(points + tolerance * normals, owner, face, boxes.triangles, face_n, len(points)))
+    if not len(bad):
+        return normals, 0
+    fixed = normals.copy()
+    for i in bad.tolist():  # few points: at concave creases and the feet of walls
+        touching = face_n[face[owner == i]]
+        mean = touching.sum(axis=0)
+        mean /= max(float(np.linalg.norm(mean)), 1e-300)
+        fixed[i] = mean if (touching @ mean).min() > 0 else touching[np.argmax(touching @ normals[i])]
+    return fixed, len(bad)
+
+
+def _behind(probes: np.ndarray, owner: np.ndarray, face: np.ndarray, triangles: np.ndarray, face_n: np.ndarray,
+            count: int) -> np.ndarray:
+    """Whether each probe lies behind the nearest of its faces (ties at an edge or a vertex
+    judged by the sum of the tied faces' normals, a pseudo-normal), (count,) bool."""
+    import trimesh
+
+    closest = trimesh.triangles.closest_point(triangles[face], probes[owner])
+    gap = np.linalg.norm(probes[owner] - closest, axis=1)
+    best = np.full(count, np.inf)
+    np.minimum.at(best, owner, gap)
+    tied = gap <= best[owner] * (1 + 1e-6) + 1e-12
+    pseudo = np.zeros((count, 3))
+    np.add.at(pseudo, owner[tied], face_n[face[tied]])
+    foot = np.zeros((count, 3))
+    foot[owner[tied]] = closest[tied]
+    side = np.einsum("ij,ij->i", probes - foot, pseudo)
+    has = np.isfinite(best)
+    return has & (side < 0)

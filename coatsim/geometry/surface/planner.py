@@ -1,7 +1,7 @@
 """Planning passes on a part: ``plan(part, options) -> SurfacePaths``.
 
-1. The part is refined so that no edge exceeds the smoothing length (or 1/200 of the part),
-   and wound consistently and outward (an open scan toward the gun's side).
+1. The part is wound consistently and outward (an open scan toward the gun's side) and refined
+   so that no edge exceeds the smoothing length (or 1/200 of the part).
 2. The region is selected by its face normals (facing, box or all; only what the gun sees) and
    refined to edges of at most ``max_edge_mm`` (a quarter of the spacing by default); its normals
    are smoothed over the region and over the surface running on past its border (up to two
@@ -26,13 +26,14 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.geometry.surface.boundary import boundary_piece
+from coatsim.geometry.surface.boxes import TriangleBoxes
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.refine import refined
-from coatsim.geometry.surface.normals import (Orientation, closed_faces, face_normals, largest_angle_deg, orient,
-                                              smooth_normals)
+from coatsim.geometry.surface.normals import (Orientation, closed_faces, face_normals, kept_outward, largest_angle_deg,
+                                              orient, smooth_normals)
 from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
 from coatsim.geometry.surface.piece import Piece
 from coatsim.geometry.surface.raster import raster_levels
@@ -49,6 +50,8 @@ Pattern = Literal["raster", "geodesic", "boundary"]
 SELECTION_CELLS = 200.0
 #: normals are smoothed over the surface running on past the region this many smoothing lengths
 RING_SMOOTHING_LENGTHS = 2.0
+#: a face touches a pass point within this fraction of the part's extent
+TOUCH_FRACTION = 1e-7
 
 
 @dataclass(frozen=True)
@@ -133,24 +136,26 @@ class _Clock:
         self._last = now
 
 
-def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
+                 notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``) and
-    smoothed unit vertex normals (smoothed over the region and the surface running on past it)."""
-    coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
-    v, f, _ = refined(part.vertices_mm, part.faces, coarse, part.file, "use a wider footprint or decimate the part")
-    oriented = orient(v, f, None)
-    toward = _toward(o.region, v, oriented)
-    oriented = orient(v, f, toward)
+    smoothed unit vertex normals (smoothed over the region and the surface running on past it);
+    and the part's own faces wound outward."""
+    oriented = orient(part.vertices_mm, part.faces, None)
+    toward = _toward(o.region, part.vertices_mm, oriented)
+    oriented = orient(part.vertices_mm, part.faces, toward)
     notes.extend(oriented.notes)
     if oriented.flipped:
-        notes.append(f"turned {oriented.flipped} triangle(s) to the consistent outward winding")
-    mask = select_faces(v, oriented.faces, face_normals(v, oriented.faces)[0], o.region, toward, s.smoothing_mm)
+        notes.append(f"turned {oriented.flipped} of {len(part.faces)} triangles to a consistent outward winding")
+    coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
+    v, f, _ = refined(part.vertices_mm, oriented.faces, coarse, part.file, "use a wider footprint or decimate the part")
+    mask = select_faces(v, f, face_normals(v, f)[0], o.region, toward, s.smoothing_mm)
     if not mask.any():
         raise EmptyRegionOfInterest(f"no face of the part that the gun sees lies in the region "
                                     f"{describe_region(o.region, toward)}; choose another region",
                                     parameters=("region",))
-    both = mask | smoothing_ring(v, oriented.faces, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
-    sv, sf, _ = submesh(v, oriented.faces, both)
+    both = mask | smoothing_ring(v, f, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
+    sv, sf, _ = submesh(v, f, both)
     sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
                              "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm", "region"))
     normals = smooth_normals(sv, sf, s.smoothing_mm)
@@ -160,7 +165,7 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings, notes: list[str]) -> 
     if len(copies) > len(rv):
         notes.append(f"split {len(copies) - len(rv)} vertices where the region is not manifold (bow-tie vertices, "
                      "edges with more than two triangles); the region's border runs along them")
-    return rv[copies], rf, normals[parent][copies]
+    return rv[copies], rf, normals[parent][copies], oriented.faces
 
 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
@@ -229,17 +234,27 @@ def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
             for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces)]
 
 
-def _passes(pieces: list[Piece], traces: list[Trace], o: PlanOptions, s: _Settings) -> tuple[Pass, ...]:
-    """Passes in spraying order with their normals and leads."""
-    passes = []
-    for curve, piece in spraying_order(traces, o.order):
-        normals = curve.sample(pieces[piece].faces, pieces[piece].normals)
-        normals /= np.linalg.norm(normals, axis=1)[:, None]
+def _passes(pieces: list[Piece], traces: list[Trace], part: Part, outward_faces: np.ndarray, o: PlanOptions,
+            s: _Settings, notes: list[str]) -> tuple[Pass, ...]:
+    """Passes in spraying order with their normals (kept out of the part's faces at their points,
+    normals.kept_outward) and leads."""
+    boxes = TriangleBoxes(part.vertices_mm, outward_faces)
+    face_n = face_normals(part.vertices_mm, outward_faces)[0]
+    passes, turned = [], 0
+    for curve, index in spraying_order(traces, o.order):
+        piece = pieces[index]
+        normals = curve.sample(piece.faces, piece.normals)
+        normals, changed = kept_outward(curve.points, normals / np.linalg.norm(normals, axis=1)[:, None], boxes,
+                                        face_n, TOUCH_FRACTION * part.extent_mm)
+        turned += changed
         if curve.closed:
             lead_in = lead_out = np.zeros((0, 3))
         else:
             lead_in, lead_out = leads(curve.points, normals, s.margin_mm, 0.5 * s.spacing_mm)
         passes.append(Pass(curve.points, normals, bool(curve.closed), lead_in, lead_out))
+    if turned:
+        notes.append(f"{turned} normal(s) that leaned into a face at their point (a crease sharper than the smoothing "
+                     "can follow, the foot of an overhanging wall) turned to the mean of the faces there")
     return tuple(passes)
 
 
@@ -247,14 +262,14 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     """Passes covering the region of ``part`` (see the module docstring)."""
     s = _settings(options)
     clock, notes = _Clock(), list(part.notes)
-    rv, rf, normals = _region_mesh(part, options, s, notes)
+    rv, rf, normals, outward_faces = _region_mesh(part, options, s, notes)
     clock.lap("region and normals")
     pieces, region_area, angle = _pieces(rv, rf, normals, s, notes)
     clock.lap("border")
     step = None
     if options.pattern == "raster":
         step = (unit_vector(options.step_direction, "step_direction", "step_direction") if options.step_direction is not None
-                else sign_fixed(principal_axes(rv[rf].mean(axis=1), face_normals(rv, rf)[1] + 1e-300)[1]))
+                else sign_fixed(principal_axes(rv, rf)[1]))
     pieces = _patterned(pieces, options, s, step)
     clock.lap(options.pattern)
     traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
@@ -265,7 +280,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
         gaps.append(measured.gaps_mm)
         covered += measured.covered_mm2
     clock.lap("measure")
-    passes = _passes(pieces, traces, options, s)
+    passes = _passes(pieces, traces, part, outward_faces, options, s, notes)
     if not passes:
         raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm",
                                     parameters=("edge_band_mm",))

@@ -69,11 +69,16 @@ def unit_vector(vector: tuple[float, float, float] | np.ndarray, what: str, para
     return v / norm
 
 
-def principal_axes(points: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Rows: the principal axes of weighted points, largest spread first (3, 3)."""
-    centre = np.average(points, axis=0, weights=weights)
-    d = points - centre
-    cov = (d * weights[:, None]).T @ d
+def principal_axes(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Rows: the principal axes of the surface (its area spread uniformly over each triangle, so
+    the result does not depend on how the surface is triangulated), largest spread first (3, 3)."""
+    corners = vertices[faces]
+    area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+    total = corners.sum(axis=1)
+    mean = (area[:, None] * total).sum(axis=0) / (3 * area.sum())
+    # E[x x^T] over a triangle = (sum_i v_i v_i^T + (sum_i v_i)(sum_i v_i)^T) / 12
+    second = (np.einsum("f,fij,fik->jk", area, corners, corners) + np.einsum("f,fj,fk->jk", area, total, total))
+    cov = second / (12 * area.sum()) - np.outer(mean, mean)
     _, vectors = np.linalg.eigh(cov)
     return vectors[:, ::-1].T
 
@@ -89,7 +94,7 @@ def default_toward(vertices: np.ndarray, faces: np.ndarray, closed: np.ndarray) 
     a, b, c = (vertices[faces[:, k]] for k in range(3))
     cross = np.cross(b - a, c - a)
     area = 0.5 * np.linalg.norm(cross, axis=1)
-    axis = sign_fixed(principal_axes((a + b + c) / 3, area + 1e-300)[2])
+    axis = sign_fixed(principal_axes(vertices, faces)[2])
     open_normal = cross[~closed].sum(axis=0)
     lean = float(open_normal @ axis)
     if abs(lean) > 1e-3 * float(area[~closed].sum()) * 2:

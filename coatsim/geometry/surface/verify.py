@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from coatsim.core.errors import ExecutionError
+from coatsim.geometry.surface.boxes import TriangleBoxes
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.normals import face_normals
 from coatsim.geometry.surface.surfacepaths import SurfacePaths
@@ -57,11 +58,8 @@ def verify(part: Part, paths: SurfacePaths) -> None:
     bad = np.flatnonzero(~(np.abs(length - 1) <= 1e-6))
     if len(bad):
         _fail(paths, int(bad[0]), f"has a normal of length {length[bad[0]]:.6g}")
-    tree = _box_tree(part)
     tolerance = ON_MESH_FRACTION * part.extent_mm
-    owner, face = _boxes_near(tree, points, tolerance)
-    triangles = part.vertices_mm[part.faces[face]]
-    distance = np.linalg.norm(trimesh.triangles.closest_point(triangles, points[owner]) - points[owner], axis=1)
+    owner, _, distance = TriangleBoxes(part.vertices_mm, part.faces).touching(points, tolerance)
     nearest = np.full(len(points), np.inf)
     np.minimum.at(nearest, owner, distance)
     off = np.flatnonzero(~(nearest <= tolerance))
@@ -69,9 +67,9 @@ def verify(part: Part, paths: SurfacePaths) -> None:
         _fail(paths, int(off[0]), "lies off the part's surface")
     radius = CONE_SMOOTHING_LENGTHS * paths.stats.normal_smoothing_mm
     chosen, face_n, area = _representatives(part, radius / CONE_CELLS)
-    cone_tree = _box_tree(part, chosen)
+    cone = TriangleBoxes(part.vertices_mm, part.faces[chosen])
     for chunk in np.array_split(np.arange(len(points)), max(1, len(points) // VERIFY_CHUNK)):
-        owner, face = _boxes_near(cone_tree, points[chunk], radius)
+        owner, face = cone.near(points[chunk], radius)
         excess = _normal_excess_deg(normals[chunk], owner, face_n[face], area[face])
         worst = int(np.argmax(excess))
         if excess[worst] > NORMAL_TOLERANCE_DEG:
@@ -92,25 +90,6 @@ def _representatives(part: Part, cell_mm: float) -> tuple[np.ndarray, np.ndarray
     key = np.column_stack([np.floor((centres - centres.min(axis=0)) / cell_mm), np.round(normals * 3)]).astype(np.int64)
     _, first, group = np.unique(key, axis=0, return_index=True, return_inverse=True)
     return first, normals[first], np.bincount(group.ravel(), weights=area, minlength=len(first))
-
-
-def _box_tree(part: Part, faces: np.ndarray | None = None):
-    """An R-tree of the bounding boxes of the part's triangles (those ``faces``, numbered in that
-    order, when given)."""
-    from rtree import index
-
-    triangles = part.vertices_mm[part.faces if faces is None else part.faces[faces]]
-    properties = index.Property()
-    properties.dimension = 3
-    return index.Index((np.arange(len(triangles)), triangles.min(axis=1), triangles.max(axis=1)),
-                       properties=properties)
-
-
-def _boxes_near(tree, points: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs (point, face) whose bounding box reaches within ``radius`` of the point (per axis)."""
-    face, counts = tree.intersection_v(points - radius, points + radius)
-    owner = np.repeat(np.arange(len(points)), np.asarray(counts, dtype=np.int64))
-    return owner, np.asarray(face, dtype=np.int64)
 
 
 def _normal_excess_deg(normals: np.ndarray, owner: np.ndarray, near: np.ndarray, area: np.ndarray) -> np.ndarray:
