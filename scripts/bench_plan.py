@@ -22,8 +22,17 @@ single_threaded_numerics()
 import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
 
-from coatsim.geometry.surface import (Everything, Facing, FromBoundary, FromPlane, FromPoints, PlanOptions,  # noqa: E402
-                                      load_part, part_from_arrays, plan)
+from coatsim.geometry.surface import (  # noqa: E402
+    Everything,
+    Facing,
+    FromBoundary,
+    FromPlane,
+    FromPoints,
+    PlanOptions,
+    load_part,
+    part_from_arrays,
+    plan,
+)
 
 SIGMA, SPACING = 5.0, 10.0
 ROOT = Path(__file__).resolve().parents[1]
@@ -133,13 +142,14 @@ def public(folder: Path) -> None:
 
 
 def heat_errors() -> None:
+    import potpourri3d as pp3d
+
     from coatsim.geometry.surface.distance import heat_distance
     from coatsim.geometry.surface.geodesic import assign_points, geodesic_piece
     from coatsim.geometry.surface.normals import vertex_normals
     from coatsim.geometry.surface.piece import Piece
     from coatsim.geometry.surface.refine import refined
     from coatsim.geometry.surface.topology import border_vertices, mesh_edges
-    import potpourri3d as pp3d
 
     def piece(v, f):
         border = border_vertices(len(v), mesh_edges(f))

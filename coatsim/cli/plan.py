@@ -107,7 +107,8 @@ def plan(
     import time
 
     from coatsim.core.outputs_guard import check_distinct, output_folder
-    from coatsim.geometry.surface import PlanOptions, load_part, plan as plan_passes, write_surfacepaths
+    from coatsim.geometry.surface import PlanOptions, load_part, write_surfacepaths
+    from coatsim.geometry.surface import plan as plan_passes
 
     started = time.perf_counter()
     check_distinct([("the part mesh", part)], [("-o", output)])

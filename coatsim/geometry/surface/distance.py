@@ -114,7 +114,8 @@ class Marching:
     def distance(self, curves: Sequence[SurfaceCurve] = (), source_vertices: np.ndarray | None = None) -> np.ndarray:
         """Distance (mm) from points on faces (the points of ``curves``, in faces of this mesh)
         and from the vertices ``source_vertices``; inf where no source reaches."""
-        sources = [[(int(f), [float(w[0]), float(w[1])]) for f, w in zip(c.faces, c.bary)] for c in curves if len(c.faces)]
+        sources = [[(int(f), [float(w[0]), float(w[1])]) for f, w in zip(c.faces, c.bary)]
+                   for c in curves if len(c.faces)]
         seeds = [self.faces[c.faces[:1], 0] for c in curves if len(c.faces)]
         if source_vertices is not None and len(source_vertices):
             sources.append([(int(self.copy[v]), []) for v in source_vertices])
@@ -204,7 +205,8 @@ class NearestOnCurves:
         """For each point: the nearest point on the curves (k, 3), the normal there (k, 3), and
         whether it is an open end of its curve (k,)."""
         i = self.tree.query(points)[1]
-        foot, normal, best = self.points[i].copy(), self.normals[i].copy(), np.linalg.norm(points - self.points[i], axis=1)
+        foot, normal = self.points[i].copy(), self.normals[i].copy()
+        best = np.linalg.norm(points - self.points[i], axis=1)
         on_end = self.end[i].copy()
         for other in (self.prev[i], self.next[i]):
             ok = other >= 0

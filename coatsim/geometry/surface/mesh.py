@@ -95,7 +95,8 @@ def _check_binary_stl(path: Path, data: bytes) -> None:
     if len(data) != 84 + 50 * count:
         raise InputError(f"{path}: a binary STL of {count} triangles should be {84 + 50 * count} bytes, the file has "
                          f"{len(data)}; the file is truncated or damaged, export it again")
-    check_budget(f"{path}: triangles", count, MAX_PLAN_TRIANGLES, "decimate the mesh (e.g. MeshLab quadric edge collapse)")
+    check_budget(f"{path}: triangles", count, MAX_PLAN_TRIANGLES,
+                 "decimate the mesh (e.g. MeshLab quadric edge collapse)")
 
 
 def part_from_arrays(vertices: np.ndarray, faces: np.ndarray, name: str = "mesh", units: str = "mm") -> Part:

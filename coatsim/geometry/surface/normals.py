@@ -13,7 +13,6 @@ sphere the normal field is an eigenfunction of the Laplacian, so smoothing leave
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,7 +71,7 @@ def orient(vertices: np.ndarray, faces: np.ndarray, toward: np.ndarray | None) -
     flip = orientable & (as_read != best[piece])
     notes = []
     if (~orientable).any():
-        notes.append(f"{int(len(np.unique(piece[~orientable])))} piece(s) of the mesh cannot be oriented "
+        notes.append(f"{len(np.unique(piece[~orientable]))} piece(s) of the mesh cannot be oriented "
                      "(a Moebius-like surface); their triangles keep the file's winding")
     faces = np.where(flip[:, None], faces[:, ::-1], faces)
     flip_piece = _outward(vertices, faces, piece, n_pieces, _closed_pieces(edges, piece, n_pieces), toward)

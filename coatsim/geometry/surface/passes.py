@@ -79,8 +79,7 @@ def _crossing(curve: SurfaceCurve, i: int, j: int, value: np.ndarray, band_mm: f
               faces: np.ndarray) -> SurfaceCurve:
     """The point between points i and j (neighbours) where the border distance is the band;
     it lies in the face of the segment from i to j (the face stored with the earlier point)."""
-    first, second = (i, j) if (j == i + 1 or (j == 0 and i == len(value) - 1)) else (j, i)
-    face = curve.faces[first]
+    face = curve.faces[i if (j == i + 1 or (j == 0 and i == len(value) - 1)) else j]
     tau = (band_mm - value[i]) / (value[j] - value[i]) if value[j] != value[i] else 0.5
     point = curve.points[i] + tau * (curve.points[j] - curve.points[i])
     bary = barycentric(vertices, faces, np.array([face]), point[None])[0]
@@ -108,7 +107,8 @@ def spraying_order(traces: list[Trace], order: Order) -> list[tuple[SurfaceCurve
     return ordered
 
 
-def leads(points: np.ndarray, normals: np.ndarray, margin_mm: float, tangent_mm: float) -> tuple[np.ndarray, np.ndarray]:
+def leads(points: np.ndarray, normals: np.ndarray, margin_mm: float,
+          tangent_mm: float) -> tuple[np.ndarray, np.ndarray]:
     """Lead-in (ending before the first point) and lead-out (after the last) of an open pass:
     one point each, ``margin_mm`` along the end tangents measured over ``tangent_mm`` of the pass."""
     if margin_mm <= 0:

@@ -31,18 +31,41 @@ from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
 from coatsim.geometry.surface.mesh import Part
-from coatsim.geometry.surface.refine import refined
-from coatsim.geometry.surface.normals import (Orientation, closed_faces, face_normals, kept_outward, largest_angle_deg,
-                                              orient, smooth_normals)
+from coatsim.geometry.surface.normals import (
+    Orientation,
+    closed_faces,
+    face_normals,
+    kept_outward,
+    largest_angle_deg,
+    orient,
+    smooth_normals,
+)
 from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
 from coatsim.geometry.surface.piece import Piece
 from coatsim.geometry.surface.raster import raster_levels
-from coatsim.geometry.surface.region import (Everything, Facing, RegionSpec, check_region, default_toward,
-                                             principal_axes, select_faces, sign_fixed, smoothing_ring, unit_vector)
+from coatsim.geometry.surface.refine import refined
+from coatsim.geometry.surface.region import (
+    Everything,
+    Facing,
+    RegionSpec,
+    check_region,
+    default_toward,
+    principal_axes,
+    select_faces,
+    sign_fixed,
+    smoothing_ring,
+    unit_vector,
+)
 from coatsim.geometry.surface.spacing import measure, ripple_pct, spacing_for_ripple
 from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
-from coatsim.geometry.surface.topology import (border_vertices, face_components, face_pairs, manifold_split, mesh_edges,
-                                               submesh)
+from coatsim.geometry.surface.topology import (
+    border_vertices,
+    face_components,
+    face_pairs,
+    manifold_split,
+    mesh_edges,
+    submesh,
+)
 from coatsim.geometry.surface.verify import verify
 
 Pattern = Literal["raster", "geodesic", "boundary"]
@@ -118,7 +141,8 @@ def _settings(o: PlanOptions) -> _Settings:
         spacing = defaults.PLAN_SPACING_SIGMAS * sigma
     margin = defaults.PLAN_MARGIN_SIGMAS * sigma if o.margin_mm is None else _positive("margin_mm", o.margin_mm, True)
     _positive("edge_band_mm", o.edge_band_mm, True)
-    max_edge = spacing / defaults.PLAN_EDGES_PER_SPACING if o.max_edge_mm is None else _positive("max_edge_mm", o.max_edge_mm)
+    max_edge = (spacing / defaults.PLAN_EDGES_PER_SPACING if o.max_edge_mm is None
+                else _positive("max_edge_mm", o.max_edge_mm))
     return _Settings(spacing, margin, max_edge, sigma)
 
 
@@ -268,15 +292,16 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     clock.lap("border")
     step = None
     if options.pattern == "raster":
-        step = (unit_vector(options.step_direction, "step_direction", "step_direction") if options.step_direction is not None
+        given = options.step_direction
+        step = (unit_vector(given, "step_direction", "step_direction") if given is not None
                 else sign_fixed(principal_axes(rv, rf)[1]))
     pieces = _patterned(pieces, options, s, step)
     clock.lap(options.pattern)
     traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
     gaps, covered = [np.zeros(0)], 0.0
     for k, p in enumerate(pieces):
-        measured = measure(p.marching, p.vertices, p.faces, p.normals, [t for t in traces if t.piece == k], s.spacing_mm,
-                           p.vertex_areas_mm2())
+        mine = [t for t in traces if t.piece == k]
+        measured = measure(p.marching, p.vertices, p.faces, p.normals, mine, s.spacing_mm, p.vertex_areas_mm2())
         gaps.append(measured.gaps_mm)
         covered += measured.covered_mm2
     clock.lap("measure")

@@ -64,8 +64,8 @@ def unit_vector(vector: tuple[float, float, float] | np.ndarray, what: str, para
     v = np.asarray(vector, dtype=float).ravel()
     norm = float(np.linalg.norm(v)) if v.shape == (3,) else math.nan
     if not (math.isfinite(norm) and norm > 1e-12):
-        raise InputError(f"{what} must be three finite numbers, not all zero, found {', '.join(f'{x:g}' for x in np.ravel(np.asarray(vector, dtype=float)))}",
-                         parameters=(parameter,))
+        found = ", ".join(f"{x:g}" for x in np.ravel(np.asarray(vector, dtype=float)))
+        raise InputError(f"{what} must be three finite numbers, not all zero, found {found}", parameters=(parameter,))
     return v / norm
 
 

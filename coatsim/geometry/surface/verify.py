@@ -100,7 +100,7 @@ def _normal_excess_deg(normals: np.ndarray, owner: np.ndarray, near: np.ndarray,
     starts = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
     mean = np.add.reduceat(aligned * area[:, None], starts, axis=0)
     mean /= np.maximum(np.linalg.norm(mean, axis=1), 1e-300)[:, None]
-    cos = np.clip(np.einsum("ij,ij->i", aligned, mean[np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(owner)]))]),
-                  -1, 1)
+    group = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(owner)]))
+    cos = np.clip(np.einsum("ij,ij->i", aligned, mean[group]), -1, 1)
     spread = np.arccos(np.minimum.reduceat(cos, starts))
     return np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", normals, mean), -1, 1)) - spread)

@@ -58,7 +58,7 @@ def plate_with_hole(width: float, height: float, hole_radius: float, step: float
     x, y = np.meshgrid(np.arange(-width / 2, width / 2 + 1e-9, step), np.arange(-height / 2, height / 2 + 1e-9, step))
     points = np.column_stack([x.ravel(), y.ravel()])
     points = points[np.linalg.norm(points, axis=1) > hole_radius + 0.7 * step]
-    n_ring = int(math.ceil(2 * math.pi * hole_radius / step))
+    n_ring = math.ceil(2 * math.pi * hole_radius / step)
     angle = np.linspace(0, 2 * math.pi, n_ring, endpoint=False)
     points = np.vstack([points, hole_radius * np.column_stack([np.cos(angle), np.sin(angle)])])
     triangles = Delaunay(points).simplices

@@ -58,7 +58,7 @@ def test_plan_is_deterministic(box_file, tmp_path, run_cli):
 def test_an_output_coatsim_did_not_write_is_kept(box_file, tmp_path, run_cli):
     out = tmp_path / "paths.json"
     out.write_text("my notes\n")
-    code, stdout, stderr = run_cli(["plan", str(box_file), "-o", str(out)])
+    code, _, stderr = run_cli(["plan", str(box_file), "-o", str(out)])
     assert code == 2 and len(stderr.splitlines()) == 1 and "not written by coatsim" in stderr
     assert out.read_text() == "my notes\n"
     assert run_cli(["plan", str(box_file), "-o", str(out), "--force"])[0] == 0

@@ -11,8 +11,13 @@ import pytest
 import trimesh
 
 from coatsim.geometry.surface.contours import level_curves
-from coatsim.geometry.surface.distance import (NearestOnCurves, arc_length, distance_levels, heat_distance,
-                                               marching_distance)
+from coatsim.geometry.surface.distance import (
+    NearestOnCurves,
+    arc_length,
+    distance_levels,
+    heat_distance,
+    marching_distance,
+)
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPlane, FromPoints, assign_points, geodesic_piece
 from coatsim.geometry.surface.normals import vertex_normals
 from coatsim.geometry.surface.piece import Piece

@@ -10,7 +10,7 @@ import trimesh
 from coatsim.core.budgets import MAX_PLAN_MESH_BYTES
 from coatsim.core.errors import InputError
 from coatsim.geometry.surface import Everything, Facing, load_part, part_from_arrays, plan
-from surface_helpers import SPACING, grid, options
+from surface_helpers import grid, options
 
 
 @pytest.mark.parametrize("suffix, kind", [(".stl", "stl"), (".stl", "stl_ascii"), (".ply", "ply"), (".obj", "obj"),
