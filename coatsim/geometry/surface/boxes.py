@@ -1,7 +1,10 @@
-"""Which triangles of a mesh lie near points: an R-tree of the triangles' bounding boxes.
+"""Which triangles of a mesh lie near points.
 
-Used by the independent check of a plan (verify) and to keep a pass's normals out of the faces
-that touch its points (normals.kept_outward).
+``TriangleBoxes``, an R-tree of the triangles' bounding boxes, serves any mesh (a part as read,
+with CAD triangles of any size): the independent check of a plan (verify) and keeping a pass's
+normals out of the faces that touch its points (normals.kept_outward). ``SmallTriangles``, a
+KD-tree of their centres, serves the refined region: whether a chord between passes runs along
+the surface (distance.NearestOnCurves).
 """
 
 from __future__ import annotations
@@ -37,3 +40,28 @@ class TriangleBoxes:
         distance = np.linalg.norm(trimesh.triangles.closest_point(self.triangles[face], points[owner]) - points[owner],
                                   axis=1)
         return owner, face, distance
+
+
+class SmallTriangles:
+    """The triangles of a mesh refined to small, even triangles, their centres in a KD-tree: how
+    far points lie from the surface near them (the nearest of the triangles with the nearest
+    centres; exact where the triangles are much smaller than the distances that matter)."""
+
+    #: triangles looked at per point
+    NEAREST = 8
+
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+        from scipy.spatial import cKDTree
+
+        self.triangles = vertices[faces]
+        self.tree = cKDTree(self.triangles.mean(axis=1))
+
+    def distance(self, points: np.ndarray) -> np.ndarray:
+        """Distance (mm) from each point to the surface."""
+        import trimesh
+
+        k = min(self.NEAREST, len(self.triangles))
+        index = self.tree.query(points, k=k)[1].reshape(len(points), k)
+        repeated = np.repeat(points, k, axis=0)
+        closest = trimesh.triangles.closest_point(self.triangles[index.ravel()], repeated)
+        return np.linalg.norm(closest - repeated, axis=1).reshape(len(points), k).min(axis=1)

@@ -15,16 +15,19 @@ Two solvers:
   meet the border at right angles; it also rounds the distance's ridges (tests and
   scripts/bench_plan.py measure both against exact distances).
 - fast marching (potpourri3d), which takes sources anywhere on a face: the distance from the
-  region's border (edge band, boundary passes) and the guard of the arc estimate below.
+  region's border (edge band, boundary passes), and the distance between passes where the arc
+  estimate below does not hold (across a sharp edge or a slot). It too is first-order, and
+  worst on irregular meshes and where a start's ends meet a border (an edge length or two).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
+from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import SurfaceCurve
 from coatsim.geometry.surface.topology import manifold_split
 
@@ -164,9 +167,9 @@ def _extended(levels: np.ndarray, end: float, spacing: float) -> np.ndarray:
     return np.r_[levels, end]
 
 
-#: the arc estimate stands unless fast marching finds the way along the surface longer by this
-#: fraction of the spacing (a sharp edge, a slot between the two points)
-ARC_GUARD_FRACTION = 0.15
+#: the arc estimate stands where its chord's midpoint lies within the arc's sagitta plus this
+#: fraction of the chord from the surface (not across a sharp edge or a slot)
+ARC_STRAY_FRACTION = 0.1
 
 
 def arc_length(chord: np.ndarray, normal_a: np.ndarray, normal_b: np.ndarray) -> np.ndarray:
@@ -230,15 +233,27 @@ class NearestOnCurves:
         foot, foot_normal, _ = self.query(points)
         return arc_length(points - foot, normals, foot_normal)
 
-    def distance(self, points: np.ndarray, normals: np.ndarray, marching: np.ndarray,
-                 spacing_mm: float) -> tuple[np.ndarray, np.ndarray]:
-        """Distance along the surface from each point (with its unit normal) to the curves: the
-        arc through the nearest curve point, or fast marching's ``marching`` value where that is
-        longer by more than ARC_GUARD_FRACTION spacings; and whether the nearest is an open end."""
+    def distance(self, points: np.ndarray, normals: np.ndarray, surface: SmallTriangles,
+                 marching: Callable[[], np.ndarray], within: float = math.inf) -> tuple[np.ndarray, np.ndarray]:
+        """Distance along the surface from each point (with its unit normal) to the curves, and
+        whether the nearest curve point is an open end. The arc through the nearest curve point
+        stands where the chord's midpoint lies on the ``surface`` as the arc would have it
+        (within its sagitta plus ARC_STRAY_FRACTION of the chord); elsewhere (across a sharp
+        edge, a slot, to another piece) fast marching's value does, ``marching()`` giving it at
+        the points (asked for only then). Points whose arc is longer than ``within`` keep it
+        (a caller that needs only nearer ones saves the check)."""
         if self.tree is None or not len(points):
             return np.full(len(points), np.inf), np.zeros(len(points), dtype=bool)
         foot, foot_normal, on_end = self.query(points)
-        arc = arc_length(points - foot, normals, foot_normal)
-        longer = np.isfinite(marching) & (marching > arc + ARC_GUARD_FRACTION * spacing_mm)
-        reached = np.isfinite(marching)
-        return np.where(longer, marching, np.where(reached, arc, np.inf)), on_end
+        chord = points - foot
+        arc = arc_length(chord, normals, foot_normal)
+        length = np.linalg.norm(chord, axis=1)
+        turn = np.arccos(np.clip(np.einsum("ij,ij->i", normals, foot_normal), -1.0, 1.0))
+        allowed = 0.5 * length * np.tan(0.25 * turn) + ARC_STRAY_FRACTION * length + 1e-9
+        check = np.flatnonzero(arc <= within)
+        off = np.zeros(len(points), dtype=bool)
+        if len(check):
+            off[check] = ~(surface.distance(0.5 * (points[check] + foot[check])) <= allowed[check])
+        if not off.any():
+            return arc, on_end
+        return np.where(off, marching(), arc), on_end

@@ -9,6 +9,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.distance import Marching
 
 
@@ -16,8 +17,8 @@ from coatsim.geometry.surface.distance import Marching
 class Piece:
     """Vertices (n, 3) mm and faces (m, 3) of one connected piece of the region, its smoothed
     unit normals (n, 3), the distance along the surface to the region's border (n,) mm (inf on a
-    closed piece), once a pattern has run the ``field`` (n,) and the ``levels`` of its passes, and
-    its fast-marching solver."""
+    closed piece), once a pattern has run the ``field`` (n,) and the ``levels`` of its passes; its
+    fast-marching solver and its triangles by their centres."""
 
     vertices: np.ndarray
     faces: np.ndarray
@@ -26,6 +27,7 @@ class Piece:
     field: np.ndarray | None = None
     levels: np.ndarray | None = None
     marching: Marching | None = None
+    surface: SmallTriangles | None = None
 
     def inside(self, band_mm: float) -> np.ndarray:
         """Vertices passes must cover: at least ``band_mm`` from the border."""

@@ -26,7 +26,7 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.geometry.surface.boundary import boundary_piece
-from coatsim.geometry.surface.boxes import TriangleBoxes
+from coatsim.geometry.surface.boxes import SmallTriangles, TriangleBoxes
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
@@ -227,7 +227,7 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
         v, f, parent = submesh(rv, rf, label == k)
         marching = Marching(v, f)
         border = marching.distance(source_vertices=np.flatnonzero(on_border[parent]))
-        pieces.append(Piece(v, f, normals[parent], border, marching=marching))
+        pieces.append(Piece(v, f, normals[parent], border, marching=marching, surface=SmallTriangles(v, f)))
     if not pieces:
         raise EmptyRegionOfInterest("every piece of the region is smaller than a spacing squared; "
                                     "use a smaller spacing_mm or a larger region", parameters=("spacing_mm", "region"))
@@ -239,7 +239,7 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
     band = o.edge_band_mm
     if o.pattern == "raster":
         return [p.with_field(p.vertices @ step, raster_levels(p.vertices, p.faces, p.normals, step, p.inside(band),
-                                                             s.spacing_mm)) for p in pieces]
+                                                             s.spacing_mm, p.surface)) for p in pieces]
     if o.pattern == "boundary":
         return [boundary_piece(p, s.spacing_mm, band) for p in pieces]
     points = (assign_points(pieces, o.start, s.spacing_mm) if isinstance(o.start, FromPoints)
@@ -300,8 +300,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
     gaps, covered = [np.zeros(0)], 0.0
     for k, p in enumerate(pieces):
-        mine = [t for t in traces if t.piece == k]
-        measured = measure(p.marching, p.vertices, p.faces, p.normals, mine, s.spacing_mm, p.vertex_areas_mm2())
+        measured = measure(p, [t for t in traces if t.piece == k], s.spacing_mm)
         gaps.append(measured.gaps_mm)
         covered += measured.covered_mm2
     clock.lap("measure")

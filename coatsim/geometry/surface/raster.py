@@ -4,7 +4,7 @@ The planes are the level sets of h = s . x for the step direction s (the planes'
 flat region facing the planes edge-on their step is the spacing; on a tilted or curved region
 the gap between two sections measured along the surface is larger than the step, so each plane
 is placed by measurement: the distance along the surface from the last pass (the arc through
-the nearest pass point, checked by fast marching, see distance.NearestOnCurves) is read on
+the nearest pass point, or fast marching where the arc does not hold, distance.NearestOnCurves) is read on
 candidate sections, and the next plane is the one whose section lies at most the spacing from
 it (false position on h). Points whose nearest point on the last pass is one of its open ends do not
 count (beyond a shorter pass's end the gap is a coverage question, not a spacing one).
@@ -22,10 +22,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Callable
 
 import numpy as np
 
 from coatsim.core.budgets import MAX_PLAN_PASSES, check_budget
+from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
 from coatsim.geometry.surface.distance import Marching, NearestOnCurves
 from coatsim.geometry.surface.topology import submesh
@@ -39,23 +41,23 @@ END_SLIVER_FRACTION = 0.1
 
 
 def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, step_direction: np.ndarray,
-                  inside: np.ndarray, spacing_mm: float) -> np.ndarray:
+                  inside: np.ndarray, spacing_mm: float, surface: SmallTriangles) -> np.ndarray:
     """Heights h = step_direction . x of the raster planes for one connected region piece with
-    unit vertex ``normals``; ``inside`` (n,) marks the vertices passes must cover (the region
-    without its edge band)."""
+    unit vertex ``normals`` (its triangles in ``surface``); ``inside`` (n,) marks the vertices
+    passes must cover (the region without its edge band)."""
     h = vertices @ step_direction
     if not inside.any():
         return np.zeros(0)
     low, high = float(h[inside].min()), float(h[inside].max())
     mesh = _Mesh(vertices, faces, normals, h, inside)
-    first = _end_level(mesh, low, +1, spacing_mm)
-    last = _end_level(mesh, high, -1, spacing_mm)
+    first = _end_level(mesh, low, +1, spacing_mm, surface)
+    last = _end_level(mesh, high, -1, spacing_mm, surface)
     if last <= first:
         return np.array([0.5 * (low + high)])
     levels = [first]
     while True:
         check_budget("raster passes", len(levels), MAX_PLAN_PASSES, "use a larger spacing_mm", ("spacing_mm",))
-        step = _next_level(mesh, levels[-1], spacing_mm)
+        step = _next_level(mesh, levels[-1], spacing_mm, surface)
         if step < last:
             levels.append(step)
             continue
@@ -91,16 +93,28 @@ class _Mesh:
         v, f, parent = submesh(self.vertices, self.faces, (high >= lo) & (low <= hi))
         return _Mesh(v, f, self.normals[parent], self.h[parent], self.inside[parent])
 
-    def section(self, level: float, values: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def section(self, level: float) -> tuple[np.ndarray, np.ndarray, Callable[[np.ndarray], np.ndarray]]:
         """Points of the section at ``level`` between inside vertices, their unit normals, and
-        ``values`` interpolated there."""
+        how to interpolate per-vertex values there."""
         edges = crossing_edges(self.faces, self.h, level)
         edges = edges[self.inside[edges].all(axis=1)] if len(edges) else edges
         if not len(edges):
-            return np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0)
+            return np.zeros((0, 3)), np.zeros((0, 3)), lambda values: np.zeros(0)
         points, t = edge_points(self.vertices, self.h, level, edges)
         n = self.normals[edges[:, 0]] * (1 - t)[:, None] + self.normals[edges[:, 1]] * t[:, None]
-        return points, n / np.linalg.norm(n, axis=1)[:, None], values[edges[:, 0]] * (1 - t) + values[edges[:, 1]] * t
+        return points, _unit(n), lambda values: values[edges[:, 0]] * (1 - t) + values[edges[:, 1]] * t
+
+
+class _Lazy:
+    """Fast-marching distance on a band, solved the first time it is needed."""
+
+    def __init__(self, band: _Mesh, **sources):
+        self.band, self.sources, self.values = band, sources, None
+
+    def __call__(self) -> np.ndarray:
+        if self.values is None:
+            self.values = Marching(self.band.vertices, self.band.faces).distance(**self.sources)
+        return self.values
 
 
 def _root(fn, lo: float, hi: float, tolerance: float) -> float:
@@ -127,38 +141,38 @@ def _root(fn, lo: float, hi: float, tolerance: float) -> float:
     return lo
 
 
-def _end_level(mesh: _Mesh, extreme: float, sign: int, spacing: float) -> float:
+def _end_level(mesh: _Mesh, extreme: float, sign: int, spacing: float, surface: SmallTriangles) -> float:
     """The plane half a spacing along the surface in from the region's lowest (sign +1) or
     highest (sign -1) inside point: the nearest point of its section to the extreme lies half
     a spacing away."""
     half = 0.5 * spacing
     band = mesh.band(*((extreme, extreme + half) if sign > 0 else (extreme - half, extreme)))
     at = np.flatnonzero(band.inside & (np.abs(band.h - extreme) <= 1e-9 * max(1.0, abs(extreme))))
-    marching = Marching(band.vertices, band.faces).distance(source_vertices=at)
+    marching = _Lazy(band, source_vertices=at)
     nearest = NearestOnCurves([(band.vertices[[k]], band.normals[[k]], True) for k in at])
 
     def short(offset: float) -> float:
-        points, normals, d = band.section(extreme + sign * offset, marching)
-        d = nearest.distance(points, normals, d, spacing)[0]
+        points, normals, lerp = band.section(extreme + sign * offset)
+        d = nearest.distance(points, normals, surface, lambda: lerp(marching()))[0]
         d = d[np.isfinite(d)]
         return float(d.min()) - half if len(d) else -math.inf
 
     return extreme + sign * _root(short, 0.0, half, BISECTION_FRACTION * spacing)
 
 
-def _next_level(mesh: _Mesh, level: float, spacing: float) -> float:
+def _next_level(mesh: _Mesh, level: float, spacing: float, surface: SmallTriangles) -> float:
     """The next plane after ``level``: its section lies at most ``spacing`` from the pass at
     ``level`` (beyond the region's top when nothing of it lies that far)."""
     band = mesh.band(level, level + spacing)
     passes = level_curves(band.vertices, band.faces, band.h, level)
     if not passes:
         return level + spacing
-    marching = Marching(band.vertices, band.faces).distance(curves=passes)
+    marching = _Lazy(band, curves=passes)
     nearest = NearestOnCurves([(c.points, _unit(c.sample(band.faces, band.normals)), c.closed) for c in passes])
 
     def excess(height: float) -> float:
-        points, normals, d = band.section(height, marching)
-        d, on_end = nearest.distance(points, normals, d, spacing)
+        points, normals, lerp = band.section(height)
+        d, on_end = nearest.distance(points, normals, surface, lambda: lerp(marching()))
         ok = np.isfinite(d)
         if not ok.any():
             return math.inf

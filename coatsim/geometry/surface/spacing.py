@@ -7,7 +7,7 @@ D = pi s sqrt(2 / ln(4 / r)). Other footprints use their own standard deviation 
 formula (an estimate).
 
 Measured: the gap at a point of a pass is the distance along the surface (distance.NearestOnCurves:
-the arc through the nearest point, checked by fast marching) to the nearest pass of a
+the arc through the nearest point, or fast marching where the arc does not hold) to the nearest pass of a
 neighbouring level (levels alternate between two sets, each measured from the other), skipping
 points whose nearest point on that pass is one of its open ends. Coverage is the share of the
 region's area (lumped at the vertices) within half a spacing of a pass.
@@ -21,8 +21,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.core.errors import InputError
-from coatsim.geometry.surface.distance import Marching, NearestOnCurves
+from coatsim.geometry.surface.distance import NearestOnCurves
 from coatsim.geometry.surface.passes import Trace
+from coatsim.geometry.surface.piece import Piece
 
 #: a vertex counts as covered up to this fraction beyond half a spacing (rounding, not method error)
 COVERAGE_SLACK = 1e-6
@@ -48,22 +49,35 @@ class Measured:
     covered_mm2: float
 
 
-def measure(marching: Marching, vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, traces: list[Trace],
-            spacing_mm: float, vertex_area_mm2: np.ndarray) -> Measured:
-    """Gaps and coverage of the passes ``traces`` on one region piece's mesh (unit vertex normals,
-    its fast-marching solver)."""
+def measure(piece: Piece, traces: list[Trace], spacing_mm: float) -> Measured:
+    """Gaps and coverage of the passes ``traces`` on one region piece."""
+    faces, normals = piece.faces, piece.normals
     groups = [[t.curve for t in traces if t.rank % 2 == p] for p in (0, 1)]
-    reach = [marching.distance(curves=g) for g in groups]
+    reach = [_Reach(piece, g) for g in groups]
     nearest = [NearestOnCurves([(c.points, _unit(c.sample(faces, normals)), c.closed) for c in g]) for g in groups]
     gaps = [np.zeros(0)]
     for p in (0, 1):
         for curve in groups[p]:
-            d, on_end = nearest[1 - p].distance(curve.points, _unit(curve.sample(faces, normals)),
-                                                curve.sample(faces, reach[1 - p]), spacing_mm)
+            d, on_end = nearest[1 - p].distance(curve.points, _unit(curve.sample(faces, normals)), piece.surface,
+                                                lambda: curve.sample(faces, reach[1 - p]()))
             gaps.append(d[np.isfinite(d) & ~on_end])
-    nearest_pass = np.minimum(*(n.distance(vertices, normals, m, spacing_mm)[0] for n, m in zip(nearest, reach)))
-    covered = nearest_pass <= 0.5 * spacing_mm * (1 + COVERAGE_SLACK)
-    return Measured(np.concatenate(gaps), float(vertex_area_mm2[covered].sum()))
+    half = 0.5 * spacing_mm * (1 + COVERAGE_SLACK)
+    nearest_pass = np.minimum(*(n.distance(piece.vertices, normals, piece.surface, r, within=half)[0]
+                                for n, r in zip(nearest, reach)))
+    covered = nearest_pass <= half
+    return Measured(np.concatenate(gaps), float(piece.vertex_areas_mm2()[covered].sum()))
+
+
+class _Reach:
+    """Fast-marching distance on a piece from curves, solved the first time it is needed."""
+
+    def __init__(self, piece: Piece, curves: list):
+        self.piece, self.curves, self.values = piece, curves, None
+
+    def __call__(self) -> np.ndarray:
+        if self.values is None:
+            self.values = self.piece.marching.distance(curves=self.curves)
+        return self.values
 
 
 def _unit(vectors: np.ndarray) -> np.ndarray:

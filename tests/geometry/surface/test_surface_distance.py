@@ -10,6 +10,7 @@ import potpourri3d as pp3d
 import pytest
 import trimesh
 
+from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import (
     NearestOnCurves,
@@ -125,7 +126,7 @@ def test_the_arc_is_exact_on_a_cylinder_and_a_sphere():
     assert arc_length(b - a, a / radius, b / radius)[0] == pytest.approx(radius * angle)
 
 
-def test_the_arc_is_checked_by_fast_marching_across_a_sharp_edge():
+def test_across_a_sharp_edge_fast_marching_replaces_the_arc():
     box = trimesh.creation.box((40.0, 40.0, 40.0))
     vertices, faces, _ = refined(np.asarray(box.vertices), np.asarray(box.faces), 1.0, "box", "")
     top = level_curves(vertices, faces, vertices[:, 0], 15.0)  # a loop round the box at x = 15
@@ -135,9 +136,14 @@ def test_the_arc_is_checked_by_fast_marching_across_a_sharp_edge():
     probe = np.array([[20.0, 0.0, 15.0]])  # on the end face x = 20, 5 mm in from the loop's edge
     marching = marching_distance(vertices, faces, curves=[curve])
     face_probe = np.argmin(np.linalg.norm(vertices - probe, axis=1))
-    d, _ = nearest.distance(vertices[[face_probe]], normals[[face_probe]], marching[[face_probe]], 10.0)
+    surface = SmallTriangles(vertices, faces)
+    d, _ = nearest.distance(vertices[[face_probe]], normals[[face_probe]], surface, lambda: marching[[face_probe]])
     # the way round the edge is 5 + 5 mm; the straight chord would say 7.1
     assert d[0] == pytest.approx(10.0, abs=0.5)
+    # on a face the arc stands (fast marching is not asked)
+    flat = np.argmin(np.linalg.norm(vertices - [15.0 + 4.0, 0.0, 20.0], axis=1))
+    d, _ = nearest.distance(vertices[[flat]], normals[[flat]], surface, lambda: 1 / 0)
+    assert d[0] == pytest.approx(vertices[flat, 0] - 15.0, abs=1e-6)
 
 
 def test_distance_levels():
