@@ -34,7 +34,7 @@ DOWN = np.diag([-1.0, 1.0, -1.0])
 
 def straight_metre(speed: float) -> ToolPath:
     def pose(y: float) -> Pose:
-        return Pose(np.array([700.0, y, 300.0]), DOWN)
+        return Pose(DOWN, np.array([700.0, y, 300.0]))
 
     s = MotionSettings(speed, 1.0, True, False)
     stop = MotionSettings(speed, 1.0, True, True)

@@ -95,11 +95,12 @@ def coat(spacing: float = 1.0) -> None:
 
 def _polygon(sides: int, radius: float = 80.0, speed: float = 200.0):
     """An exact-stop polygon program: a joint move to the start, then one LMOVE per side."""
-    from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
+    from coatsim.geometry.space.pose import Pose
+    from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, ToolPath
 
     down = np.diag([-1.0, 1.0, -1.0])
     a = np.linspace(0.0, 2 * math.pi, sides + 1)
-    poses = [Pose(np.array([700 + radius * math.cos(t), radius * math.sin(t), 300.0]), down) for t in a]
+    poses = [Pose(down, np.array([700 + radius * math.cos(t), radius * math.sin(t), 300.0])) for t in a]
     stop = MotionSettings(speed, 1.0, False, True)
     moves = [JointMove(None, poses[0], MotionSettings(1000.0, 10.0, True, True), False, 1)]
     moves += [LinearMove(p, q, stop, True, k + 2) for k, (p, q) in enumerate(zip(poses[:-1], poses[1:]))]

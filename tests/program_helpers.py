@@ -9,8 +9,8 @@ import numpy as np
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG
 from coatsim.path.arcs import sample_move
-from coatsim.path.oat import rotation_angle
-from coatsim.path.placement import PlacedArc, PlacedPath
+from coatsim.geometry.space.pose import rotation_angle
+from coatsim.path.placement import PlacedPath
 from coatsim.path.toolpath import ToolPath
 
 
@@ -38,7 +38,7 @@ def placed_pieces(path: PlacedPath) -> list:
     """The placed segments as the writer emits them (arcs split at the sweep limit)."""
     out = []
     for seg in path.segments:
-        out.extend(seg.split(math.radians(MAX_ARC_SWEEP_DEG)) if isinstance(seg, PlacedArc) else [seg])
+        out.extend(seg.split(math.radians(MAX_ARC_SWEEP_DEG)) if seg.is_arc else [seg])
     return out
 
 

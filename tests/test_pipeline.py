@@ -321,10 +321,12 @@ def test_a_users_program_with_a_defect_is_one_line(tmp_path):
                         "variants:\n  - {name: mine, program: bad.as}\n  - polysegment\n")
     result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
     assert result.code == 2 and result.err.count("\n") == 1
-    assert f"{scenario}:3: variant mine: {tmp_path / 'bad.as'}:3: pose 'nowhere' is not defined" in result.err
+    assert f"{scenario}:3: variant mine: {tmp_path / 'bad.as'}:3: LMOVE skipped: pose nowhere has no value" \
+        in result.err
     (tmp_path / "dry.as").write_text(".PROGRAM dry()\n  JMOVE a\n  LMOVE b\n.END\n.TRANS\na 700 0 300 0 180 0\n"
                                      "b 720 0 300 0 180 0\n.END\n")
     scenario.write_text(scenario.read_text().replace("bad.as", "dry.as"))
     result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
     assert result.code == 2 and result.err.count("\n") == 1
-    assert f"{scenario}:3: variant mine: dry: the gun is never on" in result.err
+    assert f"{scenario}:3: variant mine: {tmp_path / 'dry.as'}: the gun (output 1) is never on during a motion; " \
+        "it switches no output" in result.err

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Optional
 
 import typer
 
+from coatsim.cli.common import SET_HELP
 from coatsim.cli.flags import speaking_flags
 from coatsim.core import defaults
 
@@ -21,12 +22,13 @@ def check_program(
     gun: int = typer.Option(defaults.GUN_SIGNAL, "--gun", help="Gun output signal number."),
     main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
 ) -> None:
-    """Parse and interpret robot programs; report steps, poses, signals, sprayed path and problems;
-    exit 2 if the gun never opens."""
-    from coatsim.cli.common import input_states
-    from coatsim.core.errors import InputError
+    """Parse and interpret robot programs; report steps, poses, signals, sprayed path, the variables
+    no file gives (--set gives them) and problems. Reading is not spraying: a program that never
+    opens the gun is read (exit 0), and the outputs it switches are named (--gun picks one)."""
+    from coatsim.cli.common import input_states, variables
     from coatsim.path.check import check_program as check
     from coatsim.robot.cell import load_cell
     from coatsim.robot.kinematics import CellKinematics
@@ -35,11 +37,11 @@ def check_program(
     cell = load_cell(model)
     with speaking_flags(FLAGS):
         result = check(paths, gun_signal=gun, program=main, inputs=input_states(inputs) or None,
-                       kinematics=CellKinematics(cell), gun_tcp=(cell.gun_rotation, cell.gun_offset_mm))
+                       kinematics=CellKinematics(cell), gun_tcp=(cell.gun_rotation, cell.gun_offset_mm),
+                       variables=variables(settings))
         plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
-    typer.echo(check_summary(result))
-    if result.errors:
-        raise InputError(result.errors[0])
+    never = not result.toolpath.spray_moves
+    typer.echo(check_summary(result) + ("\nnote: --gun N picks the process signal" if never else ""))
 
 
 def check_summary(check: ProgramCheck) -> str:
@@ -53,5 +55,10 @@ def check_summary(check: ProgramCheck) -> str:
     lines += [f"sprayed: lines {r.first_line}-{r.last_line} of {r.source}, {r.moves} move{'' if r.moves == 1 else 's'}, {r.length_mm:.3f} mm"
               for r in check.spray_runs]
     lines += [f"warning: {w}" for w in check.warnings]
+    lines += [f"note: {n}" for n in check.notes]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
+    if check.unknowns or check.skipped:
+        lines.append(f"read with {len(check.unknowns)} unknown variable{'' if len(check.unknowns) == 1 else 's'} "
+                     f"and {len(check.skipped)} statement{'' if len(check.skipped) == 1 else 's'} skipped (see "
+                     "the warnings); give values as NAME=VALUE")
     return "\n".join(lines)

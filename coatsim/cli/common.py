@@ -1,4 +1,5 @@
-"""What several commands share: the tool acceleration in the flags' units, the inputs a cell sets."""
+"""What several commands share: the tool acceleration in the flags' units, the inputs a cell sets,
+the variables the controller keeps."""
 
 from __future__ import annotations
 
@@ -26,3 +27,18 @@ def input_states(text: Optional[str]) -> dict[int, bool]:
     from coatsim.languages.kawasaki_as.io_model import parse_inputs
 
     return parse_inputs(text, "--inputs")
+
+
+SET_HELP = ("A variable the files do not give (the controller keeps it), NAME=VALUE; repeatable: direction=8, "
+            "'$mode=auto', 'pick=TRANS(600,0,300,0,180,0)', '#park=#[0,0,35,0,55,0]'.")
+
+
+def variables(settings: Optional[list[str]]) -> dict[str, str]:
+    """--set NAME=VALUE values as {name: value text}."""
+    out: dict[str, str] = {}
+    for text in settings or []:
+        name, sep, value = text.partition("=")
+        if not sep or not name.strip():
+            fail(f"--set {text!r}: expected NAME=VALUE, as in direction=8 or 'pick=TRANS(600,0,300,0,180,0)'")
+        out[name.strip()] = value.strip()
+    return out

@@ -8,6 +8,7 @@ from typing import Optional
 
 import typer
 
+from coatsim.cli.common import SET_HELP
 from coatsim.cli.flags import fail, speaking_flags
 from coatsim.core import defaults
 
@@ -25,12 +26,13 @@ def convert(
     lines: Optional[str] = typer.Option(None, "--lines", help="FIRST-LAST: the moves of these source lines instead of the sprayed ones."),
     main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
     corner_deg: float = typer.Option(defaults.CORNER_DEG, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
     name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
 ) -> None:
     """Rewrite the process path of an existing program with arcs within a tolerance."""
-    from coatsim.cli.common import input_states
+    from coatsim.cli.common import input_states, variables
     from coatsim.core.fileio import write_bytes
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.path.convert import ConvertOptions, conversion_summary, convert_program
@@ -41,7 +43,7 @@ def convert(
         options = ConvertOptions(tolerance_mm=tol, gun_signal=gun, program=main, lines=_line_range(lines),
                                  standalone=standalone, corner_deg=corner_deg, name=name)
         result = convert_program(paths, options, inputs=input_states(inputs) or None,
-                                 kinematics=LazyKinematics(model))
+                                 kinematics=LazyKinematics(model), variables=variables(settings))
     if output is not None:
         write_bytes(output, result.data)  # the original's bytes: encoding and line ends kept
     else:

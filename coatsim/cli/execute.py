@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Mapping, Optional, Sequence
 
 import typer
 
+from coatsim.cli.common import SET_HELP
 from coatsim.cli.flags import speaking_flags
 from coatsim.core import defaults
 from coatsim.core.fileio import write_text
@@ -15,8 +16,7 @@ from coatsim.core.fileio import write_text
 if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
 
-FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs",
-         "speed_mm_s": "--speed"}
+FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs"}
 
 
 def execute(
@@ -27,16 +27,17 @@ def execute(
     step: float = typer.Option(defaults.STEP_MM, "--step-mm", help="Cartesian sampling step for IK, mm."),
     main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
+    settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
     if it cannot be executed or the simulated arm diverges."""
-    from coatsim.cli.common import input_states
+    from coatsim.cli.common import input_states, variables
 
     with speaking_flags(FLAGS):
-        result, files = execute_program(program, model, output, gun, step, main, input_states(inputs) or None,
-                                        force=force)
+        result, files = execute_program(program, model, output, gun, step, main, input_states(inputs),
+                                        variables(settings), force=force)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
@@ -52,12 +53,12 @@ def execute(
         typer.echo("timings: " + ", ".join(f"{k.removesuffix('_s')} {t:.2f} s" for k, t in result.wall.items()), err=True)
 
 
-def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path, gun_signal: int = 1,
-                    step_mm: float = 1.0, main: Optional[str] = None, inputs: Optional[Mapping[int, bool]] = None,
+def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path, gun_signal: int,
+                    step_mm: float, main: Optional[str], inputs: Mapping[int, bool], variables: Mapping[str, str],
                     force: bool = False) -> tuple[Execution, list[Path]]:
     """Read program files, run the main program (``main``, default the
     first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.core.outputs_guard)."""
+    see coatsim.core.outputs_guard); ``variables`` gives variables no file gives."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
     from coatsim.languages.registry import language_of
     from coatsim.path.language import ReadOptions
@@ -72,7 +73,8 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
     files = [out / name for name in names]
     check_distinct([*(("the program", p) for p in sources), ("--model", model)], [("output", f) for f in files])
     cell = load_cell(model)
-    options = ReadOptions(gun_signal=gun_signal, program=main, inputs=inputs or {}, kinematics=CellKinematics(cell))
+    options = ReadOptions(gun_signal=gun_signal, program=main, inputs=inputs, kinematics=CellKinematics(cell),
+                          variables=variables)
     toolpath = language_of(sources).read([Path(p) for p in sources], options)
     with output_folder(out, names, "coatsim execute", force):
         result = execute(toolpath, cell, step_mm)

@@ -79,13 +79,13 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     from coatsim.core.fileio import write_text
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
-    from coatsim.path.frames import Frame
+    from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.path.inputs import load_part_input
     from coatsim.path.part_program import build_part_program, part_centering_offset
     from coatsim.path.placement import Placement
 
     language = language or language_named(DEFAULT_LANGUAGE)
-    placement = Placement(frame=Frame.parse(frame), standoff_mm=standoff_mm, roll_deg=roll_deg,
+    placement = Placement(frame=parse_xyzoat(frame, "frame"), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
     check_distinct([("the input", None if spec.startswith("builtin:") else spec)], [("-o", output)])
     speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None

@@ -16,7 +16,7 @@ FLAGS = {"tolerance_mm": "--tol", "min_segment_mm": "--min-segment", "speed_mm_s
 
 
 def segment(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns, or x,y,z for a 3-D curve), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
     tol: float = typer.Option(defaults.TOLERANCE_MM, "--tol", help="Tolerance sigma: max two-sided deviation, mm."),
     method: str = typer.Option("optimal", "--method", help="optimal (guaranteed tolerance, few segments) | paper (literal RDP on θ)."),
     corner_deg: float = typer.Option(defaults.CORNER_DEG, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
@@ -68,10 +68,18 @@ def segment(
 def _segment_curve(input: str, tol: float, method: str, corner_deg: float, closed: str, theta_tol: Optional[float],
                    min_segment: Optional[float], speed: Optional[float], accel_mm_s2: Optional[float],
                    output: Optional[Path], plot: Optional[Path]) -> float:
-    """Fit one curve, write what was asked, print the summary; the fitter's seconds."""
+    """Fit one curve (a file of x,y,z columns: in space), write what was asked, print the
+    summary; the fitter's seconds."""
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
+    from coatsim.geometry.space.curve import SpaceCurve, read_any_curve
 
-    seg = segment_curve(load_curve(input, closed), tol, method=method, corner_deg=corner_deg,
+    curve = load_curve(input, closed) if input.startswith("builtin:") else read_any_curve(input, closed)
+    if isinstance(curve, SpaceCurve):
+        if method != "optimal" or theta_tol is not None or plot is not None:
+            fail(f"{curve.name}: a 3-D curve is fitted by the default method only (no --method paper, --theta-tol "
+                 "or --plot)")
+        return _segment_space(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, output)
+    seg = segment_curve(curve, tol, method=method, corner_deg=corner_deg,
                         theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
                         tool_accel_mm_s2=accel_mm_s2)
     if output is not None:
@@ -84,6 +92,21 @@ def _segment_curve(input: str, tol: float, method: str, corner_deg: float, close
     for path in (output, plot):
         if path is not None:
             typer.echo(f"wrote {path}")
+    return seg.seconds
+
+
+def _segment_space(curve, tol: float, corner_deg: float, min_segment: Optional[float], speed: Optional[float],
+                   accel_mm_s2: Optional[float], output: Optional[Path]) -> float:
+    """Fit a 3-D curve as a G1 chain of 3-D lines and arcs (polysegment/2); the fitter's seconds."""
+    from coatsim.geometry.space.polysegment_json import write_chain_json
+    from coatsim.geometry.space.segment import segment_space_curve
+
+    seg = segment_space_curve(curve, tol, corner_deg, min_segment, speed, accel_mm_s2)
+    if output is not None:
+        write_chain_json(output, seg.chain, seg.tolerance_mm, seg.stats())
+    typer.echo(seg.summary())
+    if output is not None:
+        typer.echo(f"wrote {output}")
     return seg.seconds
 
 

@@ -27,6 +27,9 @@ MAX_MESH_VERTICES = 2_000_000
 #: Integration sub-steps of the coating stage (sprayed path / footprint sub-step, sigma/2 by
 #: default); ~0.2 kB each before the deposition kernel runs over them.
 MAX_SPRAY_SUBSTEPS = 2_000_000
+#: Memory of the coating stage's ray caster for shadows: Embree's scene (~100 bytes per
+#: triangle with our float32 copies) and one batch of rays, estimated before it is built.
+MAX_SHADOW_BYTES = 1_500_000_000
 #: Points of an input curve (files and built-in curves).
 MAX_CURVE_POINTS = 2_000_000
 #: Size of a curve text file (CSV/TXT): 64 bytes per point at the point budget.
@@ -50,7 +53,7 @@ MAX_PLAN_PASSES = 20_000
 
 def check_budget(what: str, needed: float, budget: int, fix: str, parameters: tuple[str, ...] = ()) -> None:
     """Raise an InputError when ``needed`` (a count: any int, or a float that may be inf or
-    nan) exceeds ``budget``; ``parameters`` are those the message names (CoatsimError)."""
+    nan) exceeds ``budget``; ``parameters`` those the message names (see CoatsimError)."""
     if not needed <= budget:
         try:
             amount = f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"

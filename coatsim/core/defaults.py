@@ -32,6 +32,12 @@ FOOTPRINT = "gaussian:sigma=5"
 FLOW_MM3_S = 40.0
 #: Cartesian sampling step of the inverse kinematics along a path, mm.
 STEP_MM = 1.0
+#: Deposition efficiency by spray angle (coatsim.spray.efficiency): none, every particle that lands sticks.
+EFFICIENCY = "none"
+#: Shadows (coatsim.spray.visibility): auto, ray-cast where the part can shadow itself.
+SHADOWS = "auto"
+#: The specification band: thickness within this many per cent of the target.
+TOLERANCE_PCT = 10.0
 #: Passes on a 3-D part (coatsim plan): the pattern and spraying order; the pass spacing in standard
 #: deviations of the footprint (overlap ripple 2.9 %); the lead-in and lead-out past the region's
 #: edge in standard deviations (the footprint clears the edge); faces within this angle of the

@@ -25,11 +25,12 @@ class CoatsimError(Exception):
         self.parameters = parameters
 
     def reworded(self, words: Mapping[str, str]) -> CoatsimError:
-        """The same error with each of its parameters that ``words`` names said that way."""
+        """The same error with each of its parameters that ``words`` names said that way (where
+        the message first names it)."""
         text = str(self)
         for name in self.parameters:
             if name in words:
-                text = re.sub(rf"(?<![\w.-]){re.escape(name)}(?![\w])", words[name], text)
+                text = re.sub(rf"(?<![\w.-]){re.escape(name)}(?![\w])", words[name], text, count=1)
         new = copy.copy(self)
         new.args = (text,)
         return new

@@ -1,24 +1,27 @@
 """``coatsim check-program``: parse and interpret AS files and report what the program does.
 
-A program that does not parse, or moves to a pose it never defines, raises InputError
-(exit 2); one the twin cannot run raises ExecutionError (exit 3). Anything legal but suspicious
-is listed in ``problems`` (the ones that make the program useless for coating, the gun never
-opening, also in ``errors``); what the interpreter does not simulate in ``warnings``. Every
-statement that switches outputs is listed with its line, and every stretch the gun sprays with
-its lines and length.
+A program that does not parse raises InputError (exit 2); one the twin cannot run raises
+ExecutionError (exit 3). Reading is not spraying: a program that never opens the gun is read and
+reported (``notes`` names the outputs it does switch), and what it reads that no file gives (a
+variable of the controller's memory) is an unknown, named with its first line in ``unknowns``;
+a statement that cannot run without a value is skipped and listed in ``skipped``. Anything legal
+but suspicious is listed in ``problems``; what the interpreter does not simulate in
+``warnings``. Every statement that switches outputs is listed with its line, and every stretch
+the gun sprays with its lines and length.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterator, Mapping, Optional
+from typing import Iterator, Mapping, Optional, Union
 
 import numpy as np
 
 from coatsim.core.errors import ExecutionError
 from coatsim.languages.kawasaki_as.files import parse_files, Paths
-from coatsim.path.arcs import circle_through, move_length
+from coatsim.geometry.space.primitives import arc_through
+from coatsim.path.arcs import move_length
 from coatsim.languages.kawasaki_as import ast, interpret_run
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH
 from coatsim.languages.kawasaki_as.printer import expr_text
@@ -43,7 +46,9 @@ class SprayRun:
 
 @dataclass(frozen=True, eq=False)
 class ProgramCheck:
-    """Counts and lengths of one program; lengths in mm (joint moves as chords)."""
+    """Counts and lengths of one program; lengths in mm (joint moves as chords); ``unknowns``
+    the variables read that no file gives (name and first line), ``skipped`` the statements not
+    run for want of a value, ``outputs`` the outputs the program switches."""
 
     source: str
     program: str
@@ -60,7 +65,10 @@ class ProgramCheck:
     spray_runs: tuple[SprayRun, ...]
     warnings: tuple[str, ...]
     toolpath: ToolPath
-    errors: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+    unknowns: tuple[str, ...] = ()
+    skipped: tuple[str, ...] = ()
+    outputs: tuple[int, ...] = ()
 
 
 def walk(body: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
@@ -140,12 +148,13 @@ def spray_runs(toolpath: ToolPath, sources: list[str]) -> tuple[SprayRun, ...]:
 
 def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,
                   inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
-                  gun_tcp: tuple[np.ndarray, np.ndarray] | None = None) -> ProgramCheck:
+                  gun_tcp: tuple[np.ndarray, np.ndarray] | None = None,
+                  variables: Optional[Mapping[str, Union[str, float]]] = None) -> ProgramCheck:
     """Parse, interpret and inspect the main program of AS files loaded together; ``gun_tcp``
     (rotation, offset mm of the physical gun's TCP in the flange frame) makes every TOOL that
-    differs from it a problem."""
+    differs from it a problem; ``variables`` gives variables values no file gives."""
     files = parse_files(paths)
-    run = interpret_run(files, gun_signal, program, inputs=inputs, kinematics=kinematics)
+    run = interpret_run(files, gun_signal, program, inputs=inputs, kinematics=kinematics, variables=variables)
     toolpath = run.toolpath
     main = run.programs[toolpath.name.lower()]
     if not toolpath.moves:
@@ -185,16 +194,15 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         problems.append(f"sections not read (controller data): {', '.join(sections)}")
     for move, (name, _, _) in zip(toolpath.moves, run.move_origins):
         if isinstance(move, CircularMove):
-            sweep = circle_through(move.start.position, move.via.position, move.end.position).sweep
+            sweep = arc_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm).sweep
             if sweep >= math.pi:
                 problems.append(f"{run.programs[name.lower()].source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} deg; keep one C1MOVE/C2MOVE "
                                 "pair below 180 deg")
     if gun_tcp is not None:
         problems += [f"{main.source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]
-    errors: list[str] = []
+    notes: list[str] = []
     if not toolpath.spray_moves:
-        errors.append(f"{files[0].source}: the gun (output {gun_signal}) is never on during a motion")
-        problems.append(errors[-1])
+        notes.append(gun_never_on(files[0].source, gun_signal, run.outputs))
     elif run.gun_on_at_end:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
     cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
@@ -214,5 +222,15 @@ def check_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = No
         spray_runs=spray_runs(toolpath, [run.programs[name.lower()].source for name, _, _ in run.move_origins]),
         warnings=toolpath.warnings,
         toolpath=toolpath,
-        errors=tuple(errors),
+        notes=tuple(notes),
+        unknowns=tuple(u.note() for u in run.unknowns),
+        skipped=run.skipped,
+        outputs=run.outputs,
     )
+
+
+def gun_never_on(source: str, gun_signal: int, outputs: tuple[int, ...]) -> str:
+    """What to say of a program that never sprays: the outputs it switches instead."""
+    switched = f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}" if outputs \
+        else "it switches no output"
+    return f"{source}: the gun (output {gun_signal}) is never on during a motion; {switched}"

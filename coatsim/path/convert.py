@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping, Optional, Sequence
+from typing import Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -28,12 +28,13 @@ from coatsim.languages.kawasaki_as.names import check_name
 from coatsim.languages.kawasaki_as.parser import parse_as_bytes
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, write_as
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.frames import DEFAULT_TOOL, Frame
-from coatsim.path.placement import PlacedArc, PlacedLine, PlacedPath
+from coatsim.path.frames import DEFAULT_TOOL
+from coatsim.path.placement import PlacedMove, PlacedPath, placed_arc, placed_line
 from coatsim.path.process import ProcessInfo
 from coatsim.path.process_path import ProcessPath, PlaneFrame, dense_points, moves_in_lines, path_distance, \
     path_of, planar_frame, rotation_along, spray_runs
-from coatsim.path.toolpath import Kinematics, Pose
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import Kinematics
 
 PLANE_SHARE = 0.5  # the part of the tolerance a path may leave its plane by
 
@@ -115,8 +116,11 @@ def _candidates(run: Run, options: ConvertOptions) -> list[tuple[int, ...]]:
         return [moves]
     runs = [r for r in spray_runs(run.toolpath) if len(r) >= 2]
     if not runs:
+        switched = f"it switches output{'s' if len(run.outputs) > 1 else ''} {', '.join(map(str, run.outputs))}" \
+            if run.outputs else "it switches no output"
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
-                         "consecutive LMOVE/C1MOVE/C2MOVE moves; name the moves with --lines FIRST-LAST")
+                         f"consecutive LMOVE/C1MOVE/C2MOVE moves ({switched}: is the process signal one of "
+                         "them?); name the moves with --lines FIRST-LAST")
     return runs
 
 
@@ -161,15 +165,15 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
     ends = np.array([s.start for s in poly.segments] + [poly.end], dtype=float)
     space = plane.to_space(ends)
     rotations = rotation_along(path, space)
-    poses = [Pose(p, r) for p, r in zip(space, rotations)]
+    poses = [Pose(r, p) for p, r in zip(space, rotations)]
     segments = []
     for k, s in enumerate(poly.segments):
         if isinstance(s, Line):
-            segments.append(PlacedLine(poses[k], poses[k + 1], "curve"))
+            segments.append(placed_line(poses[k], poses[k + 1]))
         else:
             normal = plane.normal if s.sweep > 0 else -plane.normal
-            segments.append(PlacedArc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal,
-                                      abs(s.sweep), False))
+            arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
+            segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
     return Fitted(path, plane, tuple(segments), poly.n_arcs, poly.n_lines, seg.max_deviation_mm,
                   _line_span(run, moves), tuple(notes))
 
@@ -177,7 +181,7 @@ def fit_path(run: Run, moves: tuple[int, ...], options: ConvertOptions) -> Fitte
 def _settings(run: Run, f: Fitted) -> tuple[float, float, bool]:
     """Speed (of the longest move), accuracy and CP a path was sprayed with."""
     moves = [run.toolpath.moves[i] for i in f.path.moves]
-    lengths = np.array([float(np.linalg.norm(m.end.position - m.start.position)) for m in moves])
+    lengths = np.array([float(np.linalg.norm(m.end.translation_mm - m.start.translation_mm)) for m in moves])
     first = moves[0].settings
     return float(moves[int(np.argmax(lengths))].settings.speed_mm_s), float(first.accuracy_mm), first.cp
 
@@ -191,7 +195,7 @@ def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
                          "--standalone writes them with one: choose a path with --lines FIRST-LAST")
     speed, accuracy, cp = settings.pop()
     tool = run.toolpath.tool
-    tool_frame = Frame.from_matrix(tool.offset_mm, tool.rotation) if tool is not None else DEFAULT_TOOL
+    tool_frame = Pose(tool.rotation, tool.offset_mm) if tool is not None else DEFAULT_TOOL
     paths = tuple(PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
                   for f in fitted)
     name = options.name or run.toolpath.name[:15]
@@ -212,14 +216,18 @@ def _standalone(run: Run, fitted: list[Fitted], options: ConvertOptions) -> str:
 
 
 def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[Mapping[int, bool]] = None,
-                    kinematics: Optional[Kinematics] = None) -> Conversion:
+                    kinematics: Optional[Kinematics] = None,
+                    variables: Optional[Mapping[str, Union[str, float]]] = None) -> Conversion:
     """Convert the process path(s) of AS files loaded together; InputError on what cannot be
-    converted (not planar, not editable in place), with the reason."""
+    converted (not planar, not editable in place, a statement skipped for want of a value that
+    ``variables`` does not give), with the reason."""
     from coatsim.path.convert_edit import edit_in_place
 
     items = [paths] if isinstance(paths, (str, Path)) else list(paths)
     files = parse_files(items)
-    run = interpret_run(files, options.gun_signal, options.program, inputs=inputs, kinematics=kinematics)
+    run = interpret_run(files, options.gun_signal, options.program, inputs=inputs, kinematics=kinematics,
+                        variables=variables)
+    run.require_complete()
     fitted = [fit_path(run, c, options) for c in _candidates(run, options)]
     notes = [n for f in fitted for n in f.notes]
     if options.standalone:
@@ -236,7 +244,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, inputs: Optional[M
         new_files = tuple(parse_as_bytes(data, f.source) if f.source == replaces else f for f in files)
     try:
         new_run = interpret_run(new_files, options.gun_signal, None if options.standalone else options.program,
-                                inputs=inputs, kinematics=kinematics)
+                                inputs=inputs, kinematics=kinematics, variables=variables)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
     reports = _verify(run, new_run, fitted, counts, ranges, options.tolerance_mm / 20.0,
@@ -273,7 +281,7 @@ def _is_utf8(data: bytes) -> bool:
 def _same(a, b) -> bool:
     end_a = a.target if a.kind == "joint" else a.end
     end_b = b.target if b.kind == "joint" else b.end
-    return a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.position, end_b.position, atol=1e-6)
+    return a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.translation_mm, end_b.translation_mm, atol=1e-6)
 
 
 def _verify(run: Run, new_run: Run, fitted: list[Fitted], counts: Optional[list[int]], ranges: list[tuple[int, int]],

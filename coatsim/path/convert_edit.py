@@ -19,9 +19,8 @@ from coatsim.languages.kawasaki_as.edit import edit_lines, indentation
 from coatsim.languages.kawasaki_as.interpreter import Run
 from coatsim.languages.kawasaki_as.names import sanitize_comment
 from coatsim.languages.kawasaki_as.writer import fmt, fmt_short, path_moves, pose_values
-from coatsim.languages.kawasaki_as.values import Frame
 from coatsim.path.check import used_names, walk
-from coatsim.path.toolpath import Pose
+from coatsim.geometry.space.pose import Pose
 
 _HINT = "; use --standalone"
 
@@ -148,11 +147,11 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         inverse = base.inverse()
 
         def name(pose: Pose, _k=k) -> str:
-            user = inverse * Frame.from_pose(pose)
+            user = inverse @ pose
             label = f"{prefix}{_k}_{len(trans):04d}"
             if len(label) > 15:
                 raise InputError(f"too many new poses for 15-character names{_HINT}")
-            trans.append(" ".join((label, *pose_values(user.pose()), *extra)))
+            trans.append(" ".join((label, *pose_values(user), *extra)))
             return label
 
         statements = path_moves(f.segments, name)

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal, Mapping, Optional, Protocol, Sequence
+from typing import Literal, Mapping, Optional, Protocol, Sequence, Union
 
+from coatsim.core import defaults
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.toolpath import Kinematics, ToolPath
 
@@ -43,12 +44,17 @@ class Capabilities:
 class ReadOptions:
     """How to read program files: the process output (``gun_signal``), the main program
     (None: the language's rule, e.g. the first one loaded), the state of inputs a program waits
-    for, and the cell's kinematics (for poses given in joints)."""
+    for, the cell's kinematics (for poses given in joints), values of variables no file gives
+    (the controller keeps them), and whether the reading needs the path the gun sprays
+    (``needs_spray``: a program that never opens the gun is then refused, naming the outputs it
+    does switch; reading is not spraying otherwise)."""
 
-    gun_signal: int = 1
+    gun_signal: int = defaults.GUN_SIGNAL
     program: Optional[str] = None
     inputs: Mapping[int, bool] = field(default_factory=dict)
     kinematics: Optional[Kinematics] = None
+    variables: Mapping[str, Union[str, float]] = field(default_factory=dict)
+    needs_spray: bool = False
 
 
 class Language(Protocol):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.pose import Pose
 from coatsim.path.placement import PlacedPath
 from coatsim.path.process import ProcessInfo
 
@@ -30,7 +30,7 @@ class ProgramPlan:
     exact_stop: bool
     approach_mm: float
     gun_signal: int
-    tool: Frame
+    tool: Pose
     process: ProcessInfo = ProcessInfo()
     comments: tuple[str, ...] = ()
 

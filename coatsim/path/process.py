@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from coatsim.core.errors import InputError
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.pose import Pose
 from coatsim.path.speed_limits import SpeedLimit
 
 
@@ -49,7 +49,7 @@ class ProcessInfo:
     speed_mm_s: float | None = None
     accuracy_mm: float | None = None
     gun_signal: int | None = None
-    frame: Frame | None = None
+    frame: Pose | None = None
     n_segments: int | None = None
     n_lines: int | None = None
     n_arcs: int | None = None

@@ -63,10 +63,10 @@ def _move_points(move: Move, spacing: float) -> tuple[np.ndarray, np.ndarray]:
         n = max(8, int(math.ceil(move_length(move) * _ARC_SAMPLES_PER_MM / max(spacing, 1e-3))))
         u = np.linspace(0.0, 1.0, n + 1)[1:]
         pts = sample_move(move, u)[0]
-        pts[-1] = move.end.position
+        pts[-1] = move.end.translation_mm
     else:
         u = np.array([1.0])
-        pts = np.asarray(move.end.position, dtype=float)[None]
+        pts = np.asarray(move.end.translation_mm, dtype=float)[None]
     rot = Slerp([0.0, 1.0], Rotation.from_matrix([move.start.rotation, move.end.rotation]))(u).as_matrix()
     return pts, rot
 
@@ -75,7 +75,7 @@ def path_of(run: Run, moves: tuple[int, ...], spacing_mm: float) -> ProcessPath:
     """The geometry of consecutive Cartesian moves."""
     tp = run.toolpath.moves
     first = tp[moves[0]]
-    pts, rots = [np.asarray(first.start.position, float)[None]], [np.asarray(first.start.rotation)[None]]
+    pts, rots = [np.asarray(first.start.translation_mm, float)[None]], [np.asarray(first.start.rotation)[None]]
     for i in moves:
         p, r = _move_points(tp[i], spacing_mm)
         pts.append(p)
@@ -185,7 +185,7 @@ def path_distance(a: np.ndarray, b: np.ndarray) -> float:
 
 def dense_points(moves, step_mm: float) -> np.ndarray:
     """Points along Cartesian moves at most ``step_mm`` apart (every move end included)."""
-    out = [np.asarray(moves[0].start.position, dtype=float)[None]]
+    out = [np.asarray(moves[0].start.translation_mm, dtype=float)[None]]
     for m in moves:
         n = max(1, int(math.ceil(move_length(m) / step_mm)))
         out.append(sample_move(m, np.linspace(0.0, 1.0, n + 1)[1:])[0])

@@ -10,7 +10,8 @@ import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.tool_frames import gun_in_tcp
-from coatsim.path.toolpath import Pose, ToolFrame
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import ToolFrame
 
 
 class CellKinematics:
@@ -34,10 +35,10 @@ class CellKinematics:
                                  f"{np.degrees(cell.q_min[j]):.1f}..{np.degrees(cell.q_max[j]):.1f} deg")
         position, rotation = cell.forward(self._data, q)
         if tool is None:
-            return Pose(position, rotation)
+            return Pose(rotation, position)
         m_rotation, m_offset = gun_in_tcp(tool, cell.gun_rotation, cell.gun_offset_mm)
         tcp_rotation = rotation @ m_rotation.T
-        return Pose(position - tcp_rotation @ m_offset, tcp_rotation)
+        return Pose(tcp_rotation, position - tcp_rotation @ m_offset)
 
     def home(self, number: int) -> np.ndarray:
         import mujoco

@@ -25,9 +25,10 @@ import numpy as np
 
 from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, ToolPath
 from coatsim.robot.ik_batch import row_norms
-from coatsim.robot.primitives3d import Primitive, arc_through, line
+from coatsim.geometry.space.primitives import DegenerateArc, Line3, Segment3, arc_through
 
 TANGENT_TOL_RAD = math.radians(0.5)
 # A junction turning back by more than this is a reversal: the tool stops there (no blend can
@@ -56,7 +57,7 @@ class CartesianPiece:
     move: np.ndarray
     spray: np.ndarray
     ref_s: np.ndarray
-    reference: tuple[Primitive, ...]
+    reference: tuple[Segment3, ...]
     reference_moves: tuple[int, ...]
 
     @property
@@ -85,7 +86,7 @@ class _Span:
     """One Cartesian move resolved to a primitive with its end orientations."""
 
     index: int
-    prim: Primitive
+    prim: Segment3
     r0: np.ndarray
     r1: np.ndarray
     speed: float
@@ -105,17 +106,18 @@ def step_label(toolpath: ToolPath, index: int | None) -> str:
 
 def _span(toolpath: ToolPath, index: int) -> _Span:
     move = toolpath.moves[index]
-    a = np.asarray(move.start.position, float)
-    b = np.asarray(move.end.position, float)
+    a = np.asarray(move.start.translation_mm, float)
+    b = np.asarray(move.end.translation_mm, float)
     if isinstance(move, CircularMove):
-        prim = arc_through(a, np.asarray(move.via.position, float), b)
-        if prim is None:
+        try:
+            prim = arc_through(a, np.asarray(move.via.translation_mm, float), b)
+        except DegenerateArc:
             raise ExecutionError(
                 f"{step_label(toolpath, index)}: start, via and end points are collinear or coincide, "
                 "so they define no circle; split a full circle into two C1MOVE/C2MOVE pairs"
-            )
+            ) from None
     else:
-        prim = line(a, b)
+        prim = Line3(a, b)
     s = move.settings
     if not s.speed_mm_s > 0:
         raise ExecutionError(f"{step_label(toolpath, index)}: programmed speed must be positive, got {s.speed_mm_s}")
@@ -183,7 +185,7 @@ _DENSE_W = np.linspace(0.0, 1.0, 257)  # the parameters where a blend's arc leng
 _DENSE_BASIS = _bezier_basis(_DENSE_W, 0)
 
 
-def _heading_change(a: Primitive, b: Primitive) -> float:
+def _heading_change(a: Segment3, b: Segment3) -> float:
     ta, tb = a.tangents(np.array([a.length]))[0], b.tangents(np.array([0.0]))[0]
     return float(math.acos(np.clip(ta @ tb, -1.0, 1.0)))
 
@@ -307,7 +309,7 @@ def min_motion_time_s(toolpath: ToolPath, pieces: tuple[Piece, ...]) -> float:
     total, here = sum(d.seconds for d in toolpath.dwells), None
     for piece in pieces:
         if isinstance(piece, JointPiece):
-            target = np.asarray(piece.target.position, float)
+            target = np.asarray(piece.target.translation_mm, float)
             distance = 0.0 if here is None else float(np.linalg.norm(target - here))
             total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
             here = target

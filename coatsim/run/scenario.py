@@ -25,6 +25,7 @@ from coatsim.geometry.builtin_curves import BUILTINS
 from coatsim.geometry.cad.drawing import is_drawing
 from coatsim.path.build import VARIANTS
 from coatsim.report.catalogue import METRICS
+from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.core.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
 
@@ -149,6 +150,8 @@ class GunSpec(_Strict):
     signal: Annotated[int, Field(ge=1, le=defaults.MAX_SIGNAL)] = defaults.GUN_SIGNAL
     roll_deg: float = 0.0
     follow_tangent: bool = False
+    efficiency: str = Field(defaults.EFFICIENCY, description="deposition efficiency by spray angle: none, angle (1 down to 60 deg, "
+                            "the documented curve below), angle:DEG=DE,..., table:FILE.csv or cosine:n=N")
 
     @field_validator("footprint")
     @classmethod
@@ -156,6 +159,16 @@ class GunSpec(_Strict):
         if not spec.strip().lower().startswith("table:"):
             try:
                 parse_footprint_spec(spec)
+            except InputError as exc:
+                raise ValueError(str(exc)) from None
+        return spec
+
+    @field_validator("efficiency")
+    @classmethod
+    def _efficiency(cls, spec: str) -> str:
+        if not spec.strip().lower().startswith("table:"):
+            try:
+                parse_efficiency_spec(spec)
             except InputError as exc:
                 raise ValueError(str(exc)) from None
         return spec
@@ -193,13 +206,17 @@ class FastSpec(_Strict):
 class ProgramVariantSpec(_Strict):
     """A program of the user's own run as a variant beside coatsim's: its AS file(s) relative
     to the scenario (data files such as poses after the program), the main program (default:
-    the first), and the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off)."""
+    the first), the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off), and
+    the variables no file gives (the controller keeps them): ``{direction: 8, $mode: auto,
+    pick: "TRANS(600,0,300,0,180,0)"}`` (a number, a string's text, or an AS expression)."""
 
     name: VariantLabel
     program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
     main: Optional[str] = None
     inputs: list[Annotated[int, Field(ge=-defaults.MAX_SIGNAL, le=defaults.MAX_SIGNAL)]] = Field(
         default_factory=list, description="input signals the cell sets: n on, -n off")
+    variables: dict[str, Union[float, str]] = Field(
+        default_factory=dict, description="variables the files do not give: NAME: number, text or AS expression")
 
     @field_validator("program", mode="before")
     @classmethod

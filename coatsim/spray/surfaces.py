@@ -287,8 +287,11 @@ def border_distance(surface: Surface, spacing: float | None = None, within_mm: f
     # within the band go to the fine samples.
     cell = max(within_mm / 16, step)
     _, keep = np.unique(np.floor(samples / cell).astype(np.int64), axis=0, return_index=True)
-    coarse = cKDTree(samples[np.sort(keep)]).query(surface.vertices)[0]
-    near = np.flatnonzero(coarse - (cell * math.sqrt(3) + step / 2) < bound)
+    reach = cell * math.sqrt(3) + step / 2
+    # bounded too, so a vertex far inside stops searching early; any vertex it leaves at inf is
+    # beyond bound + reach, hence not near either way
+    coarse = cKDTree(samples[np.sort(keep)]).query(surface.vertices, distance_upper_bound=(bound + reach) * (1 + 1e-9) + 1e-9)[0]
+    near = np.flatnonzero(coarse - reach < bound)
     distance = np.full(surface.n_vertices, np.inf)
     distance[near] = cKDTree(samples).query(surface.vertices[near], distance_upper_bound=bound)[0]
     return distance

@@ -277,7 +277,7 @@ def test_standalone_sprays_every_pass_of_a_loop(tmp_path, kin):
     out = tmp_path / "arcs.as"
     out.write_bytes(result.data)
     tp = read_toolpath(out)
-    runs = [m.end.position[2] for m in tp.spray_moves]
+    runs = [m.end.translation_mm[2] for m in tp.spray_moves]
     assert sorted({round(z) for z in runs}) == [300, 310] and result.text.count("SIGNAL 1 ") == 2
 
 

@@ -19,9 +19,8 @@ from coatsim.geometry.surface.piece import Piece
 def boundary_piece(piece: Piece, spacing_mm: float, band_mm: float) -> Piece:
     """The piece with its border distance as the field and the levels of its loops."""
     if not piece.on_border.any():
-        raise InputError("boundary passes: a piece of the region is closed (it has no border); "
-                         "choose a region with a border or the raster or geodesic pattern",
-                         parameters=("region", "pattern"))
+        raise InputError("boundary passes need a region with a border: a piece of this one is closed; choose "
+                         "another or the raster or geodesic pattern", parameters=("region", "pattern"))
     inside = piece.inside(band_mm)
     if not inside.any():
         return piece.with_field(piece.border_mm, np.zeros(0))

@@ -54,8 +54,8 @@ def geodesic_piece(piece: Piece, start: Start, spacing_mm: float, band_mm: float
     if isinstance(start, FromBoundary):
         sources = np.flatnonzero(piece.on_border)
         if not len(sources):
-            raise InputError("geodesic passes from the border: a piece of the region is closed (it has no border to "
-                             "start from); give a plane or points as the start", parameters=("start",))
+            raise InputError("geodesic passes from the border need a border: a piece of the region is closed; give a "
+                             "plane or points as the start", parameters=("start",))
         distance = heat_distance(piece.vertices, piece.faces, sources)
         return _levelled(piece, distance, band_mm + 0.5 * spacing_mm, spacing_mm, band_mm)
     if isinstance(start, FromPlane):

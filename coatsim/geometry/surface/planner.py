@@ -181,7 +181,7 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     both = mask | smoothing_ring(v, f, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
     sv, sf, _ = submesh(v, f, both)
     sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
-                             "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm", "region"))
+                             "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm"))
     normals = smooth_normals(sv, sf, s.smoothing_mm)
     rv, rf, parent = submesh(sv, sf, inside.astype(bool))
     # from here on the region is manifold: a bow-tie vertex or a non-manifold edge is split

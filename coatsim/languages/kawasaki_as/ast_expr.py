@@ -20,10 +20,12 @@ class Str:
 
 @dataclass(frozen=True)
 class Name:
-    """A variable, ``index`` holding the expressions of ``name[i, j]``."""
+    """A variable, ``index`` holding the expressions of ``name[i, j]``; ``whole`` for an entire
+    array written with empty indices (``a[]``, ``a[,]``), as a CALL argument passes one."""
 
     name: str
     index: tuple["Expr", ...] = ()
+    whole: bool = False
 
     @property
     def base(self) -> str:
@@ -62,6 +64,15 @@ class Binary:
 
 
 @dataclass(frozen=True)
+class Chain:
+    """Three or more operands joined by left-associative operators of one precedence
+    (``a + b - c``, ``x * y / z``): kept flat, so that a long sum is no deep tree."""
+
+    first: "Expr"
+    rest: tuple[tuple[str, "Expr"], ...]
+
+
+@dataclass(frozen=True)
 class Call:
     """A built-in function (upper-case ``name``, prefix kept: ``$MID``, ``#HERE``); an
     argument is None where it is left empty (``TRANS(,,50)``)."""
@@ -92,4 +103,4 @@ class Format:
     spec: str
 
 
-Expr = Union[Num, Str, Name, Ref, Unary, Binary, Call, Shift, JointLiteral, Format]
+Expr = Union[Num, Str, Name, Ref, Unary, Binary, Chain, Call, Shift, JointLiteral, Format]

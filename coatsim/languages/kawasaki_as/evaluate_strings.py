@@ -5,12 +5,13 @@ VAL's reading of a number at the start of a string."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Optional
+from typing import Optional
 
 from coatsim.languages.kawasaki_as import ast
+from coatsim.languages.kawasaki_as.machine import Evaluation
 
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.evaluate import Evaluator
+# $-functions of the index the twin does not compute (clock, errors, system data): "".
+_NOT_SIMULATED = {"$DATE", "$TIME", "$ERROR", "$ERRORS", "$ERRLOG", "$SYSDATA"}
 
 
 def val(text: str) -> float:
@@ -26,7 +27,7 @@ def val(text: str) -> float:
     return best if math.isfinite(best) else 0.0
 
 
-def string_call(ev: Evaluator, e: ast.Call) -> str:
+def string_call(ev: Evaluation, e: ast.Call) -> str:
     """The value of a $-function call."""
     name = e.name
     if name == "$MID":
@@ -51,13 +52,13 @@ def string_call(ev: Evaluator, e: ast.Call) -> str:
         return encode(ev, e.args)
     if name == "$DECODE":
         return decode(ev, e)
-    if name in ("$DATE", "$TIME", "$ERROR", "$SYSDATA"):
-        ev.run.unknown(f"function:{name}", f"{name} is not simulated; it gives an empty string")
-        return ""
-    raise ev.error(f"{name} is not a string function coatsim knows")
+    what = "is not simulated" if name in _NOT_SIMULATED else \
+        "is not a function of the AS index coatsim knows (an array takes [ ], not ( ))"
+    ev.run.not_simulated(f"function:{name}", f"{name} {what}; it gives an empty string")
+    return ""
 
 
-def encode(ev: Evaluator, items: tuple[Optional[ast.Expr], ...]) -> str:
+def encode(ev: Evaluation, items: tuple[Optional[ast.Expr], ...]) -> str:
     """$ENCODE / TYPE text: values in the current format (/D, /Fw.d, /Ew.d, /Gw.d, /Xn)."""
     out, fmt = [], "G"
     for item in items:
@@ -77,7 +78,7 @@ def encode(ev: Evaluator, items: tuple[Optional[ast.Expr], ...]) -> str:
     return "".join(out)
 
 
-def decode(ev: Evaluator, e: ast.Call) -> str:
+def decode(ev: Evaluation, e: ast.Call) -> str:
     """$DECODE($s, $separators, mode): the leading characters of $s up to a separator
     (mode 0, the default) or the leading separators (mode 1), removed from $s (a string
     variable, written plain as cells do or as a reference ``&$s``)."""

@@ -5,6 +5,13 @@ Precedence, loosest first: ``OR XOR``; ``AND``; ``NOT``; comparisons (``== <> < 
 primaries: numbers, strings, ``(...)``, variables (``p``, ``.x``, ``$s``, ``#j``, ``a[i, j]``),
 built-in functions, ``TRANS(...)`` and other calls with empty arguments, ``SHIFT(p BY x, y, z)``,
 ``#[j1, ..., jn]``, and the constants ``TRUE FALSE ON OFF PI NULL HERE DEST``.
+
+A run of left-associative operators of one precedence is one flat :class:`~ast.Chain` (a sum of
+600 terms is no tree 600 deep); every other recursion (parentheses, calls, unary operators, a
+tighter operator's operand, ``^``) counts against ``MAX_DEPTH``, so that no expression a line
+holds can exhaust the interpreter's stack. Where an operand is expected, a keyword that is not an
+operator is a variable's name (``value``, ``step``, ``len``: cells name variables so); any
+``name(...)`` is a function call (arrays take ``[ ]``), the interpreter tells what it knows.
 """
 
 from __future__ import annotations
@@ -15,26 +22,13 @@ from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.lexer import Token
 from coatsim.languages.kawasaki_as.source import AsSyntaxError, syntax_error
 
-MAX_DEPTH = 40  # nesting of parentheses and calls on one line
+MAX_DEPTH = 64  # nesting of parentheses, calls, unary and tighter operators on one line
 
 CONSTANTS = {"TRUE": -1.0, "ON": -1.0, "FALSE": 0.0, "OFF": 0.0, "PI": 3.141592653589793}
 # Built-in values written without parentheses.
-NULLARY = {"NULL", "HERE", "#HERE", "DEST", "#DEST", "MSPEED", "RANDOM", "$TIME", "ERROR", "TASKNO"}
-# Built-in functions (parentheses required); the interpreter gives each its meaning.
-FUNCTIONS = {
-    "ABS", "SQRT", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ATAN2", "INT", "ROUND", "MAXVAL", "MINVAL", "SIGN",
-    "LEN", "ASC", "VAL", "INSTR", "$MID", "$LEFT", "$RIGHT", "$CHR", "$SPACE", "$ENCODE", "$DECODE", "$DATE",
-    "$ERROR", "SIG", "BITS", "BITS32", "TIMER", "UTIMER", "SWITCH", "TASK", "EXISTREAL", "EXISTTRANS",
-    "EXISTJOINT", "EXISTCHAR", "EXISTPGM", "DISTANCE", "DX", "DY", "DZ", "DEXT", "TRANS", "RX", "RY", "RZ", "FRAME",
-    "INVERSE", "NULL", "HERE", "#HERE", "DEST", "#DEST", "#PPOINT", "INRANGE", "MSPEED", "PCSTATUS", "$SYSDATA",
-    "SYSDATA", "STRTOVAL", "MAXINDEX", "MININDEX", "RANDOM", "TIME_MS",
-}
+NULLARY = {"NULL", "HERE", "#HERE", "DEST", "#DEST", "MSPEED", "MSPEED2", "RANDOM", "$TIME", "ERROR", "TASKNO",
+           "WHICHTASK", "PRIORITY"}
 WORD_OPERATORS = {"AND", "OR", "XOR", "NOT", "MOD", "BAND", "BOR", "BXOR"}
-# Words that end an expression inside a statement.
-STOP_WORDS = {"THEN", "DO", "TO", "STEP", "OF", "GOTO", "BY", "ALWAYS", "FINE", "TILL", "MM", "CM", "DEG", "S"}
-# Unit words end an expression only where an operator could follow; as an operand they are names
-# (a pose array `s[1]`, a real `mm`).
-UNIT_WORDS = {"MM", "CM", "DEG", "S"}
 
 _BINARY = {  # operator -> (binding power, right-associative)
     "OR": (1, False), "XOR": (1, False), "AND": (2, False),
@@ -114,18 +108,27 @@ class Cursor:
 
     # --- expressions ---------------------------------------------------------------------
     def expr(self, what: str = "an expression", power: int = 0) -> ast.Expr:
+        """An expression whose operators bind tighter than ``power``; a run of one
+        left-associative precedence level comes back flat."""
         left = self.prefix(what)
+        rest: list[tuple[str, ast.Expr]] = []
+        level = None
         while True:
             tok = self.peek()
-            if tok is None:
-                return left
-            key = tok.text if tok.kind == "op" else tok.upper if tok.kind == "name" else None
+            key = None if tok is None else tok.text if tok.kind == "op" else tok.upper if tok.kind == "name" else None
             spec = _BINARY.get(key) if key is not None else None
             if spec is None or spec[0] <= power:
-                return left
+                return _joined(left, rest)
             self.take()
             bp, right_assoc = spec
-            left = ast.Binary(key, left, self.expr("an operand", bp - 1 if right_assoc else bp))
+            operand = self.nested(lambda: self.expr("an operand", bp - 1 if right_assoc else bp))
+            if right_assoc or (level is not None and bp != level):
+                left, rest = _joined(left, rest), []
+            if right_assoc:
+                left, level = ast.Binary(key, left, operand), None
+            else:
+                rest.append((key, operand))
+                level = bp
 
     def condition(self, what: str = "a condition") -> ast.Expr:
         """An expression used as a truth value; a stray '=' gets a hint."""
@@ -173,7 +176,7 @@ class Cursor:
                 return ast.JointLiteral(self.nested(lambda: self.arguments("]", "a joint value")))
             raise self.error(f"expected {what}, found {tok.show()}", tok)
         word = tok.upper
-        if word in WORD_OPERATORS or (word in STOP_WORDS and word not in UNIT_WORDS):
+        if word in WORD_OPERATORS:
             raise self.error(f"expected {what}, found {tok.show()}", tok)
         if tok.text.startswith("&") or tok.text.startswith(".&"):
             raise self.error(f"{tok.show()}: a by-reference argument is allowed only in CALL and $DECODE arguments", tok)
@@ -188,8 +191,6 @@ class Cursor:
         return self.variable(tok)
 
     def variable(self, tok: Token) -> ast.Name:
-        if tok.upper in FUNCTIONS:
-            raise self.error(f"{tok.show()} is a function; expected '(' after it", self.peek() or tok)
         index: tuple[ast.Expr, ...] = ()
         if self.is_op("["):
             self.take()
@@ -200,8 +201,8 @@ class Cursor:
 
     def call(self, tok: Token) -> ast.Expr:
         name = tok.upper
-        if name not in FUNCTIONS:
-            raise self.error(f"{tok.show()} is not an AS function (arrays take [ ], not ( ))", tok)
+        if name.startswith("."):
+            raise self.error(f"{tok.show()} is a local variable; an array element takes [ ], not ( )", tok)
         self.take()  # "("
         if name == "$ENCODE":
             return ast.Call(name, self.nested(lambda: self.format_items(")")))
@@ -255,14 +256,36 @@ class Cursor:
                 raise self.error(f"expected ',' or '{close}' after {what}, found {self.found(tok)}", tok)
 
     def argument(self, what: str, allow_ref: bool) -> ast.Expr:
+        """An argument; where a CALL's arguments go (``allow_ref``) also ``&x`` / ``.&x`` by
+        reference and whole arrays ``a[]`` / ``.&p[,]``."""
         tok = self.peek()
-        if allow_ref and tok is not None and tok.kind == "name" and (tok.text.startswith("&") or tok.text.startswith(".&")):
-            self.take()
-            local = tok.text.startswith(".")
-            bare = tok.text[2:] if local else tok.text[1:]
-            target = self.variable(Token("name", ("." if local else "") + bare, tok.col))
-            return ast.Ref(target)
-        return self.expr(what)
+        if not allow_ref or tok is None or tok.kind != "name":
+            return self.expr(what)
+        ref = tok.text.startswith("&") or tok.text.startswith(".&")
+        whole = self.whole_array()
+        if not ref and whole is None:
+            return self.expr(what)
+        self.take()
+        local = tok.text.startswith(".")
+        bare = tok.text.lstrip(".&")
+        text = ("." + bare) if local else bare
+        if whole is not None:
+            self.pos += whole - 1
+            target = ast.Name(text, (), True)
+        else:
+            target = self.variable(Token("name", text, tok.col))
+        return ast.Ref(target) if ref else target
+
+    def whole_array(self) -> Optional[int]:
+        """How many tokens ``a[]`` / ``a[, ,]`` (an entire array) spans from its name, else None."""
+        nxt = self.peek(1)
+        if nxt is None or nxt.kind != "op" or nxt.text != "[":
+            return None
+        i = 2
+        while self.peek(i) is not None and self.peek(i).kind == "op" and self.peek(i).text == ",":
+            i += 1
+        tok = self.peek(i)
+        return i + 1 if tok is not None and tok.kind == "op" and tok.text == "]" else None
 
     def shift(self) -> ast.Shift:
         """After 'SHIFT': ``(pose BY dx, dy, dz)``."""
@@ -274,3 +297,12 @@ class Cursor:
             raise self.error(f"SHIFT takes 3 offsets dx, dy, dz, found {len(delta)}")
         padded = tuple(delta) + (None,) * (3 - len(delta))
         return ast.Shift(base, (padded[0], padded[1], padded[2]))
+
+
+def _joined(left: ast.Expr, rest: list[tuple[str, ast.Expr]]) -> ast.Expr:
+    """``left`` followed by ``rest``: itself, a Binary of two operands, or a flat Chain."""
+    if not rest:
+        return left
+    if len(rest) == 1:
+        return ast.Binary(rest[0][0], left, rest[0][1])
+    return ast.Chain(left, tuple(rest))

@@ -24,14 +24,22 @@ def parse_files(paths: Paths) -> tuple[AsFile, ...]:
 
 
 def read_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,
-                 inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None) -> Run:
-    """Parse and interpret AS files; the run with the origin of every move."""
-    return interpret_run(parse_files(paths), gun_signal, program, inputs=inputs, kinematics=kinematics)
+                 inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
+                 variables: Optional[Mapping[str, Union[str, float]]] = None) -> Run:
+    """Parse and interpret AS files; the run with the origin of every move. What simulates the
+    program needs all of it: InputError naming the first statement skipped for want of a value
+    (a pose no file gives, ...); ``variables`` gives such values."""
+    run = interpret_run(parse_files(paths), gun_signal, program, inputs=inputs, kinematics=kinematics,
+                        variables=variables)
+    run.require_complete()
+    return run
 
 
 def read_toolpath(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,
-                  inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None) -> ToolPath:
+                  inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
+                  variables: Optional[Mapping[str, Union[str, float]]] = None) -> ToolPath:
     """Parse and interpret AS files; InputError naming file:line on any defect, including
-    poses the program uses but never defines."""
-    return read_program(paths, gun_signal, program, inputs=inputs, kinematics=kinematics).toolpath
+    poses the program uses but no file gives (unless ``variables`` gives them)."""
+    return read_program(paths, gun_signal, program, inputs=inputs, kinematics=kinematics,
+                        variables=variables).toolpath
 

@@ -15,7 +15,7 @@ from typing import Callable, Iterable, Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.xyzoat import format_xyzoat, parse_xyzoat
 from coatsim.path.process import ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import SpeedLimit
 
@@ -74,7 +74,7 @@ def encode(info: ProcessInfo) -> tuple[tuple[str, str], ...]:
         ("speed_mm_s", None if info.speed_mm_s is None else fmt_short(info.speed_mm_s)),
         ("accuracy_mm", None if info.accuracy_mm is None else fmt_short(info.accuracy_mm)),
         ("gun_signal", None if info.gun_signal is None else str(info.gun_signal)),
-        ("frame", None if info.frame is None else str(info.frame)),
+        ("frame", None if info.frame is None else format_xyzoat(info.frame)),
         ("closed", _per_contour("yes" if c.closed else "no" for c in contours) if contours else None),
         ("sprayed", _per_contour(SPRAYED_WITH_LEADS if c.leads_sprayed else SPRAYED_CURVE for c in contours)
          if contours else None),
@@ -171,7 +171,7 @@ def decode(pairs: Sequence[tuple[str, str]], where: str) -> ProcessInfo:
         speed_mm_s=optional("speed_mm_s", _length),
         accuracy_mm=optional("accuracy_mm", _length),
         gun_signal=optional("gun_signal", _count),
-        frame=Frame.parse(fields["frame"], f"{where}: header field frame") if "frame" in fields else None,
+        frame=parse_xyzoat(fields["frame"], f"{where}: header field frame") if "frame" in fields else None,
         n_segments=optional("n_segments", _count),
         n_lines=optional("n_lines", _count),
         n_arcs=optional("n_arcs", _count),

@@ -5,9 +5,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Sequence
 
-from coatsim.languages.kawasaki_as.files import read_toolpath
+from coatsim.core.errors import InputError
+from coatsim.languages.kawasaki_as.files import read_program
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_as
+from coatsim.path.check import gun_never_on
 from coatsim.path.language import Capabilities, ReadOptions
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.toolpath import ToolPath
@@ -32,8 +34,12 @@ class KawasakiAs:
         return write_as(plan, self.max_arc_sweep_deg)
 
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
-        return read_toolpath(files, options.gun_signal, options.program, inputs=options.inputs,
-                             kinematics=options.kinematics)
+        run = read_program(files, options.gun_signal, options.program, inputs=options.inputs,
+                           kinematics=options.kinematics, variables=options.variables)
+        if options.needs_spray and not run.toolpath.spray_moves:
+            raise InputError(f"{gun_never_on(str(files[0]), options.gun_signal, run.outputs)}; give the output that "
+                             "opens the gun as gun_signal", parameters=("gun_signal",))
+        return run.toolpath
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

@@ -29,6 +29,25 @@ _DATA = ("TRANS", "JOINTS", "REALS", "STRINGS")
 _SIMPLE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*(\[\d+(,\d+)?\])?\Z")
 
 
+def _without_array_brackets(tokens: list) -> list:
+    """The tokens of a parameter list without the ``[]`` / ``[,]`` that mark a parameter
+    receiving a whole array (``.PROGRAM trace(.&rel[,], .n)``); any other bracket is kept (and
+    rejected as a parameter)."""
+    out, i = [], 0
+    while i < len(tokens):
+        tok = tokens[i]
+        if tok.kind == "op" and tok.text == "[" and out and out[-1].kind == "name":
+            j = i + 1
+            while j < len(tokens) and tokens[j].kind == "op" and tokens[j].text == ",":
+                j += 1
+            if j < len(tokens) and tokens[j].kind == "op" and tokens[j].text == "]":
+                i = j + 1
+                continue
+        out.append(tok)
+        i += 1
+    return out
+
+
 def _is_end(stripped: str) -> bool:
     return stripped[:4].upper() == ".END" and (len(stripped) == 4 or stripped[4] in " \t;")
 
@@ -136,7 +155,7 @@ class _Reader:
         close = text.find(")")
         if close < 0:
             raise self.error(line, col, "expected ')' to close the parameter list")
-        tokens = tokenize(" " * (col - 1) + text[1:close], self.source, line)
+        tokens = _without_array_brackets(tokenize(" " * (col - 1) + text[1:close], self.source, line))
         params, expect_name = [], True
         for tok in tokens:
             if expect_name:

@@ -18,6 +18,8 @@ def _number(x: float) -> str:
 def _power(e: ast.Expr) -> int:
     if isinstance(e, ast.Binary):
         return _POWER[e.op]
+    if isinstance(e, ast.Chain):
+        return _POWER[e.rest[0][0]]
     if isinstance(e, ast.Unary):
         return 3 if e.op == "NOT" else 9
     if isinstance(e, ast.Num) and e.value < 0:
@@ -34,6 +36,10 @@ def _args(args) -> str:
     return ", ".join("" if a is None else expr_text(a) for a in args)
 
 
+def _brackets(name: ast.Name) -> str:
+    return "[]" if name.whole else f"[{_args(name.index)}]" if name.index else ""
+
+
 def expr_text(e: ast.Expr) -> str:
     """AS source text of ``e``; parsing it gives back ``e``."""
     if isinstance(e, ast.Num):
@@ -41,11 +47,10 @@ def expr_text(e: ast.Expr) -> str:
     if isinstance(e, ast.Str):
         return f'"{e.value}"'
     if isinstance(e, ast.Name):
-        return e.name + (f"[{_args(e.index)}]" if e.index else "")
+        return e.name + _brackets(e)
     if isinstance(e, ast.Ref):
         name = e.target.name
-        return ("." + "&" + name[1:] if name.startswith(".") else "&" + name) + \
-            (f"[{_args(e.target.index)}]" if e.target.index else "")
+        return ("." + "&" + name[1:] if name.startswith(".") else "&" + name) + _brackets(e.target)
     if isinstance(e, ast.Format):
         return f"/{e.spec}"
     if isinstance(e, ast.Unary):
@@ -58,6 +63,9 @@ def expr_text(e: ast.Expr) -> str:
         left = _wrap(e.left, p + 1 if right_assoc else p)
         right = _wrap(e.right, p if right_assoc else p + 1)
         return f"{left} {e.op} {right}"
+    if isinstance(e, ast.Chain):
+        p = _POWER[e.rest[0][0]]
+        return " ".join([_wrap(e.first, p), *(f"{op} {_wrap(x, p + 1)}" for op, x in e.rest)])
     if isinstance(e, ast.Call):
         return e.name if not e.args and e.name in ("NULL", "HERE", "#HERE", "DEST", "#DEST") else f"{e.name}({_args(e.args)})"
     if isinstance(e, ast.Shift):

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from typing import Iterable
 
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.languages.kawasaki_as import ast
-from coatsim.languages.kawasaki_as.values import Frame
 
 KINDS = ("real", "string", "pose", "joint")
 
@@ -25,13 +25,23 @@ class Scope:
             return table[key]
         if kind == "pose" and key in self.trans:
             values = self.trans[key].values
-            frame = Frame.from_xyzoat(*values)
+            frame = pose_from_xyzoat(values)
             table[key] = frame
             return frame
         return None
 
     def has(self, kind: str, key: str) -> bool:
         return key in self.tables[kind] or (kind == "pose" and key in self.trans)
+
+    def array(self, name: str) -> list[tuple[str, str, object]]:
+        """(kind, index "[i,j]", value) of every element of the array ``name`` (a key)."""
+        prefix = name + "["
+        out = []
+        for kind in KINDS:
+            keys = list(self.tables[kind]) + ([k for k in self.trans if k not in self.tables[kind]]
+                                              if kind == "pose" else [])
+            out += [(kind, k[len(name):], self.get(kind, k)) for k in keys if k.startswith(prefix)]
+        return out
 
     def set(self, kind: str, key: str, value) -> None:
         self.tables[kind][key] = value

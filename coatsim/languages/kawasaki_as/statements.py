@@ -7,65 +7,23 @@ markers (:mod:`~coatsim.languages.kawasaki_as.statements_flow`) that
 
 from __future__ import annotations
 
-from typing import Callable, Optional, Union
+from typing import Callable, Union
 
 from coatsim.languages.kawasaki_as import ast
-from coatsim.languages.kawasaki_as.expressions import Cursor
-from coatsim.languages.kawasaki_as.instructions import BLOCK_STEPS, COMMANDS, RAW_TEXT, SWITCHES
+from coatsim.languages.kawasaki_as.instructions import (
+    BLOCK_STEPS,
+    COMMANDS,
+    RAW_TEXT,
+    SWITCHES,
+)
+from coatsim.languages.kawasaki_as.keywords import Keywords
 from coatsim.languages.kawasaki_as.lexer import Token
 from coatsim.languages.kawasaki_as.source import AsSyntaxError
+from coatsim.languages.kawasaki_as.statement_parser import StatementParser
 from coatsim.languages.kawasaki_as.statements_flow import FLOW_PARSERS, Item
-
 
 _UNITS = {"MM": ("S", "MIN"), "CM": ("S", "MIN"), "DEG": ("S", "MIN")}
 _POINT_PARTS = ("X", "Y", "Z", "O", "A", "T", "OAT")
-
-
-class StatementParser(Cursor):
-    """Statement grammar on top of the expression grammar."""
-
-    def target_name(self, what: str) -> ast.Name:
-        tok = self.take()
-        if tok is None or tok.kind != "name" or tok.text.startswith("&") or tok.text.startswith(".&"):
-            raise self.error(f"expected {what}, found {self.found(tok)}", tok)
-        return self.variable(tok)
-
-    def expr_list(self, what: str) -> tuple[ast.Expr, ...]:
-        items = [self.expr(what)]
-        while self.is_op(","):
-            self.take()
-            items.append(self.expr(what))
-        return tuple(items)
-
-    def optional_list(self, what: str, most: int) -> tuple[Optional[ast.Expr], ...]:
-        """Up to ``most`` comma-separated expressions, any of them empty (None)."""
-        items: list[Optional[ast.Expr]] = []
-        while True:
-            items.append(None if self.at_end() or self.is_op(",") else self.expr(what))
-            if not self.is_op(","):
-                break
-            self.take()
-            if len(items) == most:
-                raise self.error(f"too many values; expected at most {most} {what}s", self.peek())
-        if all(i is None for i in items):
-            raise self.error(f"expected {what}, found {self.found(self.peek())}", self.peek())
-        return tuple(items)
-
-    def arguments_until_end(self) -> tuple[ast.Expr, ...]:
-        """Comma-separated arguments (by-reference ones allowed) up to the end of the line."""
-        args = [self.argument("an argument", allow_ref=True)]
-        while not self.at_end():
-            self.op(",", "between arguments")
-            args.append(self.argument("an argument", allow_ref=True))
-        return tuple(args)
-
-    def label(self) -> str:
-        tok = self.take()
-        if tok is not None and tok.kind == "num" and tok.text.isdigit():
-            return str(int(tok.text))
-        if tok is not None and tok.kind == "name" and tok.text[:1].isalpha():
-            return tok.text.lower()
-        raise self.error(f"expected a label (a step number or a name), found {self.found(tok)}", tok)
 
 
 Parser = Callable[[StatementParser, str, int], Item]
@@ -158,7 +116,15 @@ def _point(c: StatementParser, op: str, line: int) -> Item:
     if target.kind == "string":
         raise c.error(f"POINT assigns poses and joint values; assign the string {target.name} with '='")
     c.op("=", f"after POINT {target.name}")
-    return ast.PointAssign(line, target, c.expr("a pose"), component)
+    value = c.expr("a pose")
+    reference = None
+    if c.is_op(","):
+        c.take()
+        reference = c.expr("a joint value (the configuration)")
+        if target.kind != "joint":
+            raise c.error(f"POINT {target.name} = pose, #ref: the reference joint value picks the configuration of "
+                          "a joint value; assign it to a #name")
+    return ast.PointAssign(line, target, value, component, reference)
 
 
 def _decompose(c: StatementParser, op: str, line: int) -> Item:
@@ -277,6 +243,7 @@ PARSERS: dict[str, Parser] = {
     **dict.fromkeys(COMMANDS, _command),
 }
 _NOT_LABELS = {"VALUE", "SVALUE", "ANY"}
+KEYWORDS = Keywords((*PARSERS, *BLOCK_STEPS))
 
 
 def parse_line(tokens: list[Token], source: str, line: int, text: str) -> list[Item]:
@@ -296,24 +263,59 @@ def parse_line(tokens: list[Token], source: str, line: int, text: str) -> list[I
         return items
     if keyword.kind != "name":
         raise c.error(f"expected a statement keyword, found {keyword.show()}", keyword)
-    word = keyword.upper
-    nxt = c.peek(1)
-    if nxt is not None and nxt.kind == "op" and (nxt.text == "=" or (nxt.text == "[" and word not in PARSERS)):
+    if _is_assignment(c):
         items.append(_assignment(c, line))
         return items
+    word = _instruction(c, keyword)
     if word in BLOCK_STEPS:
         items.append(ast.BlockStep(line, word, c.rest_text()))
         return items
-    parser = PARSERS.get(word)
-    if parser is None and _is_switch_line(c):
-        parser = _switch  # any system switch: `DISP.EXESTEP ON`, `autostart.pc ON`
-    if parser is None:
-        raise c.error(f"{keyword.show()} is not an AS instruction coatsim knows", keyword)
     c.take()
-    statement = parser(c, word, line)
+    statement = PARSERS.get(word, _switch)(c, word, line)
     c.end(f"{word} statement")
     items.append(statement)
     return items
+
+
+def _is_assignment(c: StatementParser) -> bool:
+    """``name = ...`` or ``name[...] = ...``: an assignment, whatever the name (``value[i] = 1``
+    assigns an array called value)."""
+    nxt = c.peek(1)
+    if nxt is None or nxt.kind != "op":
+        return False
+    if nxt.text == "=":
+        return True
+    if nxt.text != "[":
+        return False
+    depth, i = 0, c.pos + 1
+    while i < len(c.tokens):
+        tok = c.tokens[i]
+        if tok.kind == "op" and tok.text == "[":
+            depth += 1
+        elif tok.kind == "op" and tok.text == "]":
+            depth -= 1
+            if depth == 0:
+                after = c.tokens[i + 1] if i + 1 < len(c.tokens) else None
+                return after is not None and after.kind == "op" and after.text == "="
+        i += 1
+    return False
+
+
+def _instruction(c: StatementParser, keyword: Token) -> str:
+    """The instruction a statement's first word names: the word itself, a system switch set by
+    name (``DISP.EXESTEP ON``), or the instruction it abbreviates."""
+    word = keyword.upper
+    if word in PARSERS or word in BLOCK_STEPS:
+        return word
+    if _is_switch_line(c):
+        return word  # (parsed as a switch: no instruction has this name)
+    full, matches = KEYWORDS.expand(word)
+    if full is not None:
+        return full
+    if matches:
+        raise c.error(f"{keyword.show()} abbreviates several AS instructions ({', '.join(matches[:6])}"
+                      f"{', ...' if len(matches) > 6 else ''}); write the one meant in full", keyword)
+    raise c.error(f"{keyword.show()} is not an AS instruction coatsim knows", keyword)
 
 
 def _is_switch_line(c: StatementParser) -> bool:

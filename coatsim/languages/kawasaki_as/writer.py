@@ -27,14 +27,14 @@ import numpy as np
 
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import MM_DECIMALS, fmt, fmt_short
-from coatsim.path.arcs import DegenerateArc, circle_through
+from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.kawasaki_as.header import encode as encode_header
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, sanitize_comment
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.oat import matrix_to_oat
-from coatsim.path.frames import Frame
-from coatsim.path.placement import PlacedArc, PlacedLine, PlacedSegment
-from coatsim.path.toolpath import Pose
+from coatsim.geometry.space.rotations import matrix_to_oat
+from coatsim.geometry.space.xyzoat import xyzoat
+from coatsim.path.placement import PlacedMove
+from coatsim.geometry.space.pose import Pose
 
 # 6 decimals in degrees round an angle by <= 5e-7 deg (9e-9 rad).
 DEG_DECIMALS = 6
@@ -49,12 +49,13 @@ _COMMENT_COLUMN = 30
 def pose_values(pose: Pose) -> tuple[str, ...]:
     """x y z (mm) o a t (deg) as the writer formats them."""
     o, a, t = matrix_to_oat(pose.rotation)
-    return tuple(fmt(v, MM_DECIMALS) for v in pose.position) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
+    return tuple(fmt(v, MM_DECIMALS) for v in pose.translation_mm) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
 
 
-def _trans_literal(frame: Frame) -> str:
-    mm = ",".join(fmt(v, MM_DECIMALS) for v in (frame.x, frame.y, frame.z))
-    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (frame.o, frame.a, frame.t))
+def _trans_literal(frame: Pose) -> str:
+    x, y, z, o, a, t = xyzoat(frame)
+    mm = ",".join(fmt(v, MM_DECIMALS) for v in (x, y, z))
+    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (o, a, t))
     return f"TRANS({mm},{deg})"
 
 
@@ -75,18 +76,18 @@ def _arc_is_writable(start: Pose, via: Pose, end: Pose) -> bool:
     """Whether the circle through the poses as written (rounded) is defined."""
     rounded = [np.array([float(v) for v in pose_values(p)[:3]]) for p in (start, via, end)]
     try:
-        circle_through(*rounded)
+        arc_through(*rounded)
     except DegenerateArc:
         return False
     return True
 
 
-def _segment_moves(seg: PlacedSegment, label: str, name: Callable[[Pose], str],
+def _segment_moves(seg: PlacedMove, label: str, name: Callable[[Pose], str],
                    max_arc_sweep_deg: float) -> list[tuple[str, str]]:
     """(statement, comment) of the motions of one segment: one LMOVE for a line; one C1MOVE +
     C2MOVE pair per arc piece of at most ``max_arc_sweep_deg`` (an LMOVE for a piece too flat to
     define a circle once written)."""
-    if isinstance(seg, PlacedLine):
+    if not seg.is_arc:
         return [(f"LMOVE {name(seg.end)}", label)]
     out: list[tuple[str, str]] = []
     pieces = seg.split(math.radians(max_arc_sweep_deg))
@@ -100,7 +101,7 @@ def _segment_moves(seg: PlacedSegment, label: str, name: Callable[[Pose], str],
     return out
 
 
-def _labels(segments: Sequence[PlacedSegment]) -> list[str]:
+def _labels(segments: Sequence[PlacedMove]) -> list[str]:
     """The comment naming each segment: lead-in, segment k, lead-out."""
     counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
     labels = []
@@ -110,7 +111,7 @@ def _labels(segments: Sequence[PlacedSegment]) -> list[str]:
     return labels
 
 
-def path_moves(segments: Sequence[PlacedSegment], name: Callable[[Pose], str],
+def path_moves(segments: Sequence[PlacedMove], name: Callable[[Pose], str],
                max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> list[tuple[str, str]]:
     """(statement, comment) of each motion along ``segments``; ``name`` gives the text a pose is
     written as."""
@@ -155,7 +156,7 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
         poses.append(pose)
         return f"p{len(poses) - 1:0{width}d}"
 
-    n_points = sum(1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
+    n_points = sum(1 + sum(2 * math.ceil(s.geometry.sweep / math.radians(max_arc_sweep_deg)) if s.is_arc else 1
                            for s in path.segments) for path in plan.paths)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:

@@ -85,20 +85,20 @@ def test_external_axes_in_poses_are_read_and_ignored_with_a_warning():
     run = Interpreter((f,), 1, {}, None, 1000.0, 100_000)
     tp = run.run(f.programs[0])
     assert run.globals.get("real", "x") == 611.0 and len(tp.moves) == 1
-    assert tp.moves[0].target.position.tolist() == [600.0, 0.0, 300.0]
+    assert tp.moves[0].target.translation_mm.tolist() == [600.0, 0.0, 300.0]
     text = "\n".join(tp.warnings)
     assert "POINT/7: external axes are not simulated" in text and "TRANS values beyond the 6th" in text
     assert "GROUP" in text
 
 
 def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compared():
-    from coatsim.path.frames import Frame
+    from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
     from coatsim.path.user import user_program
 
     two = parse_as(".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n  SIGNAL -1\n"
                    "  LMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  BREAK\n  SIGNAL -1\n.END\n" + POSES, "t.as")
     run = Interpreter((two,), 1, {}, None, 1000.0, 100_000)
-    user = user_program(run.run(two.programs[0]), Frame.parse("0,0,200,0,0,0"), "")
+    user = user_program(run.run(two.programs[0]), parse_xyzoat("0,0,200,0,0,0", "frame"), "")
     assert user.curve.length == pytest.approx(200.0)
     assert user.notes == ("t sprays 2 stretches (300.0 mm in all); its path here is the longest, lines 5-6 "
                           "(200.0 mm), which the other variants spray alone",)
@@ -107,9 +107,13 @@ def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compare
 def test_xmove_till_a_signal_already_on_is_not_run_to_its_end():
     from coatsim.core.errors import ExecutionError
 
+    from coatsim.languages.kawasaki_as import interpret_run
+
     f = parse_as(".PROGRAM t()\n  JMOVE a\n  XMOVE b TILL 1005\n.END\n" + POSES, "t.as")
-    with pytest.raises(ExecutionError, match=r"t.as:3: XMOVE \.\.\. TILL 1005: the signal is already in that state"):
-        Interpreter((f,), 1, {1005: True}, None, 1000.0, 100_000).run(f.programs[0])
+    run = interpret_run(f, inputs={1005: True})  # skipped with a note; a simulation refuses it (exit 3)
+    assert len(run.toolpath.moves) == 1
+    with pytest.raises(ExecutionError, match=r"t.as:3: XMOVE skipped: XMOVE \.\.\. TILL 1005: the signal is already"):
+        run.require_complete()
     tp = Interpreter((f,), 1, {1005: False}, None, 1000.0, 100_000).run(f.programs[0])
     assert len(tp.moves) == 2 and any("runs to its end" in w for w in tp.warnings)
 

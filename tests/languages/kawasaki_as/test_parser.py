@@ -100,7 +100,7 @@ SYNTAX_ERRORS = [
     (".PROGRAM x()\n  ACCURACY 1 SOON\n.END\n", 2, 14, "expected ALWAYS, FINE"),
     (".PROGRAM x()\n  CP MAYBE\n.END\n", 2, 6, "expected ON or OFF"),
     (".PROGRAM x()\n  LMOVE p[1\n.END\n", 2, 12, "expected ',' or ']'"),
-    (".PROGRAM x()\n  x = " + "(" * 50 + "1" + ")" * 50 + "\n.END\n", 2, 99, "nested"),
+    (".PROGRAM x()\n  x = " + "(" * 70 + "1" + ")" * 70 + "\n.END\n", 2, 72, "nested more than 64 deep"),
     (".PROGRAM x()\n  JMOVE p1\n", 2, 1, "end of file inside '.PROGRAM x'"),
     (".PROGRAM x()\n  JMOVE p1\n.PROGRAM y()\n.END\n", 3, 1, "'.PROGRAM' inside program 'x'"),
     (".PROGRAM x()\n.END\n.PROGRAM X()\n.END\n", 3, 1, "defined twice"),
