@@ -178,3 +178,34 @@ def test_noisy_plane_gives_steady_normals():
     tilt = np.degrees(np.arccos(np.clip(normals[:, 2], -1, 1)))
     assert tilt.max() < 2.0
     assert paths.stats.normal_max_angle_deg > 10.0  # the faces themselves are rough
+
+
+def test_a_torus_splits_its_sections_in_two():
+    """Genus 1: every plane across the hole cuts the torus in two loops (inside and outside)."""
+    import trimesh
+
+    torus = trimesh.creation.torus(40.0, 15.0, major_sections=96, minor_sections=48)
+    paths = plan(part_from_arrays(torus.vertices, torus.faces), options(region=Everything(), step_direction=(0, 0, 1)))
+    levels: dict[float, list] = {}
+    for p in paths.passes:
+        assert p.closed
+        levels.setdefault(round(float(p.points[:, 2].mean()), 6), []).append(p)
+    assert len(levels) >= 3 and all(len(loops) == 2 for loops in levels.values())
+    for z, loops in levels.items():
+        radii = sorted(float(np.linalg.norm(p.points[:, :2], axis=1).mean()) for p in loops)
+        half = math.sqrt(15.0**2 - z**2)
+        assert radii == pytest.approx([40.0 - half, 40.0 + half], abs=0.3)  # a 48-gon's facets
+
+
+def test_the_edge_band_keeps_passes_off_the_border():
+    vertices, faces = grid(200.0, 100.0, 40, 20)
+    paths = planned(vertices, faces, step_direction=(0, 1, 0), edge_band_mm=7.0)
+    # cut where the border distance (fast marching, interpolated along the pass) is the band: to 0.1 mm
+    for p in paths.passes:
+        x, y = p.points[:, 0], p.points[:, 1]
+        assert np.minimum.reduce([x, y, 200 - x, 100 - y]).min() >= 7.0 - 0.1
+        assert (x.min(), x.max()) == pytest.approx((7.0, 193.0), abs=0.1)
+    # the end passes half a spacing in from the band's inner edge, which runs along vertices (2.5 mm)
+    ys = [p.points[0, 1] for p in paths.passes]
+    assert 12.0 <= ys[0] <= 12.0 + 2.5 and 88.0 - 2.5 <= ys[-1] <= 88.0
+    assert paths.stats.coverage < 0.9  # the band is part of the region and is not covered
