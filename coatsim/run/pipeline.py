@@ -447,4 +447,4 @@ def _write_views(loaded: ScenarioFile, cell: Cell, out: Path, runs: list[Variant
         movie = write_video(out / f"{reference.name}.mp4", data, cell)
     if report and runs:
         write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
-                     cell=cell, video=None if movie is None else movie.name)
+                     video=None if movie is None else movie.name)
