@@ -8,15 +8,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Mapping, Optional, Sequence
+from pathlib import Path
+from typing import Any, Mapping, Optional, Protocol, Sequence
 
 import numpy as np
 
 from coatsim.report.events import Event, run_events
+from coatsim.geometry.segment import Segmentation
 from coatsim.report.raster import ViewRaster, view_raster
+from coatsim.report.results import VariantRun
+from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.decimate import Coarse, decimate
 from coatsim.spray.locate import SurfacePoints, locate
 from coatsim.spray.outputs import view_faces
+from coatsim.spray.surfaces import Surface
 
 SCALE_PERCENTILE = 99.5  # the colour scale's top: the largest of the variants' 99.5th percentiles
 CENTRE_STEP_MM = 0.5     # sampling of the centre line
@@ -25,7 +30,7 @@ VIEW_FACES = 12_000      # the coarse mesh of the 3-D view and the video (about 
 HEAT_COLUMNS = 320       # pixels across a heat map's view
 
 
-def aim_paths(log: Any, standoff_mm: float, max_points: Optional[int] = None) -> list[np.ndarray]:
+def aim_paths(log: TrajectoryLog, standoff_mm: float, max_points: Optional[int] = None) -> list[np.ndarray]:
     """The sprayed aim points (tool centre point + stand-off along the spray axis, mm), one (k, 3)
     polyline per stretch of the gun open; at most about ``max_points`` points over all."""
     rows = np.flatnonzero(np.asarray(log.spray, bool))
@@ -57,7 +62,7 @@ class CentreLine:
     closed: bool
 
 
-def centre_samples(run: Any, standoff_mm: float, lead_in_mm: float, lead_out_mm: float) -> tuple[np.ndarray, np.ndarray]:
+def centre_samples(run: VariantRun, standoff_mm: float, lead_in_mm: float, lead_out_mm: float) -> tuple[np.ndarray, np.ndarray]:
     """The reference run's aim points (TCP + stand-off along the spray axis) from the run-in
     start to the run-out end, every CENTRE_STEP_MM along the curve: (s (k,) mm from the start of
     the curve proper, points (k, 3) mm)."""
@@ -73,11 +78,19 @@ def centre_samples(run: Any, standoff_mm: float, lead_in_mm: float, lead_out_mm:
     return grid, np.column_stack([np.interp(grid, s, aim[:, k]) for k in range(3)])
 
 
-def track_samples(run: Any, standoff_mm: float) -> tuple[np.ndarray, np.ndarray]:
+def track_samples(run: VariantRun, standoff_mm: float) -> tuple[np.ndarray, np.ndarray]:
     """About TRACK_POINTS of ``run``'s aim points (k, 3) mm, with whether the gun is open there (k,)."""
     log = run.execution.log
     rows = np.arange(0, len(log.t), max(1, len(log.t) // TRACK_POINTS))
     return log.position[rows] + standoff_mm * log.axis[rows], np.asarray(log.spray[rows], bool)
+
+
+class LoadedScenario(Protocol):
+    """A scenario as the pipeline loaded it: ``spec`` is the validated scenario
+    (coatsim.run.scenario.Scenario, above the report), ``path`` its file."""
+
+    spec: Any
+    path: Path
 
 
 @dataclass(frozen=True, eq=False)
@@ -86,9 +99,9 @@ class ReportData:
     (name, program, execution, coating, toolpath); ``contours`` the segmentations of the
     input (one, or one per contour of a part); ``notes`` what reading a drawing noted."""
 
-    loaded: Any
-    contours: tuple[Any, ...]
-    runs: tuple[Any, ...]
+    loaded: LoadedScenario
+    contours: tuple[Segmentation, ...]
+    runs: tuple[VariantRun, ...]
     document: Mapping[str, Any]
     notes: tuple[str, ...] = ()
 
@@ -97,16 +110,16 @@ class ReportData:
         return self.loaded.spec
 
     @property
-    def surface(self) -> Any:
+    def surface(self) -> Surface:
         return self.runs[0].coating.surface
 
     @property
-    def reference(self) -> Any:
+    def reference(self) -> VariantRun:
         """The variant the others are compared with: the polysegment, else the first."""
         return next((r for r in self.runs if r.name == "polysegment"), self.runs[0])
 
     @property
-    def best_polyline(self) -> Optional[Any]:
+    def best_polyline(self) -> Optional[VariantRun]:
         """The other variant with the lowest thickness CV (None when there is no other)."""
         others = [r for r in self.runs if r is not self.reference]
         cv = lambda r: self.document["variants"][r.name]["coating"]["thickness_cv"]  # noqa: E731
@@ -118,7 +131,7 @@ class ReportData:
 
     @cached_property
     def events(self) -> tuple[Event, ...]:
-        return tuple(e for r in self.runs for e in run_events(r.name, r.execution, getattr(r, "toolpath", None)))
+        return tuple(e for r in self.runs for e in run_events(r.name, r.execution, r.toolpath))
 
     @cached_property
     def numbers(self) -> dict[Event, int]:
@@ -146,7 +159,7 @@ class ReportData:
         a, b = self.reference.execution.curve
         return CentreLine(self._samples[0][0], self._located[0], float(b - a), closed)
 
-    def track_view(self, run: Any) -> np.ndarray:
+    def track_view(self, run: VariantRun) -> np.ndarray:
         """The sprayed aim points of ``run`` in the heat maps' view coordinates (k, 2) mm, NaN
         rows where the gun is closed (lines break there)."""
         return self._track_views[run.name]

@@ -13,9 +13,11 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator, Mapping, Optional, Sequence
 
+from coatsim.geometry.segment import Segmentation
+from coatsim.report.results import VariantRun
 from coatsim import __version__
 from coatsim.core.fileio import write_text
-from coatsim.report.data import ReportData
+from coatsim.report.data import LoadedScenario, ReportData
 from coatsim.report.html import Section, render_html
 
 SECTION_IDS = ("verdict", "speed", "thickness-along-track", "maps", "warnings", "view3d", "program", "metrics",
@@ -64,7 +66,8 @@ def collector_paused() -> Iterator[None]:
             gc.enable()
 
 
-def write_report(path: Path, loaded: Any, contours: Sequence[Any], runs: Sequence[Any], document: Mapping[str, Any],
+def write_report(path: Path, loaded: LoadedScenario, contours: Sequence[Segmentation], runs: Sequence[VariantRun],
+                 document: Mapping[str, Any],
                  notes: Sequence[str] = (), *, video: Optional[str] = None) -> None:
     """Write the self-contained report.html of a run from its results and its metrics document
     alone (no stage is run again): ``contours`` are the segmentations of the curve (one) or of

@@ -11,7 +11,7 @@ from __future__ import annotations
 import sys
 import time
 from contextlib import contextmanager
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator, Mapping, Optional
 
@@ -37,6 +37,7 @@ from coatsim.path.placement import Placement
 from coatsim.path.toolpath import ToolPath
 from coatsim.path.user import UserProgram, user_program
 from coatsim.report.gates import evaluate_gates
+from coatsim.report.results import RunResult, VariantRun
 from coatsim.report.metrics import (
     assemble,
     coating_group,
@@ -46,7 +47,7 @@ from coatsim.report.metrics import (
     to_json,
 )
 from coatsim.robot.cell import Cell
-from coatsim.robot.execute import Execution, execute
+from coatsim.robot.execute import execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.run.scenario import (
@@ -66,7 +67,7 @@ from coatsim.run.scenario_inputs import (
     segment_input,
     spray_model,
 )
-from coatsim.spray.coat import CoatingResult, coat, remeasured
+from coatsim.spray.coat import coat, remeasured
 from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
@@ -74,37 +75,6 @@ from coatsim.spray.surfaces import Surface
 
 Step = Callable[[str], None]
 FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
-
-
-@dataclass(frozen=True, eq=False)
-class VariantRun:
-    """One program variant carried through every stage."""
-
-    name: str
-    program: PartProgram | UserProgram
-    execution: Execution
-    coating: CoatingResult
-    groups: dict[str, dict[str, float | int | None]]
-    contour_groups: tuple[dict[str, dict[str, float | int | None]], ...] = ()
-    toolpath: Optional[ToolPath] = None  # the program as read back (the report ties events to its lines)
-
-
-@dataclass(frozen=True, eq=False)
-class RunResult:
-    """A finished run: every variant, the metrics document and the files written; with
-    ``keep_going``, ``failures`` holds the one-line error of each variant that could not run."""
-
-    outdir: Path
-    variants: tuple[VariantRun, ...]
-    document: dict
-    files: tuple[Path, ...]
-    failures: Mapping[str, str] = field(default_factory=dict)
-    segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
-    report_s: float = 0.0        # wall time of the thickness files, the video and report.html
-
-    @property
-    def passed(self) -> bool:
-        return bool(self.document["passed"])
 
 
 @contextmanager

@@ -92,7 +92,7 @@ def test_external_axes_in_poses_are_read_and_ignored_with_a_warning():
 
 
 def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compared():
-    from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
+    from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.path.user import user_program
 
     two = parse_as(".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n  SIGNAL -1\n"
