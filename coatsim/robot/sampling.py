@@ -83,7 +83,9 @@ Piece = CartesianPiece | JointPiece
 
 @dataclass(frozen=True)
 class _Span:
-    """One Cartesian move resolved to a primitive with its end orientations."""
+    """One Cartesian move resolved to a primitive with its end orientations; an arc also with
+    its via orientation ``rv`` at the fraction ``fv`` of its length (the controller turns the
+    tool from the start pose to the via pose, then to the end pose, each at a constant rate)."""
 
     index: int
     prim: Segment3
@@ -93,6 +95,19 @@ class _Span:
     spray: bool
     accuracy: float
     stop: bool
+    rv: np.ndarray | None = None
+    fv: float = 0.5
+
+    def rotations(self, frac: np.ndarray) -> np.ndarray:
+        """Tool rotations (n, 3, 3) at fractions ``frac`` (n,) of the move's length."""
+        frac = np.asarray(frac, dtype=float)
+        if self.rv is None:
+            return _slerp(self.r0, self.r1, frac)
+        first = frac <= self.fv
+        out = np.empty((len(frac), 3, 3))
+        out[first] = _slerp(self.r0, self.rv, frac[first] / self.fv)
+        out[~first] = _slerp(self.rv, self.r1, (frac[~first] - self.fv) / (1.0 - self.fv))
+        return out
 
 
 def step_label(toolpath: ToolPath, index: int | None) -> str:
@@ -116,13 +131,16 @@ def _span(toolpath: ToolPath, index: int) -> _Span:
                 f"{step_label(toolpath, index)}: start, via and end points are collinear or coincide, "
                 "so they define no circle; split a full circle into two C1MOVE/C2MOVE pairs"
             ) from None
+        via_s = float(prim.nearest(np.asarray(move.via.translation_mm, float)[None])[1][0])
+        rv, fv = np.asarray(move.via.rotation, float), min(max(via_s / prim.length, 1e-9), 1.0 - 1e-9)
     else:
         prim = Line3(a, b)
+        rv, fv = None, 0.5
     s = move.settings
     if not s.speed_mm_s > 0:
         raise ExecutionError(f"{step_label(toolpath, index)}: programmed speed must be positive, got {s.speed_mm_s}")
     return _Span(index, prim, np.asarray(move.start.rotation, float), np.asarray(move.end.rotation, float),
-                 float(s.speed_mm_s), bool(move.spray), max(float(s.accuracy_mm), 0.0), bool(s.stop_at_end))
+                 float(s.speed_mm_s), bool(move.spray), max(float(s.accuracy_mm), 0.0), bool(s.stop_at_end), rv, fv)
 
 
 def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -219,7 +237,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
         if len(s):
             m = len(s)
             frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
-            add(sp.prim.points(s), _slerp(sp.r0, sp.r1, frac), sp.prim.tangents(s), np.full(m, sp.prim.curvature),
+            add(sp.prim.points(s), sp.rotations(frac), sp.prim.tangents(s), np.full(m, sp.prim.curvature),
                 np.full(m, sp.speed), np.full(m, sp.index), np.full(m, sp.spray), ref_offset + s)
         if k + 1 < n and trims[k + 1] > 0:
             nxt, d = spans[k + 1], trims[k + 1]
@@ -228,8 +246,8 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             b = nxt.prim.points(np.array([d]))[0]
             tb = nxt.prim.tangents(np.array([d]))[0]
             pts, tan, curv, frac, _ = _blend(a, ta, b, tb, d, step)
-            ra = _slerp(sp.r0, sp.r1, np.array([hi / sp.prim.length]))[0]
-            rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
+            ra = sp.rotations(np.array([hi / sp.prim.length]))[0]
+            rb = nxt.rotations(np.array([d / nxt.prim.length]))[0]
             first = frac <= 0.5
             add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
                 np.where(first, sp.index, nxt.index), np.full(len(pts), nxt.spray),
