@@ -10,8 +10,10 @@ the tool's x axis at every pose:
   rotation between consecutive poses is the smallest one that turns one axis onto the next), from
   a start frame whose x is a program-wide reference direction. The slerp between such poses turns
   the axis exactly along the great circle, so the fit's bound holds as it is.
-- ``follow``: the tool's x axis lies along the travel direction (the move's tangent at each pose,
-  projected across the axis). The roll then turns too, which bends the slerped axis off the great
+- ``follow``: the tool's x axis lies along the line of travel (the move's tangent at each pose,
+  projected across the axis), pointing with it or against it, whichever is nearer the reference
+  (for a pass after another, the tool's x where that one ended: serpentine passes do not wind
+  the wrist up by half a turn each). The roll then turns too, which bends the slerped axis off the great
   circle; pieces are halved until it stays within ``max_deviation_rad`` of it.
 
 ``roll_deg`` turns the tool about its axis by a constant angle on top of either rule.
@@ -65,22 +67,18 @@ def check_rule(rule: str) -> str:
 
 
 def reference_direction(axes: np.ndarray) -> np.ndarray:
-    """The direction (3,) most nearly perpendicular to every axis (n, 3): the eigenvector of
-    Σ a aᵀ with the smallest eigenvalue; where that is not unique (the axes hardly turn), minus the
-    base x axis across the mean axis, as a flat plate's tool is held. Sign: deterministic."""
+    """The direction (3,) the tool's x axis starts from under ``fixed`` (projected across the
+    axis): minus the base x axis, as a planar program holds the tool (pointing back to the robot),
+    unless that comes within 30 degrees of an axis (n, 3); then the base y axis, the base z axis,
+    or else the direction most nearly perpendicular to every axis (the eigenvector of Σ a aᵀ with
+    the smallest eigenvalue, its largest component positive)."""
     a = np.asarray(axes, dtype=float)
-    values, vectors = np.linalg.eigh(a.T @ a / len(a))
-    if values[1] - values[0] > 1e-9:
-        r = vectors[:, 0]
-        big = int(np.argmax(np.abs(r)))
-        return r if r[big] > 0 else -r
-    mean = a.sum(axis=0)
-    mean /= np.linalg.norm(mean)
-    for hint in (np.array([-1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])):
-        across = hint - (hint @ mean) * mean
-        if np.linalg.norm(across) > 1e-6:
-            return across / np.linalg.norm(across)
-    raise AssertionError("two perpendicular hints cannot both be parallel to one axis")
+    for r in (np.array([-1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])):
+        if float(np.abs(a @ r).max()) < math.cos(math.radians(30.0)):
+            return r
+    _, vectors = np.linalg.eigh(a.T @ a)
+    r = vectors[:, 0]
+    return r if r[int(np.argmax(np.abs(r)))] > 0 else -r
 
 
 def _frame(z: np.ndarray, x_hint: np.ndarray) -> np.ndarray:
@@ -115,21 +113,24 @@ def _tangent(seg: Segment3, where: str) -> np.ndarray:
 
 
 def orient(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: np.ndarray) -> list[Oriented]:
-    """The tool rotation at every pose of the pieces (consecutive pieces share their junction pose)."""
+    """The tool rotation at every pose of the pieces (consecutive pieces share their junction pose);
+    ``reference`` the direction the tool's x starts nearest to (see the module text)."""
     roll = rot_z(math.radians(roll_deg))
     out: list[Oriented] = []
     here = None  # the rotation at the current pose, before the roll offset
+    start_tangent = _tangent(pieces[0].geometry, "start")
+    sign = 1.0 if float(start_tangent @ reference) >= 0.0 else -1.0  # follow: along or against the travel
     for k, piece in enumerate(pieces):
         a0, av, a1 = piece.axes
         seg = piece.geometry
         if here is None:
-            here = _frame(a0, reference if rule == "fixed" else _tangent(seg, "start"))
+            here = _frame(a0, reference if rule == "fixed" else sign * start_tangent)
         elif rule == "fixed":
             here = _carry(here, a0)  # the same axis at a junction: no turn at all
         via = None
         if isinstance(seg, Arc3):
-            via = _carry(here, av) if rule == "fixed" else _frame(av, _tangent(seg, "via"))
-        end = _carry(via if via is not None else here, a1) if rule == "fixed" else _frame(a1, _tangent(seg, "end"))
+            via = _carry(here, av) if rule == "fixed" else _frame(av, sign * _tangent(seg, "via"))
+        end = _carry(via if via is not None else here, a1) if rule == "fixed" else _frame(a1, sign * _tangent(seg, "end"))
         out.append(Oriented(seg, here @ roll, None if via is None else via @ roll, end @ roll))
         here = end
     return out

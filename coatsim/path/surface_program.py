@@ -36,6 +36,7 @@ from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.orient import ANGLE_TOL_DEG, fit_surface_pass, slerp_axes
 from coatsim.geometry.space.pose import Pose, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3
+from coatsim.geometry.space.rotations import rot_z
 from coatsim.path.build import ProgramOptions
 from coatsim.path.frames import DEFAULT_FRAME
 from coatsim.path.language import Language
@@ -285,7 +286,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         raise InputError(f"approach_mm {options.approach_mm:g}: passes are joined by travel at this clearance; "
                          "it must be > 0 mm", parameters=("approach_mm",))
     tcps = [pass_tcp(p, standoff, pose) for p in paths.passes]
-    reference = reference_direction(np.vstack([a for _, a in tcps]))
+    start_x = reference_direction(np.vstack([a for _, a in tcps]))
     trace_speed = options.speed_mm_s if surface.speed_on == "trace" else None
     placed, contours, counts, worst, arcs_as_lines = [], [], [], 0.0, 0
     for k, ((tcp, axes), surface_pass) in enumerate(zip(tcps, paths.passes)):
@@ -294,15 +295,17 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         trace_step = np.linalg.norm(np.diff(tcp + standoff * axes, axis=0), axis=1)
         peak = options.speed_mm_s * (float(np.max(step / np.maximum(trace_step, 1e-12))) if trace_speed else 1.0)
         pieces, error, _ = _fitted(tcp, axes, surface, peak, name)
-        oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, reference,
+        oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, start_x,
                                    math.radians(FOLLOW_SHARE * surface.angle_tol_deg))
         fit_moves = _placed(oriented, (0.0, 0.0), standoff, trace_speed)
         curve_length = float(sum(m.length for m in fit_moves))
         limits = _limits(fit_moves, options.speed_mm_s, surface.tool_accel_mm_s2,
                          _corners([AxisPiece(o.geometry, (np.zeros(3),) * 3) for o in oriented]))
         if options.variant != "polysegment":
-            oriented = oriented_pieces(_polyline(tcp, axes, surface), surface.roll, surface.roll_deg, reference,
+            oriented = oriented_pieces(_polyline(tcp, axes, surface), surface.roll, surface.roll_deg, start_x,
                                        math.radians(FOLLOW_SHARE * surface.angle_tol_deg))
+        if surface.roll == "follow":  # the next pass starts nearest to where this one ends
+            start_x = (oriented[-1].end @ rot_z(-math.radians(surface.roll_deg)))[:, 0]
         moves, lined = expressible(_placed(oriented, (lead_in, lead_out), standoff, trace_speed),
                                    language.capabilities.arc_planes, surface.tolerance_mm)
         arcs_as_lines += lined

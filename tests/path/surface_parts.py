@@ -28,6 +28,7 @@ class Part:
     v_range: tuple[float, float]
     pass_v: tuple[float, ...]
     flip: bool = False  # the normal is -(S_u x S_v): the side the gun sees
+    pose: tuple[float, ...] = (900.0, 0.0, 300.0, 0.0, 0.0, 0.0)  # in the shipped cell, within reach
 
     def normals(self, u: np.ndarray, v: np.ndarray) -> np.ndarray:
         du = 1e-4 * (self.u_range[1] - self.u_range[0])
@@ -73,7 +74,8 @@ def cylinder(radius: float = 60.0, concave: bool = False) -> Part:
 
     def surf(u, v):
         return np.column_stack((radius * np.sin(u), v, radius * np.cos(u)))
-    return Part(f"cylinder_r{radius:g}", surf, (-1.0, 1.0), (-60.0, 60.0), (-40.0, 0.0, 40.0))
+    return Part(f"cylinder_r{radius:g}", surf, (-0.7, 0.7), (-60.0, 60.0), (-40.0, 0.0, 40.0),
+                pose=(900.0, 0.0, 300.0, 90.0, 0.0, 0.0))
 
 
 def torus_section(major: float = 150.0, tube: float = 50.0) -> Part:
@@ -81,7 +83,7 @@ def torus_section(major: float = 150.0, tube: float = 50.0) -> Part:
     def surf(u, v):
         ring = major + tube * np.cos(v)
         return np.column_stack((ring * np.cos(u) - major, ring * np.sin(u), tube * np.sin(v)))
-    return Part("torus_section", surf, (-0.6, 0.6), (0.2, 1.5), (0.4, 0.8, 1.2))
+    return Part("torus_section", surf, (-0.6, 0.6), (0.2, 1.5), (0.8, 1.1, 1.4))
 
 
 def saddle(c: float = 250.0) -> Part:
@@ -103,8 +105,7 @@ def blade(span: float = 200.0, chord: float = 80.0, camber: float = 12.0, twist:
 PARTS = {"cylinder": cylinder, "torus_section": torus_section, "saddle": saddle, "blade": blade}
 
 
-def write_surfacepaths(folder: Path, part: Part, pose: tuple[float, ...] = (700.0, 0.0, 250.0, 0.0, 0.0, 0.0),
-                       standoff_mm: float = 100.0, points_per_pass: int = 400) -> tuple[Path, Path]:
+def write_surfacepaths(folder: Path, part: Part, pose: tuple[float, ...] | None = None, standoff_mm: float = 100.0, points_per_pass: int = 400) -> tuple[Path, Path]:
     """The part's mesh (STL) and a surfacepaths file of its passes; returns both paths."""
     import trimesh
 
@@ -114,7 +115,7 @@ def write_surfacepaths(folder: Path, part: Part, pose: tuple[float, ...] = (700.
     trimesh.Trimesh(vertices, faces, process=False).export(mesh_path)
     doc = {"format": "coatsim.surfacepaths/1", "units": "mm",
            "mesh": {"file": mesh_path.name, "sha256": "", "vertices": len(vertices), "faces": len(faces),
-                    "pose": list(pose)},
+                    "pose": list(part.pose if pose is None else pose)},
            "pattern": "raster", "spacing_mm": 20.0, "standoff_mm": standoff_mm, "ripple_pct": 0.0,
            "passes": part.passes(points_per_pass), "stats": {"passes": len(part.pass_v)}}
     path = folder / f"{part.name}.json"
