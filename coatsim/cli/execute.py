@@ -44,6 +44,11 @@ def execute(
                f"CV {m.speed_cv:.4f}, {m.fraction_at_speed:.1%} at speed, {m.stops} stops; path error max "
                f"{m.max_path_error_mm:.3f} rms {m.rms_path_error_mm:.3f} mm; joint speed/accel "
                f"{m.max_joint_speed_ratio:.2f}/{m.max_joint_accel_ratio:.2f} of limits")
+    if result.trace is not None and result.trace.standoff_mm > 0:
+        tr = result.trace
+        ratios = "" if tr.min_ratio is None else f", {tr.min_ratio:.3f} to {tr.max_ratio:.3f} of {tr.target_mm_s:g}"
+        typer.echo(f"spray spot on the surface ({tr.standoff_mm:g} mm ahead of the tool): speed mean {tr.mean_mm_s:.1f} "
+                   f"min {tr.min_mm_s:.1f} mm/s{ratios}")
     for warning in result.warnings:
         typer.echo(f"warning: {warning}", err=True)
     for event in result.events:
@@ -85,6 +90,7 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
             "model": str(model) if model is not None else "default",
             "step_mm": step_mm,
             "motion": result.metrics.as_dict(),
+            "trace": None if result.trace is None else result.trace.as_dict(),
             "events": list(result.events),
             "warnings": list(result.warnings),
         }

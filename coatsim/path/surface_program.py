@@ -11,8 +11,9 @@ minus the normal (both placed in the robot base frame by the part's pose). Varia
   Douglas–Peucker pass on position (``tolerance_mm``) and axis (``angle_tol_deg``) together;
   exact stop at every vertex, or blended.
 
-The roll about the axis follows coatsim.path.roll. Each pass gets a straight lead-in and
-lead-out along its end tangents (the lengths of the file's leads unless given), the gun open
+The roll about the axis follows coatsim.path.roll. Each pass gets a lead-in and a lead-out that
+continue its first and last line or arc, the tool turning on at the same rate (the lengths of
+the file's leads unless given), the gun open
 along the whole pass and its leads (an open pass) or exactly once around (a closed one); the
 tool approaches and departs along the axis and travels between passes with the gun off, at a
 clearance raised where the straight travel would pass closer to the part than the stand-off.
@@ -34,8 +35,8 @@ from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.orient import ANGLE_TOL_DEG, fit_surface_pass, slerp_axes
-from coatsim.geometry.space.pose import Pose, slerp
-from coatsim.geometry.space.primitives import Arc3, Line3
+from coatsim.geometry.space.pose import Pose, exp_rotation, log_rotation, slerp
+from coatsim.geometry.space.primitives import Arc3, Line3, rotate_about
 from coatsim.geometry.space.rotations import rot_z
 from coatsim.path.build import ProgramOptions
 from coatsim.path.frames import DEFAULT_FRAME
@@ -50,6 +51,7 @@ from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 _TRACE_SAMPLES = 33      # samples per move when its trace length is measured
 _CLEARANCE_STEPS = 6     # the travel clearance is doubled at most this many times
 _KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
+_MAX_LEAD_TURN_RAD = math.radians(120.0)  # a lead continuing a tighter circle is a tangent line
 
 
 @dataclass(frozen=True)
@@ -206,18 +208,43 @@ def _placed(oriented: list[Oriented], leads: tuple[float, float], standoff: floa
         v = None if trace_speed is None else trace_speed * _trace_ratio(o, standoff)
         via = None if o.via is None else Pose(o.via, seg.via)
         moves.append(PlacedMove(seg, Pose(o.start, seg.start), Pose(o.end, seg.end), "curve", False, via, v))
-    first, last = moves[0], moves[-1]
     if leads[0] > 0:
-        t = first.geometry.start_tangent
-        begin = Pose(first.start.rotation, first.start.translation_mm - leads[0] * t)
-        moves.insert(0, PlacedMove(Line3(begin.translation_mm, first.start.translation_mm), begin, first.start,
-                                   "lead_in", speed_mm_s=first.speed_mm_s))
+        moves.insert(0, _lead(oriented[0], leads[0], "lead_in", moves[0].speed_mm_s))
     if leads[1] > 0:
-        t = last.geometry.end_tangent
-        finish = Pose(last.end.rotation, last.end.translation_mm + leads[1] * t)
-        moves.append(PlacedMove(Line3(last.end.translation_mm, finish.translation_mm), last.end, finish, "lead_out",
-                                speed_mm_s=last.speed_mm_s))
+        moves.append(_lead(oriented[-1], leads[1], "lead_out", moves[-1].speed_mm_s))
     return moves
+
+
+def _lead(o: Oriented, length: float, part: str, speed_mm_s: Optional[float]) -> PlacedMove:
+    """A lead-in before the first piece or a lead-out after the last: the piece's own line or
+    circle continued by ``length`` (a line along its tangent where the circle would turn more
+    than ``_MAX_LEAD_TURN_RAD``), the tool turning on at the rate it turns at that end, so that
+    neither the path's tangent nor the tool's turning rate changes where the pass begins or ends."""
+    seg = o.geometry
+    before = part == "lead_in"
+    anchor = Pose(o.start, seg.start) if before else Pose(o.end, seg.end)
+    if o.via is None:
+        rate = log_rotation(o.start.T @ o.end) / seg.length
+    else:
+        rate = log_rotation(o.start.T @ o.via if before else o.via.T @ o.end) / (seg.length / 2)
+    def turned(ds: float) -> np.ndarray:  # the rotation ds mm along the lead from the anchor, outward
+        return anchor.rotation @ exp_rotation((-ds if before else ds) * rate)
+    far = turned(length)
+    if isinstance(seg, Arc3) and length / seg.radius <= _MAX_LEAD_TURN_RAD:
+        sweep = length / seg.radius
+        normal = seg.normal
+        if before:  # the circle run backwards from the start: the arc from its far end to the start
+            tip = seg.start + rotate_about(seg.start - seg.center, normal, np.array([-sweep]))[0]
+            arc = Arc3(tip, seg.start, seg.center, normal, seg.radius, sweep)
+        else:
+            arc = Arc3(seg.end, seg.at_angles(np.array([seg.sweep + sweep]))[0], seg.center, normal, seg.radius, sweep)
+        mid = Pose(turned(length / 2), arc.via)
+        ends = (Pose(far, arc.start), anchor) if before else (anchor, Pose(far, arc.end))
+        return PlacedMove(arc, *ends, part, False, mid, speed_mm_s)
+    t = seg.start_tangent if before else seg.end_tangent
+    tip = anchor.translation_mm + (-length if before else length) * t
+    ends = (Pose(far, tip), anchor) if before else (anchor, Pose(far, tip))
+    return PlacedMove(Line3(ends[0].translation_mm, ends[1].translation_mm), *ends, part, speed_mm_s=speed_mm_s)
 
 
 def _principal(normal: np.ndarray) -> bool:

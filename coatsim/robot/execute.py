@@ -16,7 +16,8 @@ from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
 from coatsim.robot.ik import Residual
 from coatsim.robot.joint_path import JointPath, Stopwatch, solve_and_time
-from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
+from coatsim.robot.motion_metrics import (CurveAllowance, MotionMetrics, TraceMetrics, motion_metrics, spot_speed,
+                                          trace_metrics)
 from coatsim.robot.playback import Playback, play
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import min_motion_time_s, plan_pieces, step_label
@@ -31,8 +32,9 @@ class Execution:
     """Result of executing one program: the log, its metrics, the warnings by program step (TOOL
     mismatch, joint-limit approach, singularity, small tracking or limit excesses), the largest
     IK residual, the programmed reference path, the curve-proper progress interval (mm; from
-    the first contour's start to the last one's end), wall time per phase (s), and for a part
-    each contour's interval and metrics."""
+    the first contour's start to the last one's end), wall time per phase (s), for a part
+    each contour's interval and metrics, and the spray spot's speed on the surface (the
+    program's stand-off from its record; 0, the tool's own speed, for a program without one)."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
@@ -44,6 +46,7 @@ class Execution:
     warnings: tuple[str, ...] = ()
     curves: tuple[tuple[float, float], ...] = ()
     contour_metrics: tuple[MotionMetrics, ...] = ()
+    trace: TraceMetrics | None = None
 
 
 def _spray_runs(toolpath: ToolPath, cartesian: list[int]) -> list[list[int]]:
@@ -123,10 +126,15 @@ def _measure(toolpath: ToolPath, cell: Cell, run: Playback, path: JointPath) -> 
     curve proper (of each contour of a part)."""
     ref = build_reference(list(path.chunks))
     dist, progress, curvature = ref.project(run.tcp, path.hint, _WINDOW_MM + 2 * path.max_blend_mm)
+    standoff = toolpath.process.standoff_mm or 0.0
     log = TrajectoryLog(t=run.t, position=run.tcp, axis=run.axis, speed=run.speed, spray=path.spray,
-                        progress=progress, path_error=dist, q=run.q)
+                        progress=progress, path_error=dist, q=run.q,
+                        trace_speed=spot_speed(run.t, run.tcp, run.axis, standoff))
     spans, speed = _curves_proper(toolpath, ref)
     allowances = _allowances(toolpath, len(spans))
+    process = toolpath.process
+    target = process.speed_mm_s if process.speed_on == "trace" and process.speed_mm_s else speed
+    trace = trace_metrics(log, spans, speed, target, standoff, cell.tool_accel_mm_s2, allowances)
     residual = path.residual
     limits = (curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max, (residual.position_mm, residual.rotation_deg))
     metrics = motion_metrics(log, spans, speed, *limits, allowances)
@@ -134,4 +142,4 @@ def _measure(toolpath: ToolPath, cell: Cell, run: Playback, path: JointPath) -> 
         if len(spans) > 1 else (metrics,)
     return Execution(log=log, metrics=metrics, events=(), residual=residual, reference=ref,
                      curve=(spans[0][0], spans[-1][1]), warnings=toolpath.warnings, curves=tuple(spans),
-                     contour_metrics=per_contour)
+                     contour_metrics=per_contour, trace=trace)

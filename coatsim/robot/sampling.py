@@ -6,6 +6,12 @@ Controller semantics modelled here (see the README's robot section):
 - where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the
   tool runs straight through;
 - where a move turns back on the previous one (more than 179.5 deg) the tool stops and reverses;
+- where the rate at which the tool turns changes between blended moves (each move turns it at its
+  own constant rate from its start pose to its end pose, an arc through its via pose), the
+  orientation is blended over ``ORIENTATION_ZONE_MM`` either side, as controllers approximate
+  orientation over a zone of their own (ABB's zone_ori, KUKA's $APO.CORI): the joints' speeds
+  stay continuous, and the orientation departs from the taught one by about the rate change
+  times the zone length / 4;
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
@@ -36,6 +42,10 @@ TANGENT_TOL_RAD = math.radians(0.5)
 REVERSAL_RAD = math.radians(179.5)
 MIN_MOVE_MM = 1e-6
 MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
+# Where the tool's turning rate changes between two blended moves, the controller blends the
+# orientation over this far either side (capped at half the distance to the next such change).
+ORIENTATION_ZONE_MM = 5.0
+_RATE_JUMP_RAD_MM = 1e-5  # a change of the turning rate (rad per mm) above this is blended
 
 
 @dataclass(frozen=True, eq=False)
@@ -159,6 +169,37 @@ def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
     return r0 @ turn
 
 
+def smooth_orientation(s: np.ndarray, rotations: np.ndarray, zone_mm: float) -> np.ndarray:
+    """Rotations (n, 3, 3) at arc lengths ``s`` with every jump of the turning rate blended over
+    ``zone_mm`` either side (less where the next jump is nearer): across the zone the orientation
+    goes from the incoming rate's continuation to the outgoing one's with weights 3u² − 2u³, so it
+    and its rate are continuous."""
+    from scipy.spatial.transform import Rotation
+
+    if len(s) < 3:
+        return rotations
+    ds = np.diff(s)
+    rel = Rotation.from_matrix(np.swapaxes(rotations[:-1], 1, 2) @ rotations[1:])
+    rate = rel.as_rotvec() / np.maximum(ds, 1e-12)[:, None]  # body-frame turning rate per interval
+    jumps = 1 + np.flatnonzero(np.linalg.norm(np.diff(rate, axis=0), axis=1) > _RATE_JUMP_RAD_MM)
+    if not len(jumps):
+        return rotations
+    out = rotations.copy()
+    bounds = np.concatenate(([s[0]], s[jumps], [s[-1]]))
+    for k, c in enumerate(jumps):
+        d = min(zone_mm, (bounds[k + 1] - bounds[k]) / 2, (bounds[k + 2] - bounds[k + 1]) / 2)
+        rows = np.flatnonzero(np.abs(s - s[c]) < d)
+        if d <= 0 or len(rows) < 2:
+            continue
+        h = (s[rows] - s[c])[:, None]
+        r_c = Rotation.from_matrix(rotations[c])
+        r_in, r_out = r_c * Rotation.from_rotvec(h * rate[c - 1]), r_c * Rotation.from_rotvec(h * rate[c])
+        u = (s[rows] - s[c] + d) / (2 * d)
+        w = (3 * u**2 - 2 * u**3)[:, None]
+        out[rows] = (r_in * Rotation.from_rotvec(w * (r_in.inv() * r_out).as_rotvec())).as_matrix()
+    return out
+
+
 def _uniform(length: float, step: float) -> np.ndarray:
     """Samples every ``step`` or closer from 0 to ``length``, both ends included; at least
     two intervals, so a short rest-to-rest move still has a point where it moves."""
@@ -260,7 +301,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
     p = p[keep]
     s_exec = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
     return CartesianPiece(
-        s=s_exec, position=p, rotation=np.concatenate(cols["r"])[keep], tangent=np.vstack(cols["t"])[keep],
+        s=s_exec, position=p, rotation=smooth_orientation(s_exec, np.concatenate(cols["r"])[keep], ORIENTATION_ZONE_MM), tangent=np.vstack(cols["t"])[keep],
         curvature=np.concatenate(cols["c"])[keep], speed=np.concatenate(cols["v"])[keep],
         move=np.concatenate(cols["m"]).astype(int)[keep], spray=np.concatenate(cols["y"]).astype(bool)[keep],
         ref_s=np.concatenate(cols["rs"])[keep], reference=tuple(sp.prim for sp in spans),
