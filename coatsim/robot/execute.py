@@ -14,6 +14,7 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
+from coatsim.robot.collisions import check_collisions
 from coatsim.robot.ik import Residual
 from coatsim.robot.joint_path import JointPath, Stopwatch, solve_and_time
 from coatsim.robot.motion_metrics import (CurveAllowance, MotionMetrics, TraceMetrics, motion_metrics, spot_speed,
@@ -98,7 +99,9 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
     The controller computes every pose with the program's TOOL; the IK puts the cell's gun
     where that puts it (see :mod:`coatsim.robot.tooling`). After playback the simulated arm is
     checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
-    ExecutionError when it diverged, warnings for small excesses.
+    ExecutionError when it diverged, warnings for small excesses. Before playback the commanded
+    motion is checked for contact between the arm (with its gun) and the rest of the cell, a part
+    added with :func:`coatsim.robot.collisions.with_part` included (Collision, exit 3).
     """
     cell = cell or load_cell()
     watch = Stopwatch()
@@ -110,10 +113,12 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
                  "motion and dwells at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
                  "raise the programmed speed (speed_mm_s) or shorten the dwells", parameters=("speed_mm_s",))
     path = solve_and_time(toolpath, cell, pieces, watch)
+    label = lambda i: step_label(toolpath, None if path.row_move[i] < 0 else int(path.row_move[i]))  # noqa: E731
+    with watch.phase("collisions_s"):
+        check_collisions(cell, path.q, label)
     with watch.phase("playback_s"):
         run = play(cell, path.q, path.qd, path.qdd)
     with watch.phase("checks_s"):
-        label = lambda i: step_label(toolpath, None if path.row_move[i] < 0 else int(path.row_move[i]))  # noqa: E731
         events = list(path.events) + check_playback(cell, run.t, run.q, run.tcp, path.q, label)
     with watch.phase("metrics_s"):
         measured = _measure(toolpath, cell, run, path)
