@@ -115,6 +115,6 @@ def explained(error: UnreachablePose, tracker: Tracker) -> UnreachablePose:
     reason = diagnose(tracker, error.q_near, error.position_mm, error.rotation)
     p, z = error.position_mm, error.rotation[:, 2]
     return UnreachablePose(
-        f"{error.step}: the gun cannot reach x={p[0]:.1f} y={p[1]:.1f} z={p[2]:.1f} mm, spray axis "
-        f"({z[0]:.3f}, {z[1]:.3f}, {z[2]:.3f}): {reason}; move or re-orient the path",
+        f"{error.step}: cannot reach pose x={p[0]:.1f} y={p[1]:.1f} z={p[2]:.1f} mm, spray axis "
+        f"({z[0]:.3f}, {z[1]:.3f}, {z[2]:.3f}): {reason}; move the path within the arm's reach or re-orient it",
         step=error.step, position_mm=p, rotation=error.rotation, q_near=error.q_near, reason=reason)

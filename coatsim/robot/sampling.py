@@ -10,8 +10,8 @@ Controller semantics modelled here (see the README's robot section):
   own constant rate from its start pose to its end pose, an arc through its via pose), the
   orientation is blended over ``ORIENTATION_ZONE_MM`` either side, as controllers approximate
   orientation over a zone of their own (ABB's zone_ori, KUKA's $APO.CORI): the joints' speeds
-  stay continuous, and the orientation departs from the taught one by about the rate change
-  times the zone length / 4;
+  stay continuous, and the orientation departs from the taught one by at most 0.07 times the
+  rate change (rad/mm) times the zone length (0.3 degree for a change of 0.4 degree/mm);
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
@@ -44,7 +44,7 @@ MIN_MOVE_MM = 1e-6
 MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 # Where the tool's turning rate changes between two blended moves, the controller blends the
 # orientation over this far either side (capped at half the distance to the next such change).
-ORIENTATION_ZONE_MM = 5.0
+ORIENTATION_ZONE_MM = 10.0
 _RATE_JUMP_RAD_MM = 1e-5  # a change of the turning rate (rad per mm) above this is blended
 
 
@@ -172,8 +172,8 @@ def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
 def smooth_orientation(s: np.ndarray, rotations: np.ndarray, zone_mm: float) -> np.ndarray:
     """Rotations (n, 3, 3) at arc lengths ``s`` with every jump of the turning rate blended over
     ``zone_mm`` either side (less where the next jump is nearer): across the zone the orientation
-    goes from the incoming rate's continuation to the outgoing one's with weights 3u² − 2u³, so it
-    and its rate are continuous."""
+    goes from the incoming rate's continuation to the outgoing one's with weights
+    10u³ − 15u⁴ + 6u⁵, so it, its rate and the rate's change are continuous."""
     from scipy.spatial.transform import Rotation
 
     if len(s) < 3:
@@ -195,7 +195,7 @@ def smooth_orientation(s: np.ndarray, rotations: np.ndarray, zone_mm: float) -> 
         r_c = Rotation.from_matrix(rotations[c])
         r_in, r_out = r_c * Rotation.from_rotvec(h * rate[c - 1]), r_c * Rotation.from_rotvec(h * rate[c])
         u = (s[rows] - s[c] + d) / (2 * d)
-        w = (3 * u**2 - 2 * u**3)[:, None]
+        w = (u**3 * (10 - 15 * u + 6 * u**2))[:, None]
         out[rows] = (r_in * Rotation.from_rotvec(w * (r_in.inv() * r_out).as_rotvec())).as_matrix()
     return out
 
