@@ -13,8 +13,12 @@ the tool's x axis at every pose:
 - ``follow``: the tool's x axis lies along the line of travel (the move's tangent at each pose,
   projected across the axis), pointing with it or against it, whichever is nearer the reference
   (for a pass after another, the tool's x where that one ended: serpentine passes do not wind
-  the wrist up by half a turn each). The roll then turns too, which bends the slerped axis off the great
-  circle; pieces are halved until it stays within ``max_deviation_rad`` of it.
+  the wrist up by half a turn each). The roll then turns too, which bends the slerped axis off
+  the great circle.
+
+Pieces are halved, the new pose on the wanted axis, until the slerped axis stays within the angle
+tolerance of the wanted one and the tool's turning rate changes little at every pose (a rate
+that jumps makes the joints change speed at once: the tool slows there).
 
 ``roll_deg`` turns the tool about its axis by a constant angle on top of either rule.
 """
@@ -23,21 +27,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
 from coatsim.core.errors import InputError
 from coatsim.geometry.space.orient import slerp_axes
-from coatsim.geometry.space.pose import slerp
+from coatsim.geometry.space.pose import log_rotation, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
 from coatsim.geometry.space.rotations import rot_z
 
 ROLL_RULES = ("fixed", "follow")
-#: With ``follow`` the fit keeps the axis within (1 − this share) of the angle tolerance and the
-#: roll may bend it by the rest.
-FOLLOW_SHARE = 0.25
-_SAMPLES = 17  # the slerped axis is compared with the great circle this often per piece
+#: Largest change of the tool's turning rate at a pose, rad per mm of travel (0.06 degree/mm).
+MAX_RATE_JUMP_RAD_MM = 1e-3
+_SAMPLES = 17  # the slerped axis is compared with the wanted one this often per half piece
+Wanted = Callable[[np.ndarray], np.ndarray]  # points (n, 3) -> the wanted unit axes there (n, 3)
 _MIN_PIECE_MM = 1e-3
 _MAX_ROUNDS = 12
 
@@ -136,47 +140,68 @@ def orient(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: n
     return out
 
 
-def _deviation(o: Oriented, axes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
-    """Largest angle (rad) between the slerped tool axis and the great-circle axis of a piece."""
-    u = np.linspace(0.0, 1.0, _SAMPLES)
-    a0, av, a1 = axes
+def _axes_along(o: Oriented, u: np.ndarray) -> np.ndarray:
+    """The slerped tool axis (n, 3) at fractions ``u`` of a piece (through its via on an arc)."""
     if o.via is None:
-        got = slerp(o.start, o.end, u)[:, :, 2]
-        want = slerp_axes(a0, a1, u)
-    else:
-        got = np.vstack((slerp(o.start, o.via, u)[:, :, 2], slerp(o.via, o.end, u)[:, :, 2]))
-        want = np.vstack((slerp_axes(a0, av, u), slerp_axes(av, a1, u)))
-    cross = np.linalg.norm(np.cross(got, want), axis=1)
-    return float(np.arctan2(cross, np.einsum("ij,ij->i", got, want)).max())
+        return slerp(o.start, o.end, u)[:, :, 2]
+    first = u <= 0.5
+    out = np.empty((len(u), 3))
+    out[first] = slerp(o.start, o.via, 2 * u[first])[:, :, 2]
+    out[~first] = slerp(o.via, o.end, 2 * u[~first] - 1)[:, :, 2]
+    return out
 
 
-def _halves(piece: AxisPiece) -> tuple[AxisPiece, AxisPiece]:
-    """A piece split at its middle, the axes on the great circles it turns along."""
-    seg, (a0, av, a1) = piece.geometry, piece.axes
-    mid = seg.via
+def _axis_error(o: Oriented, wanted: Wanted) -> float:
+    """Largest angle (rad) between the slerped tool axis and the wanted one along a piece."""
+    u = np.linspace(0.0, 1.0, 2 * _SAMPLES - 1)
+    got, want = _axes_along(o, u), wanted(o.geometry.points(u * o.geometry.length))
+    return float(np.arctan2(np.linalg.norm(np.cross(got, want), axis=1), np.einsum("ij,ij->i", got, want)).max())
+
+
+def _rates(o: Oriented) -> list[np.ndarray]:
+    """The tool's turning rates (world frame, rad/mm) along a piece: one for a line, two for an arc."""
+    length = o.geometry.length
+    stops = [(o.start, o.end, length)] if o.via is None else [(o.start, o.via, length / 2), (o.via, o.end, length / 2)]
+    return [a @ log_rotation(a.T @ b) / step for a, b, step in stops]
+
+
+def _kinks(out: list[Oriented], bound: float) -> set[int]:
+    """Pieces at whose via, or at either end of which, the turning rate changes by more than ``bound``."""
+    rates = [_rates(o) for o in out]
+    bad = {k for k, r in enumerate(rates) if len(r) == 2 and np.linalg.norm(r[1] - r[0]) > bound}
+    for k in range(len(out) - 1):
+        if np.linalg.norm(rates[k + 1][0] - rates[k][-1]) > bound:
+            bad |= {k, k + 1}
+    return bad
+
+
+def _halves(piece: AxisPiece, wanted: Wanted) -> tuple[AxisPiece, AxisPiece]:
+    """A piece split at its middle, the new poses' axes the wanted ones there."""
+    seg, (a0, _, a1) = piece.geometry, piece.axes
     if isinstance(seg, Line3):
-        am = slerp_axes(a0, a1, np.array([0.5]))[0]
-        q0, q1 = slerp_axes(a0, am, np.array([0.5]))[0], slerp_axes(am, a1, np.array([0.5]))[0]
-        return (AxisPiece(Line3(seg.start, mid), (a0, q0, am)), AxisPiece(Line3(mid, seg.end), (am, q1, a1)))
-    q0, q1 = slerp_axes(a0, av, np.array([0.5]))[0], slerp_axes(av, a1, np.array([0.5]))[0]
-    first = Arc3(seg.start, mid, seg.center, seg.normal, seg.radius, seg.sweep / 2)
-    second = Arc3(mid, seg.end, seg.center, seg.normal, seg.radius, seg.sweep / 2)
-    return AxisPiece(first, (a0, q0, av)), AxisPiece(second, (av, q1, a1))
+        first, second = Line3(seg.start, seg.via), Line3(seg.via, seg.end)
+    else:
+        first = Arc3(seg.start, seg.via, seg.center, seg.normal, seg.radius, seg.sweep / 2)
+        second = Arc3(seg.via, seg.end, seg.center, seg.normal, seg.radius, seg.sweep / 2)
+    q0, mid, q1 = wanted(np.array([first.via, seg.via, second.via]))
+    return AxisPiece(first, (a0, q0, mid)), AxisPiece(second, (mid, q1, a1))
 
 
 def oriented_pieces(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: np.ndarray,
-                    max_deviation_rad: float) -> list[Oriented]:
-    """The pieces with their tool rotations, halved where the roll bends the slerped axis more
-    than ``max_deviation_rad`` off the great circle of the given axes (never with ``fixed``)."""
+                    wanted: Wanted, angle_tol_rad: float,
+                    max_rate_jump: float = MAX_RATE_JUMP_RAD_MM) -> list[Oriented]:
+    """The pieces with their tool rotations, halved (the new poses on the wanted axis) where the
+    slerped axis strays more than ``angle_tol_rad`` from the wanted one (the roll of ``follow``
+    bends it off the great circle), or where the tool's turning rate changes by more than
+    ``max_rate_jump`` rad/mm at a pose: the joints must change speed there, within the
+    controller's orientation zone, so a large jump slows the tool."""
     check_rule(rule)
     pieces = list(pieces)
     for _ in range(_MAX_ROUNDS):
         out = orient(pieces, rule, roll_deg, reference)
-        if rule == "fixed":
-            return out
-        bad = {k for k, (o, p) in enumerate(zip(out, pieces))
-               if p.geometry.length / 2 >= _MIN_PIECE_MM and _deviation(o, p.axes) > max_deviation_rad}
+        bad = {k for k, o in enumerate(out) if _axis_error(o, wanted) > angle_tol_rad} | _kinks(out, max_rate_jump)
+        bad = {k for k in bad if pieces[k].geometry.length / 2 >= _MIN_PIECE_MM}
         if not bad:
             return out
-        pieces = [h for k, p in enumerate(pieces) for h in (_halves(p) if k in bad else (p,))]
+        pieces = [h for k, p in enumerate(pieces) for h in (_halves(p, wanted) if k in bad else (p,))]
     return orient(pieces, rule, roll_deg, reference)

@@ -8,8 +8,9 @@ minus the normal (both placed in the robot base frame by the part's pose). Varia
   segment end and arc middle so that the axis the controller interpolates stays within
   ``angle_tol_deg`` of the surface normal; blended.
 - ``polyline-stop`` / ``polyline-blend``: straight moves through the pass's TCP points kept by a
-  Douglas–Peucker pass on position (``tolerance_mm``) and axis (``angle_tol_deg``) together;
-  exact stop at every vertex, or blended.
+  Douglas–Peucker pass on position (``tolerance_mm``) and axis (``angle_tol_deg``) together, as a
+  waypoint planner emits them (no pose added for a smooth turning rate); exact stop at every
+  vertex, or blended.
 
 The roll about the axis follows coatsim.path.roll. Each pass gets a lead-in and a lead-out that
 continue its first and last line or arc, the tool turning on at the same rate (the lengths of
@@ -44,7 +45,7 @@ from coatsim.path.language import Language
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
-from coatsim.path.roll import FOLLOW_SHARE, AxisPiece, Oriented, check_rule, oriented_pieces, reference_direction
+from coatsim.path.roll import AxisPiece, Oriented, check_rule, oriented_pieces, reference_direction
 from coatsim.path.speed_limits import SpeedLimit
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 
@@ -142,12 +143,35 @@ def oriented_polyline(points: np.ndarray, axes: np.ndarray, tolerance_mm: float,
     return np.flatnonzero(keep)
 
 
+class WantedAxes:
+    """The wanted spray axis at points near a pass: the input axes interpolated along the input
+    polyline at the nearest point of the edges around the nearest input point."""
+
+    def __init__(self, points: np.ndarray, axes: np.ndarray) -> None:
+        from scipy.spatial import cKDTree
+
+        self.points, self.axes, self.tree = points, axes, cKDTree(points)
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        _, i = self.tree.query(x)
+        last = len(self.points) - 1
+        best_d, best_v = np.full(len(x), np.inf), np.zeros((len(x), 3))
+        for a in (np.clip(i - 1, 0, last - 1), np.clip(i, 0, last - 1)):
+            p, q = self.points[a], self.points[a + 1]
+            pq = q - p
+            u = np.clip(np.einsum("ij,ij->i", x - p, pq) / np.maximum(np.einsum("ij,ij->i", pq, pq), 1e-300), 0, 1)
+            d = np.linalg.norm(x - p - u[:, None] * pq, axis=1)
+            v = (1 - u)[:, None] * self.axes[a] + u[:, None] * self.axes[a + 1]
+            closer = d < best_d
+            best_d[closer], best_v[closer] = d[closer], v[closer]
+        return best_v / np.linalg.norm(best_v, axis=1)[:, None]
+
+
 def _fitted(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions, speed_mm_s: Optional[float],
             name: str) -> tuple[list[AxisPiece], float, tuple[int, ...]]:
     """The pass fitted in 3-D: its pieces with axes, the largest axis error (rad) and the corners."""
-    share = 1.0 - (FOLLOW_SHARE if options.roll == "follow" else 0.0)
     accel = options.tool_accel_mm_s2 if speed_mm_s is not None else None
-    fit = fit_surface_pass(tcp, axes, options.tolerance_mm, share * options.angle_tol_deg,
+    fit = fit_surface_pass(tcp, axes, options.tolerance_mm, options.angle_tol_deg,
                            speed_mm_s=speed_mm_s if accel is not None else None, tool_accel_mm_s2=accel, name=name)
     chain = fit.chain
     pieces = [AxisPiece(seg, tuple(np.array(a) for a in trio)) for seg, trio in zip(chain.segments, chain.axes)]
@@ -155,8 +179,7 @@ def _fitted(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions, speed_mm
 
 
 def _polyline(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions) -> list[AxisPiece]:
-    share = 1.0 - (FOLLOW_SHARE if options.roll == "follow" else 0.0)
-    keep = oriented_polyline(tcp, axes, options.tolerance_mm, math.radians(share * options.angle_tol_deg))
+    keep = oriented_polyline(tcp, axes, options.tolerance_mm, math.radians(options.angle_tol_deg))
     out = []
     for i, j in zip(keep[:-1], keep[1:]):
         if not np.array_equal(tcp[i], tcp[j]):
@@ -322,15 +345,16 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         trace_step = np.linalg.norm(np.diff(tcp + standoff * axes, axis=0), axis=1)
         peak = options.speed_mm_s * (float(np.max(step / np.maximum(trace_step, 1e-12))) if trace_speed else 1.0)
         pieces, error, _ = _fitted(tcp, axes, surface, peak, name)
-        oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, start_x,
-                                   math.radians(FOLLOW_SHARE * surface.angle_tol_deg))
+        wanted = WantedAxes(tcp, axes)
+        angle_tol = math.radians(surface.angle_tol_deg)
+        oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, start_x, wanted, angle_tol)
         fit_moves = _placed(oriented, (0.0, 0.0), standoff, trace_speed)
         curve_length = float(sum(m.length for m in fit_moves))
         limits = _limits(fit_moves, options.speed_mm_s, surface.tool_accel_mm_s2,
                          _corners([AxisPiece(o.geometry, (np.zeros(3),) * 3) for o in oriented]))
         if options.variant != "polysegment":
             oriented = oriented_pieces(_polyline(tcp, axes, surface), surface.roll, surface.roll_deg, start_x,
-                                       math.radians(FOLLOW_SHARE * surface.angle_tol_deg))
+                                       wanted, angle_tol, max_rate_jump=math.inf)
         if surface.roll == "follow":  # the next pass starts nearest to where this one ends
             start_x = (oriented[-1].end @ rot_z(-math.radians(surface.roll_deg)))[:, 0]
         moves, lined = expressible(_placed(oriented, (lead_in, lead_out), standoff, trace_speed),

@@ -184,17 +184,21 @@ def smooth_orientation(s: np.ndarray, rotations: np.ndarray, zone_mm: float) -> 
     jumps = 1 + np.flatnonzero(np.linalg.norm(np.diff(rate, axis=0), axis=1) > _RATE_JUMP_RAD_MM)
     if not len(jumps):
         return rotations
+    # a pose between two samples (an arc's via) makes the interval across it a jump of its own:
+    # jumps on consecutive samples are one change, from the rate before them to the rate after
+    groups = np.split(jumps, 1 + np.flatnonzero(np.diff(jumps) > 1))
     out = rotations.copy()
-    bounds = np.concatenate(([s[0]], s[jumps], [s[-1]]))
-    for k, c in enumerate(jumps):
+    middles = [(s[g[0]] + s[g[-1]]) / 2 for g in groups]
+    bounds = np.concatenate(([s[0]], middles, [s[-1]]))
+    for k, g in enumerate(groups):
+        a, b, mid = int(g[0]), int(g[-1]), middles[k]  # samples on the incoming and the outgoing path
         d = min(zone_mm, (bounds[k + 1] - bounds[k]) / 2, (bounds[k + 2] - bounds[k + 1]) / 2)
-        rows = np.flatnonzero(np.abs(s - s[c]) < d)
+        rows = np.flatnonzero(np.abs(s - mid) < d)
         if d <= 0 or len(rows) < 2:
             continue
-        h = (s[rows] - s[c])[:, None]
-        r_c = Rotation.from_matrix(rotations[c])
-        r_in, r_out = r_c * Rotation.from_rotvec(h * rate[c - 1]), r_c * Rotation.from_rotvec(h * rate[c])
-        u = (s[rows] - s[c] + d) / (2 * d)
+        r_in = Rotation.from_matrix(rotations[a]) * Rotation.from_rotvec((s[rows] - s[a])[:, None] * rate[a - 1])
+        r_out = Rotation.from_matrix(rotations[b]) * Rotation.from_rotvec((s[rows] - s[b])[:, None] * rate[b])
+        u = (s[rows] - mid + d) / (2 * d)
         w = (u**3 * (10 - 15 * u + 6 * u**2))[:, None]
         out[rows] = (r_in * Rotation.from_rotvec(w * (r_in.inv() * r_out).as_rotvec())).as_matrix()
     return out
