@@ -5,6 +5,8 @@ from __future__ import annotations
 
 #: Tolerance σ of the segmentation, mm (largest two-sided deviation from the input curve).
 TOLERANCE_MM = 0.1
+#: The tool axis a controller interpolates stays this close to the surface normal along a 3-D pass, deg.
+ANGLE_TOL_DEG = 2.0
 #: A turn within a short length sharper than this is a true corner (the tool stops there), deg.
 CORNER_DEG = 20.0
 #: Programmed tool speed, mm/s (plasma spraying runs at 300–1000 mm/s).

@@ -16,7 +16,7 @@ from typing import Callable, Iterable, Sequence
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.xyzoat import format_xyzoat, parse_xyzoat
-from coatsim.path.process import ProcessInfo, SprayedContour
+from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import SpeedLimit
 
 SPRAYED_CURVE = "curve"
@@ -83,6 +83,8 @@ def encode(info: ProcessInfo) -> tuple[tuple[str, str], ...]:
         ("n_arcs", None if info.n_arcs is None else str(info.n_arcs)),
         (SPEED_LIMITS_KEY, _per_contour(format_limits(c.speed_limits) for c in contours) if contours else None),
     ]
+    if info.speed_on is not None:
+        fields.append(("speed_on", info.speed_on))
     if info.contour_order is not None:
         fields += [("n_contours", str(len(info.contour_order))),
                    ("contour_order", ",".join(str(k) for k in info.contour_order))]
@@ -177,4 +179,11 @@ def decode(pairs: Sequence[tuple[str, str]], where: str) -> ProcessInfo:
         n_arcs=optional("n_arcs", _count),
         contours=_contours(where, fields),
         contour_order=contour_order,
+        speed_on=_speed_on(where, get("speed_on")),
     )
+
+
+def _speed_on(where: str, raw: str | None) -> str | None:
+    if raw is not None and raw not in SPEED_ON:
+        raise InputError(f"{where}: header field speed_on={raw!r}: expected one of {', '.join(SPEED_ON)}")
+    return raw
