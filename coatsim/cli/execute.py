@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Mapping, Optional, Sequence
 
 import typer
 
-from coatsim.cli.common import SET_HELP
+from coatsim.cli.common import LANGUAGE_HELP, SET_HELP
 from coatsim.cli.flags import speaking_flags
 from coatsim.core import defaults
 from coatsim.core.fileio import write_text
@@ -16,7 +16,8 @@ from coatsim.core.fileio import write_text
 if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
 
-FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs"}
+FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs",
+         "language": "--language"}
 
 
 def execute(
@@ -30,6 +31,7 @@ def execute(
     settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
+    language: Optional[str] = typer.Option(None, "--language", help=LANGUAGE_HELP),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
     if it cannot be executed or the simulated arm diverges."""
@@ -37,7 +39,7 @@ def execute(
 
     with speaking_flags(FLAGS):
         result, files = execute_program(program, model, output, gun, step, main, input_states(inputs),
-                                        variables(settings), force=force)
+                                        variables(settings), force=force, language=language)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
@@ -55,10 +57,11 @@ def execute(
 
 def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path, gun_signal: int,
                     step_mm: float, main: Optional[str], inputs: Mapping[int, bool], variables: Mapping[str, str],
-                    force: bool = False) -> tuple[Execution, list[Path]]:
-    """Read program files, run the main program (``main``, default the
-    first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.core.outputs_guard); ``variables`` gives variables no file gives."""
+                    force: bool = False, language: Optional[str] = None) -> tuple[Execution, list[Path]]:
+    """Read program files (in ``language``, default by their suffix or opening), run the main
+    program (``main``, default the first), write trajectory.csv, motion.json and speed.png into
+    ``outdir`` (held for the run; see coatsim.core.outputs_guard); ``variables`` gives variables
+    no file gives."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
     from coatsim.languages.registry import language_of
     from coatsim.path.language import ReadOptions
@@ -75,7 +78,7 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
     cell = load_cell(model)
     options = ReadOptions(gun_signal=gun_signal, program=main, inputs=inputs, kinematics=CellKinematics(cell),
                           variables=variables)
-    toolpath = language_of(sources).read([Path(p) for p in sources], options)
+    toolpath = language_of(sources, language).read([Path(p) for p in sources], options)
     with output_folder(out, names, "coatsim execute", force):
         result = execute(toolpath, cell, step_mm)
         result.log.write_csv(files[0])
