@@ -16,11 +16,13 @@ from typing import Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import decode_text
+from coatsim.languages.abb_rapid.language import ABB_RAPID
 from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.path.language import Language
 
 LANGUAGES: dict[str, Language] = {language.name: language for language in (
     KAWASAKI_AS,
+    ABB_RAPID,
 )}
 #: The language coatsim writes when none is asked for.
 DEFAULT_LANGUAGE = KAWASAKI_AS.name

@@ -26,7 +26,7 @@ from typing import Mapping, Optional, Sequence, Union
 
 from coatsim.geometry.space.pose import InvalidPose, Pose
 from coatsim.core.errors import CoatsimError, ExecutionError, InputError
-from coatsim.languages.kawasaki_as.header import decode as decode_header
+from coatsim.path.process_record import decode as decode_header
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
