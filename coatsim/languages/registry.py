@@ -18,11 +18,13 @@ from coatsim.core.errors import InputError
 from coatsim.core.fileio import decode_text
 from coatsim.languages.abb_rapid.language import ABB_RAPID
 from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+from coatsim.languages.kuka_krl.language import KUKA_KRL
 from coatsim.path.language import Language
 
 LANGUAGES: dict[str, Language] = {language.name: language for language in (
     KAWASAKI_AS,
     ABB_RAPID,
+    KUKA_KRL,
 )}
 #: The language coatsim writes when none is asked for.
 DEFAULT_LANGUAGE = KAWASAKI_AS.name
