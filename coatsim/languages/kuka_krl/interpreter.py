@@ -64,6 +64,11 @@ class _Exit(Exception):
     pass
 
 
+class _Goto(Exception):
+    def __init__(self, label: str, line: int) -> None:
+        self.label, self.line = label, line
+
+
 class _Halt(Exception):
     def __init__(self, how: str) -> None:
         self.how = how
@@ -183,11 +188,13 @@ class Interpreter:
         if isinstance(a, str) and isinstance(b, str) and op == "+":
             return a + b
         x, y = self._num(a), self._num(b)
-        if op == "/" and y == 0:
-            raise self.error("division by zero")
-        return {"+": x + y, "-": x - y, "*": x * y, "/": x / y, "<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y,
-                "B_AND": float(int(x) & int(y)), "B_OR": float(int(x) | int(y)),
-                "B_EXOR": float(int(x) ^ int(y))}[op]
+        if op == "/":
+            if y == 0:
+                raise self.error("division by zero")
+            return x / y
+        if op.startswith("B_"):
+            return float({"B_AND": int(x) & int(y), "B_OR": int(x) | int(y), "B_EXOR": int(x) ^ int(y)}[op])
+        return {"+": x + y, "-": x - y, "*": x * y, "<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y}[op]
 
     def lookup(self, name: str) -> Any:
         key = name.upper()
@@ -350,6 +357,9 @@ class Interpreter:
             self.block(self._body(routine))
         except _Return as ret:
             return ret.value
+        except _Goto as jump:
+            raise InputError(f"{routine.source}:{jump.line}: GOTO {jump.label}: no such label in {routine.name} (a "
+                             "GOTO may leave a block, not enter one)") from None
         finally:
             self.frames.pop()
             self.source, self.routine, self.line = saved
@@ -369,7 +379,12 @@ class Interpreter:
             item = body[k]
             k += 1
             if isinstance(item, Block):
-                self.structure(item)
+                try:
+                    self.structure(item)
+                except _Goto as jump:  # out of a block to a label of this one
+                    if jump.label not in labels:
+                        raise
+                    k = labels[jump.label]
                 continue
             self.steps += 1
             if self.steps > MAX_STEPS:
@@ -378,7 +393,7 @@ class Interpreter:
             if item.word == "GOTO":
                 label = item.tokens[1].text.upper() if len(item.tokens) > 1 else ""
                 if label not in labels:
-                    raise self.error(f"GOTO {label}: no such label in this block")
+                    raise _Goto(label, item.line)
                 k = labels[label]
                 continue
             try:
