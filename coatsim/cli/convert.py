@@ -40,14 +40,16 @@ def convert(
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.languages.registry import language as language_named, language_of
     from coatsim.path.convert import ConvertOptions, conversion_summary, convert_program
+    from coatsim.path.edit import EditsInPlace
     from coatsim.path.program_files import program_paths, write_program
     from coatsim.robot.kinematics import LazyKinematics
 
     with speaking_flags(FLAGS):
         source = language_of(paths, language)
         target = language_named(to) if to is not None else source
-        written = program_paths(target, output) if output is not None and (standalone or target is not source) \
-            else (output,)
+        # a language named with --to that cannot be edited in place gets a standalone program
+        standalone = standalone or (to is not None and (target is not source or not isinstance(source, EditsInPlace)))
+        written = program_paths(target, output) if output is not None and standalone else (output,)
         check_distinct([*(("the program", p) for p in paths), ("--model", model)], [("-o", p) for p in written])
         if name is None and output is not None and target.capabilities.named_by_file:
             name = target.program_name(output.stem)  # the controller loads a program by its file's name

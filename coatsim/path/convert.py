@@ -247,8 +247,8 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     if options.name is not None:
         target.check_name(options.name, "name")
     if not standalone and not isinstance(language, EditsInPlace):
-        raise InputError(f"{language.title} programs are not edited in place: write a standalone program "
-                         "(standalone, or another target language)", parameters=("standalone",))
+        raise InputError(f"{language.title} programs are not edited in place: write a standalone program",
+                         parameters=("standalone",))
     reading = language.reading(items, read_options)
     reading.require_complete()
     motions = language.capabilities.motions
