@@ -43,7 +43,7 @@ def report(title: str, rows: list[tuple[str, float, float, float, float]], unit:
 def segment(n: int = 100_000, factor: int = 10) -> None:
     """Built-in curve generation, the exact deviation check and the whole fit at N and 10 N points."""
     from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
-from coatsim.geometry import builtin_curve, segment_curve
+    from coatsim.geometry import builtin_curve, segment_curve
     from coatsim.geometry.deviation import hausdorff
 
     rows = []
