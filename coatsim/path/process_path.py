@@ -15,6 +15,7 @@ from typing import Optional
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
+from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core.errors import InputError
 from coatsim.path.arcs import move_length, sample_move
 from coatsim.path.reading import MoveSource
@@ -121,10 +122,10 @@ def planar_frame(points: np.ndarray, tool_z: np.ndarray) -> PlaneFrame:
     centre = pts.mean(axis=0)
     _, sv, vt = np.linalg.svd(pts - centre, full_matrices=False)
     z = np.asarray(tool_z, dtype=float)
-    if len(sv) < 2 or sv[1] <= 1e-9 * max(sv[0], 1e-12):
+    if len(sv) < 2 or sv[1] <= ROUND_OFF * max(sv[0], 1e-12):
         direction = vt[0]
         normal = np.cross(direction, np.cross(z, direction))
-        if np.linalg.norm(normal) < 1e-9:
+        if np.linalg.norm(normal) < TINY:
             normal = np.cross(direction, [1.0, 0.0, 0.0] if abs(direction[0]) < 0.9 else [0.0, 1.0, 0.0])
     else:
         normal = vt[2] if len(vt) > 2 else np.cross(vt[0], vt[1])

@@ -18,6 +18,7 @@ import mink
 import mujoco
 import numpy as np
 
+from coatsim.core.numeric import ROUND_OFF
 from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, M_TO_MM, MM, Cell
 from coatsim.robot.chain import cell_chain
@@ -238,7 +239,7 @@ class Tracker:
             rows = owner == k
             qk, dpk, drk = q[rows], dp[rows], dr[rows]
             if dpk.max() > _CONVERGED_MM or drk.max() > _CONVERGED_DEG \
-                    or np.any(qk < cell.q_min + margin - 1e-9) or np.any(qk > cell.q_max - margin + 1e-9) \
+                    or np.any(qk < cell.q_min + margin - ROUND_OFF) or np.any(qk > cell.q_max - margin + ROUND_OFF) \
                     or not continuity_ok(s_mm, qk, step_time, cell.v_max):
                 break
             out.append((qk, wrist[rows], Residual(float(dpk.max()), float(drk.max()), 0)))
@@ -284,7 +285,7 @@ class Tracker:
                                   _MAX_NEWTON_ITERS, cell.wrist_site)
         margin = 1e-3  # as the QP's ConfigurationLimit
         if dp.max() > _CONVERGED_MM or dr.max() > _CONVERGED_DEG \
-                or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \
+                or np.any(q < cell.q_min + margin - ROUND_OFF) or np.any(q > cell.q_max - margin + ROUND_OFF) \
                 or not continuity_ok(s_mm, q, step_time, cell.v_max):
             return None
         return q, wrist, Residual(float(dp.max()), float(dr.max()), qp_iterations)

@@ -17,6 +17,7 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core.budgets import MAX_SIM_STEPS
 from coatsim.core.errors import ExecutionError
 from coatsim.geometry.space.primitives import Line3, Segment3
@@ -29,10 +30,6 @@ from coatsim.robot.sampling import CartesianPiece, JointPiece, step_label
 from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches
 
-# A move to a configuration closer than this to where the arm stands (rad, every joint) is no move.
-_SAME_CONFIGURATION_RAD = 1e-9
-# A configuration the program gives may lie this far outside a joint's range (rad): round-off.
-_LIMIT_SLACK_RAD = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,7 +90,7 @@ class _Lap:
 def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
     """A configuration the program gives, checked against the joint ranges."""
     q = np.asarray(q, dtype=float)
-    outside = np.flatnonzero((q < cell.q_min - _LIMIT_SLACK_RAD) | (q > cell.q_max + _LIMIT_SLACK_RAD))
+    outside = np.flatnonzero((q < cell.q_min - ROUND_OFF) | (q > cell.q_max + ROUND_OFF))
     if len(outside):
         j = int(outside[0])
         raise ExecutionError(f"{label}: joint {j + 1} at {math.degrees(q[j]):.3f} deg is outside its range "
@@ -176,7 +173,7 @@ class _Timeline:
                 q_goal = _joint_target(self.cell, piece.joints_rad, label)
             else:
                 q_goal = self.tracker.solve_pose(self.q_now, p_gun, r_gun, label)
-        if np.max(np.abs(q_goal - self.q_now)) < _SAME_CONFIGURATION_RAD:
+        if np.max(np.abs(q_goal - self.q_now)) < TINY:  # already there
             return
         with self.watch.phase("timing_s"):
             timed = time_joint(self.cell, self.q_now, q_goal, piece.speed_mm_s, label,

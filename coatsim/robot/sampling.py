@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from coatsim.core.numeric import TINY, steps_over
 from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose
@@ -144,7 +145,7 @@ def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
 def _uniform(length: float, step: float) -> np.ndarray:
     """Samples every ``step`` or closer from 0 to ``length``, both ends included; at least
     two intervals, so a short rest-to-rest move still has a point where it moves."""
-    n = max(2, int(math.ceil(length / step - 1e-9)))
+    n = max(2, steps_over(length, step))
     return np.linspace(0.0, length, n + 1)
 
 
@@ -211,7 +212,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             s = lo + _uniform(max(hi - lo, 0.0), step)
         elif hi - lo > MERGE_MM or k == n - 1:
             # the first point is the previous blend's (or span's) last sample
-            s = lo + np.linspace(0.0, hi - lo, max(1, int(math.ceil((hi - lo) / step - 1e-9))) + 1)[1:]
+            s = lo + np.linspace(0.0, hi - lo, max(1, steps_over(hi - lo, step)) + 1)[1:]
         else:
             # blends that meet mid-move leave (almost) nothing of it: samples a fraction of a
             # micrometre apart would make the joint spline through them swing
@@ -238,7 +239,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
     p = np.vstack(cols["p"])
     # Where the blends at both ends of a short move meet, a blend starts on the sample the
     # previous one ended on: keep one of each pair of coincident samples.
-    keep = np.concatenate(([True], np.linalg.norm(np.diff(p, axis=0), axis=1) > 1e-9))
+    keep = np.concatenate(([True], np.linalg.norm(np.diff(p, axis=0), axis=1) > TINY))
     p = p[keep]
     s_exec = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
     return CartesianPiece(

@@ -20,6 +20,7 @@ import numpy as np
 from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
+from coatsim.geometry.cad import PartSegmentation
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.polysegment import Polysegment
@@ -344,91 +345,25 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
 def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool], keep_going: bool,
             report: bool, video: bool) -> RunResult:
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
-    from coatsim.report.document import write_report
-
     spec = loaded.spec
-    spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
-    sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
         step("segmenting the curve")
-        part = None
-        if spec.curve is None:  # the sprayed path of the first program variant
-            entry = spec.programs[0]
-            toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
-            try:
-                user = user_program(toolpath, curve_frame(spec), "")
-            except CoatsimError as exc:
-                raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
-            contours = (segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
-                                      method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
-                                      speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2),)
-            offset = (0.0, 0.0)
-        else:
-            contours, part = segment_input(loaded, cell)
-            polys = [c.polysegment for c in contours]
-            offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        contours, part, offset = _segmentation(loaded, cell)
         segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
         if part is None:
             write_polysegment_json(segmentation_file, contours[0])
         else:
             write_part_json(segmentation_file, part)
-        placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
-                              follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
-                              lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
-        surface, model = build_surface(loaded, spacing), spray_model(loaded)
-        away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
-        polylines: tuple = ()
-        deviations: tuple = ()
-        if any((spec.builtin(v) or ("polysegment",))[0] != "polysegment" for v in spec.variants):
-            tol = spec.segmentation.tolerance_mm
-            polylines = tuple(polyline_of(c.curve.points, c.polysegment.closed, tol) for c in contours)
-            deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
-        job = Job(loaded, contours, placement, surface, model, cell, out, sample_step, spacing, away,
-                  polylines, deviations)
-        runs, failures = [], {}
-        for entry in spec.variants:
-            name = entry if isinstance(entry, str) else entry.name
-            builtin = spec.builtin(entry)
-            step(f"{name}: writing and reading the program")
-            try:
-                if builtin is not None:
-                    runs.append(run_variant(name, *builtin, job, step))
-                else:
-                    runs.append(run_program_variant(entry, job, step))  # its errors name the variant
-            except CoatsimError as exc:
-                if not keep_going:
-                    raise (exc if builtin is None else type(exc)(f"{name}: {exc}")) from None
-                failures[name] = str(exc).removeprefix(f"{name}: ")
+        job = _job(loaded, cell, out, fast, contours, offset)
+        runs, failures = _run_variants(job, step, keep_going)
         step("metrics, gates and report")
         runs = on_common_roi(runs, spec.gun.target_thickness_um)
-        variants = {r.name: r.groups for r in runs}
-        gates = evaluate_gates([g for g in spec.gates if {g.variant, *g.compared} <= set(variants)], variants)
-        warnings = [{"variant": r.name, "message": event} for r in runs
-                    for event in (*r.execution.warnings, *r.execution.events)]
-        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
-        if len(contours) > 1:
-            order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
-            document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
-                                                                       if r.contour_groups})
-        if failures:
-            document.update(failed=failures, passed=False)
+        document = _document(loaded, runs, contours, failures, fast)
         write_text(out / "metrics.json", to_json(document))
         report_started = time.perf_counter()
-        write_thickness_files(runs, out, spec.gun.standoff_mm)
-        movie = None
-        reference = next((r for r in runs if r.name == reference_variant(spec)), None)
-        if video and reference is not None:
-            from coatsim.report.data import ReportData
-            from coatsim.report.video import write_video
-
-            step("rendering the video")
-            data = ReportData(loaded, tuple(contours), tuple(runs), document)
-            movie = write_video(out / f"{reference.name}.mp4", data, cell)
-        if report and runs:
-            write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
-                         cell=cell, video=None if movie is None else movie.name)
+        _write_views(loaded, cell, out, runs, contours, part, document, step, report, video)
         report_s = time.perf_counter() - report_started
     unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply", "thickness.glb", "mp4")}
     unwritten |= set() if report and runs else {"report.html"}
@@ -436,3 +371,107 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     written = [name for name in output_names(loaded, video) if name not in unwritten]
     seconds = part.seconds if part is not None else contours[0].seconds
     return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures, seconds, report_s)
+
+
+def _segmentation(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation],
+                                                             tuple[float, float]]:
+    """The scenario's contours fitted (of its curve or drawing, else of the sprayed path of its
+    first program variant), the drawing's segmentation if any, and the offset that places them."""
+    spec = loaded.spec
+    if spec.curve is not None:
+        contours, part = segment_input(loaded, cell)
+        polys = [c.polysegment for c in contours]
+        offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        return tuple(contours), part, (float(offset[0]), float(offset[1]))
+    entry = spec.programs[0]
+    toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
+    try:
+        user = user_program(toolpath, curve_frame(spec), "")
+    except CoatsimError as exc:
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+    seg = segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
+                        method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
+                        speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2)
+    return (seg,), None, (0.0, 0.0)
+
+
+def _job(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, contours: tuple[Segmentation, ...],
+         offset: tuple[float, float]) -> Job:
+    """What every variant shares: the placement, the meshed part, the gun, the polyline of each
+    contour for the polyline variants (with its deviation), computed once."""
+    spec = loaded.spec
+    spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
+    sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
+    placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
+                          follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
+                          lead_out_mm=spec.motion.lead_out_mm, offset_xy=offset)
+    surface, model = build_surface(loaded, spacing), spray_model(loaded)
+    away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
+    polylines: tuple = ()
+    deviations: tuple = ()
+    if any((spec.builtin(v) or ("polysegment",))[0] != "polysegment" for v in spec.variants):
+        tol = spec.segmentation.tolerance_mm
+        polylines = tuple(polyline_of(c.curve.points, c.polysegment.closed, tol) for c in contours)
+        deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
+    return Job(loaded, contours, placement, surface, model, cell, out, sample_step, spacing, away, polylines,
+               deviations)
+
+
+def _run_variants(job: Job, step: Step, keep_going: bool) -> tuple[list[VariantRun], dict[str, str]]:
+    """Each variant programmed, executed and coated; with ``keep_going`` the one-line error of a
+    variant that cannot run is kept and the others run."""
+    runs, failures = [], {}
+    for entry in job.loaded.spec.variants:
+        name = entry if isinstance(entry, str) else entry.name
+        builtin = job.loaded.spec.builtin(entry)
+        step(f"{name}: writing and reading the program")
+        try:
+            if builtin is not None:
+                runs.append(run_variant(name, *builtin, job, step))
+            else:
+                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
+        except CoatsimError as exc:
+            if not keep_going:
+                raise (exc if builtin is None else type(exc)(f"{name}: {exc}")) from None
+            failures[name] = str(exc).removeprefix(f"{name}: ")
+    return runs, failures
+
+
+def _document(loaded: ScenarioFile, runs: list[VariantRun], contours: tuple[Segmentation, ...],
+              failures: Mapping[str, str], fast: bool) -> dict:
+    """The metrics document: every variant's metrics, the gates, the warnings, the contours."""
+    spec = loaded.spec
+    variants = {r.name: r.groups for r in runs}
+    gates = evaluate_gates([g for g in spec.gates if {g.variant, *g.compared} <= set(variants)], variants)
+    warnings = [{"variant": r.name, "message": event} for r in runs
+                for event in (*r.execution.warnings, *r.execution.events)]
+    document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
+    if len(contours) > 1:
+        order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
+        document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
+                                                                   if r.contour_groups})
+    if failures:
+        document.update(failed=dict(failures), passed=False)
+    return document
+
+
+def _write_views(loaded: ScenarioFile, cell: Cell, out: Path, runs: list[VariantRun],
+                 contours: tuple[Segmentation, ...], part: Optional[PartSegmentation], document: dict, step: Step,
+                 report: bool, video: bool) -> None:
+    """The thickness files of every variant, the video of the reference run and report.html."""
+    from coatsim.report.document import write_report
+
+    spec = loaded.spec
+    write_thickness_files(runs, out, spec.gun.standoff_mm)
+    movie = None
+    reference = next((r for r in runs if r.name == reference_variant(spec)), None)
+    if video and reference is not None:
+        from coatsim.report.data import ReportData
+        from coatsim.report.video import write_video
+
+        step("rendering the video")
+        data = ReportData(loaded, tuple(contours), tuple(runs), document)
+        movie = write_video(out / f"{reference.name}.mp4", data, cell)
+    if report and runs:
+        write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
+                     cell=cell, video=None if movie is None else movie.name)
