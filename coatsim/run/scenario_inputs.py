@@ -184,6 +184,6 @@ def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> lis
         ("--model" if model is not None else "robot.model", robot),
     ]
     for entry in spec.variants:
-        if not isinstance(entry, str):
+        if isinstance(entry, ProgramVariantSpec):
             files += [(f"the program of variant {entry.name}", loaded.resolve(f)) for f in entry.files]
     return files
