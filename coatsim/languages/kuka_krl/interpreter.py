@@ -531,7 +531,7 @@ class Interpreter:
         if isinstance(target, n.Index) and isinstance(target.base, n.Name) and \
                 target.base.name.upper() in ("$OUT", "$OUT_C"):
             number = int(self._num(self.eval(target.index[0])))
-            text = " ".join(t.text for t in toks)
+            text = _text(toks)
             if target.base.name.upper() == "$OUT_C":
                 self.switch(number, bool(value), text, "next")
             elif self.continue_next:
@@ -563,7 +563,7 @@ class Interpreter:
         if isinstance(target, n.Index) and isinstance(target.base, n.Name) and target.base.name.upper() == "$OUT":
             number = int(self._num(self.eval(target.index[0])))
             on = bool(self.eval(self.expr(action[eq + 1:])))
-            self.switch(number, on, " ".join(t.text for t in ln.tokens), "next" if distance == "0" else "after")
+            self.switch(number, on, _text(ln.tokens), "next" if distance == "0" else "after")
         else:
             self.warn("trigger-action", "TRIGGER ... DO: only $OUT switches are simulated")
 
@@ -674,6 +674,17 @@ def _split_commas(tokens) -> list[list]:
             current.append(t)
     if current:
         out.append(current)
+    return out
+
+
+def _text(tokens) -> str:
+    """A statement's tokens as written (a space only between two words or numbers)."""
+    out, prev = "", None
+    for t in tokens:
+        if prev is not None and prev.kind in (NAME, "num") and t.kind in (NAME, "num"):
+            out += " "
+        out += t.text
+        prev = t
     return out
 
 
