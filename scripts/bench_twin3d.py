@@ -17,7 +17,6 @@ program. Then the exponent of the program's CPU time against the points per pass
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import tempfile
 from pathlib import Path

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Mapping, Optional, Sequence
 
 import typer
 
-from coatsim.cli.common import SET_HELP
+from coatsim.cli.common import LANGUAGE_HELP, SET_HELP
 from coatsim.cli.flags import speaking_flags
 from coatsim.core import defaults
 from coatsim.core.fileio import write_text
@@ -17,7 +17,7 @@ if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
 
 FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs",
-         "part_pose": "--part-pose"}
+         "part_pose": "--part-pose", "language": "--language"}
 
 
 def execute(
@@ -33,6 +33,7 @@ def execute(
     part: Optional[Path] = typer.Option(None, "--part", help="A part mesh (STL/PLY/OBJ/OFF/GLB, mm) put in the cell: a contact of the arm or gun with it is exit 3."),
     part_pose: Optional[str] = typer.Option(None, "--part-pose", help="The part's pose x,y,z,o,a,t in the robot base frame (mm, deg O-A-T) [default: " + ",".join(f"{v:g}" for v in defaults.WORKPIECE_FRAME) + "]."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
+    language: Optional[str] = typer.Option(None, "--language", help=LANGUAGE_HELP),
 ) -> None:
     """Run a program on the simulated arm: IK, timing, MuJoCo playback, motion metrics; exit 3
     if it cannot be executed or the simulated arm diverges."""
@@ -40,7 +41,8 @@ def execute(
 
     with speaking_flags(FLAGS):
         result, files = execute_program(program, model, output, gun, step, main, input_states(inputs),
-                                        variables(settings), force=force, part=part, part_pose=part_pose)
+                                        variables(settings), force=force, part=part, part_pose=part_pose,
+                                        language=language)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
@@ -63,12 +65,13 @@ def execute(
 
 def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path, gun_signal: int,
                     step_mm: float, main: Optional[str], inputs: Mapping[int, bool], variables: Mapping[str, str],
-                    force: bool = False, part: Optional[Path] = None,
-                    part_pose: Optional[str] = None) -> tuple[Execution, list[Path]]:
-    """Read program files, run the main program (``main``, default the
-    first), write trajectory.csv, motion.json and speed.png into ``outdir`` (held for the run;
-    see coatsim.core.outputs_guard); ``variables`` gives variables no file gives; ``part`` a mesh
-    put in the cell at ``part_pose`` (x,y,z,o,a,t; default the workpiece frame)."""
+                    force: bool = False, part: Optional[Path] = None, part_pose: Optional[str] = None,
+                    language: Optional[str] = None) -> tuple[Execution, list[Path]]:
+    """Read program files (in ``language``, default by their suffix or opening), run the main
+    program (``main``, default the first), write trajectory.csv, motion.json and speed.png into
+    ``outdir`` (held for the run; see coatsim.core.outputs_guard); ``variables`` gives variables
+    no file gives; ``part`` a mesh put in the cell at ``part_pose`` (x,y,z,o,a,t; default the
+    workpiece frame)."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
     from coatsim.languages.registry import language_of
     from coatsim.path.language import ReadOptions
@@ -97,7 +100,7 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
         fail("--part-pose places the part given with --part; give --part MESH")
     options = ReadOptions(gun_signal=gun_signal, program=main, inputs=inputs, kinematics=CellKinematics(cell),
                           variables=variables)
-    toolpath = language_of(sources).read([Path(p) for p in sources], options)
+    toolpath = language_of(sources, language).read([Path(p) for p in sources], options)
     with output_folder(out, names, "coatsim execute", force):
         result = execute(toolpath, cell, step_mm)
         result.log.write_csv(files[0])

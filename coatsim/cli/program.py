@@ -21,7 +21,7 @@ FLAGS = {"tolerance_mm": "--tol", "speed_mm_s": "--speed", "accuracy_mm": "--acc
          "gun_signal": "--gun", "variant": "--variant", "name": "--name", "order": "--order", "frame": "--frame",
          "standoff_mm": "--standoff", "lead_in_mm": "--lead-in", "lead_out_mm": "--lead-out", "roll_deg": "--roll-deg",
          "join_tolerance_mm": "--join-tol", "layers": "--layer", "tool_accel_mm_s2": "--tool-accel",
-         "angle_tol_deg": "--angle-tol", "speed_on": "--speed-on", "roll": "--follow-tangent", "pose": "--frame"}
+         "angle_tol_deg": "--angle-tol", "speed_on": "--speed-on", "roll": "--follow-tangent", "pose": "--frame", "language": "--language"}
 
 
 def program(
@@ -47,14 +47,19 @@ def program(
     layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
     join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
     order: str = typer.Option("as-drawn", "--order", help="Parts: spray the contours as-drawn | nearest (next start closest to the last end)."),
+    language: Optional[str] = typer.Option(None, "--language", help="Robot language to write: kawasaki-as, abb-rapid, kuka-krl, ... (or a part of the name: rapid) [default: kawasaki-as]; the output's suffix is the language's."),
 ) -> None:
     """Write the robot program (polysegment or polyline variant) of a curve, or of every
-    contour of a drawing one after the other (gun off between them)."""
+    contour of a drawing one after the other (gun off between them), in a robot language."""
     from coatsim.cli.common import tool_accel_mm_s2
+    from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
     from coatsim.path.build import ProgramOptions
 
     accel_mm_s2 = tool_accel_mm_s2(tool_accel)
     with speaking_flags(FLAGS):
+        writer = language_named(language or DEFAULT_LANGUAGE)
+        if name is None and output is not None and writer.capabilities.named_by_file:
+            name = writer.program_name(output.stem)  # the controller loads a program by its file's name
         options = ProgramOptions(variant=variant, speed_mm_s=speed, accuracy_mm=accuracy, approach_mm=approach,
                                  gun_signal=gun, name=name)
         from coatsim.path.surfacepaths import is_surfacepaths
@@ -76,7 +81,8 @@ def program(
         lead_out = defaults.LEAD_OUT_MM if lead_out is None else lead_out
         built = run_program(input, tol, options, frame=frame, standoff_mm=standoff, lead_in_mm=lead_in,
                             lead_out_mm=lead_out, roll_deg=roll, follow_tangent=follow_tangent, center=center,
-                            output=output, layers=layer, join_tol=join_tol, order=order, tool_accel_mm_s2=accel_mm_s2)
+                            output=output, layers=layer, join_tol=join_tol, order=order, tool_accel_mm_s2=accel_mm_s2,
+                            language=writer)
     if output is None:
         typer.echo(built.text, nl=False)
     typer.echo(program_summary(built) + (f"\nwrote {output}" if output else ""), err=output is None)
@@ -98,18 +104,19 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     from dataclasses import replace
 
     from coatsim.core.errors import CoatsimWarning
-    from coatsim.core.fileio import write_text
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
     from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.path.inputs import load_part_input
     from coatsim.path.part_program import build_part_program, part_centering_offset
     from coatsim.path.placement import Placement
+    from coatsim.path.program_files import program_paths, write_program
 
     language = language or language_named(DEFAULT_LANGUAGE)
     placement = Placement(frame=parse_xyzoat(frame, "frame"), standoff_mm=standoff_mm, roll_deg=roll_deg,
                           follow_tangent=follow_tangent, lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm)
-    check_distinct([("the input", None if spec.startswith("builtin:") else spec)], [("-o", output)])
+    outputs = program_paths(language, output) if output is not None else ()
+    check_distinct([("the input", None if spec.startswith("builtin:") else spec)], [("-o", p) for p in outputs])
     speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
     inp = load_part_input(spec, tol, layers, join_tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
     if inp.builtin if center is None else center:
@@ -123,7 +130,7 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
                       "mm); blended corners are rounded as far as the controller allows, half their shorter "
                       "neighbouring move", CoatsimWarning, stacklevel=2)
     if output is not None:
-        write_text(output, built.text)
+        write_program(language, built.text, output)
     return built
 
 
@@ -172,11 +179,11 @@ def _reads_back(text: str, language: Language) -> None:
     import tempfile
 
     from coatsim.path.language import ReadOptions
+    from coatsim.path.program_files import program_suffixes, write_program
 
     with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / f"program{language.suffixes[0]}"
-        path.write_text(text, encoding="utf-8")
-        language.read([path], ReadOptions())
+        paths = write_program(language, text, Path(folder) / f"program{program_suffixes(language)[0]}")
+        language.read(list(paths), ReadOptions())
 
 
 def program_summary(built: BuiltProgram | PartProgram) -> str:

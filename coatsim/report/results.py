@@ -28,6 +28,7 @@ class VariantRun:
     groups: dict[str, dict[str, float | int | None]]
     contour_groups: tuple[dict[str, dict[str, float | int | None]], ...] = ()
     toolpath: Optional[ToolPath] = None  # the program as read back (the report ties events to its lines)
+    program_file: str = ""  # the name of the program's (main) file in the output folder
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,7 +1,7 @@
 """Run one scenario: every stage for every program variant, then metrics, gates and report.
 
-curve -> polysegment -> for each variant: AS program text (written) -> ToolPath read back from
-that file -> simulated arm -> trajectory (written) -> coating (written) -> metrics ->
+curve -> polysegment -> for each variant: program text in its language (written) -> ToolPath
+read back from that file -> simulated arm -> trajectory (written) -> coating (written) -> metrics ->
 ``metrics.json`` and ``report.html``. The execution stage consumes the program text parsed back,
 never the in-memory polysegment: the twin runs what the robot would run.
 """
@@ -25,7 +25,7 @@ from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.segment import Segmentation
-from coatsim.languages.registry import DEFAULT_LANGUAGE, language
+from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions, polyline_of
 from coatsim.path.language import ReadOptions
 from coatsim.path.part_program import (
@@ -34,6 +34,8 @@ from coatsim.path.part_program import (
     part_centering_offset,
 )
 from coatsim.path.placement import Placement
+from coatsim.path.program_files import program_paths, program_suffixes, write_program
+from coatsim.path.language import Language
 from coatsim.path.toolpath import ToolPath
 from coatsim.path.user import UserProgram, user_program
 from coatsim.report.gates import evaluate_gates
@@ -65,6 +67,7 @@ from coatsim.run.scenario_inputs import (
     load_arm,
     read_user_program,
     segment_input,
+    user_program_suffix,
     spray_model,
 )
 from coatsim.spray.coat import coat, remeasured
@@ -116,32 +119,43 @@ class Job:
     polyline_deviations_mm: tuple[Optional[float], ...] = ()
 
 
-def run_variant(name: str, job: Job, step: Step) -> VariantRun:
-    """Program, execute and coat one variant; writes ``name.as`` and ``name.trajectory.csv``."""
+def program_files(name: str, writer: Language) -> tuple[str, ...]:
+    """The files of variant ``name``'s program in ``writer``'s language, the main first: named
+    after the variant, or (a language whose controller loads a program by its file's name) after
+    the program, which is then named after the variant."""
+    stem = writer.program_name(name) if writer.capabilities.named_by_file else name
+    return tuple(p.name for p in program_paths(writer, Path(stem + program_suffixes(writer)[0])))
+
+
+def run_variant(name: str, variant: str, language_name: str, job: Job, step: Step) -> VariantRun:
+    """Program, execute and coat one built-in variant written in its language; writes its
+    program file(s) and ``name.trajectory.csv``."""
     spec, out = job.loaded.spec, job.outdir
     polys = [c.polysegment for c in job.contours]
-    writer = language(DEFAULT_LANGUAGE)
-    options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=writer.program_name(spec.name))
+    writer = language(language_name)
+    program_name = writer.program_name(name if writer.capabilities.named_by_file else spec.name)
+    options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name)
     program = build_part_program(polys, job.placement, options, language=writer,
                                  tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
                                  points=[c.curve.points for c in job.contours], order=spec.motion.contour_order,
                                  polylines=job.polylines or None)
-    program_path = out / f"{name}{writer.suffixes[0]}"
-    write_text(program_path, program.text)
-    toolpath = writer.read([program_path], ReadOptions(gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell)))
-    return simulate_variant(name, program, toolpath, job, step)
+    files = program_files(name, writer)
+    paths = write_program(writer, program.text, out / files[0])
+    toolpath = writer.read(list(paths), ReadOptions(gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell)))
+    return replace(simulate_variant(name, program, toolpath, job, step), program_file=files[0])
 
 
 def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> VariantRun:
-    """Execute and coat a user's program; writes ``name.as`` (a copy), ``name.trajectory.csv``
-    and ``name.thickness.ply``."""
+    """Execute and coat a user's program; writes ``name`` + its suffix (a copy),
+    ``name.trajectory.csv`` and ``name.thickness.ply``."""
     toolpath, text = read_user_program(job.loaded, entry, job.cell)
-    write_text(job.outdir / f"{entry.name}.as", text)
+    copy = f"{entry.name}{user_program_suffix(job.loaded, entry)}"
+    write_text(job.outdir / copy, text)
     try:
         program = user_program(toolpath, curve_frame(job.loaded.spec), text)
         toolpath = replace(toolpath, warnings=(*toolpath.warnings, *program.notes))  # they reach metrics.json
-        return simulate_variant(entry.name, program, toolpath, job, step)
+        return replace(simulate_variant(entry.name, program, toolpath, job, step), program_file=copy)
     except CoatsimError as exc:
         raise type(exc)(f"{entry.name}: {exc}") from None
 
@@ -233,11 +247,22 @@ def reference_variant(spec: Scenario) -> str:
     return "polysegment" if "polysegment" in names else names[0]
 
 
-def output_names(spec: Scenario, video: bool = False) -> list[str]:
-    """The files a run of ``spec`` may write into its output folder, in writing order (a drawing
-    of several contours writes part.json instead of polysegment.json)."""
+def variant_files(loaded: ScenarioFile, entry) -> tuple[str, ...]:
+    """The program file(s) a variant writes: a built-in variant's in its language, a copy of a
+    user's program with its language's suffix."""
+    builtin = loaded.spec.builtin(entry)
+    if builtin is not None:
+        return program_files(entry if isinstance(entry, str) else entry.name, language(builtin[1]))
+    return (f"{entry.name}{user_program_suffix(loaded, entry)}",)
+
+
+def output_names(loaded: ScenarioFile, video: bool = False) -> list[str]:
+    """The files a run of the scenario ``loaded`` may write into its output folder, in writing
+    order (a drawing of several contours writes part.json instead of polysegment.json)."""
+    spec = loaded.spec
     names = variant_names(spec)
-    programs = [f"{v}.{kind}" for v in names for kind in ("as", "trajectory.csv")]
+    programs = [f for entry, v in zip(spec.variants, names) for f in (*variant_files(loaded, entry),
+                                                                       f"{v}.trajectory.csv")]
     coats = [f"{v}.{kind}" for v in names for kind in ("thickness.ply", "thickness.glb")]
     movie = [f"{reference_variant(spec)}.mp4"] if video else []
     return ["polysegment.json", "part.json", *programs, "metrics.json", *coats, *movie, "report.html"]
@@ -279,7 +304,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
     out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
-    names = output_names(loaded.spec, video)
+    names = output_names(loaded, video)
     check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
     with output_folder(out, names, "coatsim run", force):
@@ -312,7 +337,7 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply", "thickness.glb", "mp4")}
     unwritten |= set() if report and runs else {"report.html"}
     unwritten |= {"polysegment.json", "part.json"} - {segmentation_file.name}
-    written = [name for name in output_names(spec, video) if name not in unwritten]
+    written = [name for name in output_names(loaded, video) if name not in unwritten]
     seconds = part.seconds if part is not None else contours[0].seconds
     return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures, seconds, report_s)
 
@@ -353,7 +378,7 @@ def _job(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, contours: tupl
     away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
     polylines: tuple = ()
     deviations: tuple = ()
-    if any(isinstance(v, str) and v != "polysegment" for v in spec.variants):
+    if any((spec.builtin(v) or ("polysegment",))[0] != "polysegment" for v in spec.variants):
         tol = spec.segmentation.tolerance_mm
         polylines = tuple(polyline_of(c.curve.points, c.polysegment.closed, tol) for c in contours)
         deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
@@ -367,15 +392,16 @@ def _run_variants(job: Job, step: Step, keep_going: bool) -> tuple[list[VariantR
     runs, failures = [], {}
     for entry in job.loaded.spec.variants:
         name = entry if isinstance(entry, str) else entry.name
+        builtin = job.loaded.spec.builtin(entry)
         step(f"{name}: writing and reading the program")
         try:
-            if isinstance(entry, str):
-                runs.append(run_variant(name, job, step))
+            if builtin is not None:
+                runs.append(run_variant(name, *builtin, job, step))
             else:
                 runs.append(run_program_variant(entry, job, step))  # its errors name the variant
         except CoatsimError as exc:
             if not keep_going:
-                raise (exc if not isinstance(entry, str) else type(exc)(f"{name}: {exc}")) from None
+                raise (exc if builtin is None else type(exc)(f"{name}: {exc}")) from None
             failures[name] = str(exc).removeprefix(f"{name}: ")
     return runs, failures
 

@@ -152,7 +152,7 @@ def test_a_header_field_longer_than_a_comment_is_written_whole(n_teeth):
     """A curve with many corners has a long ``speed_limits`` field; it was cut at 200 characters
     like a comment, and the program's own reader refused '4...' (a scenario with a zigzag)."""
     from coatsim.geometry.primitives import Line
-    from coatsim.languages.kawasaki_as.header import SPEED_LIMITS_KEY as HEADER_KEY, parse_limits
+    from coatsim.path.process_record import SPEED_LIMITS_KEY as HEADER_KEY, parse_limits
 
     pts = [(10.0 * i, 20.0 * (i % 2)) for i in range(n_teeth + 1)]
     poly = Polysegment(tuple(Line(a, b) for a, b in zip(pts, pts[1:])), corners=frozenset(range(n_teeth - 1)))

@@ -26,7 +26,7 @@ from typing import Mapping, Optional, Sequence, Union
 
 from coatsim.geometry.space.pose import InvalidPose, Pose
 from coatsim.core.errors import CoatsimError, ExecutionError, InputError
-from coatsim.languages.kawasaki_as.header import decode as decode_header
+from coatsim.path.process_record import decode as decode_header
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
@@ -359,7 +359,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.stack.append(_Frame(main, Scope(), {}))
         self.controller.finish(main.end_line)
         self.stack.pop()
-        return self.controller.toolpath(main.name, decode_header(main.metadata, main.name), tuple(self.warnings.lines))
+        return self.controller.toolpath(main.name, decode_header(main.metadata, f"{main.source}:{main.line}"), tuple(self.warnings.lines))
 
 
 def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

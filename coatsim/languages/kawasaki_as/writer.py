@@ -28,7 +28,7 @@ import numpy as np
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import MM_DECIMALS, fmt, fmt_short
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
-from coatsim.languages.kawasaki_as.header import encode as encode_header
+from coatsim.path.process_record import encode as encode_header
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, sanitize_comment
 from coatsim.path.plan import ProgramPlan
 from coatsim.geometry.space.rotations import matrix_to_oat

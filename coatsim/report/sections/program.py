@@ -67,7 +67,8 @@ def section(data: Any) -> Section:
         count = len(text.splitlines())
         what = (f"{len(warned)} line{'s' if len(warned) != 1 else ''} with warnings highlighted" if warned
                 else "no line with a warning")
-        parts.append(f"<details><summary><b>{esc(run.name)}.as</b>: {count} lines, {what}</summary>"
+        file = getattr(run, "program_file", "") or f"{run.name}.as"
+        parts.append(f"<details><summary><b>{esc(file)}</b>: {count} lines, {what}</summary>"
                      f"{listing(run.name, text, warned, numbers)}</details>")
     figure = part_figure(data) if len(data.contours) > 1 else curve_figure(data)
     note = ('<p class="muted">Each listing opens on a click; a line number in the Warnings table jumps to its line. '

@@ -1,4 +1,6 @@
-"""The process record of a coatsim program as AS header comments: ``; coatsim: key=value``.
+"""The process record of a coatsim program as ``key=value`` fields, which each language writes
+in its own comments (AS ``; coatsim: key=value``, RAPID ``! coatsim: key=value``, KRL
+``;coatsim: key=value``) and its reader hands back to :func:`decode`.
 
 One line per field, in a fixed order; a field the record does not hold is not written. A program
 of several contours holds its per-contour fields (``closed``, ``sprayed``, ``speed_limits``) as one
