@@ -1,42 +1,26 @@
-"""Robot languages: figures of the Fanuc TP, URScript and G-code writers and readers.
-
-Part 1, parse + interpret speed (CPU s, best of 2) of programs of N and 2N moves and the exponent
-against N: a program coatsim wrote (a zigzag polyline, blended) and one in a person's style whose
-poses are computed in a loop (Fanuc FOR with position register arithmetic, URScript while with
-pose_add, G-code incremental moves with parameters). Part 2, lines of text and moves read back
-for the shipped scenarios' curves, polysegment and polyline variants, per language (Kawasaki AS
-for reference). Prints only; never asserts.
+"""Robot languages: parse+interpret speed of programs of N and 2N moves in every registered
+language (CPU s, best of 3, and the exponent against N), and the lines of text and moves read back
+of the shipped scenarios' curves' variants in each. Two programs per language where it has both:
+one coatsim wrote (a zigzag polyline, blended) and one in a person's style whose poses a loop
+computes (Fanuc FOR with position register arithmetic, URScript while with pose_add, G-code
+incremental moves with parameters). Prints only; never asserts.
 
     python scripts/bench_languages.py [N]   (default 5000 moves)
 """
 
 from __future__ import annotations
 
-import math
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-FANUC_UR_GCODE = ("fanuc-tp", "urscript", "gcode")
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-
-def cpu(fn, repeat: int = 3):
-    """(best CPU seconds, last result) of ``fn()``."""
-    best, out = math.inf, None
-    for _ in range(repeat):
-        t0 = time.process_time()
-        out = fn()
-        best = min(best, time.process_time() - t0)
-    return best, out
-
-
-def exponent(n1: float, t1: float, n2: float, t2: float) -> float:
-    return math.log(max(t2, 1e-9) / max(t1, 1e-9)) / math.log(n2 / n1)
+from scaling import cpu, exponent  # noqa: E402
 
 
 def zigzag(n_moves: int):
-    """A polyline of ``n_moves`` lines (a zigzag of 2 mm steps) as a polysegment."""
+    """A polyline of ``n_moves`` lines (a zigzag, 2 mm steps) as a polysegment."""
     import numpy as np
 
     from coatsim.path.placement import polyline_polysegment
@@ -44,6 +28,9 @@ def zigzag(n_moves: int):
     x = np.arange(n_moves + 1) * 2.0
     y = np.where(np.arange(n_moves + 1) % 2 == 0, 0.0, 1.0)
     return polyline_polysegment(np.column_stack((x - x.mean(), y)), False)
+
+
+LOOPED = ("fanuc-tp", "urscript", "gcode")
 
 
 def looped(name: str, n: int) -> str:
@@ -66,19 +53,19 @@ def looped(name: str, n: int) -> str:
 
 
 def read_speed(n: int) -> None:
-    from coatsim.languages.registry import language
+    from coatsim.languages.registry import LANGUAGES
     from coatsim.path.build import ProgramOptions
     from coatsim.path.language import ReadOptions
     from coatsim.path.part_program import build_part_program
     from coatsim.path.placement import Placement
+    from coatsim.path.program_files import program_suffixes, write_program
 
-    print(f"# Fanuc TP, URScript, G-code: parse + interpret (CPU s, best of 2), ~{n} and ~{2 * n} moves")
-    print(f"  {'language':<10} {'program':<9} {'moves':>7} {'lines':>7} {'t1 s':>7} {'moves':>7} {'t2 s':>7} "
+    print(f"# parse + interpret (CPU s, best of 3): programs of ~{n} and ~{2 * n} moves")
+    print(f"  {'language':<12} {'program':<8} {'moves':>7} {'lines':>7} {'t1 s':>7} {'moves':>7} {'t2 s':>7} "
           f"{'moves/s':>9} {'exponent':>9}")
     with tempfile.TemporaryDirectory() as folder:
-        for name in FANUC_UR_GCODE:
-            lang = language(name)
-            for kind in ("written", "looped"):
+        for name, lang in LANGUAGES.items():
+            for kind in ("written", "looped") if name in LOOPED else ("written",):
                 row = []
                 for size in (n, 2 * n):
                     if kind == "written":
@@ -87,27 +74,27 @@ def read_speed(n: int) -> None:
                                                   source="bench", language=lang).text
                     else:
                         text = looped(name, size)
-                    path = Path(folder) / f"b{size}{lang.suffixes[0]}"
-                    path.write_text(text)
-                    t, toolpath = cpu(lambda: lang.read([path], ReadOptions()), repeat=2)
+                    paths = write_program(lang, text, Path(folder) / f"b{size}{program_suffixes(lang)[0]}")
+                    t, toolpath = cpu(lambda: lang.read(list(paths), ReadOptions()), repeat=3)
                     row.append((len(toolpath.moves), text.count("\n"), t))
                 (m1, l1, t1), (m2, _, t2) = row
-                print(f"  {name:<10} {kind:<9} {m1:>7} {l1:>7} {t1:>7.3f} {m2:>7} {t2:>7.3f} {m2 / t2:>9.0f} "
+                print(f"  {name:<12} {kind:<8} {m1:>7} {l1:>7} {t1:>7.3f} {m2:>7} {t2:>7.3f} {m2 / t2:>9.0f} "
                       f"{exponent(m1, t1, m2, t2):>9.2f}")
 
 
 def scenario_sizes() -> None:
     """Lines of text / moves read back of each shipped scenario's program, per variant and language."""
     from coatsim.core.errors import CoatsimError
-    from coatsim.languages.registry import language
+    from coatsim.languages.registry import LANGUAGES, language
     from coatsim.path.build import ProgramOptions, polyline_of
     from coatsim.path.language import ReadOptions
     from coatsim.path.part_program import build_part_program
     from coatsim.path.placement import Placement
+    from coatsim.path.program_files import program_suffixes, write_program
     from coatsim.run.scenario import load_scenario
     from coatsim.run.scenario_inputs import curve_frame, load_arm, segment_input
 
-    names = ("kawasaki-as", *FANUC_UR_GCODE)
+    names = tuple(LANGUAGES)
     root = Path(__file__).resolve().parents[1] / "scenarios"
     print("\n# shipped scenarios: lines of text / moves read back")
     print(f"  {'scenario':<20} {'variant':<15} " + " ".join(f"{n:>13}" for n in names))
@@ -133,13 +120,13 @@ def scenario_sizes() -> None:
                                                language=lang, points=[c.curve.points for c in contours],
                                                polylines=polylines)
                     with tempfile.TemporaryDirectory() as folder:
-                        file = Path(folder) / f"p{lang.suffixes[0]}"
-                        file.write_text(built.text)
-                        moves = len(lang.read([file], ReadOptions()).moves)
+                        files = write_program(lang, built.text, Path(folder) / f"p{program_suffixes(lang)[0]}")
+                        moves = len(lang.read(list(files), ReadOptions()).moves)
                     cells.append(f"{built.text.count(chr(10))}/{moves}")
                 except CoatsimError as exc:
                     cells.append("refused" if "tool orientation" in str(exc) else type(exc).__name__)
             print(f"  {path.stem:<20} {variant:<15} " + " ".join(f"{c:>13}" for c in cells))
+
 
 
 if __name__ == "__main__":

@@ -42,8 +42,7 @@ def report(title: str, rows: list[tuple[str, float, float, float, float]], unit:
 
 def segment(n: int = 100_000, factor: int = 10) -> None:
     """Built-in curve generation, the exact deviation check and the whole fit at N and 10 N points."""
-    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
-from coatsim.geometry import builtin_curve, segment_curve
+    from coatsim.geometry import builtin_curve, segment_curve
     from coatsim.geometry.deviation import hausdorff
 
     rows = []
@@ -159,6 +158,7 @@ def program(n: int = 500, factor: int = 10) -> None:
     """Writing, parsing and interpreting a polyline program of N and 10 N moves."""
     from coatsim.geometry import make_curve
     from coatsim.languages.kawasaki_as import interpret, parse_as
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
     from coatsim.path.build import ProgramOptions, build_program, polyline_of
     from coatsim.path.placement import Placement
 
@@ -168,8 +168,8 @@ def program(n: int = 500, factor: int = 10) -> None:
         curve = make_curve(np.column_stack((80 * np.cos(a), 80 * np.sin(a))), "circle")
         poly = polyline_of(curve.points, curve.closed, 1e-9)
         options = ProgramOptions(variant="polyline-blend")
-        t_write, built = cpu(lambda: build_program(poly, Placement(), options, language=KAWASAKI_AS, tolerance_mm=1e-9, source="circle",
-                                                   points=curve.points), 3)
+        t_write, built = cpu(lambda: build_program(poly, Placement(), options, language=KAWASAKI_AS, tolerance_mm=1e-9,
+                                                   source="circle", points=curve.points), 3)
         t_parse, parsed = cpu(lambda: parse_as(built.text), 3)
         t_interp, _ = cpu(lambda: interpret(parsed), 3)
         timed[size] = (t_write, t_parse, t_interp)

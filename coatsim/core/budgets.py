@@ -42,6 +42,13 @@ MAX_YAML_BYTES = 1 << 20
 MAX_YAML_DEPTH = 32
 MAX_YAML_ALIASES = 100
 MAX_YAML_NODES = 100_000
+#: Triangles ``plan`` works on (a part mesh as read, and its region refined to the pass spacing);
+#: ~2 kB each through normals, the heat method's factorisation and fast marching.
+MAX_PLAN_TRIANGLES = 1_000_000
+#: Size of a part mesh file ``plan`` reads: an ASCII STL takes ~250 bytes per triangle.
+MAX_PLAN_MESH_BYTES = 256 * MAX_PLAN_TRIANGLES
+#: Passes of one plan.
+MAX_PLAN_PASSES = 20_000
 
 
 def check_budget(what: str, needed: float, budget: int, fix: str, parameters: tuple[str, ...] = ()) -> None:

@@ -26,7 +26,7 @@ from coatsim.geometry.primitives import Arc, Line
 from coatsim.geometry.space.primitives import Arc3, DegenerateArc, Line3, Segment3, arc_through
 from coatsim.path.frames import DEFAULT_FRAME
 from coatsim.geometry.space.rotations import rot_y, rot_z
-from coatsim.geometry.space.pose import Pose, exp_rotation
+from coatsim.geometry.space.pose import Pose, exp_rotation, slerp
 
 
 # An arc that bulges less than this from its chord is placed as the chord (far below the
@@ -66,13 +66,20 @@ class Placement:
 class PlacedMove:
     """One TCP move of a placed path: its geometry (a Line3 or an Arc3, base frame, mm), the tool
     pose at its start and at its end, and the part of the path it belongs to ("lead_in",
-    "curve" or "lead_out"); on an arc with ``follow_tangent`` the tool turns with the path."""
+    "curve" or "lead_out"); on an arc with ``follow_tangent`` the tool turns with the path.
+
+    A move of a 3-D pass gives its arc's middle pose explicitly (``via_pose``: the controller
+    turns the tool from the start pose to it and on to the end pose) and may have its own
+    programmed speed (``speed_mm_s``; None: the plan's). A writer writes both.
+    """
 
     geometry: Segment3
     start: Pose
     end: Pose
     part: str = "curve"
     follow_tangent: bool = False
+    via_pose: Pose | None = None
+    speed_mm_s: float | None = None
 
     @property
     def length(self) -> float:
@@ -87,10 +94,16 @@ class PlacedMove:
         if u == 1.0:
             return self.end
         arc = self.geometry
+        point = arc.at_angles(np.array([u * arc.sweep]))[0]
+        if self.via_pose is not None:
+            if u == 0.5:
+                return self.via_pose
+            a, b, f = (self.start, self.via_pose, 2 * u) if u < 0.5 else (self.via_pose, self.end, 2 * u - 1)
+            return Pose(slerp(a.rotation, b.rotation, f)[0], point)
         rotation = self.start.rotation
         if self.follow_tangent:
             rotation = exp_rotation(arc.normal * (u * arc.sweep)) @ rotation
-        return Pose(rotation, arc.at_angles(np.array([u * arc.sweep]))[0])
+        return Pose(rotation, point)
 
     @property
     def via(self) -> Pose:
@@ -113,8 +126,9 @@ class PlacedMove:
         if n == 1:
             return (self,)
         poses = [self.pose_at(k / n) for k in range(n)] + [self.end]
+        vias = [self.pose_at((k + 0.5) / n) if self.via_pose is not None else None for k in range(n)]
         return tuple(PlacedMove(placed_arc(poses[k], poses[k + 1], arc.center, arc.normal, arc.sweep / n),
-                                poses[k], poses[k + 1], self.part, self.follow_tangent)
+                                poses[k], poses[k + 1], self.part, self.follow_tangent, vias[k], self.speed_mm_s)
                      for k in range(n))
 
 
@@ -131,7 +145,11 @@ def placed_arc(start: Pose, end: Pose, center: np.ndarray, normal: np.ndarray, s
 
 @dataclass(frozen=True, eq=False)
 class PlacedPath:
-    """The sprayed tool path in the base frame: lead-in, curve, lead-out, end to end."""
+    """The sprayed tool path in the base frame: lead-in, curve, lead-out, end to end.
+
+    ``clearance_mm`` is how far the tool approaches and departs along its axis before and after
+    this path (None: the plan's ``approach_mm``): a 3-D part may need more room to travel
+    between passes than a flat one."""
 
     segments: tuple[PlacedMove, ...]
     normal: np.ndarray
@@ -139,6 +157,7 @@ class PlacedPath:
     lead_in_mm: float
     lead_out_mm: float
     curve_length_mm: float
+    clearance_mm: float | None = None
 
     @property
     def start(self) -> Pose:

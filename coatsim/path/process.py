@@ -16,6 +16,10 @@ from coatsim.geometry.space.pose import Pose
 from coatsim.path.speed_limits import SpeedLimit
 
 
+#: Where a program's speed holds: at the tool centre point, or at the trace on the surface.
+SPEED_ON = ("tcp", "trace")
+
+
 @dataclass(frozen=True)
 class SprayedContour:
     """One sprayed contour: whether it is ``closed`` (sprayed exactly once around, from the
@@ -35,7 +39,9 @@ class ProcessInfo:
 
     ``contours`` holds one entry per sprayed contour in spray order, or a single entry that
     holds for every contour; ``contour_order`` the drawing's contour numbers (1-based) in spray
-    order for a program of several contours. Totals (``curve_length_mm``, segment counts) are
+    order for a program of several contours. ``speed_on`` says where ``speed_mm_s`` holds:
+    ``tcp`` (the tool centre point, the programmed speed of every move) or ``trace`` (the spot
+    on the surface: the moves' speeds vary so that it moves at that speed). Totals (``curve_length_mm``, segment counts) are
     over every contour.
     """
 
@@ -55,6 +61,7 @@ class ProcessInfo:
     n_arcs: int | None = None
     contours: tuple[SprayedContour, ...] = ()
     contour_order: tuple[int, ...] | None = None
+    speed_on: str | None = None
 
     def contours_for(self, n: int, where: str) -> tuple[SprayedContour, ...]:
         """The record of each of ``n`` sprayed contours: one entry holds for all of them, none

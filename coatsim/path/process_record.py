@@ -1,9 +1,11 @@
-"""The process record of a coatsim program as text: ``key=value`` fields, and as comment lines.
+"""The process record of a coatsim program as ``key=value`` fields, and as comment lines.
 
-Every language carries the record in the comments it allows: ``coatsim: key=value``, one line
-per field (Kawasaki AS: ``; coatsim: key=value``). Where a language limits the length of a
-comment, :func:`comment_lines` continues a long field on further lines, ``coatsim+ rest`` (after
-one space) or ``coatsim& rest`` (directly), and :func:`read_comment_lines` joins them again.
+Every language carries the record in the comments it allows, one line per field: AS
+``; coatsim: key=value``, RAPID ``! coatsim: key=value``, KRL ``;coatsim: key=value``, Fanuc TP
+``! coatsim: ...``, URScript ``# coatsim: ...``, G-code ``(coatsim: ...)``. :func:`encode` and
+:func:`decode` are the fields; :func:`comment_lines` and :func:`read_comment_lines` the comment
+texts, where a language that limits the length of a comment (Fanuc's 32 characters) continues a
+long field on further lines, ``coatsim+ rest`` (after one space) or ``coatsim& rest`` (directly).
 
 One line per field, in a fixed order; a field the record does not hold is not written. A program
 of several contours holds its per-contour fields (``closed``, ``sprayed``, ``speed_limits``) as one
@@ -21,7 +23,7 @@ from typing import Callable, Iterable, Optional, Sequence
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.xyzoat import format_xyzoat, parse_xyzoat
-from coatsim.path.process import ProcessInfo, SprayedContour
+from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import SpeedLimit
 
 SPRAYED_CURVE = "curve"
@@ -88,6 +90,8 @@ def encode(info: ProcessInfo) -> tuple[tuple[str, str], ...]:
         ("n_arcs", None if info.n_arcs is None else str(info.n_arcs)),
         (SPEED_LIMITS_KEY, _per_contour(format_limits(c.speed_limits) for c in contours) if contours else None),
     ]
+    if info.speed_on is not None:
+        fields.append(("speed_on", info.speed_on))
     if info.contour_order is not None:
         fields += [("n_contours", str(len(info.contour_order))),
                    ("contour_order", ",".join(str(k) for k in info.contour_order))]
@@ -182,7 +186,14 @@ def decode(pairs: Sequence[tuple[str, str]], where: str) -> ProcessInfo:
         n_arcs=optional("n_arcs", _count),
         contours=_contours(where, fields),
         contour_order=contour_order,
+        speed_on=_speed_on(where, get("speed_on")),
     )
+
+
+def _speed_on(where: str, raw: str | None) -> str | None:
+    if raw is not None and raw not in SPEED_ON:
+        raise InputError(f"{where}: header field speed_on={raw!r}: expected one of {', '.join(SPEED_ON)}")
+    return raw
 
 
 RECORD_MARK = "coatsim:"

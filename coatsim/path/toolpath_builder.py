@@ -7,7 +7,9 @@ corner before it (the robot stage switches at the start of the blend). A move's 
 gun state while it runs. A rest (a timed wait, a dwell) brings the motion before it to a stop;
 the last motion of a program ends at rest. The interpreter decides each motion's settings in its
 language's terms and may revise a motion's settings until the program ends (a blend that depends
-on the next move, a stop decided by what follows).
+on the next move, a stop decided by what follows). The builder also keeps what a
+:class:`~coatsim.path.reading.Reading` needs: each move's source and user frame (``origin``), the
+statements that switch outputs.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.path.process import ProcessInfo
+from coatsim.path.reading import MoveSource, OutputSwitch, Reading
 from coatsim.path.toolpath import CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, ToolFrame, ToolPath
 
 #: Motions one run may issue, and statements it may execute (a runaway loop stops there).
@@ -56,13 +59,22 @@ class ToolPathBuilder:
     """Motions, rests, the gun and the TCP as a program meets them.
 
     ``where(line)`` names a source line in messages ("prog.ls:12"); ``start()`` gives the pose
-    (and joints) the robot stands at before the first motion, when the cell is known.
+    (and joints) the robot stands at before the first motion, when the cell is known;
+    ``origin()`` the file, the program (routine) running and the user frame in force, for each
+    move's source.
     """
 
     def __init__(self, where: Callable[[int], str],
-                 start: Optional[Callable[[], tuple[Pose, Optional[np.ndarray]]]] = None) -> None:
+                 start: Optional[Callable[[], tuple[Pose, Optional[np.ndarray]]]] = None,
+                 origin: Optional[Callable[[], tuple[str, str, Pose]]] = None) -> None:
         self.where, self._start = where, start
+        self._origin = origin or (lambda: ("", "", Pose.identity()))
         self.moves: list[PendingMove] = []
+        self.move_sources: list[MoveSource] = []
+        self.move_frames: list[Pose] = []
+        self.switches: list[OutputSwitch] = []
+        self.outputs: set[int] = set()
+        self._switch_lines: set[tuple[str, int]] = set()
         self.dwells: list[Dwell] = []
         self.current: Optional[Pose] = None
         self.current_joints: Optional[np.ndarray] = None
@@ -111,6 +123,9 @@ class ToolPathBuilder:
             raise self.error(line, f"the speed must be > 0, got {settings.speed_mm_s:g} mm/s")
         self.moves.append(PendingMove(kind, self.current, end, via, replace(settings, tool=self.tool),
                                       self.gun_on, line, joints))
+        source, program, frame = self._origin()
+        self.move_sources.append(MoveSource(source, program, line, line))
+        self.move_frames.append(frame)
         self.current, self.current_joints = end, joints
 
     def joint(self, target: Pose, settings: MotionSettings, line: int, joints: Optional[np.ndarray] = None) -> None:
@@ -154,6 +169,18 @@ class ToolPathBuilder:
         """The gun output as from the next motion."""
         self.gun_on = on
 
+    def switched(self, line: int, text: str, output: Optional[int] = None, gun: Optional[bool] = None) -> None:
+        """Note a statement that switches an output (``output`` its number, when it has one; ``gun``
+        what it does to the gun, when it is the gun), as the language writes it; a statement run
+        again (a loop) is noted once."""
+        if output is not None:
+            self.outputs.add(output)
+        source = self._origin()[0]
+        if (source, line) in self._switch_lines:
+            return
+        self._switch_lines.add((source, line))
+        self.switches.append(OutputSwitch(source, line, text + ("" if gun is None else f" (gun {'on' if gun else 'off'})")))
+
     def set_tool(self, frame: Optional[Pose], line: int) -> None:
         """The TCP in the flange frame for the motions after this (None: the controller's own, the
         cell's gun). The motion before ends at rest; the current pose is re-expressed with the new
@@ -179,3 +206,13 @@ class ToolPathBuilder:
             else:
                 moves.append(CircularMove(m.start, m.via, m.end, m.settings, m.spray, m.line))
         return ToolPath(name, tuple(moves), process, tuple(self.dwells), tuple(self.warnings), self.tool)
+
+    def reading(self, toolpath: ToolPath, sources: tuple[str, ...], program: tuple[str, int], programs: tuple[str, ...],
+                ended: str, n_steps: int, n_poses: int, **more: object) -> Reading:
+        """The Reading of the run that made ``toolpath``: ``program`` the main program's file and
+        line; ``more`` the Reading's other fields (problems, notes, unknowns)."""
+        return Reading(toolpath=toolpath, sources=sources, program=toolpath.name, program_source=program[0],
+                       program_line=program[1], programs=programs, ended=ended,
+                       move_sources=tuple(self.move_sources), move_frames=tuple(self.move_frames), n_steps=n_steps,
+                       n_poses=n_poses, switches=tuple(self.switches), outputs=tuple(sorted(self.outputs)),
+                       gun_on_at_end=self.gun_on, **more)  # type: ignore[arg-type]

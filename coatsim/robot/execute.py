@@ -14,9 +14,11 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.checks import check_playback
+from coatsim.robot.collisions import check_collisions
 from coatsim.robot.ik import Residual
 from coatsim.robot.joint_path import JointPath, Stopwatch, solve_and_time
-from coatsim.robot.motion_metrics import CurveAllowance, MotionMetrics, motion_metrics
+from coatsim.robot.motion_metrics import (CurveAllowance, MotionMetrics, TraceMetrics, motion_metrics, spot_speed,
+                                          trace_metrics)
 from coatsim.robot.playback import Playback, play
 from coatsim.robot.reference import ReferencePath, build_reference
 from coatsim.robot.sampling import min_motion_time_s, plan_pieces, step_label
@@ -31,8 +33,9 @@ class Execution:
     """Result of executing one program: the log, its metrics, the warnings by program step (TOOL
     mismatch, joint-limit approach, singularity, small tracking or limit excesses), the largest
     IK residual, the programmed reference path, the curve-proper progress interval (mm; from
-    the first contour's start to the last one's end), wall time per phase (s), and for a part
-    each contour's interval and metrics."""
+    the first contour's start to the last one's end), wall time per phase (s), for a part
+    each contour's interval and metrics, and the spray spot's speed on the surface (the
+    program's stand-off from its record; 0, the tool's own speed, for a program without one)."""
 
     log: TrajectoryLog
     metrics: MotionMetrics
@@ -44,6 +47,7 @@ class Execution:
     warnings: tuple[str, ...] = ()
     curves: tuple[tuple[float, float], ...] = ()
     contour_metrics: tuple[MotionMetrics, ...] = ()
+    trace: TraceMetrics | None = None
 
 
 def _spray_runs(toolpath: ToolPath, cartesian: list[int]) -> list[list[int]]:
@@ -95,7 +99,9 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
     The controller computes every pose with the program's TOOL; the IK puts the cell's gun
     where that puts it (see :mod:`coatsim.robot.tooling`). After playback the simulated arm is
     checked against the commanded motion and the joint limits (:mod:`coatsim.robot.checks`):
-    ExecutionError when it diverged, warnings for small excesses.
+    ExecutionError when it diverged, warnings for small excesses. Before playback the commanded
+    motion is checked for contact between the arm (with its gun) and the rest of the cell, a part
+    added with :func:`coatsim.robot.collisions.with_part` included (Collision, exit 3).
     """
     cell = cell or load_cell()
     watch = Stopwatch()
@@ -107,10 +113,12 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
                  "motion and dwells at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
                  "raise the programmed speed (speed_mm_s) or shorten the dwells", parameters=("speed_mm_s",))
     path = solve_and_time(toolpath, cell, pieces, watch)
+    label = lambda i: step_label(toolpath, None if path.row_move[i] < 0 else int(path.row_move[i]))  # noqa: E731
+    with watch.phase("collisions_s"):
+        check_collisions(cell, path.q, label)
     with watch.phase("playback_s"):
         run = play(cell, path.q, path.qd, path.qdd)
     with watch.phase("checks_s"):
-        label = lambda i: step_label(toolpath, None if path.row_move[i] < 0 else int(path.row_move[i]))  # noqa: E731
         events = list(path.events) + check_playback(cell, run.t, run.q, run.tcp, path.q, label)
     with watch.phase("metrics_s"):
         measured = _measure(toolpath, cell, run, path)
@@ -123,10 +131,15 @@ def _measure(toolpath: ToolPath, cell: Cell, run: Playback, path: JointPath) -> 
     curve proper (of each contour of a part)."""
     ref = build_reference(list(path.chunks))
     dist, progress, curvature = ref.project(run.tcp, path.hint, _WINDOW_MM + 2 * path.max_blend_mm)
+    standoff = toolpath.process.standoff_mm or 0.0
     log = TrajectoryLog(t=run.t, position=run.tcp, axis=run.axis, speed=run.speed, spray=path.spray,
-                        progress=progress, path_error=dist, q=run.q)
+                        progress=progress, path_error=dist, q=run.q,
+                        trace_speed=spot_speed(run.t, run.tcp, run.axis, standoff))
     spans, speed = _curves_proper(toolpath, ref)
     allowances = _allowances(toolpath, len(spans))
+    process = toolpath.process
+    target = process.speed_mm_s if process.speed_on == "trace" and process.speed_mm_s else speed
+    trace = trace_metrics(log, spans, speed, target, standoff, cell.tool_accel_mm_s2, allowances)
     residual = path.residual
     limits = (curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max, (residual.position_mm, residual.rotation_deg))
     metrics = motion_metrics(log, spans, speed, *limits, allowances)
@@ -134,4 +147,4 @@ def _measure(toolpath: ToolPath, cell: Cell, run: Playback, path: JointPath) -> 
         if len(spans) > 1 else (metrics,)
     return Execution(log=log, metrics=metrics, events=(), residual=residual, reference=ref,
                      curve=(spans[0][0], spans[-1][1]), warnings=toolpath.warnings, curves=tuple(spans),
-                     contour_metrics=per_contour)
+                     contour_metrics=per_contour, trace=trace)

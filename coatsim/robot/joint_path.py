@@ -1,7 +1,8 @@
 """From planned pieces to one timed joint path: the inverse kinematics and the timing of each piece,
 the rests of the program's dwells, all on one timeline of simulation steps.
 
-A joint piece (JMOVE, the implicit move from home) is solved to its goal configuration and timed
+Every piece is solved first (the first pose the arm cannot reach is named with the reason, and a
+configuration flip inside a sprayed pass is refused, before any timing); then each is timed. A joint piece (JMOVE, the implicit move from home) is solved to its goal configuration and timed
 in joint space; a Cartesian piece is tracked by the IK sample by sample (runs of short
 exact-stop pieces solved together) and timed along its path. Each piece also contributes its
 programmed reference path (the TCP chords of a joint move), which the measurement projects the
@@ -17,22 +18,21 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core.budgets import MAX_SIM_STEPS
 from coatsim.core.errors import ExecutionError
 from coatsim.geometry.space.primitives import Line3, Segment3
 from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell
 from coatsim.robot.chain import tcp_positions_mm
-from coatsim.robot.ik import Residual, Tracker, joint_path_events
+from coatsim.robot.configuration import check_no_flip
+from coatsim.robot.ik import Residual, Tracker, UnreachablePose, joint_path_events
+from coatsim.robot.reachability import explained
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.sampling import CartesianPiece, JointPiece, step_label
 from coatsim.robot.timing import TimedPiece, time_cartesian, time_joint
 from coatsim.robot.tooling import mount, to_gun, tool_mismatches
 
-# A move to a configuration closer than this to where the arm stands (rad, every joint) is no move.
-_SAME_CONFIGURATION_RAD = 1e-9
-# A configuration the program gives may lie this far outside a joint's range (rad): round-off.
-_LIMIT_SLACK_RAD = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,7 +93,7 @@ class _Lap:
 def _joint_target(cell: Cell, q: np.ndarray, label: str) -> np.ndarray:
     """A configuration the program gives, checked against the joint ranges."""
     q = np.asarray(q, dtype=float)
-    outside = np.flatnonzero((q < cell.q_min - _LIMIT_SLACK_RAD) | (q > cell.q_max + _LIMIT_SLACK_RAD))
+    outside = np.flatnonzero((q < cell.q_min - ROUND_OFF) | (q > cell.q_max + ROUND_OFF))
     if len(outside):
         j = int(outside[0])
         raise ExecutionError(f"{label}: joint {j + 1} at {math.degrees(q[j]):.3f} deg is outside its range "
@@ -164,19 +164,24 @@ class _Timeline:
             if e not in self.events:
                 self.events.append(e)
 
-    def joint_piece(self, k: int, piece: JointPiece) -> None:
-        """Solve the goal configuration of a joint move and time it in joint space."""
+    def solve_joint(self, k: int, piece: JointPiece) -> np.ndarray:
+        """The goal configuration of a joint move (the IK of its target, or the program's joints)."""
         label = step_label(self.toolpath, piece.move)
         # the implicit first move goes to the start of the first Cartesian move, with its TOOL
         tool_move = piece.move if piece.move is not None else int(self.pieces[k + 1].move[0])
         p_gun, r_gun = to_gun(piece.target.translation_mm, piece.target.rotation, self.mount_r[tool_move],
                               self.mount_p[tool_move])
-        with self.watch.phase("ik_s"):
-            if piece.joints_rad is not None:
-                q_goal = _joint_target(self.cell, piece.joints_rad, label)
-            else:
-                q_goal = self.tracker.solve_pose(self.q_now, p_gun, r_gun, label)
-        if np.max(np.abs(q_goal - self.q_now)) < _SAME_CONFIGURATION_RAD:
+        if piece.joints_rad is not None:
+            q_goal = _joint_target(self.cell, piece.joints_rad, label)
+        else:
+            q_goal = self.tracker.solve_pose(self.q_now, p_gun, r_gun, label)
+        self.q_now = q_goal
+        return q_goal
+
+    def joint_piece(self, piece: JointPiece, q_goal: np.ndarray) -> None:
+        """Time a joint move from where the arm stands to its goal in joint space."""
+        label = step_label(self.toolpath, piece.move)
+        if np.max(np.abs(q_goal - self.q_now)) < TINY:  # already there
             return
         with self.watch.phase("timing_s"):
             timed = time_joint(self.cell, self.q_now, q_goal, piece.speed_mm_s, label,
@@ -207,17 +212,23 @@ class _Timeline:
             return self.solved.pop(k)
         return self.tracker.track(self.q_now, piece.s, p_gun, r_gun, step_time, lambda i: labels[i])
 
-    def cartesian_piece(self, k: int, piece: CartesianPiece) -> None:
-        """Track a Cartesian piece with the IK and time it along its path."""
+    def solve_cartesian(self, k: int, piece: CartesianPiece) -> np.ndarray:
+        """The IK of a Cartesian piece, its events, and no configuration flip where it sprays."""
         labels = [step_label(self.toolpath, int(m)) for m in piece.move]
-        with self.watch.phase("ik_s"):
-            qs, wrist, res = self._track(k, piece, labels)
+        qs, wrist, res = self._track(k, piece, labels)
         self.worst = [max(self.worst[0], res.position_mm), max(self.worst[1], res.rotation_deg),
                       max(self.worst[2], res.iterations)]
         self.note(joint_path_events(self.cell, qs, wrist, labels))
+        check_no_flip(self.cell, qs, piece.spray, lambda i: labels[i])
         self.too_fast.extend(filter(None, [speed_event(self.cell, piece, qs, labels[int(np.argmax(piece.speed))])]))
+        self.q_now = qs[-1]
+        return qs
+
+    def cartesian_piece(self, piece: CartesianPiece, qs: np.ndarray) -> None:
+        """Time a solved Cartesian piece along its path."""
+        label = step_label(self.toolpath, int(piece.move[0]))
         with self.watch.phase("timing_s"):
-            timed = time_cartesian(self.cell, piece.s, qs, piece.speed, piece.curvature, labels[0],
+            timed = time_cartesian(self.cell, piece.s, qs, piece.speed, piece.curvature, label,
                                    max_steps=MAX_SIM_STEPS - self.steps)
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
         self.add(TimedSegment(timed, self.offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
@@ -235,12 +246,21 @@ def solve_and_time(toolpath: ToolPath, cell: Cell, pieces: tuple, watch: Stopwat
     line = _Timeline(toolpath, cell, pieces, watch)
     watch.seconds.setdefault("ik_s", 0.0)
     watch.seconds.setdefault("timing_s", 0.0)
-    for k, piece in enumerate(pieces):
+    solved = []
+    with watch.phase("ik_s"):  # every pose is reached (or the first one that is not is named) before any timing
+        try:
+            for k, piece in enumerate(pieces):
+                solved.append(line.solve_joint(k, piece) if isinstance(piece, JointPiece)
+                              else line.solve_cartesian(k, piece))
+        except UnreachablePose as error:
+            raise explained(error, line.tracker) from None
+    line.q_now = cell.home.copy()
+    for piece, q in zip(pieces, solved):
         line.rest_until(_first_move(piece))
         if isinstance(piece, JointPiece):
-            line.joint_piece(k, piece)
+            line.joint_piece(piece, q)
         else:
-            line.cartesian_piece(k, piece)
+            line.cartesian_piece(piece, q)
     line.rest_until(float("inf"))
     if not line.segments:
         raise ExecutionError(f"{toolpath.name}: the program moves the tool nowhere")

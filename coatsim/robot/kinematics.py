@@ -8,6 +8,7 @@ from typing import Optional
 
 import numpy as np
 
+from coatsim.core.numeric import ROUND_OFF
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.tool_frames import gun_in_tcp
 from coatsim.geometry.space.pose import Pose
@@ -28,7 +29,7 @@ class CellKinematics:
         times that TOOL (the gun's pose times M^-1, M = TOOL^-1 GUN)."""
         q = np.asarray(joints_rad, dtype=float)
         cell = self.cell
-        outside = np.flatnonzero((q < cell.q_min - 1e-9) | (q > cell.q_max + 1e-9))
+        outside = np.flatnonzero((q < cell.q_min - ROUND_OFF) | (q > cell.q_max + ROUND_OFF))
         if len(outside):
             j = int(outside[0])
             raise ExecutionError(f"joint {j + 1} at {np.degrees(q[j]):.3f} deg is outside the cell's range "

@@ -13,7 +13,6 @@ from coatsim.path import tool_frames
 from coatsim.geometry.space.rotations import matrix_to_oat
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.xyzoat import pose_from_xyzoat
-from coatsim.geometry.space.pose import Pose
 from coatsim.path.toolpath import JointMove, ToolFrame, ToolPath
 from coatsim.robot.cell import Cell
 

@@ -155,12 +155,17 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
     try:
         options = ReadOptions(gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states or {},
                               kinematics=CellKinematics(cell), variables=entry.variables, needs_spray=True)
-        toolpath = language_of(files).read(files, options)
+        toolpath = language_of(files, entry.language).read(files, options)
     except CoatsimError as exc:
         said = exc.reworded({"gun_signal": "gun.signal"})
         raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {said}") from None
     return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
 
+
+
+def user_program_suffix(loaded: ScenarioFile, entry: ProgramVariantSpec) -> str:
+    """The suffix of the copy of a user's program a run writes: its language's first."""
+    return language_of([loaded.resolve(f) for f in entry.files], entry.language).suffixes[0]
 
 
 def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
@@ -179,6 +184,6 @@ def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> lis
         ("--model" if model is not None else "robot.model", robot),
     ]
     for entry in spec.variants:
-        if not isinstance(entry, str):
+        if isinstance(entry, ProgramVariantSpec):
             files += [(f"the program of variant {entry.name}", loaded.resolve(f)) for f in entry.files]
     return files

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from coatsim.core.numeric import TINY
 from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
@@ -48,7 +49,7 @@ def _footprint_radius(surface: Surface, deposit: Deposit, model: SprayModel, ste
     d = surface.vertices - steps.position[step]
     a = steps.axis[step]
     da = d @ a
-    seen = (da > 1e-9) & (-np.einsum("ij,ij->i", d, surface.normals) > 0)
+    seen = (da > TINY) & (-np.einsum("ij,ij->i", d, surface.normals) > 0)
     lateral = np.linalg.norm(d - da[:, None] * a, axis=1)
     return np.where(seen, lateral * model.standoff_mm / np.where(seen, da, 1.0), np.inf)
 

@@ -35,6 +35,7 @@ from typing import Callable
 
 import numpy as np
 
+from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core import defaults
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
@@ -138,7 +139,7 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     dp = p[k + 1] - p[k]
     turn = np.arccos(np.clip(np.sum(a[k] * a[k + 1], axis=1), -1.0, 1.0))
     travel = np.maximum(np.linalg.norm(dp, axis=1), model.standoff_mm * turn)
-    n = np.maximum(1, np.ceil(travel / model.step_mm - 1e-9)).astype(np.int64)
+    n = np.maximum(1, np.ceil(travel / model.step_mm - ROUND_OFF)).astype(np.int64)
     check_budget(f"coating sub-steps of {model.step_mm:g} mm along {float(travel.sum()):.6g} mm of sprayed path",
                  float(n.sum()), MAX_SPRAY_SUBSTEPS, "use a wider footprint or a longer sub-step")
     rep = np.repeat(np.arange(len(k)), n)
@@ -245,7 +246,7 @@ def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray,
     a = steps.axis[s]
     da = np.einsum("ij,ij->i", d, a)
     dn = -np.einsum("ij,ij->i", d, surface.normals[i])
-    seen = (da > 1e-9) & (dn > 0)
+    seen = (da > TINY) & (dn > 0)
     scale = np.where(seen, h0 / np.where(seen, da, 1.0), 0.0)
     u = np.einsum("ij,ij->i", d, steps.e1[s]) * scale
     v = np.einsum("ij,ij->i", d, steps.e2[s]) * scale

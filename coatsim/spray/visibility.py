@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
+from coatsim.core.numeric import ROUND_OFF
 from coatsim.core.budgets import MAX_SHADOW_BYTES, check_budget
 from coatsim.core.errors import InputError
 
@@ -41,7 +42,7 @@ RAY_BYTES = 28
 
 def _relative_tolerance(vertices: np.ndarray) -> float:
     """1e-9 of the coordinates' scale: float64 rounding of n.(y - x) stays far below it."""
-    return 1e-9 * max(float(np.abs(vertices).max(initial=0.0)), float(np.ptp(vertices, axis=0).max(initial=0.0)), 1.0)
+    return ROUND_OFF * max(float(np.abs(vertices).max(initial=0.0)), float(np.ptp(vertices, axis=0).max(initial=0.0)), 1.0)
 
 
 def _planar_exposed(vertices: np.ndarray, normals: np.ndarray, plane_normal: np.ndarray, tol: float) -> np.ndarray:

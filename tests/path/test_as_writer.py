@@ -20,16 +20,30 @@ from coatsim.path.placement import Placement
 from program_helpers import roundrect
 
 GOLDEN = Path(__file__).parent / "data" / "roundrect_polysegment.as"
+pytestmark = pytest.mark.golden
 
 
 def golden_text() -> str:
     return build_program(roundrect(), Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="builtin:roundrect").text
 
 
+NUMBER = re.compile(r"-?\d+\.\d+")
+
+
+def same_program(found: str, expected: str) -> None:
+    """The text the same everywhere but its decimal numbers, and each number within one unit of
+    its last printed digit of the golden one: the poses come from sines and cosines, whose last
+    bits may differ between machines and library versions (byte identity holds on one machine)."""
+    assert NUMBER.split(found) == NUMBER.split(expected)
+    for a, b in zip(NUMBER.findall(found), NUMBER.findall(expected)):
+        unit = 10.0 ** -len(b.split(".")[1])
+        assert abs(float(a) - float(b)) <= unit * (1 + 1e-6), (a, b)
+
+
 def test_golden_rounded_rectangle():
-    """The rounded-rectangle program, byte for byte (regenerate with
-    ``python tests/program/test_as_writer.py`` after an intended format change)."""
-    assert golden_text() == GOLDEN.read_text(encoding="ascii")
+    """The rounded-rectangle program against its golden file (regenerate with
+    ``python tests/path/test_as_writer.py`` after an intended format change)."""
+    same_program(golden_text(), GOLDEN.read_text(encoding="ascii"))
 
 
 def test_deterministic_and_well_formed(rr):

@@ -12,7 +12,8 @@ import pytest
 from coatsim.core.errors import InputError
 from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.languages.kawasaki_as.source import split_lines
-from coatsim.path.convert import ConvertOptions, convert_program
+from coatsim.path.convert import ConvertOptions
+from program_helpers import convert_as as convert_program
 
 import sys
 from pathlib import Path

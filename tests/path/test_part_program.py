@@ -17,7 +17,7 @@ from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import ProgramOptions, build_program
 from coatsim.languages.kawasaki_as.interpreter import interpret
 from coatsim.path.part_program import build_part_program, contour_order, part_centering_offset
-from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.placement import Placement
 
 from program_helpers import roundrect

@@ -18,7 +18,7 @@ from coatsim.geometry.benchmark import bench_curve
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.path.build import VARIANTS, ProgramOptions, build_program
-from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.placement import Placement, centering_offset
 
 from program_helpers import arc_spiral, path_errors, roundrect

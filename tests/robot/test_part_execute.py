@@ -15,7 +15,7 @@ from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import ProgramOptions
 from coatsim.languages.kawasaki_as.interpreter import interpret
 from coatsim.path.part_program import build_part_program
-from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.placement import Placement
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute

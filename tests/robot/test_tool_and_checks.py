@@ -157,7 +157,7 @@ def test_the_diverged_ellipse_exits_3_naming_a_program_line(tmp_path, run_cli):
     assert line, err
     stmt = prog.read_text().splitlines()[int(line.group(1)) - 1].split(";")[0].split()
     assert stmt[0] in ("JAPPRO", "LMOVE", "C1MOVE", "C2MOVE", "LDEPART", "JMOVE"), stmt
-    assert "the simulation diverged" in err and "touches the cell" in err
+    assert "touches the" in err  # found on the commanded motion, before any playback
     assert not (tmp_path / "out" / "trajectory.csv").exists()
 
 

@@ -86,14 +86,16 @@ class FanucRun:
         if options.kinematics is not None:
             kin = options.kinematics
             start = lambda: (kin.forward(kin.home(1)), kin.home(1))  # noqa: E731
-        self.builder = ToolPathBuilder(lambda line: f"{self.source}:{line}", start)
-        self.data = Registers(options.variables, options.inputs, self.error, self.warn)
+        self.user_frame = Pose.identity()  # the user frame of the target last computed
+        self.builder = ToolPathBuilder(lambda line: f"{self.source}:{line}", start,
+                                       lambda: (self.source, self.program.name, self.user_frame))
+        self.data = Registers(options.variables, options.inputs, self.error, self.warn,
+                              lambda: f"{self.source}:{self.line}")
         self.uf: Optional[int] = None
         self.ut: Optional[int] = None
         self.tool_number: Optional[int] = None
         self.override = 100.0
         self.offsets: dict[str, Optional[Pose]] = {"OFFSET": None, "TOOL_OFFSET": None}
-        self.switched: list[str] = []
         self.structures: dict[str, _Structure] = {}
 
     # --- messages -----------------------------------------------------------------------
@@ -108,8 +110,11 @@ class FanucRun:
 
     # --- running ------------------------------------------------------------------------
     def run(self, main: str) -> ToolPath:
-        self.call(main, (), 0)
+        """Run program ``main``; ``ended`` then says how it ended."""
+        outcome = self.call(main, (), 0)
         program = self.programs[main]
+        self.ended = f"{self.source}:{self.line}: ABORT ends it" if outcome == _ABORT else \
+            f"it ends at line {program.statements[-1].line if program.statements else program.line}"
         process = read_comment_lines((st.text for st in program.statements if isinstance(st, Remark)), program.source)
         return self.builder.toolpath(program.name, process)
 
@@ -283,13 +288,16 @@ class FanucRun:
 
     def set_signal(self, kind: str, number: int, value: float) -> None:
         self.data.outputs[(kind, number)] = value
-        self.switched.append(f"{kind}[{number}]")
-        if kind == "DO" and number == self.options.gun_signal:
+        gun = kind == "DO" and number == self.options.gun_signal
+        shown = ("ON" if value else "OFF") if kind in ("DO", "RO") else f"{value:g}"
+        self.builder.switched(self.line, f"{kind}[{number}]={shown}", number if kind == "DO" else None,
+                              value != 0.0 if gun else None)
+        if gun:
             self.builder.switch_gun(value != 0.0)
 
     def pulse(self, st: Pulse, args: tuple) -> None:
         kind, number = st.target[1], self.data.index(st.target[2], args)
-        self.switched.append(f"{kind}[{number}]")
+        self.builder.switched(self.line, f"{kind}[{number}]=PULSE", number if kind == "DO" else None)
         self.warn(f"pulse:{kind}{number}", f"{kind}[{number}]=PULSE is not simulated (the output is left as it was)")
 
     # --- motion -------------------------------------------------------------------------
@@ -330,6 +338,7 @@ class FanucRun:
             return self._forward(np.radians(position.joints_deg), kind, number)
         pose = position.pose
         frame = self.data.frame("UFRAME", uf)
+        self.user_frame = frame
         for option, register in st.options:
             if option == "INC":
                 here = frame.inverse() @ self.builder.here("an INC motion", st.line)

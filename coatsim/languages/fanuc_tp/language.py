@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Sequence
 
@@ -14,7 +15,10 @@ from coatsim.languages.fanuc_tp.program import LsProgram, parse_ls
 from coatsim.languages.fanuc_tp.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_ls
 from coatsim.path.language import Capabilities, ReadOptions
 from coatsim.path.plan import ProgramPlan
+from coatsim.path.reading import Reading
 from coatsim.path.toolpath import ToolPath
+
+_OPENING = re.compile(r"^\s*/PROG\s+\w+", re.IGNORECASE | re.MULTILINE)
 
 
 class FanucTp:
@@ -36,7 +40,21 @@ class FanucTp:
     def write(self, plan: ProgramPlan) -> str:
         return write_ls(plan, self.decel_mm_s2)
 
+    def files(self, text: str) -> tuple[tuple[str, str], ...]:
+        return ((self.suffixes[0], text),)
+
+    def recognizes(self, text: str) -> bool:
+        return _OPENING.search(text) is not None
+
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
+        reading = self.reading(files, options)
+        if options.needs_spray and not reading.toolpath.spray_moves:
+            switched = ", ".join(f"DO[{n}]" for n in reading.outputs) or "no output"
+            raise InputError(f"{files[0]}: the gun (DO[{options.gun_signal}]) is never on during a motion; the program "
+                             f"switches {switched}", parameters=("gun_signal",))
+        return reading.toolpath
+
+    def reading(self, files: Sequence[Path], options: ReadOptions) -> Reading:
         if not files:
             raise InputError("no program file given")
         programs: dict[str, LsProgram] = {}
@@ -51,11 +69,13 @@ class FanucTp:
                              parameters=("program",))
         run = FanucRun(programs, options, self.decel_mm_s2)
         toolpath = run.run(main)
-        if options.needs_spray and not toolpath.spray_moves:
-            switched = ", ".join(dict.fromkeys(run.switched)) or "no output"
-            raise InputError(f"{files[0]}: the gun (DO[{options.gun_signal}]) is never on during a motion; the program "
-                             f"switches {switched}", parameters=("gun_signal",))
-        return toolpath
+        program = programs[main]
+        problems = tuple(f"{p.source}:{p.line}: program name {p.name} is longer than {MAX_NAME_LENGTH} characters"
+                         for p in programs.values() if len(p.name) > MAX_NAME_LENGTH)
+        return run.builder.reading(toolpath, tuple(str(f) for f in files), (program.source, program.line),
+                                   tuple(programs), run.ended, len(program.statements),
+                                   sum(len(p.positions) for p in programs.values()), problems=problems,
+                                   unknowns=tuple(run.data.unknowns.values()))
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

@@ -24,6 +24,7 @@ class LsProgram:
     source: str
     statements: tuple[Statement, ...]
     positions: Mapping[int, Position] = field(default_factory=dict)
+    line: int = 1  # the /PROG line
 
 
 def _instructions(lines: list[tuple[int, str]], source: str) -> list[Statement]:
@@ -58,7 +59,7 @@ def _instructions(lines: list[tuple[int, str]], source: str) -> list[Statement]:
 
 def parse_ls(text: str, source: str) -> LsProgram:
     """The program of an .LS file; InputError naming file:line on any defect."""
-    name, section = None, None
+    name, section, name_line = None, None, 1
     mn: list[tuple[int, str]] = []
     pos_lines: list[str] = []
     pos_start = 0
@@ -72,7 +73,7 @@ def parse_ls(text: str, source: str) -> LsProgram:
                 words = head.group(2).split()
                 if not words:
                     raise InputError(f"{source}:{number}: /PROG needs the program's name")
-                name = words[0].upper()
+                name, name_line = words[0].upper(), number
             if section == "POS":
                 pos_start = number + 1
             if section == "END":
@@ -87,4 +88,4 @@ def parse_ls(text: str, source: str) -> LsProgram:
     if section not in ("MN", "POS", "END") and not mn:
         raise InputError(f"{source}: the program has no /MN section (its instructions)")
     positions = parse_positions("\n".join(pos_lines), source, pos_start)
-    return LsProgram(name, source, tuple(_instructions(mn, source)), positions)
+    return LsProgram(name, source, tuple(_instructions(mn, source)), positions, name_line)

@@ -59,11 +59,14 @@ def _six(text: Union[str, float], key: str) -> tuple[float, ...]:
 
 class Registers:
     """Registers, frames and signals of one run; ``error(message)`` and ``warn(key, message)``
-    speak for the line being run."""
+    speak for the line being run, ``where()`` names it; ``unknowns`` the registers read before
+    any value (with the line that first reads each)."""
 
     def __init__(self, given: Mapping[str, Union[str, float]], inputs: Mapping[int, bool],
-                 error: Callable[[str], InputError], warn: Callable[[str, str], None]) -> None:
-        self.error, self.warn = error, warn
+                 error: Callable[[str], InputError], warn: Callable[[str, str], None],
+                 where: Callable[[], str] = lambda: "") -> None:
+        self.error, self.warn, self.where = error, warn, where
+        self.unknowns: dict[str, str] = {}
         self.r: dict[int, float] = {}
         self.pr: dict[int, PositionValue] = {}
         self.frames: dict[str, dict[int, Pose]] = {"UFRAME": {0: Pose.identity()}, "UTOOL": {0: Pose.identity()}}
@@ -148,6 +151,7 @@ class Registers:
         if kind == "R":
             if number not in self.r:
                 self.warn(f"R{number}", f"R[{number}] is not set by the program nor given; taken as 0")
+                self.unknowns.setdefault(f"R{number}", f"R[{number}] (first read at {self.where()}): taken as 0")
             return self.r.get(number, 0.0)
         if kind == "AR":
             if not 1 <= number <= len(args) or isinstance(args[number - 1], str):

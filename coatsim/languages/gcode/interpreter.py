@@ -76,7 +76,7 @@ class Interpreter:
         if options.kinematics is not None:
             kin = options.kinematics
             start = lambda: (kin.forward(kin.home(1)), kin.home(1))  # noqa: E731
-        self.builder = ToolPathBuilder(lambda line: f"{source}:{line}", start)
+        self.builder = ToolPathBuilder(lambda line: f"{source}:{line}", start, lambda: (source, name, self.work()))
         self.params = Parameters(options.variables, lambda message: self.builder.error(self.line, message))
         self.controls: list[Optional[PathControl]] = []
         self.switched: list[str] = []
@@ -118,6 +118,8 @@ class Interpreter:
 
     # --- running ------------------------------------------------------------------------
     def run(self) -> ToolPath:
+        """Run the blocks; ``ended`` then says how the program ended."""
+        self.ended = f"it ends at line {self.blocks[-1].line if self.blocks else 1}"
         if self.options.program is not None:
             self.builder.warn("program", f"{self.source}: a G-code file holds one program; the name "
                               f"{self.options.program!r} is not used")
@@ -125,6 +127,7 @@ class Interpreter:
             self.line = block.line
             self.builder.step(block.line)
             if self.execute(block):
+                self.ended = f"{self.source}:{block.line}: M2/M30 ends it"
                 break
         if self.inch is None:
             self.builder.warn("units", f"{self.source}: no G20/G21 in the program; millimetres assumed (G21)")
@@ -178,13 +181,16 @@ class Interpreter:
                 raise self.refuse(f"M{m:g} ({_REFUSED_M[m]})")
             if m in (self.gun.on, self.gun.off):
                 self.builder.switch_gun(m == self.gun.on)
+                self.builder.switched(self.line, f"M{m:g}", None, m == self.gun.on)
                 self.switched.append(f"M{m:g}")
             elif m in (62.0, 63.0, 64.0, 65.0):
                 if "P" not in w:
                     raise self.error(f"M{m:g} needs P, the output number")
                 number = int(w["P"])
                 self.switched.append(f"M{m:g} P{number}")
-                if number == self.options.gun_signal:
+                gun = number == self.options.gun_signal
+                self.builder.switched(self.line, f"M{m:g} P{number}", number, m in (62.0, 64.0) if gun else None)
+                if gun:
                     self.builder.switch_gun(m in (62.0, 64.0))
             elif m in (0.0, 1.0, 60.0):
                 self.builder.stop()
@@ -194,6 +200,7 @@ class Interpreter:
                 self.builder.switch_gun(False)
             elif m not in (6.0, 48.0, 49.0):
                 self.switched.append(f"M{m:g}")
+                self.builder.switched(self.line, f"M{m:g}")
                 self.builder.warn(f"M{m:g}", f"{self.source}:{self.line}: M{m:g} is not the gun "
                                   f"({self.gun.describe()}); not simulated")
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Sequence
 
@@ -14,7 +15,11 @@ from coatsim.languages.gcode.names import MAX_NAME_LENGTH, check_name, program_n
 from coatsim.languages.gcode.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_gcode
 from coatsim.path.language import Capabilities, ReadOptions
 from coatsim.path.plan import ProgramPlan
+from coatsim.path.reading import Reading
 from coatsim.path.toolpath import ToolPath
+
+# A block of G or M words (an optional N number first), or a program's opening '%' line then one.
+_OPENING = re.compile(r"^\s*(N\d+\s*)?[GM]\d", re.IGNORECASE | re.MULTILINE)
 
 
 class GCode:
@@ -36,18 +41,33 @@ class GCode:
     def write(self, plan: ProgramPlan) -> str:
         return write_gcode(plan, self.gun)
 
+    def files(self, text: str) -> tuple[tuple[str, str], ...]:
+        return ((self.suffixes[0], text),)
+
+    def recognizes(self, text: str) -> bool:
+        return _OPENING.search(text) is not None
+
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
+        reading, interpreter = self._read(files, options)
+        if options.needs_spray and not reading.toolpath.spray_moves:
+            switched = ", ".join(dict.fromkeys(interpreter.switched)) or "no M-code of an output"
+            raise InputError(f"{files[0]}: the gun ({self.gun.describe()}, or M62-M65 P{options.gun_signal}) is never on "
+                             f"during a motion; the program switches {switched}", parameters=("gun_signal",))
+        return reading.toolpath
+
+    def reading(self, files: Sequence[Path], options: ReadOptions) -> Reading:
+        return self._read(files, options)[0]
+
+    def _read(self, files: Sequence[Path], options: ReadOptions) -> tuple[Reading, Interpreter]:
         if len(files) != 1:
             raise InputError(f"G-code reads one program file at a time, got {len(files)}")
         path = Path(files[0])
         blocks = parse_blocks(decode_text(read_input_bytes(path, "program")), str(path))
         interpreter = Interpreter(blocks, str(path), options, self.gun, path.stem)
         toolpath = interpreter.run()
-        if options.needs_spray and not toolpath.spray_moves:
-            switched = ", ".join(dict.fromkeys(interpreter.switched)) or "no M-code of an output"
-            raise InputError(f"{path}: the gun ({self.gun.describe()}, or M62-M65 P{options.gun_signal}) is never on "
-                             f"during a motion; the program switches {switched}", parameters=("gun_signal",))
-        return toolpath
+        n_poses = sum(any(letter in "XYZ" for letter, _ in b.words) for b in blocks)
+        return interpreter.builder.reading(toolpath, (str(path),), (str(path), 1), (toolpath.name,),
+                                           interpreter.ended, len(blocks), n_poses), interpreter
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

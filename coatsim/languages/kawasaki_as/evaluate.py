@@ -12,20 +12,23 @@ left to right in a loop, so a long sum costs no stack.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Optional, Union
+from typing import Optional, Union
 
 import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.languages.kawasaki_as import ast
-from coatsim.languages.kawasaki_as.evaluate_calls import POSE_FUNCTIONS, joint_call, pose_call, real_call
-from coatsim.languages.kawasaki_as.evaluate_strings import encode, string_call
-from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.geometry.space.pose import Pose
+from coatsim.languages.kawasaki_as import ast
+from coatsim.languages.kawasaki_as.evaluate_calls import (
+    POSE_FUNCTIONS,
+    joint_call,
+    pose_call,
+    real_call,
+)
+from coatsim.languages.kawasaki_as.evaluate_strings import encode, string_call
+from coatsim.languages.kawasaki_as.machine import Machine
+from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import PoseJoints
-
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.interpreter import Interpreter
 
 TRUE, FALSE = -1.0, 0.0
 _COMPARE = {"==": lambda a, b: a == b, "<>": lambda a, b: a != b, "<": lambda a, b: a < b,
@@ -43,7 +46,7 @@ def _int(x: float) -> int:
 class Evaluator:
     """Evaluates expressions against the variables, signals and pose of an interpreter."""
 
-    def __init__(self, run: "Interpreter") -> None:
+    def __init__(self, run: Machine) -> None:
         self.run = run
 
     def error(self, message: str) -> InputError:

@@ -359,7 +359,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.stack.append(_Frame(main, Scope(), {}))
         self.controller.finish(main.end_line)
         self.stack.pop()
-        return self.controller.toolpath(main.name, decode_header(main.metadata, main.name), tuple(self.warnings.lines))
+        return self.controller.toolpath(main.name, decode_header(main.metadata, f"{main.source}:{main.line}"), tuple(self.warnings.lines))
 
 
 def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

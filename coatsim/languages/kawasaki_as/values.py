@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.core.numeric import TINY
 from coatsim.geometry.space.pose import Pose
 
 
@@ -52,12 +53,12 @@ def frame_from_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, origin: np
     origin at p4; None when the points do not span a plane."""
     x = p2 - p1
     nx = float(np.linalg.norm(x))
-    if nx < 1e-9:
+    if nx < TINY:
         return None
     x = x / nx
     y = (p3 - p1) - float((p3 - p1) @ x) * x
     ny = float(np.linalg.norm(y))
-    if ny < 1e-9:
+    if ny < TINY:
         return None
     y = y / ny
     return Pose(np.column_stack((x, y, np.cross(x, y))), np.asarray(origin, dtype=float))

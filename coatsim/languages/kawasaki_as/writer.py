@@ -119,11 +119,17 @@ def path_moves(segments: Sequence[PlacedMove], name: Callable[[Pose], str],
             for move in _segment_moves(seg, label, name, max_arc_sweep_deg)]
 
 
-def _path_lines(out: "_Lines", path, spray_leads: bool, gun: int, name, max_arc_sweep_deg: float) -> None:
+def _path_lines(out: "_Lines", path, spray_leads: bool, gun: int, name, max_arc_sweep_deg: float,
+               speed: list[float]) -> None:
     """The moves of one sprayed path and the gun signals along it: open along the whole path
-    with ``spray_leads``, otherwise exactly along its curve part (switched on the fly)."""
+    with ``spray_leads``, otherwise exactly along its curve part (switched on the fly). A move
+    with its own speed gets a ``SPEED ... ALWAYS`` before it where the speed changes (``speed``
+    holds the speed in force, one item)."""
     gun_on = False
     for index, (seg, label) in enumerate(zip(path.segments, _labels(path.segments))):
+        if seg.speed_mm_s is not None and seg.speed_mm_s != speed[0]:
+            speed[0] = seg.speed_mm_s
+            out.add(f"SPEED {fmt_short(speed[0])} MM/S ALWAYS", "the speed of the moves below")
         sprayed = spray_leads or seg.part == "curve"
         if index == 0:
             out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
@@ -172,16 +178,21 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
     out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
     out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
+    speed = [plan.speed_mm_s]
     for index, (path, spray_leads) in enumerate(plan.legs):
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
         start = name(path.start)
+        clearance = fmt_short(plan.approach_mm if path.clearance_mm is None else path.clearance_mm)
+        if speed[0] != plan.speed_mm_s:  # approach and travel at the plan's speed
+            speed[0] = plan.speed_mm_s
+            out.add(f"SPEED {fmt_short(speed[0])} MM/S ALWAYS")
         if index == 0:
-            out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", f"above the start{which}")
+            out.add(f"JAPPRO {start}, {clearance}", f"above the start{which}")
         else:  # the next contour of a part: straight travel at the clearance, gun off
-            out.add(f"LAPPRO {start}, {fmt_short(plan.approach_mm)}", f"gun off: travel above the start{which}")
+            out.add(f"LAPPRO {start}, {clearance}", f"gun off: travel above the start{which}")
         out.add(f"LMOVE {start}", "down to the stand-off")
-        _path_lines(out, path, spray_leads, plan.gun_signal, name, max_arc_sweep_deg)
-        out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+        _path_lines(out, path, spray_leads, plan.gun_signal, name, max_arc_sweep_deg, speed)
+        out.add(f"LDEPART {clearance}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):

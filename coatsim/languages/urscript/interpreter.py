@@ -46,7 +46,8 @@ class UrRun:
                  options: ReadOptions, name: str) -> None:
         self.statements, self.comments, self.source, self.options, self.name = statements, comments, source, options, name
         self.line = 0
-        self.robot = RobotCalls(source, options, lambda: self.line)
+        self.running: list[str] = [name]  # the function running, innermost last
+        self.robot = RobotCalls(source, options, lambda: self.line, lambda: self.running[-1])
         self.globals: dict[str, object] = {}
         self.functions: dict[str, Statement] = {}
         self.depth = 0
@@ -57,17 +58,20 @@ class UrRun:
 
     # --- running ------------------------------------------------------------------------
     def run(self) -> ToolPath:
+        """Run the script; ``main`` is then the main function (None: the top level), ``ended`` how
+        the run ended."""
         for st in self.statements:
             if st.kind == "def":
                 self.functions.setdefault(st.name, st)
-        main = self.main_function()
+        self.main = main = self.main_function()
+        self.ended = f"it ends at line {self.statements[-1].line if self.statements else 1}"
         try:
             self.block(self.statements, None)
             if main is not None:
                 self.line = main.line
                 self.invoke(main, (), (), main.line)
         except _Halt:
-            pass
+            self.ended = f"{self.source}:{self.line}: halt ends it"
         note_overlaps(self.robot.builder, self.source)
         process = read_comment_lines(self.comments, self.source)
         return self.robot.builder.toolpath(main.name if main is not None else self.name, process)
@@ -344,11 +348,13 @@ class UrRun:
             else:
                 raise self.error(f"{function.name}() needs its parameter {param}")
         self.depth += 1
+        self.running.append(function.name)
         try:
             self.block(function.body, local)
         except _Return as result:
             return result.value
         finally:
+            self.running.pop()
             self.depth -= 1
             self.line = line
         return None

@@ -58,15 +58,17 @@ _OUTPUTS = {"set_digital_out": "", "set_standard_digital_out": "", "set_configur
 class RobotCalls:
     """The robot's side of a run: the ToolPath builder, the TCP, the outputs."""
 
-    def __init__(self, source: str, options: ReadOptions, line: Callable[[], int]) -> None:
+    def __init__(self, source: str, options: ReadOptions, line: Callable[[], int],
+                 program: Callable[[], str] = lambda: "") -> None:
         self.source, self.options, self.line = source, options, line
         start = None
         if options.kinematics is not None:
             kin = options.kinematics
             start = lambda: (kin.forward(kin.home(1)), kin.home(1))  # noqa: E731
-        self.builder = ToolPathBuilder(lambda number: f"{source}:{number}", start)
+        self.builder = ToolPathBuilder(lambda number: f"{source}:{number}", start,
+                                       lambda: (source, program(), Pose.identity()))
         self.outputs: dict[str, bool] = {}
-        self.switched: list[str] = []
+        self.switched: list[str] = []  # the outputs switched, as messages name them
         self.unknown_reads = 0  # reads of an input nobody gives (a loop that waits on one is taken as met)
 
     def error(self, message: str) -> InputError:
@@ -77,7 +79,7 @@ class RobotCalls:
         if name in _SIGNATURES:
             return self.motion(name, self.bind(name, args, kwargs))
         if name in _OUTPUTS:
-            return self.set_output(_OUTPUTS[name], args)
+            return self.set_output(name, args)
         if name in ("get_digital_in", "get_standard_digital_in", "get_configurable_digital_in", "get_tool_digital_in"):
             return self.read_input(name, args)
         if name in ("get_digital_out", "get_standard_digital_out"):
@@ -233,7 +235,8 @@ class RobotCalls:
         settings = blend_settings(self._speed("movec", values, end), float(values["r"]))
         self.builder.circular(Pose(start.rotation, via.translation_mm), end, settings, line)
 
-    def set_output(self, kind: str, args: tuple) -> None:
+    def set_output(self, name: str, args: tuple) -> None:
+        kind = _OUTPUTS[name]
         if len(args) != 2:
             raise self.error("an output is set with (n, True or False)")
         number, state = self._number(args), args[1]
@@ -241,7 +244,10 @@ class RobotCalls:
             raise self.error("an output is set to True or False")
         self.outputs[f"{kind}{number}"] = bool(state)
         self.switched.append(f"{kind}output {number}")
-        if not kind and number == self.options.gun_signal:
+        gun = not kind and number == self.options.gun_signal
+        self.builder.switched(self.line(), f"{name}({number}, {bool(state)})", None if kind else number,
+                              bool(state) if gun else None)
+        if gun:
             self.builder.switch_gun(bool(state))
 
     def read_input(self, name: str, args: tuple) -> bool:

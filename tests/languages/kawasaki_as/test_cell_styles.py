@@ -38,7 +38,7 @@ def test_any_system_switch_set_by_name_parses(line, name, on):
 
 
 def _check(tmp_path, text: str):
-    from coatsim.path.check import check_program
+    from program_helpers import check_as as check_program
 
     path = tmp_path / "cell.as"
     path.write_text(text)
@@ -92,7 +92,7 @@ def test_external_axes_in_poses_are_read_and_ignored_with_a_warning():
 
 
 def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compared():
-    from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
+    from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.path.user import user_program
 
     two = parse_as(".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n  SIGNAL -1\n"
@@ -119,7 +119,7 @@ def test_xmove_till_a_signal_already_on_is_not_run_to_its_end():
 
 
 def test_a_sprayed_stretch_names_the_file_its_lines_are_in(tmp_path):
-    from coatsim.path.check import check_program
+    from program_helpers import check_as as check_program
 
     (tmp_path / "main.as").write_text(".PROGRAM m()\n  JMOVE a\n  CALL sprayit\n.END\n")
     (tmp_path / "sub.as").write_text(".PROGRAM sprayit()\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n"
