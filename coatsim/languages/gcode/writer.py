@@ -73,7 +73,7 @@ def _check_axis(plan: ProgramPlan, frame: Pose) -> None:
                     raise InputError(
                         f"{plan.name}: G-code has no tool orientation, the gun points along -Z of the work frame; "
                         f"path {p_index + 1}, segment {s_index + 1} tilts it by {math.degrees(tilt):.3g} deg: write "
-                        "this plan in a language with tool orientation (kawasaki-as, fanuc-tp, urscript)")
+                        "this plan in a language with tool orientation (any other language)")
 
 
 class _Program:

@@ -34,7 +34,6 @@ from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.urscript.blend import M_TO_MM, blend_settings
 from coatsim.languages.urscript.values import PoseJoints, PoseValue
 from coatsim.path.language import ReadOptions
-from coatsim.path.toolpath import MotionSettings
 from coatsim.path.toolpath_builder import ToolPathBuilder
 
 JOINT_MM_PER_RAD = 1000.0

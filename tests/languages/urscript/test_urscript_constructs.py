@@ -11,7 +11,7 @@ import pytest
 
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.primitives import arc_through
-from coatsim.geometry.space.rotations import rot_x, rot_y, rot_z
+from coatsim.geometry.space.rotations import rot_x, rot_z
 from coatsim.languages.urscript.values import PoseValue, pose_add, pose_inv, pose_sub, pose_trans, rpy2rotvec, rotvec2rpy
 
 from language_plans import read_text
