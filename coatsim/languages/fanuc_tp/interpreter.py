@@ -97,6 +97,7 @@ class FanucRun:
         self.override = 100.0
         self.offsets: dict[str, Optional[Pose]] = {"OFFSET": None, "TOOL_OFFSET": None}
         self.structures: dict[str, _Structure] = {}
+        self.unsimulated: list[str] = []  # statements read but not simulated (running refuses them)
 
     # --- messages -----------------------------------------------------------------------
     def error(self, message: str) -> InputError:
@@ -104,6 +105,13 @@ class FanucRun:
 
     def warn(self, key: str, message: str) -> None:
         self.builder.warn(key, f"{self.source}:{self.line}: {message}")
+
+    def unsimulated_speed(self, what: str) -> float:
+        """A speed the twin cannot simulate: listed as an unsimulated statement (reading goes on at
+        full speed; running refuses it, see :meth:`Reading.require_complete`)."""
+        self.unsimulated.append(f"{self.source}:{self.line}: {what} is not simulated")
+        self.warn(f"speed:{what}", f"{what} is not simulated; read at {FULL_SPEED_MM_S:g} mm/sec")
+        return FULL_SPEED_MM_S
 
     def refuse(self, what: str) -> ExecutionError:
         return ExecutionError(f"{self.source}:{self.line}: {what} is not simulated; the twin cannot run this program")
@@ -332,7 +340,8 @@ class FanucRun:
                                 np.array(value.values) if value.joints else None, st.line)
             uf, ut = self.uf or 0, self.ut
         if position.extended:
-            self.warn(f"extended:{number}", f"{kind}[{number}]: extended axes and other motion groups are not simulated")
+            self.warn("extended", f"{kind}[{number}] (and any later position): extended axes and other motion groups "
+                      "are not simulated")
         self.use_tool(ut)
         if position.joints_deg is not None:
             return self._forward(np.radians(position.joints_deg), kind, number)
@@ -378,12 +387,12 @@ class FanucRun:
         if st.unit == "max":
             return FULL_SPEED_MM_S * self.override / 100.0
         if st.speed is None:
-            raise self.refuse(f"speed {st.unit} (an application's setting)")
+            return self.unsimulated_speed(f"speed {st.unit} (an application's setting)")
         value = self.data.evaluate(st.speed, args)
         if not value > 0.0:
             raise self.error(f"the speed must be > 0, got {value:g}")
         if st.unit == "deg/sec":
-            raise self.refuse("a speed in deg/sec (a rotation speed)")
+            return self.unsimulated_speed("a speed in deg/sec (a rotation speed)")
         if st.unit in ("sec", "msec"):
             seconds = value / (1000.0 if st.unit == "msec" else 1.0)
             here = start if start is not None else targets[-1][0]

@@ -48,6 +48,7 @@ class FanucTp:
 
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
         reading = self.reading(files, options)
+        reading.require_complete()
         if options.needs_spray and not reading.toolpath.spray_moves:
             switched = ", ".join(f"DO[{n}]" for n in reading.outputs) or "no output"
             raise InputError(f"{files[0]}: the gun (DO[{options.gun_signal}]) is never on during a motion; the program "
@@ -75,7 +76,8 @@ class FanucTp:
         return run.builder.reading(toolpath, tuple(str(f) for f in files), (program.source, program.line),
                                    tuple(programs), run.ended, len(program.statements),
                                    sum(len(p.positions) for p in programs.values()), problems=problems,
-                                   unknowns=tuple(run.data.unknowns.values()))
+                                   unknowns=tuple(run.data.unknowns.values()),
+                                   skipped=tuple(run.unsimulated), unsimulated=tuple(run.unsimulated))
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

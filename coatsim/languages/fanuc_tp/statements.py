@@ -346,7 +346,7 @@ def _statement(t: Tokens, line: int) -> Statement:
     t.i -= 1
     if second is not None and second.text in ("=", "["):
         return _assignment(t, line)
-    return Note(line, " ".join([word, t.rest()]).strip())
+    return Note(line, t.rest().strip())
 
 
 def parse_instruction(text: str, line: int, where: str) -> Optional[Statement]:

@@ -272,3 +272,21 @@ def test_joint_positions_need_the_cell(tmp_path):
 
     tp = run(text, tmp_path, kinematics=CellKinematics(load_cell()))
     assert np.allclose(np.degrees(tp.moves[0].joints_rad), [0, 0, 0, 0, -90, 0])
+
+
+def test_an_application_speed_is_read_but_not_run(tmp_path):
+    """check-program reads a motion at a speed an application sets (WELD_SPEED) and lists it as a
+    statement not simulated; running the program refuses it in one line (exit 3)."""
+    from coatsim.core.errors import ExecutionError
+    from coatsim.languages.fanuc_tp.language import FANUC_TP
+    from coatsim.path.language import ReadOptions
+
+    path = tmp_path / "prog.ls"
+    path.write_text(ls(["J P[1] 50% FINE", "DO[1]=ON", "L P[2] WELD_SPEED CNT100", "DO[1]=OFF"], P))
+    reading = FANUC_TP.reading([path], ReadOptions())
+    assert len(reading.toolpath.moves) == 2 and reading.toolpath.moves[1].spray
+    assert reading.unsimulated == reading.skipped and len(reading.skipped) == 1
+    assert "prog.ls:" in reading.skipped[0] and "WELD_SPEED" in reading.skipped[0]
+    assert [s.text for s in reading.switches] == ["DO[1]=ON (gun on)", "DO[1]=OFF (gun off)"]
+    with pytest.raises(ExecutionError, match=r"WELD_SPEED .*not simulated"):
+        FANUC_TP.read([path], ReadOptions())

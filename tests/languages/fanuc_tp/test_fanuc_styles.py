@@ -1,7 +1,8 @@
 """The same program as different authors write Fanuc TP: a RoboGuide/controller backup (CRLF,
 the full /ATTR and /APPL, tabs, commented positions), RoboDK's post (frames and tool through a spare
 position register, remarks), by hand (lower case, no line numbers, one-line positions, spaces),
-with registers (speed and CNT in R[], a FOR loop, labels), and with disabled lines and SELECT.
+with registers (speed and CNT in R[], a FOR loop, labels), with disabled lines and SELECT, and as
+an application exports it (a second motion group, unnumbered lines, application instructions).
 Every style reads as the same moves."""
 
 from __future__ import annotations
@@ -64,8 +65,19 @@ DISABLED = ("/PROG  SPRAY\n" + ATTR + "\n/MN\n   1:  UFRAME_NUM=1 ;\n   2:  UTOO
             "  14:C P[4] \n    :  P[5] 300mm/sec FINE ;\n  15:  DO[1]=OFF ;\n  16:  !--- back up --- ;\n"
             "  17:L P[1] 300mm/sec FINE ;\n/POS\n" + _pos(1) + "\n/END\n")
 
+# An application export: numbers after a tab, blank numbered lines, lines without a number (':'),
+# a second motion group in every position, the moves offset by a zero Tool_Offset register,
+# application instructions (noted) and motion options (COORD PTH).
+APPLICATION = ("/PROG  SPRAY\n" + ATTR + "\n/MN\n\t1:  UFRAME_NUM=1 ;\n\t2:  UTOOL_NUM=1 ;\n\t3:\t;\n"
+               ":  PR[15,1]=0 ;\n\t4:J P[1] 30% FINE Tool_Offset,PR[15] \t;\n\t5:L P[2] 300mm/sec FINE \t;\n"
+               ": Arc Start[1] ;\n: DO[1]=ON ;\n\t6:L P[3] 300mm/sec CNT24 COORD PTH ;\n\t7:C P[4] \n\t:  P[5] 300mm/sec "
+               "FINE ;\n: Arc End[1] ;\n: DO[1]=OFF ;\n\t8:L P[1] 300mm/sec FINE Tool_Offset,PR[15] ;\n/POS\n"
+               + _pos(1).replace("\n};", "\n   GP2:\n\tUF : 1, UT : 1,\n\tJ1=     0.000 deg,\tJ2=     0.000 deg\n};")
+               + "\n/END\n")
+
 GUN_ON = "/PROG  GUN_ON\n/MN\n   1:  ! nothing to do ;\n/POS\n/END\n"
-STYLES = {"roboguide": ROBOGUIDE, "robodk": ROBODK, "hand": HAND, "registers": REGISTERS, "disabled": DISABLED}
+STYLES = {"roboguide": ROBOGUIDE, "robodk": ROBODK, "hand": HAND, "registers": REGISTERS, "disabled": DISABLED,
+          "application": APPLICATION}
 
 
 def summary(tp):
