@@ -53,13 +53,20 @@ def looped(name: str, n: int) -> str:
 
 
 def read_speed(n: int) -> None:
-    from coatsim.languages.registry import LANGUAGES
+    """Each language reads a program of ``n`` and one of ``2 n`` moves: one plan per size (the plan
+    is language-neutral), written in each language, and the looped programs of a person's style."""
+    from dataclasses import replace
+
+    from coatsim.languages.registry import DEFAULT_LANGUAGE, LANGUAGES
     from coatsim.path.build import ProgramOptions
     from coatsim.path.language import ReadOptions
     from coatsim.path.part_program import build_part_program
     from coatsim.path.placement import Placement
     from coatsim.path.program_files import program_suffixes, write_program
 
+    plans = {size: build_part_program([zigzag(size)], Placement(lead_in_mm=10.0, lead_out_mm=10.0),
+                                      ProgramOptions(variant="polyline-blend"), tolerance_mm=0.1, source="bench",
+                                      language=LANGUAGES[DEFAULT_LANGUAGE]).plan for size in (n, 2 * n)}
     print(f"# parse + interpret (CPU s, best of 3): programs of ~{n} and ~{2 * n} moves")
     print(f"  {'language':<12} {'program':<8} {'moves':>7} {'lines':>7} {'t1 s':>7} {'moves':>7} {'t2 s':>7} "
           f"{'moves/s':>9} {'exponent':>9}")
@@ -68,24 +75,22 @@ def read_speed(n: int) -> None:
             for kind in ("written", "looped") if name in LOOPED else ("written",):
                 row = []
                 for size in (n, 2 * n):
-                    if kind == "written":
-                        text = build_part_program([zigzag(size)], Placement(lead_in_mm=10.0, lead_out_mm=10.0),
-                                                  ProgramOptions(variant="polyline-blend"), tolerance_mm=0.1,
-                                                  source="bench", language=lang).text
-                    else:
-                        text = looped(name, size)
+                    text = lang.write(replace(plans[size], name=lang.program_name("bench"))) if kind == "written" \
+                        else looped(name, size)
                     paths = write_program(lang, text, Path(folder) / f"b{size}{program_suffixes(lang)[0]}")
                     t, toolpath = cpu(lambda: lang.read(list(paths), ReadOptions()), repeat=3)
                     row.append((len(toolpath.moves), text.count("\n"), t))
                 (m1, l1, t1), (m2, _, t2) = row
                 print(f"  {name:<12} {kind:<8} {m1:>7} {l1:>7} {t1:>7.3f} {m2:>7} {t2:>7.3f} {m2 / t2:>9.0f} "
-                      f"{exponent(m1, t1, m2, t2):>9.2f}")
+                      f"{exponent(m1, t1, m2, t2):>9.2f}", flush=True)
 
 
 def scenario_sizes() -> None:
     """Lines of text / moves read back of each shipped scenario's program, per variant and language."""
+    from dataclasses import replace
+
     from coatsim.core.errors import CoatsimError
-    from coatsim.languages.registry import LANGUAGES, language
+    from coatsim.languages.registry import DEFAULT_LANGUAGE, LANGUAGES, language
     from coatsim.path.build import ProgramOptions, polyline_of
     from coatsim.path.language import ReadOptions
     from coatsim.path.part_program import build_part_program
@@ -109,24 +114,24 @@ def scenario_sizes() -> None:
         place = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, lead_in_mm=spec.motion.lead_in_mm,
                           lead_out_mm=spec.motion.lead_out_mm, offset_xy=(0.0, 0.0))
         for variant in ("polysegment", "polyline-stop", "polyline-blend"):
+            options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s,
+                                     accuracy_mm=spec.motion.accuracy_mm)
+            plan = build_part_program([c.polysegment for c in contours], place, options,
+                                      tolerance_mm=spec.segmentation.tolerance_mm, source=path.stem,
+                                      language=language(DEFAULT_LANGUAGE), points=[c.curve.points for c in contours],
+                                      polylines=polylines).plan  # language-neutral: written in each below
             cells = []
             for name in names:
                 lang = language(name)
-                options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s,
-                                         accuracy_mm=spec.motion.accuracy_mm)
                 try:
-                    built = build_part_program([c.polysegment for c in contours], place, options,
-                                               tolerance_mm=spec.segmentation.tolerance_mm, source=path.stem,
-                                               language=lang, points=[c.curve.points for c in contours],
-                                               polylines=polylines)
+                    text = lang.write(replace(plan, name=lang.program_name(plan.name)))
                     with tempfile.TemporaryDirectory() as folder:
-                        files = write_program(lang, built.text, Path(folder) / f"p{program_suffixes(lang)[0]}")
+                        files = write_program(lang, text, Path(folder) / f"p{program_suffixes(lang)[0]}")
                         moves = len(lang.read(list(files), ReadOptions()).moves)
-                    cells.append(f"{built.text.count(chr(10))}/{moves}")
+                    cells.append(f"{text.count(chr(10))}/{moves}")
                 except CoatsimError as exc:
                     cells.append("refused" if "tool orientation" in str(exc) else type(exc).__name__)
-            print(f"  {path.stem:<20} {variant:<15} " + " ".join(f"{c:>13}" for c in cells))
-
+            print(f"  {path.stem:<20} {variant:<15} " + " ".join(f"{c:>13}" for c in cells), flush=True)
 
 
 if __name__ == "__main__":

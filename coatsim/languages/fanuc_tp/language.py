@@ -35,7 +35,7 @@ class FanucTp:
         self.capabilities = Capabilities(arc_planes="any", max_arc_sweep_deg=MAX_ARC_SWEEP_DEG,
                                          blend="FINE, or CNT n (n % of the speed kept through the point)",
                                          max_name_length=MAX_NAME_LENGTH, max_coordinate_mm=MAX_COORDINATE_MM,
-                                         rotation="W-P-R (fixed x-y-z, deg)")
+                                         rotation="W-P-R (fixed x-y-z, deg)", motions="L/C")
 
     def write(self, plan: ProgramPlan) -> str:
         return write_ls(plan, self.decel_mm_s2)

@@ -33,7 +33,7 @@ class UrScript:
         self.capabilities = Capabilities(arc_planes="any", max_arc_sweep_deg=MAX_ARC_SWEEP_DEG,
                                          blend="blend radius r (m); r=0 stops",
                                          max_name_length=MAX_NAME_LENGTH, max_coordinate_mm=MAX_COORDINATE_MM,
-                                         rotation="rotation vector (rad), positions in m")
+                                         rotation="rotation vector (rad), positions in m", motions="movel/movec")
 
     def write(self, plan: ProgramPlan) -> str:
         return write_urscript(plan)
