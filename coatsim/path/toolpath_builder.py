@@ -113,7 +113,7 @@ class ToolPathBuilder:
 
     # --- motions ------------------------------------------------------------------------
     def _issue(self, kind: str, end: Pose, settings: MotionSettings, line: int, via: Optional[Pose] = None,
-               joints: Optional[np.ndarray] = None) -> None:
+               joints: Optional[np.ndarray] = None, last_line: Optional[int] = None) -> None:
         if len(self.moves) >= MAX_MOTIONS:
             raise ExecutionError(f"{self.where(line)}: the program issues more than {MAX_MOTIONS} motions; "
                                  "coatsim stops it")
@@ -124,7 +124,7 @@ class ToolPathBuilder:
         self.moves.append(PendingMove(kind, self.current, end, via, replace(settings, tool=self.tool),
                                       self.gun_on, line, joints))
         source, program, frame = self._origin()
-        self.move_sources.append(MoveSource(source, program, line, line))
+        self.move_sources.append(MoveSource(source, program, line, max(line, last_line or line)))
         self.move_frames.append(frame)
         self.current, self.current_joints = end, joints
 
@@ -136,15 +136,16 @@ class ToolPathBuilder:
         self.here("a linear move", line)
         self._issue("line", end, settings, line)
 
-    def circular(self, via: Pose, end: Pose, settings: MotionSettings, line: int) -> None:
-        """The arc from the current pose through ``via`` to ``end``; InputError if they define none."""
+    def circular(self, via: Pose, end: Pose, settings: MotionSettings, line: int, last_line: Optional[int] = None) -> None:
+        """The arc from the current pose through ``via`` to ``end`` (a statement from ``line`` to
+        ``last_line``); InputError if they define none."""
         start = self.here("a circular move", line)
         try:
             arc_through(start.translation_mm, via.translation_mm, end.translation_mm)
         except DegenerateArc as exc:
             raise self.error(line, f"the arc from the current pose through the via point to the end is undefined: {exc}") \
                 from None
-        self._issue("arc", end, settings, line, via=via)
+        self._issue("arc", end, settings, line, via=via, last_line=last_line)
 
     def revise(self, index: int, **changes: object) -> None:
         """Change settings of motion ``index`` (e.g. ``stop_at_end``, ``accuracy_mm``)."""

@@ -324,7 +324,7 @@ class FanucRun:
         elif st.kind == "L":
             self.builder.linear(end_pose, settings, st.line)
         else:
-            self.builder.circular(targets[0][0], end_pose, settings, st.line)
+            self.builder.circular(targets[0][0], end_pose, settings, st.line, st.end_line)
 
     def target(self, kind: str, index_expr, st: Motion, args: tuple) -> tuple[Pose, Optional[np.ndarray]]:
         """The base-frame pose (and joint values, when the position holds them) of a motion target."""

@@ -11,7 +11,7 @@ from typing import Mapping
 
 from coatsim.core.errors import InputError
 from coatsim.languages.fanuc_tp.positions import Position, parse_positions
-from coatsim.languages.fanuc_tp.statements import Select, Statement, parse_instruction
+from coatsim.languages.fanuc_tp.statements import Motion, Select, Statement, parse_instruction
 
 _NUMBERED = re.compile(r"\s*(\d+)?\s*:(.*)\Z", re.S)
 _CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")  # a tab is text; a line holds no other control character
@@ -46,6 +46,8 @@ def _instructions(lines: list[tuple[int, str]], source: str) -> list[Statement]:
         statement = parse_instruction(text, start, f"{source}:{start}")
         if statement is None:
             continue
+        if isinstance(statement, Motion):
+            statement = replace(statement, end_line=number)
         if isinstance(statement, Select) and statement.subject is None:
             if not out or not isinstance(out[-1], Select):
                 raise InputError(f"{source}:{start}: a SELECT case line without a SELECT before it")

@@ -40,6 +40,7 @@ class Motion:
     term_value: Optional[Expr]
     options: tuple[tuple[str, Optional[Expr]], ...]  # ACC n, OFFSET (PR index or None), TOOL_OFFSET, INC
     other_options: str = ""
+    end_line: int = 0  # the last file line of a motion written over several (a C motion's end point)
 
 
 @dataclass(frozen=True)
