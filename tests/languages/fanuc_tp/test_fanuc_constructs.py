@@ -58,6 +58,14 @@ def test_a_circular_motion_continues_on_a_colon_line(tmp_path):
     text = ls(["J P[1] 50% FINE", "L P[2] 200mm/sec FINE"], P).replace(
         "/POS", "   3:C P[3:via]   \n    :  P[4:end] 200mm/sec CNT50    ;\n/POS")
     assert run(text, tmp_path).moves[-1].kind == "arc"
+    from coatsim.languages.fanuc_tp.language import FANUC_TP
+    from coatsim.path.check import check_program
+
+    path = tmp_path / "arc.ls"
+    path.write_text(text.replace("   3:C", "   3:  DO[1]=ON ;\n   4:C"))
+    end = text.replace("   3:C", "   3:  DO[1]=ON ;\n   4:C").splitlines().index("    :  P[4:end] 200mm/sec CNT50    ;") + 1
+    report = check_program(path, FANUC_TP)
+    assert [(r.first_line, r.last_line) for r in report.spray_runs] == [(end - 1, end)]  # the arc's two lines
 
 
 def test_fine_cnt_and_cr(tmp_path):
