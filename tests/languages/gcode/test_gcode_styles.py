@@ -105,3 +105,49 @@ def test_every_style_reads_as_the_same_moves(style, tmp_path):
     assert summary(read_text("gcode", STYLES[style], tmp_path, suffix=".nc")) == expected
     assert [m[0] for m in expected] == ["joint", "line", "line", "arc", "line", "line"]
     assert [m[1] for m in expected] == [False, False, True, True, True, False]
+
+
+# A CAM post for a milling control: program number, tool comment, G91.1, machine-coordinate G53
+# retracts, tool change and length offset, the gun on the spindle codes (on before the travel).
+CAM_POST = """%
+O1001 (SPRAY TRACK)
+(T1  D=10. CR=0. - ZMIN=-1. - FLAT END MILL)
+N10 G90 G94 G17 G91.1
+N15 G21
+N20 G53 G0 Z0.
+(2D CONTOUR1)
+N25 T1 M6
+N30 S5000 M3
+N35 G54
+N40 G0 X-20. Y0.
+N45 G43 Z15. H1
+N50 G0 Z5.
+N55 G1 Z0. F1000.
+N60 G1 X0. F3000.
+N65 G2 X20. Y0. I10. J0.
+N70 G3 X40. Y0. I10. J0.
+N75 G1 X60.
+N80 G0 Z15.
+N85 M5
+N90 G53 G0 Z0.
+N95 M30
+%
+"""
+
+
+def test_a_cam_post_reads_with_its_arcs_and_retracts(tmp_path):
+    """Its first move (G53 G0 Z0) keeps X and Y where the tool is: without the cell that is a
+    one-line error, with it the robot's home pose."""
+    from coatsim.core.errors import InputError
+    from coatsim.path.arcs import move_length
+    from coatsim.robot.cell import load_cell
+    from coatsim.robot.kinematics import CellKinematics
+
+    with pytest.raises(InputError, match=r"prog.nc:6: G0 needs to know where the tool is"):
+        read_text("gcode", CAM_POST, tmp_path, suffix=".nc")
+    tp = read_text("gcode", CAM_POST, tmp_path, suffix=".nc", kinematics=CellKinematics(load_cell()))
+    arcs = [m for m in tp.moves if m.kind == "arc"]
+    assert len(arcs) == 2 and all(m.spray for m in arcs)
+    assert sum(move_length(m) for m in arcs) == pytest.approx(2 * np.pi * 10.0, abs=1e-6)  # two half circles
+    assert np.allclose(arcs[-1].end.translation_mm, [40, 0, 0], atol=1e-9)
+    assert np.allclose(tp.moves[-1].target.translation_mm[2], 0.0)  # G53 G0 Z0: machine zero

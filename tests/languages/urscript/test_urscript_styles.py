@@ -115,3 +115,63 @@ def test_every_style_reads_as_the_same_moves(style, tmp_path):
     assert [m[0] for m in expected] == ["joint", "line", "line", "arc", "line"]
     assert [m[1] for m in expected] == [False, False, True, True, False]
     assert expected[0][2] == (500.0, 0.0, 350.0) and expected[2][4] == 1.0
+
+
+# A Polyscope export of a circle built from variables: a step-counter thread, tool set-up calls,
+# waypoints as p[] of another pose's elements plus a radius, MoveP then two CircleMoves, halt.
+CIRCLE = """def Circle_Program():
+  global _hidden_verificationVariable=0
+  step_count_0b8d5f6c_5a1e_4f3e_9b4c_2d8c1e7f0a11 = 0.0
+  thread Step_Counter_Thread_1():
+    while (True):
+      step_count_0b8d5f6c_5a1e_4f3e_9b4c_2d8c1e7f0a11 = step_count_0b8d5f6c_5a1e_4f3e_9b4c_2d8c1e7f0a11 + 1.0
+      sync()
+    end
+  end
+  run Step_Counter_Thread_1()
+  set_standard_analog_input_domain(0, 1)
+  set_tool_communication(False, 115200, 0, 1, 1.5, 3.5)
+  set_tool_output_mode(0)
+  set_tool_digital_output_mode(0, 1)
+  set_tool_voltage(0)
+  set_safety_mode_transition_hardness(1)
+  set_gravity([0.0, 0.0, 9.82])
+  set_tcp(p[0.0,0.0,0.25,0.0,0.0,0.0])
+  set_target_payload(1.2, [0.0, 0.0, 0.05], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+  global Waypoint_Home_p=p[.6, .0, .30, 3.14159265, 0.0, 0.0]
+  global Waypoint_Home_q=[0.0, -1.5708, 1.5708, -1.5708, -1.5708, 0.0]
+  $ 2 "BeforeStart"
+  $ 3 "MoveJ"
+  $ 4 "Waypoint_Home" "breakAfter"
+  movej(get_inverse_kin(Waypoint_Home_p, qnear=Waypoint_Home_q), a=1.3962634015954636, v=1.0471975511965976)
+  $ 5 "v_radius=0.050"
+  global v_radius=0.050
+  global v_point_1=p[Waypoint_Home_p[0] + v_radius,Waypoint_Home_p[1],Waypoint_Home_p[2],Waypoint_Home_p[3],Waypoint_Home_p[4],Waypoint_Home_p[5]]
+  global v_point_2=p[Waypoint_Home_p[0],Waypoint_Home_p[1] + v_radius,Waypoint_Home_p[2],Waypoint_Home_p[3],Waypoint_Home_p[4],Waypoint_Home_p[5]]
+  global v_point_3=p[Waypoint_Home_p[0] - v_radius,Waypoint_Home_p[1],Waypoint_Home_p[2],Waypoint_Home_p[3],Waypoint_Home_p[4],Waypoint_Home_p[5]]
+  global v_point_4=p[Waypoint_Home_p[0],Waypoint_Home_p[1] - v_radius,Waypoint_Home_p[2],Waypoint_Home_p[3],Waypoint_Home_p[4],Waypoint_Home_p[5]]
+  $ 10 "Robot Program"
+  $ 11 "MoveP"
+  $ 12 "v_point_1" "breakAfter"
+  movep(v_point_1, a=1.2, v=0.25, r=0.0)
+  $ 13 "Set DO[0]=On"
+  set_standard_digital_out(0, True)
+  $ 14 "CircleMove"
+  movec(v_point_2, v_point_3, a=1.2, v=0.25, r=0.0, mode=0)
+  $ 15 "CircleMove"
+  movec(v_point_4, v_point_1, a=1.2, v=0.25, r=0.0, mode=0)
+  set_standard_digital_out(0, False)
+  halt
+end
+"""
+
+
+def test_a_polyscope_circle_of_variables_reads_as_the_circle(tmp_path):
+    from coatsim.path.arcs import move_length
+
+    tp = read_text("urscript", CIRCLE, tmp_path, gun_signal=0)
+    assert [m.kind for m in tp.moves] == ["joint", "line", "arc", "arc"]
+    assert [bool(m.spray) for m in tp.moves] == [False, False, True, True]
+    assert sum(move_length(m) for m in tp.moves[2:]) == pytest.approx(2 * np.pi * 50.0, abs=1e-6)
+    assert np.allclose(tp.moves[2].end.translation_mm, [550, 0, 300], atol=1e-9)
+    assert any("Step_Counter_Thread_1" in w for w in tp.warnings)  # a thread: noted, not run
