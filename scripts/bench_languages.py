@@ -5,7 +5,8 @@ one coatsim wrote (a zigzag polyline, blended) and one in a person's style whose
 computes (Fanuc FOR with position register arithmetic, URScript while with pose_add, G-code
 incremental moves with parameters). Prints only; never asserts.
 
-    python scripts/bench_languages.py [N]   (default 5000 moves)
+    python scripts/bench_languages.py [N [LANGUAGE ...]]   (default 5000 moves, every language;
+    naming languages times only their reading)
 """
 
 from __future__ import annotations
@@ -52,7 +53,7 @@ def looped(name: str, n: int) -> str:
             + "".join(f"G1 Y[0.1 + #1 * 0] F{12000 + 3000 * (k % 2)}\n#1 = [#1 + 1]\n" for k in range(n - 1)))
 
 
-def read_speed(n: int) -> None:
+def read_speed(n: int, only: tuple[str, ...] = ()) -> None:
     """Each language reads a program of ``n`` and one of ``2 n`` moves: one plan per size (the plan
     is language-neutral), written in each language, and the looped programs of a person's style."""
     from dataclasses import replace
@@ -72,6 +73,8 @@ def read_speed(n: int) -> None:
           f"{'moves/s':>9} {'exponent':>9}")
     with tempfile.TemporaryDirectory() as folder:
         for name, lang in LANGUAGES.items():
+            if only and name not in only:
+                continue
             for kind in ("written", "looped") if name in LOOPED else ("written",):
                 row = []
                 for size in (n, 2 * n):
@@ -135,5 +138,6 @@ def scenario_sizes() -> None:
 
 
 if __name__ == "__main__":
-    read_speed(int(sys.argv[1]) if len(sys.argv) > 1 else 5000)
-    scenario_sizes()
+    read_speed(int(sys.argv[1]) if len(sys.argv) > 1 else 5000, tuple(sys.argv[2:]))
+    if len(sys.argv) <= 2:
+        scenario_sizes()

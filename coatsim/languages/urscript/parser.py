@@ -30,6 +30,7 @@ KEYWORDS = {"def", "end", "if", "elif", "else", "while", "for", "in", "return", 
             "not", "xor", "True", "False", "thread", "run", "join", "kill", "halt", "break", "continue", "pass",
             "sec", "enter_critical", "exit_critical"}
 _BINARY = (("or",), ("xor",), ("and",), ("==", "!=", "<", ">", "<=", ">="), ("+", "-"), ("*", "/", "%"))
+_RANK = {op: rank for rank, ops in enumerate(_BINARY) for op in ops}  # loosest 0
 
 Expr = tuple  # ("num", v) | ("str", s) | ("bool", b) | ("name", n) | ("list", items) | ("pose", items)
 # | ("index", e, i) | ("call", name, args, kwargs, line) | ("un", op, e) | ("bin", op, a, b)
@@ -269,13 +270,16 @@ class Parser:
 
     # --- expressions ----------------------------------------------------------------------
     def expression(self, level: int = 0) -> Expr:
-        if level == len(_BINARY):
-            return self.unary()
-        left = self.expression(level + 1)
-        while self.at(*_BINARY[level]):
-            op = self.take(*_BINARY[level]).text
-            left = ("bin", op, left, self.expression(level + 1))
-        return left
+        """Binary operators of ``level`` (an index into ``_BINARY``) and tighter, left to right
+        (precedence climbing: one pass over the operators, not one call per level)."""
+        left = self.unary()
+        while True:
+            tok = self.peek()
+            rank = _RANK.get(tok.text, -1) if tok.kind in ("op", "kw") else -1
+            if rank < level:
+                return left
+            self.i += 1
+            left = ("bin", tok.text, left, self.expression(rank + 1))
 
     def unary(self) -> Expr:
         if self.take("-"):
