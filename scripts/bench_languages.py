@@ -21,14 +21,20 @@ from scaling import cpu, exponent  # noqa: E402
 
 
 def zigzag(n_moves: int):
-    """A polyline of ``n_moves`` lines (a zigzag, 2 mm steps) as a polysegment."""
+    """A polyline of ``n_moves`` lines as a polysegment: a zigzag of 2 mm steps in rows of 500
+    (1 m wide, 20 mm apart), so that any size stays within every language's coordinates."""
     import numpy as np
 
     from coatsim.path.placement import polyline_polysegment
 
-    x = np.arange(n_moves + 1) * 2.0
-    y = np.where(np.arange(n_moves + 1) % 2 == 0, 0.0, 1.0)
-    return polyline_polysegment(np.column_stack((x - x.mean(), y)), False)
+    k = np.arange(n_moves + 1)
+    row, col = k // ROW_MOVES, k % ROW_MOVES
+    x = np.where(row % 2 == 0, col, ROW_MOVES - col) * 2.0
+    y = row * 20.0 + (k % 2)
+    return polyline_polysegment(np.column_stack((x - x.mean(), y - y.mean())), False)
+
+
+ROW_MOVES = 500
 
 
 LOOPED = ("fanuc-tp", "urscript", "gcode")
