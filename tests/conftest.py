@@ -30,7 +30,8 @@ README = Path(__file__).resolve().parents[1] / "README.md"
 
 @pytest.fixture(scope="session")
 def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, str, Path]:
-    """`coatsim run SMALL --fast` once per session, in-process: (exit code, stdout, stderr, output folder)."""
+    """`coatsim run SMALL --fast --junit gates.xml` once per session, in-process: (exit code, stdout,
+    stderr, output folder); the JUnit file is written beside the output folder."""
     import contextlib
     import io
 
@@ -40,7 +41,7 @@ def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, st
     outdir = folder / "out"
     out, err = io.StringIO(), io.StringIO()
     old = sys.argv
-    sys.argv = ["coatsim", "run", str(scenario), "--fast", "-o", str(outdir)]
+    sys.argv = ["coatsim", "run", str(scenario), "--fast", "-o", str(outdir), "--junit", str(folder / "gates.xml")]
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
             cli.main()
