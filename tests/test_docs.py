@@ -1,0 +1,91 @@
+"""The documentation cannot drift: its reference pages are what the code generates, every metric a
+run writes is in the metrics page, the site builds strictly, and every command block of a page
+marked ``<!-- test: run -->`` runs on the shipped data."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+DOCS = REPO / "docs"
+MARK = re.compile(r"^<!-- test: run -->\n```(bash|python)\n(.*?)^```", re.S | re.M)
+# pages whose blocks run whole scenarios or a Dask cluster: the long tests (-m slow)
+SLOW = {"getting-started.md", "tutorials/contour-csv.md", "tutorials/dxf-part.md", "tutorials/as-program.md",
+        "tutorials/sweep.md", "how-to/ci-gates.md", "how-to/custom-arm.md", "how-to/custom-gun.md",
+        "how-to/pandas.md"}
+
+
+def _generator():
+    spec = importlib.util.spec_from_file_location("docs_reference", REPO / "scripts" / "docs_reference.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_reference_pages_are_what_the_code_generates() -> None:
+    for path, text in _generator().render().items():
+        assert path.read_text(encoding="utf-8") == text, (
+            f"{path.relative_to(REPO)} differs from the code: run python scripts/docs_reference.py")
+
+
+def test_every_metric_a_run_writes_is_in_the_metrics_page(small_report) -> None:
+    *_, outdir = small_report
+    page = (DOCS / "reference" / "metrics.md").read_text(encoding="utf-8")
+    document = json.loads((outdir / "metrics.json").read_text(encoding="utf-8"))
+    written = {f"{g}.{n}" for groups in document["variants"].values() for g, values in groups.items() for n in values}
+    assert written and all(f"| `{name}` |" in page for name in written)
+
+
+def test_every_page_is_in_the_navigation() -> None:
+    nav = (REPO / "mkdocs.yml").read_text(encoding="utf-8")
+    pages = [p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md")]
+    assert pages and [p for p in pages if f": {p}\n" not in nav] == []
+
+
+@pytest.mark.slow
+def test_the_site_builds_strictly(tmp_path: Path) -> None:
+    pytest.importorskip("mkdocs")
+    pytest.importorskip("mkdocstrings_handlers.python")
+    result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-q", "-d", str(tmp_path / "site")],
+                            cwd=REPO, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert (tmp_path / "site" / "index.html").is_file()
+
+
+def runnable_blocks(page: Path) -> list[tuple[str, str]]:
+    """(language, code) of every block marked to run, in page order."""
+    return MARK.findall(page.read_text(encoding="utf-8"))
+
+
+PAGES = sorted(p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md") if runnable_blocks(p))
+
+
+def test_the_tutorials_and_how_tos_have_runnable_blocks() -> None:
+    assert {"tutorials/contour-csv.md", "tutorials/dxf-part.md", "tutorials/as-program.md",
+            "tutorials/part-3d.md", "tutorials/sweep.md", "how-to/ci-gates.md"} <= set(PAGES)
+
+
+@pytest.mark.parametrize("page", [pytest.param(p, marks=[pytest.mark.slow] if p in SLOW else []) for p in PAGES])
+def test_every_command_of_a_page_runs(page: str, tmp_path: Path) -> None:
+    """The page's marked blocks, in order, in a fresh folder holding the shipped data (as the
+    repository's top folder would); each must exit 0."""
+    if page == "how-to/pandas.md":
+        pytest.importorskip("pandas")
+    for name in ("scenarios", "sweeps", "models"):
+        shutil.copytree(REPO / name, tmp_path / name, symlinks=False)
+    env = {**os.environ, "MPLBACKEND": "Agg", "MUJOCO_GL": os.environ.get("MUJOCO_GL", "egl"),
+           "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
+           "PYTHONPATH": os.pathsep.join(filter(None, [str(REPO), os.environ.get("PYTHONPATH")]))}
+    for k, (language, code) in enumerate(runnable_blocks(DOCS / page)):
+        command = ["bash", "-euo", "pipefail", "-c", code] if language == "bash" else [sys.executable, "-c", code]
+        result = subprocess.run(command, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
+        assert result.returncode == 0, f"{page} block {k + 1} exited {result.returncode}:\n{code}\n{result.stderr[-3000:]}"
