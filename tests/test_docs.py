@@ -4,6 +4,8 @@ marked ``<!-- test: run -->`` runs on the shipped data."""
 
 from __future__ import annotations
 
+import functools
+import http.server
 import importlib.util
 import json
 import os
@@ -11,6 +13,7 @@ import re
 import shutil
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import pytest
@@ -59,6 +62,19 @@ def test_the_site_builds_strictly(tmp_path: Path) -> None:
                             cwd=REPO, capture_output=True, text=True)
     assert result.returncode == 0, result.stderr[-3000:]
     assert (tmp_path / "site" / "index.html").is_file()
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        return
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(tmp_path / "site"))
+    with http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler) as server:
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        for page in ("", "getting-started/", "reference/api/", "tutorials/part-3d/"):
+            url = f"http://127.0.0.1:{server.server_address[1]}/{page}"
+            opened = subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--enable-logging=stderr",
+                                     "--v=0", "--virtual-time-budget=3000", "--dump-dom", url],
+                                    capture_output=True, text=True, timeout=120)
+            assert "</html>" in opened.stdout and ":CONSOLE" not in opened.stderr, (url, opened.stderr[-2000:])
+        server.shutdown()
 
 
 def runnable_blocks(page: Path) -> list[tuple[str, str]]:
