@@ -72,6 +72,12 @@ def runnable_blocks(page: Path) -> list[tuple[str, str]]:
 PAGES = sorted(p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md") if runnable_blocks(p))
 
 
+def test_every_mark_is_on_a_bash_or_python_block() -> None:
+    for page in DOCS.rglob("*.md"):
+        marks = re.findall(r"^<!-- test: run -->$", page.read_text(encoding="utf-8"), re.M)
+        assert len(marks) == len(runnable_blocks(page)), page
+
+
 def test_the_tutorials_and_how_tos_have_runnable_blocks() -> None:
     assert {"tutorials/contour-csv.md", "tutorials/dxf-part.md", "tutorials/as-program.md",
             "tutorials/part-3d.md", "tutorials/sweep.md", "how-to/ci-gates.md"} <= set(PAGES)
