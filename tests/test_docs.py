@@ -23,7 +23,7 @@ MARK = re.compile(r"^<!-- test: run -->\n```(bash|python)\n(.*?)^```", re.S | re
 # pages whose blocks run whole scenarios or a Dask cluster: the long tests (-m slow)
 SLOW = {"getting-started.md", "tutorials/contour-csv.md", "tutorials/dxf-part.md", "tutorials/as-program.md",
         "tutorials/sweep.md", "how-to/ci-gates.md", "how-to/custom-arm.md", "how-to/custom-gun.md",
-        "how-to/pandas.md"}
+        "how-to/pandas.md", "how-to/tolerances-speeds.md"}
 
 
 def test_the_reference_pages_are_what_the_code_generates() -> None:
