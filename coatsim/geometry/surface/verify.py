@@ -29,6 +29,10 @@ CONE_SMOOTHING_LENGTHS = 2.0
 CONE_CELLS = 6.0
 #: points checked at once (bounds the memory of the point-face pairs)
 VERIFY_CHUNK = 2048
+#: on a closed part a normal's probe of this fraction of the extent must not end inside it ...
+INWARD_STEP_FRACTION = 1e-4
+#: ... deeper than this fraction of the probe (about 6 deg into the part)
+INWARD_DEPTH_FRACTION = 0.1
 #: a normal may leave the cone of the face normals around it by this much
 NORMAL_TOLERANCE_DEG = 5.0
 
@@ -91,7 +95,13 @@ def verify(part: Part, paths: SurfacePaths) -> float:
             _fail(paths, int(chunk[worst]), f"has a normal {excess[worst]:.3g} deg outside the faces around it")
     mesh = trimesh.Trimesh(part.vertices_mm, part.faces, process=False)
     if mesh.is_watertight:
-        inward = np.flatnonzero(mesh.contains(points + 1e-4 * part.extent_mm * normals))
+        step = INWARD_STEP_FRACTION * part.extent_mm
+        probes = points + step * normals
+        inside = np.flatnonzero(mesh.contains(probes))
+        # a probe running along a face (at a concave sharp edge) is not inside by rounding alone
+        depth = np.linalg.norm(trimesh.proximity.closest_point(mesh, probes[inside])[0] - probes[inside], axis=1) \
+            if len(inside) else np.zeros(0)
+        inward = inside[depth > INWARD_DEPTH_FRACTION * step]
         if len(inward):
             _fail(paths, int(inward[0]), "has a normal pointing into the part")
     return worst_deg
