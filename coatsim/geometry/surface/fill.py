@@ -9,7 +9,8 @@ more than half a spacing from every pass, measured along the surface by fast mar
 under ``MIN_PATCH_FRACTION`` of a spacing squared are left, and show in the coverage) gets level
 curves of the same field over the patch's own range of values (distance.distance_levels from
 its low end: a patch under a spacing across gets one through the middle of its range), cut to
-the patch and one ring of faces around it so that they meet the passes beside it.
+the patch and one ring of faces around it so that they meet the passes beside it; pieces of
+them shorter than half a spacing are dropped.
 """
 
 from __future__ import annotations
@@ -23,6 +24,9 @@ from coatsim.geometry.surface.topology import face_components, face_pairs, mesh_
 
 #: patches smaller than this fraction of a spacing squared get no pass
 MIN_PATCH_FRACTION = 0.25
+#: an added pass shorter than this fraction of a spacing is dropped (the footprint covers so short a patch
+#: from the passes beside it about as well)
+MIN_LENGTH_FRACTION = 0.5
 #: a vertex counts as covered up to this fraction beyond half a spacing (as spacing.measure)
 SLACK = 1e-6
 
@@ -53,5 +57,6 @@ def filled(piece: Piece, curves: list[SurfaceCurve], spacing_mm: float) -> list[
         v, f, parent = submesh(piece.vertices, piece.faces, grown)
         for level in distance_levels(low, high, low + 0.5 * spacing_mm, spacing_mm).tolist():
             added.extend(SurfaceCurve(q.points, grown[q.faces], q.bary, q.closed)
-                         for q in level_curves(v, f, piece.field[parent], level))
+                         for q in level_curves(v, f, piece.field[parent], level)
+                         if q.length_mm >= MIN_LENGTH_FRACTION * spacing_mm)
     return added

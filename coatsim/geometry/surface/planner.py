@@ -272,8 +272,8 @@ def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
 
 
 def _filling(pieces: list[Piece], traces: list[Trace], band: float, spacing_mm: float, notes: list[str]) -> list[Trace]:
-    """Passes where the levels leave a patch uncovered (fill.py), sprayed
-    after each piece's levels."""
+    """Passes where the levels leave a patch uncovered (fill.py), sprayed after each piece's
+    levels."""
     added = [Trace(part, len(p.levels), k) for k, p in enumerate(pieces)
              for curve in filled(p, [t.curve for t in traces if t.piece == k], spacing_mm)
              for part in clip(curve, p.border_mm, band, p.vertices, p.faces)]
