@@ -81,7 +81,7 @@ def measure(piece: Piece, traces: list[Trace], spacing_mm: float, toward_start: 
         for trace in measured:
             curve = trace.curve
             d, on_end = nearest.distance(curve.points, _unit(curve.sample(faces, normals)), piece.surface,
-                                         lambda: curve.sample(faces, reach()))
+                                         lambda curve=curve, reach=reach: curve.sample(faces, reach()))
             gaps.append(d[np.isfinite(d) & ~on_end])
             ends.append(np.full(len(gaps[-1]), trace.rank in (0, 1, last - 1, last)))
     half = 0.5 * spacing_mm * (1 + COVERAGE_SLACK)

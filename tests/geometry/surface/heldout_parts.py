@@ -36,7 +36,9 @@ def voxel_solid(occupied: np.ndarray, step_mm: float) -> tuple[np.ndarray, np.nd
 def l_bracket(step_mm: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
     """An L bracket (base 100 x 50 x 8 mm on z = 0, upright 8 mm thick and 60 mm high at x = 0)
     with a 20 x 14 mm through-hole in the base: flat faces, sharp edges, genus 1."""
-    n = lambda mm: int(round(mm / step_mm))  # noqa: E731
+    def n(mm: float) -> int:
+        return round(mm / step_mm)
+
     occupied = np.zeros((n(100), n(50), n(60)), dtype=bool)
     occupied[:, :, : n(8)] = True
     occupied[: n(8), :, :] = True
@@ -115,7 +117,9 @@ def noisy_dome(radius: float = 120.0, cap_deg: float = 40.0, n: int = 90, noise_
 def plate_with_arm(step_mm: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
     """A plate 100 x 60 x 6 mm with an arm 8 mm wide and 50 mm long (narrower than a spacing
     of 10 mm) off one side, as a closed solid of flat faces."""
-    n = lambda mm: int(round(mm / step_mm))  # noqa: E731
+    def n(mm: float) -> int:
+        return round(mm / step_mm)
+
     occupied = np.zeros((n(150), n(60), n(6)), dtype=bool)
     occupied[: n(100)] = True
     occupied[n(100):, n(26): n(34)] = True

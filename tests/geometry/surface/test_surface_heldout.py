@@ -7,7 +7,6 @@ import math
 
 import numpy as np
 import pytest
-import trimesh
 from heldout_parts import filleted_slab, l_bracket, noisy_dome, plate_with_arm
 from scipy.spatial.transform import Rotation
 from surface_helpers import SPACING, options
