@@ -247,8 +247,11 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
     return pieces, float(face_area.sum()), angle
 
 
-def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarray | None) -> list[Piece]:
-    """Each piece with its pattern's field and levels (pieces a geodesic start misses are left out)."""
+def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarray | None,
+               notes: list[str]) -> list[Piece]:
+    """Each piece with its pattern's field and levels. A piece a geodesic plane or points miss
+    (a face behind a sharp edge, an island) takes its passes from its own border, with a note;
+    a closed one is left out."""
     band = o.edge_band_mm
     if o.pattern == "raster":
         return [p.with_field(p.vertices @ step, raster_levels(p.vertices, p.faces, p.normals, step, p.inside(band),
@@ -261,6 +264,12 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
     if all(p is None for p in done):
         raise EmptyRegionOfInterest("the start does not touch the region; give a plane that cuts it or points on it "
                                     "as the start", parameters=("start",))
+    missed = [k for k, p in enumerate(done) if p is None and pieces[k].on_border.any()]
+    for k in missed:
+        done[k] = geodesic_piece(pieces[k], FromBoundary(), s.spacing_mm, band)
+    if missed:
+        notes.append(f"{len(missed)} piece(s) of the region that the start does not reach (beyond a sharp edge, "
+                     f"islands; {sum(pieces[k].area_mm2 for k in missed):.4g} mm2) take passes from their own border")
     return [p for p in done if p is not None]
 
 
@@ -320,7 +329,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
         given = options.step_direction
         step = (unit_vector(given, "step_direction", "step_direction") if given is not None
                 else sign_fixed(principal_axes(rv, rf)[1]))
-    pieces = _patterned(pieces, options, s, step)
+    pieces = _patterned(pieces, options, s, step, notes)
     clock.lap(options.pattern)
     traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
     traces += _filling(pieces, traces, options.edge_band_mm, s.spacing_mm, notes)

@@ -11,7 +11,7 @@ from heldout_parts import filleted_slab, l_bracket, noisy_dome, plate_with_arm
 from scipy.spatial.transform import Rotation
 from surface_helpers import SPACING, options
 
-from coatsim.geometry.surface import Facing, Pass, SurfacePaths, part_from_arrays, plan
+from coatsim.geometry.surface import Facing, FromPlane, Pass, SurfacePaths, part_from_arrays, plan
 from coatsim.geometry.surface.verify import PlanCheckFailed, verify
 
 BRACKET = l_bracket()
@@ -143,3 +143,14 @@ def test_a_bracket_in_metres_with_flipped_triangles_plans_as_in_millimetres():
     assert len(metres.passes) == len(reference.passes)
     for a, b in zip(reference.passes, metres.passes):
         assert np.abs(a.points - b.points).max() < 1e-6 and np.allclose(a.normals, b.normals, atol=1e-9)
+
+
+def test_faces_a_start_plane_does_not_reach_take_passes_from_their_border():
+    # the plane x = 60 cuts the base's top; the upright's face lies beyond a sharp edge
+    vertices, faces = BRACKET
+    paths = plan(part_from_arrays(vertices, faces), options(pattern="geodesic", start=FromPlane((60, 0, 0), (1, 0, 0)),
+                                                            region=Facing((0.6, 0, 0.8), 60.0)))
+    points = np.concatenate([p.points for p in paths.passes])
+    assert np.any(np.isclose(points[:, 0], 8.0) & (points[:, 2] > 20.0))  # passes on the upright's face
+    assert any("take passes from their own border" in note for note in paths.notes)
+    assert paths.stats.coverage > 0.95
