@@ -20,9 +20,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import linprog
-
 from coatsim.geometry.limits import FitLimits
+from coatsim.geometry.lp import solve_lp
 
 N_END_CANDIDATES = 12
 N_CURVATURE_CANDIDATES = 5
@@ -244,10 +243,10 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
         cap = float(prob.cap[: b + 1].max())
         out = []
         for c in (1.0, -1.0):
-            res = linprog([c, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None), (-cap, cap)], method="highs")
-            if res.status != 0:
+            x = solve_lp(np.array([c, 0.0]), a_ub, b_ub, np.array([-np.inf, -cap]), np.array([np.inf, cap]))
+            if x is None:
                 return None
-            out.append(res.x[0])
+            out.append(x[0])
         return out[0], out[1]
 
     lo, hi = 1, n - 1
