@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.budgets import check_budget, limit
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell, load_cell
@@ -169,14 +169,14 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
     pieces = plan_pieces(toolpath, step_mm)
     least_s = min_motion_time_s(toolpath, pieces)
     check_budget(f"{toolpath.name}: simulation steps of {cell.timestep * 1e3:g} ms (at least {least_s:.4g} s of "
-                 "motion and dwells at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
+                 "motion and dwells at the programmed speeds)", least_s / cell.timestep, "sim_steps",
                  "raise the programmed SPEED (coatsim program --speed, the scenario's motion.speed_mm_s) or "
                  "shorten the dwells")
     mount_r, mount_p = _mounts(toolpath, cell)
     tracker = Tracker(cell)
     q_now = cell.home.copy()
     segments: list[_Segment] = []
-    steps = [0]  # simulation steps of the segments so far (the budget left is MAX_SIM_STEPS - steps)
+    steps = [0]  # simulation steps of the segments so far (the budget left is limit('sim_steps') - steps)
     chunks: list = []
     events: list[str] = tool_mismatches(toolpath, cell) + [e for e in (accuracy_event(toolpath, pieces),) if e]
     known = set(events)
@@ -213,7 +213,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
             if np.max(np.abs(q_goal - q_now)) < 1e-9:
                 continue
             t0 = time.perf_counter()
-            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=MAX_SIM_STEPS - steps[0])
+            timed = time_joint(cell, q_now, q_goal, piece.speed_mm_s, label, max_steps=limit("sim_steps") - steps[0])
             wall["timing_s"] += time.perf_counter() - t0
             tcp = tcp_positions_mm(cell, timed.q)
             chords = tuple(line(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
@@ -246,7 +246,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = 1.0) 
         too_fast.extend(filter(None, [speed_event(cell, piece, qs, labels[int(np.argmax(piece.speed))])]))
         t0 = time.perf_counter()
         timed = time_cartesian(cell, piece.s, qs, piece.speed, piece.curvature, labels[0],
-                               max_steps=MAX_SIM_STEPS - steps[0])
+                               max_steps=limit("sim_steps") - steps[0])
         wall["timing_s"] += time.perf_counter() - t0
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
         add(_Segment(timed, offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx], piece.move[idx]))

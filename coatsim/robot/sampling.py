@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
 from coatsim.robot.ik_batch import row_norms
@@ -264,7 +264,7 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             spans[index] = _span(toolpath, index)
     length = sum(sp.prim.length for sp in spans.values())
     check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
-                 length / step + 10 * len(spans), MAX_PATH_SAMPLES,
+                 length / step + 10 * len(spans), "path_samples",
                  "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
     pieces: list[Piece] = []
     chain: list[_Span] = []

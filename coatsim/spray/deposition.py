@@ -31,7 +31,7 @@ from typing import Callable
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.footprints import Footprint
@@ -129,7 +129,7 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     travel = np.maximum(np.linalg.norm(dp, axis=1), model.standoff_mm * turn)
     n = np.maximum(1, np.ceil(travel / model.step_mm - 1e-9)).astype(np.int64)
     check_budget(f"coating sub-steps of {model.step_mm:g} mm along {float(travel.sum()):.6g} mm of sprayed path",
-                 float(n.sum()), MAX_SPRAY_SUBSTEPS, "use a wider footprint or a longer sub-step")
+                 float(n.sum()), "spray_substeps", "use a wider footprint or a longer sub-step")
     rep = np.repeat(np.arange(len(k)), n)
     j = np.arange(len(rep)) - np.repeat(np.cumsum(n) - n, n)
     f = ((j + 0.5) / n[rep])[:, None]
