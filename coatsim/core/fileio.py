@@ -70,6 +70,8 @@ def open_input(path: str | Path, what: str) -> Iterator[int]:
     try:
         _refuse_kind(path, os.stat(path).st_mode, what)
         fd = os.open(path, _OPEN_FLAGS)
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read the {what} ({os_problem(exc)})") from None
     try:
@@ -117,11 +119,6 @@ def decode_text(data: bytes) -> str:
         return data.decode("utf-8")
     except UnicodeDecodeError:
         return data.decode("latin-1")
-
-
-def read_input_bytes(path: str | Path, what: str) -> bytes:
-    """The bytes of an input file (see read_input); ``what`` names it (e.g. "program")."""
-    return read_input(path, what)
 
 
 # --- output ------------------------------------------------------------------------------------

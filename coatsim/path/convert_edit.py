@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import read_input_bytes
+from coatsim.core.fileio import read_input
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.edit import edit_lines, indentation
 from coatsim.languages.kawasaki_as.interpreter import Run
@@ -115,7 +115,7 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         raise InputError(f"the process paths lie in several files ({', '.join(sorted(sources))}){_HINT}")
     source = sources.pop()
     path = next(p for p in items if str(p) == source)
-    data = read_input_bytes(path, "program")
+    data = read_input(path, "program")
     taken = _names_taken(files)
     prefix = next(p for p in ("cv", "cva", "cvb", "cvc", "cvz") if not any(t.startswith(p) for t in taken))
     replacements, trans, counts, ranges = [], [], [], []

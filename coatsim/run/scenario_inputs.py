@@ -10,7 +10,7 @@ from typing import Optional
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_input
 from coatsim.geometry import (
     Curve,
     builtin_curve,
@@ -158,7 +158,7 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
     except CoatsimError as exc:
         said = exc.reworded({"gun_signal": "gun.signal"})
         raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {said}") from None
-    return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
+    return toolpath, "\n".join(decode_text(read_input(f, "program")) for f in files)
 
 
 

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Callable, Iterator, Optional, Sequence
 
 from coatsim.core.errors import ExecutionError, InputError
+from coatsim.core.fileio import read_input
 from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point, variant_names
 
 
@@ -118,7 +119,7 @@ def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_out
             if path not in shared:
                 # a task that returns the bytes, not scattered data: if the worker holding them
                 # dies, the scheduler recomputes them from the task instead of losing the point
-                shared[path] = client.submit(file_bytes, path.read_bytes(), key=f"coatsim-input-{name}", pure=False)
+                shared[path] = client.submit(file_bytes, read_input(path, "input file"), key=f"coatsim-input-{name}", pure=False)
             inputs[name] = shared[path]
         future = client.submit(run_point, task, inputs, key=f"coatsim-point-{task.point}-{task.key[:16]}", pure=False)
         futures[future] = task
