@@ -244,8 +244,9 @@ def as_program(body: str, name: str = "t") -> str:
 
 
 def svg(body: str, extra: str = "") -> str:
-    return ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
-            f'width="200mm" height="200mm" viewBox="0 0 200 200"{extra}>{body}</svg>\n')
+    size = "" if extra else ' width="200mm" height="200mm" viewBox="0 0 200 200"'
+    return ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink"'
+            f'{size}{extra}>{body}</svg>\n')
 
 
 SVG_RECT = '<rect x="10" y="10" width="100" height="50" fill="none" stroke="black"/>'
@@ -260,6 +261,7 @@ def use_bomb(levels: int = 10, fan: int = 10) -> str:
 
 # DXF: written by ezdxf with placeholder numbers, then the placeholders replaced by hostile text
 PLACEHOLDER = "777.125"
+RATIO_PLACEHOLDER = 0.625125
 
 
 def dxf(build: Callable, replace: Optional[dict[str, str]] = None) -> Callable[[Path], None]:
@@ -308,6 +310,14 @@ def million_lines_dxf(n: int = 1_000_000) -> Callable[[Path], None]:
         head = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n"
         body = "".join(f"0\nLINE\n8\n0\n10\n{i * 0.001:.3f}\n20\n0.0\n30\n0.0\n11\n{i * 0.001 + 0.001:.3f}\n21\n0.0\n31\n0.0\n"
                        for i in range(n))
+        path.write_text(head + body + "0\nENDSEC\n0\nEOF\n")
+    return write
+
+
+def lwpolyline_dxf(n: int = 1_000_000) -> Callable[[Path], None]:
+    def write(path: Path) -> None:
+        head = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\n0\n90\n%d\n70\n0\n" % n
+        body = "".join(f"10\n{i * 0.001:.3f}\n20\n{(i % 2) * 0.001:.3f}\n" for i in range(n))
         path.write_text(head + body + "0\nENDSEC\n0\nEOF\n")
     return write
 
@@ -698,12 +708,12 @@ def dxf_cases() -> list[Case]:
         "arc-radius": lambda doc, msp: msp.add_arc((0, 0), ph, 0, 90),
         "arc-angle": lambda doc, msp: msp.add_arc((0, 0), 5, ph, 90),
         "circle-radius": lambda doc, msp: msp.add_circle((0, 0), ph),
-        "ellipse-ratio": lambda doc, msp: msp.add_ellipse((0, 0), (10, 0), ratio=0.5).dxf.set("ratio", ph),
+        "ellipse-ratio": lambda doc, msp: msp.add_ellipse((0, 0), (10, 0), ratio=RATIO_PLACEHOLDER),
         "ellipse-major": lambda doc, msp: msp.add_ellipse((0, 0), (ph, 0), ratio=0.5),
         "ellipse-param": lambda doc, msp: msp.add_ellipse((0, 0), (10, 0), ratio=0.5, start_param=ph, end_param=1),
         "lwpolyline-bulge": lambda doc, msp: msp.add_lwpolyline([(0, 0, 0, 0, ph), (10, 0), (10, 10)], format="xyseb"),
         "lwpolyline-point": lambda doc, msp: msp.add_lwpolyline([(0, 0), (ph, 0), (10, 10)]),
-        "spline-control": lambda doc, msp: msp.add_spline(control_points=[(0, 0), (ph, 5), (10, 0), (15, 5)]),
+        "spline-control": lambda doc, msp: msp.add_open_spline([(0, 0), (ph, 5), (10, 0), (15, 5)]),
         "spline-fit": lambda doc, msp: msp.add_spline(fit_points=[(0, 0), (ph, 5), (10, 0), (15, 5)]),
         "insert-scale": lambda doc, msp: (doc.blocks.new("B").add_line((0, 0), (1, 0)), msp.add_blockref("B", (0, 0), dxfattribs={"xscale": ph})),
         "insert-rotation": lambda doc, msp: (doc.blocks.new("B").add_line((0, 0), (1, 0)), msp.add_blockref("B", (0, 0), dxfattribs={"rotation": ph})),
@@ -714,16 +724,14 @@ def dxf_cases() -> list[Case]:
         values = ("nan", "inf", "1e308", "0", "-1", "1e-300") if name in ("ellipse-ratio", "arc-radius", "circle-radius", "insert-scale") \
             else ("nan", "inf", "1e308")
         for value in values:
-            c.append(seg(f"{name}-{value}", dxf(build, {PLACEHOLDER: value})))
-    c.append(seg("ellipse-ratio-2", dxf(entity_builds["ellipse-ratio"], {PLACEHOLDER: "2"})))
+            c.append(seg(f"{name}-{value}", dxf(build, {PLACEHOLDER: value, str(RATIO_PLACEHOLDER): value})))
+    c.append(seg("ellipse-ratio-2", dxf(entity_builds["ellipse-ratio"], {str(RATIO_PLACEHOLDER): "2"})))
     builds = {
         "rect": dxf_rect,
-        "spline-degree-0": lambda doc, msp: msp.add_spline(control_points=[(0, 0), (5, 5), (10, 0)], degree=0),
-        "spline-degree-50": lambda doc, msp: msp.add_spline(control_points=[(i, i % 2) for i in range(60)], degree=50),
-        "spline-one-point": lambda doc, msp: msp.add_spline(control_points=[(0, 0)]),
-        "spline-100k": lambda doc, msp: msp.add_spline(control_points=[(i * 0.01, (i % 2) * 0.01) for i in range(100_000)]),
-        "spline-equal-points": lambda doc, msp: msp.add_spline(control_points=[(1, 1)] * 10),
-        "lwpolyline-1m": lambda doc, msp: msp.add_lwpolyline([(i * 1e-3, (i % 2) * 1e-3) for i in range(1_000_000)]),
+        "spline-degree-50": lambda doc, msp: msp.add_open_spline([(i, i % 2) for i in range(60)], degree=50),
+        "spline-one-point": lambda doc, msp: msp.add_open_spline([(0, 0)]),
+        "spline-100k": lambda doc, msp: msp.add_open_spline([(i * 0.01, (i % 2) * 0.01) for i in range(100_000)]),
+        "spline-equal-points": lambda doc, msp: msp.add_open_spline([(1, 1)] * 10),
         "lwpolyline-one": lambda doc, msp: msp.add_lwpolyline([(0, 0)]),
         "insert-self": lambda doc, msp: (doc.blocks.new("B").add_blockref("B", (0, 0)), msp.add_blockref("B", (0, 0))),
         "insert-missing": lambda doc, msp: msp.add_blockref("NOPE", (0, 0)),
@@ -743,6 +751,7 @@ def dxf_cases() -> list[Case]:
     c.append(seg("nested-10x10", dxf_nested_blocks(10, 10), bomb=True, timeout=120))
     c.append(seg("nested-minsert", dxf_nested_blocks(4, 1, (100, 100)), bomb=True, timeout=120))
     c.append(seg("million-lines", million_lines_dxf(), bomb=True, timeout=300))
+    c.append(seg("lwpolyline-1m", lwpolyline_dxf(), bomb=True, timeout=300))
     c.append(seg("units-miles", dxf(lambda doc, msp: (doc.header.__setitem__("$INSUNITS", 3), dxf_rect(doc, msp)))))
     c.append(seg("units-bogus", dxf(dxf_rect, {"$INSUNITS\n 70\n4": "$INSUNITS\n 70\n999"})))
     c.append(seg("codepage-bogus", dxf(dxf_rect, {"ANSI_1252": "ANSI_99999"})))
@@ -986,7 +995,7 @@ def sweep_cases() -> list[Case]:
     twelve = six + "\n" + "\n".join(f"  gun.{k}: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]" for k in ("flow_mm3_s", "target_thickness_um")) + \
         "\n  coating.spacing_mm: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]\n  segmentation.corner_deg: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]"
     sw("grid-1e10", sweep_file(twelve), bomb=True)
-    sw("points-100k", f"base: base.yaml\npoints:\n" + "".join(f"  - {{motion.speed_mm_s: {100 + i}}}\n" for i in range(100_000)), bomb=True)
+    sw("points-100k", "base: base.yaml\npoints:\n" + "".join(f"  - {{motion.speed_mm_s: {100 + i}}}\n" for i in range(100_000)), bomb=True)
     sw("grid-bad-key", sweep_file("  motion.nope: [1, 2]"))
     sw("grid-bad-value", sweep_file("  motion.speed_mm_s: [abc]"))
     sw("grid-empty", sweep_file("  motion.speed_mm_s: []"))

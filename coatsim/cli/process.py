@@ -136,8 +136,10 @@ def _quiet_stdout() -> None:
 def run_app(app: typer.Typer) -> int:
     """Run ``app`` as the console command and return its exit code: 0 ok, 1 gate failed, 2 invalid
     input, 3 cannot execute, 70 internal error, 130 interrupted (SIGINT), 143 terminated (SIGTERM)."""
+    from coatsim.core.progress import start_clock
     from coatsim.core.runtime import single_threaded_numerics
 
+    start_clock()
     single_threaded_numerics()
     handlers = {}
     if threading.current_thread() is threading.main_thread():

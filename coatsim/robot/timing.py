@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
-from coatsim.core.budgets import check_budget, limit
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 

@@ -10,15 +10,15 @@ from __future__ import annotations
 
 import sys
 import time
-from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Callable, Iterator, Mapping, Optional
+from typing import Callable, Mapping, Optional
 
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
+from coatsim.core.progress import Advance
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.part_json import write_part_json
@@ -72,6 +72,11 @@ from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
 from coatsim.spray.surfaces import Surface
 
 Step = Callable[[str], None]
+
+
+def _labelled(advance: Advance) -> Step:
+    """A step function that names the step starting now (and checks the time budget)."""
+    return lambda label: advance(1, label)
 FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
 
 
@@ -104,26 +109,6 @@ class RunResult:
     @property
     def passed(self) -> bool:
         return bool(self.document["passed"])
-
-
-@contextmanager
-def progress_steps(total: int, enabled: bool) -> Iterator[Step]:
-    """A rich progress bar on stderr when ``enabled``; otherwise a no-op step function."""
-    if not enabled:
-        yield lambda label: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-    columns = (TextColumn("{task.description:<40}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
-               TimeElapsedColumn())
-    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
-        task = bar.add_task("starting", total=total)
-
-        def step(label: str) -> None:
-            bar.update(task, advance=1, description=label)
-
-        yield step
 
 
 @dataclass(frozen=True, eq=False)
@@ -324,7 +309,8 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
     sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
-    with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
+    with progress("running the scenario", 3 + 3 * len(spec.variants) + int(video), show) as advance:
+        step = _labelled(advance)
         step("segmenting the curve")
         part = None
         if spec.curve is None:  # the sprayed path of the first program variant

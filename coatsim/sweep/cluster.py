@@ -21,6 +21,7 @@ from typing import Callable, Iterator, Optional, Sequence
 
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.core.fileio import read_input
+from coatsim.core.progress import progress
 from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point, variant_names
 
 
@@ -166,22 +167,14 @@ def _lost(exc: Exception) -> str:
 
 @contextmanager
 def _progress(total: int, enabled: bool) -> Iterator[Callable[[PointOutcome], None]]:
-    """A rich progress bar of finished points on stderr, or nothing."""
-    if not enabled:
-        yield lambda outcome: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
-
+    """A rich progress bar of finished points on stderr when ``enabled`` (and the time budget
+    checked as each point finishes)."""
     bad = 0
-    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-               TextColumn("eta"), TimeRemainingColumn())
-    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
-        job = bar.add_task("points", total=total)
+    with progress("points", total, enabled) as step:
 
         def advance(outcome: PointOutcome) -> None:
             nonlocal bad
             bad += outcome.status != "ok"
-            bar.update(job, advance=1, description=f"points ({bad} failed)" if bad else "points")
+            step(1, f"points ({bad} failed)" if bad else "points")
 
         yield advance

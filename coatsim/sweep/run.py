@@ -20,6 +20,7 @@ from coatsim import __version__
 from coatsim.core.errors import CoatsimError, InputError
 from coatsim.core.fileio import write_text
 from coatsim.core.outputs_guard import output_folder
+from coatsim.sweep.cluster import default_workers
 from coatsim.sweep.inputs import bundle, with_absolute_paths
 from coatsim.sweep.points import Point, canonical_json, expand
 from coatsim.sweep.spec import SweepFile, load_sweep
@@ -28,6 +29,7 @@ from coatsim.sweep.table import Table, build_table, write_csv, write_parquet
 from coatsim.sweep.task import PointOutcome, PointTask, failed, variant_names
 
 FORMAT = "coatsim.sweep/1"
+MAX_WORKERS_PER_CORE = 4  # a local cluster's workers are processes of ~0.3-1 GB each
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +77,10 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
     started = time.perf_counter()
     if workers is not None and workers < 1:
         raise InputError(f"--workers {workers}: give at least 1")
+    if workers is not None and workers > MAX_WORKERS_PER_CORE * default_workers():
+        raise InputError(f"--workers {workers}: more than {MAX_WORKERS_PER_CORE} worker processes per core "
+                         f"({default_workers()} here) only make the points wait for memory; give at most "
+                         f"{MAX_WORKERS_PER_CORE * default_workers()}, or use --scheduler for more machines")
     if workers is not None and scheduler is not None:
         raise InputError("--workers sizes the local cluster only; with --scheduler the cluster's own workers run the points")
     sweep = load_sweep(path)

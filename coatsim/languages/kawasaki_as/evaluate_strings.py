@@ -13,6 +13,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from coatsim.languages.kawasaki_as.evaluate import Evaluator
 
 
+_MAX_FIELD = 1000  # widths and digits of a number format (a controller's string holds 128 characters)
+
 # $-functions of the index the twin does not compute (clock, errors, system data): "".
 _NOT_SIMULATED = {"$DATE", "$TIME", "$ERROR", "$ERRORS", "$ERRLOG", "$SYSDATA"}
 
@@ -78,7 +80,7 @@ def encode(ev: Evaluator, items: tuple[Optional[ast.Expr], ...]) -> str:
             out.append(ev.string(item))
             continue
         out.append(format_number(ev.real(item), fmt))
-    return "".join(out)
+    return ev.joined(out)
 
 
 def decode(ev: Evaluator, e: ast.Call) -> str:
@@ -105,8 +107,8 @@ def format_number(x: float, fmt: str) -> str:
     """``x`` in the format ``fmt`` (D, Fw.d, Ew.d, Gw.d; w the width, d the digits)."""
     kind, spec = fmt[0], fmt[1:]
     width, _, digits = spec.partition(".")
-    w = int(width) if width.isdigit() else 0
-    d = int(digits) if digits.isdigit() else None
+    w = min(int(width), _MAX_FIELD) if width.isdigit() else 0
+    d = min(int(digits), _MAX_FIELD) if digits.isdigit() else None
     if kind == "D":
         return f"{int(round(x)):{w}d}"
     if kind == "F":
