@@ -10,7 +10,7 @@ from typing import Optional
 import typer
 
 from coatsim.cli.flags import speaking_flags
-from coatsim.cli import check_program, coat, convert, execute, program, run, schema, segment, sweep
+from coatsim.cli import check_program, coat, convert, execute, plan, program, run, schema, segment, sweep
 
 BUDGET_HELP = ("Change a resource budget for this command, NAME=N (repeatable; N may be inf): curve_points, "
                "drawing_entities, sweep_points, input_bytes, seconds, ... (the README's budget table).")
@@ -65,3 +65,4 @@ app.command()(program.program)
 app.command()(execute.execute)
 app.command()(convert.convert)
 app.command("check-program")(check_program.check_program)
+app.command()(plan.plan)

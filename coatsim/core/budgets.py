@@ -36,6 +36,9 @@ MAX_MESH_VERTICES = 2_000_000
 #: Integration sub-steps of the coating stage (sprayed path / footprint sub-step, sigma/2 by
 #: default); ~0.2 kB each before the deposition kernel runs over them.
 MAX_SPRAY_SUBSTEPS = 2_000_000
+#: Memory of the coating stage's ray caster for shadows: Embree's scene (~100 bytes per
+#: triangle with our float32 copies) and one batch of rays, estimated before it is built.
+MAX_SHADOW_BYTES = 1_500_000_000
 #: Distinct points of an input curve (files and built-in curves), after dropping repeated ones.
 MAX_CURVE_POINTS = 2_000_000
 #: Size of a curve text file (CSV/TXT): 64 bytes per point at the point budget.
@@ -67,6 +70,13 @@ MAX_DEVIATION_PAIRS = 50_000_000
 #: stretch; an input with no structure (random points, a sine sampled below its wavelength)
 #: asks for one piece per point and the fitter tries each length.
 MAX_FIT_CANDIDATES = 5_000_000
+#: Triangles ``plan`` works on (a part mesh as read, and its region refined to the pass spacing);
+#: ~2 kB each through normals, the heat method's factorisation and fast marching.
+MAX_PLAN_TRIANGLES = 1_000_000
+#: Size of a part mesh file ``plan`` reads: an ASCII STL takes ~250 bytes per triangle.
+MAX_PLAN_MESH_BYTES = 256 * MAX_PLAN_TRIANGLES
+#: Passes of one plan.
+MAX_PLAN_PASSES = 20_000
 
 
 @dataclass(frozen=True)
@@ -84,6 +94,7 @@ BUDGETS: dict[str, Budget] = {b.name: b for b in (
     Budget("trajectory_bytes", MAX_TRAJECTORY_BYTES, "bytes of a trajectory CSV"),
     Budget("mesh_vertices", MAX_MESH_VERTICES, "vertices of a coated surface"),
     Budget("spray_substeps", MAX_SPRAY_SUBSTEPS, "coating sub-steps along the sprayed path"),
+    Budget("shadow_bytes", MAX_SHADOW_BYTES, "memory of the coating stage's ray caster for shadows"),
     Budget("curve_points", MAX_CURVE_POINTS, "distinct points of an input curve"),
     Budget("curve_file_bytes", MAX_CURVE_FILE_BYTES, "bytes of a CSV/TXT/NPY curve file"),
     Budget("yaml_bytes", MAX_YAML_BYTES, "bytes of a scenario or sweep file"),
@@ -95,6 +106,9 @@ BUDGETS: dict[str, Budget] = {b.name: b for b in (
     Budget("sweep_points", MAX_SWEEP_POINTS, "points of a sweep"),
     Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "sample pairs of the exact deviation check at once"),
     Budget("fit_candidates", MAX_FIT_CANDIDATES, "pieces the fitter tries for one curve"),
+    Budget("plan_triangles", MAX_PLAN_TRIANGLES, "triangles of a part mesh plan works on"),
+    Budget("plan_mesh_bytes", MAX_PLAN_MESH_BYTES, "bytes of a part mesh file plan reads"),
+    Budget("plan_passes", MAX_PLAN_PASSES, "passes of one plan"),
     Budget("seconds", math.inf, "wall time of one command's long work (fitting, drawings, runs, sweeps)"),
 )}
 

@@ -1,7 +1,9 @@
 """The logged tool trajectory and its CSV file (contract in the README).
 
 One row per simulation step, robot base frame:
-``t_s,x_mm,y_mm,z_mm,ax,ay,az,speed_mm_s,spray,progress_mm,path_error_mm,q1,...,q6``.
+``t_s,x_mm,y_mm,z_mm,ax,ay,az,speed_mm_s,spray,progress_mm,path_error_mm,q1,...,q6,trace_speed_mm_s``.
+The last column is the speed of the spray spot on the surface (TCP + stand-off · spray axis); a
+file without it (written before it existed) reads with the tool speed there.
 """
 
 from __future__ import annotations
@@ -19,8 +21,9 @@ from coatsim.core.number_text import read_rows
 
 COLUMNS = (
     "t_s", "x_mm", "y_mm", "z_mm", "ax", "ay", "az", "speed_mm_s", "spray",
-    "progress_mm", "path_error_mm", "q1", "q2", "q3", "q4", "q5", "q6",
+    "progress_mm", "path_error_mm", "q1", "q2", "q3", "q4", "q5", "q6", "trace_speed_mm_s",
 )
+OPTIONAL = ("trace_speed_mm_s",)
 
 
 @dataclass(frozen=True, eq=False)
@@ -29,7 +32,7 @@ class TrajectoryLog:
 
     t (n,) s; position (n, 3) mm; axis (n, 3) unit spray axis; speed (n,) mm/s;
     spray (n,) bool; progress (n,) mm along the programmed path; path_error (n,) mm;
-    q (n, 6) rad.
+    q (n, 6) rad; trace_speed (n,) mm/s the spray spot's speed on the surface (None: the tool's).
     """
 
     t: np.ndarray
@@ -40,6 +43,12 @@ class TrajectoryLog:
     progress: np.ndarray
     path_error: np.ndarray
     q: np.ndarray
+    trace_speed: np.ndarray | None = None
+
+    @property
+    def spot_speed(self) -> np.ndarray:
+        """The spray spot's speed (mm/s): the trace speed, or the tool's where none is known."""
+        return self.speed if self.trace_speed is None else self.trace_speed
 
     def __len__(self) -> int:
         return len(self.t)
@@ -50,9 +59,9 @@ class TrajectoryLog:
         out.write(",".join(COLUMNS) + "\n")
         table = np.column_stack((
             self.t, self.position, self.axis, self.speed, self.spray.astype(float),
-            self.progress, self.path_error, self.q,
+            self.progress, self.path_error, self.q, self.spot_speed,
         ))
-        fmt = ["%.4f"] + ["%.4f"] * 3 + ["%.7f"] * 3 + ["%.3f", "%d", "%.4f", "%.5f"] + ["%.7f"] * 6
+        fmt = ["%.4f"] + ["%.4f"] * 3 + ["%.7f"] * 3 + ["%.3f", "%d", "%.4f", "%.5f"] + ["%.7f"] * 6 + ["%.3f"]
         np.savetxt(out, table, fmt=fmt, delimiter=",")
         return out.getvalue()
 
@@ -74,7 +83,7 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
         raise InputError(f"{path}: empty file, expected a trajectory CSV with header {','.join(COLUMNS[:4])},...")
     rows = read_rows(text, str(path), f"the trajectory columns {','.join(COLUMNS[:4])},...")
     header = rows.header
-    missing = [c for c in COLUMNS if c not in header]
+    missing = [c for c in COLUMNS if c not in header and c not in OPTIONAL]
     if missing:
         raise InputError(f"{path}:1: trajectory CSV header lacks column(s) {', '.join(missing)}")
     for values, line in zip(rows.values, rows.lines):
@@ -82,8 +91,9 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
             raise InputError(f"{path}:{line}: expected {len(header)} values, found {len(values)}")
     for note in rows.notes:
         warnings.warn(note, CoatsimWarning, stacklevel=2)
-    index = [header.index(c) for c in COLUMNS]
-    table = np.array([[values[k] for k in index] for values in rows.values], dtype=float).reshape(-1, len(COLUMNS))
+    columns = [c for c in COLUMNS if c in header]
+    index = [header.index(c) for c in columns]
+    table = np.array([[values[k] for k in index] for values in rows.values], dtype=float).reshape(-1, len(columns))
     if len(table) < 2:
         raise InputError(f"{path}: a trajectory needs at least 2 rows, found {len(table)}")
     if np.any(np.diff(table[:, 0]) <= 0):
@@ -92,4 +102,5 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
     return TrajectoryLog(
         t=table[:, 0], position=table[:, 1:4], axis=table[:, 4:7], speed=table[:, 7],
         spray=table[:, 8] > 0.5, progress=table[:, 9], path_error=table[:, 10], q=table[:, 11:17],
+        trace_speed=table[:, 17] if len(columns) > 17 else None,
     )

@@ -310,12 +310,12 @@ def _open(path: Path):
             return Document.load(binary_tags_loader(data, errors="surrogateescape"))
         check_budget(f"{path}: DXF records (entities, table entries, objects)", len(_RECORD.findall(data)),
                      "drawing_entities", "split the drawing or leave out what is not sprayed")
-        head = io.StringIO(data[:1 << 16].decode("utf-8", errors="ignore"))
+        head = io.StringIO(data[:1 << 16].decode("utf-8", errors="ignore"), newline=None)
         if not is_dxf_stream(head):
             raise InputError(f"{path}: not a readable DXF file (no SECTION where a DXF file starts)")
         head.seek(0)
         encoding = dxf_stream_info(head).encoding
-        return ezdxf.read(io.StringIO(data.decode(encoding, errors="surrogateescape")))
+        return ezdxf.read(io.StringIO(data.decode(encoding, errors="surrogateescape"), newline=None))
     except (UnicodeError, LookupError, ValueError, ezdxf.DXFError) as exc:
         raise InputError(f"{path}: not a readable DXF file ({str(exc).replace(str(path), 'file')[:200]})") from None
 
