@@ -182,6 +182,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--root", type=Path, default=Path(__file__).resolve().parents[1], help="source tree to run")
     parser.add_argument("--only", action="append", help="category or category/name prefix (repeatable)")
+    parser.add_argument("--cases", type=Path, help="a file of category/name lines: run exactly these cases")
     parser.add_argument("-j", "--jobs", type=int, default=2)
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per case")
     parser.add_argument("--mem-gb", type=float, default=3.0, help="address-space cap per case")
@@ -189,8 +190,9 @@ def main() -> None:
     parser.add_argument("--compare", type=Path, help="a --json file of an earlier run: list what changed")
     parser.add_argument("--findings", action="store_true", help="list every case that is not ok or a clean error")
     args = parser.parse_args()
-    cases = [c for c in all_cases() if not args.only
-             or any(f"{c.category}/{c.name}".startswith(o) for o in args.only)]
+    chosen = set(args.cases.read_text().splitlines()) if args.cases else None
+    cases = [c for c in all_cases() if (not args.only or any(f"{c.category}/{c.name}".startswith(o) for o in args.only))
+             and (chosen is None or f"{c.category}/{c.name}" in chosen)]
     work = Path(tempfile.mkdtemp(prefix="coatsim-hostile-"))
     print(f"{len(cases)} cases, {args.jobs} at a time, {args.timeout:g} s and {args.mem_gb:g} GB each, in {work}",
           file=sys.stderr)

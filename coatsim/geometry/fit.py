@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.core.errors import InputError
+from coatsim.core.progress import check_time
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
@@ -129,6 +130,7 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     tried: dict[tuple[bytes, float], tuple] = {}  # a chain refined before (band fits often repeat one) is not again
     while budget[0] > 0:
         budget[0] -= 1
+        check_time("fitting the curve")  # the budget seconds bounds a slow fit (coatsim.core.progress)
         if params is None:
             try:
                 slope, pieces = fit_band(prob, ref, band, start_slope=pinned_slope, end_turn=turn, landed=landed)

@@ -10,6 +10,7 @@ from typing import Literal
 import numpy as np
 
 from coatsim.core import defaults
+from coatsim.core.progress import progress
 from coatsim.core.errors import InputError
 from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.curves import Curve
@@ -218,13 +219,15 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
         return _fit_loop(pts, tol, min_segment_mm, speed_kappa)
     pieces: list[tuple[Segment, ...]] = []
     deviations, radii, kept = [], [], True
-    for run in runs:
-        limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-        found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
-        pieces.append(split_long_arcs(found.segments))
-        deviations.append(found.deviation_mm)
-        radii.append(limits.profile.tightest_radius_mm)
-        kept = kept and found.limits_kept
+    with progress(f"{curve.name}: fitting runs between corners", len(runs)) as advance:
+        for run in runs:  # the time budget is checked after each run (coatsim.core.progress)
+            limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
+            found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
+            pieces.append(split_long_arcs(found.segments))
+            deviations.append(found.deviation_mm)
+            radii.append(limits.profile.tightest_radius_mm)
+            kept = kept and found.limits_kept
+            advance()
     segments = tuple(seg for piece in pieces for seg in piece)
     junctions = _corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0)
     poly = Polysegment(segments, closed=curve.closed, corners=junctions)
