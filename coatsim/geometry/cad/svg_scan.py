@@ -10,6 +10,7 @@ drawing_entities. All before anything is expanded.
 
 from __future__ import annotations
 
+import re
 import xml.parsers.expat
 from dataclasses import dataclass, field
 
@@ -17,6 +18,19 @@ from coatsim.core.budgets import check_budget, limit
 from coatsim.core.errors import InputError
 
 _HREFS = ("href", "http://www.w3.org/1999/xlink href")
+_COMMAND = re.compile(r"[MmLlHhVvCcSsQqTtAaZz]")
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def _weight(tag: str, attrs: dict[str, str]) -> float:
+    """How many pieces an element draws: a path one per command (or per seven numbers, the
+    longest command), a polyline one per point, anything else one."""
+    if tag == "path":
+        d = attrs.get("d", "")
+        return float(max(1, len(_COMMAND.findall(d)), len(_NUMBER.findall(d)) // 7))
+    if tag in ("polyline", "polygon"):
+        return float(max(1, len(_NUMBER.findall(attrs.get("points", ""))) // 2))
+    return 1.0
 
 
 @dataclass
@@ -24,6 +38,7 @@ class _Doc:
     """The elements of a document by index: tag, line, children, the index a use places, ids."""
 
     tags: list[str] = field(default_factory=list)
+    weights: list[float] = field(default_factory=list)
     lines: list[int] = field(default_factory=list)
     children: list[list[int]] = field(default_factory=list)
     href: dict[int, str] = field(default_factory=dict)
@@ -35,12 +50,18 @@ def _read(data: bytes, source: str) -> _Doc:
     nests deeper than the budget drawing_depth."""
     doc = _Doc()
     stack: list[int] = []
-    budget = limit("drawing_depth")
+    budget, entities = limit("drawing_depth"), limit("drawing_entities")
+    drawn = [0.0]  # pieces so far, before any use is expanded
     parser = xml.parsers.expat.ParserCreate(namespace_separator=" ")
 
     def start(tag: str, attrs: dict[str, str]) -> None:
         index = len(doc.tags)
         doc.tags.append(tag.rsplit(" ", 1)[-1])
+        doc.weights.append(_weight(doc.tags[index], attrs))
+        drawn[0] += doc.weights[index]
+        if drawn[0] > entities:
+            check_budget(f"{source}:{parser.CurrentLineNumber}: elements (path commands and polyline points "
+                         "counted)", drawn[0], "drawing_entities", "simplify the drawing")
         doc.lines.append(parser.CurrentLineNumber)
         doc.children.append([])
         if stack:
@@ -90,6 +111,7 @@ def check_svg_structure(data: bytes, source: str) -> None:
     depth: list[int] = [0] * len(doc.tags)      # nesting once expanded
     state = [0] * len(doc.tags)                 # 0 new, 1 on the path, 2 done
     path: list[int] = []
+    edges_of: dict[int, list[int]] = {}         # on the path: what it holds (computed once)
     todo: list[tuple[int, int]] = [(0, 0)]      # (element, next edge to follow)
     depth_budget, size_budget = limit("drawing_depth"), limit("drawing_entities")
     while todo:
@@ -97,7 +119,8 @@ def check_svg_structure(data: bytes, source: str) -> None:
         if k == 0:
             state[node] = 1
             path.append(node)
-        edges = _edges(doc, node)
+            edges_of[node] = _edges(doc, node)
+        edges = edges_of[node]
         if k < len(edges):
             todo.append((node, k + 1))
             nxt = edges[k]
@@ -107,7 +130,8 @@ def check_svg_structure(data: bytes, source: str) -> None:
             if state[nxt] == 0:
                 todo.append((nxt, 0))
             continue
-        size[node] = 1.0 + sum(size[e] for e in edges)
+        size[node] = doc.weights[node] + sum(size[e] for e in edges)
+        del edges_of[node]
         depth[node] = 1 + max((depth[e] for e in edges), default=0)
         state[node] = 2
         path.pop()
@@ -116,5 +140,6 @@ def check_svg_structure(data: bytes, source: str) -> None:
             check_budget(f"{source}:{line}: elements nested inside each other (counting what <use> places)",
                          depth[node], "drawing_depth", "flatten the groups and uses of the drawing")
         if size[node] > size_budget:
-            check_budget(f"{source}:{line}: elements once every <use> is expanded", size[node], "drawing_entities",
+            check_budget(f"{source}:{line}: elements (path commands and polyline points counted) once every <use> "
+                         "is expanded", size[node], "drawing_entities",
                          "draw fewer copies (or simplify the drawing)")
