@@ -64,8 +64,10 @@ MAX_JSON_DEPTH = 64
 MAX_STRING_CHARS = 1 << 20
 #: Points of a sweep (the grid product and the explicit points); each point is a run.
 MAX_SWEEP_POINTS = 10_000
-#: Sample pairs the exact deviation check compares at once (8 bytes each).
-MAX_DEVIATION_PAIRS = 50_000_000
+#: Point-feature pairs the exact deviation check compares at once (~100 bytes each through the
+#: distance kernels); a curve with structure puts a few features near each of the 16 points of a
+#: batch, one that crosses itself everywhere (random or aliased points) nearly all of them.
+MAX_DEVIATION_PAIRS = 5_000_000
 #: Candidate pieces the fitter may try for one curve: about points x pieces per corner-free
 #: stretch; an input with no structure (random points, a sine sampled below its wavelength)
 #: asks for one piece per point and the fitter tries each length.
@@ -104,7 +106,7 @@ BUDGETS: dict[str, Budget] = {b.name: b for b in (
     Budget("json_depth", MAX_JSON_DEPTH, "nesting of a JSON document"),
     Budget("string_chars", MAX_STRING_CHARS, "characters of a program's string value"),
     Budget("sweep_points", MAX_SWEEP_POINTS, "points of a sweep"),
-    Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "sample pairs of the exact deviation check at once"),
+    Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "point-feature pairs the exact deviation check compares at once"),
     Budget("fit_candidates", MAX_FIT_CANDIDATES, "pieces the fitter tries for one curve"),
     Budget("plan_triangles", MAX_PLAN_TRIANGLES, "triangles of a part mesh plan works on"),
     Budget("plan_mesh_bytes", MAX_PLAN_MESH_BYTES, "bytes of a part mesh file plan reads"),

@@ -155,7 +155,10 @@ def load_yaml_with_lines(path: Path, expected: str = "a scenario (name, curve, w
         text = read_input(path, "YAML file", "yaml_bytes").decode("utf-8")
     except UnicodeDecodeError:
         raise InputError(f"{path}: not UTF-8 text; expected a YAML file with {expected}") from None
-    loader = _Loader(text)
+    try:
+        loader = _Loader(text)  # its reader refuses control characters at once
+    except yaml.YAMLError as exc:
+        raise InputError(f"{path}: invalid YAML: {str(exc).splitlines()[0]}") from None
     try:
         node = loader.get_single_node()
         if node is None:
