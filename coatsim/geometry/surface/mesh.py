@@ -18,6 +18,7 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import read_input
 
 #: millimetres per unit of a mesh file
 UNITS_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -62,11 +63,7 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     if path.suffix.lower() not in MESH_SUFFIXES:
         raise InputError(f"{path}: not a mesh file this reader knows (suffix {path.suffix or 'none'}); "
                          f"export the part as {', '.join(s[1:].upper() for s in MESH_SUFFIXES)}")
-    if not path.is_file():
-        raise InputError(f"{path}: part mesh file not found")
-    check_budget(f"{path}: file size in bytes", path.stat().st_size, "plan_mesh_bytes",
-                 "decimate the mesh (e.g. MeshLab quadric edge collapse) or export it as binary STL")
-    data = path.read_bytes()
+    data = read_input(path, "part mesh", "plan_mesh_bytes")
     if path.suffix.lower() == ".stl":
         _check_binary_stl(path, data)
     try:
