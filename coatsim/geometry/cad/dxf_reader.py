@@ -316,8 +316,9 @@ def _open(path: Path):
         head.seek(0)
         encoding = dxf_stream_info(head).encoding
         return ezdxf.read(io.StringIO(data.decode(encoding, errors="surrogateescape"), newline=None))
-    except (UnicodeError, LookupError, ValueError, ezdxf.DXFError) as exc:
-        raise InputError(f"{path}: not a readable DXF file ({str(exc).replace(str(path), 'file')[:200]})") from None
+    except (UnicodeError, LookupError, ValueError, StopIteration, EOFError, ezdxf.DXFError) as exc:
+        detail = str(exc).replace(str(path), "file")[:200] or "it ends before its header does"
+        raise InputError(f"{path}: not a readable DXF file ({detail})") from None
 
 
 def _numbers(entity) -> np.ndarray:
