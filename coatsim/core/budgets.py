@@ -68,10 +68,6 @@ MAX_SWEEP_POINTS = 10_000
 #: distance kernels); a curve with structure puts a few features near each of the 16 points of a
 #: batch, one that crosses itself everywhere (random or aliased points) nearly all of them.
 MAX_DEVIATION_PAIRS = 5_000_000
-#: Candidate pieces the fitter may try for one curve: about points x pieces per corner-free
-#: stretch; an input with no structure (random points, a sine sampled below its wavelength)
-#: asks for one piece per point and the fitter tries each length.
-MAX_FIT_CANDIDATES = 5_000_000
 #: Triangles ``plan`` works on (a part mesh as read, and its region refined to the pass spacing);
 #: ~2 kB each through normals, the heat method's factorisation and fast marching.
 MAX_PLAN_TRIANGLES = 1_000_000
@@ -107,7 +103,6 @@ BUDGETS: dict[str, Budget] = {b.name: b for b in (
     Budget("string_chars", MAX_STRING_CHARS, "characters of a program's string value"),
     Budget("sweep_points", MAX_SWEEP_POINTS, "points of a sweep"),
     Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "point-feature pairs the exact deviation check compares at once"),
-    Budget("fit_candidates", MAX_FIT_CANDIDATES, "pieces the fitter tries for one curve"),
     Budget("plan_triangles", MAX_PLAN_TRIANGLES, "triangles of a part mesh plan works on"),
     Budget("plan_mesh_bytes", MAX_PLAN_MESH_BYTES, "bytes of a part mesh file plan reads"),
     Budget("plan_passes", MAX_PLAN_PASSES, "passes of one plan"),
