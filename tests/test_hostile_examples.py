@@ -155,11 +155,15 @@ def test_a_sweep_grid_of_a_million_points_is_refused_before_it_is_built(tmp_path
     assert not (tmp_path / "out").exists()
 
 
-def test_progress_and_a_time_budget_bound_a_long_fit(tmp_path):
+def test_progress_and_a_time_budget_bound_a_long_fit(tmp_path, monkeypatch):
     """Random points ask the fitter for one piece per point: the budget seconds stops it."""
     import numpy as np
 
-    from coatsim.core.progress import start_clock
+    from coatsim.core import progress
+
+    monkeypatch.setenv("COATSIM_BUDGET", "")  # the in-process command sets it: restored afterwards
+    monkeypatch.setattr(progress, "_clock", [])
+    start_clock = progress.start_clock
 
     path = tmp_path / "r.csv"
     np.savetxt(path, np.random.default_rng(1).uniform(0, 100, (300, 2)), delimiter=",")

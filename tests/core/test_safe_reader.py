@@ -81,7 +81,8 @@ def test_commands_refuse_special_inputs_in_one_line(tmp_path, command, make):
     assert err.count("\n") == 1 and err.startswith("coatsim: error: "), err
 
 
-def test_the_budget_option_changes_a_budget_for_one_command(tmp_path):
+def test_the_budget_option_changes_a_budget_for_one_command(tmp_path, monkeypatch):
+    monkeypatch.setenv("COATSIM_BUDGET", "")  # the in-process command sets it: restored afterwards
     code, _, err = cli("--budget", "curve_points=10", "segment", "builtin:ellipse:points=200", "--tol", "0.1")
     assert code == 2 and "--budget curve_points=N" in err, err
     code, _, err = cli("--budget", "bogus=1", "segment", "builtin:ellipse", "--tol", "0.1")
