@@ -58,6 +58,7 @@ def _one_line_warnings(show_other: Callable) -> Callable:
     return show
 
 
+INTERNAL_ERROR_EXIT = 70  # EX_SOFTWARE of sysexits.h
 _SIGNAL_EXITS = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
 _OUT_OF_MEMORY = ("coatsim: error: out of memory; use coarser settings (a larger step, spacing or tolerance) or allow "
                   "the process more memory")
@@ -119,7 +120,7 @@ def _internal(exc: Exception) -> int:
     first = (str(exc).strip().splitlines() or [""])[0][:200]
     _say(f"coatsim: internal error: {type(exc).__name__}: {first} (a bug in coatsim; COATSIM_TRACEBACK=1 shows the "
          "traceback)")
-    return 70
+    return INTERNAL_ERROR_EXIT
 
 
 def _quiet_stdout() -> None:

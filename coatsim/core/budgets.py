@@ -5,7 +5,7 @@ slow speed, a YAML alias, a nested block, a FIFO given as a file). Past a budget
 a BudgetExceeded (an InputError, exit 2) naming the quantity, the amount asked for, the budget and
 what would fix it, before the work starts. The values are sized for a workstation: at each budget
 a stage needs about 1 to 2.5 GB and a few minutes (``python scripts/bench_budgets.py`` measures
-the cost per unit; figures in the README).
+the cost per unit; figures in docs/guide/conventions.md).
 
 Every budget has a name and can be changed for one process: ``COATSIM_BUDGET="name=value,..."``
 (the command line's ``coatsim --budget name=value`` sets it, and Dask workers started by the
