@@ -62,6 +62,8 @@ MAX_DRAWING_DEPTH = 64
 MAX_JSON_DEPTH = 64
 #: Characters of one string value of a program (an AS string holds 128 on a controller).
 MAX_STRING_CHARS = 1 << 20
+#: Lines of one robot program file (~50 us each to parse and run; a controller holds far fewer).
+MAX_PROGRAM_LINES = 500_000
 #: Points of a sweep (the grid product and the explicit points); each point is a run.
 MAX_SWEEP_POINTS = 10_000
 #: Point-feature pairs the exact deviation check compares at once (~100 bytes each through the
@@ -101,6 +103,7 @@ BUDGETS: dict[str, Budget] = {b.name: b for b in (
     Budget("drawing_depth", MAX_DRAWING_DEPTH, "nesting of SVG elements and DXF blocks"),
     Budget("json_depth", MAX_JSON_DEPTH, "nesting of a JSON document"),
     Budget("string_chars", MAX_STRING_CHARS, "characters of a program's string value"),
+    Budget("program_lines", MAX_PROGRAM_LINES, "lines of one robot program file"),
     Budget("sweep_points", MAX_SWEEP_POINTS, "points of a sweep"),
     Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "point-feature pairs the exact deviation check compares at once"),
     Budget("plan_triangles", MAX_PLAN_TRIANGLES, "triangles of a part mesh plan works on"),

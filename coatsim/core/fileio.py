@@ -110,6 +110,15 @@ def read_input(path: str | Path, what: str, budget: str = "input_bytes") -> byte
     return b"".join(chunks)
 
 
+def read_program_file(path: str | Path) -> bytes:
+    """The bytes of a robot program file, its lines counted against the budget program_lines
+    before anything parses them."""
+    data = read_input(path, "program")
+    check_budget(f"{path}: lines of the program", data.count(b"\n") + 1, "program_lines",
+                 "split the program or program fewer points")
+    return data
+
+
 def decode_text(data: bytes) -> str:
     """Text of a program file: UTF-8 (a leading byte-order mark dropped) if valid, else Latin-1
     (controllers save 8-bit text)."""
