@@ -18,6 +18,7 @@ from typing import Any, Optional
 
 import numpy as np
 
+from coatsim.core.jsonfile import read_json
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import write_text
 
@@ -154,13 +155,7 @@ def write_surfacepaths(path: str | Path, paths: SurfacePaths) -> None:
 def read_surfacepaths(path: str | Path) -> SurfacePaths:
     """Read a ``coatsim.surfacepaths/1`` file; an InputError naming the field at fault."""
     path = Path(path)
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    except (UnicodeDecodeError, ValueError) as exc:
-        raise InputError(f"{path}: not a JSON document ({str(exc).splitlines()[0][:120]})") from None
-    return from_document(doc, str(path))
+    return from_document(read_json(path, "surface paths file"), str(path))
 
 
 def _field(doc: Any, key: str, where: str) -> Any:
