@@ -20,7 +20,8 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.curves import make_curve
-from coatsim.geometry.dynamics import speed_limited
+from coatsim.geometry.limits import check_min_segment
+from coatsim.geometry.dynamics import curvature_limit, speed_limited
 from coatsim.geometry.limits import MIN_LENGTH_SHARE, MIN_LENGTH_SIGMAS, NEIGHBOURHOOD_WINDOWS, FitLimits
 from coatsim.geometry.segment import segment_curve
 from coatsim.geometry.space.chain import SpaceChain
@@ -119,6 +120,7 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
     ``segment_curve``."""
     _check(tolerance_mm, "tolerance_mm", "mm")
     _check(min_segment_mm, "min_segment_mm", "mm")
+    check_min_segment(min_segment_mm)
     _check(speed_mm_s, "speed_mm_s", "mm/s")
     _check(tool_accel_mm_s2, "tool_accel_mm_s2", "mm/s²")
     if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
@@ -168,7 +170,7 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
     else:
         cuts = [0, *[int(c) for c in corners], len(pts) - 1]
     loop = curve.closed and not len(corners)
-    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
+    speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
     for share in NARROWER:
         segments, kept, radii, junctions = [], True, [], []
         for a, b in zip(cuts[:-1], cuts[1:]):
