@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.languages.fanuc_tp.blend import DECEL_MM_S2
 from coatsim.languages.fanuc_tp.interpreter import FanucRun
 from coatsim.languages.fanuc_tp.names import MAX_NAME_LENGTH, check_name, program_name
@@ -60,7 +60,7 @@ class FanucTp:
             raise InputError("no program file given")
         programs: dict[str, LsProgram] = {}
         for path in files:
-            program = parse_ls(decode_text(read_input_bytes(path, "program")), str(path))
+            program = parse_ls(decode_text(read_program_file(path)), str(path))
             if program.name in programs:
                 raise InputError(f"{path}: program {program.name} is also in {programs[program.name].source}")
             programs[program.name] = program

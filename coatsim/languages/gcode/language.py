@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.languages.gcode.blocks import parse_blocks
 from coatsim.languages.gcode.gun import GunCodes
 from coatsim.languages.gcode.interpreter import Interpreter
@@ -62,7 +62,7 @@ class GCode:
         if len(files) != 1:
             raise InputError(f"G-code reads one program file at a time, got {len(files)}")
         path = Path(files[0])
-        blocks = parse_blocks(decode_text(read_input_bytes(path, "program")), str(path))
+        blocks = parse_blocks(decode_text(read_program_file(path)), str(path))
         interpreter = Interpreter(blocks, str(path), options, self.gun, path.stem)
         toolpath = interpreter.run()
         n_poses = sum(any(letter in "XYZ" for letter, _ in b.words) for b in blocks)

@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.languages.urscript.interpreter import UrRun
 from coatsim.languages.urscript.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.urscript.parser import Statement, parse_script
@@ -59,7 +59,7 @@ class UrScript:
         if len(files) != 1:
             raise InputError(f"URScript reads one script file at a time (the controller runs one), got {len(files)}")
         path = Path(files[0])
-        statements, comments = parse_script(decode_text(read_input_bytes(path, "program")), str(path))
+        statements, comments = parse_script(decode_text(read_program_file(path)), str(path))
         run = UrRun(statements, comments, str(path), options, path.stem)
         toolpath = run.run()
         functions = tuple(st.name for st in statements if st.kind == "def")
