@@ -5,10 +5,10 @@ Per curve and σ: segments of coatsim's G1 chain (arcs, lines) and of the greedy
 certified deviation, the largest tangent break, the largest orientation error of the
 orientation-aware fit of the same points as a surface pass (``--axes``), CPU seconds; then the
 exponent of the fit's CPU time against the input size (scripts/scaling.py). The greedy
-baseline: from the current input point, the longest run of input points whose arc through its
-first, middle and last point (a line when those are collinear) keeps every point of the run
-within σ (doubling, then bisection), then the next run starts where that one ends: kinks at
-every junction. Prints only; never asserts.
+baseline (coatsim.geometry.space.greedy): from the current input point, the longest run of
+input points whose arc through its first, middle and last point keeps every point of the run
+within σ, then the next run starts where that one ends: kinks at every junction. Prints only;
+never asserts.
 
     python scripts/bench_segment3d.py [--sigmas 0.05,0.1,0.5] [--points 3000] [--axes]
 """
@@ -28,43 +28,8 @@ from scaling import cpu, report  # noqa: E402
 
 from coatsim.geometry.space.curve import make_space_curve  # noqa: E402
 from coatsim.geometry.space.families import FAMILIES, TOLERANCES_MM  # noqa: E402
-from coatsim.geometry.space.primitives import DegenerateArc, Line3, arc_through  # noqa: E402
+from coatsim.geometry.space.greedy import greedy_knots  # noqa: E402
 from coatsim.geometry.space.segment import segment_space_curve  # noqa: E402
-
-
-def greedy_arcs(points: np.ndarray, tol: float) -> int:
-    """Segments of the greedy three-point arc fitter (see the module text)."""
-
-    def fits(i: int, j: int) -> bool:
-        if j - i < 2:
-            return True
-        try:
-            seg = arc_through(points[i], points[(i + j) // 2], points[j])
-        except DegenerateArc:
-            seg = Line3(points[i], points[j])
-        return float(seg.nearest(points[i : j + 1])[0].max()) <= tol
-
-    n, i, count = len(points), 0, 0
-    while i < n - 1:
-        step, good, bad = 1, i + 1, None
-        while True:
-            j = min(n - 1, i + step)
-            if not fits(i, j):
-                bad = j
-                break
-            good = j
-            if j == n - 1:
-                break
-            step *= 2
-        if bad is not None:
-            lo, hi = good, bad
-            while hi - lo > 1:
-                mid = (lo + hi) // 2
-                lo, hi = (mid, hi) if fits(i, mid) else (lo, mid)
-            good = lo
-        count += 1
-        i = good
-    return count
 
 
 def surface_axes(points: np.ndarray) -> np.ndarray:
@@ -98,7 +63,7 @@ def main() -> None:
 
                 axis_err = f"{math.degrees(fit_surface_pass(points, surface_axes(points), tol).max_axis_error_rad):9.3f}"
             print(f"  {name:<10} {tol:>6g} {fit.chain.n_segments:>5} {fit.chain.n_arcs:>5} {fit.chain.n_lines:>5} "
-                  f"{greedy_arcs(points, tol):>6} {fit.max_deviation_mm:>9.5f} "
+                  f"{len(greedy_knots(points, tol)) - 1:>6} {fit.max_deviation_mm:>9.5f} "
                   f"{math.degrees(fit.chain.max_tangent_break()):>8.1e} {axis_err:>9} {seconds:>7.2f}")
     rows = []
     for name in ("helix", "blade"):
