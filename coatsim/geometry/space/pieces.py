@@ -17,6 +17,7 @@ which stays exact as the curvature goes to zero (a line).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -79,24 +80,49 @@ def state_of(ref: Reference, s: np.ndarray, point: np.ndarray, tangent: np.ndarr
                            np.stack((_dot(tangent, u), _dot(tangent, v)), axis=-1) / along), axis=-1)
 
 
-def evaluate(ref: Reference, params: np.ndarray, sample_points: np.ndarray, sample_s: np.ndarray,
-             sample_piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+@dataclass(frozen=True, eq=False)
+class Samples:
+    """Input points (m, 3) at arc lengths ``s`` (m,) with the normal-plane frame there
+    (``normal`` the curve's tangent, ``u``, ``v``), computed once."""
+
+    points: np.ndarray
+    s: np.ndarray
+    normal: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+
+    @classmethod
+    def of(cls, ref: Reference, points: np.ndarray, s: np.ndarray) -> Samples:
+        _, normal, u, v = ref.frame(s)
+        return cls(points, s, normal, u, v)
+
+    def take(self, pick: np.ndarray) -> Samples:
+        return Samples(self.points[pick], self.s[pick], self.normal[pick], self.u[pick], self.v[pick])
+
+
+def end_states(ref: Reference, params: np.ndarray) -> np.ndarray:
     """End states (..., n, 4) of pieces ``params`` (..., n, 8) = (s0, s1, y_u, y_v, a_u, a_v,
-    c_u, c_v), and the offsets (..., m, 2) of the chain from the sample points (m, 3) at arc
-    lengths ``sample_s`` (m,) in the normal planes there, each measured on its piece
-    ``sample_piece`` (m,) (extended beyond its ends if the point lies outside)."""
+    c_u, c_v)."""
+    return evaluate(ref, params, None, np.zeros(0, dtype=int))[0]
+
+
+def evaluate(ref: Reference, params: np.ndarray, samples: Samples | None,
+             piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """End states (..., n, 4) of pieces ``params`` (..., n, 8), and the offsets (..., m, 2)
+    of the chain from the ``samples`` in their normal planes, each measured on its piece
+    ``piece`` (m,) (extended beyond its ends if the point lies outside)."""
     s0, s1 = params[..., 0], params[..., 1]
     start, t = state_point(ref, s0, params[..., 2:4], params[..., 4:6])
     c = curvature_vector(ref, s0, params[..., 6:8], t)
     origin, normal, _, _ = ref.frame(s1)
     ell = land(start, t, c, origin, normal, s1 - s0)
-    end = arc_point(start, t, c, ell)
-    ends = state_of(ref, s1, end, arc_tangent(t, c, ell))
-    j = sample_piece
-    _, normal_i, u_i, v_i = ref.frame(sample_s)
-    ell_i = land(start[..., j, :], t[..., j, :], c[..., j, :], sample_points, normal_i, sample_s - s0[..., j])
-    rel = arc_point(start[..., j, :], t[..., j, :], c[..., j, :], ell_i) - sample_points
-    return ends, np.stack((_dot(rel, u_i), _dot(rel, v_i)), axis=-1)
+    ends = state_of(ref, s1, arc_point(start, t, c, ell), arc_tangent(t, c, ell))
+    if samples is None:
+        return ends, np.zeros(ends.shape[:-2] + (0, 2))
+    j = piece
+    ell_i = land(start[..., j, :], t[..., j, :], c[..., j, :], samples.points, samples.normal, samples.s - s0[..., j])
+    rel = arc_point(start[..., j, :], t[..., j, :], c[..., j, :], ell_i) - samples.points
+    return ends, np.stack((_dot(rel, samples.u), _dot(rel, samples.v)), axis=-1)
 
 
 def segment(start: np.ndarray, t: np.ndarray, c: np.ndarray, ell: float) -> Segment3:

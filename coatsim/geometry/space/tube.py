@@ -27,7 +27,6 @@ into the end frame).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,7 +35,7 @@ from scipy.sparse import coo_matrix, csc_matrix, csr_matrix, diags
 from scipy.sparse.linalg import spsolve
 
 from coatsim.geometry.limits import FitLimits
-from coatsim.geometry.space.pieces import evaluate
+from coatsim.geometry.space.pieces import Samples, end_states, evaluate
 from coatsim.geometry.space.reference import Reference
 
 GAP_WEIGHT = 20.0  # a continuity gap costs this many times a deviation (an exact penalty)
@@ -52,6 +51,7 @@ FROZEN_RADIUS = 8.0  # the first trust region with the knots held (the problem i
 GROW, SHRINK = 0.5, 0.1  # the trust region doubles above this ratio of gain to expected gain, quarters below that
 STALL = 1e-4  # a step the model expects to gain less than this share of σ ends the descent
 CHORD_STEPS = 3  # corrections of a step's gaps along the step's own linearisation
+PACE = 8  # steps over which the progress of a descent is judged
 SOLVER_TOL = 1e-7  # the cone solver's gap and feasibility tolerances
 
 
@@ -190,26 +190,24 @@ class TubeProblem:
                  limits: FitLimits, ends: Ends):
         self.ref, self.points, self.s, self.tol, self.limits, self.ends = ref, points, s, tolerance, limits, ends
         self.pick = np.arange(len(points))
+        self.samples = Samples.of(ref, points, s)
 
     def offsets(self, chain: TubeChain, pick: np.ndarray | None = None) -> np.ndarray:
         """|y| (m,) of the chain at the input points ``pick`` (all by default)."""
         pick = np.arange(len(self.points)) if pick is None else pick
         piece = self._membership(chain, pick)
-        return np.linalg.norm(evaluate(self.ref, chain.params(), self.points[pick], self.s[pick], piece)[1], axis=-1)
+        return np.linalg.norm(evaluate(self.ref, chain.params(), self.samples.take(pick), piece)[1], axis=-1)
 
-    def fit(self, chain: TubeChain, target: float, max_steps: int = MAX_STEPS,
-            abandon: float = math.inf) -> tuple[TubeChain, float]:
+    def fit(self, chain: TubeChain, target: float, max_steps: int = MAX_STEPS) -> tuple[TubeChain, float]:
         """The chain refined until its deviation at every input point is at most ``target``
-        (or no step helps), and that deviation (mm; on success the gaps are closed to
-        round-off). First with its knots where they are (a nearly linear problem: large
-        steps), then with the knots moving too; a chain still above ``abandon`` · target
-        after the first is given up."""
+        (or no step helps, or the pace of the last PACE steps would not get there within
+        ``max_steps``), and that deviation (mm; on success the gaps are closed to round-off).
+        First with its knots where they are (a nearly linear problem: large steps), then
+        with the knots moving too."""
         steps = 0
         self._cover(chain)
         for _ in range(EXCHANGE_ROUNDS + 1):
             chain, sampled, steps = self._descend(chain, target, max_steps, steps, False, FROZEN_RADIUS)
-            if sampled > abandon * target:
-                return chain, sampled
             chain, sampled, steps = self._descend(chain, target, max_steps, steps, True, 1.0)
             full = self.offsets(chain)
             order = np.argsort(-full)[:EXCHANGE]
@@ -238,7 +236,12 @@ class TubeProblem:
         f = dev + GAP_WEIGHT * gap
         closed = CLOSED_GAP * float(np.mean(np.diff(chain.knots)))
         lin = None
+        paced = (steps, dev)
         while steps < max_steps:
+            if steps - paced[0] >= PACE:
+                if (paced[1] - dev) * (max_steps - steps) / PACE < dev - target:
+                    break  # at this pace the target is out of reach
+                paced = (steps, dev)
             if dev <= target:
                 closed_chain = self._close(chain, closed)
                 if closed_chain is not None:
@@ -275,15 +278,20 @@ class TubeProblem:
     def _membership(self, chain: TubeChain, pick: np.ndarray) -> np.ndarray:
         return np.clip(np.searchsorted(chain.knots, self.s[pick], side="right") - 1, 0, chain.n - 1)
 
-    def _measure(self, params: np.ndarray, chain: TubeChain) -> tuple[np.ndarray, np.ndarray]:
-        """(offsets (…, m, 2) at the samples, continuity gaps (…, n, 4)) of piece parameters
-        (…, n, 8); the knot states compared with are the chain's."""
+    def _measure(self, params: np.ndarray, chain: TubeChain, samples: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        """(offsets (…, m, 2) at the samples (none without ``samples``), continuity gaps
+        (…, n, 4)) of piece parameters (…, n, 8); the knot states compared with are the chain's."""
         piece = self._membership(chain, self.pick)
-        ends, offs = evaluate(self.ref, params, self.points[self.pick], self.s[self.pick], piece)
+        ends, offs = evaluate(self.ref, params, self.samples.take(self.pick) if samples else None, piece)
         target = np.broadcast_to(chain.states[1:], ends.shape).copy()
         if self.ends.seam is not None:
             target[..., -1, 2:] = self.ends.seam @ chain.states[0, 2:]
         return offs, ends - target
+
+    def _gap(self, chain: TubeChain) -> float:
+        """The largest continuity gap (tilts times the mean piece length)."""
+        h = float(np.mean(np.diff(chain.knots)))
+        return float(np.abs(self._measure(chain.params(), chain, samples=False)[1] * [1, 1, h, h]).max())
 
     def _merit(self, chain: TubeChain) -> tuple[float, float]:
         """(largest sampled offset, largest continuity gap, tilts times the mean piece length)."""
@@ -379,7 +387,7 @@ class TubeProblem:
         j = np.clip(np.searchsorted(chain.knots, inner, side="right") - 1, 0, chain.n - 1)
         params = chain.params()[j].copy()
         params[:, 1] = inner
-        states, _ = evaluate(self.ref, params, self.points[:1], self.s[:1], np.zeros(1, dtype=int))
+        states = end_states(self.ref, params)
         turned = np.vstack((np.zeros((1, 2)), np.cumsum(chain.kappa * np.diff(chain.knots)[:, None], axis=0)))
         total = np.column_stack([np.interp(knots, chain.knots, turned[:, k]) for k in range(2)])
         kappa = np.diff(total, axis=0) / np.diff(knots)[:, None]
@@ -399,7 +407,7 @@ class TubeProblem:
             return trial
         params = chain.params()[:-1].copy()
         params[:, 1] = trial.knots[1:-1]
-        followed, _ = evaluate(self.ref, params, self.points[:1], self.s[:1], np.zeros(1, dtype=int))
+        followed = end_states(self.ref, params)
         states = trial.states.copy()
         linear = chain.states[1:-1] + lin.end_rate[:-1] * delta[:, None]
         states[1:-1] = followed + (trial.states[1:-1] - linear)
@@ -409,18 +417,18 @@ class TubeProblem:
         """The chain with its continuity gaps closed below ``closed`` by Newton steps of the
         smallest change (None if they do not converge)."""
         for _ in range(CLOSING_STEPS):
-            if self._merit(chain)[1] <= closed:
+            if self._gap(chain) <= closed:
                 return chain
             chain = self._corrected(chain, self._linearise(chain, knots=False))
             if chain is None:
                 return None
-        return chain if self._merit(chain)[1] <= closed else None
+        return chain if self._gap(chain) <= closed else None
 
     def _corrected(self, trial: TubeChain, lin: _Linear) -> TubeChain | None:
         """The trial with its continuity gaps closed to first order by the smallest change (in
         the trust region's units) along the linearisation: min |d / unit| with G d = −g(trial)
         (a second-order correction: the gaps of a step grow with its square)."""
-        offs, gaps = self._measure(trial.params(), trial)
+        _, gaps = self._measure(trial.params(), trial, samples=False)
         g = (gaps * lin.weight).ravel()
         d2 = lin.unit**2
         normal = (lin.gaps @ diags(d2) @ lin.gaps.T).tocsc()

@@ -22,6 +22,7 @@ A run it cannot fit within a few rounds is left to the biarc fitter (None).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -32,17 +33,17 @@ from coatsim.geometry.space.deviation import hausdorff3
 from coatsim.geometry.space.fit import RunChain
 from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.local import arc_length
-from coatsim.geometry.space.pieces import curvature_vector, evaluate, land, segment, state_point
+from coatsim.geometry.space.pieces import curvature_vector, end_states, land, segment, state_point
 from coatsim.geometry.space.primitives import Arc3, Segment3
 from coatsim.geometry.space.reference import Reference, reference
 from coatsim.geometry.space.tube import Ends, TubeChain, TubeProblem
 
-TARGET = 0.995  # the fit aims at this share of σ (the exact check decides)
+TARGET = 0.999  # the fit aims at this share of σ (the exact check decides)
 LOWER = 0.98  # a chain the exact check finds above σ is refitted this much lower, ...
 CERTIFY_TRIES = 3  # ... this many times at most
 MAX_SPLITS = 6  # pieces added where the greedy's knots do not fit G1
-MERGE_STEPS = 16  # steps granted to a chain of one piece fewer, ...
-ABANDON = 1.3  # ... given up if still this far above the target with its knots held
+MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain resampled)
+MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
 MIN_POINTS = 12  # shorter runs are left to the biarc fitter
 CAP_SLACK = 0.02  # curvature caps and the minimum length hold to this share, as in the plane
 
@@ -68,8 +69,9 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
         ends = Ends(start_tangent is not None, end_tangent is not None)
     problem = TubeProblem(ref, points, s, tol, limits, ends)
     target = TARGET * tol
+    density = _GreedyDensity.of(points, s, tol)
     for _ in range(CERTIFY_TRIES):
-        chain = _fewest(problem, _initial(ref, _greedy_knots(points, s, tol)), target)
+        chain = _fewest(problem, density, target)
         if chain is None:
             return None
         segments, caps = _build(ref, chain, points[-1], ends)
@@ -80,20 +82,33 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
     return None
 
 
-def _greedy_knots(points: np.ndarray, s: np.ndarray, tol: float) -> np.ndarray:
-    """Knots spread as the greedy fitter's are, one piece per greedy arc counting its last,
-    usually short, arc as the share of one it is (so that a stub at the end does not cost a
-    piece of its own; the density of knots is what the greedy's tells)."""
-    knots = s[greedy_knots(points, tol)]
-    n = len(knots) - 1
-    if n < 2:
-        return knots
-    index = np.arange(n + 1, dtype=float)
-    index[-1] = n - 1 + (knots[-1] - knots[-2]) / (knots[-2] - knots[-3])
-    count = max(1, int(math.ceil(index[-1] - 1e-9)))
-    out = np.interp(np.linspace(0.0, index[-1], count + 1), index, knots)
-    out[[0, -1]] = knots[[0, -1]]
-    return out
+@dataclass(frozen=True)
+class _GreedyDensity:
+    """Where the greedy fitter puts its knots, as a count of greedy arcs behind every knot
+    (its last, usually short, arc counted as the share of one it is), to spread any number
+    of knots as densely as the greedy's are."""
+
+    index: np.ndarray
+    knots: np.ndarray
+
+    @classmethod
+    def of(cls, points: np.ndarray, s: np.ndarray, tol: float) -> _GreedyDensity:
+        knots = s[greedy_knots(points, tol)]
+        index = np.arange(len(knots), dtype=float)
+        if len(knots) > 3:
+            index[-1] = index[-2] + min(1.0, (knots[-1] - knots[-2]) / (knots[-2] - knots[-3]))
+        return cls(index, knots)
+
+    @property
+    def count(self) -> int:
+        """The greedy's arcs, its last counted whole."""
+        return max(1, int(math.ceil(self.index[-1] - 1e-9)))
+
+    def spread(self, count: int) -> np.ndarray:
+        """``count`` + 1 knots, the first and last at the run's ends."""
+        out = np.interp(np.linspace(0.0, self.index[-1], count + 1), self.index, self.knots)
+        out[[0, -1]] = self.knots[[0, -1]]
+        return out
 
 
 def _initial(ref: Reference, knots: np.ndarray) -> TubeChain:
@@ -110,9 +125,13 @@ def _initial(ref: Reference, knots: np.ndarray) -> TubeChain:
     return TubeChain(knots.astype(float), np.zeros((len(knots), 4)), kappa)
 
 
-def _fewest(problem: TubeProblem, chain: TubeChain, target: float) -> TubeChain | None:
-    """The chain refined within ``target`` (splitting its worst piece while it is not),
-    then with pieces merged while it stays within; None if it never gets within."""
+def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
+    """A chain within ``target``: as many pieces as the greedy has arcs, refined (its worst
+    piece split while it is not within), then one piece fewer at a time while it stays
+    within, each count tried from the chain before with two neighbours merged (those whose
+    curvatures differ least over their span first), resampled, and from knots spread as
+    the greedy's; None if it never gets within."""
+    chain = _initial(problem.ref, density.spread(density.count))
     for _ in range(MAX_SPLITS + 1):
         chain, dev = problem.fit(chain, target)
         if dev <= target:
@@ -121,11 +140,24 @@ def _fewest(problem: TubeProblem, chain: TubeChain, target: float) -> TubeChain 
     else:
         return None
     while chain.n > 1:
-        fewer, dev = problem.fit(problem.resampled(chain, chain.n - 1), target, MERGE_STEPS, ABANDON)
-        if dev > target:
+        n = chain.n - 1
+        starts = [chain.merged(j) for j in _merge_order(chain)[:MERGE_TRIES]]
+        for start in starts + [problem.resampled(chain, n), _initial(problem.ref, density.spread(n))]:
+            fewer, dev = problem.fit(start, target, MERGE_STEPS)
+            if dev <= target:
+                chain = fewer
+                break
+        else:
             return chain
-        chain = fewer
     return chain
+
+
+def _merge_order(chain: TubeChain) -> np.ndarray:
+    """Interior knots, those joining the most alike neighbours first: the deviation a
+    curvature jump Δc makes over a span h is about |Δc| h² / 8."""
+    h = np.diff(chain.knots)
+    jump = np.linalg.norm(np.diff(chain.kappa, axis=0), axis=1)
+    return 1 + np.argsort(jump * (h[:-1] + h[1:]) ** 2, kind="stable")
 
 
 def _split_worst(problem: TubeProblem, chain: TubeChain) -> TubeChain:
@@ -135,8 +167,7 @@ def _split_worst(problem: TubeProblem, chain: TubeChain) -> TubeChain:
     j = int(np.clip(np.searchsorted(chain.knots, problem.s[int(np.argmax(offsets))], side="right") - 1, 0, chain.n - 1))
     params = chain.params()[j : j + 1].copy()
     params[0, 1] = (chain.knots[j] + chain.knots[j + 1]) / 2
-    state, _ = evaluate(problem.ref, params, problem.points[:1], problem.s[:1], np.zeros(1, dtype=int))
-    return chain.split(j, state[0])
+    return chain.split(j, end_states(problem.ref, params)[0])
 
 
 def _build(ref: Reference, chain: TubeChain, end: np.ndarray, ends: Ends) -> tuple[tuple[Segment3, ...], np.ndarray]:
