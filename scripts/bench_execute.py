@@ -6,7 +6,8 @@ robot time (duration of the simulated program), the wall time of ``execute`` by 
 real-time factors robot time / wall time and robot time / CPU time (``time.process_time``; the
 machine is shared, so CPU time is the figure to compare; best of ``--repeat`` runs by CPU), the
 largest IK residual and the path error; then robot time / CPU time per scenario (all its
-variants). Figures only; never asserts.
+variants); then the exponent of every execute phase against the number of pieces
+(scripts/scaling.py). Figures only; never asserts.
 
 Usage: python scripts/bench_execute.py [--fast] [--repeat N] [SCENARIO.yaml ...]
 """
@@ -29,10 +30,9 @@ def programs(path: Path, fast: bool, cell):
 
     import numpy as np
 
-    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
-from coatsim.geometry import make_curve, segment_curve
-    from coatsim.run.pipeline import FULL_SAMPLE_STEP_MM
+    from coatsim.geometry import make_curve, segment_curve
     from coatsim.languages.kawasaki_as.files import read_toolpath
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
     from coatsim.languages.kawasaki_as.names import program_name
     from coatsim.path.build import ProgramOptions, polyline_of
     from coatsim.path.part_program import build_part_program, part_centering_offset
@@ -40,6 +40,7 @@ from coatsim.geometry import make_curve, segment_curve
     from coatsim.path.user import user_program
     from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.tooling import gun_tool
+    from coatsim.run.pipeline import FULL_SAMPLE_STEP_MM
     from coatsim.run.scenario import load_scenario
     from coatsim.run.scenario_inputs import curve_frame, read_user_program, segment_input
 
@@ -69,9 +70,9 @@ from coatsim.geometry import make_curve, segment_curve
         options = ProgramOptions(variant=entry, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
                                  gun_signal=spec.gun.signal, tool=gun_tool(cell), name=program_name(spec.name))
         built = build_part_program([c.polysegment for c in contours], placement, options,
-                                   language=KAWASAKI_AS, tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
-                                   points=[c.curve.points for c in contours], order=spec.motion.contour_order,
-                                   polylines=polylines)
+                                   language=KAWASAKI_AS, tolerance_mm=spec.segmentation.tolerance_mm,
+                                   source=f"scenario:{spec.name}", points=[c.curve.points for c in contours],
+                                   order=spec.motion.contour_order, polylines=polylines)
         with tempfile.TemporaryDirectory() as tmp:
             program = Path(tmp) / f"{entry}.as"
             program.write_text(built.text, encoding="utf-8")
@@ -126,6 +127,9 @@ def main() -> None:
     print("per scenario, robot s / CPU s: " + ", ".join(f"{name} {x:.1f}x" for name, x in per_scenario))
     print(f"all: robot {robot_total:.1f} s, wall {wall_total:.1f} s -> {robot_total / wall_total:.1f}x real time "
           f"(CPU {cpu_total:.1f} s -> {robot_total / cpu_total:.1f}x); load average now {os.getloadavg()[0]:.2f}")
+    import scaling  # scripts/scaling.py: the exponent of every execute phase against size
+
+    scaling.execute()
 
 
 if __name__ == "__main__":

@@ -23,10 +23,12 @@ STYLES = {"b": "backup", "k": "K-IDE", "m": "mixed case", "n": "step numbers", "
 
 
 def classify(path: Path, kinematics, gun_tcp) -> tuple[str, str]:
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
     from coatsim.path.check import check_program
+    from coatsim.path.language import ReadOptions
 
     try:
-        done = check_program(path, kinematics=kinematics, gun_tcp=gun_tcp)
+        done = check_program(path, KAWASAKI_AS, ReadOptions(kinematics=kinematics), gun_tcp=gun_tcp)
     except CoatsimError as exc:
         return "refused", str(exc).splitlines()[0][:150]
     except Exception as exc:  # what the command reports as an internal error (exit 70)

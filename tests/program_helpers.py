@@ -9,8 +9,8 @@ import numpy as np
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as.writer import MAX_ARC_SWEEP_DEG
 from coatsim.path.arcs import sample_move
-from coatsim.path.oat import rotation_angle
-from coatsim.path.placement import PlacedArc, PlacedPath
+from coatsim.geometry.space.pose import rotation_angle
+from coatsim.path.placement import PlacedPath
 from coatsim.path.toolpath import ToolPath
 
 
@@ -38,7 +38,7 @@ def placed_pieces(path: PlacedPath) -> list:
     """The placed segments as the writer emits them (arcs split at the sweep limit)."""
     out = []
     for seg in path.segments:
-        out.extend(seg.split(math.radians(MAX_ARC_SWEEP_DEG)) if isinstance(seg, PlacedArc) else [seg])
+        out.extend(seg.split(math.radians(MAX_ARC_SWEEP_DEG)) if seg.is_arc else [seg])
     return out
 
 
@@ -60,3 +60,22 @@ def path_errors(path: PlacedPath, toolpath: ToolPath, samples: int = 21) -> tupl
         for a, b in ((move.start, piece.start), (move.end, piece.end)):
             dr = max(dr, rotation_angle(a.rotation, b.rotation))
     return dp, dt, dr
+
+
+def check_as(paths, gun_signal: int = 1, program=None, *, inputs=None, kinematics=None, gun_tcp=None, variables=None):
+    """check-program of Kawasaki AS files (the language-neutral report of its reading)."""
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+    from coatsim.path.check import check_program
+    from coatsim.path.language import ReadOptions
+
+    options = ReadOptions(gun_signal=gun_signal, program=program, inputs=inputs or {}, kinematics=kinematics,
+                          variables=variables or {})
+    return check_program(paths, KAWASAKI_AS, options, gun_tcp=gun_tcp)
+
+
+def convert_as(paths, options, **kwargs):
+    """convert of Kawasaki AS files (in place, or standalone in AS unless ``target`` is given)."""
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+    from coatsim.path.convert import convert_program
+
+    return convert_program(paths, options, language=KAWASAKI_AS, **kwargs)

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from coatsim.core.errors import InputError
-from coatsim.run.pipeline import VariantRun, on_common_roi
+from coatsim.report.results import VariantRun
+from coatsim.run.pipeline import on_common_roi
 from coatsim.spray.coat import coat
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import Gaussian

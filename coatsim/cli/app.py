@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import typer
 
-from coatsim.cli import check_program, coat, convert, execute, program, run, schema, segment, sweep
+from coatsim.cli import check_program, coat, convert, execute, plan, program, run, schema, segment, sweep
 
 app = typer.Typer(
     add_completion=False,
@@ -42,3 +42,4 @@ app.command()(program.program)
 app.command()(execute.execute)
 app.command()(convert.convert)
 app.command("check-program")(check_program.check_program)
+app.command()(plan.plan)

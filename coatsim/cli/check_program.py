@@ -7,14 +7,14 @@ from typing import TYPE_CHECKING, Optional
 
 import typer
 
-from coatsim.cli.common import SET_HELP
+from coatsim.cli.common import LANGUAGE_HELP, SET_HELP
 from coatsim.cli.flags import speaking_flags
 from coatsim.core import defaults
 
 if TYPE_CHECKING:
     from coatsim.path.check import ProgramCheck
 
-FLAGS = {"gun_signal": "--gun", "program": "--program", "inputs": "--inputs"}
+FLAGS = {"gun_signal": "--gun", "program": "--program", "inputs": "--inputs", "language": "--language"}
 
 
 def check_program(
@@ -24,21 +24,24 @@ def check_program(
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),
+    language: Optional[str] = typer.Option(None, "--language", help=LANGUAGE_HELP),
 ) -> None:
     """Parse and interpret robot programs; report steps, poses, signals, sprayed path, the variables
     no file gives (--set gives them) and problems. Reading is not spraying: a program that never
     opens the gun is read (exit 0), and the outputs it switches are named (--gun picks one)."""
     from coatsim.cli.common import input_states, variables
+    from coatsim.languages.registry import language_of
     from coatsim.path.check import check_program as check
+    from coatsim.path.language import ReadOptions
     from coatsim.robot.cell import load_cell
     from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.sampling import plan_pieces
 
     cell = load_cell(model)
     with speaking_flags(FLAGS):
-        result = check(paths, gun_signal=gun, program=main, inputs=input_states(inputs) or None,
-                       kinematics=CellKinematics(cell), gun_tcp=(cell.gun_rotation, cell.gun_offset_mm),
-                       variables=variables(settings))
+        options = ReadOptions(gun_signal=gun, program=main, inputs=input_states(inputs), kinematics=CellKinematics(cell),
+                              variables=variables(settings))
+        result = check(paths, language_of(paths, language), options, gun_tcp=(cell.gun_rotation, cell.gun_offset_mm))
         plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
     never = not result.toolpath.spray_moves
     typer.echo(check_summary(result) + ("\nnote: --gun N picks the process signal" if never else ""))

@@ -9,6 +9,9 @@ import typer
 
 from coatsim.core import defaults
 
+#: The coating library's parameters as this command's flags.
+FLAGS = {"shadows": "--shadows", "tolerance_pct": "--tolerance-pct"}
+
 
 def coat(
     trajectory: Path = typer.Argument(..., help="Trajectory CSV (coatsim execute / run)."),
@@ -20,19 +23,22 @@ def coat(
     target_um: Optional[float] = typer.Option(None, "--target-um", help="Target thickness for coverage, um (default: the ROI mean)."),
     roi: str = typer.Option("band", "--roi", help="band (sprayed strip) | part (whole part), both minus an edge band."),
     edge_band: Optional[float] = typer.Option(None, "--edge-band", help="Edge band left out of the ROI, mm (default: 3 sigma)."),
-    de_exponent: float = typer.Option(1.0, "--de-exponent", help="Deposition efficiency cos^(n-1) of the incidence angle; 1 = off."),
-    occlusion: bool = typer.Option(False, "--occlusion", help="Ray-cast visibility for concave parts (slow)."),
+    tolerance_pct: float = typer.Option(defaults.TOLERANCE_PCT, "--tolerance-pct", help="Specification band: thickness within this % of the target."),
+    efficiency: str = typer.Option(defaults.EFFICIENCY, "--efficiency", help="Deposition efficiency by spray angle: none | angle (1 down to 60 deg, the documented curve below) | angle:60=1,45=0.9,... | table:FILE.csv | cosine:n=N."),
+    shadows: str = typer.Option(defaults.SHADOWS, "--shadows", help="auto (ray-cast where the part can shadow itself; without embreex: a warning, no shadows) | on (the same; without embreex: an error) | off."),
     section: Optional[str] = typer.Option(None, "--section", help="Cross-section line x0,y0,x1,y1 in heat-map coordinates, mm."),
     out: Path = typer.Option(Path("out/coat"), "-o", "--out", help="Output folder."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Spray a logged trajectory onto a surface: thickness.ply, coating.json, heatmap.png, section.png."""
+    from coatsim.cli.flags import speaking_flags
     from coatsim.core.errors import EmptyRegionOfInterest, InputError
     from coatsim.spray.coat import run_coat
 
     try:
-        result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
-                                 edge_band, de_exponent, occlusion, section, out, force)
+        with speaking_flags(FLAGS):
+            result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
+                                     edge_band, efficiency, shadows, section, out, force, tolerance_pct)
     except EmptyRegionOfInterest as exc:
         raise InputError(f"{exc}; try --roi part or a smaller --edge-band") from None
     m = result.metrics
@@ -40,4 +46,7 @@ def coat(
                f"mean {m['thickness_mean_um']:.3f} um, CV {m['thickness_cv']:.4f}, "
                f"min {m['thickness_min_um']:.3f}, max {m['thickness_max_um']:.3f} um; "
                f"deposited {m['deposited_volume_mm3']:.3f} of {m['sprayed_volume_mm3']:.3f} mm3")
+    typer.echo(f"sprayed {m['sprayed_volume_mm3']:.3f} mm3 = deposited {m['deposited_volume_mm3']:.3f} + lost "
+               f"{m['lost_volume_mm3']:.3f} (efficiency) + missed {m['missed_volume_mm3']:.3f} (off the part); "
+               f"shadowed {m['shadowed_volume_mm3']:.3f} (landed on the faces in front)")
     typer.echo(f"wrote {', '.join(str(f) for f in files)}")

@@ -29,6 +29,8 @@ def input_states(text: Optional[str]) -> dict[int, bool]:
     return parse_inputs(text, "--inputs")
 
 
+LANGUAGE_HELP = ("Language of the program files (kawasaki-as, abb-rapid, kuka-krl, ...; or a part of the name: "
+                 "rapid) [default: by their suffix, else by their opening].")
 SET_HELP = ("A variable the files do not give (the controller keeps it), NAME=VALUE; repeatable: direction=8, "
             "'$mode=auto', 'pick=TRANS(600,0,300,0,180,0)', '#park=#[0,0,35,0,55,0]'.")
 

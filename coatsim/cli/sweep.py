@@ -18,11 +18,13 @@ def sweep(
 ) -> None:
     """Run many scenario points on Dask: results.parquet, results.csv, sweep.html; exit 1 if a
     point or a gate failed. Rerunning into the same folder runs only what is missing."""
+    from coatsim.cli.flags import speaking_flags
     from coatsim.sweep.run import reused_count, run_sweep, sweep_problems
 
     # an interrupt ends here like any command's (exit 130); the finished points stay for a rerun
-    result = run_sweep(sweep_file, outdir, scheduler=scheduler, workers=workers, keep_outputs=keep_outputs,
-                       metrics=metric)
+    with speaking_flags({"workers": "--workers", "metrics": "--metric"}):
+        result = run_sweep(sweep_file, outdir, scheduler=scheduler, workers=workers, keep_outputs=keep_outputs,
+                           metrics=metric)
     rows = result.table.rows
     ok = sum(r[result.table.columns.index("status")] == "ok" for r in rows)
     typer.echo(f"{len(result.points)} points ({len(result.ran)} run, {reused_count(result.points, result.ran)} reused), "

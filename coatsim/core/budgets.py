@@ -27,6 +27,9 @@ MAX_MESH_VERTICES = 2_000_000
 #: Integration sub-steps of the coating stage (sprayed path / footprint sub-step, sigma/2 by
 #: default); ~0.2 kB each before the deposition kernel runs over them.
 MAX_SPRAY_SUBSTEPS = 2_000_000
+#: Memory of the coating stage's ray caster for shadows: Embree's scene (~100 bytes per
+#: triangle with our float32 copies) and one batch of rays, estimated before it is built.
+MAX_SHADOW_BYTES = 1_500_000_000
 #: Points of an input curve (files and built-in curves).
 MAX_CURVE_POINTS = 2_000_000
 #: Size of a curve text file (CSV/TXT): 64 bytes per point at the point budget.
@@ -39,14 +42,21 @@ MAX_YAML_BYTES = 1 << 20
 MAX_YAML_DEPTH = 32
 MAX_YAML_ALIASES = 100
 MAX_YAML_NODES = 100_000
+#: Triangles ``plan`` works on (a part mesh as read, and its region refined to the pass spacing);
+#: ~2 kB each through normals, the heat method's factorisation and fast marching.
+MAX_PLAN_TRIANGLES = 1_000_000
+#: Size of a part mesh file ``plan`` reads: an ASCII STL takes ~250 bytes per triangle.
+MAX_PLAN_MESH_BYTES = 256 * MAX_PLAN_TRIANGLES
+#: Passes of one plan.
+MAX_PLAN_PASSES = 20_000
 
 
-def check_budget(what: str, needed: float, budget: int, fix: str) -> None:
+def check_budget(what: str, needed: float, budget: int, fix: str, parameters: tuple[str, ...] = ()) -> None:
     """Raise an InputError when ``needed`` (a count: any int, or a float that may be inf or
-    nan) exceeds ``budget``."""
+    nan) exceeds ``budget``; ``parameters`` those the message names (see CoatsimError)."""
     if not needed <= budget:
         try:
             amount = f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"
         except OverflowError:  # an int beyond float range
             amount = "an unbounded number"
-        raise InputError(f"{what}: {amount} needed, over the budget of {budget:,}; {fix}")
+        raise InputError(f"{what}: {amount} needed, over the budget of {budget:,}; {fix}", parameters=parameters)

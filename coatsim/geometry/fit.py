@@ -126,6 +126,7 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
     splits, landed, shrink, at_start = 0, False, 0.9, 0
+    tried: dict[tuple[bytes, float], tuple] = {}  # a chain refined before (band fits often repeat one) is not again
     while budget[0] > 0:
         budget[0] -= 1
         if params is None:
@@ -139,12 +140,16 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
-        params, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target,
-                                       fixed_heading=start_heading is not None)
-        params = close_exactly(pts[0], params, end, turn)
-        segs = build_chain(pts[0], params, end)
-        honest = _honest(params, limits, total) and _pins_kept(segs, start_heading, end_heading)
-        dev = hausdorff(pts, Polysegment(segs)).hausdorff if honest else math.inf  # unused when not honest
+        key = (params.vector().tobytes(), target)
+        if key not in tried:
+            refined, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target,
+                                            fixed_heading=start_heading is not None)
+            refined = close_exactly(pts[0], refined, end, turn)
+            segs = build_chain(pts[0], refined, end)
+            honest = _honest(refined, limits, total) and _pins_kept(segs, start_heading, end_heading)
+            dev = hausdorff(pts, Polysegment(segs)).hausdorff if honest else math.inf  # unused when not honest
+            tried[key] = refined, sampled, segs, honest, dev
+        params, sampled, segs, honest, dev = tried[key]
         if dev <= tolerance and honest:
             return segs, dev
         if honest and sampled <= target:

@@ -27,7 +27,8 @@ from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.core.numbers import fmt_short
 from coatsim.path.language import Language
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.frames import DEFAULT_TOOL, Frame
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.frames import DEFAULT_TOOL
 from coatsim.path.placement import PlacedPath, Placement, place, polyline_polysegment
 from coatsim.path.process import ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import curve_limits
@@ -47,7 +48,7 @@ class ProgramOptions:
     accuracy_mm: float = defaults.ACCURACY_MM
     approach_mm: float = defaults.APPROACH_MM
     gun_signal: int = defaults.GUN_SIGNAL
-    tool: Frame = DEFAULT_TOOL
+    tool: Pose = DEFAULT_TOOL
     name: Optional[str] = None
 
     def __post_init__(self) -> None:
@@ -114,7 +115,7 @@ def build_program(poly: Polysegment, placement: Placement, options: ProgramOptio
         summary = f"polyline of {curve.n_segments} lines (RDP of {len(raw)} points)"
     limits = tuple(lim.scaled(curve.length / poly.length) for lim in curve_limits(poly))
     path = place(curve, placement)
-    corners = np.array([p.position for s in path.segments for p in (s.start, s.end)])
+    corners = np.array([p.translation_mm for s in path.segments for p in (s.start, s.end)])
     reach = language.capabilities.max_coordinate_mm
     if not (np.isfinite(corners).all() and np.abs(corners).max() <= reach):
         raise InputError(f"{source}: the placed path leaves the range a program can hold (|x| <= {reach:g} mm)")

@@ -14,6 +14,7 @@ from typing import Literal, Mapping, Optional, Protocol, Sequence, Union
 
 from coatsim.core import defaults
 from coatsim.path.plan import ProgramPlan
+from coatsim.path.reading import Reading
 from coatsim.path.toolpath import Kinematics, ToolPath
 
 #: Where a language's native circular move may lie: in any plane, only in the principal planes
@@ -29,7 +30,11 @@ class Capabilities:
     circular move may turn (longer arcs are split); ``blend`` how the controller rounds a
     corner between blended moves, in the language's terms; ``max_name_length`` the longest
     program name; ``max_coordinate_mm`` the largest coordinate a program may hold;
-    ``rotation`` the convention its poses are written in.
+    ``rotation`` the convention its poses are written in; ``motions`` the words of its linear and
+    circular moves, as messages name them (``LMOVE/C1MOVE/C2MOVE``); ``named_by_file``: the
+    controller requires a program's name to be its file's name (KRL ``DEF``, Fanuc ``/PROG``);
+    ``program_files`` the suffixes of the files one written program is saved as, the main first
+    (empty: the one file of the language's first suffix).
     """
 
     arc_planes: ArcPlanes
@@ -38,6 +43,9 @@ class Capabilities:
     max_name_length: int
     max_coordinate_mm: float
     rotation: str
+    motions: str = "linear and circular"
+    named_by_file: bool = False
+    program_files: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -66,12 +74,31 @@ class Language(Protocol):
     capabilities: Capabilities
 
     def write(self, plan: ProgramPlan) -> str:
-        """Complete program text for ``plan`` (deterministic)."""
+        """Complete program text for ``plan`` (deterministic): for a language whose program is
+        several files (KRL's ``.src`` and ``.dat``), every file one after the other, as
+        :meth:`files` splits them."""
+        ...
+
+    def files(self, text: str) -> tuple[tuple[str, str], ...]:
+        """The files a written program's text is saved as: (suffix, text) each, the main file
+        first (for most languages the one file ``((suffixes[0], text),)``)."""
+        ...
+
+    def recognizes(self, text: str) -> bool:
+        """Whether the opening of a file (its first few kB, decoded) looks like this language:
+        how a file whose suffix several languages claim, or none, is told apart."""
         ...
 
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
         """The ToolPath the program files, loaded together, make the robot execute;
-        InputError naming file:line on any defect, ExecutionError where it cannot run."""
+        InputError naming file:line on any defect, ExecutionError where it cannot run
+        (``reading(files, options).toolpath_to_run(...)``)."""
+        ...
+
+    def reading(self, files: Sequence[Path], options: ReadOptions) -> Reading:
+        """The files read and interpreted with what check-program and convert need (every
+        move's source lines, the output switches, problems); reading is not running: a statement
+        that cannot run for want of a value is skipped and listed, not an error."""
         ...
 
     def check_name(self, name: str, what: str) -> str:

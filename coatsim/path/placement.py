@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Union
 
 import numpy as np
 
@@ -24,10 +23,10 @@ from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
-from coatsim.path.arcs import DegenerateArc, arc_offsets, circle_through
-from coatsim.path.frames import DEFAULT_FRAME, Frame
-from coatsim.path.oat import rot_y, rot_z
-from coatsim.path.toolpath import Pose
+from coatsim.geometry.space.primitives import Arc3, DegenerateArc, Line3, Segment3, arc_through
+from coatsim.path.frames import DEFAULT_FRAME
+from coatsim.geometry.space.rotations import rot_y, rot_z
+from coatsim.geometry.space.pose import Pose, exp_rotation, slerp
 
 
 # An arc that bulges less than this from its chord is placed as the chord (far below the
@@ -40,7 +39,7 @@ class Placement:
     """Where and how the curve is sprayed; ``offset_xy`` is added to the curve before placing
     (see :func:`centering_offset` to centre it on the frame origin)."""
 
-    frame: Frame = DEFAULT_FRAME
+    frame: Pose = DEFAULT_FRAME
     standoff_mm: float = defaults.STANDOFF_MM
     roll_deg: float = 0.0
     follow_tangent: bool = False
@@ -64,98 +63,101 @@ class Placement:
 
 
 @dataclass(frozen=True, eq=False)
-class PlacedLine:
-    """Straight TCP move; ``part`` is "lead_in", "curve" or "lead_out"."""
+class PlacedMove:
+    """One TCP move of a placed path: its geometry (a Line3 or an Arc3, base frame, mm), the tool
+    pose at its start and at its end, and the part of the path it belongs to ("lead_in",
+    "curve" or "lead_out"); on an arc with ``follow_tangent`` the tool turns with the path.
 
+    A move of a 3-D pass gives its arc's middle pose explicitly (``via_pose``: the controller
+    turns the tool from the start pose to it and on to the end pose) and may have its own
+    programmed speed (``speed_mm_s``; None: the plan's). A writer writes both.
+    """
+
+    geometry: Segment3
     start: Pose
     end: Pose
-    part: str
-
-    @property
-    def length(self) -> float:
-        return float(np.linalg.norm(self.end.position - self.start.position))
-
-    def point_tangent(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the length."""
-        u = np.atleast_1d(np.asarray(u, dtype=float))
-        delta = self.end.position - self.start.position
-        return self.start.position + np.outer(u, delta), np.tile(delta / np.linalg.norm(delta), (len(u), 1))
-
-
-def _axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rotation matrix about a unit axis (Rodrigues)."""
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
-
-
-@dataclass(frozen=True, eq=False)
-class PlacedArc:
-    """Circular TCP move turning by ``sweep`` (> 0) rad about the unit ``normal`` around
-    ``center``; with ``follow_tangent`` the tool turns with the path."""
-
-    start: Pose
-    end: Pose
-    center: np.ndarray
-    normal: np.ndarray
-    sweep: float
-    follow_tangent: bool
     part: str = "curve"
-
-    @property
-    def radius(self) -> float:
-        return float(np.linalg.norm(self.start.position - self.center))
+    follow_tangent: bool = False
+    via_pose: Pose | None = None
+    speed_mm_s: float | None = None
 
     @property
     def length(self) -> float:
-        return self.radius * self.sweep
+        return self.geometry.length
+
+    @property
+    def is_arc(self) -> bool:
+        return self.geometry.kind == "arc"
 
     def pose_at(self, u: float) -> Pose:
-        """Pose at fraction ``u`` of the sweep (u = 1 gives ``end`` exactly)."""
+        """Pose at fraction ``u`` of an arc's sweep (u = 1 gives ``end`` exactly)."""
         if u == 1.0:
             return self.end
+        arc = self.geometry
+        point = arc.at_angles(np.array([u * arc.sweep]))[0]
+        if self.via_pose is not None:
+            if u == 0.5:
+                return self.via_pose
+            a, b, f = (self.start, self.via_pose, 2 * u) if u < 0.5 else (self.via_pose, self.end, 2 * u - 1)
+            return Pose(slerp(a.rotation, b.rotation, f)[0], point)
         rotation = self.start.rotation
         if self.follow_tangent:
-            rotation = _axis_rotation(self.normal, u * self.sweep) @ rotation
-        offset = arc_offsets(self.start.position - self.center, self.normal, np.array([u * self.sweep]))[0]
-        return Pose(self.start.position + offset, rotation)
+            rotation = exp_rotation(arc.normal * (u * arc.sweep)) @ rotation
+        return Pose(rotation, point)
 
     @property
     def via(self) -> Pose:
-        """The arc's middle, the C1MOVE point."""
+        """An arc's middle, a three-point circular move's via point."""
         return self.pose_at(0.5)
 
     def point_tangent(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the sweep."""
+        """Points (n, 3) and unit tangents (n, 3) at fractions ``u`` of the move."""
         u = np.atleast_1d(np.asarray(u, dtype=float))
-        radial0 = self.start.position - self.center
-        offsets = arc_offsets(radial0, self.normal, u * self.sweep)
-        return self.start.position + offsets, np.cross(self.normal, radial0 + offsets) / self.radius
+        if self.is_arc:
+            angles = u * self.geometry.sweep
+            return self.geometry.at_angles(angles), self.geometry.tangents_at_angles(angles)
+        line = self.geometry
+        return line.start + np.outer(u, line.end - line.start), np.tile(line.direction, (len(u), 1))
 
-    def split(self, max_sweep: float) -> tuple[PlacedArc, ...]:
-        """Equal pieces of at most ``max_sweep`` rad each."""
-        n = max(1, math.ceil(self.sweep / max_sweep - 1e-12))
+    def split(self, max_sweep: float) -> tuple[PlacedMove, ...]:
+        """An arc as equal pieces of at most ``max_sweep`` rad each."""
+        arc = self.geometry
+        n = max(1, math.ceil(arc.sweep / max_sweep - 1e-12))
         if n == 1:
             return (self,)
         poses = [self.pose_at(k / n) for k in range(n)] + [self.end]
-        return tuple(
-            PlacedArc(poses[k], poses[k + 1], self.center, self.normal, self.sweep / n, self.follow_tangent, self.part)
-            for k in range(n)
-        )
+        vias = [self.pose_at((k + 0.5) / n) if self.via_pose is not None else None for k in range(n)]
+        return tuple(PlacedMove(placed_arc(poses[k], poses[k + 1], arc.center, arc.normal, arc.sweep / n),
+                                poses[k], poses[k + 1], self.part, self.follow_tangent, vias[k], self.speed_mm_s)
+                     for k in range(n))
 
 
-PlacedSegment = Union[PlacedLine, PlacedArc]
+def placed_line(start: Pose, end: Pose, part: str = "curve") -> PlacedMove:
+    """A straight TCP move between two poses."""
+    return PlacedMove(Line3(start.translation_mm, end.translation_mm), start, end, part)
+
+
+def placed_arc(start: Pose, end: Pose, center: np.ndarray, normal: np.ndarray, sweep: float) -> Arc3:
+    """The arc from ``start`` turning ``sweep`` (> 0) rad about the unit ``normal`` around ``center``."""
+    radius = float(np.linalg.norm(start.translation_mm - center))
+    return Arc3(start.translation_mm, end.translation_mm, center, normal, radius, sweep)
 
 
 @dataclass(frozen=True, eq=False)
 class PlacedPath:
-    """The sprayed tool path in the base frame: lead-in, curve, lead-out, end to end."""
+    """The sprayed tool path in the base frame: lead-in, curve, lead-out, end to end.
 
-    segments: tuple[PlacedSegment, ...]
+    ``clearance_mm`` is how far the tool approaches and departs along its axis before and after
+    this path (None: the plan's ``approach_mm``): a 3-D part may need more room to travel
+    between passes than a flat one."""
+
+    segments: tuple[PlacedMove, ...]
     normal: np.ndarray
     standoff_mm: float
     lead_in_mm: float
     lead_out_mm: float
     curve_length_mm: float
+    clearance_mm: float | None = None
 
     @property
     def start(self) -> Pose:
@@ -192,7 +194,7 @@ class _Mapper:
     def __init__(self, placement: Placement) -> None:
         self.rotation = placement.frame.rotation
         self.normal = self.rotation[:, 2].copy()
-        self.lift = placement.frame.origin + placement.standoff_mm * self.normal
+        self.lift = placement.frame.translation_mm + placement.standoff_mm * self.normal
         self.offset = np.asarray(placement.offset_xy, dtype=float)
         self.roll = math.radians(placement.roll_deg)
         self.follow = placement.follow_tangent
@@ -204,18 +206,18 @@ class _Mapper:
 
     def pose(self, xy: tuple[float, float] | np.ndarray, heading: float) -> Pose:
         gamma = (math.pi - heading + self.roll) if self.follow else self.roll
-        return Pose(self.point(xy), self.tool_down @ rot_z(gamma))
+        return Pose(self.tool_down @ rot_z(gamma), self.point(xy))
 
 
-def _extension(m: _Mapper, anchor: np.ndarray, heading: float, length: float, part: str) -> PlacedLine:
+def _extension(m: _Mapper, anchor: np.ndarray, heading: float, length: float, part: str) -> PlacedMove:
     """Tangent line of ``length`` ending (lead-in) or starting (lead-out) at ``anchor``."""
     direction = np.array([math.cos(heading), math.sin(heading)])
     far = anchor + (-length if part == "lead_in" else length) * direction
     a, b = (far, anchor) if part == "lead_in" else (anchor, far)
-    return PlacedLine(m.pose(a, heading), m.pose(b, heading), part)
+    return placed_line(m.pose(a, heading), m.pose(b, heading), part)
 
 
-def _placed_arc(m: _Mapper, arc: Arc, follow_tangent: bool) -> PlacedSegment:
+def _placed_arc(m: _Mapper, arc: Arc, follow_tangent: bool) -> PlacedMove:
     """An arc up to a half turn becomes the circle through its start, middle and end, which
     is exactly what a program can say even if the arc's end is off its circle by rounding;
     a longer arc (up to full turns) keeps its centre and sweep; an arc too flat to define a
@@ -223,26 +225,28 @@ def _placed_arc(m: _Mapper, arc: Arc, follow_tangent: bool) -> PlacedSegment:
     start, end = m.pose(arc.start, arc.start_heading), m.pose(arc.end, arc.end_heading)
     if abs(arc.sweep) > math.pi:
         normal = m.normal if arc.sweep > 0 else -m.normal
-        return PlacedArc(start, end, m.point(arc.center), normal, abs(arc.sweep), follow_tangent)
+        return PlacedMove(placed_arc(start, end, m.point(arc.center), normal, abs(arc.sweep)), start, end, "curve",
+                          follow_tangent)
     a, b = np.asarray(arc.start, dtype=float), np.asarray(arc.end, dtype=float)
     chord = b - a
     sagitta = 2.0 * arc.radius * math.sin(arc.sweep / 4.0) ** 2
     if sagitta < _MIN_SAGITTA_MM:
-        return PlacedLine(start, end, "curve")
+        return placed_line(start, end)
     # The arc bulges away from its centre: to the right of the chord when turning left.
     left = np.array([-chord[1], chord[0]]) / float(np.linalg.norm(chord))
     middle = m.point((a + b) / 2.0 - math.copysign(sagitta, arc.sweep) * left)
     try:
-        circle = circle_through(start.position, middle, end.position)
+        circle = arc_through(start.translation_mm, middle, end.translation_mm)
     except DegenerateArc:
-        return PlacedLine(start, end, "curve")
-    return PlacedArc(start, end, circle.center, circle.normal, circle.sweep, follow_tangent)
+        return placed_line(start, end)
+    return PlacedMove(placed_arc(start, end, circle.center, circle.normal, circle.sweep), start, end, "curve",
+                      follow_tangent)
 
 
 def place(poly: Polysegment, placement: Placement) -> PlacedPath:
     """The 3-D sprayed path of ``poly``: lead-in line, one placed segment per segment, lead-out."""
     m = _Mapper(placement)
-    segments: list[PlacedSegment] = []
+    segments: list[PlacedMove] = []
     first, last = poly.segments[0], poly.segments[-1]
     if placement.lead_in_mm > 0.0:
         segments.append(_extension(m, np.asarray(first.start, float), first.start_heading, placement.lead_in_mm, "lead_in"))
@@ -250,7 +254,7 @@ def place(poly: Polysegment, placement: Placement) -> PlacedPath:
         if isinstance(seg, Line):
             if seg.length > 0.0:
                 h = seg.start_heading
-                segments.append(PlacedLine(m.pose(seg.start, h), m.pose(seg.end, h), "curve"))
+                segments.append(placed_line(m.pose(seg.start, h), m.pose(seg.end, h)))
             continue
         segments.append(_placed_arc(m, seg, placement.follow_tangent))
     if placement.lead_out_mm > 0.0:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.pose import Pose
 from coatsim.path.placement import PlacedPath
 from coatsim.path.process import ProcessInfo
 
@@ -21,6 +21,9 @@ class ProgramPlan:
     closed contour: no double coat at the seam). ``exact_stop`` asks for a stop at every
     programmed point (no blending). ``process`` is written into the program in the language's
     own way and comes back in ``ToolPath.process``; ``comments`` are free header lines for people.
+    Poses are in the robot base frame; ``work_frame`` (None: the workpiece frame of ``process``,
+    else the base frame) is the user frame a language that names one (RAPID ``wobjdata``, KRL
+    ``$BASE``) writes them relative to: the same path, in coordinates a person reads on the part.
     """
 
     name: str
@@ -30,9 +33,16 @@ class ProgramPlan:
     exact_stop: bool
     approach_mm: float
     gun_signal: int
-    tool: Frame
+    tool: Pose
     process: ProcessInfo = ProcessInfo()
     comments: tuple[str, ...] = ()
+    work_frame: Pose | None = None
+
+    @property
+    def user_frame(self) -> Pose:
+        """The frame poses are written relative to by a language that names one (see above)."""
+        frame = self.work_frame if self.work_frame is not None else self.process.frame
+        return frame if frame is not None else Pose.identity()
 
     @property
     def legs(self) -> tuple[tuple[PlacedPath, bool], ...]:

@@ -12,8 +12,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from coatsim.core.errors import InputError
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.pose import Pose
 from coatsim.path.speed_limits import SpeedLimit
+
+
+#: Where a program's speed holds: at the tool centre point, or at the trace on the surface.
+SPEED_ON = ("tcp", "trace")
 
 
 @dataclass(frozen=True)
@@ -35,7 +39,9 @@ class ProcessInfo:
 
     ``contours`` holds one entry per sprayed contour in spray order, or a single entry that
     holds for every contour; ``contour_order`` the drawing's contour numbers (1-based) in spray
-    order for a program of several contours. Totals (``curve_length_mm``, segment counts) are
+    order for a program of several contours. ``speed_on`` says where ``speed_mm_s`` holds:
+    ``tcp`` (the tool centre point, the programmed speed of every move) or ``trace`` (the spot
+    on the surface: the moves' speeds vary so that it moves at that speed). Totals (``curve_length_mm``, segment counts) are
     over every contour.
     """
 
@@ -49,12 +55,13 @@ class ProcessInfo:
     speed_mm_s: float | None = None
     accuracy_mm: float | None = None
     gun_signal: int | None = None
-    frame: Frame | None = None
+    frame: Pose | None = None
     n_segments: int | None = None
     n_lines: int | None = None
     n_arcs: int | None = None
     contours: tuple[SprayedContour, ...] = ()
     contour_order: tuple[int, ...] | None = None
+    speed_on: str | None = None
 
     def contours_for(self, n: int, where: str) -> tuple[SprayedContour, ...]:
         """The record of each of ``n`` sprayed contours: one entry holds for all of them, none

@@ -15,9 +15,10 @@ from typing import Optional
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
+from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core.errors import InputError
 from coatsim.path.arcs import move_length, sample_move
-from coatsim.languages.kawasaki_as.interpreter import Run
+from coatsim.path.reading import MoveSource
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Move, ToolPath
 
 _ARC_SAMPLES_PER_MM = 2.0
@@ -63,19 +64,19 @@ def _move_points(move: Move, spacing: float) -> tuple[np.ndarray, np.ndarray]:
         n = max(8, int(math.ceil(move_length(move) * _ARC_SAMPLES_PER_MM / max(spacing, 1e-3))))
         u = np.linspace(0.0, 1.0, n + 1)[1:]
         pts = sample_move(move, u)[0]
-        pts[-1] = move.end.position
+        pts[-1] = move.end.translation_mm
     else:
         u = np.array([1.0])
-        pts = np.asarray(move.end.position, dtype=float)[None]
+        pts = np.asarray(move.end.translation_mm, dtype=float)[None]
     rot = Slerp([0.0, 1.0], Rotation.from_matrix([move.start.rotation, move.end.rotation]))(u).as_matrix()
     return pts, rot
 
 
-def path_of(run: Run, moves: tuple[int, ...], spacing_mm: float) -> ProcessPath:
+def path_of(toolpath: ToolPath, moves: tuple[int, ...], spacing_mm: float) -> ProcessPath:
     """The geometry of consecutive Cartesian moves."""
-    tp = run.toolpath.moves
+    tp = toolpath.moves
     first = tp[moves[0]]
-    pts, rots = [np.asarray(first.start.position, float)[None]], [np.asarray(first.start.rotation)[None]]
+    pts, rots = [np.asarray(first.start.translation_mm, float)[None]], [np.asarray(first.start.rotation)[None]]
     for i in moves:
         p, r = _move_points(tp[i], spacing_mm)
         pts.append(p)
@@ -98,17 +99,19 @@ def spray_runs(toolpath: ToolPath) -> list[tuple[int, ...]]:
     return runs
 
 
-def moves_in_lines(run: Run, first: int, last: int) -> tuple[int, ...]:
-    """The moves whose statements lie within source lines ``first``..``last``."""
-    chosen = [i for i, (_, a, b) in enumerate(run.move_origins) if first <= a and b <= last]
+def moves_in_lines(toolpath: ToolPath, sources: tuple[MoveSource, ...], first: int, last: int,
+                   motions: str) -> tuple[int, ...]:
+    """The moves whose statements lie within source lines ``first``..``last``; ``motions`` the
+    language's words for its linear and circular moves (for the message)."""
+    chosen = [i for i, s in enumerate(sources) if first <= s.first_line and s.last_line <= last]
     if not chosen:
         raise InputError(f"--lines {first}-{last}: no motion comes from these lines")
     if chosen != list(range(chosen[0], chosen[-1] + 1)):
         raise InputError(f"--lines {first}-{last}: the motions of these lines are not consecutive in the run")
-    joint = [i for i in chosen if isinstance(run.toolpath.moves[i], JointMove)]
+    joint = [i for i in chosen if isinstance(toolpath.moves[i], JointMove)]
     if joint:
-        raise InputError(f"--lines {first}-{last}: line {run.toolpath.moves[joint[0]].line} is a joint move; a "
-                         "process path is made of LMOVE and C1MOVE/C2MOVE moves")
+        raise InputError(f"--lines {first}-{last}: line {toolpath.moves[joint[0]].line} is a joint move; a "
+                         f"process path is made of {motions} moves")
     return tuple(chosen)
 
 
@@ -119,10 +122,10 @@ def planar_frame(points: np.ndarray, tool_z: np.ndarray) -> PlaneFrame:
     centre = pts.mean(axis=0)
     _, sv, vt = np.linalg.svd(pts - centre, full_matrices=False)
     z = np.asarray(tool_z, dtype=float)
-    if len(sv) < 2 or sv[1] <= 1e-9 * max(sv[0], 1e-12):
+    if len(sv) < 2 or sv[1] <= ROUND_OFF * max(sv[0], 1e-12):
         direction = vt[0]
         normal = np.cross(direction, np.cross(z, direction))
-        if np.linalg.norm(normal) < 1e-9:
+        if np.linalg.norm(normal) < TINY:
             normal = np.cross(direction, [1.0, 0.0, 0.0] if abs(direction[0]) < 0.9 else [0.0, 1.0, 0.0])
     else:
         normal = vt[2] if len(vt) > 2 else np.cross(vt[0], vt[1])
@@ -185,7 +188,7 @@ def path_distance(a: np.ndarray, b: np.ndarray) -> float:
 
 def dense_points(moves, step_mm: float) -> np.ndarray:
     """Points along Cartesian moves at most ``step_mm`` apart (every move end included)."""
-    out = [np.asarray(moves[0].start.position, dtype=float)[None]]
+    out = [np.asarray(moves[0].start.translation_mm, dtype=float)[None]]
     for m in moves:
         n = max(1, int(math.ceil(move_length(m) / step_mm)))
         out.append(sample_move(m, np.linspace(0.0, 1.0, n + 1)[1:])[0])

@@ -14,7 +14,8 @@ import math
 
 import numpy as np
 
-from coatsim.path.oat import matrix_to_oat, rotation_angle
+from coatsim.geometry.space.rotations import matrix_to_oat
+from coatsim.geometry.space.pose import rotation_angle
 from coatsim.path.toolpath import ToolFrame, ToolPath
 
 MATCH_MM = 1e-3   # a TOOL this close to the gun (and MATCH_DEG in angle) counts as the gun's

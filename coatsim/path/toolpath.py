@@ -1,8 +1,9 @@
 """ToolPath: what a robot program asks the tool to do, in Cartesian terms.
 
 This is the contract between the programs stage (the interpreter produces it from parsed AS
-text) and the robot stage (which executes it). All positions are in mm in the robot base frame;
-a rotation is a 3x3 matrix whose columns are the tool x, y, z axes (z = spray axis).
+text) and the robot stage (which executes it). Poses are coatsim's one pose type
+(:class:`~coatsim.geometry.space.pose.Pose`) in the robot base frame, mm; a rotation's columns
+are the tool x, y, z axes (z = spray axis).
 """
 
 from __future__ import annotations
@@ -12,15 +13,8 @@ from typing import Optional, Protocol, Union
 
 import numpy as np
 
+from coatsim.geometry.space.pose import Pose
 from coatsim.path.process import ProcessInfo
-
-
-@dataclass(frozen=True, eq=False)
-class Pose:
-    """Tool pose: ``position`` (3,) mm and ``rotation`` (3, 3), base frame."""
-
-    position: np.ndarray
-    rotation: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)

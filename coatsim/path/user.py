@@ -11,8 +11,9 @@ import numpy as np
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line
-from coatsim.path.arcs import circle_through, move_length, sample_move
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.primitives import arc_through
+from coatsim.path.arcs import move_length, sample_move
+from coatsim.geometry.space.pose import Pose
 from coatsim.path.process_path import spray_runs
 from coatsim.path.toolpath import CircularMove, ToolPath
 
@@ -41,28 +42,28 @@ class UserProgram:
         return self.curve.length
 
 
-def _local(frame: Frame, p: np.ndarray) -> np.ndarray:
-    return frame.rotation.T @ (np.asarray(p, dtype=float) - frame.origin)
+def _local(frame: Pose, p: np.ndarray) -> np.ndarray:
+    return frame.rotation.T @ (np.asarray(p, dtype=float) - frame.translation_mm)
 
 
-def _in_plane(moves: list, frame: Frame) -> tuple[list, tuple[str, ...]]:
+def _in_plane(moves: list, frame: Pose) -> tuple[list, tuple[str, ...]]:
     """The sprayed moves without a first one that comes down to the path's plane or a last one
     that leaves it (the gun switched on above the part, ``SIGNAL`` before the approach ends):
     flattened, they would add a stretch the program sprays in the air to the compared path."""
-    height = float(np.median([_local(frame, m.end.position)[2] for m in moves]))
+    height = float(np.median([_local(frame, m.end.translation_mm)[2] for m in moves]))
     notes = []
-    if len(moves) > 1 and abs(_local(frame, moves[0].start.position)[2] - height) > PLANE_MM:
+    if len(moves) > 1 and abs(_local(frame, moves[0].start.translation_mm)[2] - height) > PLANE_MM:
         notes.append(f"line {moves[0].line}: the first sprayed move comes to the path's plane from "
-                     f"{_local(frame, moves[0].start.position)[2] - height:+.1f} mm; the compared path starts after it")
+                     f"{_local(frame, moves[0].start.translation_mm)[2] - height:+.1f} mm; the compared path starts after it")
         moves = moves[1:]
-    if len(moves) > 1 and abs(_local(frame, moves[-1].end.position)[2] - height) > PLANE_MM:
+    if len(moves) > 1 and abs(_local(frame, moves[-1].end.translation_mm)[2] - height) > PLANE_MM:
         notes.append(f"line {moves[-1].line}: the last sprayed move leaves the path's plane by "
-                     f"{_local(frame, moves[-1].end.position)[2] - height:+.1f} mm; the compared path ends before it")
+                     f"{_local(frame, moves[-1].end.translation_mm)[2] - height:+.1f} mm; the compared path ends before it")
         moves = moves[:-1]
     return moves, tuple(notes)
 
 
-def user_program(toolpath: ToolPath, frame: Frame, text: str, step_mm: float = 0.5) -> UserProgram:
+def user_program(toolpath: ToolPath, frame: Pose, text: str, step_mm: float = 0.5) -> UserProgram:
     """The longest sprayed stretch of ``toolpath`` expressed in ``frame`` (its XY plane)."""
     runs = [r for r in spray_runs(toolpath) if r]
     if not runs:
@@ -79,12 +80,12 @@ def user_program(toolpath: ToolPath, frame: Frame, text: str, step_mm: float = 0
                  "spray alone",)
     moves, off_plane = _in_plane(moves, frame)
     notes += off_plane
-    segments, points, heights = [], [_local(frame, moves[0].start.position)[:2]], []
+    segments, points, heights = [], [_local(frame, moves[0].start.translation_mm)[:2]], []
     for m in moves:
-        a, b = _local(frame, m.start.position), _local(frame, m.end.position)
+        a, b = _local(frame, m.start.translation_mm), _local(frame, m.end.translation_mm)
         heights += [a[2], b[2]]
         if isinstance(m, CircularMove):
-            c = circle_through(m.start.position, m.via.position, m.end.position)
+            c = arc_through(m.start.translation_mm, m.via.translation_mm, m.end.translation_mm)
             centre = _local(frame, c.center)
             turn = float(frame.rotation.T @ c.normal @ np.array([0.0, 0.0, 1.0]))
             sweep = math.copysign(c.sweep, turn)

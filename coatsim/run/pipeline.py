@@ -1,7 +1,7 @@
 """Run one scenario: every stage for every program variant, then metrics, gates and report.
 
-curve -> polysegment -> for each variant: AS program text (written) -> ToolPath read back from
-that file -> simulated arm -> trajectory (written) -> coating (written) -> metrics ->
+curve -> polysegment -> for each variant: program text in its language (written) -> ToolPath
+read back from that file -> simulated arm -> trajectory (written) -> coating (written) -> metrics ->
 ``metrics.json`` and ``report.html``. The execution stage consumes the program text parsed back,
 never the in-memory polysegment: the twin runs what the robot would run.
 """
@@ -11,7 +11,7 @@ from __future__ import annotations
 import sys
 import time
 from contextlib import contextmanager
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable, Iterator, Mapping, Optional
 
@@ -20,11 +20,12 @@ import numpy as np
 from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
+from coatsim.geometry.cad import PartSegmentation
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.segment import Segmentation
-from coatsim.languages.registry import DEFAULT_LANGUAGE, language
+from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions, polyline_of
 from coatsim.path.language import ReadOptions
 from coatsim.path.part_program import (
@@ -33,9 +34,12 @@ from coatsim.path.part_program import (
     part_centering_offset,
 )
 from coatsim.path.placement import Placement
+from coatsim.path.program_files import program_paths, program_suffixes, write_program
+from coatsim.path.language import Language
 from coatsim.path.toolpath import ToolPath
 from coatsim.path.user import UserProgram, user_program
 from coatsim.report.gates import evaluate_gates
+from coatsim.report.results import RunResult, VariantRun
 from coatsim.report.metrics import (
     assemble,
     coating_group,
@@ -45,7 +49,7 @@ from coatsim.report.metrics import (
     to_json,
 )
 from coatsim.robot.cell import Cell
-from coatsim.robot.execute import Execution, execute
+from coatsim.robot.execute import execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.run.scenario import (
@@ -63,9 +67,10 @@ from coatsim.run.scenario_inputs import (
     load_arm,
     read_user_program,
     segment_input,
+    user_program_suffix,
     spray_model,
 )
-from coatsim.spray.coat import CoatingResult, coat, remeasured
+from coatsim.spray.coat import coat, remeasured
 from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
@@ -73,37 +78,6 @@ from coatsim.spray.surfaces import Surface
 
 Step = Callable[[str], None]
 FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
-
-
-@dataclass(frozen=True, eq=False)
-class VariantRun:
-    """One program variant carried through every stage."""
-
-    name: str
-    program: PartProgram | UserProgram
-    execution: Execution
-    coating: CoatingResult
-    groups: dict[str, dict[str, float | int | None]]
-    contour_groups: tuple[dict[str, dict[str, float | int | None]], ...] = ()
-    toolpath: Optional[ToolPath] = None  # the program as read back (the report ties events to its lines)
-
-
-@dataclass(frozen=True, eq=False)
-class RunResult:
-    """A finished run: every variant, the metrics document and the files written; with
-    ``keep_going``, ``failures`` holds the one-line error of each variant that could not run."""
-
-    outdir: Path
-    variants: tuple[VariantRun, ...]
-    document: dict
-    files: tuple[Path, ...]
-    failures: Mapping[str, str] = field(default_factory=dict)
-    segmentation_s: float = 0.0  # the fitter's wall time (reported on request, never written)
-    report_s: float = 0.0        # wall time of the thickness files, the video and report.html
-
-    @property
-    def passed(self) -> bool:
-        return bool(self.document["passed"])
 
 
 @contextmanager
@@ -145,32 +119,43 @@ class Job:
     polyline_deviations_mm: tuple[Optional[float], ...] = ()
 
 
-def run_variant(name: str, job: Job, step: Step) -> VariantRun:
-    """Program, execute and coat one variant; writes ``name.as`` and ``name.trajectory.csv``."""
+def program_files(name: str, writer: Language) -> tuple[str, ...]:
+    """The files of variant ``name``'s program in ``writer``'s language, the main first: named
+    after the variant, or (a language whose controller loads a program by its file's name) after
+    the program, which is then named after the variant."""
+    stem = writer.program_name(name) if writer.capabilities.named_by_file else name
+    return tuple(p.name for p in program_paths(writer, Path(stem + program_suffixes(writer)[0])))
+
+
+def run_variant(name: str, variant: str, language_name: str, job: Job, step: Step) -> VariantRun:
+    """Program, execute and coat one built-in variant written in its language; writes its
+    program file(s) and ``name.trajectory.csv``."""
     spec, out = job.loaded.spec, job.outdir
     polys = [c.polysegment for c in job.contours]
-    writer = language(DEFAULT_LANGUAGE)
-    options = ProgramOptions(variant=name, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
-                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=writer.program_name(spec.name))
+    writer = language(language_name)
+    program_name = writer.program_name(name if writer.capabilities.named_by_file else spec.name)
+    options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
+                             gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name)
     program = build_part_program(polys, job.placement, options, language=writer,
                                  tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
                                  points=[c.curve.points for c in job.contours], order=spec.motion.contour_order,
                                  polylines=job.polylines or None)
-    program_path = out / f"{name}{writer.suffixes[0]}"
-    write_text(program_path, program.text)
-    toolpath = writer.read([program_path], ReadOptions(gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell)))
-    return simulate_variant(name, program, toolpath, job, step)
+    files = program_files(name, writer)
+    paths = write_program(writer, program.text, out / files[0])
+    toolpath = writer.read(list(paths), ReadOptions(gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell)))
+    return replace(simulate_variant(name, program, toolpath, job, step), program_file=files[0])
 
 
 def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> VariantRun:
-    """Execute and coat a user's program; writes ``name.as`` (a copy), ``name.trajectory.csv``
-    and ``name.thickness.ply``."""
+    """Execute and coat a user's program; writes ``name`` + its suffix (a copy),
+    ``name.trajectory.csv`` and ``name.thickness.ply``."""
     toolpath, text = read_user_program(job.loaded, entry, job.cell)
-    write_text(job.outdir / f"{entry.name}.as", text)
+    copy = f"{entry.name}{user_program_suffix(job.loaded, entry)}"
+    write_text(job.outdir / copy, text)
     try:
         program = user_program(toolpath, curve_frame(job.loaded.spec), text)
         toolpath = replace(toolpath, warnings=(*toolpath.warnings, *program.notes))  # they reach metrics.json
-        return simulate_variant(entry.name, program, toolpath, job, step)
+        return replace(simulate_variant(entry.name, program, toolpath, job, step), program_file=copy)
     except CoatsimError as exc:
         raise type(exc)(f"{entry.name}: {exc}") from None
 
@@ -262,11 +247,22 @@ def reference_variant(spec: Scenario) -> str:
     return "polysegment" if "polysegment" in names else names[0]
 
 
-def output_names(spec: Scenario, video: bool = False) -> list[str]:
-    """The files a run of ``spec`` may write into its output folder, in writing order (a drawing
-    of several contours writes part.json instead of polysegment.json)."""
+def variant_files(loaded: ScenarioFile, entry) -> tuple[str, ...]:
+    """The program file(s) a variant writes: a built-in variant's in its language, a copy of a
+    user's program with its language's suffix."""
+    builtin = loaded.spec.builtin(entry)
+    if builtin is not None:
+        return program_files(entry if isinstance(entry, str) else entry.name, language(builtin[1]))
+    return (f"{entry.name}{user_program_suffix(loaded, entry)}",)
+
+
+def output_names(loaded: ScenarioFile, video: bool = False) -> list[str]:
+    """The files a run of the scenario ``loaded`` may write into its output folder, in writing
+    order (a drawing of several contours writes part.json instead of polysegment.json)."""
+    spec = loaded.spec
     names = variant_names(spec)
-    programs = [f"{v}.{kind}" for v in names for kind in ("as", "trajectory.csv")]
+    programs = [f for entry, v in zip(spec.variants, names) for f in (*variant_files(loaded, entry),
+                                                                       f"{v}.trajectory.csv")]
     coats = [f"{v}.{kind}" for v in names for kind in ("thickness.ply", "thickness.glb")]
     movie = [f"{reference_variant(spec)}.mp4"] if video else []
     return ["polysegment.json", "part.json", *programs, "metrics.json", *coats, *movie, "report.html"]
@@ -308,7 +304,7 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     loaded = load_scenario(path)
     check_gate_metrics(loaded)
     out = Path(outdir) if outdir is not None else Path("runs") / loaded.spec.name
-    names = output_names(loaded.spec, video)
+    names = output_names(loaded, video)
     check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
     with output_folder(out, names, "coatsim run", force):
@@ -318,94 +314,133 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
 def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: Optional[bool], keep_going: bool,
             report: bool, video: bool) -> RunResult:
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
-    from coatsim.report.document import write_report
-
     spec = loaded.spec
-    spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
-    sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
     show = sys.stderr.isatty() if progress is None else progress
     with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
         step("segmenting the curve")
-        part = None
-        if spec.curve is None:  # the sprayed path of the first program variant
-            entry = spec.programs[0]
-            toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
-            try:
-                user = user_program(toolpath, curve_frame(spec), "")
-            except CoatsimError as exc:
-                raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
-            contours = (segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
-                                      method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
-                                      speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2),)
-            offset = (0.0, 0.0)
-        else:
-            contours, part = segment_input(loaded, cell)
-            polys = [c.polysegment for c in contours]
-            offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        contours, part, offset = _segmentation(loaded, cell)
         segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
         if part is None:
             write_polysegment_json(segmentation_file, contours[0])
         else:
             write_part_json(segmentation_file, part)
-        placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
-                              follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
-                              lead_out_mm=spec.motion.lead_out_mm, offset_xy=(float(offset[0]), float(offset[1])))
         step("meshing the workpiece")
-        surface, model = build_surface(loaded, spacing), spray_model(loaded)
-        away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
-        polylines: tuple = ()
-        deviations: tuple = ()
-        if any(isinstance(v, str) and v != "polysegment" for v in spec.variants):
-            tol = spec.segmentation.tolerance_mm
-            polylines = tuple(polyline_of(c.curve.points, c.polysegment.closed, tol) for c in contours)
-            deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
-        job = Job(loaded, contours, placement, surface, model, cell, out, sample_step, spacing, away,
-                  polylines, deviations)
-        runs, failures = [], {}
-        for entry in spec.variants:
-            name = entry if isinstance(entry, str) else entry.name
-            step(f"{name}: writing and reading the program")
-            try:
-                if isinstance(entry, str):
-                    runs.append(run_variant(name, job, step))
-                else:
-                    runs.append(run_program_variant(entry, job, step))  # its errors name the variant
-            except CoatsimError as exc:
-                if not keep_going:
-                    raise (exc if not isinstance(entry, str) else type(exc)(f"{name}: {exc}")) from None
-                failures[name] = str(exc).removeprefix(f"{name}: ")
+        job = _job(loaded, cell, out, fast, contours, offset)
+        runs, failures = _run_variants(job, step, keep_going)
         step("metrics, gates and report")
         runs = on_common_roi(runs, spec.gun.target_thickness_um)
-        variants = {r.name: r.groups for r in runs}
-        gates = evaluate_gates([g for g in spec.gates if {g.variant, *g.compared} <= set(variants)], variants)
-        warnings = [{"variant": r.name, "message": event} for r in runs
-                    for event in (*r.execution.warnings, *r.execution.events)]
-        document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
-        if len(contours) > 1:
-            order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
-            document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
-                                                                       if r.contour_groups})
-        if failures:
-            document.update(failed=failures, passed=False)
+        document = _document(loaded, runs, contours, failures, fast)
         write_text(out / "metrics.json", to_json(document))
         report_started = time.perf_counter()
-        write_thickness_files(runs, out, spec.gun.standoff_mm)
-        movie = None
-        reference = next((r for r in runs if r.name == reference_variant(spec)), None)
-        if video and reference is not None:
-            from coatsim.report.data import ReportData
-            from coatsim.report.video import write_video
-
-            step("rendering the video")
-            data = ReportData(loaded, tuple(contours), tuple(runs), document)
-            movie = write_video(out / f"{reference.name}.mp4", data, cell)
-        if report and runs:
-            write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
-                         cell=cell, video=None if movie is None else movie.name)
+        _write_views(loaded, cell, out, runs, contours, part, document, step, report, video)
         report_s = time.perf_counter() - report_started
     unwritten = {f"{v}.{kind}" for v in failures for kind in ("trajectory.csv", "thickness.ply", "thickness.glb", "mp4")}
     unwritten |= set() if report and runs else {"report.html"}
     unwritten |= {"polysegment.json", "part.json"} - {segmentation_file.name}
-    written = [name for name in output_names(spec, video) if name not in unwritten]
+    written = [name for name in output_names(loaded, video) if name not in unwritten]
     seconds = part.seconds if part is not None else contours[0].seconds
     return RunResult(out, tuple(runs), document, tuple(out / name for name in written), failures, seconds, report_s)
+
+
+def _segmentation(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation, ...], Optional[PartSegmentation],
+                                                             tuple[float, float]]:
+    """The scenario's contours fitted (of its curve or drawing, else of the sprayed path of its
+    first program variant), the drawing's segmentation if any, and the offset that places them."""
+    spec = loaded.spec
+    if spec.curve is not None:
+        contours, part = segment_input(loaded, cell)
+        polys = [c.polysegment for c in contours]
+        offset = np.add(part_centering_offset(polys) if spec.curve.center else (0.0, 0.0), spec.curve.offset_mm)
+        return tuple(contours), part, (float(offset[0]), float(offset[1]))
+    entry = spec.programs[0]
+    toolpath = read_user_program(loaded, entry, cell)[0]  # (its errors name the variant)
+    try:
+        user = user_program(toolpath, curve_frame(spec), "")
+    except CoatsimError as exc:
+        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+    seg = segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
+                        method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
+                        speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2)
+    return (seg,), None, (0.0, 0.0)
+
+
+def _job(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, contours: tuple[Segmentation, ...],
+         offset: tuple[float, float]) -> Job:
+    """What every variant shares: the placement, the meshed part, the gun, the polyline of each
+    contour for the polyline variants (with its deviation), computed once."""
+    spec = loaded.spec
+    spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
+    sample_step = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
+    placement = Placement(frame=curve_frame(spec), standoff_mm=spec.gun.standoff_mm, roll_deg=spec.gun.roll_deg,
+                          follow_tangent=spec.gun.follow_tangent, lead_in_mm=spec.motion.lead_in_mm,
+                          lead_out_mm=spec.motion.lead_out_mm, offset_xy=offset)
+    surface, model = build_surface(loaded, spacing), spray_model(loaded)
+    away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
+    polylines: tuple = ()
+    deviations: tuple = ()
+    if any((spec.builtin(v) or ("polysegment",))[0] != "polysegment" for v in spec.variants):
+        tol = spec.segmentation.tolerance_mm
+        polylines = tuple(polyline_of(c.curve.points, c.polysegment.closed, tol) for c in contours)
+        deviations = tuple(hausdorff(c.curve.points, p).hausdorff for c, p in zip(contours, polylines))
+    return Job(loaded, contours, placement, surface, model, cell, out, sample_step, spacing, away, polylines,
+               deviations)
+
+
+def _run_variants(job: Job, step: Step, keep_going: bool) -> tuple[list[VariantRun], dict[str, str]]:
+    """Each variant programmed, executed and coated; with ``keep_going`` the one-line error of a
+    variant that cannot run is kept and the others run."""
+    runs, failures = [], {}
+    for entry in job.loaded.spec.variants:
+        name = entry if isinstance(entry, str) else entry.name
+        builtin = job.loaded.spec.builtin(entry)
+        step(f"{name}: writing and reading the program")
+        try:
+            if builtin is not None:
+                runs.append(run_variant(name, *builtin, job, step))
+            else:
+                runs.append(run_program_variant(entry, job, step))  # its errors name the variant
+        except CoatsimError as exc:
+            if not keep_going:
+                raise (exc if builtin is None else type(exc)(f"{name}: {exc}")) from None
+            failures[name] = str(exc).removeprefix(f"{name}: ")
+    return runs, failures
+
+
+def _document(loaded: ScenarioFile, runs: list[VariantRun], contours: tuple[Segmentation, ...],
+              failures: Mapping[str, str], fast: bool) -> dict:
+    """The metrics document: every variant's metrics, the gates, the warnings, the contours."""
+    spec = loaded.spec
+    variants = {r.name: r.groups for r in runs}
+    gates = evaluate_gates([g for g in spec.gates if {g.variant, *g.compared} <= set(variants)], variants)
+    warnings = [{"variant": r.name, "message": event} for r in runs
+                for event in (*r.execution.warnings, *r.execution.events)]
+    document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
+    if len(contours) > 1:
+        order = next((r.program.order for r in runs if isinstance(r.program, PartProgram)), tuple(range(len(contours))))
+        document["contours"] = contours_section(contours, order, {r.name: r.contour_groups for r in runs
+                                                                   if r.contour_groups})
+    if failures:
+        document.update(failed=dict(failures), passed=False)
+    return document
+
+
+def _write_views(loaded: ScenarioFile, cell: Cell, out: Path, runs: list[VariantRun],
+                 contours: tuple[Segmentation, ...], part: Optional[PartSegmentation], document: dict, step: Step,
+                 report: bool, video: bool) -> None:
+    """The thickness files of every variant, the video of the reference run and report.html."""
+    from coatsim.report.document import write_report
+
+    spec = loaded.spec
+    write_thickness_files(runs, out, spec.gun.standoff_mm)
+    movie = None
+    reference = next((r for r in runs if r.name == reference_variant(spec)), None)
+    if video and reference is not None:
+        from coatsim.report.data import ReportData
+        from coatsim.report.video import write_video
+
+        step("rendering the video")
+        data = ReportData(loaded, tuple(contours), tuple(runs), document)
+        movie = write_video(out / f"{reference.name}.mp4", data, cell)
+    if report and runs:
+        write_report(out / "report.html", loaded, contours, runs, document, part.notes if part is not None else (),
+                     video=None if movie is None else movie.name)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, ValidationError, field_validator, model_validator
+from pydantic import Discriminator, Field, Tag, ValidationError, field_validator, model_validator
 
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
@@ -25,11 +25,12 @@ from coatsim.geometry.builtin_curves import BUILTINS
 from coatsim.geometry.cad.drawing import is_drawing
 from coatsim.path.build import VARIANTS
 from coatsim.report.catalogue import METRICS
+from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.core.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
+from coatsim.run.variant_spec import BuiltinVariantSpec, LanguageName, ProgramSpec, Strict, VariantLabel, \
+    VariantName
 
-VariantName = Literal[VARIANTS]  # type: ignore[valid-type]
-VariantLabel = Annotated[str, Field(pattern=r"^[A-Za-z][A-Za-z0-9_.-]*$", max_length=40)]
 BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
 Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
 Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
@@ -39,8 +40,7 @@ SCENARIO_NAME = r"^[A-Za-z][A-Za-z0-9_.-]{0,63}$"
 NonNegative = Annotated[float, Field(ge=0)]
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+_Strict = Strict
 
 
 class CurveSpec(_Strict):
@@ -149,6 +149,8 @@ class GunSpec(_Strict):
     signal: Annotated[int, Field(ge=1, le=defaults.MAX_SIGNAL)] = defaults.GUN_SIGNAL
     roll_deg: float = 0.0
     follow_tangent: bool = False
+    efficiency: str = Field(defaults.EFFICIENCY, description="deposition efficiency by spray angle: none, angle (1 down to 60 deg, "
+                            "the documented curve below), angle:DEG=DE,..., table:FILE.csv or cosine:n=N")
 
     @field_validator("footprint")
     @classmethod
@@ -156,6 +158,16 @@ class GunSpec(_Strict):
         if not spec.strip().lower().startswith("table:"):
             try:
                 parse_footprint_spec(spec)
+            except InputError as exc:
+                raise ValueError(str(exc)) from None
+        return spec
+
+    @field_validator("efficiency")
+    @classmethod
+    def _efficiency(cls, spec: str) -> str:
+        if not spec.strip().lower().startswith("table:"):
+            try:
+                parse_efficiency_spec(spec)
             except InputError as exc:
                 raise ValueError(str(exc)) from None
         return spec
@@ -191,8 +203,8 @@ class FastSpec(_Strict):
 
 
 class ProgramVariantSpec(_Strict):
-    """A program of the user's own run as a variant beside coatsim's: its AS file(s) relative
-    to the scenario (data files such as poses after the program), the main program (default:
+    """A program of the user's own run as a variant beside coatsim's: its file(s) relative
+    to the scenario (in ``language``, default by their suffix or opening) (data files such as poses after the program), the main program (default:
     the first), the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off), and
     the variables no file gives (the controller keeps them): ``{direction: 8, $mode: auto,
     pick: "TRANS(600,0,300,0,180,0)"}`` (a number, a string's text, or an AS expression)."""
@@ -204,6 +216,8 @@ class ProgramVariantSpec(_Strict):
         default_factory=list, description="input signals the cell sets: n on, -n off")
     variables: dict[str, Union[float, str]] = Field(
         default_factory=dict, description="variables the files do not give: NAME: number, text or AS expression")
+    language: Optional[LanguageName] = Field(None, description="the language of the files [default: by their "
+                                             "suffix, else by their opening]")
 
     @field_validator("program", mode="before")
     @classmethod
@@ -234,12 +248,15 @@ class ProgramVariantSpec(_Strict):
 
 
 def _variant_kind(value: Any) -> str:
-    return "builtin" if isinstance(value, str) else "program"
+    if isinstance(value, str):
+        return "builtin"
+    return "language" if isinstance(value, dict) and "variant" in value else "program"
 
 
-# A built-in variant by name, or a user's program (a mapping): errors speak of the one meant.
-VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated[ProgramVariantSpec, Tag("program")]],
-                         Discriminator(_variant_kind)]
+# A built-in variant by name, one in its own language, or a user's program (a mapping): errors
+# speak of the one meant.
+VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated[ProgramVariantSpec, Tag("program")],
+                               Annotated[BuiltinVariantSpec, Tag("language")]], Discriminator(_variant_kind)]
 
 
 class GateSpec(_Strict):
@@ -294,6 +311,7 @@ class Scenario(_Strict):
     gun: GunSpec = Field(default_factory=GunSpec)
     motion: MotionSpec = Field(default_factory=MotionSpec)
     variants: Annotated[list[VariantEntry], Field(min_length=1)] = Field(default_factory=lambda: list(VARIANTS))
+    program: ProgramSpec = Field(default_factory=ProgramSpec)
     coating: CoatingSpec = Field(default_factory=CoatingSpec)
     fast: FastSpec = Field(default_factory=FastSpec)
     gates: list[GateSpec] = Field(default_factory=list)
@@ -329,7 +347,15 @@ class Scenario(_Strict):
     @property
     def programs(self) -> list[ProgramVariantSpec]:
         """The program variants, in order."""
-        return [v for v in self.variants if not isinstance(v, str)]
+        return [v for v in self.variants if isinstance(v, ProgramVariantSpec)]
+
+    def builtin(self, entry: Any) -> tuple[str, str] | None:
+        """(variant, language) of a built-in variant entry; None for a user's program."""
+        if isinstance(entry, str):
+            return entry, self.program.language
+        if isinstance(entry, BuiltinVariantSpec):
+            return entry.variant, entry.language or self.program.language
+        return None
 
 
 @dataclass(frozen=True)

@@ -21,14 +21,16 @@ from coatsim.geometry import (
 from coatsim.geometry.cad import PartSegmentation, is_drawing, segment_drawing
 from coatsim.geometry.segment import Segmentation
 from coatsim.languages.registry import language_of
-from coatsim.path.oat import oat_to_matrix
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.rotations import oat_to_matrix
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.run.scenario import ProgramVariantSpec, Scenario, ScenarioFile
 from coatsim.spray.deposition import SprayModel
+from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.surfaces import Surface, cylinder, mesh_file, plate
 
@@ -91,13 +93,13 @@ def _pose_matrix(position: list[float], oat: list[float]) -> np.ndarray:
 
 
 
-def curve_frame(spec: Scenario) -> Frame:
+def curve_frame(spec: Scenario) -> Pose:
     """The frame whose XY plane holds the curve: the workpiece frame, lifted to the top of a
     cylinder."""
     wp = spec.workpiece
     pose = _pose_matrix(wp.pose.position_mm, wp.pose.oat_deg)
     origin = pose[:3, 3] + (wp.radius_mm * pose[:3, 2] if wp.kind == "cylinder" else 0.0)
-    return Frame(*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg))
+    return pose_from_xyzoat((*(float(v) for v in origin), *(float(v) for v in wp.pose.oat_deg)))
 
 
 
@@ -119,11 +121,10 @@ def build_surface(loaded: ScenarioFile, spacing_mm: float) -> Surface:
 def spray_model(loaded: ScenarioFile) -> SprayModel:
     """The gun as the coating stage models it (a table footprint is read relative to the scenario)."""
     gun = loaded.spec.gun
-    text = gun.footprint.strip()
-    if text.lower().startswith("table:"):
-        text = f"table:{loaded.resolve(text.split(':', 1)[1].strip())}"
+    text, efficiency = (f"table:{loaded.resolve(t.split(':', 1)[1].strip())}" if t.strip().lower().startswith("table:")
+                        else t for t in (gun.footprint, gun.efficiency))
     try:
-        return SprayModel(parse_footprint_spec(text), gun.flow_mm3_s, gun.standoff_mm)
+        return SprayModel(parse_footprint_spec(text), gun.flow_mm3_s, gun.standoff_mm, parse_efficiency_spec(efficiency))
     except InputError as exc:
         raise InputError(f"{loaded.where('gun')}: gun: {exc}") from None
 
@@ -154,12 +155,17 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
     try:
         options = ReadOptions(gun_signal=loaded.spec.gun.signal, program=entry.main, inputs=entry.input_states or {},
                               kinematics=CellKinematics(cell), variables=entry.variables, needs_spray=True)
-        toolpath = language_of(files).read(files, options)
+        toolpath = language_of(files, entry.language).read(files, options)
     except CoatsimError as exc:
         said = exc.reworded({"gun_signal": "gun.signal"})
         raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {said}") from None
     return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
 
+
+
+def user_program_suffix(loaded: ScenarioFile, entry: ProgramVariantSpec) -> str:
+    """The suffix of the copy of a user's program a run writes: its language's first."""
+    return language_of([loaded.resolve(f) for f in entry.files], entry.language).suffixes[0]
 
 
 def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> list[tuple[str, Optional[Path]]]:
@@ -173,9 +179,11 @@ def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> lis
         ("curve.file", loaded.resolve(spec.curve.file) if spec.curve is not None and spec.curve.file else None),
         ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece.kind == "mesh" else None),
         ("gun.footprint", loaded.resolve(table.split(":", 1)[1].strip()) if table.lower().startswith("table:") else None),
+        ("gun.efficiency", loaded.resolve(spec.gun.efficiency.split(":", 1)[1].strip())
+         if spec.gun.efficiency.strip().lower().startswith("table:") else None),
         ("--model" if model is not None else "robot.model", robot),
     ]
     for entry in spec.variants:
-        if not isinstance(entry, str):
+        if isinstance(entry, ProgramVariantSpec):
             files += [(f"the program of variant {entry.name}", loaded.resolve(f)) for f in entry.files]
     return files

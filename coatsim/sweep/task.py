@@ -62,8 +62,11 @@ class PointOutcome:
 
 
 def variant_names(variants) -> tuple[str, ...]:
-    """The names of a resolved scenario's variants (built-in names, or programs' ``name``)."""
-    return tuple(v if isinstance(v, str) else v["name"] for v in variants)
+    """The names of a resolved scenario's variants (built-in names, programs' ``name``, or a
+    built-in variant in a language's name)."""
+    from coatsim.run.variant_spec import variant_label
+
+    return tuple(variant_label(v) for v in variants)
 
 
 def one_line(text: str) -> str:

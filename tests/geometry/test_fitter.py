@@ -318,7 +318,7 @@ def test_deterministic():
 
 @pytest.mark.parametrize("tol", [0.0, -1.0, float("nan"), float("inf")])
 def test_bad_tolerance(tol):
-    with pytest.raises(InputError, match="--tol"):
+    with pytest.raises(InputError, match="tolerance_mm"):
         segment_curve(curve("builtin:sine:points=200"), tol)
 
 

@@ -52,7 +52,7 @@ def test_plan_text_read_is_the_same_path(name, variant, tmp_path):
         assert np.allclose([(s.s0_mm, s.s1_mm, s.v_max_mm_s) for s in a.speed_limits],
                            [(s.s0_mm, s.s1_mm, s.v_max_mm_s) for s in b.speed_limits], atol=1e-4)
     # every pose is finite, every programmed speed the plan's
-    assert all(np.isfinite(p.position).all() for m in toolpath.moves for p in _poses(m))
+    assert all(np.isfinite(p.translation_mm).all() for m in toolpath.moves for p in _poses(m))
     assert {m.settings.speed_mm_s for m in toolpath.spray_moves} == {300.0}
     assert all(math.isfinite(move_length(m)) for m in toolpath.moves if m.kind != "joint")
 

@@ -20,16 +20,30 @@ from coatsim.path.placement import Placement
 from program_helpers import roundrect
 
 GOLDEN = Path(__file__).parent / "data" / "roundrect_polysegment.as"
+pytestmark = pytest.mark.golden
 
 
 def golden_text() -> str:
     return build_program(roundrect(), Placement(), ProgramOptions(), language=KAWASAKI_AS, tolerance_mm=0.1, source="builtin:roundrect").text
 
 
+NUMBER = re.compile(r"-?\d+\.\d+")
+
+
+def same_program(found: str, expected: str) -> None:
+    """The text the same everywhere but its decimal numbers, and each number within one unit of
+    its last printed digit of the golden one: the poses come from sines and cosines, whose last
+    bits may differ between machines and library versions (byte identity holds on one machine)."""
+    assert NUMBER.split(found) == NUMBER.split(expected)
+    for a, b in zip(NUMBER.findall(found), NUMBER.findall(expected)):
+        unit = 10.0 ** -len(b.split(".")[1])
+        assert abs(float(a) - float(b)) <= unit * (1 + 1e-6), (a, b)
+
+
 def test_golden_rounded_rectangle():
-    """The rounded-rectangle program, byte for byte (regenerate with
-    ``python tests/program/test_as_writer.py`` after an intended format change)."""
-    assert golden_text() == GOLDEN.read_text(encoding="ascii")
+    """The rounded-rectangle program against its golden file (regenerate with
+    ``python tests/path/test_as_writer.py`` after an intended format change)."""
+    same_program(golden_text(), GOLDEN.read_text(encoding="ascii"))
 
 
 def test_deterministic_and_well_formed(rr):
@@ -138,7 +152,7 @@ def test_a_header_field_longer_than_a_comment_is_written_whole(n_teeth):
     """A curve with many corners has a long ``speed_limits`` field; it was cut at 200 characters
     like a comment, and the program's own reader refused '4...' (a scenario with a zigzag)."""
     from coatsim.geometry.primitives import Line
-    from coatsim.languages.kawasaki_as.header import SPEED_LIMITS_KEY as HEADER_KEY, parse_limits
+    from coatsim.path.process_record import SPEED_LIMITS_KEY as HEADER_KEY, parse_limits
 
     pts = [(10.0 * i, 20.0 * (i % 2)) for i in range(n_teeth + 1)]
     poly = Polysegment(tuple(Line(a, b) for a, b in zip(pts, pts[1:])), corners=frozenset(range(n_teeth - 1)))

@@ -25,8 +25,9 @@ import pytest
 
 from coatsim.languages.kawasaki_as.files import parse_files
 from coatsim.languages.kawasaki_as.interpreter import Interpreter
-from coatsim.path.check import check_program
-from coatsim.path.convert import ConvertOptions, convert_program
+from program_helpers import check_as as check_program
+from coatsim.path.convert import ConvertOptions
+from program_helpers import convert_as as convert_program
 
 DATA = Path(__file__).parent / "data" / "cells"
 

@@ -71,7 +71,7 @@ def test_program_from_polysegment_json(tmp_path, run_cli):
     assert "program rr: polysegment, 4 lines + 4 arcs" in out and f"wrote {out_file}" in out
     tp = read_toolpath(out_file)
     assert tp.process.tolerance_mm == 0.1 and tp.process.lead_in_mm == 20.0
-    assert tp.spray_moves[0].start.position[2] == pytest.approx(330.0)
+    assert tp.spray_moves[0].start.translation_mm[2] == pytest.approx(330.0)
     assert not tp.process.contours[0].leads_sprayed
     assert all(m.settings.speed_mm_s == 300.0 for m in tp.moves)
     code, text, err = run_cli(["program", str(src), "--variant", "polyline-stop", "--tol", "0.5"])

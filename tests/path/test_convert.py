@@ -12,7 +12,8 @@ import pytest
 from coatsim.core.errors import InputError
 from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.languages.kawasaki_as.source import split_lines
-from coatsim.path.convert import ConvertOptions, convert_program
+from coatsim.path.convert import ConvertOptions
+from program_helpers import convert_as as convert_program
 
 import sys
 from pathlib import Path
@@ -277,7 +278,7 @@ def test_standalone_sprays_every_pass_of_a_loop(tmp_path, kin):
     out = tmp_path / "arcs.as"
     out.write_bytes(result.data)
     tp = read_toolpath(out)
-    runs = [m.end.position[2] for m in tp.spray_moves]
+    runs = [m.end.translation_mm[2] for m in tp.spray_moves]
     assert sorted({round(z) for z in runs}) == [300, 310] and result.text.count("SIGNAL 1 ") == 2
 
 

@@ -10,8 +10,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from coatsim.core.errors import CoatsimError
-from coatsim.path.check import check_program
-from coatsim.path.convert import ConvertOptions, convert_program
+from program_helpers import check_as as check_program
+from coatsim.path.convert import ConvertOptions
+from program_helpers import convert_as as convert_program
 
 SANE = ["0", "1", ".5", "1.E+1", "5E-3", "-0", "3", "20", "-15", "12.345", "2^2", "-(3)", "INT(2.7)", "ABS(-4)"]
 HOSTILE = ["1e300", "-1e300", "1/0", "SQRT(-2)", "1e15", "0.0", "-1"]

@@ -17,7 +17,7 @@ from coatsim.languages.kawasaki_as.parser import parse_as
 from coatsim.path.build import ProgramOptions, build_program
 from coatsim.languages.kawasaki_as.interpreter import interpret
 from coatsim.path.part_program import build_part_program, contour_order, part_centering_offset
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.placement import Placement
 
 from program_helpers import roundrect
@@ -29,7 +29,7 @@ def circle(cx: float, cy: float, r: float) -> Polysegment:
 
 
 PART = [roundrect(), circle(-40.0, 0.0, 12.0), circle(40.0, 0.0, 15.0)]
-PLACEMENT = Placement(frame=Frame(700, 0, 200, 0, 0, 0), standoff_mm=100.0, lead_in_mm=10.0, lead_out_mm=10.0)
+PLACEMENT = Placement(frame=pose_from_xyzoat((700, 0, 200, 0, 0, 0)), standoff_mm=100.0, lead_in_mm=10.0, lead_out_mm=10.0)
 
 
 def toolpath_of(text: str):
@@ -54,13 +54,13 @@ def test_part_program_sprays_each_contour_with_the_gun_off_between():
     runs = spray_runs(tp)
     assert len(runs) == 3
     for run, poly in zip(runs, PART):
-        start = run[0].start.position
+        start = run[0].start.translation_mm
         expected = np.array([700.0 + poly.start[0], poly.start[1], 300.0])
         # a closed contour is sprayed once around: the gun opens at its seam, after the lead-in
         assert np.linalg.norm(start - expected) < 1e-6
-        assert all(abs(m.end.position[2] - 300.0) < 1e-6 for m in run)
+        assert all(abs(m.end.translation_mm[2] - 300.0) < 1e-6 for m in run)
     travel = [m for m in tp.moves if not m.spray and m.kind == "line" and m.start is not None
-              and abs(m.start.position[2] - 340.0) < 1e-6 and abs(m.end.position[2] - 340.0) < 1e-6]
+              and abs(m.start.translation_mm[2] - 340.0) < 1e-6 and abs(m.end.translation_mm[2] - 340.0) < 1e-6]
     assert len(travel) == 2  # one straight gun-off travel at the clearance between each pair of contours
     process = tp.process
     assert len(process.contours) == 3 and process.contour_order == (1, 2, 3)

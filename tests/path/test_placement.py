@@ -9,9 +9,11 @@ import pytest
 
 from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.path.oat import oat_to_matrix, rotation_angle
-from coatsim.path.frames import DEFAULT_FRAME, Frame
-from coatsim.path.placement import PlacedArc, PlacedLine, Placement, centering_offset, place, polyline_polysegment
+from coatsim.geometry.space.rotations import oat_to_matrix
+from coatsim.geometry.space.pose import rotation_angle
+from coatsim.path.frames import DEFAULT_FRAME
+from coatsim.geometry.space.xyzoat import parse_xyzoat, pose_from_xyzoat
+from coatsim.path.placement import Placement, centering_offset, place, polyline_polysegment
 
 from program_helpers import arc_spiral, roundrect
 
@@ -20,19 +22,19 @@ def test_default_frame_standoff_and_tool_down(rr):
     path = place(rr, Placement(standoff_mm=80.0))
     for seg in path.segments:
         for pose in (seg.start, seg.end):
-            assert pose.position[2] == pytest.approx(DEFAULT_FRAME.z + 80.0)
+            assert pose.translation_mm[2] == pytest.approx(DEFAULT_FRAME.translation_mm[2] + 80.0)
             assert np.allclose(pose.rotation, oat_to_matrix(0, 180, 0), atol=1e-15)
-    assert path.segments[1].start.position[:2] == pytest.approx([700.0 - 65.0, -40.0])
+    assert path.segments[1].start.translation_mm[:2] == pytest.approx([700.0 - 65.0, -40.0])
 
 
 def test_tilted_frame_maps_points_and_normal():
-    frame = Frame(500.0, -100.0, 300.0, 30.0, 60.0, -20.0)
+    frame = pose_from_xyzoat((500.0, -100.0, 300.0, 30.0, 60.0, -20.0))
     line = Polysegment((chain((10.0, 5.0), 0.0, [0.0], [20.0])[0],))
     path = place(line, Placement(frame=frame, standoff_mm=50.0, lead_in_mm=0.0, lead_out_mm=0.0))
     r = frame.rotation
     seg = path.segments[0]
-    assert np.allclose(seg.start.position, frame.origin + r @ [10.0, 5.0, 0.0] + 50.0 * r[:, 2])
-    assert np.allclose(seg.end.position, frame.origin + r @ [30.0, 5.0, 0.0] + 50.0 * r[:, 2])
+    assert np.allclose(seg.start.translation_mm, frame.translation_mm + r @ [10.0, 5.0, 0.0] + 50.0 * r[:, 2])
+    assert np.allclose(seg.end.translation_mm, frame.translation_mm + r @ [30.0, 5.0, 0.0] + 50.0 * r[:, 2])
     assert np.allclose(seg.start.rotation[:, 2], -r[:, 2])   # spray axis points at the surface
     assert np.allclose(path.normal, r[:, 2])
 
@@ -43,8 +45,8 @@ def test_lead_in_and_out_are_tangent_extensions():
     lead_in, first, last, lead_out = path.segments[0], path.segments[1], path.segments[-2], path.segments[-1]
     assert (lead_in.part, lead_out.part) == ("lead_in", "lead_out")
     assert lead_in.length == pytest.approx(25.0) and lead_out.length == pytest.approx(12.0)
-    assert np.array_equal(lead_in.end.position, first.start.position)
-    assert np.array_equal(lead_out.start.position, last.end.position)
+    assert np.array_equal(lead_in.end.translation_mm, first.start.translation_mm)
+    assert np.array_equal(lead_out.start.translation_mm, last.end.translation_mm)
     _, t_in = lead_in.point_tangent(np.array([1.0]))
     _, t_first = first.point_tangent(np.array([0.0]))
     _, t_last = last.point_tangent(np.array([1.0]))
@@ -67,7 +69,7 @@ def test_placed_arcs_follow_the_planar_arcs(rr):
         p3, t3 = placed.point_tangent(s / seg.length)
         assert np.allclose(p3[:, :2] - [700.0, 0.0], p2, atol=1e-12)
         assert np.allclose(t3[:, :2], seg.tangents(s), atol=1e-12)
-        assert isinstance(placed, PlacedArc) == (seg.kind == "arc")
+        assert placed.is_arc == (seg.kind == "arc")
 
 
 def test_follow_tangent_turns_the_tool_with_the_path(rr):
@@ -94,10 +96,10 @@ def test_arc_split_into_equal_pieces():
     arc = place(circle, Placement(lead_in_mm=0, lead_out_mm=0)).segments[0]
     pieces = arc.split(math.radians(170.0))
     assert len(pieces) == 3
-    assert all(p.sweep == pytest.approx(2 * math.pi / 3) for p in pieces)
-    assert np.array_equal(pieces[-1].end.position, arc.end.position)
+    assert all(p.geometry.sweep == pytest.approx(2 * math.pi / 3) for p in pieces)
+    assert np.array_equal(pieces[-1].end.translation_mm, arc.end.translation_mm)
     for a, b in zip(pieces[:-1], pieces[1:]):
-        assert np.allclose(a.end.position, b.start.position, atol=1e-12)
+        assert np.allclose(a.end.translation_mm, b.start.translation_mm, atol=1e-12)
     assert arc.split(math.radians(360.0)) == (arc,)
 
 
@@ -110,10 +112,11 @@ def test_centering_offset_uses_the_exact_bounding_box():
 
 
 def test_frame_parse_and_errors():
-    assert Frame.parse("1, 2,3,4,5,6") == Frame(1, 2, 3, 4, 5, 6)
+    assert parse_xyzoat("1, 2,3,4,5,6", "frame").is_close(pose_from_xyzoat((1, 2, 3, 4, 5, 6)))
     for bad in ("1,2,3", "a,b,c,d,e,f", "1,2,3,4,5,nan", ""):
-        with pytest.raises(InputError, match="--frame"):
-            Frame.parse(bad)
+        with pytest.raises(InputError, match="^frame: expected 6") as info:
+            parse_xyzoat(bad, "frame")
+        assert str(info.value.reworded({"frame": "--frame"})).startswith("--frame: expected 6")
 
 
 @pytest.mark.parametrize("field,value", [("standoff_mm", 0.0), ("lead_in_mm", -1.0), ("lead_out_mm", math.inf)])
@@ -128,4 +131,4 @@ def test_polyline_polysegment_closes_and_drops_repeats():
     assert poly.end == poly.start
     with pytest.raises(InputError):
         polyline_polysegment(np.array([[0, 0], [0, 0]]), closed=False)
-    assert isinstance(place(poly, Placement()).segments[1], PlacedLine)
+    assert not place(poly, Placement()).segments[1].is_arc

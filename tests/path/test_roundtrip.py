@@ -18,7 +18,7 @@ from coatsim.geometry.benchmark import bench_curve
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.path.build import VARIANTS, ProgramOptions, build_program
-from coatsim.path.frames import Frame
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.path.placement import Placement, centering_offset
 
 from program_helpers import arc_spiral, path_errors, roundrect
@@ -47,8 +47,8 @@ def test_constructed_curves(poly, variant):
     assert toolpath.process.lead_in_mm == 30.0
 
 
-@pytest.mark.parametrize("frame", [Frame(700, 0, 200, 0, 0, 0), Frame(600, -300, 900, 90, 90, 0),
-                                   Frame(-400, 500, 100, 35, 150, -60), Frame(800, 100, 300, 10, 180, 20)])
+@pytest.mark.parametrize("frame", [pose_from_xyzoat((700, 0, 200, 0, 0, 0)), pose_from_xyzoat((600, -300, 900, 90, 90, 0)),
+                                   pose_from_xyzoat((-400, 500, 100, 35, 150, -60)), pose_from_xyzoat((800, 100, 300, 10, 180, 20))])
 @pytest.mark.parametrize("follow", [False, True])
 def test_frames_and_tool_roll(frame, follow):
     placement = Placement(frame=frame, follow_tangent=follow, roll_deg=25.0, standoff_mm=60.0)
@@ -60,8 +60,8 @@ def _approach_and_depart_are_dry(toolpath):
     assert not approach.spray and not down.spray and not toolpath.moves[-1].spray
     assert down.settings.stop_at_end
     # The approach and depart are along the surface normal, standoff + 50 mm above the surface.
-    assert approach.target.position[2] == pytest.approx(200.0 + 100.0 + 50.0)
-    assert toolpath.moves[-1].end.position[2] == pytest.approx(200.0 + 100.0 + 50.0)
+    assert approach.target.translation_mm[2] == pytest.approx(200.0 + 100.0 + 50.0)
+    assert toolpath.moves[-1].end.translation_mm[2] == pytest.approx(200.0 + 100.0 + 50.0)
 
 
 @pytest.mark.parametrize("variant", VARIANTS)
@@ -73,7 +73,7 @@ def test_closed_contour_is_sprayed_exactly_once_around(rr, variant):
     path_moves = toolpath.moves[2:-1]
     assert [m.spray for m in path_moves] == [False] + [True] * (len(path_moves) - 2) + [False]
     assert sum(move_length(m) for m in toolpath.spray_moves) == pytest.approx(built.curve.length, abs=1e-5)
-    assert np.allclose(toolpath.spray_moves[0].start.position, toolpath.spray_moves[-1].end.position, atol=1e-6)
+    assert np.allclose(toolpath.spray_moves[0].start.translation_mm, toolpath.spray_moves[-1].end.translation_mm, atol=1e-6)
     assert not toolpath.process.contours[0].leads_sprayed
     # on the fly: no stop where the gun switches, unless the variant stops at every point
     stop = variant == "polyline-stop"

@@ -16,7 +16,7 @@ from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.path.build import VARIANTS, ProgramOptions, build_program
 from coatsim.path.placement import Placement
-from coatsim.languages.kawasaki_as.header import format_limits, parse_limits
+from coatsim.path.process_record import format_limits, parse_limits
 from coatsim.path.speed_limits import SpeedLimit, corner_limits, curve_limits
 
 from program_helpers import roundrect

@@ -17,7 +17,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from coatsim.languages.kawasaki_as import interpret, parse_as
-from coatsim.path.oat import oat_to_matrix
+from coatsim.geometry.space.rotations import oat_to_matrix
 from coatsim.path.tool_frames import gun_in_tcp, tool_mismatches
 
 TRANS = """.TRANS
@@ -49,24 +49,24 @@ def test_a_tool_change_after_motion_stops_it_and_keeps_the_flange():
     assert tp.moves[1].settings.stop_at_end  # the controller finishes the motion before changing frames
     start = tp.moves[2].start
     # same flange: the new TCP is 50 mm further along the tool z (pointing down, base -z)
-    np.testing.assert_allclose(start.position, [600, 0, 250], atol=1e-9)
+    np.testing.assert_allclose(start.translation_mm, [600, 0, 250], atol=1e-9)
     np.testing.assert_allclose(start.rotation, tp.moves[1].end.rotation, atol=1e-12)
-    np.testing.assert_allclose(tp.moves[2].end.position, [600, 100, 300], atol=1e-9)
+    np.testing.assert_allclose(tp.moves[2].end.translation_mm, [600, 100, 300], atol=1e-9)
 
 
 def test_relative_motion_after_a_tool_change_uses_the_new_tcp():
     tp = run("  TOOL TRANS(0,0,250,0,0,0)\n  JMOVE a\n  TOOL TRANS(0,0,300,0,0,0)\n  LDEPART 20\n")
     # the new TCP starts at z = 250 (50 mm below the old one), then backs off 20 mm along tool z (up)
-    np.testing.assert_allclose(tp.moves[1].end.position, [500, 0, 270], atol=1e-9)
+    np.testing.assert_allclose(tp.moves[1].end.translation_mm, [500, 0, 270], atol=1e-9)
 
 
 def test_base_applies_from_where_it_is_set():
     tp = run("  JMOVE a\n  BASE TRANS(0,200,0,90,0,0)\n  LMOVE a\n  BASE NULL\n  LMOVE b\n")
-    np.testing.assert_allclose(tp.moves[0].target.position, [500, 0, 300], atol=1e-9)
+    np.testing.assert_allclose(tp.moves[0].target.translation_mm, [500, 0, 300], atol=1e-9)
     # a = (500, 0, 300) in a base frame turned 90 deg about z and shifted 200 mm along y
-    np.testing.assert_allclose(tp.moves[1].end.position, [0, 700, 300], atol=1e-9)
+    np.testing.assert_allclose(tp.moves[1].end.translation_mm, [0, 700, 300], atol=1e-9)
     np.testing.assert_allclose(tp.moves[1].end.rotation, oat_to_matrix(90, 0, 0) @ oat_to_matrix(0, 180, 0), atol=1e-12)
-    np.testing.assert_allclose(tp.moves[2].end.position, [600, 0, 300], atol=1e-9)
+    np.testing.assert_allclose(tp.moves[2].end.translation_mm, [600, 0, 300], atol=1e-9)
     assert tp.moves[2].start is tp.moves[1].end
 
 

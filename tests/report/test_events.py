@@ -8,7 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from coatsim.languages.kawasaki_as.header import decode
+from coatsim.path.process_record import decode
 from coatsim.report.events import lines_of, parse_step, run_events, speed_dips
 from coatsim.robot.sampling import step_label
 

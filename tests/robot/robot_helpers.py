@@ -5,13 +5,14 @@ from __future__ import annotations
 import numpy as np
 
 from coatsim.path.process import ProcessInfo
-from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, Pose, ToolPath
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, ToolPath
 
 DOWN = np.diag([-1.0, 1.0, -1.0])  # O-A-T (0, 180, 0): tool z along base -z
 
 
 def pose(x: float, y: float, z: float = 300.0) -> Pose:
-    return Pose(np.array([x, y, z], dtype=float), DOWN)
+    return Pose(DOWN, np.array([x, y, z], dtype=float))
 
 
 def settings(speed: float = 200.0, accuracy: float = 1.0, stop: bool = False) -> MotionSettings:

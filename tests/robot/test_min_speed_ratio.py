@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.languages.kawasaki_as.header import decode
+from coatsim.path.process_record import decode
 from coatsim.path.process import ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import SpeedLimit
 from coatsim.core.errors import InputError

@@ -115,7 +115,7 @@ def test_a_tool_change_mid_program_moves_the_spray_point_from_there_on(cell, tmp
     assert log.path_error[before].max() < 0.25
     # the controller's TCP starts 20 mm down the tool axis of p3 (the flange unmoved) and runs to p4
     z3 = moves[3].end.rotation[:, 2]
-    start, end = moves[3].end.position + 20.0 * z3, moves[4].end.position
+    start, end = moves[3].end.translation_mm + 20.0 * z3, moves[4].end.translation_mm
     during = log.spray & (log.position[:, 1] > 2.0) & (log.position[:, 1] < 38.0)
     ahead = log.position[during] + 20.0 * log.axis[during]  # the gun is 20 mm behind that TCP
     u = np.clip((ahead - start) @ (end - start) / np.sum((end - start) ** 2), 0, 1)
@@ -157,7 +157,7 @@ def test_the_diverged_ellipse_exits_3_naming_a_program_line(tmp_path, run_cli):
     assert line, err
     stmt = prog.read_text().splitlines()[int(line.group(1)) - 1].split(";")[0].split()
     assert stmt[0] in ("JAPPRO", "LMOVE", "C1MOVE", "C2MOVE", "LDEPART", "JMOVE"), stmt
-    assert "the simulation diverged" in err and "touches the cell" in err
+    assert "touches the" in err  # found on the commanded motion, before any playback
     assert not (tmp_path / "out" / "trajectory.csv").exists()
 
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import make_space_curve
@@ -27,7 +28,7 @@ from coatsim.geometry.space.nearest import polyline_index
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
 from coatsim.geometry.space.segment import SpaceSegmentation, segment_space_curve
 
-ANGLE_TOL_DEG = 2.0  # the default: the interpolated axis stays this close to the wanted one
+ANGLE_TOL_DEG = defaults.ANGLE_TOL_DEG  # the interpolated axis stays this close to the wanted one
 MAX_TURN_DEG = 90.0  # consecutive input axes turning more than this are a flip, not a surface
 SAMPLES_PER_MM = 2.0  # the axis error is measured this densely (and at least 16 times a segment)
 MIN_SPLIT_MM = 1e-3  # no segment is split shorter than this

@@ -22,6 +22,10 @@ if TYPE_CHECKING:
 ORTHONORMAL_TOL = 1e-9  # |RᵀR − I| and |det R − 1| above this: not a rotation
 
 
+class InvalidPose(ValueError):
+    """Not a rigid transformation: a non-finite translation or a matrix that is not a rotation."""
+
+
 def _frozen(array: np.ndarray) -> np.ndarray:
     out = np.array(array, dtype=float)  # a copy: the caller's array stays theirs
     out.flags.writeable = False
@@ -32,9 +36,9 @@ def check_rotation(rotation: np.ndarray) -> np.ndarray:
     """``rotation`` as a (3, 3) float array; ValueError unless it is a proper rotation."""
     r = np.asarray(rotation, dtype=float)
     if r.shape != (3, 3) or not np.isfinite(r).all():
-        raise ValueError(f"a rotation is a finite 3x3 matrix, got shape {r.shape}")
+        raise InvalidPose(f"a rotation is a finite 3x3 matrix, got shape {r.shape}")
     if np.abs(r.T @ r - np.eye(3)).max() > ORTHONORMAL_TOL or abs(np.linalg.det(r) - 1.0) > ORTHONORMAL_TOL:
-        raise ValueError("the matrix is not a rotation (orthonormal with determinant +1)")
+        raise InvalidPose("the matrix is not a rotation (orthonormal with determinant +1)")
     return r
 
 
@@ -96,7 +100,7 @@ class Pose:
     def __post_init__(self) -> None:
         t = np.asarray(self.translation_mm, dtype=float)
         if t.shape != (3,) or not np.isfinite(t).all():
-            raise ValueError(f"a translation is 3 finite numbers (mm), got shape {t.shape}")
+            raise InvalidPose(f"a translation is 3 finite numbers (mm), got {t}")
         object.__setattr__(self, "rotation", _frozen(check_rotation(self.rotation)))
         object.__setattr__(self, "translation_mm", _frozen(t))
 

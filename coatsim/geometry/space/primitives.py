@@ -5,7 +5,7 @@ maps a planar ``Line``/``Arc`` of coatsim.geometry.primitives, drawn in the XY p
 frame, into space. ``arc_through`` gives the arc of a three-point move (C1MOVE/C2MOVE,
 MoveC, CIRC); ``arc_from_tangent`` and ``arc_from_corner`` the arcs a G1 chain is made of.
 
-``Arc3.sweep`` is positive, in (0, 2π]: the arc turns counter-clockwise about its unit
+``Arc3.sweep`` is positive (more than 2π where a chain loops): the arc turns counter-clockwise about its unit
 ``normal`` (right-handed), so a planar clockwise arc is placed with the frame's −z as normal.
 Points on an arc are computed as offsets from the start (never ``centre + r·...``), so arcs
 of huge radius keep their precision.
@@ -127,8 +127,9 @@ class Line3:
 
 @dataclass(frozen=True, eq=False)
 class Arc3:
-    """Circular arc from ``start`` turning ``sweep`` rad (0 < sweep <= 2π) counter-clockwise
-    about the unit ``normal`` around ``center``; ``end`` is where it arrives."""
+    """Circular arc from ``start`` turning ``sweep`` rad (> 0; more than a full turn where a
+    chain loops) counter-clockwise about the unit ``normal`` around ``center``; ``end`` is where
+    it arrives."""
 
     start: np.ndarray
     end: np.ndarray
@@ -143,8 +144,8 @@ class Arc3:
             object.__setattr__(self, name, _vec(getattr(self, name)))
         if abs(float(np.linalg.norm(self.normal)) - 1.0) > UNIT_TOL:
             raise ValueError("an arc's normal must be a unit vector")
-        if not (self.radius > 0 and math.isfinite(self.radius) and 0 < self.sweep <= 2 * math.pi + 1e-12):
-            raise ValueError(f"an arc needs radius > 0 and 0 < sweep <= 2π, got r={self.radius}, sweep={self.sweep}")
+        if not (self.radius > 0 and math.isfinite(self.radius) and 0 < self.sweep and math.isfinite(self.sweep)):
+            raise ValueError(f"an arc needs radius > 0 and a finite sweep > 0, got r={self.radius}, sweep={self.sweep}")
         object.__setattr__(self, "radius", float(self.radius))
         object.__setattr__(self, "sweep", float(self.sweep))
 
@@ -176,13 +177,20 @@ class Arc3:
 
     def points(self, s: np.ndarray) -> np.ndarray:
         """Points (n, 3) at arc lengths ``s`` (n,) from the start."""
-        s = np.atleast_1d(np.asarray(s, dtype=float))
-        return self.start + rotate_about(self.radial, self.normal, s / self.radius)
+        return self.at_angles(np.atleast_1d(np.asarray(s, dtype=float)) / self.radius)
+
+    def at_angles(self, angles: np.ndarray) -> np.ndarray:
+        """Points (n, 3) turned by ``angles`` (n,) rad from the start about the normal (written
+        as offsets from the start, so huge radii keep their precision)."""
+        return self.start + rotate_about(self.radial, self.normal, np.atleast_1d(np.asarray(angles, dtype=float)))
 
     def tangents(self, s: np.ndarray) -> np.ndarray:
         """Unit tangents (n, 3) at arc lengths ``s``."""
-        s = np.atleast_1d(np.asarray(s, dtype=float))
-        radial = self.radial + rotate_about(self.radial, self.normal, s / self.radius)
+        return self.tangents_at_angles(np.atleast_1d(np.asarray(s, dtype=float)) / self.radius)
+
+    def tangents_at_angles(self, angles: np.ndarray) -> np.ndarray:
+        """Unit tangents (n, 3) turned by ``angles`` (n,) rad from the start."""
+        radial = self.radial + rotate_about(self.radial, self.normal, np.atleast_1d(np.asarray(angles, dtype=float)))
         return np.cross(self.normal, radial) / self.radius
 
     def nearest(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -4,10 +4,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Mapping
+from typing import Mapping
 
-if TYPE_CHECKING:
-    from coatsim.languages.kawasaki_as.ast import Statement
+from coatsim.languages.kawasaki_as.ast_statements import Statement
 
 
 @dataclass(frozen=True)

@@ -43,68 +43,82 @@ class _Compiler:
             self.statement(st)
 
     def statement(self, st: ast.Statement) -> None:
-        t = type(st)
-        if t is ast.Label:
-            if st.name in self.labels:
-                raise InputError(f"{self.program.source}:{st.line}: label {st.name} is defined twice in program "
-                                 f"'{self.program.name}' (first at line {self.label_lines[st.name]})")
-            self.labels[st.name], self.label_lines[st.name] = self.here(), st.line
-        elif t is ast.Goto:
-            index = self.emit(JUMP if st.condition is None else JUMP_IF_TRUE, st.line, st.condition, None)
-            self.gotos.append((index, st.label, st.line))
-        elif t is ast.If:
-            ends = []
-            for condition, body in st.branches:
-                test = self.emit(JUMP_IF_FALSE, st.line, condition, None)
-                self.body(body)
-                ends.append(self.emit(JUMP, st.line, None, None))
-                self.ops[test][3] = self.here()
-            self.body(st.orelse)
-            for i in ends:
-                self.ops[i][3] = self.here()
-        elif t is ast.While:
-            top = self.here()
-            test = self.emit(JUMP_IF_FALSE, st.line, st.condition, None)
-            self.loop(st.body)
-            back = self.emit(JUMP, st.end_line, None, top)
-            self.loops[back] = (st.line, "WHILE loop")
-            self.ops[test][3] = self.here()
-            self.close_loop()
-        elif t is ast.DoUntil:
-            top = self.here()
-            self.loop(st.body)
-            back = self.emit(JUMP_IF_FALSE, st.end_line, st.condition, top)
-            self.loops[back] = (st.line, "DO ... UNTIL loop")
-            self.close_loop()
-        elif t is ast.For:
-            slot = self.slots
-            self.slots += 1
-            self.emit(FOR_INIT, st.line, st, slot)
-            test = self.emit(FOR_TEST, st.line, st, slot, None)
-            self.loop(st.body)
-            back = self.emit(FOR_NEXT, st.end_line, st, slot, test)
-            self.loops[back] = (st.line, "FOR loop")
-            self.ops[test][4] = self.here()
-            self.close_loop()
-        elif t is ast.Case:
-            case = self.emit(CASE, st.line, st, [], None, None)
-            ends = []
-            for _, body, _ in st.branches:
-                self.ops[case][3].append(self.here())
-                self.body(body)
-                ends.append(self.emit(JUMP, st.line, None, None))
-            self.ops[case][4] = self.here()
-            if st.default is not None:
-                self.body(st.default)
-            self.ops[case][5] = self.here()
-            for i in ends:
-                self.ops[i][3] = self.here()
-        elif t is ast.Exit:
-            if not self.exits:
-                raise InputError(f"{self.program.source}:{st.line}: EXIT outside a loop (WHILE, DO, FOR)")
-            self.exits[-1].append(self.emit(JUMP, st.line, None, None))
-        else:
+        """Compile one statement: a block into its jumps, anything else into one EXEC."""
+        compile_block = self._BLOCKS.get(type(st))
+        if compile_block is None:
             self.emit(EXEC, st.line, st)
+        else:
+            compile_block(self, st)
+
+    def _label(self, st: ast.Label) -> None:
+        if st.name in self.labels:
+            raise InputError(f"{self.program.source}:{st.line}: label {st.name} is defined twice in program "
+                             f"'{self.program.name}' (first at line {self.label_lines[st.name]})")
+        self.labels[st.name], self.label_lines[st.name] = self.here(), st.line
+
+    def _goto(self, st: ast.Goto) -> None:
+        index = self.emit(JUMP if st.condition is None else JUMP_IF_TRUE, st.line, st.condition, None)
+        self.gotos.append((index, st.label, st.line))
+
+    def _if(self, st: ast.If) -> None:
+        ends = []
+        for condition, body in st.branches:
+            test = self.emit(JUMP_IF_FALSE, st.line, condition, None)
+            self.body(body)
+            ends.append(self.emit(JUMP, st.line, None, None))
+            self.ops[test][3] = self.here()
+        self.body(st.orelse)
+        for i in ends:
+            self.ops[i][3] = self.here()
+
+    def _while(self, st: ast.While) -> None:
+        top = self.here()
+        test = self.emit(JUMP_IF_FALSE, st.line, st.condition, None)
+        self.loop(st.body)
+        back = self.emit(JUMP, st.end_line, None, top)
+        self.loops[back] = (st.line, "WHILE loop")
+        self.ops[test][3] = self.here()
+        self.close_loop()
+
+    def _do_until(self, st: ast.DoUntil) -> None:
+        top = self.here()
+        self.loop(st.body)
+        back = self.emit(JUMP_IF_FALSE, st.end_line, st.condition, top)
+        self.loops[back] = (st.line, "DO ... UNTIL loop")
+        self.close_loop()
+
+    def _for(self, st: ast.For) -> None:
+        slot = self.slots
+        self.slots += 1
+        self.emit(FOR_INIT, st.line, st, slot)
+        test = self.emit(FOR_TEST, st.line, st, slot, None)
+        self.loop(st.body)
+        back = self.emit(FOR_NEXT, st.end_line, st, slot, test)
+        self.loops[back] = (st.line, "FOR loop")
+        self.ops[test][4] = self.here()
+        self.close_loop()
+
+    def _case(self, st: ast.Case) -> None:
+        case = self.emit(CASE, st.line, st, [], None, None)
+        ends = []
+        for _, body, _ in st.branches:
+            self.ops[case][3].append(self.here())
+            self.body(body)
+            ends.append(self.emit(JUMP, st.line, None, None))
+        self.ops[case][4] = self.here()
+        if st.default is not None:
+            self.body(st.default)
+        self.ops[case][5] = self.here()
+        for i in ends:
+            self.ops[i][3] = self.here()
+
+    def _exit(self, st: ast.Exit) -> None:
+        if not self.exits:
+            raise InputError(f"{self.program.source}:{st.line}: EXIT outside a loop (WHILE, DO, FOR)")
+        self.exits[-1].append(self.emit(JUMP, st.line, None, None))
+
+    _BLOCKS = {ast.Label: _label, ast.Goto: _goto, ast.If: _if, ast.While: _while, ast.DoUntil: _do_until,
+               ast.For: _for, ast.Case: _case, ast.Exit: _exit}
 
     def loop(self, body: tuple[ast.Statement, ...]) -> None:
         self.exits.append([])

@@ -12,19 +12,23 @@ left to right in a loop, so a long sum costs no stack.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Optional, Union
+from typing import Optional, Union
 
 import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
+from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kawasaki_as import ast
-from coatsim.languages.kawasaki_as.evaluate_calls import POSE_FUNCTIONS, joint_call, pose_call, real_call
+from coatsim.languages.kawasaki_as.evaluate_calls import (
+    POSE_FUNCTIONS,
+    joint_call,
+    pose_call,
+    real_call,
+)
 from coatsim.languages.kawasaki_as.evaluate_strings import encode, string_call
+from coatsim.languages.kawasaki_as.machine import Machine
 from coatsim.languages.kawasaki_as.unknowns import NotSimulated
-from coatsim.languages.kawasaki_as.values import Frame, PoseJoints
-
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.interpreter import Interpreter
+from coatsim.languages.kawasaki_as.values import PoseJoints
 
 TRUE, FALSE = -1.0, 0.0
 _COMPARE = {"==": lambda a, b: a == b, "<>": lambda a, b: a != b, "<": lambda a, b: a < b,
@@ -42,7 +46,7 @@ def _int(x: float) -> int:
 class Evaluator:
     """Evaluates expressions against the variables, signals and pose of an interpreter."""
 
-    def __init__(self, run: "Interpreter") -> None:
+    def __init__(self, run: Machine) -> None:
         self.run = run
 
     def error(self, message: str) -> InputError:
@@ -212,7 +216,7 @@ class Evaluator:
         return encode(self, items)
 
     # --- poses ---------------------------------------------------------------------------
-    def pose(self, e: ast.Expr) -> Frame:
+    def pose(self, e: ast.Expr) -> Pose:
         t = type(e)
         if t is ast.Name and not e.whole:
             if e.kind == "joint":
@@ -231,19 +235,19 @@ class Evaluator:
         if t is ast.Shift:
             base = self.pose(e.base)
             delta = np.array([0.0 if d is None else self.real(d) for d in e.delta])
-            return Frame(base.r, base.p + delta)
+            return Pose(base.rotation, base.translation_mm + delta)
         if t is ast.Call:
             return pose_call(self, e)
         if t is ast.JointLiteral:
             return self.run.joint_frame(self.joints(e))
         raise self.error(f"expected a pose, found {self.describe(e)}")
 
-    def compose(self, rest: tuple[tuple[str, ast.Expr], ...], frame: Frame) -> Frame:
+    def compose(self, rest: tuple[tuple[str, ast.Expr], ...], frame: Pose) -> Pose:
         for op, x in rest:
             if op != "+":
                 raise self.error("poses combine with '+' (and '-p' inverts p); 'a - b' is not a pose" if op == "-"
                                  else f"'{op}' does not apply to poses")
-            frame = frame * self.pose(x)
+            frame = frame @ self.pose(x)
         return frame
 
     # --- joints --------------------------------------------------------------------------

@@ -10,17 +10,21 @@ skipped). A call of a name outside the index is noted the same way.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat, xyzoat
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.evaluate_strings import val
+from coatsim.languages.kawasaki_as.machine import Evaluation
 from coatsim.languages.kawasaki_as.unknowns import NotSimulated
-from coatsim.languages.kawasaki_as.values import IDENTITY, Frame, average, frame_from_points, rotation_about
-
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.evaluate import Evaluator
+from coatsim.languages.kawasaki_as.values import (
+    IDENTITY,
+    average,
+    frame_from_points,
+    rotation_about,
+)
 
 _MATH1 = {"ABS", "SQRT", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "INT", "ROUND", "SIGN"}
 # Functions of the index the twin does not compute: noted, 0 (or no pose).
@@ -39,7 +43,7 @@ REAL_FUNCTIONS = _MATH1 | _EXIST | {
 JOINT_FUNCTIONS = {"#HERE", "#DEST", "#PPOINT", "#HOME"}
 
 
-def not_simulated(ev: Evaluator, e: ast.Call, gives: str) -> None:
+def not_simulated(ev: Evaluation, e: ast.Call, gives: str) -> None:
     """Note (once per function) that the run does not compute ``e``."""
     known = e.name in NOT_SIMULATED or e.name.lstrip("$") in NOT_SIMULATED
     what = "is not simulated" if known else \
@@ -47,7 +51,7 @@ def not_simulated(ev: Evaluator, e: ast.Call, gives: str) -> None:
     ev.run.not_simulated(f"function:{e.name}", f"{e.name} {what}; it gives {gives}")
 
 
-def real_call(ev: Evaluator, e: ast.Call) -> float:
+def real_call(ev: Evaluation, e: ast.Call) -> float:
     """The number a function gives."""
     name, args = e.name, e.args
     if name in _MATH1:
@@ -80,10 +84,10 @@ def real_call(ev: Evaluator, e: ast.Call) -> float:
         return float(ev.run.read_bits(start, count))
     if name == "DISTANCE":
         ev.arity(e, 2)
-        return float(np.linalg.norm(ev.pose(ev.arg(e, 0)).p - ev.pose(ev.arg(e, 1)).p))
+        return float(np.linalg.norm(ev.pose(ev.arg(e, 0)).translation_mm - ev.pose(ev.arg(e, 1)).translation_mm))
     if name in ("DX", "DY", "DZ"):
         ev.arity(e, 1)
-        return float(ev.pose(ev.arg(e, 0)).p["XYZ".index(name[1])])
+        return float(ev.pose(ev.arg(e, 0)).translation_mm["XYZ".index(name[1])])
     if name == "DEXT":
         return _dext(ev, e)
     if name in ("MSPEED", "MSPEED2"):
@@ -102,7 +106,7 @@ def real_call(ev: Evaluator, e: ast.Call) -> float:
     return 0.0
 
 
-def _math1(ev: Evaluator, name: str, x: float) -> float:
+def _math1(ev: Evaluation, name: str, x: float) -> float:
     try:
         if name == "ABS":
             return abs(x)
@@ -121,14 +125,14 @@ def _math1(ev: Evaluator, name: str, x: float) -> float:
         raise ev.failure(f"{name}({x:g}) has no real value") from None
 
 
-def _switch_name(ev: Evaluator, e: ast.Call) -> str:
+def _switch_name(ev: Evaluation, e: ast.Call) -> str:
     arg = ev.arg(e, 0)
     if isinstance(arg, ast.Name) and not arg.index:
         return arg.name.upper()
     return ev.string(arg).upper()
 
 
-def _instr(ev: Evaluator, e: ast.Call) -> float:
+def _instr(ev: Evaluation, e: ast.Call) -> float:
     if len(e.args) == 3:
         start = ev.integer(ev.arg(e, 0), "INSTR start")
         text, part = ev.string(ev.arg(e, 1)), ev.string(ev.arg(e, 2))
@@ -138,17 +142,17 @@ def _instr(ev: Evaluator, e: ast.Call) -> float:
     return float(text.find(part, max(start, 1) - 1) + 1)
 
 
-def _dext(ev: Evaluator, e: ast.Call) -> float:
+def _dext(ev: Evaluation, e: ast.Call) -> float:
     ev.arity(e, 2)
     n = ev.integer(ev.arg(e, 1), "the DEXT component")
     target = ev.arg(e, 0)
-    values = ev.joints(target) if ev.kind(target) == "joint" else ev.pose(target).xyzoat()
+    values = ev.joints(target) if ev.kind(target) == "joint" else xyzoat(ev.pose(target))
     if not 1 <= n <= len(values):
         raise ev.error(f"DEXT component {n} out of range 1..{len(values)}")
     return float(values[n - 1])
 
 
-def pose_call(ev: Evaluator, e: ast.Call) -> Frame:
+def pose_call(ev: Evaluation, e: ast.Call) -> Pose:
     """The transformation a function gives."""
     name = e.name
     if name == "TRANS":
@@ -157,13 +161,13 @@ def pose_call(ev: Evaluator, e: ast.Call) -> Frame:
         if any(a is not None for a in e.args[6:]):
             ev.run.warn("trans-external-axes", "TRANS values beyond the 6th (external axes) are ignored")
         values = [0.0 if a is None else ev.real(a) for a in e.args[:6]] + [0.0] * (6 - len(e.args[:6]))
-        return Frame.from_xyzoat(*values)
+        return pose_from_xyzoat(values)
     if name in ("RX", "RY", "RZ"):
         ev.arity(e, 1)
         return rotation_about("XYZ".index(name[1]), ev.real(ev.arg(e, 0)))
     if name == "FRAME":
         ev.arity(e, 4)
-        p = [ev.pose(ev.arg(e, i)).p for i in range(4)]
+        p = [ev.pose(ev.arg(e, i)).translation_mm for i in range(4)]
         frame = frame_from_points(*p)
         if frame is None:
             raise ev.failure("FRAME: the first three points do not span a plane")
@@ -186,7 +190,7 @@ def pose_call(ev: Evaluator, e: ast.Call) -> Frame:
     raise NotSimulated(f"{name}(...) is not simulated, so its pose is unknown")
 
 
-def joint_call(ev: Evaluator, e: ast.Call) -> tuple[float, ...]:
+def joint_call(ev: Evaluation, e: ast.Call) -> tuple[float, ...]:
     """The joint value (deg) a #-function gives."""
     name = e.name
     if name in ("#HERE", "#DEST"):

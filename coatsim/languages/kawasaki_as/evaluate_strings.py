@@ -5,13 +5,10 @@ VAL's reading of a number at the start of a string."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Optional
+from typing import Optional
 
 from coatsim.languages.kawasaki_as import ast
-
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.evaluate import Evaluator
-
+from coatsim.languages.kawasaki_as.machine import Evaluation
 
 # $-functions of the index the twin does not compute (clock, errors, system data): "".
 _NOT_SIMULATED = {"$DATE", "$TIME", "$ERROR", "$ERRORS", "$ERRLOG", "$SYSDATA"}
@@ -30,7 +27,7 @@ def val(text: str) -> float:
     return best if math.isfinite(best) else 0.0
 
 
-def string_call(ev: Evaluator, e: ast.Call) -> str:
+def string_call(ev: Evaluation, e: ast.Call) -> str:
     """The value of a $-function call."""
     name = e.name
     if name == "$MID":
@@ -61,7 +58,7 @@ def string_call(ev: Evaluator, e: ast.Call) -> str:
     return ""
 
 
-def encode(ev: Evaluator, items: tuple[Optional[ast.Expr], ...]) -> str:
+def encode(ev: Evaluation, items: tuple[Optional[ast.Expr], ...]) -> str:
     """$ENCODE / TYPE text: values in the current format (/D, /Fw.d, /Ew.d, /Gw.d, /Xn)."""
     out, fmt = [], "G"
     for item in items:
@@ -81,7 +78,7 @@ def encode(ev: Evaluator, items: tuple[Optional[ast.Expr], ...]) -> str:
     return "".join(out)
 
 
-def decode(ev: Evaluator, e: ast.Call) -> str:
+def decode(ev: Evaluation, e: ast.Call) -> str:
     """$DECODE($s, $separators, mode): the leading characters of $s up to a separator
     (mode 0, the default) or the leading separators (mode 1), removed from $s (a string
     variable, written plain as cells do or as a reference ``&$s``)."""

@@ -24,8 +24,9 @@ from dataclasses import dataclass
 from typing import Mapping, Optional, Sequence, Union
 
 
+from coatsim.geometry.space.pose import InvalidPose, Pose
 from coatsim.core.errors import CoatsimError, ExecutionError, InputError
-from coatsim.languages.kawasaki_as.header import decode as decode_header
+from coatsim.path.process_record import decode as decode_header
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
@@ -39,7 +40,7 @@ from coatsim.languages.kawasaki_as.scope import KINDS, Scope
 from coatsim.languages.kawasaki_as.statements_exec import ReturnFromProgram, StopProgram, execute_statement, \
     statement_name
 from coatsim.languages.kawasaki_as.unknowns import ABSENT, Absent, NotSimulated, UnknownRead, Unknowns
-from coatsim.languages.kawasaki_as.values import IDENTITY, Frame
+from coatsim.languages.kawasaki_as.values import IDENTITY
 from coatsim.path.toolpath import Kinematics, ToolPath
 
 MAX_STEPS = 1_000_000
@@ -57,7 +58,7 @@ class Run:
 
     toolpath: ToolPath
     move_origins: tuple[tuple[str, int, int], ...]
-    move_bases: tuple[Frame, ...]
+    move_bases: tuple[Pose, ...]
     executions: Mapping[tuple[str, int], int]
     programs: Mapping[str, ast.Program]
     gun_on_at_end: bool = False
@@ -114,7 +115,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.stopped = ""  # "file:line: HALT" of the STOP / HALT that ended the run
         self.rng: Optional[_random.Random] = None
         self.origins: list[tuple[str, int, int]] = []
-        self.bases: list[Frame] = []
+        self.bases: list[Pose] = []
         self.executions: Counter = Counter()
         self.unknowns = Unknowns()
         self.skipped_via: Optional[int] = None  # line of a C1MOVE skipped: its C2MOVE goes too
@@ -278,6 +279,8 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         before = self.unknowns.reads
         try:
             execute_statement(self, st)
+        except InvalidPose as exc:
+            raise self.failure(f"the pose is not a finite rigid transformation ({exc})") from None
         except Absent as exc:
             self.absent(st, exc.reason, isinstance(exc, NotSimulated))
         except CoatsimError as exc:
@@ -356,7 +359,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.stack.append(_Frame(main, Scope(), {}))
         self.controller.finish(main.end_line)
         self.stack.pop()
-        return self.controller.toolpath(main.name, decode_header(main.metadata, main.name), tuple(self.warnings.lines))
+        return self.controller.toolpath(main.name, decode_header(main.metadata, f"{main.source}:{main.line}"), tuple(self.warnings.lines))
 
 
 def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

@@ -13,6 +13,7 @@ import math
 import re
 from typing import Mapping, Union
 
+from coatsim.geometry.space.pose import Pose
 from coatsim.core.errors import CoatsimError, InputError
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.expressions import Cursor
@@ -20,7 +21,6 @@ from coatsim.languages.kawasaki_as.lexer import tokenize
 from coatsim.languages.kawasaki_as.parser import key as norm
 from coatsim.languages.kawasaki_as.scope import KINDS, Scope
 from coatsim.languages.kawasaki_as.unknowns import ABSENT, Absent
-from coatsim.languages.kawasaki_as.values import Frame
 
 _DEFAULTS = {"real": 0.0, "string": ""}
 _VARIABLE = re.compile(r"[$#]?[A-Za-z_][A-Za-z0-9_.]*(\[\s*\d+\s*(,\s*\d+\s*)*\])?\Z")
@@ -84,7 +84,7 @@ class Memory:
     def get_string(self, name: ast.Name) -> str:
         return self.value("string", name)
 
-    def get_pose(self, name: ast.Name) -> Frame:
+    def get_pose(self, name: ast.Name) -> Pose:
         return self.value("pose", name)
 
     def get_joints(self, name: ast.Name):

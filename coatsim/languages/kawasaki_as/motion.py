@@ -39,12 +39,11 @@ from typing import Callable, Optional, Union
 import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.path.arcs import DegenerateArc, circle_through
+from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.kawasaki_as.unknowns import NotSimulated
-from coatsim.languages.kawasaki_as.values import Frame
 from coatsim.path.process import ProcessInfo
-from coatsim.path.toolpath import (CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, Pose, ToolFrame,
-                                      ToolPath)
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import CircularMove, Dwell, JointMove, LinearMove, MotionSettings, Move, ToolFrame, ToolPath
 
 # What SPEED 100 (percent) means in mm/s; the controller's true maximum is robot-specific.
 FULL_SPEED_MM_S = 1000.0
@@ -128,7 +127,7 @@ class Controller:
               joints: Optional[np.ndarray] = None, first_line: Optional[int] = None) -> None:
         if len(self.moves) >= MAX_MOTIONS:
             raise self.failure(line, f"the program issues more than {MAX_MOTIONS} motions; coatsim stops it")
-        x, y, z = (float(v) for v in end.position)
+        x, y, z = (float(v) for v in end.translation_mm)
         if not max(abs(x), abs(y), abs(z)) <= 1e9:  # (NaN fails too)
             raise self.failure(line, "the target pose is out of range (|x| <= 1e9 mm)")
         fine = self.fine_once or self.fine_always
@@ -162,7 +161,7 @@ class Controller:
         via, via_line = self.c1
         self.c1 = None
         try:
-            circle_through(self.current.position, via.position, end.position)
+            arc_through(self.current.translation_mm, via.translation_mm, end.translation_mm)
         except DegenerateArc as exc:
             raise self.error(line, f"arc from the current pose through the C1MOVE pose (line {via_line}) to here "
                              f"is undefined: {exc}") from None
@@ -219,19 +218,19 @@ class Controller:
         else:
             self.acc_once, self.fine_once = value, fine
 
-    def tool_frame(self) -> Optional[Frame]:
+    def tool_frame(self) -> Optional[Pose]:
         """The TCP the program's last TOOL set (None before any)."""
-        return None if self.tool is None else Frame(self.tool.rotation, self.tool.offset_mm)
+        return None if self.tool is None else Pose(self.tool.rotation, self.tool.offset_mm)
 
-    def set_tool(self, frame: Frame, line: int) -> None:
+    def set_tool(self, frame: Pose, line: int) -> None:
         self._check_no_arc(line)
         if self.moves:
             self.stop_previous()
         if self.current is not None and self.tool is not None:
             # the flange stays where it is; the pose now names the new TCP
-            flange = Frame.from_pose(self.current) * Frame(self.tool.rotation, self.tool.offset_mm).inverse()
-            self.current = (flange * frame).pose()
-        self.tool = ToolFrame(frame.r.copy(), frame.p.copy(), line)
+            flange = self.current @ Pose(self.tool.rotation, self.tool.offset_mm).inverse()
+            self.current = flange @ frame
+        self.tool = ToolFrame(np.array(frame.rotation), np.array(frame.translation_mm), line)
 
     def switch_gun(self, on: bool) -> None:
         """The gun output changes as the program pointer reaches the switch (forward processing)."""
@@ -250,11 +249,11 @@ class Controller:
         return length / value if length > 0.0 else self.full_speed
 
     def length(self, m: _Pending) -> float:
-        start = m.start.position if m.start is not None else m.end.position
+        start = m.start.translation_mm if m.start is not None else m.end.translation_mm
         if m.kind == "arc":
-            c = circle_through(start, m.via.position, m.end.position)
+            c = arc_through(start, m.via.translation_mm, m.end.translation_mm)
             return c.radius * c.sweep
-        return float(np.linalg.norm(m.end.position - start))
+        return float(np.linalg.norm(m.end.translation_mm - start))
 
     def nominal_time(self, m: _Pending) -> float:
         if m.speed[1] == "S":

@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from coatsim.core.errors import CoatsimError
-from coatsim.languages.kawasaki_as.values import Frame, PoseJoints
+from coatsim.geometry.space.pose import Pose
+from coatsim.languages.kawasaki_as.values import PoseJoints
 from coatsim.path.toolpath import Kinematics
 
 
@@ -47,19 +48,19 @@ class RobotQueries:
             self.warn("external-axes", f"joint values beyond the 6th (external axes) are ignored ({len(values)} given)")
         return np.radians(np.array(values[:6], dtype=float))
 
-    def joint_frame(self, values: tuple[float, ...] | PoseJoints) -> Frame:
+    def joint_frame(self, values: tuple[float, ...] | PoseJoints) -> Pose:
         """A joint value as a transformation relative to BASE (forward kinematics, or the pose
         a POINT #j = p gave it)."""
         if isinstance(values, PoseJoints):
-            return self.base.inverse() * values.frame
+            return self.base.inverse() @ values.frame
         pose = self.fk(self.joints_rad(values), "a joint value used as a pose")
-        return self.base.inverse() * Frame.from_pose(pose)
+        return self.base.inverse() @ pose
 
-    def here(self) -> Frame:
+    def here(self) -> Pose:
         if self.controller.current is None and self.kinematics is None:
             raise self.failure("HERE before the first motion needs the cell's kinematics (the home pose)")
         current = self.controller.need_current("HERE", self.line)
-        return self.base.inverse() * Frame.from_pose(current)
+        return self.base.inverse() @ current
 
     def here_joints(self) -> tuple[float, ...]:
         if self.controller.current is None and self.kinematics is not None:

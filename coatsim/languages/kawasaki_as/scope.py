@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from typing import Iterable
 
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.languages.kawasaki_as import ast
-from coatsim.languages.kawasaki_as.values import Frame
 
 KINDS = ("real", "string", "pose", "joint")
 
@@ -25,7 +25,7 @@ class Scope:
             return table[key]
         if kind == "pose" and key in self.trans:
             values = self.trans[key].values
-            frame = Frame.from_xyzoat(*values)
+            frame = pose_from_xyzoat(values)
             table[key] = frame
             return frame
         return None

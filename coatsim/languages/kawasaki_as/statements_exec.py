@@ -2,20 +2,27 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Callable
+from typing import Callable
 
 import numpy as np
 
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat, xyzoat
 from coatsim.languages.kawasaki_as import ast
+from coatsim.languages.kawasaki_as.instructions import (
+    CONFIGURATION,
+    DISPLAY,
+    GRIPPER,
+    HOUSEKEEPING,
+    NETWORK,
+    TASKS,
+    UNSIMULATED_MOTION,
+)
 from coatsim.languages.kawasaki_as.io_model import FIRST_INPUT, signal_name
-from coatsim.languages.kawasaki_as.instructions import CONFIGURATION, DISPLAY, GRIPPER, HOUSEKEEPING, NETWORK, TASKS, \
-    UNSIMULATED_MOTION
+from coatsim.languages.kawasaki_as.machine import Machine
 from coatsim.languages.kawasaki_as.unknowns import Absent, NotSimulated
-from coatsim.languages.kawasaki_as.values import IDENTITY, Frame, PoseJoints
-from coatsim.path.toolpath import Pose
+from coatsim.languages.kawasaki_as.values import IDENTITY, PoseJoints
 
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.interpreter import Interpreter
 
 class ReturnFromProgram(Exception):
     """RETURN: back to the calling program."""
@@ -29,21 +36,18 @@ _SILENT_SWITCHES = {"ABS.SPEED"}  # no effect at monitor speed 100 %
 _COMPONENTS = {"X": (0,), "Y": (1,), "Z": (2,), "O": (3,), "A": (4,), "T": (5,), "OAT": (3, 4, 5)}
 
 
-def _target(run: Interpreter, frame: Frame) -> Pose:
-    out = frame if run.base is IDENTITY else run.base * frame
-    if not out.is_finite():
-        raise run.failure("the target pose is not finite")
-    return out.pose()
+def _target(run: Machine, frame: Pose) -> Pose:
+    return frame if run.base is IDENTITY else run.base @ frame
 
 
-def _seconds(run: Interpreter, e: ast.Expr) -> float:
+def _seconds(run: Machine, e: ast.Expr) -> float:
     value = run.eval.real(e)
     if value < 0.0:
         raise run.error("a time must be >= 0 s")
     return value
 
 
-def _move(run: Interpreter, st: ast.Move) -> None:
+def _move(run: Machine, st: ast.Move) -> None:
     c, op = run.controller, st.op
     if op == "C2MOVE" and run.skipped_via is not None:
         via, run.skipped_via = run.skipped_via, None
@@ -56,7 +60,7 @@ def _move(run: Interpreter, st: ast.Move) -> None:
             if values.reference is not None:
                 run.warn(f"ik:{st.line}", "JMOVE to a joint value taken from a pose with a reference: the cell's "
                          "inverse kinematics picks the configuration, not the reference")
-            c.joint(_target(run, run.base.inverse() * values.frame), st.line)
+            c.joint(_target(run, run.base.inverse() @ values.frame), st.line)
             return
         q = run.joints_rad(values)
         c.joint(run.fk(q, "JMOVE to a joint value"), st.line, joints=q)
@@ -79,49 +83,49 @@ def _move(run: Interpreter, st: ast.Move) -> None:
         c.arc_end(target, st.line)
 
 
-def _appro(run: Interpreter, st: ast.Appro) -> None:
+def _appro(run: Machine, st: ast.Appro) -> None:
     goal = _target(run, run.eval.pose(st.target))
     distance = run.eval.real(st.distance)
-    back = Pose(goal.position - distance * goal.rotation[:, 2], goal.rotation)
+    back = Pose(goal.rotation, goal.translation_mm - distance * goal.rotation[:, 2])
     if st.op == "JAPPRO":
         run.controller.joint(back, st.line)
     else:
         run.controller.linear(st.op, back, st.line)
 
 
-def _depart(run: Interpreter, st: ast.Depart) -> None:
+def _depart(run: Machine, st: ast.Depart) -> None:
     here = run.controller.need_current(st.op, st.line)
     distance = run.eval.real(st.distance)
-    end = Pose(here.position - distance * here.rotation[:, 2], here.rotation)
+    end = Pose(here.rotation, here.translation_mm - distance * here.rotation[:, 2])
     if st.op == "JDEPART":
         run.controller.joint(end, st.line)
     else:
         run.controller.linear(st.op, end, st.line)
 
 
-def _draw(run: Interpreter, st: ast.Draw) -> None:
+def _draw(run: Machine, st: ast.Draw) -> None:
     here = run.controller.need_current(st.op, st.line)
     d = [0.0 if v is None else run.eval.real(v) for v in st.deltas] + [0.0] * (6 - len(st.deltas))
     if len(st.deltas) == 7 and st.deltas[6] is not None:
         raise NotSimulated(f"{st.op} with its own speed is not simulated; set SPEED before it")
     if any(v != 0.0 for v in d[3:6]):
         raise NotSimulated(f"{st.op} with a rotation is not simulated; use LMOVE to a pose")
-    axes = here.rotation if st.op == "TDRAW" else run.base.r
-    run.controller.linear(st.op, Pose(here.position + axes @ np.array(d[:3]), here.rotation), st.line)
+    axes = here.rotation if st.op == "TDRAW" else run.base.rotation
+    run.controller.linear(st.op, Pose(here.rotation, here.translation_mm + axes @ np.array(d[:3])), st.line)
 
 
-def _home(run: Interpreter, st: ast.Home) -> None:
+def _home(run: Machine, st: ast.Home) -> None:
     number = 1 if st.number is None else run.eval.integer(st.number, "the HOME number")
     q = run.home_joints(number)
     run.controller.joint(run.fk(q, "HOME"), st.line, joints=q)
 
 
-def _point(run: Interpreter, st: ast.PointAssign) -> None:
+def _point(run: Machine, st: ast.PointAssign) -> None:
     if st.target.kind == "joint":
         if run.eval.kind(st.value) == "joint":
             run.set("joint", st.target, run.eval.joint_value(st.value))
             return
-        frame = run.base * run.eval.pose(st.value)  # (the joint value reaches this pose in the base frame)
+        frame = run.base @ run.eval.pose(st.value)  # (the joint value reaches this pose in the base frame)
         reference = None if st.reference is None else run.eval.joints(st.reference)
         run.set("joint", st.target, PoseJoints(frame, reference))
         return
@@ -130,20 +134,20 @@ def _point(run: Interpreter, st: ast.PointAssign) -> None:
         run.warn(f"point/{st.component}", f"POINT/{st.component}: external axes are not simulated; {st.target.name} keeps "
                  "its x, y, z, o, a, t")
         old = run.scope_of(st.target).get("pose", run.key(st.target))
-        run.set("pose", st.target, old if old is not None else Frame(np.eye(3), np.zeros(3)))
+        run.set("pose", st.target, old if old is not None else IDENTITY)
         return
     if st.component is not None:
         old = run.scope_of(st.target).get("pose", run.key(st.target))
-        parts = list((old if old is not None else Frame(np.eye(3), np.zeros(3))).xyzoat())
-        new = value.xyzoat()
+        parts = list(xyzoat(old if old is not None else IDENTITY))
+        new = xyzoat(value)
         for i in _COMPONENTS[st.component]:
             parts[i] = new[i]
-        value = Frame.from_xyzoat(*parts)
+        value = pose_from_xyzoat(parts)
     run.set("pose", st.target, value)
 
 
-def _decompose(run: Interpreter, st: ast.Decompose) -> None:
-    values = run.eval.joints(st.value) if run.eval.kind(st.value) == "joint" else run.eval.pose(st.value).xyzoat()
+def _decompose(run: Machine, st: ast.Decompose) -> None:
+    values = run.eval.joints(st.value) if run.eval.kind(st.value) == "joint" else xyzoat(run.eval.pose(st.value))
     target = st.target
     if len(target.index) != 1:
         raise run.error("DECOMPOSE stores into a one-dimensional array element, as in a[1]")
@@ -152,11 +156,11 @@ def _decompose(run: Interpreter, st: ast.Decompose) -> None:
         run.set("real", ast.Name(target.name, (ast.Num(float(first + i)),)), float(v))
 
 
-def _here(run: Interpreter, st: ast.Here) -> None:
+def _here(run: Machine, st: ast.Here) -> None:
     if st.target.kind == "joint":
         if run.controller.current_joints is None and run.controller.current is not None:
             # after a Cartesian motion the angles need the inverse kinematics: the value keeps the pose
-            run.set("joint", st.target, PoseJoints(Frame.from_pose(run.controller.current), None))
+            run.set("joint", st.target, PoseJoints(run.controller.current, None))
             return
         run.set("joint", st.target, run.here_joints())
     elif st.target.kind == "value":
@@ -165,7 +169,7 @@ def _here(run: Interpreter, st: ast.Here) -> None:
         raise run.error(f"HERE stores a pose or a joint value, not the string {st.target.name}")
 
 
-def _signal(run: Interpreter, st: ast.Signal) -> None:
+def _signal(run: Machine, st: ast.Signal) -> None:
     for e in st.outputs:
         n = run.eval.integer(e, "a signal number")
         if n == 0:
@@ -173,7 +177,7 @@ def _signal(run: Interpreter, st: ast.Signal) -> None:
         run.set_signal(abs(n), n > 0)
 
 
-def _pulse(run: Interpreter, st: ast.Pulse) -> None:
+def _pulse(run: Machine, st: ast.Pulse) -> None:
     n = run.eval.integer(st.signal, "a signal number")
     if st.seconds is not None:
         _seconds(run, st.seconds)
@@ -187,7 +191,7 @@ def _pulse(run: Interpreter, st: ast.Pulse) -> None:
     run.signals.set(abs(n), n > 0 if st.op == "DLYSIG" else False)
 
 
-def _bits(run: Interpreter, st: ast.Bits) -> None:
+def _bits(run: Machine, st: ast.Bits) -> None:
     start = run.eval.integer(st.start, "the first signal")
     count = run.eval.integer(st.count, "the signal count")
     if not 1 <= count <= 32 or start < 1:
@@ -197,7 +201,7 @@ def _bits(run: Interpreter, st: ast.Bits) -> None:
         run.set_signal(start + i, bool(value >> i & 1))
 
 
-def _swait(run: Interpreter, st: ast.Swait) -> None:
+def _swait(run: Machine, st: ast.Swait) -> None:
     for e in st.signals:
         n = run.eval.integer(e, "a signal number")
         on, known = run.signals.state(abs(n))
@@ -209,7 +213,7 @@ def _swait(run: Interpreter, st: ast.Swait) -> None:
                               "changes it in the simulation")
 
 
-def _wait(run: Interpreter, st: ast.Wait) -> None:
+def _wait(run: Machine, st: ast.Wait) -> None:
     run.signals.unknown_read = False
     before = run.unknowns.reads
     if run.eval.truth(st.condition):
@@ -220,7 +224,7 @@ def _wait(run: Interpreter, st: ast.Wait) -> None:
     raise run.failure("WAIT condition is false and nothing changes it in the simulation")
 
 
-def _output(run: Interpreter, st: ast.Output) -> None:
+def _output(run: Machine, st: ast.Output) -> None:
     run.eval.encode(st.items)
     if st.target is not None:
         kind = "string" if st.target.kind == "string" else "real"
@@ -229,7 +233,7 @@ def _output(run: Interpreter, st: ast.Output) -> None:
                  f"{'empty' if kind == 'string' else '0'}")
 
 
-def _call(run: Interpreter, st: ast.CallProgram) -> None:
+def _call(run: Machine, st: ast.CallProgram) -> None:
     name = st.program if isinstance(st.program, str) else run.eval.string(st.program)
     program = run.programs.get(name.lower())
     if program is None:
@@ -238,7 +242,7 @@ def _call(run: Interpreter, st: ast.CallProgram) -> None:
     run.call(program, st.args)
 
 
-def _stop(run: Interpreter, st: ast.Stop) -> None:
+def _stop(run: Machine, st: ast.Stop) -> None:
     if st.op == "PAUSE":
         run.warn("pause", "PAUSE: the simulation goes on at once")
         return
@@ -247,11 +251,11 @@ def _stop(run: Interpreter, st: ast.Stop) -> None:
     raise StopProgram()
 
 
-def _return(run: Interpreter, st: ast.Return) -> None:
+def _return(run: Machine, st: ast.Return) -> None:
     raise ReturnFromProgram()
 
 
-def _switch(run: Interpreter, st: ast.Switch) -> None:
+def _switch(run: Machine, st: ast.Switch) -> None:
     if st.name == "CP":
         run.controller.cp = st.on
         return
@@ -263,7 +267,7 @@ def _switch(run: Interpreter, st: ast.Switch) -> None:
         run.warn(f"switch:{st.name}", f"switch {st.name} is not simulated")
 
 
-def _network_defaults(run: Interpreter, st: ast.Command) -> None:
+def _network_defaults(run: Machine, st: ast.Command) -> None:
     """Result variables of a network call: status 0 (a socket id 1), nothing received."""
     names = [a for a in st.args if isinstance(a, ast.Name) and a.kind == "value"]
     if st.args and isinstance(st.args[0], ast.Name) and st.args[0].kind == "value":
@@ -272,7 +276,7 @@ def _network_defaults(run: Interpreter, st: ast.Command) -> None:
         run.set("real", st.args[3], 0.0)
 
 
-def _command(run: Interpreter, st: ast.Command) -> None:
+def _command(run: Machine, st: ast.Command) -> None:
     name = st.name
     if name in UNSIMULATED_MOTION:
         raise NotSimulated(f"{name} moves the arm in a way coatsim does not simulate")
@@ -294,30 +298,30 @@ def _command(run: Interpreter, st: ast.Command) -> None:
         run.warn(f"cmd:{name}", f"{name} is not simulated")
 
 
-def _tool(run: Interpreter, st: ast.Tool) -> None:
+def _tool(run: Machine, st: ast.Tool) -> None:
     run.controller.set_tool(run.eval.pose(st.pose), st.line)
 
 
-def _base(run: Interpreter, st: ast.Base) -> None:
+def _base(run: Machine, st: ast.Base) -> None:
     run.base = run.eval.pose(st.pose)
 
 
-def _accel(run: Interpreter, st: ast.Accel) -> None:
+def _accel(run: Machine, st: ast.Accel) -> None:
     run.eval.real(st.value)
     run.warn("accel", f"{st.op}: the cell's acceleration limits apply, not the program's")
 
 
-def _brake(run: Interpreter, st: ast.Brake) -> None:
+def _brake(run: Machine, st: ast.Brake) -> None:
     if not run.controller.at_rest:
         raise NotSimulated("BRAKE stops the motion in progress at once; coatsim cannot tell where the arm stands then")
 
 
-def _block_step(run: Interpreter, st: ast.BlockStep) -> None:
+def _block_step(run: Machine, st: ast.BlockStep) -> None:
     raise NotSimulated(f"a teach-pendant block step ({st.kind} ...) is not simulated; write it as JMOVE/LMOVE with "
                  "SPEED and ACCURACY")
 
 
-def _assign(run: Interpreter, st: ast.Assign) -> None:
+def _assign(run: Machine, st: ast.Assign) -> None:
     if st.target.kind == "string":
         run.set("string", st.target, run.eval.string(st.value))
     else:
@@ -358,7 +362,7 @@ HANDLERS: dict[type, Callable] = {
 }
 
 
-def execute_statement(run: Interpreter, st: ast.Statement) -> None:
+def execute_statement(run: Machine, st: ast.Statement) -> None:
     HANDLERS[type(st)](run, st)
 
 

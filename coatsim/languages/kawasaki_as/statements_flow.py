@@ -5,12 +5,10 @@ DO/UNTIL, FOR, CASE/SCASE, VALUE/SVALUE and ANY come back as markers (:class:`Op
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Union
+from typing import Union
 
 from coatsim.languages.kawasaki_as import ast
-
-if TYPE_CHECKING:  # pragma: no cover
-    from coatsim.languages.kawasaki_as.statements import StatementParser
+from coatsim.languages.kawasaki_as.statement_parser import StatementParser
 
 
 @dataclass(frozen=True)

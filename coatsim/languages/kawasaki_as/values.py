@@ -1,7 +1,9 @@
-"""Run-time values of the AS interpreter: transformations (poses) and joint values.
+"""Run-time values of the AS interpreter: transformations and joint values.
 
-A transformation is a rigid frame (rotation (3, 3), translation (3,) mm) written as x, y, z,
-O-A-T; a joint value holds the joint angles in degrees as the program writes them.
+A transformation is coatsim's pose type (a rigid frame: rotation, translation mm), written as x,
+y, z, O-A-T; a joint value holds the joint angles in degrees as the program writes them. A
+computation that leaves the finite rotations (an infinite coordinate) raises
+:class:`~coatsim.geometry.space.pose.InvalidPose`, which the interpreter reports at its line.
 """
 
 from __future__ import annotations
@@ -11,44 +13,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coatsim.path.oat import matrix_to_oat, oat_to_matrix
-from coatsim.path.toolpath import Pose
+from coatsim.core.numeric import TINY
+from coatsim.geometry.space.pose import Pose
 
 
-@dataclass(frozen=True, eq=False)
-class Frame:
-    """Rigid transformation: rotation ``r`` (3, 3), translation ``p`` (3,) mm."""
-
-    r: np.ndarray
-    p: np.ndarray
-
-    @classmethod
-    def from_xyzoat(cls, x: float, y: float, z: float, o: float, a: float, t: float) -> Frame:
-        return cls(oat_to_matrix(o, a, t), np.array([x, y, z], dtype=float))
-
-    @classmethod
-    def from_pose(cls, pose: Pose) -> Frame:
-        return cls(np.asarray(pose.rotation, dtype=float), np.asarray(pose.position, dtype=float))
-
-    def __mul__(self, other: Frame) -> Frame:
-        return Frame(self.r @ other.r, self.p + self.r @ other.p)
-
-    def inverse(self) -> Frame:
-        rt = self.r.T
-        return Frame(rt, -(rt @ self.p))
-
-    def xyzoat(self) -> tuple[float, float, float, float, float, float]:
-        o, a, t = matrix_to_oat(self.r)
-        return (float(self.p[0]), float(self.p[1]), float(self.p[2]), o, a, t)
-
-    def pose(self) -> Pose:
-        return Pose(self.p.copy(), self.r.copy())
-
-    def is_finite(self) -> bool:
-        return math.isfinite(float(self.p.sum()) + float(self.r.sum()))
-
-
-IDENTITY = Frame(np.eye(3), np.zeros(3))
+IDENTITY = Pose.identity()
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,38 +27,38 @@ class PoseJoints:
     configuration. A JMOVE to it moves to the pose (the cell's inverse kinematics picks the
     configuration); its joint angles are unknown to the interpreter."""
 
-    frame: Frame
+    frame: Pose
     reference: tuple[float, ...] | None
 
 
-def rotation_about(axis: int, degrees: float) -> Frame:
+def rotation_about(axis: int, degrees: float) -> Pose:
     """RX / RY / RZ: a pure rotation about the x (0), y (1) or z (2) axis."""
     c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
     r = np.eye(3)
     r[i, i], r[i, j], r[j, i], r[j, j] = c, -s, s, c
-    return Frame(r, np.zeros(3))
+    return Pose(r, np.zeros(3))
 
 
-def average(a: Frame, b: Frame) -> Frame:
+def average(a: Pose, b: Pose) -> Pose:
     """AVE_TRANS(a, b): the mean of the positions and the rotation halfway from a's to b's."""
     from scipy.spatial.transform import Rotation, Slerp
 
-    half = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a.r, b.r])))([0.5]).as_matrix()[0]
-    return Frame(half, (a.p + b.p) / 2.0)
+    half = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a.rotation, b.rotation])))([0.5]).as_matrix()[0]
+    return Pose(half, (a.translation_mm + b.translation_mm) / 2.0)
 
 
-def frame_from_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, origin: np.ndarray) -> Frame | None:
+def frame_from_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, origin: np.ndarray) -> Pose | None:
     """FRAME(p1, p2, p3, p4): x along p1 -> p2, y towards p3 in the plane of the three, z = x by y,
     origin at p4; None when the points do not span a plane."""
     x = p2 - p1
     nx = float(np.linalg.norm(x))
-    if nx < 1e-9:
+    if nx < TINY:
         return None
     x = x / nx
     y = (p3 - p1) - float((p3 - p1) @ x) * x
     ny = float(np.linalg.norm(y))
-    if ny < 1e-9:
+    if ny < TINY:
         return None
     y = y / ny
-    return Frame(np.column_stack((x, y, np.cross(x, y))), np.asarray(origin, dtype=float))
+    return Pose(np.column_stack((x, y, np.cross(x, y))), np.asarray(origin, dtype=float))

@@ -27,14 +27,14 @@ import numpy as np
 
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import MM_DECIMALS, fmt, fmt_short
-from coatsim.path.arcs import DegenerateArc, circle_through
-from coatsim.languages.kawasaki_as.header import encode as encode_header
+from coatsim.geometry.space.primitives import DegenerateArc, arc_through
+from coatsim.path.process_record import encode as encode_header
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH, check_name, sanitize_comment
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.oat import matrix_to_oat
-from coatsim.path.frames import Frame
-from coatsim.path.placement import PlacedArc, PlacedLine, PlacedSegment
-from coatsim.path.toolpath import Pose
+from coatsim.geometry.space.rotations import matrix_to_oat
+from coatsim.geometry.space.xyzoat import xyzoat
+from coatsim.path.placement import PlacedMove
+from coatsim.geometry.space.pose import Pose
 
 # 6 decimals in degrees round an angle by <= 5e-7 deg (9e-9 rad).
 DEG_DECIMALS = 6
@@ -49,12 +49,13 @@ _COMMENT_COLUMN = 30
 def pose_values(pose: Pose) -> tuple[str, ...]:
     """x y z (mm) o a t (deg) as the writer formats them."""
     o, a, t = matrix_to_oat(pose.rotation)
-    return tuple(fmt(v, MM_DECIMALS) for v in pose.position) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
+    return tuple(fmt(v, MM_DECIMALS) for v in pose.translation_mm) + tuple(fmt(v, DEG_DECIMALS) for v in (o, a, t))
 
 
-def _trans_literal(frame: Frame) -> str:
-    mm = ",".join(fmt(v, MM_DECIMALS) for v in (frame.x, frame.y, frame.z))
-    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (frame.o, frame.a, frame.t))
+def _trans_literal(frame: Pose) -> str:
+    x, y, z, o, a, t = xyzoat(frame)
+    mm = ",".join(fmt(v, MM_DECIMALS) for v in (x, y, z))
+    deg = ",".join(fmt(v, DEG_DECIMALS) for v in (o, a, t))
     return f"TRANS({mm},{deg})"
 
 
@@ -75,18 +76,18 @@ def _arc_is_writable(start: Pose, via: Pose, end: Pose) -> bool:
     """Whether the circle through the poses as written (rounded) is defined."""
     rounded = [np.array([float(v) for v in pose_values(p)[:3]]) for p in (start, via, end)]
     try:
-        circle_through(*rounded)
+        arc_through(*rounded)
     except DegenerateArc:
         return False
     return True
 
 
-def _segment_moves(seg: PlacedSegment, label: str, name: Callable[[Pose], str],
+def _segment_moves(seg: PlacedMove, label: str, name: Callable[[Pose], str],
                    max_arc_sweep_deg: float) -> list[tuple[str, str]]:
     """(statement, comment) of the motions of one segment: one LMOVE for a line; one C1MOVE +
     C2MOVE pair per arc piece of at most ``max_arc_sweep_deg`` (an LMOVE for a piece too flat to
     define a circle once written)."""
-    if isinstance(seg, PlacedLine):
+    if not seg.is_arc:
         return [(f"LMOVE {name(seg.end)}", label)]
     out: list[tuple[str, str]] = []
     pieces = seg.split(math.radians(max_arc_sweep_deg))
@@ -100,7 +101,7 @@ def _segment_moves(seg: PlacedSegment, label: str, name: Callable[[Pose], str],
     return out
 
 
-def _labels(segments: Sequence[PlacedSegment]) -> list[str]:
+def _labels(segments: Sequence[PlacedMove]) -> list[str]:
     """The comment naming each segment: lead-in, segment k, lead-out."""
     counters = {"lead_in": 0, "curve": 0, "lead_out": 0}
     labels = []
@@ -110,7 +111,7 @@ def _labels(segments: Sequence[PlacedSegment]) -> list[str]:
     return labels
 
 
-def path_moves(segments: Sequence[PlacedSegment], name: Callable[[Pose], str],
+def path_moves(segments: Sequence[PlacedMove], name: Callable[[Pose], str],
                max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -> list[tuple[str, str]]:
     """(statement, comment) of each motion along ``segments``; ``name`` gives the text a pose is
     written as."""
@@ -118,11 +119,17 @@ def path_moves(segments: Sequence[PlacedSegment], name: Callable[[Pose], str],
             for move in _segment_moves(seg, label, name, max_arc_sweep_deg)]
 
 
-def _path_lines(out: "_Lines", path, spray_leads: bool, gun: int, name, max_arc_sweep_deg: float) -> None:
+def _path_lines(out: "_Lines", path, spray_leads: bool, gun: int, name, max_arc_sweep_deg: float,
+               speed: list[float]) -> None:
     """The moves of one sprayed path and the gun signals along it: open along the whole path
-    with ``spray_leads``, otherwise exactly along its curve part (switched on the fly)."""
+    with ``spray_leads``, otherwise exactly along its curve part (switched on the fly). A move
+    with its own speed gets a ``SPEED ... ALWAYS`` before it where the speed changes (``speed``
+    holds the speed in force, one item)."""
     gun_on = False
     for index, (seg, label) in enumerate(zip(path.segments, _labels(path.segments))):
+        if seg.speed_mm_s is not None and seg.speed_mm_s != speed[0]:
+            speed[0] = seg.speed_mm_s
+            out.add(f"SPEED {fmt_short(speed[0])} MM/S ALWAYS", "the speed of the moves below")
         sprayed = spray_leads or seg.part == "curve"
         if index == 0:
             out.add("BREAK", "at rest before the gun opens" if sprayed else "at rest at the start of the lead-in")
@@ -155,7 +162,7 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
         poses.append(pose)
         return f"p{len(poses) - 1:0{width}d}"
 
-    n_points = sum(1 + sum(2 * math.ceil(s.sweep / math.radians(max_arc_sweep_deg)) if isinstance(s, PlacedArc) else 1
+    n_points = sum(1 + sum(2 * math.ceil(s.geometry.sweep / math.radians(max_arc_sweep_deg)) if s.is_arc else 1
                            for s in path.segments) for path in plan.paths)
     width = max(4, len(str(n_points)))
     if 1 + width > MAX_NAME_LENGTH:
@@ -171,16 +178,21 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     out.add(f"SPEED {fmt_short(plan.speed_mm_s)} MM/S ALWAYS")
     out.add(f"ACCURACY {fmt_short(plan.accuracy_mm)} ALWAYS")
     out.add("CP OFF" if plan.exact_stop else "CP ON", "stop at every point" if plan.exact_stop else "blend")
+    speed = [plan.speed_mm_s]
     for index, (path, spray_leads) in enumerate(plan.legs):
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
         start = name(path.start)
+        clearance = fmt_short(plan.approach_mm if path.clearance_mm is None else path.clearance_mm)
+        if speed[0] != plan.speed_mm_s:  # approach and travel at the plan's speed
+            speed[0] = plan.speed_mm_s
+            out.add(f"SPEED {fmt_short(speed[0])} MM/S ALWAYS")
         if index == 0:
-            out.add(f"JAPPRO {start}, {fmt_short(plan.approach_mm)}", f"above the start{which}")
+            out.add(f"JAPPRO {start}, {clearance}", f"above the start{which}")
         else:  # the next contour of a part: straight travel at the clearance, gun off
-            out.add(f"LAPPRO {start}, {fmt_short(plan.approach_mm)}", f"gun off: travel above the start{which}")
+            out.add(f"LAPPRO {start}, {clearance}", f"gun off: travel above the start{which}")
         out.add(f"LMOVE {start}", "down to the stand-off")
-        _path_lines(out, path, spray_leads, plan.gun_signal, name, max_arc_sweep_deg)
-        out.add(f"LDEPART {fmt_short(plan.approach_mm)}", "back along the tool axis")
+        _path_lines(out, path, spray_leads, plan.gun_signal, name, max_arc_sweep_deg, speed)
+        out.add(f"LDEPART {clearance}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):

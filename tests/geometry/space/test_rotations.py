@@ -12,7 +12,6 @@ from hypothesis import strategies as st
 
 from coatsim.geometry.space import rotations as rot
 from coatsim.geometry.space.pose import exp_rotation
-from coatsim.path import oat as legacy
 
 angle = st.floats(-180.0, 180.0, allow_nan=False)
 unit = st.floats(-1.0, 1.0, allow_nan=False)
@@ -87,16 +86,6 @@ def test_rotvec_round_trip(r):
     assert np.linalg.norm(v) <= math.pi + 1e-12
     assert close(rot.rotvec_to_matrix(*v), r)
 
-
-@settings(max_examples=300, deadline=None)
-@given(angle, st.floats(0.0, 180.0), angle)
-def test_oat_is_the_first_writers_to_the_bit(o, a, t):
-    """Angles and matrices are the legacy module's, bit for bit (AS outputs stay byte-identical)."""
-    r = legacy.oat_to_matrix(o, a, t)
-    assert np.array_equal(rot.oat_to_matrix(o, a, t), r)
-    sin_a = math.hypot(r[0, 2], r[1, 2])
-    if not rot.GIMBAL_SIN <= sin_a < rot.NEAR_GIMBAL_SIN:  # there the legacy angles were off
-        assert rot.matrix_to_oat(r) == legacy.matrix_to_oat(r)
 
 
 @pytest.mark.parametrize("a_deg", [0.0, 180.0])

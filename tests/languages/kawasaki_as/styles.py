@@ -59,4 +59,4 @@ def ends(run) -> list:
 
 def ys(run) -> list[int]:
     """The end y (mm, rounded) of every move of a run."""
-    return [round(float(p.position[1])) for p in ends(run)]
+    return [round(float(p.translation_mm[1])) for p in ends(run)]

@@ -38,7 +38,7 @@ def test_any_system_switch_set_by_name_parses(line, name, on):
 
 
 def _check(tmp_path, text: str):
-    from coatsim.path.check import check_program
+    from program_helpers import check_as as check_program
 
     path = tmp_path / "cell.as"
     path.write_text(text)
@@ -85,20 +85,20 @@ def test_external_axes_in_poses_are_read_and_ignored_with_a_warning():
     run = Interpreter((f,), 1, {}, None, 1000.0, 100_000)
     tp = run.run(f.programs[0])
     assert run.globals.get("real", "x") == 611.0 and len(tp.moves) == 1
-    assert tp.moves[0].target.position.tolist() == [600.0, 0.0, 300.0]
+    assert tp.moves[0].target.translation_mm.tolist() == [600.0, 0.0, 300.0]
     text = "\n".join(tp.warnings)
     assert "POINT/7: external axes are not simulated" in text and "TRANS values beyond the 6th" in text
     assert "GROUP" in text
 
 
 def test_a_user_program_with_several_sprayed_stretches_says_which_one_is_compared():
-    from coatsim.path.frames import Frame
+    from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.path.user import user_program
 
     two = parse_as(".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n  SIGNAL -1\n"
                    "  LMOVE a\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  BREAK\n  SIGNAL -1\n.END\n" + POSES, "t.as")
     run = Interpreter((two,), 1, {}, None, 1000.0, 100_000)
-    user = user_program(run.run(two.programs[0]), Frame.parse("0,0,200,0,0,0"), "")
+    user = user_program(run.run(two.programs[0]), parse_xyzoat("0,0,200,0,0,0", "frame"), "")
     assert user.curve.length == pytest.approx(200.0)
     assert user.notes == ("t sprays 2 stretches (300.0 mm in all); its path here is the longest, lines 5-6 "
                           "(200.0 mm), which the other variants spray alone",)
@@ -119,7 +119,7 @@ def test_xmove_till_a_signal_already_on_is_not_run_to_its_end():
 
 
 def test_a_sprayed_stretch_names_the_file_its_lines_are_in(tmp_path):
-    from coatsim.path.check import check_program
+    from program_helpers import check_as as check_program
 
     (tmp_path / "main.as").write_text(".PROGRAM m()\n  JMOVE a\n  CALL sprayit\n.END\n")
     (tmp_path / "sub.as").write_text(".PROGRAM sprayit()\n  BREAK\n  SIGNAL 1\n  LMOVE b\n  LMOVE c\n  BREAK\n"

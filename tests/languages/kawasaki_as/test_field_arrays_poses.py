@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.languages.kawasaki_as import ast, parse_as
 from coatsim.languages.kawasaki_as.interpreter import Interpreter
-from coatsim.languages.kawasaki_as.values import Frame, average
+from coatsim.languages.kawasaki_as.values import average
 
 from styles import STYLES, ends, notes, run_text, styled
 
@@ -25,7 +26,7 @@ def test_a_whole_pose_array_goes_to_a_subprogram_and_back(style):
     body = ("FOR .i = 1 TO 2\nFOR .j = 1 TO 2\nPOINT .p.rel[.i,.j] = p.rel[.i,.j]\nEND\nEND\n"
             "JMOVE fixture + .p.rel[1,1]\nCALL trace.part(.&p.rel[,])\nLMOVE .p.rel[3,1]")
     run = run_text(styled(body, style, REL, extra=TRACE))
-    xy = [tuple(np.round(p.position[:2]).astype(int)) for p in ends(run)]
+    xy = [tuple(np.round(p.translation_mm[:2]).astype(int)) for p in ends(run)]
     assert xy == [(610, -40), (610, -40), (690, -40), (690, 40), (610, 40), (650, 0)]
     assert run.skipped == () and run.unknowns == () and len(run.toolpath.spray_moves) == 3
 
@@ -73,7 +74,7 @@ def test_a_joint_value_from_a_pose_and_a_reference_moves_to_the_pose(style, kin)
     data = ".TRANS\ns1 650 -80 260 0 180 0\n.END\n.JOINTS\n#cfg 0 10 40 0 50 0\n.END\n"
     run = run_text(styled(body, style, data), kinematics=kin)
     assert [m.kind for m in run.toolpath.moves] == ["joint", "line", "joint", "line"]
-    assert np.allclose([p.position for p in ends(run)], [[650, -80, 310], [650, -80, 260], [650, -80, 260],
+    assert np.allclose([p.translation_mm for p in ends(run)], [[650, -80, 310], [650, -80, 260], [650, -80, 260],
                                                          [660, -80, 260]])
     assert run.toolpath.moves[0].joints_rad is None  # the cell's inverse kinematics solves it
     assert "the cell's inverse kinematics picks the configuration, not the reference" in notes(run)
@@ -96,22 +97,22 @@ def test_the_angles_of_a_joint_value_from_a_pose_are_unknown(kin):
 
 # --- pose functions -------------------------------------------------------------------------
 def test_ave_trans_is_the_midpoint_with_the_rotation_halfway():
-    a, b = Frame.from_xyzoat(600, -60, 250, 0, 180, 0), Frame.from_xyzoat(760, 80, 270, 90, 150, 0)
+    a, b = pose_from_xyzoat((600, -60, 250, 0, 180, 0)), pose_from_xyzoat((760, 80, 270, 90, 150, 0))
     m = average(a, b)
-    assert np.allclose(m.p, [680, 10, 260])
-    half = (Rotation.from_matrix(a.r).inv() * Rotation.from_matrix(m.r)).magnitude()
-    whole = (Rotation.from_matrix(a.r).inv() * Rotation.from_matrix(b.r)).magnitude()
-    assert half == pytest.approx(whole / 2) and np.allclose(average(a, a).r, a.r)
+    assert np.allclose(m.translation_mm, [680, 10, 260])
+    half = (Rotation.from_matrix(a.rotation).inv() * Rotation.from_matrix(m.rotation)).magnitude()
+    whole = (Rotation.from_matrix(a.rotation).inv() * Rotation.from_matrix(b.rotation)).magnitude()
+    assert half == pytest.approx(whole / 2) and np.allclose(average(a, a).rotation, a.rotation)
     run = run_text(".PROGRAM t()\n  POINT .m = AVE_TRANS(a, b)\n  JMOVE .m\n.END\n"
                    ".TRANS\na 600 -60 250 0 180 0\nb 760 80 270 90 150 0\n.END\n")
-    assert np.allclose(ends(run)[0].position, [680, 10, 260]) and np.allclose(ends(run)[0].rotation, m.r)
+    assert np.allclose(ends(run)[0].translation_mm, [680, 10, 260]) and np.allclose(ends(run)[0].rotation, m.rotation)
 
 
 def test_tool_and_base_as_values_are_the_frames_in_force():
     run = run_text(".PROGRAM t()\n  TOOL TRANS(0, 0, 200)\n  BASE TRANS(100, 0, 0)\n  POINT .t = TOOL\n"
                    "  POINT .b = base\n"
                    "  JMOVE .b + TRANS(500, 0, DZ(.t), 0, 180, 0)\n.END\n")
-    assert np.allclose(ends(run)[0].position, [700, 0, 200]) and run.unknowns == ()
+    assert np.allclose(ends(run)[0].translation_mm, [700, 0, 200]) and run.unknowns == ()
     before = run_text(".PROGRAM t()\n  POINT .t = TOOL\n  JMOVE TRANS(600, 0, 300, 0, 180, 0)\n.END\n")
     assert before.skipped == ("f.as:2: POINT skipped: pose TOOL has no value",)
 

@@ -41,7 +41,7 @@ def test_a_long_flat_sum_parses_and_evaluates(terms):
 
 @pytest.mark.parametrize("style", STYLES)
 def test_check_program_reads_a_program_with_a_600_term_expression(style, tmp_path):
-    from coatsim.path.check import check_program
+    from program_helpers import check_as as check_program
 
     body = (".s = " + " + ".join(f"rc[{i % 40}]" for i in range(600)) + "\nIF .s <> " + "+".join(["0"] * 600)
             + ' THEN\nTYPE "differs"\nEND\nJMOVE k\nBREAK\nSIGNAL 1\nLMOVE SHIFT(k BY 80, 0, 0)\nBREAK\n'

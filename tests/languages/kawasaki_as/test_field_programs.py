@@ -31,8 +31,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from coatsim.core.errors import CoatsimError, InputError
-from coatsim.path.check import check_program
-from coatsim.path.convert import ConvertOptions, convert_program
+from program_helpers import check_as as check_program
+from coatsim.path.convert import ConvertOptions
+from program_helpers import convert_as as convert_program
 
 from styles import STYLES, styled
 

@@ -49,7 +49,7 @@ def test_values_of_every_kind_are_given_as_text_or_numbers():
     run = run_text(text, kinematics=CellKinematics(load_cell()), variables={
         "#park": "#[0, 0, 35, 0, 55, 0]", "pick": "TRANS(600, 0, 300, 0, 180, 0)", "gap": "2 * 25", "$mode": "auto",
         "cnt[2]": 7.0})
-    assert np.allclose([p.position for p in ends(run)[1:]], [[600, 0, 300], [650, 0, 300], [600, 7, 300]])
+    assert np.allclose([p.translation_mm for p in ends(run)[1:]], [[600, 0, 300], [650, 0, 300], [600, 7, 300]])
     assert run.unknowns == () and run.skipped == ()
     assert run_text('.PROGRAM t()\n  $a = $m\n.END\n', variables={"$m": '"quoted"'}).unknowns == ()
 
@@ -70,7 +70,7 @@ def test_a_bad_value_is_one_line_naming_the_variable(name, value, words):
 def test_a_given_value_wins_over_the_files_data():
     run = run_text(".PROGRAM t()\n  JMOVE p\n.END\n.TRANS\np 600 0 300 0 180 0\n.END\n",
                    variables={"p": "TRANS(700, 0, 300, 0, 180, 0)"})
-    assert ends(run)[0].position[0] == pytest.approx(700.0)
+    assert ends(run)[0].translation_mm[0] == pytest.approx(700.0)
 
 
 @pytest.mark.parametrize("style", STYLES)

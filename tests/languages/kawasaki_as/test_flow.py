@@ -61,7 +61,7 @@ def test_call_by_value_and_by_reference():
 def test_pose_passed_by_reference():
     subs = ".PROGRAM lift(.&p)\n  POINT .p = SHIFT(.p BY 0, 0, 5)\n.END\n"
     get, _ = globals_after("POINT q = a\nCALL lift(&q)", subs)
-    assert np.allclose(get("pose", "q").p, [0, 0, 5])
+    assert np.allclose(get("pose", "q").translation_mm, [0, 0, 5])
 
 
 def test_local_variables_are_local():
@@ -132,7 +132,7 @@ def test_programs_and_data_in_separate_files():
     other = parse_as(".PROGRAM other()\n  LMOVE SHIFT(home1 BY 0, 0, -50)\n.END\n.TRANS\nhome1 600 0 500 0 180 0\n.END\n",
                      "c.as")
     tp = interpret([prog, data, other])
-    assert len(tp.moves) == 2 and np.allclose(tp.moves[1].end.position, [600, 0, 450])
+    assert len(tp.moves) == 2 and np.allclose(tp.moves[1].end.translation_mm, [600, 0, 450])
     assert any("c.as:5: home1 is also defined at b.as:2" in w for w in tp.warnings)
     with pytest.raises(InputError, match="is also defined in a.as:1"):
         interpret([prog, parse_as(".PROGRAM main()\n.END\n", "d.as")])
@@ -154,7 +154,7 @@ def test_machine_tending(kin):
     kinds = [m.kind for m in tp.moves]
     assert kinds.count("joint") == 2 + 3 * 3 and kinds.count("line") == 3 * 4
     drops = [m for m in tp.moves if m.kind == "line" and m.line == 24]
-    assert [float(d.end.position[0]) for d in drops] == pytest.approx([550, 610, 670])
+    assert [float(d.end.translation_mm[0]) for d in drops] == pytest.approx([550, 610, 670])
     assert any("grippers" in w for w in tp.warnings) and not any("SWAIT" in w for w in tp.warnings)
 
 
@@ -164,7 +164,7 @@ def test_palletising():
     places = [m for m in tp.moves if m.kind == "line" and m.line == 9]
     assert len(places) == 6 and all(m.settings.speed_mm_s == pytest.approx(25.0) for m in places)
     # corner's tool x points along base -x (A = 180); BASE lifts everything by 100
-    assert np.allclose(places[-1].end.position, [500 - 160, -100 + 60, 300])
+    assert np.allclose(places[-1].end.translation_mm, [500 - 160, -100 + 60, 300])
     assert any("PULSE 7" in w for w in tp.warnings)
 
 
@@ -179,7 +179,7 @@ def test_arc_polishing():
 
 def test_drawing_robot():
     tp = interpret(parse_as(DRAWING, "draw.as"))
-    ends = np.array([m.end.position if m.kind != "joint" else m.target.position for m in tp.moves])
+    ends = np.array([m.end.translation_mm if m.kind != "joint" else m.target.translation_mm for m in tp.moves])
     assert np.allclose(ends[-5:-1], [[740, 0, 300], [740, 40, 300], [780, 40, 300], [780, 0, 300]])
     assert any("TCP_RECV" in w for w in tp.warnings)
 
@@ -199,7 +199,7 @@ def test_pose_statements_evaluate():
     get, _ = globals_after("JMOVE b\nHERE h\nDECOMPOSE d[1] = h\nPOINT/X q = TRANS(5, 6, 7)\nPOINT/Z q2 = b\n"
                            "POINT/OAT r = b\nPOINT s = -b + b\nx = DISTANCE(h, b)", extra)
     assert [get("real", f"d[{i}]") for i in range(1, 7)] == pytest.approx([10, 20, 30, 90, 180, 0])
-    assert np.allclose(get("pose", "q").p, [5, 0, 0]) and np.allclose(get("pose", "q2").p, [0, 0, 30])
-    assert np.allclose(get("pose", "r").p, [0, 0, 0]) and np.allclose(get("pose", "r").r, get("pose", "b").r)
-    assert np.allclose(get("pose", "s").p, 0) and np.allclose(get("pose", "s").r, np.eye(3))
+    assert np.allclose(get("pose", "q").translation_mm, [5, 0, 0]) and np.allclose(get("pose", "q2").translation_mm, [0, 0, 30])
+    assert np.allclose(get("pose", "r").translation_mm, [0, 0, 0]) and np.allclose(get("pose", "r").rotation, get("pose", "b").rotation)
+    assert np.allclose(get("pose", "s").translation_mm, 0) and np.allclose(get("pose", "s").rotation, np.eye(3))
     assert get("real", "x") == 0.0

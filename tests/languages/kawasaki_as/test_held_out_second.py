@@ -58,7 +58,7 @@ def test_returne_returns_from_an_error_program():
 def test_a_sprayed_stretch_traced_by_a_goto_loop_spans_all_its_lines(tmp_path):
     """The stretch of a GOTO raster ends on the loop's first line: it was reported as lines
     13-13 although its moves are on lines 13, 17 and 19."""
-    from coatsim.path.check import check_program
+    from program_helpers import check_as as check_program
 
     text = (".PROGRAM r()\n  TOOL TRANS(0,0,250)\n  POINT .a = TRANS(560,-40,300,0,180,0)\n"
             "  POINT .b = TRANS(640,-40,300,0,180,0)\n  .n = 0\n  JMOVE .a\n  BREAK\n  SIGNAL 1\n"
@@ -80,7 +80,7 @@ def test_a_sprayed_stretch_traced_by_a_goto_loop_spans_all_its_lines(tmp_path):
 def test_a_user_path_leaves_out_sprayed_moves_to_and_from_its_plane(before, after, dropped):
     """The gun switched on before the approach ends (SIGNAL without BREAK) sprays the descent;
     flattened into the plane it added a line the program sprays in the air to the compared path."""
-    from coatsim.path.frames import Frame
+    from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.path.user import user_program
 
     start = before or "  JMOVE a\n  BREAK\n  SIGNAL 1\n"
@@ -88,6 +88,6 @@ def test_a_user_path_leaves_out_sprayed_moves_to_and_from_its_plane(before, afte
             ".TRANS\nup 560 -40 420 0 180 0\na 600 0 300 0 180 0\nb 700 0 300 0 180 0\nc 700 100 300 0 180 0\n.END\n")
     f = parse_as(text, "t.as")
     user = user_program(Interpreter((f,), 1, {}, None, 1000.0, 100_000).run(f.programs[0]),
-                        Frame.parse("0,0,200,0,0,0"), "")
+                        parse_xyzoat("0,0,200,0,0,0", "frame"), "")
     assert user.curve.length == pytest.approx(200.0) and user.height_mm == pytest.approx(100.0)
     assert tuple(n.split(": the ")[1].split()[0] for n in user.notes) == dropped

@@ -11,9 +11,10 @@ import pytest
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.languages.kawasaki_as import interpret, interpret_run, parse_as
-from coatsim.path.arcs import circle_through, move_length
+from coatsim.geometry.space.primitives import arc_through
+from coatsim.path.arcs import move_length
 from coatsim.languages.kawasaki_as.motion import FULL_SPEED_MM_S
-from coatsim.path.oat import oat_to_matrix
+from coatsim.geometry.space.rotations import oat_to_matrix
 from coatsim.path.process import ProcessInfo
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove
 
@@ -72,12 +73,12 @@ def test_reference_example_a_draws_the_rounded_square():
     assert tp.moves[1].settings.stop_at_end and tp.moves[9].settings.stop_at_end
     arcs = [m for m in tp.moves if isinstance(m, CircularMove)]
     for arc in arcs:
-        c = circle_through(arc.start.position, arc.via.position, arc.end.position)
+        c = arc_through(arc.start.translation_mm, arc.via.translation_mm, arc.end.translation_mm)
         assert c.radius == pytest.approx(20.0, abs=2e-3) and c.sweep == pytest.approx(math.pi / 2, abs=1e-4)
     sprayed = sum(move_length(m) for m in tp.spray_moves)
     assert sprayed == pytest.approx(4 * 160 + 2 * math.pi * 20, abs=0.01)
     depart = tp.moves[-1]
-    assert np.allclose(depart.end.position, [520, -100, 250])   # tool z points down: depart goes up
+    assert np.allclose(depart.end.translation_mm, [520, -100, 250])   # tool z points down: depart goes up
     np.testing.assert_allclose(tp.tool.offset_mm, [0, 0, 150])
     np.testing.assert_allclose(tp.tool.rotation, np.eye(3), atol=1e-15)
 
@@ -143,26 +144,26 @@ def test_reals_shift_compose_base_and_point():
     trans = ".TRANS\na 10 20 30 90 180 0\n.END\n.REALS\nd = 5\n.END\n"
     tp = run("  POINT q = SHIFT(a BY 1, 2, 3)\n  JMOVE q\n  LMOVE a + TRANS(0, 0, d, 0, 0, 0)\n"
              "  BASE TRANS(1000, 0, 0, 90, 0, 0)\n  LMOVE a\n  JAPPRO a, -d\n", trans=trans)
-    assert np.allclose(tp.moves[0].target.position, [11, 22, 33])
+    assert np.allclose(tp.moves[0].target.translation_mm, [11, 22, 33])
     # a + TRANS(0,0,5): 5 mm along a's tool z, which points down.
-    assert np.allclose(tp.moves[1].end.position, [10, 20, 25])
+    assert np.allclose(tp.moves[1].end.translation_mm, [10, 20, 25])
     # BASE rotates a by 90 deg about z and moves it by 1000 mm along x.
-    assert np.allclose(tp.moves[2].end.position, [1000 - 20, 10, 30])
+    assert np.allclose(tp.moves[2].end.translation_mm, [1000 - 20, 10, 30])
     assert np.allclose(tp.moves[2].end.rotation, oat_to_matrix(90, 0, 0) @ oat_to_matrix(90, 180, 0))
-    assert np.allclose(tp.moves[3].target.position, [980, 10, 25])   # negative distance: towards the tool
+    assert np.allclose(tp.moves[3].target.translation_mm, [980, 10, 25])   # negative distance: towards the tool
 
 
 def test_appro_depart_draw_tdraw():
     trans = ".TRANS\na 0 0 0 0 90 0\n.END\n"  # tool z along base +x
     tp = run("  JAPPRO a, 10\n  LAPPRO a, 4\n  LMOVE a\n  LDEPART 7\n  DRAW 1, 2, 3\n  TDRAW 0, 0, 5\n  JDEPART 1\n", trans=trans)
-    xs = [m.target.position if isinstance(m, JointMove) else m.end.position for m in tp.moves]
+    xs = [m.target.translation_mm if isinstance(m, JointMove) else m.end.translation_mm for m in tp.moves]
     assert np.allclose(xs, [[-10, 0, 0], [-4, 0, 0], [0, 0, 0], [-7, 0, 0], [-6, 2, 3], [-1, 2, 3], [-2, 2, 3]])
     assert isinstance(tp.moves[1], LinearMove) and isinstance(tp.moves[6], JointMove)
 
 
 def test_circle_through_three_poses():
     tp = run("  JMOVE b\n  C1MOVE v\n  C2MOVE e\n")
-    c = circle_through(*(p.position for p in (tp.moves[1].start, tp.moves[1].via, tp.moves[1].end)))
+    c = arc_through(*(p.translation_mm for p in (tp.moves[1].start, tp.moves[1].via, tp.moves[1].end)))
     assert np.allclose(c.center, [100, 100, 0], atol=1e-6) and c.radius == pytest.approx(100.0)
     assert c.sweep == pytest.approx(math.pi / 2, abs=1e-8) and np.allclose(c.normal, [0, 0, 1])
 
@@ -230,16 +231,16 @@ def test_joint_poses_and_home_with_the_cell(kin):
              "  LMOVE #j\n", trans=trans, kinematics=kin)
     j0, line, j1, home, lin = tp.moves
     assert isinstance(j0, JointMove) and np.allclose(np.degrees(j0.joints_rad), [10, 0, 35, 0, 55, 0])
-    assert np.allclose(j0.target.position, kin.forward(j0.joints_rad).position)
-    assert np.allclose(line.start.position, j0.target.position)
-    assert np.allclose(line.end.position, j0.target.position - [0, 0, 20])
+    assert np.allclose(j0.target.translation_mm, kin.forward(j0.joints_rad).translation_mm)
+    assert np.allclose(line.start.translation_mm, j0.target.translation_mm)
+    assert np.allclose(line.end.translation_mm, j0.target.translation_mm - [0, 0, 20])
     assert np.allclose(home.joints_rad, kin.home(1)) and np.allclose(j1.joints_rad, kin.home(1))
-    assert isinstance(lin, LinearMove) and np.allclose(lin.end.position, j0.target.position)
+    assert isinstance(lin, LinearMove) and np.allclose(lin.end.translation_mm, j0.target.translation_mm)
 
 
 def test_start_pose_is_home_with_the_cell(kin):
     tp = run("  LMOVE a\n", kinematics=kin)
-    assert np.allclose(tp.moves[0].start.position, kin.forward(kin.home(1)).position)
+    assert np.allclose(tp.moves[0].start.translation_mm, kin.forward(kin.home(1)).translation_mm)
 
 
 @pytest.mark.parametrize("body,kind,words", [
@@ -255,7 +256,7 @@ def test_joint_pose_errors(kin, body, kind, words):
 
 def test_here_into_a_joint_value_after_a_cartesian_motion_keeps_the_pose(kin):
     tp = run("  JMOVE a\n  LMOVE b\n  HERE #j\n  LMOVE c\n  JMOVE #j\n", kinematics=kin)
-    assert np.allclose(tp.moves[-1].target.position, tp.moves[1].end.position) and tp.moves[-1].joints_rad is None
+    assert np.allclose(tp.moves[-1].target.translation_mm, tp.moves[1].end.translation_mm) and tp.moves[-1].joints_rad is None
 
 
 # --- what the twin cannot simulate: one line, exit 3 ----------------------------------------
@@ -322,7 +323,7 @@ def test_speed_units_and_xmove():
 
 def test_draw_with_empty_components_and_tdraw_in_tool_axes():
     tp = run("  JMOVE a\n  DRAW , 10\n  TDRAW ,,5\n")
-    assert np.allclose(tp.moves[1].end.position, [0, 10, 0]) and np.allclose(tp.moves[2].end.position, [0, 10, -5])
+    assert np.allclose(tp.moves[1].end.translation_mm, [0, 10, 0]) and np.allclose(tp.moves[2].end.translation_mm, [0, 10, -5])
 
 
 def test_joint_poses_are_read_with_the_tool_in_force(kin):
@@ -332,5 +333,5 @@ def test_joint_poses_are_read_with_the_tool_in_force(kin):
     gun = run("  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
     same = run("  TOOL TRANS(0, 0, 250)\n  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
     longer = run("  TOOL TRANS(0, 0, 300)\n  JMOVE #j\n", trans=trans, kinematics=kin).moves[0].target
-    assert np.allclose(same.position, gun.position) and np.allclose(same.rotation, gun.rotation)
-    assert np.allclose(longer.position, gun.position + 50.0 * gun.rotation[:, 2])
+    assert np.allclose(same.translation_mm, gun.translation_mm) and np.allclose(same.rotation, gun.rotation)
+    assert np.allclose(longer.translation_mm, gun.translation_mm + 50.0 * gun.rotation[:, 2])

@@ -67,7 +67,7 @@ def _same_motion(text: str) -> None:
     for a, b in zip(tp.moves, BASE_TOOLPATH.moves):
         end_a = a.target if a.kind == "joint" else a.end
         end_b = b.target if b.kind == "joint" else b.end
-        assert a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.position, end_b.position)
+        assert a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.translation_mm, end_b.translation_mm)
 
 
 @SETTINGS

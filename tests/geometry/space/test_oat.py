@@ -9,7 +9,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from coatsim.path.oat import matrix_to_oat, oat_to_matrix, rotation_angle, rot_y, rot_z
+from coatsim.geometry.space.rotations import matrix_to_oat, oat_to_matrix, rot_y, rot_z
+from coatsim.geometry.space.pose import rotation_angle
 
 angles = st.floats(-720.0, 720.0, allow_nan=False)
 

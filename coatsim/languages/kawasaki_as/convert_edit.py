@@ -10,18 +10,21 @@ meaning and is refused with its line, as are moves given in different BASEs or s
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import read_input_bytes
+from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.edit import edit_lines, indentation
-from coatsim.languages.kawasaki_as.interpreter import Run
+from coatsim.languages.kawasaki_as.files import parse_files
+from coatsim.languages.kawasaki_as.interpreter import interpret_run
 from coatsim.languages.kawasaki_as.names import sanitize_comment
+from coatsim.languages.kawasaki_as.reading import used_names, walk
 from coatsim.languages.kawasaki_as.writer import fmt, fmt_short, path_moves, pose_values
-from coatsim.languages.kawasaki_as.values import Frame
-from coatsim.path.check import used_names, walk
-from coatsim.path.toolpath import Pose
+from coatsim.path.edit import FittedPath, InPlaceEdit
+from coatsim.path.language import ReadOptions
 
 _HINT = "; use --standalone"
 
@@ -105,9 +108,13 @@ def _names_taken(files) -> set[str]:
     return {k.split("[")[0] for f in files for table in (f.trans, f.reals, f.joints) for k in table}
 
 
-def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, list[int], list[tuple[int, int]]]:
-    """(the file edited, its new bytes, the number of moves each path becomes, the lines each
-    replaces)."""
+def edit_in_place(items: Sequence[Path], options: ReadOptions, fitted: Sequence[FittedPath],
+                  tolerance_mm: float) -> InPlaceEdit:
+    """The file holding the process paths ``fitted`` (of the run of ``items`` read with
+    ``options``) with each path's statements replaced by its moves."""
+    files = parse_files(items)
+    run = interpret_run(files, options.gun_signal, options.program, inputs=options.inputs,
+                        kinematics=options.kinematics, variables=options.variables)
     programs = {run.move_origins[i][0] for f in fitted for i in f.path.moves}
     program_objs = [run.programs[name.lower()] for name in programs]
     sources = {p.source for p in program_objs}
@@ -148,17 +155,17 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         inverse = base.inverse()
 
         def name(pose: Pose, _k=k) -> str:
-            user = inverse * Frame.from_pose(pose)
+            user = inverse @ pose
             label = f"{prefix}{_k}_{len(trans):04d}"
             if len(label) > 15:
                 raise InputError(f"too many new poses for 15-character names{_HINT}")
-            trans.append(" ".join((label, *pose_values(user.pose()), *extra)))
+            trans.append(" ".join((label, *pose_values(user), *extra)))
             return label
 
         statements = path_moves(f.segments, name)
         indent = indentation(data, first_line)
         block = [f"{indent}; coatsim convert: lines {first_line}-{last_line}, {len(moves)} moves -> "
-                 f"{f.n_lines} lines + {f.n_arcs} arcs within {fmt_short(options.tolerance_mm)} mm"]
+                 f"{f.n_lines} lines + {f.n_arcs} arcs within {fmt_short(tolerance_mm)} mm"]
         for statement, comment in statements:
             block.append(f"{indent}{statement}".ljust(30) + f" ; {sanitize_comment(comment)}")
             if switch and not statement.startswith("C1MOVE"):  # after the first complete move, as before
@@ -168,4 +175,4 @@ def edit_in_place(items, files, run: Run, fitted, options) -> tuple[str, bytes, 
         ranges.append((first_line, last_line))
         counts.append(sum(1 for s, _ in statements if not s.startswith("C1MOVE")))
     new = edit_lines(data, replacements, [".TRANS", *trans, ".END"])
-    return source, new, counts, ranges
+    return InPlaceEdit(source, new, tuple(counts), tuple(ranges))

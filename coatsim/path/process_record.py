@@ -1,4 +1,6 @@
-"""The process record of a coatsim program as AS header comments: ``; coatsim: key=value``.
+"""The process record of a coatsim program as ``key=value`` fields, which each language writes
+in its own comments (AS ``; coatsim: key=value``, RAPID ``! coatsim: key=value``, KRL
+``;coatsim: key=value``) and its reader hands back to :func:`decode`.
 
 One line per field, in a fixed order; a field the record does not hold is not written. A program
 of several contours holds its per-contour fields (``closed``, ``sprayed``, ``speed_limits``) as one
@@ -15,8 +17,8 @@ from typing import Callable, Iterable, Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
-from coatsim.path.frames import Frame
-from coatsim.path.process import ProcessInfo, SprayedContour
+from coatsim.geometry.space.xyzoat import format_xyzoat, parse_xyzoat
+from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
 from coatsim.path.speed_limits import SpeedLimit
 
 SPRAYED_CURVE = "curve"
@@ -74,7 +76,7 @@ def encode(info: ProcessInfo) -> tuple[tuple[str, str], ...]:
         ("speed_mm_s", None if info.speed_mm_s is None else fmt_short(info.speed_mm_s)),
         ("accuracy_mm", None if info.accuracy_mm is None else fmt_short(info.accuracy_mm)),
         ("gun_signal", None if info.gun_signal is None else str(info.gun_signal)),
-        ("frame", None if info.frame is None else str(info.frame)),
+        ("frame", None if info.frame is None else format_xyzoat(info.frame)),
         ("closed", _per_contour("yes" if c.closed else "no" for c in contours) if contours else None),
         ("sprayed", _per_contour(SPRAYED_WITH_LEADS if c.leads_sprayed else SPRAYED_CURVE for c in contours)
          if contours else None),
@@ -83,6 +85,8 @@ def encode(info: ProcessInfo) -> tuple[tuple[str, str], ...]:
         ("n_arcs", None if info.n_arcs is None else str(info.n_arcs)),
         (SPEED_LIMITS_KEY, _per_contour(format_limits(c.speed_limits) for c in contours) if contours else None),
     ]
+    if info.speed_on is not None:
+        fields.append(("speed_on", info.speed_on))
     if info.contour_order is not None:
         fields += [("n_contours", str(len(info.contour_order))),
                    ("contour_order", ",".join(str(k) for k in info.contour_order))]
@@ -171,10 +175,17 @@ def decode(pairs: Sequence[tuple[str, str]], where: str) -> ProcessInfo:
         speed_mm_s=optional("speed_mm_s", _length),
         accuracy_mm=optional("accuracy_mm", _length),
         gun_signal=optional("gun_signal", _count),
-        frame=Frame.parse(fields["frame"], f"{where}: header field frame") if "frame" in fields else None,
+        frame=parse_xyzoat(fields["frame"], f"{where}: header field frame") if "frame" in fields else None,
         n_segments=optional("n_segments", _count),
         n_lines=optional("n_lines", _count),
         n_arcs=optional("n_arcs", _count),
         contours=_contours(where, fields),
         contour_order=contour_order,
+        speed_on=_speed_on(where, get("speed_on")),
     )
+
+
+def _speed_on(where: str, raw: str | None) -> str | None:
+    if raw is not None and raw not in SPEED_ON:
+        raise InputError(f"{where}: header field speed_on={raw!r}: expected one of {', '.join(SPEED_ON)}")
+    return raw
