@@ -6,15 +6,15 @@ The unknowns are the knots s_j (arc lengths of the run where pieces meet), the c
 piece's curvature vector c_j. Each piece depends on its own unknowns only, so its end state
 and its offsets from the input points it spans are differentiated piece by piece (forward
 differences, all pieces at once); tangent continuity is the linear condition "end state of
-piece j = state j + 1". Each step solves the linear programme
+piece j = state j + 1". Each step solves the second-order cone programme
 
     minimise  t + W·e   over the step dx, within a trust region,
-    |y_i| + ŷ_i·J_i dx <= t        for the sampled input points i (ŷ_i the offset's direction),
+    |y_i + J_i dx|     <= t        for the sampled input points i (the 2-D offset, a cone),
     |g_j + G_j dx|     <= e        for the continuity gaps g_j of every junction,
-    ĉ_j·(c_j + dc_j)   <= cap_j    (no arc tighter than the run's curvature cap there),
+    |c_j + dc_j|       <= cap_j    (no arc tighter than the run's curvature cap there, a cone),
     s_j+1 − s_j        >= the minimum segment length,
 
-with HiGHS, and keeps the step if the true merit max|y| + W·max|g| falls (the trust region
+with Clarabel, and keeps the step if the true merit max|y| + W·max|g| falls (the trust region
 grows or shrinks by how well the model predicted it; knots move in a smaller box, as the
 offsets bend faster with them). When the samples are within the target, every input point
 is measured and those beyond the sampled maximum join the samples (an exchange).
@@ -260,8 +260,7 @@ class TubeProblem:
             for _ in range(CHORD_STEPS):  # close the step's gaps (second order in its size)
                 trial = self._corrected(trial, lin) or trial
             t_dev, t_gap = self._merit(trial)
-            best = (t_dev + GAP_WEIGHT * t_gap, trial, t_dev, t_gap)
-            t_f, trial, t_dev, t_gap = best
+            t_f = t_dev + GAP_WEIGHT * t_gap
             ratio = (f - t_f) / max(f - model, 1e-300)
             if ratio > 0:
                 f, chain, dev, gap = t_f, trial, t_dev, t_gap
