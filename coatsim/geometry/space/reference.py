@@ -73,14 +73,34 @@ class Reference:
         return _interp(self.s, self.points, at), t, u, np.cross(t, u)
 
 
+def _smoothed(points: np.ndarray, s: np.ndarray, at: np.ndarray, window_mm: float) -> np.ndarray:
+    """The mean of the polyline over ± ``window_mm`` of arc length around every ``at``, the
+    window narrowed toward the ends so that they stay where they are (digitising noise would
+    otherwise make the frames, and with them the knots' derivatives, jitter)."""
+    edge = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    area = np.vstack((np.zeros((1, 3)), np.cumsum(edge[:, None] * (points[:-1] + points[1:]) / 2, axis=0)))
+
+    def integral(x: np.ndarray) -> np.ndarray:
+        i = np.clip(np.searchsorted(s, x, side="right") - 1, 0, len(s) - 2)
+        u = np.where(edge[i] > 0, (x - s[i]) / np.where(edge[i] > 0, edge[i], 1.0), 0.0)
+        p = points[i] + u[:, None] * (points[i + 1] - points[i])
+        return area[i] + (x - s[i])[:, None] * (points[i] + p) / 2
+
+    half = np.minimum(window_mm, np.minimum(at - s[0], s[-1] - at))
+    mean = (integral(at + half) - integral(at - half)) / np.where(half > 0, 2 * half, 1.0)[:, None]
+    exact = half <= 0
+    mean[exact] = _interp(s, points, at[exact])
+    return mean
+
+
 def reference(points: np.ndarray, s: np.ndarray, window_mm: float,
               start_tangent: np.ndarray | None = None, end_tangent: np.ndarray | None = None) -> Reference:
     """The frame field of a run of ``points`` (n, 3) at arc lengths ``s`` (see the module
     text); ``start_tangent``/``end_tangent`` replace the chord tangents at the ends."""
     keep = np.unique(np.linspace(0, len(points) - 1, min(len(points), MAX_VERTICES)).astype(int))
-    pts, ss = points[keep], s[keep]
-    ahead = _interp(s, points, np.minimum(ss + window_mm, s[-1]))
-    behind = _interp(s, points, np.maximum(ss - window_mm, 0.0))
+    pts, ss = _smoothed(points, s, s[keep], window_mm), s[keep]
+    ahead = _smoothed(points, s, np.minimum(ss + window_mm, s[-1]), window_mm)
+    behind = _smoothed(points, s, np.maximum(ss - window_mm, 0.0), window_mm)
     tangent = _unit(ahead - behind)
     if start_tangent is not None:
         tangent[0] = _unit(np.asarray(start_tangent, dtype=float))

@@ -21,8 +21,8 @@ is measured and those beyond the sampled maximum join the samples (an exchange).
 
 A state at a junction is a point of the tube, not of the curve: the chain need not touch the
 input anywhere but at the run's pinned ends, which is what lets it use the whole tube. A
-closed loop also meets its start tangent at the seam (the end tilt is the start tilt turned
-into the end frame).
+closed loop ends where and as it starts, its seam state free too (the end state is the
+start state turned into the end frame).
 """
 
 from __future__ import annotations
@@ -90,7 +90,8 @@ class TubeChain:
 class Ends:
     """What the run's ends keep besides their points: ``start_tangent`` / ``end_tangent``
     the reference tangents there (tilt 0); ``seam`` (2, 2), for a closed loop, turns the
-    start tilt into the end frame (the end tilt must equal it)."""
+    start state into the end frame (the end state must equal it; the seam point is then
+    free in the tube, not pinned to the input's first point)."""
 
     start_tangent: bool = False
     end_tangent: bool = False
@@ -283,7 +284,8 @@ class TubeProblem:
         piece = self._membership(chain, self.pick)
         ends, offs = evaluate(self.ref, params, self.samples.take(self.pick) if samples else None, piece)
         target = np.broadcast_to(chain.states[1:], ends.shape).copy()
-        if self.ends.seam is not None:
+        if self.ends.seam is not None:  # the loop ends where and as it starts
+            target[..., -1, :2] = self.ends.seam @ chain.states[0, :2]
             target[..., -1, 2:] = self.ends.seam @ chain.states[0, 2:]
         return offs, ends - target
 
@@ -301,6 +303,7 @@ class TubeProblem:
     def _layout(self, n: int, knots: bool) -> _Layout:
         fixed = np.zeros((n + 1, 4), dtype=bool)
         fixed[[0, n], :2] = True
+        fixed[0, :2] = self.ends.seam is None  # a loop's seam point is free in the tube too
         fixed[0, 2:] = self.ends.start_tangent
         fixed[n, 2:] = self.ends.end_tangent or self.ends.seam is not None
         count = (n - 1 if knots else 0) + int((~fixed).sum()) + 2 * n
@@ -328,10 +331,11 @@ class TubeProblem:
         vals = np.concatenate((np.transpose(d_gaps, (1, 2, 0)) * weight[None, :, None],
                                -np.broadcast_to(weight, (n, 4))[:, :, None]), axis=2)
         r, c, v = g_rows.ravel(), cols.ravel(), vals.ravel()
-        if self.ends.seam is not None:  # the last end tilt is compared with the turned start tilt
-            r = np.concatenate((r, np.repeat(4 * (n - 1) + np.array([2, 3]), 2)))
-            c = np.concatenate((c, np.tile(lay.state[0, 2:], 2)))
-            v = np.concatenate((v, -self.ends.seam.ravel() * h))
+        if self.ends.seam is not None:  # the last end state is compared with the turned start state
+            for first, w in ((0, 1.0), (2, h)):
+                r = np.concatenate((r, np.repeat(4 * (n - 1) + first + np.array([0, 1]), 2)))
+                c = np.concatenate((c, np.tile(lay.state[0, first : first + 2], 2)))
+                v = np.concatenate((v, -self.ends.seam.ravel() * w))
         keep = c >= 0
         gap_matrix = coo_matrix((v[keep], (r[keep], c[keep])), shape=(4 * n, lay.count)).tocsr()
         scale = np.array([KNOT_SHARE * h, KNOT_SHARE * h, self.tol, self.tol, 4 * self.tol / h, 4 * self.tol / h,

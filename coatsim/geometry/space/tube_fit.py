@@ -6,8 +6,9 @@ pieces as it can keep within σ.
    curve with the curve's tangent.
 2. The whole chain is pulled inside the tube (coatsim.geometry.space.tube): junction points
    and tangents, knots and curvatures free, tangent continuity a constraint, under the run's
-   curvature caps and minimum length. Where that stays above the target, the worst piece
-   is split and the chain refitted.
+   curvature caps and minimum length. Where that stays above the target, more pieces are
+   tried, each count from fresh starts (the greedy's knot density, even spacing) and from
+   the chain that missed with its worst piece split.
 3. Then pieces are merged, two neighbours at a time (those whose curvatures differ least
    over their span first), as long as the merged chain still fits.
 4. The chain is built segment by segment from its first state (every segment leaves from
@@ -41,7 +42,8 @@ from coatsim.geometry.space.tube import Ends, TubeChain, TubeProblem
 TARGET = 0.999  # the fit aims at this share of σ (the exact check decides)
 LOWER = 0.98  # a chain the exact check finds above σ is refitted this much lower, ...
 CERTIFY_TRIES = 3  # ... this many times at most
-MAX_SPLITS = 6  # pieces added where the greedy's knots do not fit G1
+EXTRA_PIECES = (0, 1, 2, 3)  # pieces beyond the greedy's count tried while no chain fits, ...
+MORE_PIECES = (1.25, 1.5, 2.0, 3.0)  # ... then these multiples of it
 MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain resampled)
 MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
 MIN_POINTS = 12  # shorter runs are left to the biarc fitter
@@ -126,18 +128,12 @@ def _initial(ref: Reference, knots: np.ndarray) -> TubeChain:
 
 
 def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
-    """A chain within ``target``: as many pieces as the greedy has arcs, refined (its worst
-    piece split while it is not within), then one piece fewer at a time while it stays
-    within, each count tried from the chain before with two neighbours merged (those whose
-    curvatures differ least over their span first), resampled, and from knots spread as
-    the greedy's; None if it never gets within."""
-    chain = _initial(problem.ref, density.spread(density.count))
-    for _ in range(MAX_SPLITS + 1):
-        chain, dev = problem.fit(chain, target)
-        if dev <= target:
-            break
-        chain = _split_worst(problem, chain)
-    else:
+    """A chain within ``target`` (``_first_within``), then one piece fewer at a time while it
+    stays within, each count tried from the chain before with two neighbours merged (those
+    whose curvatures differ least over their span first), resampled, and from knots spread
+    as the greedy's; None if it never gets within."""
+    chain = _first_within(problem, density, target)
+    if chain is None:
         return None
     while chain.n > 1:
         n = chain.n - 1
@@ -150,6 +146,30 @@ def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float) -> Tub
         else:
             return chain
     return chain
+
+
+def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
+    """The first chain within ``target`` of as many pieces as the greedy has arcs, then a few
+    more, then growing shares more (MORE_PIECES): each count started from knots spread as
+    the greedy's, spread evenly, and (one piece more than a chain that missed) from that
+    chain with its worst piece split. Fresh starts, because a chain that missed is often
+    caught in a local optimum no split gets it out of."""
+    count = density.count
+    counts = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
+    missed: TubeChain | None = None
+    for n in counts:
+        starts = [_initial(problem.ref, density.spread(n)),
+                  _initial(problem.ref, np.linspace(density.knots[0], density.knots[-1], n + 1))]
+        if missed is not None and missed.n == n - 1:
+            starts.insert(0, _split_worst(problem, missed))
+        best = None
+        for start in starts:
+            chain, dev = problem.fit(start, target)
+            if dev <= target:
+                return chain
+            best = (dev, chain) if best is None or dev < best[0] else best
+        missed = best[1]
+    return None
 
 
 def _merge_order(chain: TubeChain) -> np.ndarray:
@@ -172,9 +192,13 @@ def _split_worst(problem: TubeProblem, chain: TubeChain) -> TubeChain:
 
 def _build(ref: Reference, chain: TubeChain, end: np.ndarray, ends: Ends) -> tuple[tuple[Segment3, ...], np.ndarray]:
     """The chain's segments, each leaving from the end of the one before, closed exactly
-    onto ``end`` (see the module text), and the knot span of every segment (k, 2) mm."""
+    onto ``end`` (a loop onto its own start; see the module text), and the knot span of every
+    segment (k, 2) mm."""
     start, t = state_point(ref, chain.knots[0], chain.states[0, :2], chain.states[0, 2:])
-    start = ref.points[0].copy()  # the state there is pinned on the curve: exactly its first point
+    if ends.seam is None:
+        start = ref.points[0].copy()  # the state there is pinned on the curve: exactly its first point
+    else:
+        end = start  # a loop closes onto its own start
     pinned = ends.end_tangent or ends.seam is not None
     last = max(chain.n - (2 if pinned else 1), 0)
     segments: list[Segment3] = []
