@@ -6,8 +6,8 @@ its 2-D fit (the plane's distance h is taken off the planar tolerance: √(σ² 
 curve is split at its true corners and each run fitted by an arc spline whose junctions are
 free inside the σ-tube (coatsim.geometry.space.tube_fit), or, where that finds nothing, by
 spatial biarcs through the input narrowed until within (coatsim.geometry.space.fit); a
-closed loop without corners keeps its tangent across the seam. Every run is certified by
-the exact 3-D Hausdorff check.
+closed loop without corners keeps its tangent across the seam, which is tried at a few places
+(the one knot the fit cannot move). Every run is certified by the exact 3-D Hausdorff check.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import SpaceCurve
 from coatsim.geometry.space.deviation import hausdorff3
 from coatsim.geometry.space.fit import RunChain, fit_run3
+from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.local import curvature_profile3, detect_corners3, tangent_at, arc_length, window_mm
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import Arc3, place
@@ -36,6 +37,7 @@ from coatsim.geometry.space.tube_fit import fit_tube_run
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
 NARROWER = (0.9, 0.75, 0.5, 0.3)  # working tolerances (shares of σ) tried in turn
 KINK_RAD = 1e-9  # a junction breaking its tangent by more is listed as a corner
+SEAM_SHIFTS = (0.0, 1 / 3, 2 / 3)  # a loop's seams tried, in shares of a greedy arc past its first point
 
 
 @dataclass(frozen=True, eq=False)
@@ -173,10 +175,11 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
     speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
     segments, kept, radii, junctions, devs = [], True, [], [], []
     for a, b in zip(cuts[:-1], cuts[1:]):
-        run = pts[a : b + 1]
-        limits, window = _limits(run, loop, tol, min_segment_mm, speed_kappa)
-        seam = tangent_at(*_seam_view(pts, window), window) if loop else None
-        fitted, dev = _fit_run(curve.name, run, tol, limits, window, seam)
+        if loop:
+            fitted, dev, limits = _fit_loop(curve.name, pts, tol, min_segment_mm, speed_kappa)
+        else:
+            limits, window = _limits(pts[a : b + 1], False, tol, min_segment_mm, speed_kappa)
+            fitted, dev = _fit_run(curve.name, pts[a : b + 1], tol, limits, window, None)
         segments.extend(fitted.segments)
         junctions.append(len(segments) - 1)
         kept = kept and fitted.limits_kept
@@ -205,6 +208,28 @@ def _fit_run(name: str, run: np.ndarray, tol: float, limits: FitLimits, window: 
             return fitted, dev
     raise InputError(f"{name}: no chain within {tol:g} mm was found (deviation {dev:.4g} mm); "
                      "the input may be too noisy for tolerance_mm")
+
+
+def _fit_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | None,
+              speed_kappa: float | None) -> tuple[RunChain, float, FitLimits]:
+    """A closed loop without corners, its seam (where the chain's knots start) tried at a few
+    shares of a greedy arc past the input's first point (SEAM_SHIFTS) until the chain has no
+    more pieces than the greedy fitter; the fewest kept (the chain, its certified deviation
+    and the limits it was fitted under). The seam is the one knot the fit cannot move."""
+    body, s = loop[:-1], arc_length(loop)
+    greedy = max(len(greedy_knots(loop, tol)) - 1, 1)
+    arc = s[-1] / greedy
+    best = None
+    for share in SEAM_SHIFTS:
+        k = int(np.searchsorted(s, share * arc)) % len(body)
+        pts = np.vstack((body[k:], body[:k], body[k : k + 1]))
+        limits, window = _limits(pts, True, tol, min_segment_mm, speed_kappa)
+        fitted, dev = _fit_run(name, pts, tol, limits, window, tangent_at(*_seam_view(pts, window), window))
+        if best is None or len(fitted.segments) < len(best[0].segments):
+            best = (fitted, dev, limits)
+        if len(fitted.segments) <= greedy:
+            break
+    return best
 
 
 def _with_kinks(chain: SpaceChain) -> tuple[SpaceChain, bool]:

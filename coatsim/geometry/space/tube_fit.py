@@ -44,6 +44,7 @@ LOWER = 0.98  # a chain the exact check finds above σ is refitted this much low
 CERTIFY_TRIES = 3  # ... this many times at most
 EXTRA_PIECES = (0, 1, 2, 3)  # pieces beyond the greedy's count tried while no chain fits, ...
 MORE_PIECES = (1.25, 1.5, 2.0, 3.0)  # ... then these multiples of it
+BALANCE_ROUNDS = 2  # refits of a count from knots spread to even out the pieces' misses
 MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain resampled)
 MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
 MIN_POINTS = 12  # shorter runs are left to the biarc fitter
@@ -168,8 +169,29 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
             if dev <= target:
                 return chain
             best = (dev, chain) if best is None or dev < best[0] else best
+        for _ in range(BALANCE_ROUNDS):
+            chain, dev = problem.fit(_initial(problem.ref, _balanced(problem, best[1])), target)
+            if dev <= target:
+                return chain
+            best = (dev, chain) if dev < best[0] else best
         missed = best[1]
     return None
+
+
+def _balanced(problem: TubeProblem, chain: TubeChain) -> np.ndarray:
+    """As many knots as the chain has, spread so that every piece would miss by as much
+    (equidistribution): a piece of length h missing by e is worth (e / σ)^(1/3) / h pieces
+    per mm (an arc's deviation from a curve grows with the cube of its length), the knots
+    cut that density into equal shares."""
+    offsets = problem.offsets(chain)
+    piece = np.clip(np.searchsorted(chain.knots, problem.s, side="right") - 1, 0, chain.n - 1)
+    worst = np.zeros(chain.n)
+    np.maximum.at(worst, piece, offsets)
+    h = np.diff(chain.knots)
+    weight = np.cumsum(np.concatenate(([0.0], np.cbrt(np.maximum(worst, 1e-3 * problem.tol) / problem.tol))))
+    knots = np.interp(np.linspace(0.0, weight[-1], chain.n + 1), weight, chain.knots)
+    knots[[0, -1]] = chain.knots[[0, -1]]
+    return knots
 
 
 def _merge_order(chain: TubeChain) -> np.ndarray:
