@@ -30,11 +30,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import clarabel
-from scipy.sparse import coo_matrix, csc_matrix, csr_matrix, diags
+from scipy.sparse import coo_matrix, csr_matrix, diags
 from scipy.sparse.linalg import spsolve
 
 from coatsim.geometry.limits import FitLimits
+from coatsim.geometry.space.cone_program import ConeProgram
 from coatsim.geometry.space.pieces import Samples, end_states, evaluate
 from coatsim.geometry.space.reference import Reference
 
@@ -52,7 +52,6 @@ GROW, SHRINK = 0.5, 0.1  # the trust region doubles above this ratio of gain to 
 STALL = 1e-4  # a step the model expects to gain less than this share of σ ends the descent
 CHORD_STEPS = 3  # corrections of a step's gaps along the step's own linearisation
 PACE = 8  # steps over which the progress of a descent is judged
-SOLVER_TOL = 1e-7  # the cone solver's gap and feasibility tolerances
 
 
 @dataclass(frozen=True, eq=False)
@@ -111,48 +110,6 @@ class _Layout:
     def local(self) -> np.ndarray:
         """The unknowns of each piece's 8 parameters, (n, 8)."""
         return np.column_stack((self.knot[:-1], self.knot[1:], self.state[:-1], self.kappa))
-
-
-class _Program:
-    """A second-order cone programme  minimise cost·x  with  b − A x  in the cones (Clarabel),
-    gathered block by block: linear rows (A x <= b) and blocks of 3-row cones (t, v) with
-    |v| <= t, the linear ones first."""
-
-    def __init__(self, width: int) -> None:
-        self.width = width
-        self.blocks: dict[bool, list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]] = {True: [], False: []}
-        self.count = {True: 0, False: 0}
-
-    def add(self, rows: np.ndarray, cols: np.ndarray, vals: np.ndarray, rhs: np.ndarray, cone: bool = False) -> None:
-        """Rows numbered from 0 locally (entries with cols < 0, fixed unknowns, dropped);
-        ``cone``: consecutive groups of 3 rows are second-order cones (the first the bound)."""
-        rows, cols, vals = (np.asarray(x).ravel() for x in (rows, cols, vals))
-        keep = cols >= 0
-        rhs = np.asarray(rhs, dtype=float).ravel()
-        linear = not cone
-        self.blocks[linear].append((rows[keep] + self.count[linear], cols[keep], vals[keep].astype(float), rhs))
-        self.count[linear] += len(rhs)
-
-    def solve(self, cost: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray | None:
-        """The minimiser within lower <= x <= upper (None if the solver fails)."""
-        up, low = np.flatnonzero(np.isfinite(upper)), np.flatnonzero(np.isfinite(lower))
-        box = len(up) + len(low)
-        first = box + self.count[True]
-        r, c, v, b = [np.arange(box), np.concatenate((up, low))], [], [], [upper[up], -lower[low]]
-        c.append(r.pop())
-        v.append(np.concatenate((np.ones(len(up)), -np.ones(len(low)))))
-        for linear, offset in ((True, box), (False, first)):
-            for rows, cols, vals, rhs in self.blocks[linear]:
-                r.append(rows + offset), c.append(cols), v.append(vals), b.append(rhs)
-        a = coo_matrix((np.concatenate(v), (np.concatenate(r), np.concatenate(c))),
-                       shape=(first + self.count[False], self.width)).tocsc()
-        cones = [clarabel.NonnegativeConeT(first)] + [clarabel.SecondOrderConeT(3)] * (self.count[False] // 3)
-        settings = clarabel.DefaultSettings()
-        settings.verbose = False
-        settings.tol_gap_abs = settings.tol_gap_rel = settings.tol_feas = SOLVER_TOL
-        solution = clarabel.DefaultSolver(csc_matrix((self.width, self.width)), cost, a, np.concatenate(b),
-                                          cones, settings).solve()
-        return np.array(solution.x) if str(solution.status) in ("Solved", "AlmostSolved") else None
 
 
 @dataclass(frozen=True, eq=False)
@@ -351,7 +308,7 @@ class TubeProblem:
         """One trust-region step: the trial chain and the model's merit for it."""
         lay = lin.layout
         t_col, e_col = lay.count, lay.count + 1
-        prog = _Program(lay.count + 2)
+        prog = ConeProgram(lay.count + 2)
         # gaps: ±(g + G dx) − e <= 0
         g = lin.gaps.tocoo()
         ng = g.shape[0]
@@ -443,7 +400,7 @@ class TubeProblem:
             return None
         return _moved(trial, lin.layout, d2 * (lin.gaps.T @ y))
 
-    def _limit_rows(self, prog: _Program, chain: TubeChain, lay: _Layout, reach: float) -> None:
+    def _limit_rows(self, prog: ConeProgram, chain: TubeChain, lay: _Layout, reach: float) -> None:
         """Minimum lengths ds_j − ds_j+1 <= h_j − min_length (never shorter than a piece is
         now) and curvature caps |c_j + dc_j| <= cap_j (``reach``: the curvature step allowed)."""
         h = np.diff(chain.knots)

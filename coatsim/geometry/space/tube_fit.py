@@ -64,8 +64,8 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
     seam = seam_tangent is not None
     ref = reference(points, s, window, seam_tangent if seam else start_tangent, seam_tangent if seam else end_tangent)
     if seam:
-        _, t0, u0, v0 = ref.frame(np.array(0.0))
-        _, t1, u1, v1 = ref.frame(np.array(ref.length))
+        _, _, u0, v0 = ref.frame(np.array(0.0))
+        _, _, u1, v1 = ref.frame(np.array(ref.length))
         turn = np.array([[u1 @ u0, u1 @ v0], [v1 @ u0, v1 @ v0]])
         ends = Ends(False, False, turn)
     else:
@@ -187,7 +187,6 @@ def _balanced(problem: TubeProblem, chain: TubeChain) -> np.ndarray:
     piece = np.clip(np.searchsorted(chain.knots, problem.s, side="right") - 1, 0, chain.n - 1)
     worst = np.zeros(chain.n)
     np.maximum.at(worst, piece, offsets)
-    h = np.diff(chain.knots)
     weight = np.cumsum(np.concatenate(([0.0], np.cbrt(np.maximum(worst, 1e-3 * problem.tol) / problem.tol))))
     knots = np.interp(np.linspace(0.0, weight[-1], chain.n + 1), weight, chain.knots)
     knots[[0, -1]] = chain.knots[[0, -1]]
