@@ -65,8 +65,11 @@ class MeshInfo:
 class PlanStats:
     """Figures of a plan: pass count, region area (mm^2), coverage (share of the region within
     half a spacing of a pass), spacing along the surface (min, median, max mm; None without
-    neighbouring passes), the normal smoothing length (mm) and the largest angle between a
-    smoothed normal and a face around it (deg)."""
+    neighbouring passes), the normal smoothing length (mm), the largest angle between a
+    smoothed normal and a face around it (deg; on a coarsely faceted mesh the faces around one
+    vertex differ by as much) and the largest angle by which a pass normal leaves the cone of
+    the face normals near its point in its feature region (deg; the independent check's figure,
+    verify.py)."""
 
     passes: int
     region_area_mm2: float
@@ -76,6 +79,7 @@ class PlanStats:
     spacing_max_mm: Optional[float]
     normal_smoothing_mm: float
     normal_max_angle_deg: float
+    normal_off_faces_deg: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,6 +129,7 @@ def to_document(paths: SurfacePaths) -> dict[str, Any]:
                                                "max": _number(s.spacing_max_mm)},
                   "normal_smoothing_mm": _number(s.normal_smoothing_mm),
                   "normal_max_angle_deg": _number(s.normal_max_angle_deg, 4),
+                  "normal_off_faces_deg": _number(s.normal_off_faces_deg, 4),
                   "seconds": None},
     }
 
@@ -232,7 +237,9 @@ def from_document(doc: Any, where: str) -> SurfacePaths:
                       *(_optional(_field(gaps, k, f"{where}.stats.spacing_along_surface_mm"),
                                   f"{where}.stats.spacing_along_surface_mm.{k}") for k in ("min", "median", "max")),
                       _positive(st, "normal_smoothing_mm", f"{where}.stats", True),
-                      _positive(st, "normal_max_angle_deg", f"{where}.stats", True))
+                      _positive(st, "normal_max_angle_deg", f"{where}.stats", True),
+                      _positive(st, "normal_off_faces_deg", f"{where}.stats", True) if "normal_off_faces_deg" in st
+                      else 0.0)
     return SurfacePaths(info, pattern, _positive(doc, "spacing_mm", where), _positive(doc, "standoff_mm", where),
                         _positive(doc, "ripple_pct", where, True), passes, stats)
 
