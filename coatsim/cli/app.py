@@ -13,7 +13,7 @@ from coatsim.cli.flags import speaking_flags
 from coatsim.cli import check_program, coat, convert, execute, plan, program, run, schema, segment, sweep
 
 BUDGET_HELP = ("Change a resource budget for this command, NAME=N (repeatable; N may be inf): curve_points, "
-               "drawing_entities, sweep_points, input_bytes, seconds, ... (the README's budget table).")
+               "drawing_entities, sweep_points, input_bytes, seconds, ... (docs/reference/budgets.md).")
 
 app = typer.Typer(
     add_completion=False,

@@ -81,7 +81,7 @@ MAX_PLAN_PASSES = 20_000
 
 @dataclass(frozen=True)
 class Budget:
-    """One named budget: its default and what it bounds (the README's budget table)."""
+    """One named budget: its default and what it bounds (docs/reference/budgets.md is generated from them)."""
 
     name: str
     default: float
