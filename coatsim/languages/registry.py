@@ -18,14 +18,20 @@ from typing import Sequence
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import decode_text, open_input
 from coatsim.languages.abb_rapid.language import ABB_RAPID
+from coatsim.languages.fanuc_tp.language import FANUC_TP
+from coatsim.languages.gcode.language import GCODE
 from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.languages.kuka_krl.language import KUKA_KRL
+from coatsim.languages.urscript.language import URSCRIPT
 from coatsim.path.language import Language
 
 LANGUAGES: dict[str, Language] = {language.name: language for language in (
     KAWASAKI_AS,
     ABB_RAPID,
     KUKA_KRL,
+    FANUC_TP,
+    URSCRIPT,
+    GCODE,
 )}
 #: The language coatsim writes when none is asked for.
 DEFAULT_LANGUAGE = KAWASAKI_AS.name
