@@ -34,8 +34,10 @@ LANDED_BAND = 0.9  # a re-measured state keeps its offset within this share of t
 @dataclass(frozen=True, eq=False)
 class BandProblem:
     """Knots ``s`` (n,) and integrated heading ``phi`` (n,) of one open run of a curve, the
-    curvature cap of a piece covering each knot (n,) 1/mm, the shortest piece (mm), and the
-    run's ``points`` (n, 2) with their tangent headings ``tangent`` (n,) rad."""
+    curvature cap of a piece covering each knot (n,) 1/mm, the shortest piece (mm), the
+    run's ``points`` (n, 2) with their tangent headings ``tangent`` (n,) rad, and the share
+    of the band open at each knot ``width`` (n,) (1 on dense input; narrower where a sparse
+    polyline's channel is, coatsim.geometry.sparse)."""
 
     s: np.ndarray
     phi: np.ndarray
@@ -43,11 +45,15 @@ class BandProblem:
     min_length: float
     points: np.ndarray
     tangent: np.ndarray
+    width: np.ndarray
     first_steps: dict = field(default_factory=dict, repr=False)  # see _first_step
 
     @classmethod
-    def from_points(cls, points: np.ndarray, limits: FitLimits) -> tuple["BandProblem", float]:
-        """Build from a polyline; returns the problem and the reference heading θ is taken from."""
+    def from_points(cls, points: np.ndarray, limits: FitLimits, width: np.ndarray | None = None,
+                    run_length: float | None = None) -> tuple["BandProblem", float]:
+        """Build from a polyline; returns the problem and the reference heading θ is taken from.
+        ``width``: the band's share per point (default 1); ``run_length``: the length of the
+        run ``limits`` belong to, when ``points`` are a guide of slightly different length."""
         d = np.diff(points, axis=0)
         ell = np.linalg.norm(d, axis=1)
         heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
@@ -55,7 +61,9 @@ class BandProblem:
         s = np.concatenate(([0.0], np.cumsum(ell)))
         phi = np.concatenate(([0.0], np.cumsum((heading - ref) * ell)))
         tangent = np.concatenate(([heading[0]], (heading[:-1] + heading[1:]) / 2, [heading[-1]]))
-        return cls(s, phi, limits.at_knots(s), limits.min_length_mm, np.asarray(points, float), tangent), ref
+        cap = limits.at_knots(s if run_length is None else s * (run_length / s[-1]))
+        share = np.ones(len(s)) if width is None else np.asarray(width, float)
+        return cls(s, phi, cap, limits.min_length_mm, np.asarray(points, float), tangent, share), ref
 
     def ends_allowed(self, a: int, b: np.ndarray) -> np.ndarray:
         """Whether a piece from knot ``a`` may end at each knot of ``b``: long enough, and
@@ -114,7 +122,8 @@ def _landed(prob: BandProblem, ref: float, pose: _Pose, piece: Piece, band: floa
     if not 0.5 * piece.length <= length <= 1.5 * piece.length:
         length = piece.length
     end = pose.along(piece.kappa, length)
-    offset = float(np.clip(-(end.x - px) * ty + (end.y - py) * tx, -LANDED_BAND * band, LANDED_BAND * band))
+    edge = LANDED_BAND * band * float(prob.width[b])
+    offset = float(np.clip(-(end.x - px) * ty + (end.y - py) * tx, -edge, edge))
     return Piece(piece.a, b, piece.kappa, length), end, float(prob.phi[b] + offset), end.heading - ref
 
 
@@ -134,8 +143,9 @@ def _reach(prob: BandProblem, a: int, value: float, slope: float, band: float) -
         u = prob.s[start:stop] - prob.s[a]
         base = value + slope * u
         inv = 2.0 / (u * u)
-        lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - band - base) * inv)))[1:]
-        hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + band - base) * inv)))[1:]
+        half = band * prob.width[start:stop]
+        lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - half - base) * inv)))[1:]
+        hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + half - base) * inv)))[1:]
         cap = np.maximum.accumulate(np.concatenate(([cap_run], prob.cap[start:stop])))[1:]
         bad = np.flatnonzero(lo > hi)
         stop_at = bad[0] if len(bad) else len(lo)
@@ -240,7 +250,8 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
         u = prob.s[knots] - prob.s[0]
         a_ub = np.vstack((np.column_stack((u, 0.5 * u * u)), -np.column_stack((u, 0.5 * u * u))))
         rhs = prob.phi[knots] - prob.phi[0]
-        b_ub = np.concatenate((rhs + band, band - rhs))
+        half = band * prob.width[knots]
+        b_ub = np.concatenate((rhs + half, half - rhs))
         cap = float(prob.cap[: b + 1].max())
         out = []
         for c in (1.0, -1.0):
