@@ -1,19 +1,22 @@
-"""What the resource budgets of coatsim/budgets.py cost: time and peak memory per unit of each
-bounded quantity, measured on a moderate case in a fresh process, and extrapolated to the budget;
-then how fast an over-budget input is refused.
+"""What the resource budgets of coatsim/core/budgets.py cost: CPU time and peak memory per unit of
+each bounded quantity, measured on a moderate case in a fresh process, and extrapolated to the
+budget, with the exponent of the CPU time against the quantity (the case and one of about half
+its size: the extrapolation is honest where it is near 1); then how fast an over-budget input
+is refused.
 
 Prints figures only (never asserts). Run: python scripts/bench_budgets.py
 """
 
 from __future__ import annotations
 
+import math
 import resource
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
-from coatsim import budgets
+from coatsim.core import budgets
 
 CHILD = r"""
 import resource, sys, time
@@ -24,17 +27,19 @@ try:
     main()
 except SystemExit as exc:
     code = exc.code
-print(f"RESULT {code} {time.perf_counter() - t0:.3f} {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss}",
+usage = resource.getrusage(resource.RUSAGE_SELF)
+print(f"RESULT {code} {time.perf_counter() - t0:.3f} {usage.ru_maxrss} {usage.ru_utime + usage.ru_stime:.3f}",
       file=sys.stderr)
 """
 
 
-def measure(*args: str) -> tuple[int, float, float, str]:
-    """Exit code, wall time (s) and peak RSS (MB) of one coatsim command in a fresh process."""
+def measure(*args: str) -> tuple[int, float, float, str, float]:
+    """Exit code, wall time (s), peak RSS (MB), first line of stderr and CPU seconds of one
+    coatsim command in a fresh process."""
     child = subprocess.run([sys.executable, "-c", CHILD, *args], capture_output=True, text=True)
     lines = child.stderr.strip().splitlines()
-    _, code, wall, rss = lines[-1].split()
-    return int(code), float(wall), int(rss) / 1024, (lines[0] if len(lines) > 1 else "")
+    _, code, wall, rss, cpu = lines[-1].split()
+    return int(code), float(wall), int(rss) / 1024, (lines[0] if len(lines) > 1 else ""), float(cpu)
 
 
 def main() -> None:
@@ -44,34 +49,46 @@ def main() -> None:
     subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
                     "--speed", "2", "-o", str(d / "slow.as")], check=True, capture_output=True)
     subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
+                    "--speed", "4", "-o", str(d / "slow_half.as")], check=True, capture_output=True)
+    subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
                     "--speed", "1e-3", "-o", str(d / "crawl.as")], check=True, capture_output=True)
     subprocess.run([sys.executable, "-m", "coatsim.cli", "execute", str(d / "p.as"), "-o", str(d / "e0")],
                    check=True, capture_output=True)
-    _, base_s, base_mb, _ = measure("segment", "builtin:ellipse:points=3", "--tol", "1")
-    print(f"baseline (import + tiny segment): {base_s:.2f} s, {base_mb:.0f} MB peak RSS\n")
-    print("| quantity | measured on | time | peak RSS | per unit | at the budget |")
-    print("|---|---|---|---|---|---|")
-    from coatsim.program import read_toolpath
+    _, _, base_mb, _, base_cpu = measure("segment", "builtin:ellipse:points=3", "--tol", "1")
+    print(f"baseline (import + tiny segment): {base_cpu:.2f} s CPU, {base_mb:.0f} MB peak RSS\n")
+    print("| quantity | measured on | CPU | peak RSS | per unit | at the budget | exponent (half size) |")
+    print("|---|---|---|---|---|---|---|")
+    from coatsim.languages.kawasaki_as.files import read_toolpath
     from coatsim.robot.sampling import CartesianPiece, plan_pieces
 
     samples = sum(len(p.s) for p in plan_pieces(read_toolpath(d / "p.as"), 0.01) if isinstance(p, CartesianPiece))
+    # (quantity, budget, units (None: counted from the log), command, the command at about half the size)
     rows = [
         ("IK samples", budgets.MAX_PATH_SAMPLES, samples,
-         ("execute", str(d / "p.as"), "--step-mm", "0.01", "-o", str(d / "e1"))),
-        ("simulation steps", budgets.MAX_SIM_STEPS, None, ("execute", str(d / "slow.as"), "-o", str(d / "e2"))),
+         ("execute", str(d / "p.as"), "--step-mm", "0.01", "-o", str(d / "e1")),
+         ("execute", str(d / "p.as"), "--step-mm", "0.02", "-o", str(d / "h1"))),
+        ("simulation steps", budgets.MAX_SIM_STEPS, None, ("execute", str(d / "slow.as"), "-o", str(d / "e2")),
+         ("execute", str(d / "slow_half.as"), "-o", str(d / "h2"))),
         ("mesh vertices", budgets.MAX_MESH_VERTICES, 601 * 601,
          ("coat", str(d / "e0" / "trajectory.csv"), "--surface", "plate:300x300@700,0,100", "--spacing", "0.5",
-          "-o", str(d / "c1"))),
-        ("curve points", budgets.MAX_CURVE_POINTS, 200_000, ("segment", "builtin:ellipse:points=200000", "--tol", "0.05")),
+          "-o", str(d / "c1")),
+         ("coat", str(d / "e0" / "trajectory.csv"), "--surface", "plate:300x300@700,0,100", "--spacing", "0.7071",
+          "-o", str(d / "h3"))),
+        ("curve points", budgets.MAX_CURVE_POINTS, 200_000, ("segment", "builtin:ellipse:points=200000", "--tol", "0.05"),
+         ("segment", "builtin:ellipse:points=100000", "--tol", "0.05")),
     ]
-    for name, budget, units, args in rows:
-        code, wall, rss, _ = measure(*args)
-        if units is None:  # simulation steps: read the log length
+    halves = {"IK samples": 0.5, "simulation steps": None, "mesh vertices": (426 * 426) / (601 * 601), "curve points": 0.5}
+    for name, budget, units, args, half in rows:
+        code, _, rss, _, cpu = measure(*args)
+        _, _, _, _, half_cpu = measure(*half)
+        if units is None:  # simulation steps: read the log lengths
             units = sum(1 for _ in open(d / "e2" / "trajectory.csv")) - 1
-        per_ms = 1e3 * (wall - base_s) / units
+            halves[name] = (sum(1 for _ in open(d / "h2" / "trajectory.csv")) - 1) / units
+        per_ms = 1e3 * (cpu - base_cpu) / units
         per_kb = 1024 * max(rss - base_mb, 0.0) / units
-        print(f"| {name} | {units:,.0f} (exit {code}) | {wall:.1f} s | {rss:.0f} MB | {per_ms:.3f} ms, {per_kb:.2f} kB "
-              f"| {per_ms * budget / 1e3:.0f} s, {per_kb * budget / 1024**2:.2f} GB |")
+        exponent = math.log(max(cpu - base_cpu, 1e-3) / max(half_cpu - base_cpu, 1e-3)) / math.log(1.0 / halves[name])
+        print(f"| {name} | {units:,.0f} (exit {code}) | {cpu:.1f} s | {rss:.0f} MB | {per_ms:.3f} ms, {per_kb:.2f} kB "
+              f"| {per_ms * budget / 1e3:.0f} s, {per_kb * budget / 1024**2:.2f} GB | {exponent:.2f} |")
     print("\nrefusals (exit code, wall time including the import, peak RSS):")
     bomb = d / "bomb.yaml"
     text = 'a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]\n'
@@ -83,7 +100,7 @@ def main() -> None:
                         ("coat --spacing 0.001", ("coat", str(d / "e0" / "trajectory.csv"), "--surface",
                                                   "plate:300x300@700,0,100", "--spacing", "0.001", "-o", str(d / "r3"))),
                         ("YAML alias bomb", ("run", str(bomb)))):
-        code, wall, rss, message = measure(*args)
+        code, wall, rss, message, _ = measure(*args)
         print(f"  {label}: exit {code}, {wall:.2f} s, {rss:.0f} MB  {message[:110]}")
     print(f"\n(children's total CPU {resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime:.0f} s; files in {d})")
 

@@ -6,7 +6,8 @@ robot time (duration of the simulated program), the wall time of ``execute`` by 
 real-time factors robot time / wall time and robot time / CPU time (``time.process_time``; the
 machine is shared, so CPU time is the figure to compare; best of ``--repeat`` runs by CPU), the
 largest IK residual and the path error; then robot time / CPU time per scenario (all its
-variants). Figures only; never asserts.
+variants); then the exponent of every execute phase against the number of pieces
+(scripts/scaling.py). Figures only; never asserts.
 
 Usage: python scripts/bench_execute.py [--fast] [--repeat N] [SCENARIO.yaml ...]
 """
@@ -30,17 +31,18 @@ def programs(path: Path, fast: bool, cell):
     import numpy as np
 
     from coatsim.geometry import make_curve, segment_curve
-    from coatsim.pipeline import FULL_SAMPLE_STEP_MM
-    from coatsim.program import read_toolpath
-    from coatsim.program.as_lang.names import program_name
-    from coatsim.program.build import ProgramOptions, polyline_of
-    from coatsim.program.part_program import build_part_program, part_centering_offset
-    from coatsim.program.placement import Placement
-    from coatsim.program.user import user_program
+    from coatsim.languages.kawasaki_as.files import read_toolpath
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+    from coatsim.languages.kawasaki_as.names import program_name
+    from coatsim.path.build import ProgramOptions, polyline_of
+    from coatsim.path.part_program import build_part_program, part_centering_offset
+    from coatsim.path.placement import Placement
+    from coatsim.path.user import user_program
     from coatsim.robot.kinematics import CellKinematics
     from coatsim.robot.tooling import gun_tool
-    from coatsim.scenario import load_scenario
-    from coatsim.scenario_inputs import curve_frame, read_user_program, segment_input
+    from coatsim.run.pipeline import FULL_SAMPLE_STEP_MM
+    from coatsim.run.scenario import load_scenario
+    from coatsim.run.scenario_inputs import curve_frame, read_user_program, segment_input
 
     loaded = load_scenario(path)
     spec = loaded.spec
@@ -68,9 +70,9 @@ def programs(path: Path, fast: bool, cell):
         options = ProgramOptions(variant=entry, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
                                  gun_signal=spec.gun.signal, tool=gun_tool(cell), name=program_name(spec.name))
         built = build_part_program([c.polysegment for c in contours], placement, options,
-                                   tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",
-                                   points=[c.curve.points for c in contours], order=spec.motion.contour_order,
-                                   polylines=polylines)
+                                   language=KAWASAKI_AS, tolerance_mm=spec.segmentation.tolerance_mm,
+                                   source=f"scenario:{spec.name}", points=[c.curve.points for c in contours],
+                                   order=spec.motion.contour_order, polylines=polylines)
         with tempfile.TemporaryDirectory() as tmp:
             program = Path(tmp) / f"{entry}.as"
             program.write_text(built.text, encoding="utf-8")
@@ -84,7 +86,7 @@ def main() -> None:
     parser.add_argument("--fast", action="store_true", help="the scenarios' fast path sampling")
     parser.add_argument("--repeat", type=int, default=3, help="best of N executions per program (by CPU time)")
     args = parser.parse_args()
-    from coatsim.runtime import single_threaded_numerics
+    from coatsim.core.runtime import single_threaded_numerics
 
     single_threaded_numerics()  # as `coatsim` does, before the numerical libraries load
     from coatsim.robot.cell import load_cell
@@ -125,6 +127,9 @@ def main() -> None:
     print("per scenario, robot s / CPU s: " + ", ".join(f"{name} {x:.1f}x" for name, x in per_scenario))
     print(f"all: robot {robot_total:.1f} s, wall {wall_total:.1f} s -> {robot_total / wall_total:.1f}x real time "
           f"(CPU {cpu_total:.1f} s -> {robot_total / cpu_total:.1f}x); load average now {os.getloadavg()[0]:.2f}")
+    import scaling  # scripts/scaling.py: the exponent of every execute phase against size
+
+    scaling.execute()
 
 
 if __name__ == "__main__":

@@ -1,13 +1,13 @@
 """Benchmark of the programs stage: write, parse and interpret AS programs.
 
 Part 1, per benchmark curve and variant: moves, program steps, poses, text size, and the best
-of ``REPEATS`` wall times for writing, parsing and interpreting. Part 2: parse and interpret
+of ``REPEATS`` CPU times for writing, parsing and interpreting. Part 2: parse and interpret
 speed (lines/s, statements executed/s) on 5 000-line programs in a user's style: a contour of
 LMOVEs to a pose array, and one that computes its poses in loops, CASEs and CALLs. Part 3: the
 scaling exponent of writing, parsing and interpreting (scripts/scaling.py, N and 10 N moves).
 Never asserts. The curves are the benchmark curves (coatsim.geometry.benchmark), or the CSV
 files of a folder given as the argument (exit non-zero when it has none); the polysegment comes
-from coatsim.geometry.segment_curve at TOL mm.
+from coatsim.geometry.segment_curve at TOL mm. Times are CPU seconds (``time.process_time``).
 
     python scripts/bench_program.py [DIR]
 """
@@ -21,9 +21,10 @@ from pathlib import Path
 
 from coatsim.geometry import load_curve, segment_curve
 from coatsim.geometry.benchmark import NAMES, bench_curve
-from coatsim.program import interpret, interpret_run, parse_as
-from coatsim.program.build import VARIANTS, ProgramOptions, build_program
-from coatsim.program.placement import Placement, centering_offset
+from coatsim.languages.kawasaki_as import interpret, interpret_run, parse_as
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+from coatsim.path.build import VARIANTS, ProgramOptions, build_program
+from coatsim.path.placement import Placement, centering_offset
 
 TOL = 0.1
 REPEATS = 5
@@ -32,16 +33,16 @@ REPEATS = 5
 def best(fn):
     times, result = [], None
     for _ in range(REPEATS):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         result = fn()
-        times.append(time.perf_counter() - t0)
+        times.append(time.process_time() - t0)
     return min(times), result
 
 
 def polysegment_of(curve):
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     seg = segment_curve(curve, TOL)
-    return seg.polysegment, f"segment_curve, {time.perf_counter() - t0:.2f} s"
+    return seg.polysegment, f"segment_curve, {time.process_time() - t0:.2f} s"
 
 
 def contour_program(lines: int) -> str:
@@ -99,8 +100,8 @@ def main() -> None:
         placement = Placement(offset_xy=centering_offset(poly))
         for variant in VARIANTS:
             options = ProgramOptions(variant=variant)
-            t_write, built = best(lambda: build_program(poly, placement, options, tolerance_mm=TOL,
-                                                        source=name, points=curve.points))
+            t_write, built = best(lambda: build_program(poly, placement, options, language=KAWASAKI_AS,
+                                                        tolerance_mm=TOL, source=name, points=curve.points))
             t_parse, parsed = best(lambda: parse_as(built.text))
             t_interp, toolpath = best(lambda: interpret(parsed))
             n_lines = built.text.count("\n")

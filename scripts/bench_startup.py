@@ -4,6 +4,8 @@
    on a small program, `coatsim schema`, and of importing each stage's entry module.
 2. Which heavy libraries each stage's import pulls in (matplotlib, toppra, mujoco, mink, scipy
    submodules, dask, pyarrow): robot and geometry must load no plotting library.
+3. The exponent of `coatsim check-program` against the program's size (N and 10 N moves): near 0
+   while start-up is what it costs.
 Figures only; never asserts. Usage: python scripts/bench_startup.py [--repeat 5]
 """
 
@@ -11,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import resource
 import subprocess
@@ -20,8 +23,8 @@ from pathlib import Path
 
 HEAVY = ("matplotlib", "toppra", "mujoco", "mink", "scipy.optimize", "scipy.special", "scipy.spatial", "trimesh",
          "dask", "distributed", "pyarrow", "pandas", "pydantic", "rich")
-STAGES = ("coatsim.cli", "coatsim.geometry", "coatsim.geometry.segment", "coatsim.program", "coatsim.robot.execute",
-          "coatsim.spray.coat", "coatsim.report.document", "coatsim.pipeline", "coatsim.sweep.run")
+STAGES = ("coatsim.cli.app", "coatsim.geometry", "coatsim.geometry.segment", "coatsim.path", "coatsim.robot.execute",
+          "coatsim.spray.coat", "coatsim.report.document", "coatsim.run.pipeline", "coatsim.sweep.run")
 
 
 def cpu_of(argv: list[str], repeat: int) -> float:
@@ -63,6 +66,15 @@ def main() -> None:
         for module in STAGES:
             cpu = cpu_of([sys.executable, "-c", f"import {module}"], args.repeat)
             print(f"{module:<28} {cpu:>7.3f}  {', '.join(loaded_by(module)) or '-'}")
+        from bench_as_reader import contour  # scripts/bench_as_reader.py: an AS contour of N moves
+
+        times = {}
+        for n in (200, 2000):
+            program = Path(tmp) / f"contour{n}.as"
+            program.write_text(contour(n), encoding="ascii")
+            times[n] = cpu_of([*coatsim, "check-program", str(program)], args.repeat)
+        print(f"\ncoatsim check-program, 200 moves {times[200]:.3f} s, 2000 moves {times[2000]:.3f} s CPU: exponent "
+              f"{math.log(times[2000] / times[200]) / math.log(10):.2f} against the number of moves")
 
 
 if __name__ == "__main__":

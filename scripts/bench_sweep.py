@@ -2,8 +2,10 @@
 
 Runs the sweep (default: sweeps/contour_speed_tolerance.yaml, 12 fast points) into a fresh folder
 for each worker count, cluster start-up and sweep.html included, and prints the wall and CPU time,
-the speed-up over one worker, the per-point run time on the workers, and the machine's load
-(the figure means little when other work shares the cores). Figures only; never asserts.
+the speed-up over one worker, the per-point run time and CPU time on the workers, and the
+machine's load (the figure means little when other work shares the cores); then, on one worker,
+the exponent of the points' CPU time and of the wall time against the number of points (the
+sweep, and the sweep with its first axis halved). Figures only; never asserts.
 
 Usage: python scripts/bench_sweep.py [SWEEP.yaml] [--workers 1 2] [--repeat 1]
 """
@@ -11,10 +13,13 @@ Usage: python scripts/bench_sweep.py [SWEEP.yaml] [--workers 1 2] [--repeat 1]
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import tempfile
 import time
 from pathlib import Path
+
+import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -25,7 +30,7 @@ def main() -> None:
     parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--repeat", type=int, default=1, help="best of N runs per worker count")
     args = parser.parse_args()
-    from coatsim.runtime import single_threaded_numerics
+    from coatsim.core.runtime import single_threaded_numerics
 
     single_threaded_numerics()  # as `coatsim` does (the workers get it from Dask's nanny)
     from coatsim.sweep.run import run_sweep
@@ -57,7 +62,30 @@ def main() -> None:
             serial = wall - point_wall * len(ran)
             print(f"        with free cores (estimate from CPU time): 1 worker {serial + work:.1f} s, "
                   f"2 workers {serial + work / 2:.1f} s -> {(serial + work) / (serial + work / 2):.2f}x")
+    with tempfile.TemporaryDirectory() as tmp:
+        sizes = {}
+        for label, sweep in (("half", halved(args.sweep, Path(tmp))), ("all", args.sweep)):
+            t0 = time.perf_counter()
+            result = run_sweep(sweep, Path(tmp) / f"out-{label}", workers=1, progress=False)
+            ran = [result.outcomes[p] for p in result.ran]
+            sizes[label] = (len(ran), sum(o.cpu_seconds for o in ran), time.perf_counter() - t0)
+    (n1, c1, w1), (n2, c2, w2) = sizes["half"], sizes["all"]
+    print(f"one worker, {n1} and {n2} points: points' CPU {c1:.1f} and {c2:.1f} s (exponent "
+          f"{math.log(c2 / c1) / math.log(n2 / n1):.2f}), wall {w1:.1f} and {w2:.1f} s (exponent "
+          f"{math.log(w2 / w1) / math.log(n2 / n1):.2f}) against the number of points")
     print(f"load average now {os.getloadavg()[0]:.2f}")
+
+
+def halved(sweep: Path, folder: Path) -> Path:
+    """The sweep with the first half of its first grid axis, its base scenario by absolute path."""
+    document = yaml.safe_load(sweep.read_text(encoding="utf-8"))
+    document["base"] = str((sweep.parent / document["base"]).resolve())
+    axis = next(iter(document["grid"]))
+    values = document["grid"][axis]
+    document["grid"][axis] = values[: max(1, len(values) // 2)]
+    path = folder / f"half-{sweep.name}"
+    path.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    return path
 
 
 if __name__ == "__main__":

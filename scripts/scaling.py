@@ -94,11 +94,12 @@ def coat(spacing: float = 1.0) -> None:
 
 def _polygon(sides: int, radius: float = 80.0, speed: float = 200.0):
     """An exact-stop polygon program: a joint move to the start, then one LMOVE per side."""
-    from coatsim.program.toolpath import JointMove, LinearMove, MotionSettings, Pose, ToolPath
+    from coatsim.geometry.space.pose import Pose
+    from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, ToolPath
 
     down = np.diag([-1.0, 1.0, -1.0])
     a = np.linspace(0.0, 2 * math.pi, sides + 1)
-    poses = [Pose(np.array([700 + radius * math.cos(t), radius * math.sin(t), 300.0]), down) for t in a]
+    poses = [Pose(down, np.array([700 + radius * math.cos(t), radius * math.sin(t), 300.0])) for t in a]
     stop = MotionSettings(speed, 1.0, False, True)
     moves = [JointMove(None, poses[0], MotionSettings(1000.0, 10.0, True, True), False, 1)]
     moves += [LinearMove(p, q, stop, True, k + 2) for k, (p, q) in enumerate(zip(poses[:-1], poses[1:]))]
@@ -127,9 +128,9 @@ def execute(n: int = 20, factor: int = 10) -> None:
 def spiral_per_robot_second(cell=None) -> None:
     """CPU per robot second of each variant on the paper's spiral (sigma 0.1 mm, 200 mm/s)."""
     from coatsim.geometry.benchmark import bench_curve
-    from coatsim.program import read_toolpath
-    from coatsim.program.build import ProgramOptions
-    from coatsim.program.run import run_program
+    from coatsim.languages.kawasaki_as.files import read_toolpath
+    from coatsim.path.build import ProgramOptions
+    from coatsim.cli.program import run_program
     from coatsim.robot.cell import load_cell
     from coatsim.robot.execute import execute as run
 
@@ -156,9 +157,10 @@ def spiral_per_robot_second(cell=None) -> None:
 def program(n: int = 500, factor: int = 10) -> None:
     """Writing, parsing and interpreting a polyline program of N and 10 N moves."""
     from coatsim.geometry import make_curve
-    from coatsim.program import interpret, parse_as
-    from coatsim.program.build import ProgramOptions, build_program, polyline_of
-    from coatsim.program.placement import Placement
+    from coatsim.languages.kawasaki_as import interpret, parse_as
+    from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+    from coatsim.path.build import ProgramOptions, build_program, polyline_of
+    from coatsim.path.placement import Placement
 
     timed = {}
     for size in (n, factor * n):
@@ -166,8 +168,8 @@ def program(n: int = 500, factor: int = 10) -> None:
         curve = make_curve(np.column_stack((80 * np.cos(a), 80 * np.sin(a))), "circle")
         poly = polyline_of(curve.points, curve.closed, 1e-9)
         options = ProgramOptions(variant="polyline-blend")
-        t_write, built = cpu(lambda: build_program(poly, Placement(), options, tolerance_mm=1e-9, source="circle",
-                                                   points=curve.points), 3)
+        t_write, built = cpu(lambda: build_program(poly, Placement(), options, language=KAWASAKI_AS, tolerance_mm=1e-9,
+                                                   source="circle", points=curve.points), 3)
         t_parse, parsed = cpu(lambda: parse_as(built.text), 3)
         t_interp, _ = cpu(lambda: interpret(parsed), 3)
         timed[size] = (t_write, t_parse, t_interp)

@@ -9,7 +9,7 @@ from typing import Callable
 import pytest
 from hypothesis import settings
 
-from coatsim.runtime import single_threaded_numerics
+from coatsim.core.runtime import single_threaded_numerics
 
 single_threaded_numerics()  # as the console entry point does, before numerical libraries load
 

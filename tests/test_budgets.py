@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from coatsim.budgets import MAX_CURVE_FILE_BYTES, MAX_TRAJECTORY_BYTES, MAX_YAML_BYTES
+from coatsim.core.budgets import MAX_CURVE_FILE_BYTES, MAX_TRAJECTORY_BYTES, MAX_YAML_BYTES
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 CAP_BYTES = 1536 << 20

@@ -8,7 +8,7 @@ import pytest
 import typer
 
 from coatsim import __version__
-from coatsim.cli import app
+from coatsim.cli.app import app
 
 COMMANDS = sorted(typer.main.get_command(app).commands)
 

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from cli_helpers import cli
 
-from coatsim.outputs_guard import LOCK_NAME
+from coatsim.core.outputs_guard import LOCK_NAME
 
 PLATE = "workpiece: {kind: plate, size_mm: [120.0, 80.0]}\nvariants: [polysegment]\n"
 

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from coatsim.pipeline import RunResult, VariantRun, run_scenario
+from coatsim.report.results import RunResult, VariantRun
+from coatsim.run.pipeline import run_scenario
 
 SIGMA_MM = 5.0
 SCENARIO = """\

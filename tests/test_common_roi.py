@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coatsim.errors import InputError
-from coatsim.pipeline import VariantRun, on_common_roi
+from coatsim.core.errors import InputError
+from coatsim.report.results import VariantRun
+from coatsim.run.pipeline import on_common_roi
 from coatsim.spray.coat import coat
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.footprints import Gaussian

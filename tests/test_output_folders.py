@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 from cli_helpers import cli
 
-from coatsim.errors import CoatsimWarning, InputError
-from coatsim.outputs_guard import LOCK_NAME, MANIFEST_NAME, FolderInUse, output_folder
+from coatsim.core.errors import CoatsimWarning, InputError
+from coatsim.core.outputs_guard import LOCK_NAME, MANIFEST_NAME, FolderInUse, output_folder
 
 TINY = """\
 name: tiny_job
@@ -45,7 +45,7 @@ def scenario(tmp_path: Path) -> Path:
 
 HOLD = textwrap.dedent("""\
     import sys
-    from coatsim.outputs_guard import output_folder
+    from coatsim.core.outputs_guard import output_folder
     with output_folder(sys.argv[1], ["metrics.json"], "coatsim run"):
         print("held", flush=True)
         sys.stdin.readline()

@@ -14,8 +14,8 @@ from cli_helpers import cli
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
-from coatsim.outputs_guard import check_distinct
+from coatsim.core.errors import InputError
+from coatsim.core.outputs_guard import check_distinct
 
 
 def write_arc(path: Path, n: int = 60) -> bytes:

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from coatsim.geometry.part_json import read_part_json
-from coatsim.program import read_toolpath
+from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.robot.trajectory_log import read_trajectory_csv
 
 SCENARIO = """\
@@ -76,7 +76,7 @@ def test_run_on_a_drawn_part(tmp_path, run_cli, order):
     assert doc["passed"] is True
 
     toolpath = read_toolpath(out / "polysegment.as")
-    assert toolpath.metadata["n_contours"] == "3" and toolpath.metadata["contour_order"] == "1,3,2"
+    assert toolpath.process.contour_order == (1, 3, 2)
     log = read_trajectory_csv(out / "polysegment.trajectory.csv")
     assert np.count_nonzero(np.diff(log.spray.astype(int)) == 1) == 3
     html = (out / "report.html").read_text(encoding="utf-8")

@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 
 from coatsim.cli import main
-from coatsim.program import read_toolpath
+from coatsim.languages.kawasaki_as.files import read_toolpath
 from coatsim.report.document import SECTION_IDS
 from coatsim.report.verdict import verdict
 from coatsim.robot.trajectory_log import read_trajectory_csv
-from coatsim.scenario import VARIANTS
+from coatsim.run.scenario import VARIANTS
 
 from small_scenario import SMALL
 
@@ -110,8 +110,8 @@ def test_report_has_every_section_in_order_and_embeds_everything(small_run: tupl
     assert found == list(SECTION_IDS) == ["verdict", "speed", "thickness-along-track", "maps", "warnings", "view3d",
                                           "program", "metrics", "summary", "gates"]
     images = re.findall(r'<img alt="[^"]*" src="data:image/png;base64,', html)
-    # verdict bars, speed, centre line, histograms, maps, difference, events, the cell, the curve, the polyline
-    assert len(images) == 10
+    # verdict bars, speed, centre line and histograms, maps and difference, events, the curves (polysegment, θ, polyline)
+    assert len(images) == 6
     assert not re.search(r'(src|href)="(?!data:|#)', html)  # nothing outside the file
     assert not re.search(r"<script[^>]+src=", html) and "https://" not in html.split("<script>")[-1]
     assert "FAIL" in html and "coating.thickness_cv [polysegment] &lt; 0" in html
@@ -146,8 +146,8 @@ def test_metrics_are_shown_with_human_names_and_percent(small_run: tuple[Cli, Pa
 def test_run_finds_the_roi_border_and_the_polyline_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Three variants on one surface: the edge band's border distance and the polyline (with
     its deviation) are computed once and shared, not per variant."""
-    import coatsim.pipeline
-    import coatsim.program.build
+    import coatsim.run.pipeline
+    import coatsim.path.build
     import coatsim.spray.coating_metrics
 
     calls = {"border_distance": 0, "polyline_of": 0}
@@ -161,7 +161,7 @@ def test_run_finds_the_roi_border_and_the_polyline_once(tmp_path: Path, monkeypa
         monkeypatch.setattr(module, name, wrapper)
 
     counted(coatsim.spray.coating_metrics, "border_distance")
-    for module in (coatsim.pipeline, coatsim.program.build):
+    for module in (coatsim.run.pipeline, coatsim.path.build):
         counted(module, "polyline_of")
     scenario = tmp_path / "three.yaml"
     scenario.write_text(SMALL.replace('  - {metric: coating.thickness_cv, op: "<", threshold: 0.0}\n', ""), encoding="utf-8")
@@ -290,7 +290,7 @@ def test_shipped_scenario_passes_its_gates_in_fast_mode(scenario: Path, tmp_path
 def test_a_users_program_against_coatsims(tmp_path):
     """A user's polyline program as a variant: the curve is its sprayed path, coatsim's arc
     program of the same path is compared with it in metrics.json and the report."""
-    sys.path.insert(0, str(Path(__file__).parent / "program" / "as_lang"))
+    sys.path.insert(0, str(Path(__file__).parent / "languages" / "kawasaki_as"))
     from as_samples import rounded_rectangle_points, user_contour
 
     (tmp_path / "cell.as").write_bytes(user_contour(rounded_rectangle_points(), z=300.0))
@@ -321,10 +321,12 @@ def test_a_users_program_with_a_defect_is_one_line(tmp_path):
                         "variants:\n  - {name: mine, program: bad.as}\n  - polysegment\n")
     result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
     assert result.code == 2 and result.err.count("\n") == 1
-    assert f"{scenario}:3: variant mine: {tmp_path / 'bad.as'}:3: pose 'nowhere' is not defined" in result.err
+    assert f"{scenario}:3: variant mine: {tmp_path / 'bad.as'}:3: LMOVE skipped: pose nowhere has no value" \
+        in result.err
     (tmp_path / "dry.as").write_text(".PROGRAM dry()\n  JMOVE a\n  LMOVE b\n.END\n.TRANS\na 700 0 300 0 180 0\n"
                                      "b 720 0 300 0 180 0\n.END\n")
     scenario.write_text(scenario.read_text().replace("bad.as", "dry.as"))
     result = run_cli("run", str(scenario), "--fast", "-o", str(tmp_path / "out"))
     assert result.code == 2 and result.err.count("\n") == 1
-    assert f"{scenario}:3: variant mine: dry: the gun is never on" in result.err
+    assert f"{scenario}:3: variant mine: {tmp_path / 'dry.as'}: the gun (output 1) is never on during a motion; " \
+        "it switches no output" in result.err

@@ -10,8 +10,8 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
-from coatsim.scenario import VARIANTS, Scenario, json_schema, load_scenario
+from coatsim.core.errors import InputError
+from coatsim.run.scenario import VARIANTS, Scenario, json_schema, load_scenario
 
 BASE = """\
 name: demo
@@ -244,7 +244,7 @@ def test_every_shipped_scenario_gates_the_polysegment_against_both_polylines() -
     """Thickness CV and lowest speed, each against the best of the two polylines, within a small
     margin (at most 5 %); a shipped scenario at process speed closes on itself."""
     folder = Path(__file__).resolve().parents[1] / "scenarios"
-    from coatsim.scenario_inputs import load_input_curve
+    from coatsim.run.scenario_inputs import load_input_curve
 
     closed_at_process_speed = 0
     for path in sorted(folder.glob("*.yaml")):

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.robot.cell import load_cell
-from coatsim.scenario import load_scenario
-from coatsim.scenario_inputs import segment_input
+from coatsim.run.scenario import load_scenario
+from coatsim.run.scenario_inputs import segment_input
 
 BASE = """\
 name: drawn

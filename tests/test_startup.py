@@ -20,7 +20,7 @@ def loaded(modules: list[str], watch: tuple[str, ...]) -> list[str]:
 
 @pytest.mark.parametrize("modules", [
     ["coatsim.geometry", "coatsim.geometry.segment", "coatsim.geometry.builtin_curves", "coatsim.geometry.polysegment_json"],
-    ["coatsim.program", "coatsim.program.check", "coatsim.program.build", "coatsim.program.run"],
+    ["coatsim.path", "coatsim.path.check", "coatsim.path.build", "coatsim.cli.program"],
     ["coatsim.robot.execute", "coatsim.robot.ik", "coatsim.robot.sampling", "coatsim.robot.playback",
      "coatsim.robot.cell", "coatsim.robot.motion_metrics", "coatsim.robot.reference", "coatsim.robot.timing"],
 ])
@@ -30,8 +30,8 @@ def test_geometry_program_and_robot_stages_load_no_plotting_library(modules):
 
 def test_the_program_stage_and_the_cli_load_no_scipy_and_no_simulator():
     heavy = ("scipy.optimize", "scipy.special", "scipy.spatial", "mujoco", "mink", "trimesh", "pydantic", "dask")
-    assert loaded(["coatsim.program", "coatsim.program.check", "coatsim.program.run"], heavy) == []
-    assert loaded(["coatsim.cli"], heavy + ("numpy",) + PLOTTING) == []
+    assert loaded(["coatsim.path", "coatsim.path.check", "coatsim.cli.program"], heavy) == []
+    assert loaded(["coatsim.cli.app"], heavy + ("numpy",) + PLOTTING) == []
 
 
 def test_a_sweep_client_loads_no_simulator_until_it_runs_points():

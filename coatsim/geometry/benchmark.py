@@ -16,7 +16,7 @@ from typing import Callable
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.builtin_curves import ellipse, naca, sine
 from coatsim.geometry.curves import Curve, make_curve
 from coatsim.geometry.polysegment import Polysegment, chain

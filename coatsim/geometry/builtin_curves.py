@@ -10,8 +10,8 @@ from typing import Callable
 
 import numpy as np
 
-from coatsim.budgets import MAX_CURVE_POINTS, check_budget
-from coatsim.errors import InputError
+from coatsim.core.budgets import MAX_CURVE_POINTS, check_budget
+from coatsim.core.errors import InputError
 from coatsim.geometry.curves import Curve, make_curve
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line

@@ -1,4 +1,5 @@
-"""Planar input curves: the Curve value, file readers (CSV/TXT/NPY) and closure detection."""
+"""Input curves: the planar Curve value, file readers (CSV/TXT/NPY, x,y or x,y,z columns) and
+closure detection."""
 
 from __future__ import annotations
 
@@ -10,8 +11,8 @@ from typing import Literal
 
 import numpy as np
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_CURVE_FILE_BYTES, MAX_CURVE_POINTS, check_budget
-from coatsim.errors import InputError, shown
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_CURVE_FILE_BYTES, MAX_CURVE_POINTS, check_budget
+from coatsim.core.errors import InputError, shown
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
@@ -47,6 +48,12 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
     pts = np.asarray(points, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2:
         raise InputError(f"{name}: expected x,y points, got an array of shape {pts.shape}")
+    return Curve(*clean_points(pts, name, closed), name)
+
+
+def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.ndarray, bool]:
+    """The checks and clean-up of make_curve for points (n, d) of any dimension d: returns
+    (points, closed), a closed curve repeating its first point as its last."""
     if len(pts) == 0:
         raise InputError(f"{name}: no points")
     check_budget(f"{name}: curve points", len(pts), MAX_CURVE_POINTS, "thin the curve out")
@@ -78,7 +85,7 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
             pts = np.vstack((pts, pts[:1]))
         if len(pts) < 4:
             raise InputError(f"{name}: a closed curve needs at least three distinct points")
-    return Curve(pts, is_closed, name)
+    return pts, is_closed
 
 
 _SEPARATORS = re.compile(r"[,;\s]+")
@@ -86,12 +93,12 @@ _SEPARATORS = re.compile(r"[,;\s]+")
 
 def _read_text_points(path: Path) -> np.ndarray:
     check_budget(f"{path}: bytes of curve text", path.stat().st_size, MAX_CURVE_FILE_BYTES,
-                 "thin the curve out or save it as an (n, 2) .npy array")
+                 "thin the curve out or save it as an (n, 2) or (n, 3) .npy array")
     try:
         text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not a text file (expected x,y columns)") from None
-    rows: list[tuple[float, float]] = []
+        raise InputError(f"{path}: not a text file (expected x,y or x,y,z columns)") from None
+    rows: list[list[float]] = []
     header_seen = False
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.split("#", 1)[0].strip()
@@ -109,13 +116,16 @@ def _read_text_points(path: Path) -> np.ndarray:
                 continue  # header row: its first field is a name such as "x" or "x (mm)"
             column = next(k for k, f in enumerate(fields, start=1) if not _is_float(f))
             raise InputError(f"{path}:{number}: field {column} is not a number: {shown(fields[column - 1])} "
-                             "(expected x,y columns)") from None
+                             "(expected x,y or x,y,z columns)") from None
         if len(values) < 2:
-            raise InputError(f"{path}:{number}: expected two columns x,y, found {len(values)}")
-        x, y = values[0], values[1]
-        if not (math.isfinite(x) and math.isfinite(y)):
+            raise InputError(f"{path}:{number}: expected two columns x,y (or three x,y,z), found {len(values)}")
+        if len(values) > 3:
+            raise InputError(f"{path}:{number}: {len(values)} numeric columns; a curve has x,y or x,y,z (mm)")
+        if rows and len(values) != len(rows[0]):
+            raise InputError(f"{path}:{number}: {len(values)} columns where the rows above have {len(rows[0])}")
+        if not all(math.isfinite(v) for v in values):
             raise InputError(f"{path}:{number}: value is not finite (NaN or inf)")
-        rows.append((x, y))
+        rows.append(values)
     if not rows:
         raise InputError(f"{path}: no points (empty file)")
     return np.asarray(rows, dtype=float)
@@ -140,23 +150,32 @@ def _read_npy_points(path: Path) -> np.ndarray:
     if data.ndim == 2:
         check_budget(f"{path}: curve points", data.shape[0], MAX_CURVE_POINTS, "thin the curve out")
     real = np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)
-    if data.ndim != 2 or data.shape[1] < 2 or not real:
-        raise InputError(f"{path}: expected a real-valued (n, 2) array, got {data.dtype} {data.shape}")
-    return data[:, :2].astype(float)
+    if data.ndim != 2 or data.shape[1] not in (2, 3) or not real:
+        raise InputError(f"{path}: expected a real-valued (n, 2) or (n, 3) array of x,y or x,y,z, got {data.dtype} {data.shape}")
+    return data.astype(float)
 
 
-def read_curve_file(path: str | Path, closed: ClosedMode = "auto") -> Curve:
-    """Read a curve from CSV/TXT (x,y columns: comma, space, tab or semicolon; optional
-    header; '#' comments) or NPY ((n, 2) array)."""
+def read_points_file(path: str | Path) -> np.ndarray:
+    """The raw points of a curve file: (n, 2) for x,y columns, (n, 3) for x,y,z. CSV/TXT
+    (comma, space, tab or semicolon; optional header; '#' comments) or NPY."""
     path = Path(path)
     if not path.exists():
         raise InputError(f"{path}: no such file")
     if path.is_dir():
         raise InputError(f"{path}: is a folder, expected a curve file")
     try:
-        points = _read_npy_points(path) if path.suffix.lower() == ".npy" else _read_text_points(path)
+        return _read_npy_points(path) if path.suffix.lower() == ".npy" else _read_text_points(path)
     except PermissionError:
         raise InputError(f"{path}: permission denied") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read ({exc.strerror or exc})") from None
+
+
+def read_curve_file(path: str | Path, closed: ClosedMode = "auto") -> Curve:
+    """Read a planar curve (x,y columns, see read_points_file); a 3-D curve (x,y,z) is refused:
+    it is never read as a plane curve."""
+    points = read_points_file(path)
+    if points.shape[1] == 3:
+        raise InputError(f"{path}: a 3-D curve (x,y,z columns); a planar x,y curve is needed here "
+                         "(3-D curves are segmented in space, not programmed from the plane)")
     return make_curve(points, str(path), closed)

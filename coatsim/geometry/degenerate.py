@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 
@@ -36,7 +36,8 @@ def check_resolvable(points: np.ndarray, tolerance: float) -> None:
     floor = RESOLVED * scale
     if tolerance < floor:
         raise InputError(f"tolerance_mm {tolerance:g} is below what float64 resolves at these coordinates "
-                         f"(up to {scale:.3g} mm from the origin or across): give at least {floor:.3g} mm")
+                         f"(up to {scale:.3g} mm from the origin or across): give at least {floor:.3g} mm",
+                         parameters=("tolerance_mm",))
 
 
 def obvious_answer(points: np.ndarray, closed: bool, tolerance: float) -> Polysegment | None:

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
@@ -185,6 +185,7 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
     splits, landed, shrink, at_start = 0, False, 0.9, 0
+    tried: dict[tuple[bytes, float, float], tuple] = {}  # a chain refined before (band fits often repeat one) is not again
     while budget[0] > 0:
         budget[0] -= 1
         if params is None:
@@ -198,7 +199,10 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
-        params, sampled, segs, honest, dev = tgt.settle(params, target)
+        key = (params.vector().tobytes(), params.shift, target)
+        if key not in tried:
+            tried[key] = tgt.settle(params, target)
+        params, sampled, segs, honest, dev = tried[key]
         if dev <= tolerance and honest:
             return (segs, dev) if path is None else _fewer(tgt, params, segs, dev)
         if honest and sampled <= target:
@@ -307,7 +311,8 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
             return RunFit(*found, limits_kept=False)
     if not fillet:
         raise InputError(f"no chain within {tolerance:g} mm keeps every segment at least "
-                         f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one")
+                         f"min_segment_mm {limits.min_length_mm:g} mm long; give a shorter one",
+                         parameters=("min_segment_mm",))
     # Sparse or kinked input the band fit cannot follow: round the vertices instead, first
     # those of the input simplified within half the tolerance (rounded within the other half).
     for keep, share in ((_simplified(pts, closed_loop, tolerance / 2), 0.5), (np.arange(len(pts)), 1.0)):

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from coatsim.errors import InputError
-from coatsim.fileio import write_text
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_text
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.polysegment_json import FORMAT as POLYSEGMENT_FORMAT
 from coatsim.geometry.polysegment_json import (

@@ -9,7 +9,7 @@ from typing import Sequence
 
 import numpy as np
 
-from coatsim.fileio import write_bytes
+from coatsim.core.fileio import write_bytes
 from coatsim.geometry.plots import ARC_COLOUR, LINE_COLOUR
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from coatsim.fileio import write_bytes
+from coatsim.core.fileio import write_bytes
 from coatsim.geometry.primitives import Arc
 from coatsim.geometry.segment import Segmentation
 from coatsim.geometry.theta import theta_of_polysegment

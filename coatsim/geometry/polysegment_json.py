@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from coatsim.errors import InputError
-from coatsim.fileio import write_text
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_text
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 

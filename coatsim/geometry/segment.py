@@ -9,7 +9,8 @@ from typing import Literal
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core import defaults
+from coatsim.core.errors import InputError
 from coatsim.geometry.corners import corners_and_notes
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs
@@ -127,16 +128,16 @@ def _corner_junctions(counts: list[int], closed: bool, has_corners: bool) -> tup
     return tuple(junctions)
 
 
-def _positive(value: float | None, flag: str, unit: str) -> None:
+def _positive(value: float | None, name: str, unit: str) -> None:
     if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise InputError(f"{flag}: must be a positive number of {unit}, got {value}")
+        raise InputError(f"{name}: must be a positive number of {unit}, got {value}", parameters=(name,))
 
 
 def segment_curve(
     curve: Curve,
     tol: float,
     method: Method = "optimal",
-    corner_deg: float = 20.0,
+    corner_deg: float = defaults.CORNER_DEG,
     theta_tolerance: float | None = None,
     min_segment_mm: float | None = None,
     speed_mm_s: float | None = None,
@@ -156,22 +157,23 @@ def segment_curve(
     result stays within ``tol``.
     """
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
-        raise InputError(f"--tol: the tolerance must be a positive number of mm, got {tol}")
+        raise InputError(f"tolerance_mm: must be a positive number of mm, got {tol}", parameters=("tolerance_mm",))
     if method not in METHODS:
-        raise InputError(f"--method: unknown method {method!r}; choose one of {', '.join(METHODS)}")
+        raise InputError(f"method: unknown method {method!r}; choose one of {', '.join(METHODS)}", parameters=("method",))
     if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
-        raise InputError(f"--corner-deg: must be between 0 and 180 degrees, got {corner_deg}")
+        raise InputError(f"corner_deg: must be between 0 and 180 degrees, got {corner_deg}", parameters=("corner_deg",))
     _positive(min_segment_mm, "min_segment_mm", "mm")
     _positive(speed_mm_s, "speed_mm_s", "mm/s")
     _positive(tool_accel_mm_s2, "tool_accel_mm_s2", "mm/s²")
     if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
-        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither")
+        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither",
+                         parameters=("speed_mm_s", "tool_accel_mm_s2"))
     started = time.perf_counter()
     pts = curve.points
     try:
         check_resolvable(pts, tol)
     except InputError as exc:
-        raise InputError(f"{curve.name}: {exc}") from None
+        raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
     theta = theta_of_polyline(pts)
     if method == "paper":
         poly, approx, eps = _paper(curve, tol, theta_tolerance)
@@ -188,7 +190,7 @@ def segment_curve(
         try:
             poly, dev, input_radius, kept, notes = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
         except InputError as exc:
-            raise InputError(f"{curve.name}: {exc}") from None
+            raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
     check_chain(poly, extent_mm(pts))
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
@@ -283,7 +285,7 @@ def _paper(curve: Curve, tol: float, theta_tolerance: float | None) -> tuple[Pol
     pts = curve.points
     if theta_tolerance is not None:
         if not theta_tolerance > 0:
-            raise InputError(f"--theta-tol: must be positive, got {theta_tolerance}")
+            raise InputError(f"theta_tolerance: must be positive, got {theta_tolerance}", parameters=("theta_tolerance",))
         poly, _, approx = paper_polysegment(pts, theta_tolerance, curve.closed)
         return poly, approx, theta_tolerance
 

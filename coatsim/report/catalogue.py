@@ -48,14 +48,23 @@ METRICS: dict[str, MetricInfo] = {
     "motion.max_joint_accel_ratio": MetricInfo("1", "largest joint acceleration of the simulated arm over its limit (<= 1 within limits)"),
     "motion.max_ik_residual_mm": MetricInfo("mm", "largest inverse-kinematics position residual over the path samples"),
     "motion.max_ik_residual_deg": MetricInfo("deg", "largest inverse-kinematics orientation residual over the path samples"),
-    # coating: thickness on the region of interest (the coated band, edges excluded)
+    # coating: thickness on the region of interest (the coated band or the part's region, edges excluded)
+    "coating.roi_area_mm2": MetricInfo("mm²", "area of the region of interest"),
     "coating.thickness_mean_um": MetricInfo("µm", "area-weighted mean thickness over the region of interest"),
     "coating.thickness_cv": MetricInfo("1", "area-weighted coefficient of variation (std / mean) of thickness over the region of interest"),
     "coating.thickness_min_um": MetricInfo("µm", "thinnest point of the region of interest"),
     "coating.thickness_max_um": MetricInfo("µm", "thickest point of the region of interest"),
     "coating.thick_spot_fraction": MetricInfo("1", "area fraction of the region of interest thicker than 1.2 x the target thickness"),
     "coating.coverage_fraction": MetricInfo("1", "area fraction of the region of interest at least 0.8 x the target thickness"),
+    "coating.coated_fraction": MetricInfo("1", "area fraction of the region of interest that received any coating (thickness > 0: in the footprint's reach and not in a shadow)"),
+    "coating.target_um": MetricInfo("µm", "target thickness of the specification"),
+    "coating.tolerance_pct": MetricInfo("%", "tolerance of the specification: thickness within this per cent of the target"),
+    "coating.within_spec_fraction": MetricInfo("1", "area fraction of the region of interest within the specification (abs(thickness - target) <= tolerance)"),
+    "coating.low_angle_fraction": MetricInfo("1", "area fraction of the region of interest sprayed at a spray angle below 60 deg (the deposit-weighted mean angle between the spray and the surface; 90 deg = normal)"),
+    "coating.standoff_min_mm": MetricInfo("mm", "shortest stand-off at which coating landed on the region of interest (per vertex the deposit-weighted mean distance from the nozzle along the spray axis)"),
+    "coating.standoff_max_mm": MetricInfo("mm", "longest stand-off at which coating landed on the region of interest (as above)"),
     "coating.deposited_volume_mm3": MetricInfo("mm³", "coating volume on the part, sum of vertex area x thickness"),
+    "coating.deposition_efficiency": MetricInfo("1", "deposited volume / sprayed volume (Q x spray time): the share of the sprayed material that stays on the part"),
     "coating.mass_balance_error": MetricInfo("1", "abs(deposited volume / (Q x spray time) - 1): conservation check, 0 when all the spray lands on the part (otherwise the overspray fraction)"),
 }
 

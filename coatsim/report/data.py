@@ -1,23 +1,36 @@
 """What every report section reads: the run's variants, its metrics document, its events, the
-one thickness colour scale and the track's centre line on the part.
+one thickness colour scale, the track's centre line on the part, and what several sections
+draw from (the tracks in the heat maps' view, the coarse mesh of the 3-D view and the video,
+the heat maps' pixel grid), each computed once from the run's results: the report recomputes no stage.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Mapping, Optional, Sequence
+from pathlib import Path
+from typing import Any, Mapping, Optional, Protocol, Sequence
 
 import numpy as np
 
 from coatsim.report.events import Event, run_events
+from coatsim.geometry.segment import Segmentation
+from coatsim.report.raster import ViewRaster, view_raster
+from coatsim.report.results import VariantRun
+from coatsim.robot.trajectory_log import TrajectoryLog
+from coatsim.spray.decimate import Coarse, decimate
 from coatsim.spray.locate import SurfacePoints, locate
+from coatsim.spray.outputs import view_faces
+from coatsim.spray.surfaces import Surface
 
 SCALE_PERCENTILE = 99.5  # the colour scale's top: the largest of the variants' 99.5th percentiles
 CENTRE_STEP_MM = 0.5     # sampling of the centre line
+TRACK_POINTS = 1500      # aim points per variant drawn on the heat maps (about: 4 per pixel across)
+VIEW_FACES = 12_000      # the coarse mesh of the 3-D view and the video (about this many triangles)
+HEAT_COLUMNS = 320       # pixels across a heat map's view
 
 
-def aim_paths(log: Any, standoff_mm: float, max_points: Optional[int] = None) -> list[np.ndarray]:
+def aim_paths(log: TrajectoryLog, standoff_mm: float, max_points: Optional[int] = None) -> list[np.ndarray]:
     """The sprayed aim points (tool centre point + stand-off along the spray axis, mm), one (k, 3)
     polyline per stretch of the gun open; at most about ``max_points`` points over all."""
     rows = np.flatnonzero(np.asarray(log.spray, bool))
@@ -49,9 +62,10 @@ class CentreLine:
     closed: bool
 
 
-def centre_line(run: Any, surface: Any, standoff_mm: float, lead_in_mm: float, lead_out_mm: float,
-                closed: bool) -> CentreLine:
-    """Sample the reference run's aim points from the run-in start to the run-out end."""
+def centre_samples(run: VariantRun, standoff_mm: float, lead_in_mm: float, lead_out_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """The reference run's aim points (TCP + stand-off along the spray axis) from the run-in
+    start to the run-out end, every CENTRE_STEP_MM along the curve: (s (k,) mm from the start of
+    the curve proper, points (k, 3) mm)."""
     log, (a, b) = run.execution.log, run.execution.curve
     reach = np.maximum.accumulate(log.progress)
     i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
@@ -61,8 +75,22 @@ def centre_line(run: Any, surface: Any, standoff_mm: float, lead_in_mm: float, l
     aim = log.position[rows] + standoff_mm * log.axis[rows]
     s = reach[rows] - a
     grid = np.arange(s[0], s[-1] + 1e-9, CENTRE_STEP_MM)
-    pts = np.column_stack([np.interp(grid, s, aim[:, k]) for k in range(3)])
-    return CentreLine(grid, locate(surface, pts), float(b - a), closed)
+    return grid, np.column_stack([np.interp(grid, s, aim[:, k]) for k in range(3)])
+
+
+def track_samples(run: VariantRun, standoff_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """About TRACK_POINTS of ``run``'s aim points (k, 3) mm, with whether the gun is open there (k,)."""
+    log = run.execution.log
+    rows = np.arange(0, len(log.t), max(1, len(log.t) // TRACK_POINTS))
+    return log.position[rows] + standoff_mm * log.axis[rows], np.asarray(log.spray[rows], bool)
+
+
+class LoadedScenario(Protocol):
+    """A scenario as the pipeline loaded it: ``spec`` is the validated scenario
+    (coatsim.run.scenario.Scenario, above the report), ``path`` its file."""
+
+    spec: Any
+    path: Path
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,9 +99,9 @@ class ReportData:
     (name, program, execution, coating, toolpath); ``contours`` the segmentations of the
     input (one, or one per contour of a part); ``notes`` what reading a drawing noted."""
 
-    loaded: Any
-    contours: tuple[Any, ...]
-    runs: tuple[Any, ...]
+    loaded: LoadedScenario
+    contours: tuple[Segmentation, ...]
+    runs: tuple[VariantRun, ...]
     document: Mapping[str, Any]
     notes: tuple[str, ...] = ()
 
@@ -82,16 +110,16 @@ class ReportData:
         return self.loaded.spec
 
     @property
-    def surface(self) -> Any:
+    def surface(self) -> Surface:
         return self.runs[0].coating.surface
 
     @property
-    def reference(self) -> Any:
+    def reference(self) -> VariantRun:
         """The variant the others are compared with: the polysegment, else the first."""
         return next((r for r in self.runs if r.name == "polysegment"), self.runs[0])
 
     @property
-    def best_polyline(self) -> Optional[Any]:
+    def best_polyline(self) -> Optional[VariantRun]:
         """The other variant with the lowest thickness CV (None when there is no other)."""
         others = [r for r in self.runs if r is not self.reference]
         cv = lambda r: self.document["variants"][r.name]["coating"]["thickness_cv"]  # noqa: E731
@@ -103,7 +131,7 @@ class ReportData:
 
     @cached_property
     def events(self) -> tuple[Event, ...]:
-        return tuple(e for r in self.runs for e in run_events(r.name, r.execution, getattr(r, "toolpath", None)))
+        return tuple(e for r in self.runs for e in run_events(r.name, r.execution, r.toolpath))
 
     @cached_property
     def numbers(self) -> dict[Event, int]:
@@ -111,26 +139,46 @@ class ReportData:
         return {e: k + 1 for k, e in enumerate(dict.fromkeys(self.events))}
 
     @cached_property
-    def centre(self) -> CentreLine:
+    def _samples(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """The centre line's (s, points), then each run's track (points, gun open)."""
         spec = self.spec
-        closed = len(self.contours) == 1 and bool(self.contours[0].curve.closed)
-        return centre_line(self.reference, self.surface, spec.gun.standoff_mm, spec.motion.lead_in_mm,
-                           spec.motion.lead_out_mm, closed)
+        centre = centre_samples(self.reference, spec.gun.standoff_mm, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
+        return (centre, *(track_samples(r, spec.gun.standoff_mm) for r in self.runs))
 
-    def track_view(self, run: Any) -> np.ndarray:
+    @cached_property
+    def _located(self) -> tuple[SurfacePoints, ...]:
+        """The centre line's and every track's samples on the part, found in one search."""
+        points = [self._samples[0][1], *(pts for pts, _ in self._samples[1:])]
+        found = locate(self.surface, np.vstack(points))
+        parts = np.split(np.arange(len(found.faces)), np.cumsum([len(p) for p in points])[:-1])
+        return tuple(SurfacePoints(found.faces[k], found.weights[k], found.distance_mm[k]) for k in parts)
+
+    @cached_property
+    def centre(self) -> CentreLine:
+        closed = len(self.contours) == 1 and bool(self.contours[0].curve.closed)
+        a, b = self.reference.execution.curve
+        return CentreLine(self._samples[0][0], self._located[0], float(b - a), closed)
+
+    def track_view(self, run: VariantRun) -> np.ndarray:
         """The sprayed aim points of ``run`` in the heat maps' view coordinates (k, 2) mm, NaN
         rows where the gun is closed (lines break there)."""
         return self._track_views[run.name]
 
     @cached_property
     def _track_views(self) -> dict[str, np.ndarray]:
-        return {r.name: self._view_of(r) for r in self.runs}
+        out = {}
+        for run, found, (_, gun_open) in zip(self.runs, self._located[1:], self._samples[1:]):
+            view = found.field(self.surface, self.surface.view)
+            view[~gun_open] = np.nan
+            out[run.name] = view
+        return out
 
-    def _view_of(self, run: Any) -> np.ndarray:
-        log = run.execution.log
-        step = max(1, len(log.t) // 4000)
-        rows = np.arange(0, len(log.t), step)
-        aim = log.position[rows] + self.spec.gun.standoff_mm * log.axis[rows]
-        view = locate(self.surface, aim).field(self.surface, self.surface.view)
-        view[~np.asarray(log.spray[rows], bool)] = np.nan
-        return view
+    @cached_property
+    def coarse(self) -> Coarse:
+        """The coating mesh clustered to about VIEW_FACES triangles: the 3-D view's and the video's part."""
+        return decimate(self.surface, VIEW_FACES)
+
+    @cached_property
+    def raster(self) -> ViewRaster:
+        """The heat maps' pixel grid over the surface's 2-D view."""
+        return view_raster(self.surface.view, view_faces(self.surface), HEAT_COLUMNS)

@@ -18,9 +18,7 @@ from typing import TYPE_CHECKING, Optional, Sequence
 
 import numpy as np
 
-from coatsim.program.speed_limits import HEADER_KEY as SPEED_LIMITS_KEY
-from coatsim.program.speed_limits import parse_limits
-from coatsim.program.toolpath import PART_SEPARATOR, ToolPath
+from coatsim.path.toolpath import ToolPath
 
 if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
@@ -150,8 +148,8 @@ def speed_dips(name: str, execution: Execution, toolpath: ToolPath) -> list[Even
     breaks = np.flatnonzero((np.diff(slow) > 1) & (np.diff(log.progress[slow]) > _MERGE_MM)) + 1
     spans = curve_spans(execution)
     limits = [(lo - a + lim.s0_mm, lo - a + lim.s1_mm, lim.v_max_mm_s)
-              for (lo, _), raw in zip(spans, per_contour(toolpath, SPEED_LIMITS_KEY, "none", len(spans)))
-              for lim in parse_limits(raw, toolpath.name)]
+              for (lo, _), contour in zip(spans, toolpath.process.contours_for(len(spans), toolpath.name))
+              for lim in contour.speed_limits]
     out = []
     for run in np.split(slow, breaks):
         low = int(run[np.argmin(log.speed[run])])
@@ -168,15 +166,6 @@ def speed_dips(name: str, execution: Execution, toolpath: ToolPath) -> list[Even
     return out
 
 
-def per_contour(toolpath: ToolPath, key: str, default: str, n: int) -> list[str]:
-    """A header field for each of ``n`` curves proper: a part program joins one value per
-    contour with PART_SEPARATOR; a single value holds for every one (a count that does not
-    match: the single value for all, as far as the report is concerned)."""
-    raw = toolpath.metadata.get(key, default)
-    values = [v.strip() for v in raw.split(PART_SEPARATOR.strip())]
-    return values if len(values) == n else [values[0]] * n
-
-
 def curve_notes(name: str, execution: Execution, toolpath: ToolPath) -> list[Event]:
     """The curve's speed-limited stretches and true corners (from the program header) and the
     seam of a closed contour; for a part, those of every contour (s from the first contour's
@@ -185,12 +174,10 @@ def curve_notes(name: str, execution: Execution, toolpath: ToolPath) -> list[Eve
     spans = curve_spans(execution)
     origin = execution.curve[0]
     part = len(spans) > 1
-    limits = per_contour(toolpath, SPEED_LIMITS_KEY, "none", len(spans))
-    closed = per_contour(toolpath, "closed", "no", len(spans))
     out = []
-    for k, ((a, b), raw, loop) in enumerate(zip(spans, limits, closed)):
+    for k, ((a, b), contour) in enumerate(zip(spans, toolpath.process.contours_for(len(spans), toolpath.name))):
         which = f"contour {k + 1}: " if part else ""
-        for lim in parse_limits(raw, toolpath.name):
+        for lim in contour.speed_limits:
             s0, s1 = a - origin + lim.s0_mm, a - origin + lim.s1_mm
             if lim.s0_mm == lim.s1_mm:
                 kind, text = "true corner", f"{which}true corner at s = {s0:.1f} mm: the tool must stop there"
@@ -199,7 +186,7 @@ def curve_notes(name: str, execution: Execution, toolpath: ToolPath) -> list[Eve
                 text = (f"{which}speed-limited stretch from s = {s0:.1f} to {s1:.1f} mm: the curve allows at most "
                         f"{lim.v_max_mm_s:.0f} mm/s within the tool acceleration limit")
             out.append(Event(name, kind, "note", where.line_at(a + lim.s0_mm), text, s0))
-        if loop == "yes":
+        if contour.closed:
             out.append(Event(name, "seam", "note", where.line_at(a + 1.0),
                              f"{which}seam at s = {a - origin:.1f} mm (= {b - origin:.1f} mm): the gun opens on the fly "
                              "as the lap starts and closes as it ends", a - origin))

@@ -11,7 +11,7 @@ import operator
 from dataclasses import asdict, dataclass
 from typing import Any, Callable, Mapping, Optional, Protocol, Sequence, Union
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 
 OPERATORS: dict[str, Callable[[float, float], bool]] = {
     "<": operator.lt,

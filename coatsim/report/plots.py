@@ -1,63 +1,77 @@
-"""Report figure helpers: matplotlib on Agg, PNG bytes, the variants' colours, and the polyline
-program's figure (the sections draw their own figures in :mod:`coatsim.report.sections`; the
-curve, its polysegment and θ come from :mod:`coatsim.geometry.plots`).
+"""Report figure helpers: matplotlib figures drawn on Agg, PNG bytes, the variants' colours.
 
-Every function takes plain arrays, draws with matplotlib's Agg backend (imported here, inside
-the functions, so importing coatsim stays light) and returns PNG bytes without a timestamp,
-so equal inputs give equal bytes.
+A report draws about ten figures per run, so every one is laid out by hand (a layout engine
+measures every artist, which costs more than drawing them), titles sit at a fixed height (the
+automatic placement measures every tick label), axes carry few ticks, many marks go in one
+collection, and rasters are drawn at screen resolution. Figures are plain
+``matplotlib.figure.Figure`` objects (no pyplot state); matplotlib is imported on first use, so
+importing coatsim stays light. PNG bytes carry no timestamp: equal figures give equal bytes.
 """
 
 from __future__ import annotations
 
 import io
-
-import numpy as np
+from typing import Any, Sequence
 
 VARIANT_COLOURS = {"polysegment": "#1b6ca8", "polyline-stop": "#c0392b", "polyline-blend": "#e08e0b"}
-
-
-def pyplot():
-    """matplotlib.pyplot on the Agg backend (imported on first use)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def png_bytes(fig, dpi: int = 100) -> bytes:
-    """The figure as PNG bytes without a timestamp (equal figures give equal bytes); closes it.
-    The figure lays itself out (tight or constrained layout): a tight bounding box here would
-    draw it twice."""
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
-    pyplot().close(fig)
-    return buf.getvalue()
-
-
 _OTHER_COLOURS = ("#6a3d9a", "#33a02c", "#b15928", "#e7298a", "#1f78b4", "#666666")
+DPI = 80    # the report's figures: about 900 pixels across for an 11-inch figure
+TICKS = 4   # at most about this many ticks per axis
+COLOURS = 256  # PNGs are stored with a palette of at most this many colours (a third of the bytes)
+
+
+def figure(width_in: float, height_in: float) -> Any:
+    """An empty figure (inches)."""
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width_in, height_in))
+
+
+def grid(fig: Any, rows: int, cols: int, margins: Sequence[float] = (0.7, 0.25, 0.35, 0.55),
+         gaps: Sequence[float] = (0.45, 0.55), **shared: Any) -> Any:
+    """A rows x cols array of axes laid out by hand: ``margins`` (left, right, top, bottom) and
+    ``gaps`` (horizontal, vertical) in inches; ``shared`` as ``Figure.subplots`` takes it."""
+    width, height = fig.get_size_inches()
+    left, right, top, bottom = margins
+    fig.subplots_adjust(left=left / width, right=1 - right / width, top=1 - top / height, bottom=bottom / height,
+                        wspace=gaps[0] * cols / max(width - left - right - gaps[0] * (cols - 1), 1e-3),
+                        hspace=gaps[1] * rows / max(height - top - bottom - gaps[1] * (rows - 1), 1e-3))
+    axes = fig.subplots(rows, cols, squeeze=False, **shared)
+    for ax in axes.ravel():
+        lean(ax)
+    return axes
+
+
+def lean(ax: Any, labelsize: float = 8) -> None:
+    """Few ticks, small labels."""
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(TICKS))
+    ax.yaxis.set_major_locator(MaxNLocator(TICKS))
+    ax.tick_params(labelsize=labelsize)
+
+
+def title(ax: Any, text: str, **style: Any) -> None:
+    """An axes title at a fixed height above the axes."""
+    ax.set_title(text, y=1.0, pad=4, **{"fontsize": 9, **style})
+
+
+def png_bytes(fig: Any, dpi: int = DPI) -> bytes:
+    """The figure as an opaque palette PNG without a timestamp (equal figures give equal bytes)."""
+    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    fig.set_dpi(dpi)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    rgb = np.asarray(canvas.buffer_rgba())[..., :3]
+    image = Image.fromarray(np.ascontiguousarray(rgb)).quantize(COLOURS, method=Image.Quantize.FASTOCTREE)
+    buf = io.BytesIO()
+    image.save(buf, format="png")
+    return buf.getvalue()
 
 
 def colour(variant: str, order: int = 0) -> str:
     """A variant's colour: fixed for the built-in variants, from a palette by order otherwise."""
     return VARIANT_COLOURS.get(variant, _OTHER_COLOURS[order % len(_OTHER_COLOURS)])
-
-
-
-def polyline_figure(curve_xy: np.ndarray, polyline_xy: np.ndarray) -> bytes:
-    """The input curve and the polyline program's vertices, where a program without
-    blending brings the arm to rest."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7.0, 5.6))
-    ax.plot(curve_xy[:, 0], curve_xy[:, 1], color="#bbbbbb", lw=4, zorder=1, label="input curve")
-    ax.plot(polyline_xy[:, 0], polyline_xy[:, 1], "-o", color=colour("polyline-stop"), lw=1.0, ms=2.5,
-            zorder=2, label="polyline vertices")
-    ax.set_title(f"polyline: {len(polyline_xy) - 1} straight moves")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
-    return png_bytes(fig)

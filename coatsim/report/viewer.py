@@ -2,9 +2,9 @@
 drawn by a small canvas viewer bundled into the HTML (``viewer.js``, package data: no network,
 no WebGL, so it works in any browser, with or without a GPU).
 
-The data travel as one JSON block: the part mesh decimated to at most VIEW_FACES triangles
-(positions in mm, centred), per variant the vertex colours on the report's colour scale and the
-sprayed aim points (one polyline per spray stretch), and the colour bar.
+The data travel as one JSON block: the part mesh once (the report's coarse copy of the coating
+mesh, positions in mm, centred), per variant the vertex colours on the report's colour scale and
+the sprayed aim points (one polyline per spray stretch), and the colour bar.
 """
 
 from __future__ import annotations
@@ -16,12 +16,10 @@ from typing import Any
 
 import numpy as np
 
-from coatsim.report.data import aim_paths
+from coatsim.report.data import VIEW_FACES, aim_paths
 from coatsim.report.html import esc
-from coatsim.spray.decimate import decimate
 from coatsim.spray.outputs import colours
 
-VIEW_FACES = 12_000
 PATH_POINTS = 1500  # per variant, at most
 
 
@@ -31,7 +29,7 @@ def _b64(array: np.ndarray) -> str:
 
 def payload(data: Any) -> dict[str, Any]:
     """The viewer's data (JSON-ready)."""
-    coarse = decimate(data.surface, VIEW_FACES)
+    coarse = data.coarse
     centre = 0.5 * (coarse.vertices.min(axis=0) + coarse.vertices.max(axis=0))
     vmin, vmax = data.scale_um
     index = "<u2" if len(coarse.vertices) < 65536 else "<u4"

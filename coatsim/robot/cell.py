@@ -13,7 +13,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 
 MM = 1e-3  # metres per millimetre
 M_TO_MM = 1e3
@@ -107,6 +107,11 @@ def _load(path: Path) -> Cell:
     except ValueError as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else "invalid MJCF"
         raise InputError(f"{path}: cannot load model: {first}") from None
+    return cell_of(model, path)
+
+
+def cell_of(model: mujoco.MjModel, path: Path) -> Cell:
+    """The cell of a compiled model (``path`` names it in messages), checked as ``load_cell`` says."""
     if model.nq != 6 or model.nv != 6:
         raise InputError(f"{path}: expected a fixed-base six-axis arm (nq = nv = 6), found nq={model.nq}")
     for k, name in enumerate(JOINTS):

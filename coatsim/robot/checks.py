@@ -23,7 +23,7 @@ from typing import Callable
 import mujoco
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import Cell
 from coatsim.robot.chain import tcp_positions_mm
 

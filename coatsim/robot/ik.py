@@ -18,7 +18,8 @@ import mink
 import mujoco
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.core.numeric import ROUND_OFF
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, M_TO_MM, MM, Cell
 from coatsim.robot.chain import cell_chain
 from coatsim.robot.ik_batch import DAMPING_M2, continuity_ok, first_order, refine, rotation_vectors
@@ -36,6 +37,17 @@ _MIN_KNOTS = 3         # ... and so do pieces shorter than two knot spacings (no
 _MAX_NEWTON_ITERS = 6  # batched Newton steps on the samples between the knots ...
 _POLISH_MM = 1e-6      # ... until this close
 _POLISH_DEG = 1e-6
+
+
+class UnreachablePose(ExecutionError):
+    """The IK cannot put the gun on a pose: the program ``step``, the gun's position (mm) and
+    rotation there, the last configuration reached before it (``q_near``) and, once diagnosed,
+    the ``reason`` (coatsim.robot.reachability)."""
+
+    def __init__(self, message: str, *, step: str, position_mm: np.ndarray, rotation: np.ndarray,
+                 q_near: np.ndarray, reason: str | None = None) -> None:
+        super().__init__(message)
+        self.step, self.position_mm, self.rotation, self.q_near, self.reason = step, position_mm, rotation, q_near, reason
 
 
 @dataclass(frozen=True)
@@ -98,11 +110,26 @@ class Tracker:
         self._target(_quat(r[None])[0], p_mm)
         dp, dr, _ = self._iterate(p_mm, r, 0.05, [self.config_limit], _MAX_POSE_ITERS)
         if dp > POS_TOL_MM or dr > ROT_TOL_DEG:
-            raise ExecutionError(
+            raise UnreachablePose(
                 f"{label}: cannot reach {_describe(p_mm, r)}: IK residual {dp:.3f} mm / {dr:.3f} deg "
-                f"exceeds {POS_TOL_MM} mm / {ROT_TOL_DEG} deg; move the path within the arm's reach"
-            )
+                f"exceeds {POS_TOL_MM} mm / {ROT_TOL_DEG} deg; move the path within the arm's reach",
+                step=label, position_mm=p_mm, rotation=r, q_near=np.asarray(q_start, float))
         return self.configuration.q.copy()
+
+    def solve_bounded(self, q_start: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, float, float]:
+        """The configuration the IK reaches for one pose inside the joint ranges from ``q_start``,
+        and its residual (mm, deg), without judging it."""
+        return self._solve(q_start, p_mm, r, [self.config_limit])
+
+    def solve_unbounded(self, q_start: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, float, float]:
+        """As ``solve_bounded`` with the joint ranges ignored (where would the joints have to go?)."""
+        return self._solve(q_start, p_mm, r, [])
+
+    def _solve(self, q_start, p_mm, r, limits) -> tuple[np.ndarray, float, float]:
+        self.configuration.update(np.asarray(q_start, float))
+        self._target(_quat(r[None])[0], p_mm)
+        dp, dr, _ = self._iterate(p_mm, r, 0.05, limits, _MAX_POSE_ITERS)
+        return self.configuration.q.copy(), dp, dr
 
     def track(
         self,
@@ -165,11 +192,12 @@ class Tracker:
             if dp > POS_TOL_MM or dr > ROT_TOL_DEG:
                 if not strict:
                     return None
-                raise ExecutionError(
+                raise UnreachablePose(
                     f"{label(i)}: cannot follow the path at {_describe(positions_mm[i], rotations[i])}: "
                     f"IK residual {dp:.3f} mm / {dr:.3f} deg exceeds {POS_TOL_MM} mm / {ROT_TOL_DEG} deg "
-                    "(out of reach, joint limit or singularity); move or re-orient the path"
-                )
+                    "(out of reach, joint limit or singularity); move or re-orient the path",
+                    step=label(i), position_mm=positions_mm[i], rotation=rotations[i],
+                    q_near=qs[k - 1] if k else np.asarray(q_start, float))
             worst = [max(worst[0], dp), max(worst[1], dr), max(worst[2], it)]
             qs[k] = cfg.q
             wrist[k] = cfg.data.site_xpos[cell.wrist_site] * M_TO_MM
@@ -238,7 +266,7 @@ class Tracker:
             rows = owner == k
             qk, dpk, drk = q[rows], dp[rows], dr[rows]
             if dpk.max() > _CONVERGED_MM or drk.max() > _CONVERGED_DEG \
-                    or np.any(qk < cell.q_min + margin - 1e-9) or np.any(qk > cell.q_max - margin + 1e-9) \
+                    or np.any(qk < cell.q_min + margin - ROUND_OFF) or np.any(qk > cell.q_max - margin + ROUND_OFF) \
                     or not continuity_ok(s_mm, qk, step_time, cell.v_max):
                 break
             out.append((qk, wrist[rows], Residual(float(dpk.max()), float(drk.max()), 0)))
@@ -284,7 +312,7 @@ class Tracker:
                                   _MAX_NEWTON_ITERS, cell.wrist_site)
         margin = 1e-3  # as the QP's ConfigurationLimit
         if dp.max() > _CONVERGED_MM or dr.max() > _CONVERGED_DEG \
-                or np.any(q < cell.q_min + margin - 1e-9) or np.any(q > cell.q_max - margin + 1e-9) \
+                or np.any(q < cell.q_min + margin - ROUND_OFF) or np.any(q > cell.q_max - margin + ROUND_OFF) \
                 or not continuity_ok(s_mm, q, step_time, cell.v_max):
             return None
         return q, wrist, Residual(float(dp.max()), float(dr.max()), qp_iterations)
@@ -331,7 +359,7 @@ def _quat(rotations: np.ndarray) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=4)
-def _arm_dimensions(cell: Cell) -> tuple[np.ndarray, float, float]:
+def arm_dimensions(cell: Cell) -> tuple[np.ndarray, float, float]:
     """Joint anchors (3, 3) mm of JT1-JT3 at the zero configuration, the upper-arm and the
     shoulder-to-wrist forearm lengths (mm)."""
     data = mujoco.MjData(cell.model)
@@ -350,7 +378,7 @@ def joint_path_events(cell: Cell, q: np.ndarray, wrist_mm: np.ndarray, labels: S
     (arm stretched to 99 % of its shoulder-to-wrist reach) and shoulder (wrist centre within
     100 mm of the JT1 axis).
     """
-    anchors, upper, fore = _arm_dimensions(cell)
+    anchors, upper, fore = arm_dimensions(cell)
     reach = np.linalg.norm(wrist_mm - anchors[1], axis=1) / (upper + fore)
     axis_dist = np.linalg.norm(wrist_mm[:, :2] - anchors[0, :2], axis=1)
     margin = math.radians(limit_margin_deg)

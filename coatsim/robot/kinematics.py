@@ -8,9 +8,11 @@ from typing import Optional
 
 import numpy as np
 
-from coatsim.errors import ExecutionError, InputError
-from coatsim.program.tool_frames import gun_in_tcp
-from coatsim.program.toolpath import Pose, ToolFrame
+from coatsim.core.numeric import ROUND_OFF
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.path.tool_frames import gun_in_tcp
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import ToolFrame
 
 
 class CellKinematics:
@@ -27,17 +29,17 @@ class CellKinematics:
         times that TOOL (the gun's pose times M^-1, M = TOOL^-1 GUN)."""
         q = np.asarray(joints_rad, dtype=float)
         cell = self.cell
-        outside = np.flatnonzero((q < cell.q_min - 1e-9) | (q > cell.q_max + 1e-9))
+        outside = np.flatnonzero((q < cell.q_min - ROUND_OFF) | (q > cell.q_max + ROUND_OFF))
         if len(outside):
             j = int(outside[0])
             raise ExecutionError(f"joint {j + 1} at {np.degrees(q[j]):.3f} deg is outside the cell's range "
                                  f"{np.degrees(cell.q_min[j]):.1f}..{np.degrees(cell.q_max[j]):.1f} deg")
         position, rotation = cell.forward(self._data, q)
         if tool is None:
-            return Pose(position, rotation)
+            return Pose(rotation, position)
         m_rotation, m_offset = gun_in_tcp(tool, cell.gun_rotation, cell.gun_offset_mm)
         tcp_rotation = rotation @ m_rotation.T
-        return Pose(position - tcp_rotation @ m_offset, tcp_rotation)
+        return Pose(tcp_rotation, position - tcp_rotation @ m_offset)
 
     def home(self, number: int) -> np.ndarray:
         import mujoco

@@ -9,7 +9,7 @@ rest at either end of the window is not counted as a stop.
 
 ``min_speed_ratio`` looks only where the curve allows the programmed speed: outside the
 stretches the program header lists as limited by the curve itself (true corners, turns tighter
-than v² / a; see :mod:`coatsim.program.speed_limits`), and outside the distance the tool needs
+than v² / a; see :mod:`coatsim.path.speed_limits`), and outside the distance the tool needs
 to brake to, or speed up from, each of them and the rest points at the start of the lead-in and
 the end of the lead-out (RAMP_FACTOR x (v² - v_limit²) / 2a at the tool acceleration limit a;
 around the seam of a closed curve). Every variant of a curve carries the same stretches, so the figure compares
@@ -23,7 +23,7 @@ from typing import Sequence
 
 import numpy as np
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.trajectory_log import TrajectoryLog
 
 END_TOLERANCE_MM = 0.1  # the curve proper counts as covered this close to its end
@@ -182,3 +182,41 @@ def motion_metrics(
         max_ik_residual_mm=float(ik_residual[0]),
         max_ik_residual_deg=float(ik_residual[1]),
     )
+
+
+def spot_speed(t: np.ndarray, position_mm: np.ndarray, axis: np.ndarray, standoff_mm: float) -> np.ndarray:
+    """Speed (n,) mm/s of the spray spot TCP + standoff · axis: where the coat is made. With the
+    gun on the normal of a convex section of radius R it is the tool speed times R / (R + h);
+    on a concave one R / (R − h)."""
+    return np.linalg.norm(np.gradient(position_mm + standoff_mm * axis, t, axis=0), axis=1)
+
+
+@dataclass(frozen=True)
+class TraceMetrics:
+    """The spray spot's speed over the curve proper: the stand-off it is taken at (mm), the speed
+    it should have (mm/s: the programmed trace speed, or the tool's when the speed is on the TCP),
+    its mean and lowest, and its lowest and highest ratio to that speed where the curve allows
+    the programmed speed (None where it nowhere does)."""
+
+    standoff_mm: float
+    target_mm_s: float
+    mean_mm_s: float
+    min_mm_s: float
+    min_ratio: float | None
+    max_ratio: float | None
+
+    def as_dict(self) -> dict[str, float | None]:
+        return {k: (round(v, 6) if isinstance(v, float) else v) for k, v in asdict(self).items()}
+
+
+def trace_metrics(log: TrajectoryLog, curves: Sequence[tuple[float, float]], speed_mm_s: float, target_mm_s: float,
+                  standoff_mm: float, tool_accel_mm_s2: float, allowances: Sequence[CurveAllowance]) -> TraceMetrics:
+    """The spot speed's figures over the curve proper (see TraceMetrics); the rows the curve allows
+    at speed are those of ``min_speed_ratio``."""
+    windows = [_window(log, c) for c in curves]
+    spot = np.concatenate([log.spot_speed[w] for w in windows])
+    allowed = np.concatenate([allowed_by_curve(log.progress[w] - a, b - a, speed_mm_s, tool_accel_mm_s2, al)
+                              for w, (a, b), al in zip(windows, curves, allowances)])
+    ratio = spot[allowed] / target_mm_s
+    return TraceMetrics(float(standoff_mm), float(target_mm_s), float(spot.mean()), float(spot.min()),
+                        float(ratio.min()) if len(ratio) else None, float(ratio.max()) if len(ratio) else None)

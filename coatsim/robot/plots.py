@@ -8,7 +8,7 @@ from typing import Sequence
 
 import numpy as np
 
-from coatsim.fileio import write_bytes
+from coatsim.core.fileio import write_bytes
 from coatsim.robot.motion_metrics import AT_SPEED, MotionMetrics
 from coatsim.robot.trajectory_log import TrajectoryLog
 

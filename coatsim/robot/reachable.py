@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.program.toolpath import ToolPath
+from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell
 from coatsim.robot.sampling import CartesianPiece, Piece
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coatsim.robot.primitives3d import Primitive
+from coatsim.geometry.space.primitives import Segment3
 
 
 @dataclass(frozen=True, eq=False)
@@ -19,7 +19,7 @@ class ReferencePath:
     """Primitives in execution order with their start offsets (P,) mm and owning move index
     (P,) (-1 for the implicit start move)."""
 
-    primitives: tuple[Primitive, ...]
+    primitives: tuple[Segment3, ...]
     offsets: np.ndarray
     moves: np.ndarray
 
@@ -44,7 +44,7 @@ class ReferencePath:
             hi = np.searchsorted(hint, self.offsets[k] + prim.length + window, side="right")
             if hi <= lo:
                 continue
-            d, s = prim.closest(points[lo:hi])
+            d, s = prim.nearest(points[lo:hi])
             better = d < dist[lo:hi]
             dist[lo:hi] = np.where(better, d, dist[lo:hi])
             prog[lo:hi] = np.where(better, self.offsets[k] + s, prog[lo:hi])
@@ -52,9 +52,9 @@ class ReferencePath:
         return dist, prog, curv
 
 
-def build_reference(chunks: list[tuple[tuple[Primitive, ...], tuple[int, ...]]]) -> ReferencePath:
+def build_reference(chunks: list[tuple[tuple[Segment3, ...], tuple[int, ...]]]) -> ReferencePath:
     """Chain primitive groups (each with the move index of every primitive) into one path."""
-    prims: list[Primitive] = []
+    prims: list[Segment3] = []
     moves: list[int] = []
     for group, owners in chunks:
         prims.extend(group)

@@ -20,7 +20,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from coatsim.errors import CoatsimError
+from coatsim.core.errors import CoatsimError
 from coatsim.robot.cell import M_TO_MM, Cell
 
 _BACKENDS = ("egl", "osmesa")

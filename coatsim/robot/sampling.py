@@ -6,6 +6,12 @@ Controller semantics modelled here (see the README's robot section):
 - where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the
   tool runs straight through;
 - where a move turns back on the previous one (more than 179.5 deg) the tool stops and reverses;
+- where the rate at which the tool turns changes between blended moves (each move turns it at its
+  own constant rate from its start pose to its end pose, an arc through its via pose), the
+  orientation is blended over ``ORIENTATION_ZONE_MM`` either side, as controllers approximate
+  orientation over a zone of their own (ABB's zone_ori, KUKA's $APO.CORI): the joints' speeds
+  stay continuous, and the orientation departs from the taught one by at most 0.07 times the
+  rate change (rad/mm) times the zone length (0.3 degree for a change of 0.4 degree/mm);
 - at a true corner between blended moves (CP ON, no stop) the corner is rounded: the tool leaves
   the incoming move ``d`` mm before the corner and joins the outgoing one ``d`` mm after it,
   ``d`` = the accuracy radius of the incoming move, capped at half of each neighbouring move, on a
@@ -23,11 +29,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from coatsim.budgets import MAX_PATH_SAMPLES, check_budget
-from coatsim.errors import ExecutionError, InputError
-from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, Pose, ToolPath
+from coatsim.core.numeric import TINY, steps_over
+from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, ToolPath
 from coatsim.robot.ik_batch import row_norms
-from coatsim.robot.primitives3d import Primitive, arc_through, line
+from coatsim.geometry.space.primitives import DegenerateArc, Line3, Segment3, arc_through
 
 TANGENT_TOL_RAD = math.radians(0.5)
 # A junction turning back by more than this is a reversal: the tool stops there (no blend can
@@ -35,6 +43,10 @@ TANGENT_TOL_RAD = math.radians(0.5)
 REVERSAL_RAD = math.radians(179.5)
 MIN_MOVE_MM = 1e-6
 MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
+# Where the tool's turning rate changes between two blended moves, the controller blends the
+# orientation over this far either side (capped at half the distance to the next such change).
+ORIENTATION_ZONE_MM = 10.0
+_RATE_JUMP_RAD_MM = 1e-5  # a change of the turning rate (rad per mm) above this is blended
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,7 +68,7 @@ class CartesianPiece:
     move: np.ndarray
     spray: np.ndarray
     ref_s: np.ndarray
-    reference: tuple[Primitive, ...]
+    reference: tuple[Segment3, ...]
     reference_moves: tuple[int, ...]
 
     @property
@@ -82,16 +94,31 @@ Piece = CartesianPiece | JointPiece
 
 @dataclass(frozen=True)
 class _Span:
-    """One Cartesian move resolved to a primitive with its end orientations."""
+    """One Cartesian move resolved to a primitive with its end orientations; an arc also with
+    its via orientation ``rv`` at the fraction ``fv`` of its length (the controller turns the
+    tool from the start pose to the via pose, then to the end pose, each at a constant rate)."""
 
     index: int
-    prim: Primitive
+    prim: Segment3
     r0: np.ndarray
     r1: np.ndarray
     speed: float
     spray: bool
     accuracy: float
     stop: bool
+    rv: np.ndarray | None = None
+    fv: float = 0.5
+
+    def rotations(self, frac: np.ndarray) -> np.ndarray:
+        """Tool rotations (n, 3, 3) at fractions ``frac`` (n,) of the move's length."""
+        frac = np.asarray(frac, dtype=float)
+        if self.rv is None:
+            return _slerp(self.r0, self.r1, frac)
+        first = frac <= self.fv
+        out = np.empty((len(frac), 3, 3))
+        out[first] = _slerp(self.r0, self.rv, frac[first] / self.fv)
+        out[~first] = _slerp(self.rv, self.r1, (frac[~first] - self.fv) / (1.0 - self.fv))
+        return out
 
 
 def step_label(toolpath: ToolPath, index: int | None) -> str:
@@ -105,22 +132,26 @@ def step_label(toolpath: ToolPath, index: int | None) -> str:
 
 def _span(toolpath: ToolPath, index: int) -> _Span:
     move = toolpath.moves[index]
-    a = np.asarray(move.start.position, float)
-    b = np.asarray(move.end.position, float)
+    a = np.asarray(move.start.translation_mm, float)
+    b = np.asarray(move.end.translation_mm, float)
     if isinstance(move, CircularMove):
-        prim = arc_through(a, np.asarray(move.via.position, float), b)
-        if prim is None:
+        try:
+            prim = arc_through(a, np.asarray(move.via.translation_mm, float), b)
+        except DegenerateArc:
             raise ExecutionError(
                 f"{step_label(toolpath, index)}: start, via and end points are collinear or coincide, "
                 "so they define no circle; split a full circle into two C1MOVE/C2MOVE pairs"
-            )
+            ) from None
+        via_s = float(prim.nearest(np.asarray(move.via.translation_mm, float)[None])[1][0])
+        rv, fv = np.asarray(move.via.rotation, float), min(max(via_s / prim.length, 1e-9), 1.0 - 1e-9)
     else:
-        prim = line(a, b)
+        prim = Line3(a, b)
+        rv, fv = None, 0.5
     s = move.settings
     if not s.speed_mm_s > 0:
         raise ExecutionError(f"{step_label(toolpath, index)}: programmed speed must be positive, got {s.speed_mm_s}")
     return _Span(index, prim, np.asarray(move.start.rotation, float), np.asarray(move.end.rotation, float),
-                 float(s.speed_mm_s), bool(move.spray), max(float(s.accuracy_mm), 0.0), bool(s.stop_at_end))
+                 float(s.speed_mm_s), bool(move.spray), max(float(s.accuracy_mm), 0.0), bool(s.stop_at_end), rv, fv)
 
 
 def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -139,10 +170,45 @@ def _slerp(r0: np.ndarray, r1: np.ndarray, f: np.ndarray) -> np.ndarray:
     return r0 @ turn
 
 
+def smooth_orientation(s: np.ndarray, rotations: np.ndarray, zone_mm: float) -> np.ndarray:
+    """Rotations (n, 3, 3) at arc lengths ``s`` with every jump of the turning rate blended over
+    ``zone_mm`` either side (less where the next jump is nearer): across the zone the orientation
+    goes from the incoming rate's continuation to the outgoing one's with weights
+    10u³ − 15u⁴ + 6u⁵, so it, its rate and the rate's change are continuous."""
+    from scipy.spatial.transform import Rotation
+
+    if len(s) < 3:
+        return rotations
+    ds = np.diff(s)
+    rel = Rotation.from_matrix(np.swapaxes(rotations[:-1], 1, 2) @ rotations[1:])
+    rate = rel.as_rotvec() / np.maximum(ds, 1e-12)[:, None]  # body-frame turning rate per interval
+    jumps = 1 + np.flatnonzero(np.linalg.norm(np.diff(rate, axis=0), axis=1) > _RATE_JUMP_RAD_MM)
+    if not len(jumps):
+        return rotations
+    # a pose between two samples (an arc's via) makes the interval across it a jump of its own:
+    # jumps on consecutive samples are one change, from the rate before them to the rate after
+    groups = np.split(jumps, 1 + np.flatnonzero(np.diff(jumps) > 1))
+    out = rotations.copy()
+    middles = [(s[g[0]] + s[g[-1]]) / 2 for g in groups]
+    bounds = np.concatenate(([s[0]], middles, [s[-1]]))
+    for k, g in enumerate(groups):
+        a, b, mid = int(g[0]), int(g[-1]), middles[k]  # samples on the incoming and the outgoing path
+        d = min(zone_mm, (bounds[k + 1] - bounds[k]) / 2, (bounds[k + 2] - bounds[k + 1]) / 2)
+        rows = np.flatnonzero(np.abs(s - mid) < d)
+        if d <= 0 or len(rows) < 2:
+            continue
+        r_in = Rotation.from_matrix(rotations[a]) * Rotation.from_rotvec((s[rows] - s[a])[:, None] * rate[a - 1])
+        r_out = Rotation.from_matrix(rotations[b]) * Rotation.from_rotvec((s[rows] - s[b])[:, None] * rate[b])
+        u = (s[rows] - mid + d) / (2 * d)
+        w = (u**3 * (10 - 15 * u + 6 * u**2))[:, None]
+        out[rows] = (r_in * Rotation.from_rotvec(w * (r_in.inv() * r_out).as_rotvec())).as_matrix()
+    return out
+
+
 def _uniform(length: float, step: float) -> np.ndarray:
     """Samples every ``step`` or closer from 0 to ``length``, both ends included; at least
     two intervals, so a short rest-to-rest move still has a point where it moves."""
-    n = max(2, int(math.ceil(length / step - 1e-9)))
+    n = max(2, steps_over(length, step))
     return np.linspace(0.0, length, n + 1)
 
 
@@ -183,7 +249,7 @@ _DENSE_W = np.linspace(0.0, 1.0, 257)  # the parameters where a blend's arc leng
 _DENSE_BASIS = _bezier_basis(_DENSE_W, 0)
 
 
-def _heading_change(a: Primitive, b: Primitive) -> float:
+def _heading_change(a: Segment3, b: Segment3) -> float:
     ta, tb = a.tangents(np.array([a.length]))[0], b.tangents(np.array([0.0]))[0]
     return float(math.acos(np.clip(ta @ tb, -1.0, 1.0)))
 
@@ -209,7 +275,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             s = lo + _uniform(max(hi - lo, 0.0), step)
         elif hi - lo > MERGE_MM or k == n - 1:
             # the first point is the previous blend's (or span's) last sample
-            s = lo + np.linspace(0.0, hi - lo, max(1, int(math.ceil((hi - lo) / step - 1e-9))) + 1)[1:]
+            s = lo + np.linspace(0.0, hi - lo, max(1, steps_over(hi - lo, step)) + 1)[1:]
         else:
             # blends that meet mid-move leave (almost) nothing of it: samples a fraction of a
             # micrometre apart would make the joint spline through them swing
@@ -217,7 +283,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
         if len(s):
             m = len(s)
             frac = s / sp.prim.length if sp.prim.length > 0 else np.zeros(m)
-            add(sp.prim.points(s), _slerp(sp.r0, sp.r1, frac), sp.prim.tangents(s), np.full(m, sp.prim.curvature),
+            add(sp.prim.points(s), sp.rotations(frac), sp.prim.tangents(s), np.full(m, sp.prim.curvature),
                 np.full(m, sp.speed), np.full(m, sp.index), np.full(m, sp.spray), ref_offset + s)
         if k + 1 < n and trims[k + 1] > 0:
             nxt, d = spans[k + 1], trims[k + 1]
@@ -226,8 +292,8 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
             b = nxt.prim.points(np.array([d]))[0]
             tb = nxt.prim.tangents(np.array([d]))[0]
             pts, tan, curv, frac, _ = _blend(a, ta, b, tb, d, step)
-            ra = _slerp(sp.r0, sp.r1, np.array([hi / sp.prim.length]))[0]
-            rb = _slerp(nxt.r0, nxt.r1, np.array([d / nxt.prim.length]))[0]
+            ra = sp.rotations(np.array([hi / sp.prim.length]))[0]
+            rb = nxt.rotations(np.array([d / nxt.prim.length]))[0]
             first = frac <= 0.5
             add(pts, _slerp(ra, rb, frac), tan, curv, np.full(len(pts), min(sp.speed, nxt.speed)),
                 np.where(first, sp.index, nxt.index), np.full(len(pts), nxt.spray),
@@ -236,11 +302,11 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
     p = np.vstack(cols["p"])
     # Where the blends at both ends of a short move meet, a blend starts on the sample the
     # previous one ended on: keep one of each pair of coincident samples.
-    keep = np.concatenate(([True], np.linalg.norm(np.diff(p, axis=0), axis=1) > 1e-9))
+    keep = np.concatenate(([True], np.linalg.norm(np.diff(p, axis=0), axis=1) > TINY))
     p = p[keep]
     s_exec = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
     return CartesianPiece(
-        s=s_exec, position=p, rotation=np.concatenate(cols["r"])[keep], tangent=np.vstack(cols["t"])[keep],
+        s=s_exec, position=p, rotation=smooth_orientation(s_exec, np.concatenate(cols["r"])[keep], ORIENTATION_ZONE_MM), tangent=np.vstack(cols["t"])[keep],
         curvature=np.concatenate(cols["c"])[keep], speed=np.concatenate(cols["v"])[keep],
         move=np.concatenate(cols["m"]).astype(int)[keep], spray=np.concatenate(cols["y"]).astype(bool)[keep],
         ref_s=np.concatenate(cols["rs"])[keep], reference=tuple(sp.prim for sp in spans),
@@ -307,7 +373,7 @@ def min_motion_time_s(toolpath: ToolPath, pieces: tuple[Piece, ...]) -> float:
     total, here = sum(d.seconds for d in toolpath.dwells), None
     for piece in pieces:
         if isinstance(piece, JointPiece):
-            target = np.asarray(piece.target.position, float)
+            target = np.asarray(piece.target.translation_mm, float)
             distance = 0.0 if here is None else float(np.linalg.norm(target - here))
             total += distance / piece.speed_mm_s if piece.speed_mm_s > 0 else (math.inf if distance else 0.0)
             here = target

@@ -25,8 +25,9 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
-from coatsim.budgets import MAX_SIM_STEPS, check_budget
-from coatsim.errors import ExecutionError
+from coatsim.core.numeric import TINY, steps_over
+from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 
 if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads when a piece is timed
@@ -77,7 +78,7 @@ def _sample(path: Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_s
         raise ExecutionError("timing: a path piece has no room to move (zero speed along it); sample it more finely")
     check_budget(f"{label}: simulation steps of {dt * 1e3:g} ms ({duration:.4g} s of motion under the joint limits)",
                  duration / dt, max_steps, "raise the programmed SPEED or shorten the program")
-    m = int(math.ceil(duration / dt - 1e-9))
+    m = steps_over(duration, dt)
     t = np.minimum(np.arange(m + 1) * dt, duration)
     k = np.minimum(np.searchsorted(knots, t, side="right") - 1, len(accel) - 1)
     h = t - knots[k]
@@ -131,7 +132,7 @@ def _bang_bang(cell: Cell, q0: np.ndarray, q1: np.ndarray) -> TimedPiece:
     dq = q1 - q0
     duration = max(float(np.max(2.0 * np.sqrt(np.abs(dq) / cell.a_max))), float(np.max(2.0 * np.abs(dq) / cell.v_max)),
                    cell.timestep)
-    m = int(math.ceil(duration / cell.timestep - 1e-9))
+    m = steps_over(duration, cell.timestep)
     t = np.minimum(np.arange(m + 1) * cell.timestep, duration)
     x = t / duration
     first = x <= 0.5
@@ -154,5 +155,5 @@ def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, la
     data = mujoco.MjData(cell.model)
     tcp = np.array([cell.forward(data, qk)[0] for qk in qs]) * MM
     dp_du = np.linalg.norm(np.gradient(tcp, u, axis=0), axis=1)
-    bound = (speed_mm_s * MM) / np.maximum(dp_du, 1e-9)
+    bound = (speed_mm_s * MM) / np.maximum(dp_du, TINY)
     return _timed(cell, Spline(u, qs), [PathSpeedBound(u, bound)], u, 1.0, label, max_steps)

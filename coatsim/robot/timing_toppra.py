@@ -22,7 +22,7 @@ from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
 from toppra.interpolator import AbstractGeometricPath
 from toppra.solverwrapper.cy_seidel_solverwrapper import seidelWrapper
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import Cell
 
 _FACETS = 8  # the tool-acceleration disc is approximated by an inscribed 16-gon

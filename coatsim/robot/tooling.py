@@ -1,5 +1,5 @@
 """The program's TOOL in the robot stage: the IK targets the gun site where the controller's TOOL
-puts the flange (see :mod:`coatsim.program.tool_frames` for the frames), motions after a TOOL
+puts the flange (see :mod:`coatsim.path.tool_frames` for the frames), motions after a TOOL
 change start where the flange is, and a TOOL that is not the cell's gun is a warning.
 """
 
@@ -9,10 +9,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from coatsim.program import tool_frames
-from coatsim.program.oat import matrix_to_oat
-from coatsim.program.placement import Frame
-from coatsim.program.toolpath import JointMove, Pose, ToolFrame, ToolPath
+from coatsim.path import tool_frames
+from coatsim.geometry.space.rotations import matrix_to_oat
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
+from coatsim.path.toolpath import JointMove, ToolFrame, ToolPath
 from coatsim.robot.cell import Cell
 
 
@@ -30,16 +31,16 @@ def to_gun(positions_mm: np.ndarray, rotations: np.ndarray, m_rotation: np.ndarr
 def _reexpress(pose: Pose, m_from: tuple[np.ndarray, np.ndarray], m_to: tuple[np.ndarray, np.ndarray]) -> Pose:
     """A TCP pose under one TOOL as the TCP pose under another, the flange (and gun) unmoved:
     P M_from M_to^-1."""
-    gun_p, gun_r = to_gun(pose.position, pose.rotation, *m_from)
+    gun_p, gun_r = to_gun(pose.translation_mm, pose.rotation, *m_from)
     r_to, p_to = m_to
     rotation = gun_r @ r_to.T
-    return Pose(gun_p - rotation @ p_to, rotation)
+    return Pose(rotation, gun_p - rotation @ p_to)
 
 
-def gun_tool(cell: Cell) -> Frame:
+def gun_tool(cell: Cell) -> Pose:
     """The TOOL that makes the controller's TCP the cell's gun (for programs written for it)."""
     x, y, z = (round(float(v), 9) + 0.0 for v in cell.gun_offset_mm)
-    return Frame(x, y, z, *(round(v, 9) + 0.0 for v in matrix_to_oat(cell.gun_rotation)))
+    return pose_from_xyzoat((x, y, z, *(round(v, 9) + 0.0 for v in matrix_to_oat(cell.gun_rotation))))
 
 
 def with_tool_changes(toolpath: ToolPath, cell: Cell) -> ToolPath:

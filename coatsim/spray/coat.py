@@ -17,12 +17,14 @@ from typing import Callable, Iterator
 
 import numpy as np
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM
-from coatsim.errors import InputError
-from coatsim.fileio import write_text
+from coatsim.core import defaults
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_text
 from coatsim.robot.trajectory_log import TrajectoryLog, read_trajectory_csv
 from coatsim.spray.coating_metrics import coating_metrics, edge_band_width, region_of_interest
 from coatsim.spray.deposition import Deposit, SprayModel, deposit
+from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.spray.outputs import (
     Profile, default_section, heatmap_png, panel, profile_png, section_profile, write_thickness_ply,
@@ -52,19 +54,22 @@ class CoatingResult:
 def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "band",
          target_um: float | None = None, edge_band_mm: float | None = None,
          band_halfwidth_mm: float | None = None, spacing: float | None = None,
-         progress: Callable[[float], None] | None = None, away: np.ndarray | None = None) -> CoatingResult:
+         progress: Callable[[float], None] | None = None, away: np.ndarray | None = None,
+         tolerance_pct: float = defaults.TOLERANCE_PCT) -> CoatingResult:
     """Deposit the sprayed part of ``log`` on ``surface`` and measure it over the ROI
-    (``away``: the surface's vertices clear of the edge band, if already computed)."""
+    (``away``: the surface's vertices clear of the edge band, if already computed;
+    ``tolerance_pct``: the specification band around the target)."""
     result = deposit(surface, log, model, progress)
     mask = region_of_interest(surface, result, model, roi, edge_band_mm, band_halfwidth_mm, spacing, away)
-    metrics = coating_metrics(surface, result, model, mask, target_um)
+    metrics = coating_metrics(surface, result, model, mask, target_um, tolerance_pct)
     return CoatingResult(surface, model, result, mask, roi, metrics)
 
 
-def remeasured(result: CoatingResult, roi: np.ndarray, target_um: float | None = None) -> CoatingResult:
+def remeasured(result: CoatingResult, roi: np.ndarray, target_um: float | None = None,
+               tolerance_pct: float = defaults.TOLERANCE_PCT) -> CoatingResult:
     """``result`` measured over another region of interest (a boolean vertex mask), e.g. the
     one every variant of a run shares."""
-    metrics = coating_metrics(result.surface, result.deposit, result.model, roi, target_um)
+    metrics = coating_metrics(result.surface, result.deposit, result.model, roi, target_um, tolerance_pct)
     return replace(result, roi=roi, metrics=metrics)
 
 
@@ -118,30 +123,35 @@ def _progress(label: str) -> Iterator[Callable[[float], None] | None]:
 def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = None,
              footprint: str = "gaussian:sigma=5", rate: float = 40.0, standoff: float = 100.0,
              target_um: float | None = None, roi: str = "band", edge_band_mm: float | None = None,
-             de_exponent: float = 1.0, occlusion: bool = False, section: str | None = None,
-             outdir: str | Path = "out/coat", force: bool = False) -> tuple[CoatingResult, list[Path]]:
+             efficiency: str = defaults.EFFICIENCY, shadows: str = defaults.SHADOWS, section: str | None = None,
+             outdir: str | Path = "out/coat", force: bool = False,
+             tolerance_pct: float = defaults.TOLERANCE_PCT) -> tuple[CoatingResult, list[Path]]:
     """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default);
-    the output folder is held for the run (see coatsim.outputs_guard)."""
-    from coatsim.outputs_guard import check_distinct, output_folder
+    the output folder is held for the run (see coatsim.core.outputs_guard)."""
+    from coatsim.core.outputs_guard import check_distinct, output_folder
 
     fp = parse_footprint_spec(footprint)
-    model = SprayModel(fp, rate, standoff, de_exponent, occlusion)
+    de = parse_efficiency_spec(efficiency)
+    model = SprayModel(fp, rate, standoff, de, shadows)
     spacing = fp.spacing_mm if spacing is None else spacing
     if edge_band_mm is not None and not (math.isfinite(edge_band_mm) and edge_band_mm >= 0):
         raise InputError(f"--edge-band {edge_band_mm}: must be a finite number of mm >= 0")
     line = parse_section(section) if section is not None else None
     outdir = Path(outdir)
     inputs = [("the trajectory", trajectory), ("the surface mesh", surface_file(surface_spec)),
-              ("the footprint table", getattr(fp, "path", None))]
+              ("the footprint table", getattr(fp, "path", None)),
+              ("the efficiency table", getattr(de, "source", None) or None)]
     check_distinct(inputs, [("output", outdir / name) for name in COATING_FILES])
     surface = parse_surface_spec(surface_spec, spacing)
     log = read_trajectory_csv(trajectory)
     with output_folder(outdir, COATING_FILES, "coatsim coat", force):
         with _progress("coating") as progress:
-            result = coat(log, surface, model, roi, target_um, edge_band_mm, spacing=spacing, progress=progress)
+            result = coat(log, surface, model, roi, target_um, edge_band_mm, spacing=spacing, progress=progress,
+                          tolerance_pct=tolerance_pct)
         inputs = {"trajectory": str(trajectory), "surface": surface_spec, "spacing_mm": spacing,
                   "footprint": fp.spec, "rate_mm3_s": rate, "standoff_mm": standoff,
-                  "de_exponent": de_exponent, "occlusion": occlusion, "substep_mm": model.step_mm,
+                  "efficiency": "none" if de is None else de.spec, "shadows": shadows,
+                  "shadows_cast": result.deposit.shadows, "rays": result.deposit.rays, "substep_mm": model.step_mm,
                   "roi": roi, "edge_band_mm": edge_band_width(model, edge_band_mm),
                   "band_halfwidth_mm": 2 * fp.sigma_mm}
         return result, write_coating(result, outdir, inputs, line)

@@ -6,14 +6,24 @@ the footprint centre while spraying), minus the same edge band and minus the run
 run-out (within the edge band of the first and last footprint centre of every spray-on
 stretch that does not close on itself). Every statistic is weighted by vertex area, so it
 does not depend on how the mesh is tessellated.
+
+Where the sprayed material went: sprayed = deposited + lost (bounced off, deposition
+efficiency) + missed (landed on no face turned towards the nozzle: past the part's edges).
+Shadowed is reported beside it, not in the sum: the material aimed at faces the part hides,
+which landed on the faces in front of them (and is counted there).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from coatsim.errors import EmptyRegionOfInterest, InputError
+from coatsim.core.numeric import TINY
+from coatsim.core import defaults
+from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
+from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
 from coatsim.spray.surfaces import Surface, border_distance
 
 ROI_KINDS = ("band", "part")
@@ -39,7 +49,7 @@ def _footprint_radius(surface: Surface, deposit: Deposit, model: SprayModel, ste
     d = surface.vertices - steps.position[step]
     a = steps.axis[step]
     da = d @ a
-    seen = (da > 1e-9) & (-np.einsum("ij,ij->i", d, surface.normals) > 0)
+    seen = (da > TINY) & (-np.einsum("ij,ij->i", d, surface.normals) > 0)
     lateral = np.linalg.norm(d - da[:, None] * a, axis=1)
     return np.where(seen, lateral * model.standoff_mm / np.where(seen, da, 1.0), np.inf)
 
@@ -86,12 +96,14 @@ def weighted_quantile(values: np.ndarray, weights: np.ndarray, q: float) -> floa
 
 
 def thickness_statistics(thickness_um: np.ndarray, areas: np.ndarray, mask: np.ndarray,
-                         target_um: float) -> dict[str, float]:
-    """Area-weighted mean, std, CV, extremes, P05/P95, coverage and thick-spot fractions."""
+                         target_um: float, tolerance_pct: float = defaults.TOLERANCE_PCT) -> dict[str, float]:
+    """Area-weighted mean, std, CV, extremes, P05/P95, coverage, thick-spot, coated and
+    within-specification (target ± tolerance_pct %) fractions."""
     t, w = thickness_um[mask], areas[mask]
     area = float(w.sum())
     mean = float(np.sum(w * t) / area)
     std = float(np.sqrt(np.sum(w * (t - mean) ** 2) / area))
+    band = tolerance_pct / 100.0 * target_um
     return {
         "roi_area_mm2": area,
         "roi_vertices": int(mask.sum()),
@@ -105,11 +117,28 @@ def thickness_statistics(thickness_um: np.ndarray, areas: np.ndarray, mask: np.n
         "target_um": float(target_um),
         "coverage_fraction": float(np.sum(w[t >= COVERAGE_FRACTION * target_um]) / area),
         "thick_spot_fraction": float(np.sum(w[t > THICK_SPOT_FRACTION * target_um]) / area),
+        "coated_fraction": float(np.sum(w[t > 0]) / area),
+        "tolerance_pct": float(tolerance_pct),
+        "within_spec_fraction": float(np.sum(w[np.abs(t - target_um) <= band]) / area),
+    }
+
+
+def spray_conditions(deposit: Deposit, areas: np.ndarray, mask: np.ndarray) -> dict[str, float]:
+    """How the region was sprayed: the area fraction whose (deposit-weighted) spray angle is
+    below LOW_SPRAY_ANGLE_DEG, and the range of the stand-off at which coating landed."""
+    angle, standoff = deposit.spray_angle_deg[mask], deposit.standoff_mm[mask]
+    landed = ~np.isnan(standoff)
+    flat = np.zeros(len(angle), dtype=bool)
+    flat[landed] = angle[landed] < LOW_SPRAY_ANGLE_DEG
+    return {
+        "low_angle_fraction": float(np.sum(areas[mask][flat]) / areas[mask].sum()),
+        "standoff_min_mm": float(standoff[landed].min()) if landed.any() else math.nan,
+        "standoff_max_mm": float(standoff[landed].max()) if landed.any() else math.nan,
     }
 
 
 def coating_metrics(surface: Surface, deposit: Deposit, model: SprayModel, roi: np.ndarray,
-                    target_um: float | None = None) -> dict[str, float]:
+                    target_um: float | None = None, tolerance_pct: float = defaults.TOLERANCE_PCT) -> dict[str, float]:
     """All coating metrics; the target defaults to the ROI mean (coverage then measures evenness)."""
     spray_time = deposit.steps.spray_time_s
     if spray_time <= 0:
@@ -119,20 +148,30 @@ def coating_metrics(surface: Surface, deposit: Deposit, model: SprayModel, roi: 
                                     "(edge_band_mm) covers it")
     if target_um is not None and not (np.isfinite(target_um) and target_um > 0):
         raise InputError(f"target thickness must be positive, found {target_um:g} um")
+    if not (np.isfinite(tolerance_pct) and tolerance_pct >= 0):
+        raise InputError(f"tolerance_pct: the thickness tolerance must be a percentage >= 0, found {tolerance_pct:g}",
+                         parameters=("tolerance_pct",))
     thickness = deposit.thickness_um
     mean = float(np.sum(surface.areas[roi] * thickness[roi]) / surface.areas[roi].sum())
     if not mean > 0:
         raise InputError("no coating landed in the region of interest; check the surface placement "
                          "(--surface ...@x,y,z) and that the spray axis points at it")
-    metrics = thickness_statistics(thickness, surface.areas, roi, mean if target_um is None else target_um)
+    metrics = thickness_statistics(thickness, surface.areas, roi, mean if target_um is None else target_um,
+                                   tolerance_pct)
+    metrics.update(spray_conditions(deposit, surface.areas, roi))
     deposited = float(surface.areas @ deposit.thickness_mm)
+    lost = float(surface.areas @ deposit.lost_mm)
     sprayed = model.rate_mm3_s * spray_time
     metrics.update({
         "part_thickness_max_um": float(thickness.max()),
         "deposited_volume_mm3": deposited,
         "roi_volume_mm3": float(surface.areas[roi] @ deposit.thickness_mm[roi]),
         "sprayed_volume_mm3": sprayed,
-        "on_part_efficiency": deposited / sprayed,
+        "lost_volume_mm3": lost,
+        "missed_volume_mm3": sprayed - deposited - lost,
+        "shadowed_volume_mm3": float(surface.areas @ deposit.shadowed_mm),
+        "on_part_efficiency": (deposited + lost) / sprayed,
+        "deposition_efficiency": deposited / sprayed,
         "spray_time_s": spray_time,
     })
     return metrics

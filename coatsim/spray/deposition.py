@@ -2,69 +2,81 @@
 
 The nozzle is a point source at the logged tool centre point (the TCP sits at the nozzle) and
 sprays along the logged unit axis a. A vertex x with unit normal n, seen from the nozzle along
-d = x − p, receives the thickness rate (point-source projection of the reference footprint)
+d = x − p, receives the thickness rate (the surface projection model of Conner, Atkar, Rizzi
+and Choset, IEEE T-ASE 2005: the footprint measured on a plane, projected onto the surface)
 
-    Q · g(u, v) · (h0/|d|)² · cos γ / cos³ θ · DE(γ)  =  Q · g(u, v) · h0² (−d·n) / (d·a)³ · DE(γ)
+    Q · g(u, v) · (h0/|d|)² · cos γ / cos³ θ · DE(γ) · vis  =  Q · g(u, v) · h0² (−d·n) / (d·a)³ · DE(γ) · vis
 
 where (u, v) = h0/(d·a) · (d·e1, d·e2) is the central projection of x onto the reference plane
-at stand-off h0, cos θ = d·a/|d|, cos γ = −d·n/|d| (γ: incidence angle), DE(γ) = cos^(n−1) γ.
-Back faces (cos γ ≤ 0) and points behind the nozzle get nothing; with occlusion on, a vertex
-counts only if a ray from the nozzle reaches it first. The footprint axis e1 is a fixed
-reference direction (base +x by default) projected onto the plane normal to a; e2 = a × e1.
+at stand-off h0, cos θ = d·a/|d|, cos γ = −d·n/|d| (γ: incidence angle; the spray angle is
+90° − γ), DE the optional deposition efficiency (coatsim.spray.efficiency) and vis ∈ {0, 1}
+whether the nozzle sees x (coatsim.spray.visibility). Back faces (cos γ ≤ 0) and points behind
+the nozzle get nothing. The footprint axis e1 is a fixed reference direction (base +x by
+default) projected onto the plane normal to a; e2 = a × e1.
 
 Time integration: row k of the log holds the spray signal for [t_k, t_k+1) (zero-order hold);
 each sprayed interval is split into equal sub-steps so that the footprint centre moves at most
 ``substep_mm`` per sub-step (position linear, axis normalised-linear), each evaluated at its
 midpoint and weighted by its duration, so slowdowns and dwells weigh exactly by time.
 
-Culling: the vertices are grouped into the leaves of a KD-tree; per sub-step only leaves whose
-bounding sphere meets the footprint's cut-off cone are evaluated, in vectorised batches, and
-contributions are summed per vertex with ``np.bincount`` (deterministic order).
+Culling (coatsim.spray.culling): per sub-step only the KD-tree leaves whose bounding sphere
+meets the footprint's cut-off cone are evaluated, in vectorised batches, and contributions are
+summed per vertex with ``np.bincount`` (deterministic order). Shadows cost one ray per
+(sub-step, vertex) pair that receives spray, and none for vertices nothing can hide.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
+import weakref
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.spatial import cKDTree
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
-from coatsim.errors import InputError
+from coatsim.core.numeric import ROUND_OFF, TINY
+from coatsim.core import defaults
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
+from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
+from coatsim.spray.culling import Pairs, cone_pairs, vertex_tree
+from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface
+from coatsim.spray.visibility import RayCaster, Visibility, check_shadow_mode, visibility
 
 MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far below float overflow
-LEAF_SIZE = 48
 _LEAF_TESTS_PER_BATCH = 400_000
+_MIN_STEPS_PER_SEARCH = 64
 _PAIRS_PER_BATCH = 1_000_000
 
 
 @dataclass(frozen=True)
 class SprayModel:
-    """Gun and numerics: footprint at reference stand-off h0 (mm), deposited rate Q (mm³/s)."""
+    """Gun and numerics: footprint at reference stand-off h0 (mm), deposited rate Q (mm³/s) of
+    material landing on a surface, deposition efficiency (None: all that lands sticks) and
+    shadows: ``auto`` and ``on`` cast rays for the vertices the surface can hide (none on a
+    surface that cannot shadow itself); without the Embree binding ``on`` is an error and
+    ``auto`` warns and coats without shadows; ``off`` never casts (see coatsim.spray.visibility)."""
 
     footprint: Footprint
     rate_mm3_s: float = 40.0
     standoff_mm: float = 100.0
-    de_exponent: float = 1.0
-    occlusion: bool = False
+    efficiency: Efficiency | None = None
+    shadows: str = defaults.SHADOWS
     substep_mm: float | None = None
     major_axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
 
     def __post_init__(self) -> None:
-        checks = (("rate", self.rate_mm3_s, "--rate (mm3/s)", MAX_RATE_MM3_S),
-                  ("stand-off", self.standoff_mm, "--standoff (mm)", MAX_ABS_COORDINATE_MM))
-        for name, value, flag, most in checks:
+        checks = (("rate", self.rate_mm3_s, "rate_mm3_s", MAX_RATE_MM3_S),
+                  ("stand-off", self.standoff_mm, "standoff_mm", MAX_ABS_COORDINATE_MM))
+        for name, value, key, most in checks:
             if not (0 < value <= most):
-                raise InputError(f"spray {name} must be positive and at most {most:g}, found {value:g}; set {flag}")
+                raise InputError(f"spray {name} must be positive and at most {most:g}, found {value:g} ({key})")
         if self.substep_mm is not None and not (math.isfinite(self.substep_mm) and self.substep_mm > 0):
             raise InputError(f"sub-step must be positive, found {self.substep_mm:g} mm")
-        if not (math.isfinite(self.de_exponent) and self.de_exponent >= 1):
-            raise InputError(f"deposition-efficiency exponent must be >= 1, found {self.de_exponent:g}")
+        check_shadow_mode(self.shadows)
         if self.footprint.cutoff_mm >= 10 * self.standoff_mm:
             raise InputError(f"footprint radius {self.footprint.cutoff_mm:g} mm is too wide for stand-off {self.standoff_mm:g} mm")
         if np.linalg.norm(self.major_axis) == 0:
@@ -127,7 +139,7 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     dp = p[k + 1] - p[k]
     turn = np.arccos(np.clip(np.sum(a[k] * a[k + 1], axis=1), -1.0, 1.0))
     travel = np.maximum(np.linalg.norm(dp, axis=1), model.standoff_mm * turn)
-    n = np.maximum(1, np.ceil(travel / model.step_mm - 1e-9)).astype(np.int64)
+    n = np.maximum(1, np.ceil(travel / model.step_mm - ROUND_OFF)).astype(np.int64)
     check_budget(f"coating sub-steps of {model.step_mm:g} mm along {float(travel.sum()):.6g} mm of sprayed path",
                  float(n.sum()), MAX_SPRAY_SUBSTEPS, "use a wider footprint or a longer sub-step")
     rep = np.repeat(np.arange(len(k)), n)
@@ -149,18 +161,30 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     return SubSteps(position, axis, e1, np.cross(axis, e1), dt, stretch)
 
 
+
 @dataclass(frozen=True, eq=False)
 class Deposit:
-    """Per-vertex result: thickness (n,) mm, exposure (n,) s with a non-zero rate, and the
-    smallest footprint radius (n,) mm at which the vertex was seen while spraying (inf if
-    never): its distance, on the reference plane, from the nearest sprayed sub-step centre
-    (within (step/2)²/(2·distance) of the distance from the continuous track)."""
+    """Per-vertex result, all (n,): thickness (mm), exposure (s with a non-zero rate), and the
+    smallest footprint radius (mm) at which the vertex was seen while spraying (inf if never):
+    its distance, on the reference plane, from the nearest sprayed sub-step centre (within
+    (step/2)²/(2·distance) of the distance from the continuous track). Where the spray went
+    besides: ``shadowed_mm``, the thickness that reached the vertex's direction while it was
+    hidden (it landed on the faces in front instead), ``lost_mm`` what bounced off (deposition
+    efficiency). Deposit-weighted means: ``spray_angle_deg`` (90 = normal incidence) and
+    ``standoff_mm`` (distance from the nozzle along the spray axis), NaN where nothing landed.
+    ``rays``: occlusion queries cast; ``shadows``: whether visibility was computed at all."""
 
     thickness_mm: np.ndarray
     exposure_s: np.ndarray
     track_distance_mm: np.ndarray
     steps: SubSteps
     evaluations: int
+    shadowed_mm: np.ndarray
+    lost_mm: np.ndarray
+    spray_angle_deg: np.ndarray
+    standoff_mm: np.ndarray
+    rays: int = 0
+    shadows: bool = False
 
     @property
     def thickness_um(self) -> np.ndarray:
@@ -168,125 +192,143 @@ class Deposit:
 
 
 @dataclass(frozen=True, eq=False)
-class _Leaves:
-    order: np.ndarray
-    start: np.ndarray
-    count: np.ndarray
-    centre: np.ndarray
-    radius: np.ndarray
+class _Shadows:
+    """The ray caster, the vertices it never needs to test and the gun-position group of every
+    sub-step (consecutive sub-steps at one position share their visibility)."""
+
+    caster: RayCaster
+    exposed: np.ndarray
+    group: np.ndarray
 
 
-def _kd_leaves(points: np.ndarray) -> _Leaves:
-    """Leaves of a scipy KD-tree: contiguous ranges of ``order`` with bounding spheres."""
-    tree = cKDTree(points, leafsize=LEAF_SIZE, balanced_tree=False, compact_nodes=False)
-    ranges, stack = [], [tree.tree]
-    while stack:
-        node = stack.pop()
-        if node.split_dim == -1:
-            ranges.append((node.start_idx, node.end_idx))
-        else:
-            stack.extend((node.greater, node.lesser))
-    ranges.sort()
-    start = np.array([r[0] for r in ranges], dtype=np.int64)
-    count = np.array([r[1] - r[0] for r in ranges], dtype=np.int64)
-    order = np.asarray(tree.indices, dtype=np.int64)
-    leaf = np.repeat(np.arange(len(start)), count)
-    pts = points[order]
-    lo = np.full((len(start), 3), np.inf)
-    hi = np.full((len(start), 3), -np.inf)
-    np.minimum.at(lo, leaf, pts)
-    np.maximum.at(hi, leaf, pts)
-    centre = 0.5 * (lo + hi)
-    radius = np.zeros(len(start))
-    np.maximum.at(radius, leaf, np.linalg.norm(pts - centre[leaf], axis=1))
-    return _Leaves(order, start, count, centre, radius * (1 + 1e-9) + 1e-9)
+#: Each surface's Visibility (its hull and Embree scene), kept while the surface lives: the
+#: variants of a run and the report's partial coats share one.
+_VISIBILITY: weakref.WeakKeyDictionary[Surface, Visibility] = weakref.WeakKeyDictionary()
 
 
-def _candidate_pairs(leaves: _Leaves, steps: SubSteps, sel: slice, slope: float) -> tuple[np.ndarray, np.ndarray]:
-    """(sub-step, vertex) pairs of the sub-steps ``sel`` whose leaf sphere may meet the cut-off
-    cone (apex at the nozzle, lateral/axial = ``slope``). Conservative: the distance from a
-    centre at axial w, lateral l to the cone's boundary line, (l − slope·w)/√(1 + slope²),
-    never exceeds its distance to the cone."""
-    v = leaves.centre[None, :, :] - steps.position[sel, None, :]
-    w = np.einsum("slk,sk->sl", v, steps.axis[sel])
-    lateral = np.sqrt(np.maximum(np.einsum("slk,slk->sl", v, v) - w * w, 0.0))
-    r = leaves.radius[None, :]
-    hit = (w >= -r) & (lateral - slope * w <= r * math.sqrt(1 + slope * slope))
-    step, leaf = np.nonzero(hit)
-    counts = leaves.count[leaf]
-    total = int(counts.sum())
-    offset = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
-    vertex = leaves.order[np.repeat(leaves.start[leaf], counts) + offset]
-    return np.repeat(step + sel.start, counts), vertex
+def _shadows(surface: Surface, model: SprayModel, steps: SubSteps) -> _Shadows | None:
+    """What visibility needs, or None when no vertex can be hidden or shadows are off."""
+    if model.shadows == "off":
+        return None
+    seen = _VISIBILITY.get(surface)
+    if seen is None:
+        seen = visibility(surface.vertices, surface.normals, surface.faces, model.shadows)
+        if not seen.unavailable:
+            _VISIBILITY[surface] = seen
+    if seen.unavailable:
+        warnings.warn(f"{surface.name} can shadow itself but the embreex package (Embree ray casting) cannot be "
+                      f"imported: coating without shadows; install it with pip install embreex", CoatsimWarning)
+    if seen.caster is None:
+        return None
+    moved = np.r_[True, np.any(steps.position[1:] != steps.position[:-1], axis=1)]
+    return _Shadows(seen.caster, seen.exposed, np.cumsum(moved) - 1)
 
 
-def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
-           ) -> tuple[np.ndarray, np.ndarray]:
-    """Thickness rate (mm/s) and squared reference-plane radius (mm², inf where unseen) of pairs."""
+def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d: np.ndarray,
+             dist: np.ndarray, n: int) -> tuple[np.ndarray, int]:
+    """Which of the pairs (s, i) with offsets d = x − p the part hides; one ray per vertex and
+    gun position. Returns (blocked flags, rays cast)."""
+    group = shadows.group[s]
+    if len(s) and group[-1] - group[0] < s[-1] - s[0]:  # a gun position repeats: one ray for its pairs
+        _, first, back = np.unique(group * n + i, return_index=True, return_inverse=True)
+        hit = shadows.caster.blocked(steps.position[s[first]], d[first], dist[first])
+        return hit[back.ravel()], len(first)
+    return shadows.caster.blocked(steps.position[s], d, dist), len(s)
+
+
+def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray,
+           model: SprayModel) -> tuple[np.ndarray, ...]:
+    """For the pairs (s, i): offsets d = x − p (mm), axial distance d·a (mm), −d·n (mm, 0 where
+    unseen), thickness rate before deposition efficiency (mm/s) and squared reference-plane
+    radius (mm², inf where unseen)."""
     h0 = model.standoff_mm
     d = surface.vertices[i] - steps.position[s]
     a = steps.axis[s]
     da = np.einsum("ij,ij->i", d, a)
     dn = -np.einsum("ij,ij->i", d, surface.normals[i])
-    seen = (da > 1e-9) & (dn > 0)
+    seen = (da > TINY) & (dn > 0)
     scale = np.where(seen, h0 / np.where(seen, da, 1.0), 0.0)
     u = np.einsum("ij,ij->i", d, steps.e1[s]) * scale
     v = np.einsum("ij,ij->i", d, steps.e2[s]) * scale
     g = model.footprint.density(u, v)
-    rate = model.rate_mm3_s * g * scale**3 * np.where(seen, dn, 0.0) / h0
-    if model.de_exponent != 1.0:
-        cos_gamma = np.where(seen, dn, 0.0) / np.linalg.norm(d, axis=1)
-        rate *= cos_gamma ** (model.de_exponent - 1.0)
+    facing = np.where(seen, dn, 0.0)
+    rate = model.rate_mm3_s * g * scale**3 * facing / h0
     r2 = np.where(seen, u * u + v * v, np.inf)
-    return rate, r2
+    return d, da, facing, rate, r2
 
 
-def _visible(mesh, origins: np.ndarray, targets: np.ndarray, tolerance: float) -> np.ndarray:
-    """True where a ray from ``origins`` reaches ``targets`` without hitting the mesh earlier."""
-    direction = targets - origins
-    length = np.linalg.norm(direction, axis=1)
-    locations, ray, _ = mesh.ray.intersects_location(origins, direction / length[:, None], multiple_hits=False)
-    first = np.full(len(origins), np.inf)
-    if len(ray):
-        np.minimum.at(first, ray, np.linalg.norm(locations - origins[ray], axis=1))
-    return first >= length - tolerance
+class _Totals:
+    """Per-vertex sums over the batches: each batch's sums (bincount in pair order) over the
+    vertices it touches, added to them."""
+
+    def __init__(self, n: int):
+        # separate arrays, as numpy allocates them: a row of one block may be aligned differently,
+        # and BLAS sums (the volumes) round differently with the alignment
+        self.thickness, self.exposure, self.shadowed, self.lost, self.angle, self.standoff = (np.zeros(n) for _ in range(6))
+        self.r2_min = np.full(n, np.inf)
+        self.evaluations = self.rays = 0
+
+
+def _batch(surface: Surface, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
+           shadows: _Shadows | None, totals: _Totals) -> None:
+    """Evaluate the pairs ``sel`` and add them to ``totals``; distances, incidence, rays and
+    deposition efficiency only for the pairs that receive spray (``on``)."""
+    s, i, slot, touched = pairs.step[sel], pairs.vertex[sel], pairs.slot[sel], pairs.touched
+    add = lambda where, w: np.bincount(slot[where], weights=w, minlength=len(touched))  # noqa: E731
+    d, da, facing, rate, r2 = _rates(surface, steps, s, i, model)
+    totals.evaluations += len(s)
+    dt = steps.dt[s]
+    on = np.flatnonzero(rate > 0)
+    d_on = d[on]
+    dist = np.sqrt(np.einsum("ij,ij->i", d_on, d_on))
+    if shadows is not None:
+        aim = np.flatnonzero(~shadows.exposed[i[on]])
+        hidden, rays = _blocked(shadows, steps, s[on[aim]], i[on[aim]], d_on[aim], dist[aim], len(totals.thickness))
+        totals.rays += rays
+        blocked = on[aim[hidden]]
+        totals.shadowed[touched] += add(blocked, rate[blocked] * dt[blocked])
+        rate[blocked] = 0.0
+        r2[blocked] = np.inf
+    cos_gamma = facing[on] / dist
+    stuck = rate
+    if model.efficiency is not None:
+        stuck = rate.copy()
+        stuck[on] = rate[on] * model.efficiency.factor(cos_gamma)
+        totals.lost[touched] += add(on, (rate[on] - stuck[on]) * dt[on])
+    weight = stuck * dt
+    every = slice(None)
+    totals.thickness[touched] += add(every, weight)
+    totals.exposure[touched] += add(every, np.where(stuck > 0, dt, 0.0))
+    np.minimum.at(totals.r2_min, i, r2)
+    angle = np.degrees(np.arcsin(np.minimum(cos_gamma, 1.0)))
+    totals.angle[touched] += add(on, weight[on] * angle)
+    totals.standoff[touched] += add(on, weight[on] * da[on])
+
+
+def _deposit(totals: _Totals, steps: SubSteps, shadows: bool) -> Deposit:
+    landed = totals.thickness > 0
+    mean = lambda field: np.where(landed, field / np.where(landed, totals.thickness, 1.0), np.nan)
+    return Deposit(totals.thickness, totals.exposure, np.sqrt(totals.r2_min), steps, totals.evaluations,
+                   totals.shadowed, totals.lost, mean(totals.angle), mean(totals.standoff), totals.rays, shadows)
 
 
 def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
             progress: Callable[[float], None] | None = None) -> Deposit:
     """Accumulate thickness on ``surface`` over the sprayed part of ``log``."""
     steps = substeps(log, model)
-    n = surface.n_vertices
-    thickness = np.zeros(n)
-    exposure = np.zeros(n)
-    r2_min = np.full(n, np.inf)
-    evaluations = 0
-    if len(steps) == 0 or n == 0:
-        return Deposit(thickness, exposure, np.sqrt(r2_min), steps, 0)
-    leaves = _kd_leaves(surface.vertices)
+    totals = _Totals(surface.n_vertices)
+    if len(steps) == 0 or surface.n_vertices == 0:
+        return _deposit(totals, steps, False)
+    tree = vertex_tree(surface.vertices)
+    shadows = _shadows(surface, model, steps)
     slope = model.footprint.cutoff_mm / model.standoff_mm
-    mesh = None
-    if model.occlusion:
-        import trimesh
-
-        mesh = trimesh.Trimesh(surface.vertices, surface.faces, process=False)
-    chunk = max(1, _LEAF_TESTS_PER_BATCH // len(leaves.start))
+    # sub-steps per search (the batches' sums are grouped by it, so it stays what it was for meshes
+    # of up to 6250 leaves: the same thickness to the last bit)
+    chunk = max(_MIN_STEPS_PER_SEARCH, _LEAF_TESTS_PER_BATCH // tree.n_leaves)
     for lo in range(0, len(steps), chunk):
-        s_all, i_all = _candidate_pairs(leaves, steps, slice(lo, min(lo + chunk, len(steps))), slope)
-        for b in range(0, len(s_all), _PAIRS_PER_BATCH):
-            s, i = s_all[b:b + _PAIRS_PER_BATCH], i_all[b:b + _PAIRS_PER_BATCH]
-            rate, r2 = _rates(surface, steps, s, i, model)
-            evaluations += len(s)
-            if mesh is not None:
-                hit = np.flatnonzero(rate > 0)
-                blocked = hit[~_visible(mesh, steps.position[s[hit]], surface.vertices[i[hit]],
-                                        0.01 * model.standoff_mm)]
-                rate[blocked] = 0.0
-                r2[blocked] = np.inf
-            dt = steps.dt[s]
-            thickness += np.bincount(i, weights=rate * dt, minlength=n)
-            exposure += np.bincount(i, weights=np.where(rate > 0, dt, 0.0), minlength=n)
-            np.minimum.at(r2_min, i, r2)
+        pairs = cone_pairs(tree, steps.position, steps.axis, slope, np.arange(lo, min(lo + chunk, len(steps))))
+        for b in range(0, len(pairs.step), _PAIRS_PER_BATCH):
+            _batch(surface, steps, pairs, slice(b, b + _PAIRS_PER_BATCH), model, shadows, totals)
         if progress is not None:
             progress(min(lo + chunk, len(steps)) / len(steps))
-    return Deposit(thickness, exposure, np.sqrt(r2_min), steps, evaluations)
+    return _deposit(totals, steps, shadows is not None)

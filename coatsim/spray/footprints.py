@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from scipy.special import beta as beta_fn
 
-from coatsim.errors import InputError, shown
+from coatsim.core.errors import InputError, shown
 
 #: Gaussian footprints are cut off at this many standard deviations (mass outside: 1.5e-8)
 #: and renormalised, so the kernel conserves volume exactly.

@@ -16,7 +16,8 @@ from typing import Sequence
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.fileio import write_bytes
+from coatsim.core.numeric import ROUND_OFF
+from coatsim.core.fileio import write_bytes
 from coatsim.spray.surfaces import Surface
 
 COLOUR_MAP = "viridis"
@@ -198,7 +199,7 @@ def section_profile(view: np.ndarray, faces: np.ndarray, thickness_um: np.ndarra
     l2 = ((b[near, 0] - a[near, 0]) * (p[..., 1] - a[near, 1])
           - (p[..., 0] - a[near, 0]) * (b[near, 1] - a[near, 1])) / det[near]
     l0 = 1.0 - l1 - l2
-    inside = (l0 >= -1e-9) & (l1 >= -1e-9) & (l2 >= -1e-9)
+    inside = (l0 >= -ROUND_OFF) & (l1 >= -ROUND_OFF) & (l2 >= -ROUND_OFF)
     first = np.argmax(inside, axis=1)
     rows = np.arange(n)
     tri = faces[near[rows, first]]

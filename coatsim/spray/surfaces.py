@@ -17,8 +17,9 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
-from coatsim.errors import InputError
+from coatsim.core.numeric import ROUND_OFF, TINY, steps_over
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
+from coatsim.core.errors import InputError
 
 #: refinement refuses to build meshes with more triangles than this (about two per vertex)
 MAX_TRIANGLES = 2 * MAX_MESH_VERTICES
@@ -66,7 +67,7 @@ def _grid_size(what: str, extent_u: float, extent_v: float, spacing: float, min_
     cells_u, cells_v = max(min_u, extent_u / spacing), max(1.0, extent_v / spacing)
     check_budget(f"{what} meshed every {spacing:g} mm: vertices", (cells_u + 1) * (cells_v + 1), MAX_MESH_VERTICES,
                  "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
-    return max(min_u, math.ceil(extent_u / spacing - 1e-9)), max(1, math.ceil(extent_v / spacing - 1e-9))
+    return max(min_u, steps_over(extent_u, spacing)), max(1, steps_over(extent_v, spacing))
 
 
 def _grid_faces(nu: int, nv: int) -> np.ndarray:
@@ -85,7 +86,7 @@ def _transform(points: np.ndarray, pose: np.ndarray, vectors: bool = False) -> n
 def _pose(pose: np.ndarray | None) -> np.ndarray:
     pose = np.eye(4) if pose is None else np.asarray(pose, dtype=float)
     rot = pose[:3, :3]
-    if pose.shape != (4, 4) or not np.allclose(rot @ rot.T, np.eye(3), atol=1e-9) or np.linalg.det(rot) < 0:
+    if pose.shape != (4, 4) or not np.allclose(rot @ rot.T, np.eye(3), atol=ROUND_OFF) or np.linalg.det(rot) < 0:
         raise InputError("workpiece pose must be a 4x4 rigid transform (rotation + translation)")
     return pose
 
@@ -281,14 +282,17 @@ def border_distance(surface: Surface, spacing: float | None = None, within_mm: f
     samples = a[edge] + frac[:, None] * (b - a)[edge]
     if not math.isfinite(within_mm):
         return cKDTree(samples).query(surface.vertices)[0]
-    bound = within_mm * (1 + 1e-9) + 1e-9
+    bound = within_mm * (1 + ROUND_OFF) + TINY
     # A search from far inside the part is slow (the tree's boxes hold the interior); one sample
     # per cell of a coarse grid bounds every distance from below, so only vertices that may lie
     # within the band go to the fine samples.
     cell = max(within_mm / 16, step)
     _, keep = np.unique(np.floor(samples / cell).astype(np.int64), axis=0, return_index=True)
-    coarse = cKDTree(samples[np.sort(keep)]).query(surface.vertices)[0]
-    near = np.flatnonzero(coarse - (cell * math.sqrt(3) + step / 2) < bound)
+    reach = cell * math.sqrt(3) + step / 2
+    # bounded too, so a vertex far inside stops searching early; any vertex it leaves at inf is
+    # beyond bound + reach, hence not near either way
+    coarse = cKDTree(samples[np.sort(keep)]).query(surface.vertices, distance_upper_bound=(bound + reach) * (1 + ROUND_OFF) + TINY)[0]
+    near = np.flatnonzero(coarse - reach < bound)
     distance = np.full(surface.n_vertices, np.inf)
     distance[near] = cKDTree(samples).query(surface.vertices[near], distance_upper_bound=bound)[0]
     return distance

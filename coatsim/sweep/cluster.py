@@ -19,7 +19,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional, Sequence
 
-from coatsim.errors import ExecutionError, InputError
+from coatsim.core.errors import ExecutionError, InputError
 from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point, variant_names
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 
 # element -> compiler attribute its ``file`` is relative to (MuJoCo's rules; assetdir sets both)
 _ASSET_DIRS = {"mesh": "meshdir", "skin": "meshdir", "hfield": "meshdir", "texture": "texturedir"}

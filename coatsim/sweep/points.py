@@ -21,10 +21,10 @@ from typing import Any, Mapping, Optional
 
 from pydantic import ValidationError
 
-from coatsim.errors import CoatsimError, InputError
-from coatsim.scenario import Scenario, ScenarioFile, check_gate_metrics, check_references, load_scenario
+from coatsim.core.errors import CoatsimError, InputError
+from coatsim.run.scenario import Scenario, ScenarioFile, check_gate_metrics, check_references, load_scenario
 from coatsim.sweep.spec import SweepFile, parse_key
-from coatsim.yamlsource import allowed_keys, data_path
+from coatsim.core.yamlsource import allowed_keys, data_path
 
 # pydantic error types that say "a value out of range", not "a wrong key or type"
 _OUT_OF_RANGE = {"greater_than", "greater_than_equal", "less_than", "less_than_equal", "finite_number"}
@@ -232,7 +232,7 @@ def expand(sweep: SweepFile) -> tuple[tuple[str, ...], tuple[Point, ...]]:
 def _raw_data(base: ScenarioFile) -> dict[str, Any]:
     """The base scenario as its file writes it (overrides go into this, so that the scenario's own
     validation decides as it does for a file)."""
-    from coatsim.yamlsource import load_yaml_with_lines
+    from coatsim.core.yamlsource import load_yaml_with_lines
 
     data, _ = load_yaml_with_lines(base.path)
     return data

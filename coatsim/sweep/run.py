@@ -17,8 +17,8 @@ from pathlib import Path
 from typing import Mapping, Optional, Sequence
 
 from coatsim import __version__
-from coatsim.errors import CoatsimError, InputError
-from coatsim.fileio import write_text
+from coatsim.core.errors import CoatsimError, InputError
+from coatsim.core.fileio import write_text
 from coatsim.sweep.inputs import bundle, with_absolute_paths
 from coatsim.sweep.points import Point, canonical_json, expand
 from coatsim.sweep.spec import SweepFile, load_sweep
@@ -72,20 +72,17 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
     """
     started = time.perf_counter()
     if workers is not None and workers < 1:
-        raise InputError(f"--workers {workers}: give at least 1")
+        raise InputError(f"workers {workers}: give at least 1", parameters=("workers",))
     if workers is not None and scheduler is not None:
-        raise InputError("--workers sizes the local cluster only; with --scheduler the cluster's own workers run the points")
+        raise InputError("workers sizes the local cluster only; with a scheduler the cluster's own workers run the "
+                         "points", parameters=("workers",))
     sweep = load_sweep(path)
     plotted = list(metrics) if metrics else list(sweep.spec.metrics)
     _check_metrics(plotted)
     axes, points = expand(sweep)
     out = Path(outdir) if outdir is not None else Path("runs") / sweep.path.stem
-    base_dir = sweep.base_path.parent
     show = sys.stderr.isatty() if progress is None else progress
-    fast = sweep.spec.fast
-    outcomes: dict[str, PointOutcome] = {}
-    pending: list[tuple[PointTask, dict[str, Path], Point, dict]] = []
-    from coatsim.scenario import as_dict, load_scenario
+    from coatsim.run.scenario import as_dict, load_scenario
 
     base_variants = variant_names(as_dict(load_scenario(sweep.base_path).spec)["variants"])
     variants_of = {p.id: variant_names(p.scenario["variants"]) if p.scenario else base_variants for p in points}
@@ -93,28 +90,7 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
     session = None
     with locked_outdir(out):
         write_manifest(out, _manifest(sweep, axes, points))
-        for point in points:
-            stub = PointTask(point.id, "", {}, {}, fast, keep_outputs, __version__)
-            if point.invalid is not None:
-                outcomes[point.id] = failed(stub, variants_of[point.id], point.invalid, exit_code=2, reusable=True,
-                                            version=__version__)
-                save_point(out, outcomes[point.id], point.params, None)
-                continue
-            try:
-                bundled = bundle(point.scenario, base_dir)
-            except InputError as exc:
-                outcomes[point.id] = failed(stub, variants_of[point.id], str(exc), exit_code=2, reusable=True,
-                                            version=__version__)
-                save_point(out, outcomes[point.id], point.params, None)
-                continue
-            key = cache_key(point.scenario, bundled.digests, fast)
-            stored = load_point(out, point.id, key, keep_outputs)
-            if stored is not None:
-                outcomes[point.id] = stored
-                continue
-            sources = {name: str(p) for name, p in bundled.files.items()}
-            task = PointTask(point.id, key, bundled.scenario, sources, fast, keep_outputs, __version__)
-            pending.append((task, dict(bundled.files), point, with_absolute_paths(point.scenario, base_dir)))
+        outcomes, pending = _prepare(out, sweep, points, variants_of, keep_outputs)
         if pending:
             from coatsim.sweep.cluster import DaskSession, draw_on_workers, run_tasks
 
@@ -135,19 +111,58 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
             if session is None:
                 table, pngs = build_table(axes, points, outcomes, variants_of), {}
             gates = {p.id: g for p in points if (g := _gate_failures(outcomes[p.id]))}
-            files = (out / "results.parquet", out / "results.csv", out / "sweep.html")
-            write_parquet(files[0], table)
-            write_csv(files[1], table)
             ran = tuple(t.point for t, _, _, _ in pending)
             summary = _summary(sweep, axes, points, outcomes, ran, gates, time.perf_counter() - started)
-            from coatsim.sweep.html import render_sweep_html
-
-            write_text(files[2], render_sweep_html(f"coatsim sweep: {sweep.path.stem}", summary, table, axes,
-                                                   variants, plotted, {p.id: p.label for p in points}, gates, pngs))
+            files = _write_results(out, sweep, table, axes, variants, plotted, points, gates, pngs, summary)
         finally:
             if session is not None:
                 session.wait_closed()
     return SweepResult(out, axes, points, outcomes, ran, table, gates, files, time.perf_counter() - started)
+
+
+def _prepare(out: Path, sweep, points: Sequence[Point], variants_of: dict[str, list[str]], keep_outputs: bool
+             ) -> tuple[dict[str, PointOutcome], list[tuple[PointTask, dict[str, Path], Point, dict]]]:
+    """Each point's outcome where it is known without running (invalid, unbundlable, stored from
+    an earlier run with the same inputs), and the tasks of the others."""
+    fast, base_dir = sweep.spec.fast, sweep.base_path.parent
+    outcomes: dict[str, PointOutcome] = {}
+    pending: list[tuple[PointTask, dict[str, Path], Point, dict]] = []
+    for point in points:
+        stub = PointTask(point.id, "", {}, {}, fast, keep_outputs, __version__)
+        if point.invalid is not None:
+            outcomes[point.id] = failed(stub, variants_of[point.id], point.invalid, exit_code=2, reusable=True,
+                                        version=__version__)
+            save_point(out, outcomes[point.id], point.params, None)
+            continue
+        try:
+            bundled = bundle(point.scenario, base_dir)
+        except InputError as exc:
+            outcomes[point.id] = failed(stub, variants_of[point.id], str(exc), exit_code=2, reusable=True,
+                                        version=__version__)
+            save_point(out, outcomes[point.id], point.params, None)
+            continue
+        key = cache_key(point.scenario, bundled.digests, fast)
+        stored = load_point(out, point.id, key, keep_outputs)
+        if stored is not None:
+            outcomes[point.id] = stored
+            continue
+        sources = {name: str(p) for name, p in bundled.files.items()}
+        task = PointTask(point.id, key, bundled.scenario, sources, fast, keep_outputs, __version__)
+        pending.append((task, dict(bundled.files), point, with_absolute_paths(point.scenario, base_dir)))
+    return outcomes, pending
+
+
+def _write_results(out: Path, sweep, table, axes, variants: list[str], plotted: list[str], points: Sequence[Point],
+                   gates: dict, pngs: dict, summary) -> tuple[Path, Path, Path]:
+    """results.parquet, results.csv and sweep.html."""
+    from coatsim.sweep.html import render_sweep_html
+
+    files = (out / "results.parquet", out / "results.csv", out / "sweep.html")
+    write_parquet(files[0], table)
+    write_csv(files[1], table)
+    write_text(files[2], render_sweep_html(f"coatsim sweep: {sweep.path.stem}", summary, table, axes, variants,
+                                           plotted, {p.id: p.label for p in points}, gates, pngs))
+    return files
 
 
 def _check_metrics(names: Sequence[str]) -> None:
@@ -155,7 +170,7 @@ def _check_metrics(names: Sequence[str]) -> None:
 
     for name in names:
         if name not in METRICS:
-            raise InputError(f"--metric {name!r}: unknown metric; see the README's metrics table")
+            raise InputError(f"metrics: {name!r} is not a metric; see the metrics catalogue", parameters=("metrics",))
 
 
 def _manifest(sweep: SweepFile, axes: Sequence[str], points: Sequence[Point]) -> dict:
@@ -193,7 +208,7 @@ def reused_count(points: Sequence[Point], ran: Sequence[str]) -> int:
 
 def sweep_problems(result: SweepResult) -> Optional[CoatsimError]:
     """The error a sweep exits with: a failed point or gate (exit 1), else None."""
-    from coatsim.errors import GateFailure
+    from coatsim.core.errors import GateFailure
 
     failed_points = result.failed_points
     if not failed_points and not result.gate_failures:

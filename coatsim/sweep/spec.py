@@ -17,10 +17,10 @@ from typing import Any, Mapping
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.report.catalogue import METRICS
 from coatsim.report.summary import HEADLINE
-from coatsim.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
+from coatsim.core.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
 
 # a dotted scenario key: names (letters, digits, _) and list indices, e.g. gates.0.threshold
 _KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(\.(?:[A-Za-z_][A-Za-z0-9_]*|[0-9]+))*$")

@@ -17,8 +17,8 @@ from typing import Any, Iterator, Mapping, Optional
 
 import yaml
 
-from coatsim.errors import InputError
-from coatsim.fileio import write_bytes, write_text
+from coatsim.core.errors import InputError
+from coatsim.core.fileio import write_bytes, write_text
 from coatsim.sweep.task import PointOutcome
 
 MANIFEST = "sweep.json"

@@ -1,6 +1,6 @@
 """The sweep's results table: one row per point x variant, written as Parquet and CSV.
 
-Columns (DESIGN "Sweep results"): ``point``, one per axis (its dotted scenario key; ``axis.KEY``
+Columns (docs/formats.md, "Sweep results"): ``point``, one per axis (its dotted scenario key; ``axis.KEY``
 when the key is also a metric's name, as ``segmentation.tolerance_mm`` is), ``variant``, ``status``
 (``ok`` / ``failed``), ``error`` (one line), then every metric of the catalogue in its order (null
 on a failed row). Count metrics are integers, the others floats; an axis column is
@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence
 
-from coatsim.fileio import atomic_open, write_text
+from coatsim.core.fileio import atomic_open, write_text
 from coatsim.report.catalogue import METRICS
 from coatsim.sweep.points import Point
 from coatsim.sweep.task import PointOutcome

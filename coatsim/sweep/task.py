@@ -62,8 +62,11 @@ class PointOutcome:
 
 
 def variant_names(variants) -> tuple[str, ...]:
-    """The names of a resolved scenario's variants (built-in names, or programs' ``name``)."""
-    return tuple(v if isinstance(v, str) else v["name"] for v in variants)
+    """The names of a resolved scenario's variants (built-in names, programs' ``name``, or a
+    built-in variant in a language's name)."""
+    from coatsim.run.variant_spec import variant_label
+
+    return tuple(variant_label(v) for v in variants)
 
 
 def one_line(text: str) -> str:
@@ -81,7 +84,7 @@ def failed(task: PointTask, variants: tuple[str, ...], error: str, *, exit_code:
 def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
     """Run every variant of one point in a scratch folder (the function a Dask worker runs)."""
     from coatsim import __version__
-    from coatsim.errors import CoatsimError
+    from coatsim.core.errors import CoatsimError
 
     started, cpu_started = time.perf_counter(), time.process_time()
     variants = variant_names(task.scenario.get("variants", ()))
@@ -99,7 +102,7 @@ def run_point(task: PointTask, inputs: Mapping[str, bytes]) -> PointOutcome:
             return text
 
         try:
-            from coatsim.pipeline import run_scenario
+            from coatsim.run.pipeline import run_scenario
 
             for name, data in inputs.items():
                 target = scratch / name

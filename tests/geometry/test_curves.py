@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import BUILTINS, builtin_curve, load_curve, make_curve, read_curve_file
 
 # Six points of a parabola, written with repr() so every reader must give them back exactly.

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from coatsim.geometry import Arc, Line, load_curve, make_curve, read_polysegment_json, segment_curve
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.deviation import hausdorff
 
 from geometry_helpers import brute_hausdorff, tangent_breaks

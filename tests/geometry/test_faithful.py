@@ -108,14 +108,14 @@ def test_min_segment_is_a_parameter():
 def test_a_min_segment_the_fit_cannot_keep_is_an_input_error():
     """Rather than the fillet fallback's short segments: the sine's peaks (radius 12.7 mm)
     need shorter arcs than 10 mm at 0.05 mm."""
-    from coatsim.errors import InputError
+    from coatsim.core.errors import InputError
 
     with pytest.raises(InputError, match=r"builtin:sine: .*min_segment_mm 10 mm"):
         segment_curve(load_curve("builtin:sine"), 0.05, min_segment_mm=10.0)
 
 
 def test_bad_limits_are_input_errors():
-    from coatsim.errors import InputError
+    from coatsim.core.errors import InputError
 
     c = load_curve("builtin:sine:points=300")
     for kwargs, name in [({"min_segment_mm": -1.0}, "min_segment_mm"), ({"speed_mm_s": 0.0, "tool_accel_mm_s2": 5e3}, "speed_mm_s"),

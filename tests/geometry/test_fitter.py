@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import Arc, Line, Polysegment, chain, load_curve, make_curve, segment_curve
 from coatsim.geometry.deviation import hausdorff
 
@@ -315,7 +315,7 @@ def test_deterministic():
 
 @pytest.mark.parametrize("tol", [0.0, -1.0, float("nan"), float("inf")])
 def test_bad_tolerance(tol):
-    with pytest.raises(InputError, match="--tol"):
+    with pytest.raises(InputError, match="tolerance_mm"):
         segment_curve(curve("builtin:sine:points=200"), tol)
 
 

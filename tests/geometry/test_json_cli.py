@@ -17,7 +17,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import Polysegment, Segmentation, chain, make_curve, read_polysegment_json, write_polysegment_json
 from coatsim.geometry.theta import theta_of_polyline
 

@@ -9,7 +9,7 @@ import math
 
 import pytest
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import load_curve, read_polysegment_json, segment_curve, write_polysegment_json
 from coatsim.geometry.polysegment_json import polysegment_from_document
 

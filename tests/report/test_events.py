@@ -8,13 +8,15 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from coatsim.path.process_record import decode
 from coatsim.report.events import lines_of, parse_step, run_events, speed_dips
 from coatsim.robot.sampling import step_label
 
 
-def _toolpath(lines, metadata=None):
+def _toolpath(lines, header=()):
+    """A stand-in program of line moves; ``header`` its AS header fields (decoded as the reader does)."""
     moves = [SimpleNamespace(line=line, kind="line") for line in lines]
-    return SimpleNamespace(name="job", moves=moves, metadata=metadata or {})
+    return SimpleNamespace(name="job", moves=moves, process=decode(tuple(header), "job"))
 
 
 def test_messages_give_back_the_line_of_step_label():
@@ -60,7 +62,7 @@ def test_no_dip_at_speed_and_dips_apart_are_apart():
 
 def test_run_events_order_warnings_first_with_lines_and_notes():
     progress = np.linspace(0.0, 300.0, 3001)
-    toolpath = _toolpath([11, 12, 13], {"closed": "yes", "speed_limits": "150:150:0 240:260:120"})
+    toolpath = _toolpath([11, 12, 13], {"closed": "yes", "speed_limits": "150:150:0 240:260:120"}.items())
     messages = [f"{step_label(toolpath, 2)}: JT1 joint speed at 101.0 % of its limit (more than 100 %) at t = 1.000 s",
                 f"{step_label(toolpath, 1)}: near wrist singularity (JT5 = 3.0 deg)"]
     events = run_events("v", _execution(np.full_like(progress, 200.0), progress, messages, residual=0.02), toolpath)
@@ -91,7 +93,7 @@ def test_a_part_program_header_gives_each_contour_its_limits_and_seam():
     progress = np.linspace(0.0, 300.0, 3001)
     execution = _execution(np.full_like(progress, 200.0), progress)
     execution.curves = ((0.0, 100.0), (200.0, 300.0))
-    toolpath = _toolpath([11, 12, 13], {"speed_limits": "none | 50:50:0", "closed": "no | yes"})
+    toolpath = _toolpath([11, 12, 13], {"speed_limits": "none | 50:50:0", "closed": "no | yes"}.items())
     notes = curve_notes("part", execution, toolpath)
     corner = next(e for e in notes if e.kind == "true corner")
     assert corner.s_mm == pytest.approx(250.0) and corner.line == 13 and corner.message.startswith("contour 2: ")

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.report.gates import OPERATORS, evaluate_gate, evaluate_gates, metric_value
 
 VARIANTS = {

@@ -7,7 +7,7 @@ import re
 
 
 from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.report import plots
+from coatsim.report import curve_figures
 from coatsim.report.catalogue import METRICS, names
 from coatsim.report.html import Figure, Section, gates_table, render_html
 from coatsim.report.metric_names import SHOWN, ratio_text, value_text
@@ -23,9 +23,9 @@ def _sample_poly() -> Polysegment:
 def test_figures_are_png_and_deterministic() -> None:
     poly = _sample_poly()
     xy, _ = poly.sample(0.5)
-    first = plots.polyline_figure(xy, xy[::10])
+    first = curve_figures.part_figure([poly, poly], [xy, xy + 40.0], order=[1, 0])
     assert first.startswith(PNG_MAGIC)
-    assert plots.polyline_figure(xy, xy[::10]) == first
+    assert curve_figures.part_figure([poly, poly], [xy, xy + 40.0], order=[1, 0]) == first
 
 
 def _variants() -> dict:
@@ -60,7 +60,8 @@ def test_gates_table_marks_failures() -> None:
 
 
 def test_document_is_self_contained_and_escaped() -> None:
-    png = plots.polyline_figure(*_seg_args())
+    poly = _sample_poly()
+    png = curve_figures.part_figure([poly], [poly.sample(1.0)[0]])
     doc = render_html("job <1>", "sub & title", [
         Section("one", "First", "<p>x</p>", (Figure("curve", png, "a <b> caption"),)),
         Section("two", "Second", "<p>y</p>"),
@@ -74,8 +75,3 @@ def test_document_is_self_contained_and_escaped() -> None:
     assert base64.b64decode(sources[0].split(",", 1)[1]) == png
     assert not re.search(r'(href|src)="(https?:)?//', doc)
 
-
-def _seg_args():
-    poly = _sample_poly()
-    xy, _ = poly.sample(1.0)
-    return xy, xy[::5]

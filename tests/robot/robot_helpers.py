@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.program.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, Pose, ToolPath
+from coatsim.path.process import ProcessInfo
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, ToolPath
 
 DOWN = np.diag([-1.0, 1.0, -1.0])  # O-A-T (0, 180, 0): tool z along base -z
 
 
 def pose(x: float, y: float, z: float = 300.0) -> Pose:
-    return Pose(np.array([x, y, z], dtype=float), DOWN)
+    return Pose(DOWN, np.array([x, y, z], dtype=float))
 
 
 def settings(speed: float = 200.0, accuracy: float = 1.0, stop: bool = False) -> MotionSettings:
@@ -53,7 +55,7 @@ def full_circle(radius=100.0, speed=200.0, centre=(700.0, 0.0)) -> ToolPath:
         CircularMove(pose(*pts[1]), pose(*pts[2]), pose(*start), s, True, 14),
         LinearMove(pose(*start), pose(cx + 30.0, cy - radius), settings(speed, stop=True), True, 15),
     ]
-    return ToolPath("circle", tuple(moves), {"lead_in_mm": "30", "lead_out_mm": "30"})
+    return ToolPath("circle", tuple(moves), ProcessInfo(lead_in_mm=30.0, lead_out_mm=30.0))
 
 
 def square(side=200.0, speed=200.0, stop=True, accuracy=1.0) -> ToolPath:

@@ -2,7 +2,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.robot.cell import DEFAULT_MODEL, MODELS, load_cell
 
 

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import ExecutionError
+from coatsim.core.errors import ExecutionError
 from coatsim.robot import ik
 from coatsim.robot.cell import M_TO_MM, load_cell
 from coatsim.robot.ik_batch import continuity_ok, refine, rotation_vectors

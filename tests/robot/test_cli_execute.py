@@ -10,7 +10,7 @@ import pytest
 
 from coatsim.robot.trajectory_log import read_trajectory_csv
 
-PROGRAM = Path(__file__).resolve().parents[1] / "program" / "data" / "roundrect_polysegment.as"
+PROGRAM = Path(__file__).resolve().parents[1] / "path" / "data" / "roundrect_polysegment.as"
 KEYS = {"cycle_time_s", "ideal_time_s", "mean_speed_mm_s", "min_speed_mm_s", "speed_cv", "fraction_at_speed",
         "stops", "max_path_error_mm", "rms_path_error_mm", "max_joint_speed_ratio", "max_joint_accel_ratio",
         "programmed_speed_mm_s", "curve_length_mm"}

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coatsim.program import interpret, parse_as
+from coatsim.languages.kawasaki_as import interpret, parse_as
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 

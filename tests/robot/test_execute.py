@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from coatsim.errors import ExecutionError
-from coatsim.program.toolpath import ToolPath
+from coatsim.core.errors import ExecutionError
+from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 from coatsim.robot.ik import POS_TOL_MM, ROT_TOL_DEG, Tracker
@@ -62,7 +62,7 @@ def test_unreachable_pose_names_the_step(cell):
     with pytest.raises(ExecutionError) as info:
         execute(far, cell)
     assert info.value.exit_code == 3
-    assert "line 42 (LMOVE)" in str(info.value) and "IK residual" in str(info.value)
+    assert "line 42 (LMOVE)" in str(info.value) and "out of reach: the wrist centre would be" in str(info.value)
     assert "\n" not in str(info.value)
 
 

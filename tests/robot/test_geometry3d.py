@@ -1,10 +1,11 @@
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.robot.primitives3d import arc_through, line
+from coatsim.geometry.space.primitives import DegenerateArc, Line3, arc_through
 from coatsim.robot.sampling import plan_pieces
 
 from robot_helpers import square
@@ -14,29 +15,33 @@ coord = st.floats(-500, 500, allow_nan=False)
 
 def test_arc_through_quarter_circle():
     arc = arc_through([100, 0, 5], [100 * math.cos(0.3), 100 * math.sin(0.3), 5], [0, 100, 5])
-    assert np.allclose(arc.centre, [0, 0, 5]) and math.isclose(arc.radius, 100)
+    assert np.allclose(arc.center, [0, 0, 5]) and math.isclose(arc.radius, 100)
     assert math.isclose(arc.sweep, math.pi / 2) and math.isclose(arc.length, 50 * math.pi)
     assert np.allclose(arc.points(np.array([arc.length]))[0], [0, 100, 5])
-    d, s = arc.closest(np.array([[200.0, 200.0, 5.0], [0.0, 0.0, 8.0], [-50.0, -1.0, 5.0]]))
+    d, s = arc.nearest(np.array([[200.0, 200.0, 5.0], [0.0, 0.0, 8.0], [-50.0, -1.0, 5.0]]))
     assert np.allclose(d[0], 200 * math.sqrt(2) - 100) and math.isclose(s[0], arc.length / 2)
     # behind the arc the nearer end point is the closest point
     assert math.isclose(d[2], min(math.dist((-50, -1), (0, 100)), math.dist((-50, -1), (100, 0))))
 
 
 def test_collinear_points_define_no_arc():
-    assert arc_through([0, 0, 0], [1, 1, 1], [2, 2, 2]) is None
-    assert arc_through([0, 0, 0], [1, 0, 0], [0, 0, 0]) is None
+    for points in (([0, 0, 0], [1, 1, 1], [2, 2, 2]), ([0, 0, 0], [1, 0, 0], [0, 0, 0])):
+        with pytest.raises(DegenerateArc):
+            arc_through(*points)
 
 
 @settings(max_examples=200, deadline=None)
 @given(st.tuples(coord, coord, coord), st.tuples(coord, coord, coord), st.tuples(coord, coord, coord))
 def test_arc_through_passes_through_its_three_points(a, b, c):
-    arc = arc_through(a, b, c)
-    if arc is None or arc.radius > 1e5:
+    try:
+        arc = arc_through(a, b, c)
+    except DegenerateArc:
+        return
+    if arc.radius > 1e5:
         return
     ends = arc.points(np.array([0.0, arc.length]))
     assert np.allclose(ends, [a, c], atol=1e-6 * max(1.0, arc.radius))
-    d, s = arc.closest(np.array([b], dtype=float))
+    d, s = arc.nearest(np.array([b], dtype=float))
     assert d[0] < 1e-6 * max(1.0, arc.radius)
     assert 0 <= s[0] <= arc.length
 
@@ -44,9 +49,9 @@ def test_arc_through_passes_through_its_three_points(a, b, c):
 @settings(max_examples=100, deadline=None)
 @given(st.tuples(coord, coord, coord), st.tuples(coord, coord, coord), st.floats(0, 1))
 def test_line_closest_point_is_exact(a, b, f):
-    seg = line(a, b)
+    seg = Line3(a, b)
     p = np.asarray(a) + f * (np.asarray(b) - np.asarray(a))
-    d, s = seg.closest(p[None])
+    d, s = seg.nearest(p[None])
     assert d[0] < 1e-9 * max(1.0, seg.length)
     assert math.isclose(s[0], f * seg.length, abs_tol=1e-9 * max(1.0, seg.length))
 

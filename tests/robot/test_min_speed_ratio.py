@@ -7,8 +7,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
-from coatsim.program.toolpath import ToolPath
+from coatsim.path.process_record import decode
+from coatsim.path.process import ProcessInfo, SprayedContour
+from coatsim.path.speed_limits import SpeedLimit
+from coatsim.core.errors import InputError
+from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 from coatsim.robot.motion_metrics import RAMP_FACTOR, CurveAllowance, allowed_by_curve
@@ -77,8 +80,8 @@ def test_stops_count_where_the_curve_allows_the_speed_and_declared_corners_do_no
     stopping = square(side=200.0, speed=200.0, stop=True)
     assert execute(stopping, cell).metrics.min_speed_ratio < 0.05
     # the same square declared as a curve with four true corners: the stops are where it must slow
-    corners = " ".join(f"{s:g}:{s:g}:0" for s in (200.0, 400.0, 600.0))
-    declared = ToolPath(stopping.name, stopping.moves, {"speed_limits": corners})
+    corners = tuple(SpeedLimit(s, s, 0.0) for s in (200.0, 400.0, 600.0))
+    declared = ToolPath(stopping.name, stopping.moves, ProcessInfo(contours=(SprayedContour(speed_limits=corners),)))
     assert execute(declared, cell).metrics.min_speed_ratio == pytest.approx(1.0, abs=0.03)
 
 
@@ -87,19 +90,20 @@ def test_a_curve_that_allows_the_speed_nowhere_has_no_ratio(cell):
     assert execute(line, cell).metrics.min_speed_ratio is None
 
 
-def test_a_malformed_header_is_an_input_error(cell):
-    line = straight_line()
+def test_a_malformed_header_is_an_input_error():
     with pytest.raises(InputError, match="speed_limits"):
-        execute(ToolPath(line.name, line.moves, {"speed_limits": "10:5:0"}), cell)
+        decode((("speed_limits", "10:5:0"),), "line")
+    with pytest.raises(InputError, match="sprayed='everything'"):
+        decode((("sprayed", "everything"),), "line")
 
 
 def test_the_sprayed_header_decides_whether_the_leads_are_part_of_the_curve(cell):
     """straight_line sprays only its middle move: with sprayed=curve that move is the curve
     proper; with the leads declared sprayed, the header's lead lengths are cut from it."""
     line = straight_line(length=300.0, lead=20.0)
-    only_curve = execute(ToolPath(line.name, line.moves, {"sprayed": "curve", "lead_in_mm": "20"}), cell)
+    only_curve = execute(ToolPath(line.name, line.moves, ProcessInfo(lead_in_mm=20.0, contours=(
+        SprayedContour(leads_sprayed=False),))), cell)
     assert only_curve.metrics.curve_length_mm == pytest.approx(300.0, abs=1e-6)
-    with_leads = execute(ToolPath(line.name, line.moves, {"lead_in_mm": "20", "lead_out_mm": "30"}), cell)
+    with_leads = execute(ToolPath(line.name, line.moves, ProcessInfo(lead_in_mm=20.0, lead_out_mm=30.0)), cell)
     assert with_leads.metrics.curve_length_mm == pytest.approx(250.0, abs=1e-6)
-    with pytest.raises(InputError, match="sprayed='everything'"):
-        execute(ToolPath(line.name, line.moves, {"sprayed": "everything"}), cell)
+

@@ -9,12 +9,14 @@ import math
 import numpy as np
 import pytest
 
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.geometry import Arc, Line, Polysegment, chain
-from coatsim.program.as_lang.parser import parse_as
-from coatsim.program.build import ProgramOptions
-from coatsim.program.as_lang.interpreter import interpret
-from coatsim.program.part_program import build_part_program
-from coatsim.program.placement import Frame, Placement
+from coatsim.languages.kawasaki_as.parser import parse_as
+from coatsim.path.build import ProgramOptions
+from coatsim.languages.kawasaki_as.interpreter import interpret
+from coatsim.path.part_program import build_part_program
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
+from coatsim.path.placement import Placement
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 
@@ -29,8 +31,8 @@ def run():
                                 [100, 5 * math.pi, 60, 5 * math.pi] * 2), closed=True)
     stroke = Polysegment((Line((-40.0, -20.0), (40.0, -20.0)),))  # open: sprayed with its lead-in and lead-out
     part = [outline, circle(-25.0, 10.0, 8.0), circle(25.0, 10.0, 10.0), stroke]
-    placement = Placement(frame=Frame(700, 0, 200, 0, 0, 0), standoff_mm=100.0, lead_in_mm=10.0, lead_out_mm=10.0)
-    built = build_part_program(part, placement, ProgramOptions(speed_mm_s=200.0, accuracy_mm=0.5), tolerance_mm=0.1,
+    placement = Placement(frame=pose_from_xyzoat((700, 0, 200, 0, 0, 0)), standoff_mm=100.0, lead_in_mm=10.0, lead_out_mm=10.0)
+    built = build_part_program(part, placement, ProgramOptions(speed_mm_s=200.0, accuracy_mm=0.5), language=KAWASAKI_AS, tolerance_mm=0.1,
                                source="part")
     return part, execute(interpret(parse_as(built.text, "part.as")), load_cell(), step_mm=2.0)
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from coatsim.program.toolpath import ToolPath
+from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
+from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import load_cell
 from coatsim.robot.execute import execute
 from coatsim.robot.sampling import plan_pieces
@@ -63,7 +64,7 @@ def test_a_reversal_stops_instead_of_folding_a_blend():
     """a -> b -> a with CP ON: no blend can turn the tool round; it stops at b."""
     import warnings
 
-    from coatsim.program.toolpath import LinearMove
+    from coatsim.path.toolpath import LinearMove
     from robot_helpers import pose, settings
 
     toolpath = ToolPath("reverse", (approach((700.0, -50.0)),
@@ -102,14 +103,14 @@ def test_blended_polyline_with_blends_meeting_mid_chord_keeps_the_speed(cell):
     it (sliver samples between blends used to make the joint spline swing and the tool slow to a
     third of the speed on part of the curve)."""
     from coatsim.geometry import builtin_curve
-    from coatsim.program import interpret, parse_as
-    from coatsim.program.build import ProgramOptions, build_program, polyline_of
-    from coatsim.program.placement import Placement, centering_offset
+    from coatsim.languages.kawasaki_as import interpret, parse_as
+    from coatsim.path.build import ProgramOptions, build_program, polyline_of
+    from coatsim.path.placement import Placement, centering_offset
 
     curve = builtin_curve("epitrochoid")
     poly = polyline_of(curve.points, True, 0.1)
     built = build_program(poly, Placement(lead_in_mm=20.0, lead_out_mm=20.0, offset_xy=centering_offset(poly)),
                           ProgramOptions(variant="polyline-blend", speed_mm_s=300.0, accuracy_mm=2.0),
-                          tolerance_mm=0.1, source="epitrochoid", points=curve.points)
+                          language=KAWASAKI_AS, tolerance_mm=0.1, source="epitrochoid", points=curve.points)
     result = execute(interpret(parse_as(built.text)), cell)
     assert result.metrics.min_speed_ratio > 0.98 and result.metrics.fraction_at_speed > 0.99

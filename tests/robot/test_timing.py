@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from scipy.interpolate import CubicSpline
 from toppra.parametrizer import ParametrizeConstAccel
 
-from coatsim.budgets import MAX_SIM_STEPS
+from coatsim.core.budgets import MAX_SIM_STEPS
 from coatsim.robot.cell import load_cell
 from coatsim.robot.timing import PLANNING_FRACTION, _sample, time_cartesian
 from coatsim.robot.timing_toppra import Spline as _Spline, joint_limits
@@ -63,7 +63,7 @@ def test_one_spline_gives_every_derivative_of_the_cubic_through_the_samples(piec
 
 
 def test_a_piece_at_rest_throughout_is_an_execution_error():
-    from coatsim.errors import ExecutionError
+    from coatsim.core.errors import ExecutionError
 
     s = np.array([0.0, 0.004])
     with pytest.raises(ExecutionError, match="no room to move"):

@@ -1,10 +1,10 @@
-"""Coating runs whose results must not change byte for byte (the ROI golden file): a plate,
-a cylinder and a mesh file, each with its own path and edge band; ``python
-tests/spray/roi_cases.py`` rewrites tests/spray/data/roi_golden.json."""
+"""Coating runs whose results must not change (the ROI golden files): a plate, a cylinder and a
+mesh file, each with its own path and edge band. ``python tests/spray/roi_cases.py`` rewrites
+tests/spray/data/roi_golden.json (the metrics) and roi_golden.npz (the ROI masks and thickness
+fields)."""
 
 from __future__ import annotations
 
-import hashlib
 import json
 import math
 from pathlib import Path
@@ -17,6 +17,7 @@ from coatsim.spray.surfaces import cylinder, mesh_file, plate
 from spray_helpers import H0, V, gun, make_log
 
 GOLDEN = Path(__file__).parent / "data" / "roi_golden.json"
+GOLDEN_ARRAYS = GOLDEN.with_suffix(".npz")
 
 
 def _ellipse_log(a: float, b: float, z: float, n: int = 600):
@@ -51,20 +52,21 @@ def cases(tmp: Path):
                             edge_band_mm=12.0, spacing=4.0)
 
 
-def fingerprint(result) -> dict:
-    """Metrics (as repr strings) and digests of the ROI mask and the thickness field."""
-    digest = lambda a: hashlib.sha256(np.ascontiguousarray(a).tobytes()).hexdigest()  # noqa: E731
-    return {"metrics": {k: repr(v) for k, v in sorted(result.metrics.items())},
-            "roi_sha256": digest(result.roi), "thickness_sha256": digest(result.thickness_um)}
-
-
-def run_all(tmp: Path) -> dict:
-    return {name: fingerprint(coat(model=gun(), **kw)) for name, kw in cases(tmp)}
+def write_golden(tmp: Path) -> None:
+    """Both golden files from this machine's results."""
+    metrics, arrays = {}, {}
+    for name, kwargs in cases(tmp):
+        result = coat(model=gun(), **kwargs)
+        metrics[name] = {k: float(v) for k, v in sorted(result.metrics.items())}
+        arrays[f"{name}/roi"] = result.roi
+        arrays[f"{name}/thickness_um"] = result.thickness_um
+    GOLDEN.write_text(json.dumps(metrics, indent=2) + "\n", encoding="utf-8")
+    np.savez_compressed(GOLDEN_ARRAYS, **arrays)
 
 
 if __name__ == "__main__":
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
-        GOLDEN.write_text(json.dumps(run_all(Path(tmp)), indent=2) + "\n", encoding="utf-8")
-    print(f"wrote {GOLDEN}")
+        write_golden(Path(tmp))
+    print(f"wrote {GOLDEN} and {GOLDEN_ARRAYS}")

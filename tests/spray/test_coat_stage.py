@@ -10,32 +10,13 @@ import numpy as np
 import pytest
 import trimesh
 from hypothesis import given, settings
-from hypothesis import strategies as st
 from scipy.special import i0e
 
 from coatsim.cli import main
 from coatsim.spray.coat import coat, run_coat
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import plate
-from spray_helpers import H0, Q, SIGMA, V, gun, line_log, make_log, volume
-
-# Paths stay within 50 mm of the origin at heights up to 140 mm, the axis tilted by up to
-# atan(0.4 * sqrt(2)) = 29.5 deg; the 6-sigma footprint cone opens atan(30 / 100) = 16.7 deg more, so
-# spray lands up to 50 + 140 tan(46.2 deg) = 196 mm from the origin: a 400 mm plate catches all of it.
-PLATE = plate(400, 400, SIGMA / 2)
-
-
-@st.composite
-def random_paths(draw):
-    n = draw(st.integers(2, 12))
-    xy = draw(st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50)), min_size=n, max_size=n))
-    z = draw(st.lists(st.floats(80, 140), min_size=n, max_size=n))
-    tilt = draw(st.lists(st.tuples(st.floats(-0.4, 0.4), st.floats(-0.4, 0.4)), min_size=n, max_size=n))
-    dt = draw(st.lists(st.floats(0.001, 0.2), min_size=n - 1, max_size=n - 1))
-    spray = draw(st.lists(st.booleans(), min_size=n, max_size=n))
-    axis = np.array([[tx, ty, -1.0] for tx, ty in tilt])
-    return make_log(np.r_[0, np.cumsum(dt)], np.column_stack([np.array(xy), z]), axis / np.linalg.norm(axis, axis=1)[:, None], spray)
-
+from spray_helpers import H0, PLATE, Q, SIGMA, V, gun, line_log, make_log, random_paths, volume
 
 @given(random_paths())
 @settings(max_examples=25, deadline=None)
@@ -86,7 +67,7 @@ def test_cli_writes_every_output_deterministically(tmp_path, monkeypatch, capsys
         assert code == 0, err
         assert "deposited" in out
         outputs.append({p.name: p.read_bytes() for p in sorted((tmp_path / run).iterdir())})
-    # the outputs and the folder's record of what coatsim wrote (coatsim.outputs_guard)
+    # the outputs and the folder's record of what coatsim wrote (coatsim.core.outputs_guard)
     assert sorted(outputs[0]) == [".coatsim-outputs.json", "coating.json", "heatmap.png", "section.png", "thickness.ply"]
     assert outputs[0] == outputs[1]
     doc = json.loads(outputs[0]["coating.json"])
@@ -154,3 +135,45 @@ def test_run_coat_returns_the_result(tmp_path):
     assert [f.name for f in files] == ["thickness.ply", "coating.json", "heatmap.png", "section.png"]
     assert result.thickness_um.shape == (result.surface.n_vertices,)
     assert result.metrics["thickness_max_um"] == pytest.approx(6.383, rel=2e-3)
+
+
+def test_cli_on_a_mesh_part_with_a_leaning_gun_and_shadows(tmp_path, monkeypatch, capsys):
+    """A shelf over a floor as an OBJ file and a pass whose spray axis leans 15 deg (the CSV's
+    ax, ay, az): shadows are on by default there, off on request; the mass balance is printed."""
+    from spray_helpers import shelf_over_floor
+
+    scene, _ = shelf_over_floor(10.0)
+    mesh = tmp_path / "shelf.obj"
+    trimesh.Trimesh(scene.vertices, scene.faces, process=False).export(mesh)
+    lean = math.radians(15)
+    csv = tmp_path / "lean.csv"
+    log = line_log((6, -40, H0), (6, 40, H0), step_mm=2.0)
+    make_log(log.t, log.position, (-math.sin(lean), 0.0, -math.cos(lean))).write_csv(csv)
+    docs = {}
+    for shadows in ("auto", "off"):
+        code, out, err = run_cli(monkeypatch, capsys, csv, "--surface", str(mesh), "--spacing", "2", "--roi", "part",
+                                 "--edge-band", "0", "--shadows", shadows, "--efficiency", "angle", "-o", tmp_path / shadows)
+        assert code == 0, err
+        assert "= deposited" in out and "missed" in out
+        docs[shadows] = json.loads((tmp_path / shadows / "coating.json").read_text())
+    auto, off = docs["auto"], docs["off"]
+    assert auto["inputs"]["shadows_cast"] and auto["inputs"]["rays"] > 0 and not off["inputs"]["shadows_cast"]
+    assert auto["inputs"]["efficiency"] == "angle"
+    sprayed = auto["sprayed_volume_mm3"]
+    assert auto["deposited_volume_mm3"] + auto["lost_volume_mm3"] + auto["missed_volume_mm3"] == pytest.approx(sprayed)
+    assert abs(auto["missed_volume_mm3"]) < 0.02 * sprayed  # 2 mm vertices along the shadow's edge
+    assert off["deposited_volume_mm3"] + off["lost_volume_mm3"] > 1.2 * sprayed  # the floor under the shelf counted twice
+    assert auto["shadowed_volume_mm3"] > 0 == off["shadowed_volume_mm3"]
+    assert auto["coated_fraction"] < off["coated_fraction"]
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--shadows", "sometimes"], "--shadows must be one of auto, on, off"),
+    (["--efficiency", "angle:100=1"], "spray angle must be between 0 and 90"),
+    (["--efficiency", "table:missing.csv"], "missing.csv: cannot read efficiency table"),
+    (["--tolerance-pct", "-1"], "--tolerance-pct: the thickness tolerance must be a percentage >= 0"),
+])
+def test_bad_coating_options_exit_2_with_one_line(tmp_path, monkeypatch, capsys, args, words):
+    csv = write_pass_csv(tmp_path / "pass.csv")
+    code, _, err = run_cli(monkeypatch, capsys, csv, "--surface", "plate:200x100", *args, "-o", tmp_path / "out")
+    assert code == 2 and err.startswith("coatsim: error:") and err.count("\n") == 1 and words in err

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.spray.footprints import (
     Beta, DoubleBeta, EllipticGaussian, Gaussian, load_footprint_table, parse_footprint_spec,
 )

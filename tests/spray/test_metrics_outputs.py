@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.spray.coating_metrics import (
     coating_metrics, region_of_interest, thickness_statistics, weighted_quantile,
 )
@@ -171,3 +171,36 @@ def test_pngs_are_deterministic_and_written(tmp_path):
     curves = [Profile("a", np.arange(5.0), np.arange(5.0)), Profile("b", np.arange(5.0), np.full(5, np.nan))]
     png = profile_png(curves, tmp_path / "p.png", "profiles")
     assert png[:4] == b"\x89PNG" and png == profile_png(curves, None, "profiles")
+
+
+def test_specification_and_coated_shares_are_area_weighted():
+    t = np.array([0.0, 9.0, 10.0, 11.5, 20.0])
+    areas = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    stats = thickness_statistics(t, areas, np.ones(5, bool), 10.0, tolerance_pct=10.0)
+    assert stats["coated_fraction"] == pytest.approx(14 / 15)
+    assert stats["within_spec_fraction"] == pytest.approx(5 / 15)  # 9 and 10 are within +-1, 11.5 is not
+    assert stats["tolerance_pct"] == 10.0
+    wide = thickness_statistics(t, areas, np.ones(5, bool), 10.0, tolerance_pct=20.0)
+    assert wide["within_spec_fraction"] == pytest.approx(9 / 15)
+
+
+def test_spray_angle_and_standoff_on_a_tilted_plate_under_a_still_gun():
+    """One nozzle position: every vertex's spray angle and stand-off are its own geometry."""
+    tilt = math.radians(50)
+    pose = np.eye(4)
+    pose[:3, :3] = [[math.cos(tilt), 0, math.sin(tilt)], [0, 1, 0], [-math.sin(tilt), 0, math.cos(tilt)]]
+    surface = plate(140, 80, 1.0, pose)
+    result = deposit(surface, stationary_log((0, 0, H0), 1.0), gun())
+    landed = result.thickness_mm > 0
+    ray = surface.vertices[landed] - (0, 0, H0)
+    cos_gamma = -(ray @ surface.normals[0]) / np.linalg.norm(ray, axis=1)
+    np.testing.assert_allclose(result.spray_angle_deg[landed], np.degrees(np.arcsin(cos_gamma)), rtol=1e-12)
+    np.testing.assert_allclose(result.standoff_mm[landed], -ray[:, 2], rtol=1e-12)
+    assert np.all(np.isnan(result.spray_angle_deg[~landed]))
+    roi = np.ones(surface.n_vertices, bool)
+    m = coating_metrics(surface, result, gun(), roi)
+    flat = landed & (result.spray_angle_deg < 60)
+    assert 0 < m["low_angle_fraction"] == pytest.approx(surface.areas[flat].sum() / surface.area_mm2)
+    assert (m["standoff_min_mm"], m["standoff_max_mm"]) == (result.standoff_mm[landed].min(), result.standoff_mm[landed].max())
+    assert m["coated_fraction"] == pytest.approx(surface.areas[landed].sum() / surface.area_mm2)
+    assert m["deposition_efficiency"] == pytest.approx(m["deposited_volume_mm3"] / m["sprayed_volume_mm3"])

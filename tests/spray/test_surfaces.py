@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import border_distance, cylinder, mesh_file, parse_surface_spec, plate
 from spray_helpers import H0, Q, gun, stationary_log, volume

@@ -11,6 +11,7 @@ from scipy.special import i0e
 
 from coatsim.spray.coating_metrics import thickness_statistics
 from coatsim.spray.deposition import deposit
+from coatsim.spray.efficiency import CosinePower
 from coatsim.spray.footprints import Beta, Gaussian
 from coatsim.spray.surfaces import plate
 from spray_helpers import (
@@ -147,7 +148,7 @@ def test_8_tilted_plate_volume_and_peak(degrees, ratio):
     big = plate(400, 200, SIGMA / 3, rotation_y(gamma))
     log = stationary_log((0, 0, H0), 1.0)
     assert volume(big, deposit(big, log, gun()).thickness_mm) == pytest.approx(Q, rel=1e-4)
-    de = deposit(big, log, gun(de_exponent=2.0))
+    de = deposit(big, log, gun(efficiency=CosinePower(2.0)))
     assert volume(big, de.thickness_mm) == pytest.approx(Q * flux_weighted_de(gamma, 2.0), rel=1e-4)
     assert volume(big, de.thickness_mm) == pytest.approx(Q * math.cos(gamma), rel=0.01)
     coarse = deposit(big, log, gun()).thickness_um
@@ -226,8 +227,8 @@ def test_13_back_side_and_shadow_receive_nothing():
     blocker = plate(10, 10, 1.0, blocker_pose)
     scene = merge_surfaces(part, back, blocker)
     log = stationary_log((0, 0, H0), 1.0)
-    open_view = deposit(scene, log, gun()).thickness_um
-    shaded = deposit(scene, log, gun(occlusion=True)).thickness_um
+    open_view = deposit(scene, log, gun(shadows="off")).thickness_um
+    shaded = deposit(scene, log, gun()).thickness_um  # auto: the blocker can shadow the part
     n = part.n_vertices
     assert np.all(open_view[n:2 * n] == 0) and np.all(shaded[n:2 * n] == 0)
     x, y = np.abs(part.vertices[:, 0]), np.abs(part.vertices[:, 1])

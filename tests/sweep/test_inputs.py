@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from coatsim.errors import InputError
-from coatsim.scenario import as_dict, load_scenario
+from coatsim.core.errors import InputError
+from coatsim.run.scenario import as_dict, load_scenario
 from coatsim.sweep.inputs import bundle, with_absolute_paths
 
 ROOT = Path(__file__).resolve().parents[2]

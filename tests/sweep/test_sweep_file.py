@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.sweep.points import expand, point_id
 from coatsim.sweep.spec import load_sweep
 

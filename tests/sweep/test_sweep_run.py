@@ -152,7 +152,7 @@ def test_a_folder_that_is_not_a_sweep_is_left_alone(tmp_path):
     keep = tmp_path / "mine"
     keep.mkdir()
     (keep / "notes.txt").write_text("mine")
-    from coatsim.errors import InputError
+    from coatsim.core.errors import InputError
 
     with pytest.raises(InputError, match="not a sweep's output folder"):
         run_sweep(path, keep, progress=False)
@@ -298,7 +298,7 @@ def test_cli_metric_choice_and_option_errors(swept, run_cli, tmp_path):
     assert "motion.stops against every axis" in page and "coating.coverage_fraction against every axis" in page
     assert "motion.cycle_time_s against every axis" not in page
     for argv, message in (
-        (["--metric", "motion.stop"], "--metric 'motion.stop': unknown metric"),
+        (["--metric", "motion.stop"], "--metric: 'motion.stop' is not a metric"),
         (["--workers", "0"], "--workers 0: give at least 1"),
         (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "--workers sizes the local cluster only"),
         (["--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: cannot connect"),

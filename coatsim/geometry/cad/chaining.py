@@ -34,7 +34,7 @@ from typing import Optional, Sequence
 import numpy as np
 from scipy.spatial import cKDTree
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.cad.overlaps import overlapping_lines
 from coatsim.geometry.cad.pieces import NativePiece, Piece
 from coatsim.geometry.primitives import Arc

@@ -1,5 +1,5 @@
-"""A read drawing: its pieces in the workpiece plane (mm) and what was left out, and the
-reader that picks DXF or SVG by the file's suffix."""
+"""A read drawing: its pieces in the workpiece plane (mm) and what was left out; what the DXF
+and SVG readers share."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.cad.pieces import Piece
 
 DRAWING_SUFFIXES = (".dxf", ".svg")
@@ -46,24 +46,3 @@ def check_layers(source: str, wanted: Sequence[str] | None, known: Sequence[str]
             listed = ", ".join(repr(k) for k in known) or "none"
             raise InputError(f"{source}: layer {name!r} (--layer): no such layer (layers: {listed})")
     return tuple(name.lower() for name in wanted)
-
-
-def read_drawing(path: str | Path, layers: Sequence[str] | None = None, flatten_mm: float = 0.001) -> Drawing:
-    """Read a DXF or SVG drawing; ``layers`` selects layers by name (default: every visible
-    geometry layer); free-form curves are sampled within ``flatten_mm``."""
-    path = Path(path)
-    if not path.exists():
-        raise InputError(f"{path}: no such file")
-    if path.is_dir():
-        raise InputError(f"{path}: is a folder, expected a drawing")
-    if not flatten_mm > 0:
-        raise ValueError("flatten_mm must be > 0")
-    if path.suffix.lower() == ".dxf":
-        from coatsim.geometry.cad.dxf_reader import read_dxf
-
-        return read_dxf(path, layers, flatten_mm)
-    if path.suffix.lower() == ".svg":
-        from coatsim.geometry.cad.svg_reader import read_svg
-
-        return read_svg(path, layers, flatten_mm)
-    raise InputError(f"{path}: not a drawing (expected {' or '.join(DRAWING_SUFFIXES)})")

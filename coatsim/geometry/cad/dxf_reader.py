@@ -20,7 +20,7 @@ from typing import Iterable, Optional, Sequence
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
 from coatsim.geometry.cad.pieces import FreePiece, Piece, arc_piece, free_or_native, heading_of, line_piece
 

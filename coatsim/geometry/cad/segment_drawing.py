@@ -11,10 +11,11 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from coatsim.errors import CoatsimError, InputError
+from coatsim.core import defaults
+from coatsim.core.errors import CoatsimError, InputError
 from coatsim.geometry.cad.chaining import chain_pieces
 from coatsim.geometry.cad.contour_fit import fit_contour
-from coatsim.geometry.cad.drawing import read_drawing
+from coatsim.geometry.cad.read import read_drawing
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.dynamics import speed_limited
 from coatsim.geometry.segment import Segmentation
@@ -97,7 +98,7 @@ def segment_drawing(
     join_tolerance_mm: Optional[float] = None,
     rotation: Optional[np.ndarray] = None,
     scale: float = 1.0,
-    corner_deg: float = 20.0,
+    corner_deg: float = defaults.CORNER_DEG,
     speed_mm_s: Optional[float] = None,
     tool_accel_mm_s2: Optional[float] = None,
 ) -> PartSegmentation:
@@ -111,14 +112,16 @@ def segment_drawing(
     speed, and each polysegment lists its speed-limited stretches (as segment_curve does).
     """
     if not (isinstance(tolerance_mm, (int, float)) and math.isfinite(tolerance_mm) and tolerance_mm > 0):
-        raise InputError(f"--tol: the tolerance must be a positive number of mm, got {tolerance_mm}")
+        raise InputError(f"tolerance_mm: must be a positive number of mm, got {tolerance_mm}", parameters=("tolerance_mm",))
     join = default_join_tolerance(tolerance_mm) if join_tolerance_mm is None else join_tolerance_mm
     if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
-        raise InputError(f"--corner-deg: must be between 0 and 180 degrees, got {corner_deg}")
+        raise InputError(f"corner_deg: must be between 0 and 180 degrees, got {corner_deg}", parameters=("corner_deg",))
     if not (math.isfinite(join) and 0 < join < tolerance_mm):
-        raise InputError(f"join tolerance {join:g} mm (--join-tol): must be > 0 and below the tolerance {tolerance_mm:g} mm")
+        raise InputError(f"join_tolerance_mm {join:g}: must be > 0 and below the tolerance {tolerance_mm:g} mm",
+                         parameters=("join_tolerance_mm",))
     if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
-        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither")
+        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither",
+                         parameters=("speed_mm_s", "tool_accel_mm_s2"))
     speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
     started = time.perf_counter()
     flatten_mm = FLATTEN_FRACTION * tolerance_mm / max(scale, 1e-300)

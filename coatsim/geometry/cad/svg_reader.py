@@ -27,7 +27,7 @@ from typing import Iterator, Optional, Sequence
 
 import numpy as np
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
 from coatsim.geometry.cad.pieces import Piece, arc_piece, free_or_native, line_piece
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from coatsim.report import curve_figures
 from coatsim.report.events import lines_of
 from coatsim.report.html import Figure, Section, esc, figure_html
 from coatsim.report.sections.warnings import line_anchor
@@ -27,18 +28,30 @@ def _program_text(run: Any) -> str:
 
 def part_figure(data: Any) -> str:
     """A part: every contour with its polysegment in spray order, and the table per contour."""
-    from coatsim.geometry.part_plots import part_figure_png
     from coatsim.report.part_section import contours_table
 
     order = next((r.program.order for r in data.runs if hasattr(r.program, "order")), None)
-    png = part_figure_png([c.polysegment for c in data.contours], "part", [c.curve.points for c in data.contours],
-                          order=order)
+    png = curve_figures.part_figure([c.polysegment for c in data.contours], [c.curve.points for c in data.contours],
+                                    order)
     table = contours_table(data.document["contours"]) if data.document.get("contours") else ""
     return figure_html(Figure(
         "The part's contours and their polysegments", png,
         "Every contour of the drawing (grey) with its polysegment: arcs and lines in their own colours, true corners as "
         "crosses, the start of each contour as a dot with an arrow along the direction of travel, numbered in spray "
         "order. The gun is off between contours.")) + table
+
+
+def curve_figure(data: Any) -> str:
+    """One curve: its polysegment and θ, and the polyline program's vertices when one ran."""
+    polyline = next((r for r in data.runs if r.name.startswith("polyline")), None)
+    png = curve_figures.curve_figure(data.contours[0], None if polyline is None else polyline.program.curve)
+    caption = ("Left: the polysegment over the input curve (grey), arcs and lines in their own colours, junctions as "
+               "dots, true corners as crosses. Middle: the angular function θ(t) (cumulative turning angle against "
+               "normalised arc length) of the input and of the polysegment, piecewise linear: each slope is an arc, "
+               "each flat piece a line.")
+    if polyline is not None:
+        caption += " Right: the polyline variants' vertices on the input curve: without blending the arm stops at each."
+    return figure_html(Figure("Input curve, polysegment, θ and polyline", png, caption))
 
 
 def section(data: Any) -> Section:
@@ -54,31 +67,10 @@ def section(data: Any) -> Section:
         count = len(text.splitlines())
         what = (f"{len(warned)} line{'s' if len(warned) != 1 else ''} with warnings highlighted" if warned
                 else "no line with a warning")
-        parts.append(f"<details><summary><b>{esc(run.name)}.as</b>: {count} lines, {what}</summary>"
+        file = getattr(run, "program_file", "") or f"{run.name}.as"
+        parts.append(f"<details><summary><b>{esc(file)}</b>: {count} lines, {what}</summary>"
                      f"{listing(run.name, text, warned, numbers)}</details>")
-    figure = ""
-    if len(data.contours) > 1:
-        figure = part_figure(data)
-    else:
-        from coatsim.geometry.plots import segmentation_figure_png
-
-        figure = figure_html(Figure(
-            "Input curve, polysegment and θ", segmentation_figure_png(data.contours[0]),
-            "Left: the polysegment over the input curve, arcs and lines in their own colours, junctions as dots, true "
-            "corners as crosses. Right: the angular function θ(t) (cumulative turning angle against normalised arc "
-            "length) of the input and of the polysegment, piecewise linear: each slope is an arc, each flat piece a "
-            "line."))
-    polyline = next((r for r in data.runs if r.name.startswith("polyline")), None)
-    if polyline is not None and len(data.contours) == 1:  # a part draws its polylines in the part figure
-        import numpy as np
-
-        from coatsim.report.plots import polyline_figure
-
-        curve = polyline.program.curve
-        xy = np.array([s.start for s in curve.segments] + [curve.end])
-        figure += figure_html(Figure(
-            "Polyline program", polyline_figure(data.contours[0].curve.points, xy),
-            "The polyline variants' vertices on the input curve: without blending the arm stops at each."))
+    figure = part_figure(data) if len(data.contours) > 1 else curve_figure(data)
     note = ('<p class="muted">Each listing opens on a click; a line number in the Warnings table jumps to its line. '
             "Highlighted: the lines the warnings point to, tagged with their event numbers.</p>")
     return Section("program", "Programs", figure + note + "".join(parts))

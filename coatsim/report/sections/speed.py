@@ -10,9 +10,9 @@ import numpy as np
 
 from coatsim.report.events import AT_SPEED, Event, curve_spans
 from coatsim.report.html import Figure, Section, figure_html
-from coatsim.report.plots import colour, png_bytes, pyplot
+from coatsim.report.plots import colour, figure, grid, png_bytes, title
 
-MAX_LABELS = 14  # dips labelled with their line per panel (the deepest); the rest get a dot only
+MAX_LABELS = 8  # dips labelled with their line per panel (the deepest); the rest get a dot only
 
 
 def profile(run: Any, lead_in_mm: float, lead_out_mm: float) -> tuple[np.ndarray, np.ndarray]:
@@ -28,11 +28,10 @@ def profile(run: Any, lead_in_mm: float, lead_out_mm: float) -> tuple[np.ndarray
 def speed_figure(runs: Sequence[Any], events: Sequence[Event], numbers: Mapping[Event, int], lead_in_mm: float,
                  lead_out_mm: float) -> bytes:
     """One panel per variant, shared axes."""
-    plt = pyplot()
-    fig, axes = plt.subplots(len(runs), 1, figsize=(11, 1.9 * len(runs) + 0.8), sharex=True, sharey=True,
-                             squeeze=False)
+    fig = figure(11, 1.7 * len(runs) + 0.75)
+    axes = grid(fig, len(runs), 1, margins=(0.65, 0.2, 0.3, 0.5), gaps=(0.0, 0.4), sharex=True, sharey=True)[:, 0]
     top = max(max(float(np.nanmax(r.execution.log.speed)), r.execution.metrics.programmed_speed_mm_s) for r in runs)
-    for k, (ax, run) in enumerate(zip(axes[:, 0], runs)):
+    for k, (ax, run) in enumerate(zip(axes, runs)):
         s, v = profile(run, lead_in_mm, lead_out_mm)
         length = run.execution.curve[1] - run.execution.curve[0]
         programmed = run.execution.metrics.programmed_speed_mm_s
@@ -48,22 +47,19 @@ def speed_figure(runs: Sequence[Any], events: Sequence[Event], numbers: Mapping[
             lows = np.array([np.interp(e.s_mm, s, v) for e in dips])
             ax.plot([e.s_mm for e in dips], lows, "o", color="#c0392b", ms=3.2, zorder=5)
             for i in np.argsort(lows)[:MAX_LABELS]:
-                e = dips[i]
-                if e.line is not None:
-                    ax.annotate(f"L{e.line}", (e.s_mm, lows[i]), textcoords="offset points", xytext=(0, -9),
-                                ha="center", fontsize=6.5, color="#c0392b")
-        for e in events:
-            if e.variant == run.name and e.severity == "warning" and e.kind != "speed dip" and e.s_mm is not None:
-                ax.plot(e.s_mm, 1.08 * top, "v", color="#b3121f", ms=5)
-                ax.annotate(f"#{numbers[e]}", (e.s_mm, 1.08 * top), textcoords="offset points", xytext=(4, -3),
-                            fontsize=6.5, color="#b3121f")
-        ax.set_title(run.name, loc="left", fontsize=9, fontweight="bold", color=colour(run.name, k), pad=3)
+                if dips[i].line is not None:
+                    ax.text(dips[i].s_mm, lows[i] - 0.03 * top, f"L{dips[i].line}", ha="center", va="top", fontsize=6.5,
+                            color="#c0392b")
+        warned = [e for e in events if e.variant == run.name and e.severity == "warning" and e.kind != "speed dip"
+                  and e.s_mm is not None]
+        if warned:
+            ax.plot([e.s_mm for e in warned], [1.08 * top] * len(warned), "v", color="#b3121f", ms=5)
+            for e in warned:
+                ax.text(e.s_mm, 1.08 * top, f"  #{numbers[e]}", va="center", fontsize=6.5, color="#b3121f")
+        title(ax, run.name, loc="left", color=colour(run.name, k))
         ax.set_ylabel("mm/s", fontsize=8)
-        ax.grid(alpha=0.3)
-        ax.tick_params(labelsize=8)
-    axes[0, 0].set_ylim(0.0, 1.15 * top)
-    axes[-1, 0].set_xlabel("along the curve proper (mm); grey: run-in and run-out")
-    fig.tight_layout()
+    axes[0].set_ylim(0.0, 1.15 * top)
+    axes[-1].set_xlabel("along the curve proper (mm); grey: run-in and run-out", fontsize=8)
     return png_bytes(fig)
 
 

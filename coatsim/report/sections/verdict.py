@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any, Mapping, Sequence
 
 from coatsim.report.html import Figure, Section, esc, figure_html
-from coatsim.report.plots import png_bytes, pyplot
+from coatsim.report.plots import figure, grid, png_bytes, title
 from coatsim.report.verdict import Verdict, advantage_pct, change_text, overall, verdict
 
 CLIP_PCT = 100.0  # bars beyond ±100 % are drawn to the edge and labelled with their value
@@ -34,32 +34,32 @@ def paragraph(result: Verdict, gates: Sequence[Mapping[str, Any]]) -> str:
 def bar_chart(result: Verdict) -> bytes:
     """One panel per polyline variant: the polysegment's advantage per measure in %
     (right = better for the polysegment), coloured by outcome."""
-    plt = pyplot()
     n = len(result.comparisons)
-    fig, axes = plt.subplots(1, n, figsize=(3.9 * n + 1.6, 2.7), squeeze=False, sharey=True)
-    for ax, c in zip(axes[0], result.comparisons):
-        labels = [o.criterion.label for o in c.outcomes]
-        for y, o in enumerate(c.outcomes):
+    fig = figure(3.9 * n + 1.6, 2.5)
+    axes = grid(fig, 1, n, margins=(1.45, 0.15, 0.3, 0.5), gaps=(0.3, 0.0), sharey=True)[0]
+    for ax, c in zip(axes, result.comparisons):
+        widths, colours, notes = [], [], []
+        for o in c.outcomes:
             adv = advantage_pct(o)
             if adv is None:  # no ratio (the polyline's value is 0): a win or a loss runs to the edge
-                width = {"win": CLIP_PCT, "loss": -CLIP_PCT}.get(o.outcome, 0.0)
+                widths.append({"win": CLIP_PCT, "loss": -CLIP_PCT}.get(o.outcome, 0.0))
             else:
-                width = max(-CLIP_PCT, min(CLIP_PCT, adv))
-            ax.barh(y, width, color=OUTCOME_COLOURS[o.outcome], height=0.6)
-            text = change_text(o) if o.outcome != "undefined" else "n/a"
+                widths.append(max(-CLIP_PCT, min(CLIP_PCT, adv)))
+            colours.append(OUTCOME_COLOURS[o.outcome])
             word = {"win": "win", "loss": "loss", "tie": "tie", "undefined": ""}[o.outcome]
-            x = width + (4 if width >= 0 else -4)
-            ax.text(x, y, f"{word} {text}".strip(), va="center", ha="left" if width >= 0 else "right", fontsize=7.5)
+            notes.append(f"{word} {change_text(o) if o.outcome != 'undefined' else 'n/a'}".strip())
+        ax.barh(range(len(widths)), widths, color=colours, height=0.6)
+        for y, (width, note) in enumerate(zip(widths, notes)):
+            ax.text(width + (4 if width >= 0 else -4), y, note, va="center", ha="left" if width >= 0 else "right",
+                    fontsize=7.5)
         ax.axvline(0.0, color="black", lw=0.8)
         ax.set_xlim(-CLIP_PCT * 1.9, CLIP_PCT * 1.9)
         ax.set_xticks([-100, -50, 0, 50, 100])
-        ax.set_yticks(range(len(labels)), labels)
-        ax.set_title(f"against {c.against}", fontsize=9)
+        ax.set_yticks(range(len(c.outcomes)), [o.criterion.label for o in c.outcomes])
+        title(ax, f"against {c.against}")
         ax.set_xlabel("polysegment better → (%)", fontsize=8)
         ax.grid(axis="x", alpha=0.3)
-        ax.tick_params(labelsize=8)
-    axes[0, 0].invert_yaxis()  # shared: the first measure on top in every panel
-    fig.tight_layout()
+    axes[0].invert_yaxis()  # shared: the first measure on top in every panel
     return png_bytes(fig)
 
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from coatsim.report.events import Event
 from coatsim.report.html import Figure, Section, esc, figure_html
-from coatsim.report.plots import colour, png_bytes, pyplot
+from coatsim.report.plots import colour, figure, grid, png_bytes
 
 
 def line_anchor(variant: str, line: int) -> str:
@@ -52,26 +52,25 @@ def counts_line(data: Any) -> str:
 
 def curve_figure(data: Any) -> bytes:
     """The track of each variant on the part (view coordinates) with the events at their place."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(8.5, 5.4))
+    fig = figure(8.5, 5.2)
+    ax = grid(fig, 1, 1, margins=(0.7, 1.7, 0.2, 0.55))[0, 0]
     centre = data.centre
     for k, run in enumerate(data.runs):
         path = data.track_view(run)
         ax.plot(path[:, 0], path[:, 1], color=colour(run.name, k), lw=1.0, alpha=0.7, label=run.name)
     view = centre.points.field(data.surface, data.surface.view)
-    for e in data.events:
-        if e.s_mm is None:
-            continue
-        x, y = (np.interp(e.s_mm, centre.s_mm, view[:, j]) for j in (0, 1))
-        marker, face = ("o", "#c0392b") if e.severity == "warning" else ("s", "#6a3d9a")
-        ax.plot(x, y, marker, color=face, ms=4.5, mfc="none" if e.severity != "warning" else face)
-        ax.annotate(str(data.numbers[e]), (x, y), textcoords="offset points", xytext=(3, 3), fontsize=6.5, color=face)
+    placed = [e for e in data.events if e.s_mm is not None]
+    s = np.array([e.s_mm for e in placed])
+    xy = np.column_stack([np.interp(s, centre.s_mm, view[:, j]) for j in (0, 1)]) if placed else np.zeros((0, 2))
+    warning = np.array([e.severity == "warning" for e in placed], bool)
+    ax.plot(xy[warning, 0], xy[warning, 1], "o", color="#c0392b", ms=4.5)
+    ax.plot(xy[~warning, 0], xy[~warning, 1], "s", color="#6a3d9a", ms=4.5, mfc="none")
+    for e, (x, y), warned in zip(placed, xy, warning):
+        ax.text(x, y, f" {data.numbers[e]}", fontsize=6.5, va="bottom", color="#c0392b" if warned else "#6a3d9a")
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(data.surface.view_labels[0])
-    ax.set_ylabel(data.surface.view_labels[1])
-    ax.grid(alpha=0.3)
+    ax.set_xlabel(data.surface.view_labels[0], fontsize=8)
+    ax.set_ylabel(data.surface.view_labels[1], fontsize=8)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
-    fig.tight_layout()
     return png_bytes(fig)
 
 

@@ -74,7 +74,7 @@ def test_layer_and_join_tolerance_flags(tmp_path, run_cli):
 @pytest.mark.parametrize(("args", "match"), [
     (["--method", "paper"], "apply to point curves"),
     (["--closed", "yes"], "--closed applies to point curves"),
-    (["--join-tol", "0.5"], "join tolerance 0.5 mm (--join-tol): must be > 0 and below the tolerance"),
+    (["--join-tol", "0.5"], "--join-tol 0.5: must be > 0 and below the tolerance"),
     (["--join-tol", "-1"], "--join-tol"),
     (["--layer", "NOPE"], "no such layer"),
 ])

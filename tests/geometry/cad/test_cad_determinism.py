@@ -8,7 +8,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from cad_helpers import write_dxf
+
+pytestmark = pytest.mark.golden
 
 DRIVER = """
 import sys

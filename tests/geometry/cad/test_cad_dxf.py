@@ -12,7 +12,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import Arc, Line, chain
 from coatsim.geometry.cad import read_drawing, segment_drawing
 

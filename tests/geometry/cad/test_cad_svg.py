@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from coatsim.errors import InputError
+from coatsim.core.errors import InputError
 from coatsim.geometry import Arc, Line
 from coatsim.geometry.cad import read_drawing, segment_drawing
 from coatsim.geometry.cad.svg_reader import MM_PER_USER_UNIT, path_data_error

@@ -1,0 +1,5 @@
+"""`python -m coatsim.cli`: the coatsim command."""
+
+from coatsim.cli import main
+
+main()

@@ -1,0 +1,1 @@
+"""Shared foundations: errors, budgets, file I/O, the output-folder guard, runtime settings."""

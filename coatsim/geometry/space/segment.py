@@ -1,0 +1,225 @@
+"""segment_space_curve: a 3-D curve and a tolerance in, a certified G1 chain of Line3/Arc3 out.
+
+A curve that lies in a plane within σ/2 is fitted by the planar fitter (the paper's method,
+coatsim.geometry.segment) in that plane and placed back, so it gets exactly the segments of
+its 2-D fit (the plane's distance h is taken off the planar tolerance: √(σ² − h²)). A space
+curve is split at its true corners and each run fitted by spatial biarcs
+(coatsim.geometry.space.fit); a closed loop without corners keeps its tangent across the
+seam. Either way the result is certified by the exact 3-D Hausdorff check; a fit that misses
+σ is repeated at a narrower working tolerance.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from coatsim.core import defaults
+from coatsim.core.errors import InputError
+from coatsim.geometry.curves import make_curve
+from coatsim.geometry.dynamics import speed_limited
+from coatsim.geometry.limits import MIN_LENGTH_SHARE, MIN_LENGTH_SIGMAS, NEIGHBOURHOOD_WINDOWS, FitLimits
+from coatsim.geometry.segment import segment_curve
+from coatsim.geometry.space.chain import SpaceChain
+from coatsim.geometry.space.curve import SpaceCurve
+from coatsim.geometry.space.deviation import hausdorff3
+from coatsim.geometry.space.fit import fit_run3
+from coatsim.geometry.space.local import curvature_profile3, detect_corners3, tangent_at, arc_length, window_mm
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.primitives import Arc3, place
+
+PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
+NARROWER = (0.9, 0.75, 0.5, 0.3)  # working tolerances (shares of σ) tried in turn
+KINK_RAD = 1e-9  # a junction breaking its tangent by more is listed as a corner
+
+
+@dataclass(frozen=True, eq=False)
+class SpaceSegmentation:
+    """A fitted chain with its certified deviation; ``planar_pose`` the frame whose XY plane
+    held the curve when it was fitted in a plane (None for a space curve). ``seconds`` is the
+    fitter's wall time, reported on request and never written to a file."""
+
+    curve: SpaceCurve
+    chain: SpaceChain
+    tolerance_mm: float
+    max_deviation_mm: float
+    seconds: float
+    planar_pose: Pose | None
+    input_min_radius_mm: float | None = None
+    speed_mm_s: float | None = None
+    tool_accel_mm_s2: float | None = None
+    limits_kept: bool | None = None
+
+    def stats(self) -> dict:
+        chain = self.chain
+        radii = [s.radius for s in chain.segments if isinstance(s, Arc3)]
+        return {
+            "n_segments": chain.n_segments,
+            "n_arcs": chain.n_arcs,
+            "n_lines": chain.n_lines,
+            "max_deviation_mm": self.max_deviation_mm,
+            "max_tangent_break_deg": math.degrees(chain.max_tangent_break()),
+            "min_radius_mm": min(radii) if radii else None,
+            "input_min_radius_mm": self.input_min_radius_mm,
+            "min_segment_mm": min(s.length for s in chain.segments),
+            "max_curvature_jump_per_mm": chain.max_curvature_jump(),
+            "limits_kept": self.limits_kept,
+            "planar": self.planar_pose is not None,
+            "speed_mm_s": self.speed_mm_s,
+            "tool_accel_mm_s2": self.tool_accel_mm_s2,
+            "input_points": len(self.curve.points),
+        }
+
+    def summary(self) -> str:
+        st = self.stats()
+        radius = "none" if st["min_radius_mm"] is None else f"r {st['min_radius_mm']:.3f} mm"
+        lines = [
+            f"{self.curve.name}: {st['input_points']} points in space, length {self.curve.length:.3f} mm, "
+            f"{'closed' if self.curve.closed else 'open'}, {'planar (fitted in its plane)' if st['planar'] else 'not planar'}",
+            f"tolerance {self.tolerance_mm:g} mm",
+            f"segments {st['n_segments']} ({st['n_arcs']} arcs, {st['n_lines']} lines), corners {len(self.chain.corners)}",
+            f"max deviation {st['max_deviation_mm']:.6f} mm (certified two-sided Hausdorff in 3-D), "
+            f"max tangent break {st['max_tangent_break_deg']:.3g} deg",
+            f"tightest arc {radius}, shortest segment {st['min_segment_mm']:.3f} mm"
+            + ("" if self.limits_kept is not False else "; WARNING: some arcs are tighter than the input allows or shorter than the minimum"),
+        ]
+        if self.speed_mm_s is not None:
+            limited = self.chain.speed_limited
+            slowest = min((v for _, _, v in limited), default=None)
+            lines.append(f"at {self.speed_mm_s:g} mm/s and {self.tool_accel_mm_s2 / 1000:g} m/s²: "
+                         + (f"{len(limited)} speed-limited stretch(es), slowest {slowest:.1f} mm/s"
+                            if limited else "no speed-limited stretch"))
+        return "\n".join(lines)
+
+
+def _check(value: float | None, name: str, unit: str) -> None:
+    if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise InputError(f"{name}: must be a positive number of {unit}, got {value}", parameters=(name,))
+
+
+def best_plane(points: np.ndarray) -> tuple[Pose, float]:
+    """The least-squares plane of the points as a frame (origin at their centroid, z its
+    normal, right-handed) and the largest distance of a point from it (mm)."""
+    centre = points.mean(axis=0)
+    _, _, vt = np.linalg.svd(points - centre, full_matrices=False)
+    x, y = vt[0], vt[1]
+    z = np.cross(x, y)
+    pose = Pose(np.column_stack((x, y, z / np.linalg.norm(z))), centre)
+    return pose, float(np.abs((points - centre) @ pose.rotation[:, 2]).max())
+
+
+def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: float = defaults.CORNER_DEG,
+                        min_segment_mm: float | None = None, speed_mm_s: float | None = None,
+                        tool_accel_mm_s2: float | None = None) -> SpaceSegmentation:
+    """Approximate a space curve by a G1 chain of lines and arcs within ``tolerance_mm``
+    (certified two-sided Hausdorff in 3-D); the other parameters as for the planar
+    ``segment_curve``."""
+    _check(tolerance_mm, "tolerance_mm", "mm")
+    _check(min_segment_mm, "min_segment_mm", "mm")
+    _check(speed_mm_s, "speed_mm_s", "mm/s")
+    _check(tool_accel_mm_s2, "tool_accel_mm_s2", "mm/s²")
+    if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
+        raise InputError(f"corner_deg: must be between 0 and 180 degrees, got {corner_deg}", parameters=("corner_deg",))
+    if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
+        raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither",
+                         parameters=("speed_mm_s", "tool_accel_mm_s2"))
+    started = time.perf_counter()
+    pose, height = best_plane(curve.points)
+    if height <= PLANAR_SHARE * tolerance_mm:
+        chain, radius, kept = _fit_planar(curve, pose, height, tolerance_mm, corner_deg, min_segment_mm,
+                                          speed_mm_s, tool_accel_mm_s2)
+        dev = hausdorff3(curve.points, chain, tolerance_mm).hausdorff
+    else:
+        pose = None
+        chain, dev, radius, kept = _fit_space(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
+    if speed_mm_s is not None and not chain.speed_limited:
+        chain = replace(chain, speed_limited=speed_limited(chain, speed_mm_s, tool_accel_mm_s2))  # type: ignore[arg-type]
+    return SpaceSegmentation(curve, chain, tolerance_mm, dev, time.perf_counter() - started, pose, radius,
+                             speed_mm_s, tool_accel_mm_s2, kept)
+
+
+def _fit_planar(curve: SpaceCurve, pose: Pose, height: float, tol: float, corner_deg: float,
+                min_segment_mm: float | None, speed_mm_s: float | None,
+                tool_accel_mm_s2: float | None) -> tuple[SpaceChain, float | None, bool | None]:
+    """The planar fit in the curve's own plane, placed back in space."""
+    flat = pose.inverse().apply(curve.points)[:, :2]
+    planar = make_curve(flat, curve.name, "yes" if curve.closed else "no")
+    seg = segment_curve(planar, math.sqrt(tol * tol - height * height), corner_deg=corner_deg,
+                        min_segment_mm=min_segment_mm, speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
+    poly = seg.polysegment
+    chain = SpaceChain(tuple(place(s, pose) for s in poly.segments), poly.closed, poly.corners, poly.speed_limited)
+    return chain, seg.input_min_radius_mm, seg.limits_kept
+
+
+def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm: float | None,
+               speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> tuple[SpaceChain, float, float | None, bool]:
+    """Biarc chains over the runs between corners, narrowed until certified within ``tol``."""
+    pts = curve.points
+    corners = detect_corners3(pts, curve.closed, corner_deg, tol)
+    if curve.closed and len(corners):
+        first = int(corners[0])
+        body = pts[:-1]
+        pts = np.vstack((body[first:], body[:first], body[first:first + 1]))
+        corners = np.sort((corners - first) % len(body))
+        cuts = [0, *[int(c) for c in corners if c != 0], len(pts) - 1]
+    else:
+        cuts = [0, *[int(c) for c in corners], len(pts) - 1]
+    loop = curve.closed and not len(corners)
+    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
+    for share in NARROWER:
+        segments, kept, radii, junctions = [], True, [], []
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            run = pts[a : b + 1]
+            limits, window = _limits(run, loop, tol, min_segment_mm, speed_kappa)
+            seam = tangent_at(*_seam_view(pts, window), window) if loop else None
+            fitted = fit_run3(run, share * tol, limits, window, seam, seam)
+            segments.extend(fitted.segments)
+            junctions.append(len(segments) - 1)
+            kept = kept and fitted.limits_kept
+            radii.append(limits.profile.tightest_radius_mm)
+        corner_junctions = tuple(junctions[:-1]) + ((junctions[-1],) if curve.closed and len(corners) else ())
+        chain, kinked = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
+        kept = kept and not kinked
+        dev = hausdorff3(pts, chain, tol).hausdorff
+        if dev <= tol:
+            break
+    else:
+        raise InputError(f"{curve.name}: no chain within {tol:g} mm was found (deviation {dev:.4g} mm); "
+                         "the input may be too noisy for tolerance_mm")
+    tightest = min(radii)
+    return chain, dev, tightest if math.isfinite(tightest) else None, kept
+
+
+def _with_kinks(chain: SpaceChain) -> tuple[SpaceChain, bool]:
+    """The chain with every junction whose tangent breaks (a run the biarcs could not follow
+    between two input points, joined by a line) listed as a corner, and whether there was one:
+    a break is never left unlisted."""
+    breaks = chain.junction_breaks()
+    kinks = {int(k) for k in np.flatnonzero(breaks > KINK_RAD)} - set(chain.corners)
+    if not kinks:
+        return chain, False
+    return replace(chain, corners=tuple(sorted(set(chain.corners) | kinks))), True
+
+
+def _seam_view(points: np.ndarray, window: float) -> tuple[np.ndarray, np.ndarray, int]:
+    """A closed loop laid out around its seam (points, arc length, index of the seam vertex)."""
+    body = points[:-1]
+    pts = np.vstack((body, body, body[:1]))
+    return pts, arc_length(pts), len(body)
+
+
+def _limits(run: np.ndarray, loop: bool, tol: float, min_segment_mm: float | None,
+            speed_kappa: float | None) -> tuple[FitLimits, float]:
+    """The planar fitter's limits (coatsim.geometry.limits) on the run's 3-D curvature profile,
+    and the window of that profile (the tangent window too)."""
+    profile = curvature_profile3(run, loop, tol)
+    min_length = (max(MIN_LENGTH_SIGMAS * tol, MIN_LENGTH_SHARE * profile.length)
+                  if min_segment_mm is None else min_segment_mm)
+    near = profile.envelope(max(NEIGHBOURHOOD_WINDOWS * profile.window_mm, min_length))
+    floor = tol / max(profile.length, tol) ** 2
+    if speed_kappa is not None:
+        floor = min(floor, speed_kappa)
+    return FitLimits(profile, near, speed_kappa, floor, min(min_length, profile.length)), window_mm(run, tol)

@@ -1,0 +1,176 @@
+"""Part meshes: read a triangle mesh file, bring it to millimetres, repair what can be repaired.
+
+``load_part`` reads STL (ASCII or binary), PLY, OBJ, OFF and GLB/glTF through trimesh. It merges
+duplicate vertices (an STL stores every corner of every triangle), drops degenerate and duplicate
+triangles and unreferenced vertices, and says so in the part's notes. What cannot be repaired
+(no triangles, coordinates that are not numbers, a mesh with no extent, a file over the budget)
+is refused with one line naming the problem and the fix.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from coatsim.core import defaults
+from coatsim.core.budgets import MAX_PLAN_MESH_BYTES, MAX_PLAN_TRIANGLES, check_budget
+from coatsim.core.errors import InputError
+
+#: millimetres per unit of a mesh file
+UNITS_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
+UNIT_CHOICES = (*UNITS_MM, "auto")
+#: ``units="auto"``: a part whose largest extent is below this many file units is read as metres
+#: (a sprayed part is rarely smaller than 10 mm and rarely larger than 10 m)
+AUTO_METRES_BELOW = 10.0
+#: units trimesh reports for files that carry them (glTF is metres by its specification)
+_TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimeters": "cm", "cm": "cm",
+                  "meters": "m", "meter": "m", "m": "m", "inches": "in", "inch": "in", "in": "in"}
+MESH_SUFFIXES = (".stl", ".ply", ".obj", ".off", ".glb", ".gltf")
+#: vertices closer than this fraction of the part's extent are one vertex
+MERGE_FRACTION = 1e-9
+#: triangles with an area below this fraction of the extent squared are degenerate
+DEGENERATE_FRACTION = 1e-14
+
+
+@dataclass(frozen=True, eq=False)
+class Part:
+    """A part mesh in millimetres in its own frame: vertices (n, 3), triangles (m, 3) int64,
+    the file it came from with its SHA-256, the unit it was read in, and what reading found."""
+
+    file: str
+    sha256: str
+    vertices_mm: np.ndarray
+    faces: np.ndarray
+    units: str
+    notes: tuple[str, ...]
+
+    @property
+    def extent_mm(self) -> float:
+        return float(np.ptp(self.vertices_mm, axis=0).max())
+
+
+def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
+    """Read a mesh file (see the module docstring); ``units`` is mm, cm, m, in or auto."""
+    import trimesh
+
+    path = Path(path)
+    if units not in UNIT_CHOICES:
+        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}", parameters=("units",))
+    if path.suffix.lower() not in MESH_SUFFIXES:
+        raise InputError(f"{path}: not a mesh file this reader knows (suffix {path.suffix or 'none'}); "
+                         f"export the part as {', '.join(s[1:].upper() for s in MESH_SUFFIXES)}")
+    if not path.is_file():
+        raise InputError(f"{path}: part mesh file not found")
+    check_budget(f"{path}: file size in bytes", path.stat().st_size, MAX_PLAN_MESH_BYTES,
+                 "decimate the mesh (e.g. MeshLab quadric edge collapse) or export it as binary STL")
+    data = path.read_bytes()
+    if path.suffix.lower() == ".stl":
+        _check_binary_stl(path, data)
+    try:
+        mesh = trimesh.load(str(path), force="mesh", process=False)
+    except Exception as exc:  # trimesh raises many types for malformed files
+        first = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+        raise InputError(f"{path}: cannot read the mesh ({first}); check that the file is a complete "
+                         f"{path.suffix[1:].upper()} export") from None
+    faces = np.asarray(getattr(mesh, "faces", np.zeros((0, 3))), dtype=np.int64).reshape(-1, 3)
+    if len(faces) == 0:
+        raise InputError(f"{path}: the file holds no triangles (a point cloud or an empty export); "
+                         "mesh the scan first (e.g. Poisson reconstruction) and export the surface")
+    check_budget(f"{path}: triangles", len(faces), MAX_PLAN_TRIANGLES,
+                 "decimate the mesh (e.g. MeshLab quadric edge collapse)")
+    file_units = _TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
+    vertices = np.asarray(mesh.vertices, dtype=float)
+    return _part(str(path), hashlib.sha256(data).hexdigest(), vertices, faces, units, file_units)
+
+
+def _check_binary_stl(path: Path, data: bytes) -> None:
+    """A binary STL states its triangle count: refuse a truncated file, and one over the budget
+    before it is read. (A file that starts with 'solid' and is not binary-sized is ASCII.)"""
+    if len(data) < 84 or (data[:5].lower() == b"solid" and (len(data) - 84) % 50 != 0):
+        return
+    count = int.from_bytes(data[80:84], "little")
+    if len(data) != 84 + 50 * count:
+        raise InputError(f"{path}: a binary STL of {count} triangles should be {84 + 50 * count} bytes, the file has "
+                         f"{len(data)}; the file is truncated or damaged, export it again")
+    check_budget(f"{path}: triangles", count, MAX_PLAN_TRIANGLES,
+                 "decimate the mesh (e.g. MeshLab quadric edge collapse)")
+
+
+def part_from_arrays(vertices: np.ndarray, faces: np.ndarray, name: str = "mesh", units: str = "mm") -> Part:
+    """A part from vertex (n, 3) and triangle (m, 3) arrays, repaired as a file would be."""
+    vertices = np.ascontiguousarray(vertices, dtype=float).reshape(-1, 3)
+    faces = np.ascontiguousarray(faces, dtype=np.int64).reshape(-1, 3)
+    if units not in UNIT_CHOICES:
+        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}", parameters=("units",))
+    if len(faces) == 0:
+        raise InputError(f"{name}: the mesh holds no triangles")
+    if faces.min() < 0 or faces.max() >= len(vertices):
+        raise InputError(f"{name}: a triangle refers to a vertex that does not exist")
+    check_budget(f"{name}: triangles", len(faces), MAX_PLAN_TRIANGLES, "decimate the mesh")
+    digest = hashlib.sha256(vertices.tobytes() + faces.tobytes()).hexdigest()
+    return _part(name, digest, vertices, faces, units, None)
+
+
+def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units: str,
+          file_units: str | None) -> Part:
+    if faces.min() < 0 or faces.max() >= len(vertices):
+        raise InputError(f"{name}: a triangle refers to a vertex that does not exist; re-export the mesh")
+    used = np.unique(faces)
+    if not np.all(np.isfinite(vertices[used])):
+        raise InputError(f"{name}: vertex coordinates that are not numbers (nan or inf); re-export the mesh")
+    extent = float(np.ptp(vertices[used], axis=0).max())
+    if not extent > 0:
+        raise InputError(f"{name}: every vertex is at one point (the mesh has no extent)")
+    notes: list[str] = []
+    unit = _unit(extent, units, file_units, notes)
+    vertices, faces = _repaired(vertices * UNITS_MM[unit], faces, name, notes)
+    return Part(name, digest, vertices, faces, unit, tuple(notes))
+
+
+def _unit(extent: float, units: str, file_units: str | None, notes: list[str]) -> str:
+    """The unit the file is read in; with ``auto`` a note says which and why."""
+    if units != "auto":
+        return units
+    if file_units is not None:
+        notes.append(f"units auto: the file says {file_units}")
+        return file_units
+    if extent < AUTO_METRES_BELOW:
+        notes.append(f"units auto: largest extent {extent:.4g} read as metres ({extent * 1000:.4g} mm); "
+                     "give the units if the file is in mm, cm or inches")
+        return "m"
+    notes.append(f"units auto: largest extent {extent:.4g} read as millimetres; give the units if the file is in "
+                 "m, cm or inches")
+    return "mm"
+
+
+def _repaired(vertices: np.ndarray, faces: np.ndarray, name: str, notes: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """Merge duplicate vertices, drop degenerate and duplicate triangles and unused vertices."""
+    used = np.unique(faces)
+    extent = float(np.ptp(vertices[used], axis=0).max())
+    key = np.round((vertices - vertices[used].min(axis=0)) / (MERGE_FRACTION * extent)).astype(np.int64)
+    _, first, merged = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    merged = merged.ravel()
+    merged_count = len(used) - len(np.unique(merged[used]))
+    faces = merged[faces]
+    vertices = vertices[first]
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    area2 = np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    good = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])
+    good &= area2 > 2 * DEGENERATE_FRACTION * extent**2
+    if not good.any():
+        raise InputError(f"{name}: every triangle is degenerate (zero area); re-export the surface")
+    if (~good).sum():
+        notes.append(f"dropped {int((~good).sum())} degenerate triangle(s) (zero area)")
+    faces = faces[good]
+    _, unique = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
+    if len(unique) < len(faces):
+        notes.append(f"dropped {len(faces) - len(unique)} duplicate triangle(s)")
+    faces = faces[np.sort(unique)]
+    if merged_count:
+        notes.append(f"merged {merged_count} duplicate vertices")
+    used, local = np.unique(faces, return_inverse=True)
+    return vertices[used], local.reshape(-1, 3).astype(np.int64)
+

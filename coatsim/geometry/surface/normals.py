@@ -1,0 +1,196 @@
+"""Normals a gun can follow: consistent outward orientation, and smoothing over the footprint.
+
+Orientation: triangles are flipped so that every pair sharing a manifold edge is wound alike
+(the file's majority winding wins in each connected piece); then a closed piece is turned
+outward (positive volume) and an open piece (a scan) toward the side the gun comes from.
+
+Smoothing: the area-weighted vertex normals diffuse over the surface for a time t = L^2/2 (one
+implicit step of the heat equation, (M + t L) N = M N0 with the cotangent Laplacian L and the
+lumped mass M), which averages them over about a length L along the surface (not through the
+part, so the two skins of a thin part stay apart), and are normalised. On a cylinder or a
+sphere the normal field is an eigenfunction of the Laplacian, so smoothing leaves it exact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from coatsim.geometry.surface.boxes import TriangleBoxes
+from coatsim.geometry.surface.topology import Edges, face_components, face_pairs, mesh_edges
+
+#: relative residual at which the smoothing solve stops (normals to about 1e-8)
+SMOOTHING_RTOL = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class Orientation:
+    """Triangles wound consistently and outward, how many were flipped, and notes."""
+
+    faces: np.ndarray
+    flipped: int
+    notes: tuple[str, ...]
+
+
+def face_normals(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit face normals (m, 3) and face areas (m,) mm^2."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    cross = np.cross(b - a, c - a)
+    norm = np.linalg.norm(cross, axis=1)
+    return cross / np.maximum(norm, 1e-300)[:, None], 0.5 * norm
+
+
+def orient(vertices: np.ndarray, faces: np.ndarray, toward: np.ndarray | None) -> Orientation:
+    """Wind ``faces`` consistently and outward; open pieces face ``toward`` (a unit vector)
+    when given, else keep the file's majority winding."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    m = len(faces)
+    edges = mesh_edges(faces)
+    pairs, consistent = face_pairs(faces, edges)
+    n_pieces, piece = face_components(m, pairs)
+    # a face in state 0 (as read) or 1 (flipped): consistent neighbours share a state
+    f, g = pairs[:, 0], pairs[:, 1]
+    rows = np.concatenate([f, f + m])
+    cols = np.concatenate([np.where(consistent, g, g + m), np.where(consistent, g + m, g)])
+    _, state_label = connected_components(coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(2 * m, 2 * m)),
+                                          directed=False)
+    as_read, flipped_label = state_label[:m], state_label[m:]
+    orientable = as_read != flipped_label
+    # in each piece keep as read the faces of the larger of its two state classes
+    key = piece.astype(np.int64) * (2 * m) + as_read
+    classes, size = np.unique(key, return_counts=True)
+    best = np.full(n_pieces, -1, dtype=np.int64)
+    best_size = np.zeros(n_pieces, dtype=np.int64)
+    for k, s in zip(classes.tolist(), size.tolist()):
+        p = k // (2 * m)
+        if s > best_size[p]:
+            best[p], best_size[p] = k % (2 * m), s
+    flip = orientable & (as_read != best[piece])
+    notes = []
+    if (~orientable).any():
+        notes.append(f"{len(np.unique(piece[~orientable]))} piece(s) of the mesh cannot be oriented "
+                     "(a Moebius-like surface); their triangles keep the file's winding")
+    faces = np.where(flip[:, None], faces[:, ::-1], faces)
+    flip_piece = _outward(vertices, faces, piece, n_pieces, _closed_pieces(edges, piece, n_pieces), toward)
+    faces = np.where(flip_piece[piece][:, None], faces[:, ::-1], faces)
+    flipped = int(np.count_nonzero(flip ^ flip_piece[piece]))
+    return Orientation(faces, flipped, tuple(notes))
+
+
+def _closed_pieces(edges: Edges, piece: np.ndarray, n_pieces: int) -> np.ndarray:
+    """Whether each piece is closed: every edge of its faces has exactly two faces."""
+    open_face = (edges.face_count[edges.of_face] != 2).any(axis=1)
+    closed = np.ones(n_pieces, dtype=bool)
+    closed[np.unique(piece[open_face])] = False
+    return closed
+
+
+def _outward(vertices: np.ndarray, faces: np.ndarray, piece: np.ndarray, n_pieces: int, closed: np.ndarray,
+             toward: np.ndarray | None) -> np.ndarray:
+    """Which pieces to flip: closed ones with negative volume, open ones facing away from ``toward``."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    centre = vertices.mean(axis=0)
+    volume = np.bincount(piece, weights=np.einsum("ij,ij->i", a - centre, np.cross(b - centre, c - centre)),
+                         minlength=n_pieces)
+    flip = closed & (volume < 0)
+    if toward is not None:
+        area_normal = np.cross(b - a, c - a)
+        facing = np.bincount(piece, weights=area_normal @ toward, minlength=n_pieces)
+        total = np.bincount(piece, weights=np.linalg.norm(area_normal, axis=1), minlength=n_pieces)
+        flip |= ~closed & (facing < -1e-6 * total)
+    return flip
+
+
+def closed_faces(faces: np.ndarray) -> np.ndarray:
+    """Whether each face belongs to a closed piece of the mesh, (m,) bool."""
+    edges = mesh_edges(faces)
+    n_pieces, piece = face_components(len(faces), face_pairs(faces, edges)[0])
+    return _closed_pieces(edges, piece, n_pieces)[piece]
+
+
+def vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Area-weighted vertex normals (n, 3), unit (zero where no face touches a vertex)."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    cross = np.cross(b - a, c - a)
+    summed = np.zeros_like(vertices)
+    for k in range(3):
+        np.add.at(summed, faces[:, k], cross)
+    return summed / np.maximum(np.linalg.norm(summed, axis=1), 1e-300)[:, None]
+
+
+def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float) -> np.ndarray:
+    """Unit vertex normals (n, 3) averaged over about ``length_mm`` along the surface.
+
+    The system is symmetric positive definite; conjugate gradients with a diagonal
+    preconditioner solve it in time about linear in the mesh size (a direct factorisation's
+    fill-in grows faster on large scans)."""
+    import potpourri3d as pp3d
+    from scipy.sparse import diags
+    from scipy.sparse.linalg import LinearOperator, cg
+
+    raw = vertex_normals(vertices, faces)
+    if length_mm <= 0:
+        return raw
+    laplacian = pp3d.cotan_laplacian(vertices, faces, denom_eps=1e-12)
+    mass = pp3d.vertex_areas(vertices, faces)
+    system = (diags(mass) + 0.5 * length_mm**2 * laplacian).tocsr()
+    diagonal = system.diagonal()
+    jacobi = LinearOperator(system.shape, matvec=lambda x: x / diagonal, dtype=float)
+    smoothed = np.column_stack([cg(system, mass * raw[:, k], x0=raw[:, k], rtol=SMOOTHING_RTOL, maxiter=10_000,
+                                   M=jacobi)[0] for k in range(3)])
+    norm = np.linalg.norm(smoothed, axis=1)
+    bad = ~(norm > 1e-9)
+    smoothed[bad], norm[bad] = raw[bad], 1.0
+    return smoothed / norm[:, None]
+
+
+def largest_angle_deg(vertex_normals_: np.ndarray, faces: np.ndarray, normals_of_faces: np.ndarray) -> float:
+    """Largest angle between a vertex normal and the normal of a face around that vertex."""
+    cos = np.einsum("ijk,ik->ij", vertex_normals_[faces], normals_of_faces)
+    return float(np.degrees(np.arccos(np.clip(cos.min(), -1.0, 1.0)))) if len(faces) else 0.0
+
+
+def kept_outward(points: np.ndarray, normals: np.ndarray, boxes: TriangleBoxes, face_n: np.ndarray,
+                 tolerance: float) -> tuple[np.ndarray, int]:
+    """Unit normals at points made to leave the (outward-wound) part: a normal whose first step
+    (``tolerance`` long) goes behind the faces touching its point (the floor's normal at the foot
+    of an overhanging wall, smoothing across a concave crease it cannot follow) becomes the mean
+    of the touching faces' normals, or failing that the normal of the nearest face to that step.
+    ``boxes`` holds the part's faces, ``face_n`` their unit outward normals. Returns the normals
+    and how many were changed."""
+    owner, face, distance = boxes.touching(points, tolerance)
+    keep = distance <= tolerance
+    owner, face = owner[keep], face[keep]
+    bad = np.flatnonzero(_behind(points + tolerance * normals, owner, face, boxes.triangles, face_n, len(points)))
+    if not len(bad):
+        return normals, 0
+    fixed = normals.copy()
+    for i in bad.tolist():  # few points: at concave creases and the feet of walls
+        touching = face_n[face[owner == i]]
+        mean = touching.sum(axis=0)
+        mean /= max(float(np.linalg.norm(mean)), 1e-300)
+        fixed[i] = mean if (touching @ mean).min() > 0 else touching[np.argmax(touching @ normals[i])]
+    return fixed, len(bad)
+
+
+def _behind(probes: np.ndarray, owner: np.ndarray, face: np.ndarray, triangles: np.ndarray, face_n: np.ndarray,
+            count: int) -> np.ndarray:
+    """Whether each probe lies behind the nearest of its faces (ties at an edge or a vertex
+    judged by the sum of the tied faces' normals, a pseudo-normal), (count,) bool."""
+    import trimesh
+
+    closest = trimesh.triangles.closest_point(triangles[face], probes[owner])
+    gap = np.linalg.norm(probes[owner] - closest, axis=1)
+    best = np.full(count, np.inf)
+    np.minimum.at(best, owner, gap)
+    tied = gap <= best[owner] * (1 + 1e-6) + 1e-12
+    pseudo = np.zeros((count, 3))
+    np.add.at(pseudo, owner[tied], face_n[face[tied]])
+    foot = np.zeros((count, 3))
+    foot[owner[tied]] = closest[tied]
+    side = np.einsum("ij,ij->i", probes - foot, pseudo)
+    has = np.isfinite(best)
+    return has & (side < 0)

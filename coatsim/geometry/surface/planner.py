@@ -1,0 +1,320 @@
+"""Planning passes on a part: ``plan(part, options) -> SurfacePaths``.
+
+1. The part is wound consistently and outward (an open scan toward the gun's side) and refined
+   so that no edge exceeds the smoothing length (or 1/200 of the part).
+2. The region is selected by its face normals (facing, box or all; only what the gun sees) and
+   refined to edges of at most ``max_edge_mm`` (a quarter of the spacing by default); its normals
+   are smoothed over the region and over the surface running on past its border (up to two
+   smoothing lengths, not across a sharp edge, region.smoothing_ring); it is split into
+   connected pieces (islands smaller than a spacing squared are dropped) and the distance to its
+   border is measured along the surface.
+3. Each piece gets the pattern's field and levels (raster, geodesic, boundary); the level curves
+   lose the edge band and become passes in spraying order with lead-in and lead-out.
+4. The gaps between passes and the coverage are measured along the surface, and the result is
+   checked independently (``verify``) before it is returned.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from coatsim.core import defaults
+from coatsim.core.errors import EmptyRegionOfInterest, InputError
+from coatsim.geometry.surface.boundary import boundary_piece
+from coatsim.geometry.surface.boxes import SmallTriangles, TriangleBoxes
+from coatsim.geometry.surface.contours import level_curves
+from coatsim.geometry.surface.distance import Marching
+from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
+from coatsim.geometry.surface.mesh import Part
+from coatsim.geometry.surface.normals import (
+    Orientation,
+    closed_faces,
+    face_normals,
+    kept_outward,
+    largest_angle_deg,
+    orient,
+    smooth_normals,
+)
+from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
+from coatsim.geometry.surface.piece import Piece
+from coatsim.geometry.surface.raster import raster_levels
+from coatsim.geometry.surface.refine import refined
+from coatsim.geometry.surface.region import (
+    Everything,
+    Facing,
+    RegionSpec,
+    check_region,
+    default_toward,
+    principal_axes,
+    select_faces,
+    sign_fixed,
+    smoothing_ring,
+    unit_vector,
+)
+from coatsim.geometry.surface.spacing import measure, ripple_pct, spacing_for_ripple
+from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
+from coatsim.geometry.surface.topology import (
+    border_vertices,
+    face_components,
+    face_pairs,
+    manifold_split,
+    mesh_edges,
+    submesh,
+)
+from coatsim.geometry.surface.verify import verify
+
+Pattern = Literal["raster", "geodesic", "boundary"]
+#: the whole part is refined to at most max(smoothing length, extent / this) before selection
+SELECTION_CELLS = 200.0
+#: normals are smoothed over the surface running on past the region this many smoothing lengths
+RING_SMOOTHING_LENGTHS = 2.0
+#: a face touches a pass point within this fraction of the part's extent
+TOUCH_FRACTION = 1e-7
+
+
+@dataclass(frozen=True)
+class PlanOptions:
+    """What to plan. The footprint's standard deviation sets the defaults: spacing 2 sigma
+    (ripple 2.9 %) unless ``spacing_mm`` or ``ripple_pct`` is given, normals smoothed over sigma,
+    lead-in/out of 3 sigma. ``step_direction`` (raster) is the planes' normal (default: the
+    region's middle principal axis); ``start`` (geodesic) defaults to the region's border."""
+
+    footprint_sigma_mm: float
+    standoff_mm: float
+    pattern: Pattern = defaults.PLAN_PATTERN
+    spacing_mm: float | None = None
+    ripple_pct: float | None = None
+    step_direction: tuple[float, float, float] | None = None
+    start: Start = field(default_factory=FromBoundary)
+    region: RegionSpec = field(default_factory=Facing)
+    margin_mm: float | None = None
+    edge_band_mm: float = defaults.PLAN_EDGE_BAND_MM
+    order: Order = defaults.PLAN_ORDER
+    max_edge_mm: float | None = None
+    pose: tuple[float, float, float, float, float, float] = (0.0,) * 6
+
+
+@dataclass(frozen=True)
+class _Settings:
+    spacing_mm: float
+    margin_mm: float
+    max_edge_mm: float
+    smoothing_mm: float
+
+
+def _positive(name: str, value: float, allow_zero: bool = False) -> float:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and (value > 0 or (allow_zero and value == 0))):
+        raise InputError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, found {value!r}",
+                         parameters=(name,))
+    return float(value)
+
+
+def _settings(o: PlanOptions) -> _Settings:
+    """The options checked, with their defaults filled in."""
+    sigma = _positive("footprint_sigma_mm", o.footprint_sigma_mm)
+    _positive("standoff_mm", o.standoff_mm)
+    if o.pattern not in PATTERNS:
+        raise InputError(f"pattern must be one of {', '.join(PATTERNS)}, found {o.pattern!r}", parameters=("pattern",))
+    if o.order not in ORDERS:
+        raise InputError(f"order must be one of {', '.join(ORDERS)}, found {o.order!r}", parameters=("order",))
+    if o.spacing_mm is not None and o.ripple_pct is not None:
+        raise InputError("give spacing_mm or ripple_pct, not both", parameters=("spacing_mm", "ripple_pct"))
+    if o.step_direction is not None:
+        if o.pattern != "raster":
+            raise InputError("step_direction applies to the raster pattern", parameters=("step_direction", "pattern"))
+        unit_vector(o.step_direction, "step_direction", "step_direction")
+    if not isinstance(o.start, FromBoundary) and o.pattern != "geodesic":
+        raise InputError("start applies to the geodesic pattern", parameters=("start", "pattern"))
+    check_region(o.region)
+    if len(o.pose) != 6 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in o.pose):
+        raise InputError("pose must be six finite numbers x, y, z (mm), o, a, t (deg)", parameters=("pose",))
+    if o.spacing_mm is not None:
+        spacing = _positive("spacing_mm", o.spacing_mm)
+    elif o.ripple_pct is not None:
+        spacing = spacing_for_ripple(o.ripple_pct, sigma)
+    else:
+        spacing = defaults.PLAN_SPACING_SIGMAS * sigma
+    margin = defaults.PLAN_MARGIN_SIGMAS * sigma if o.margin_mm is None else _positive("margin_mm", o.margin_mm, True)
+    _positive("edge_band_mm", o.edge_band_mm, True)
+    max_edge = (spacing / defaults.PLAN_EDGES_PER_SPACING if o.max_edge_mm is None
+                else _positive("max_edge_mm", o.max_edge_mm))
+    return _Settings(spacing, margin, max_edge, sigma)
+
+
+class _Clock:
+    """CPU time of this process per stage (reported on stderr by the command, never written to
+    the file)."""
+
+    def __init__(self) -> None:
+        self.marks: list[tuple[str, float]] = []
+        self._last = time.process_time()
+
+    def lap(self, name: str) -> None:
+        now = time.process_time()
+        self.marks.append((name, now - self._last))
+        self._last = now
+
+
+def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
+                 notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``) and
+    smoothed unit vertex normals (smoothed over the region and the surface running on past it);
+    and the part's own faces wound outward."""
+    oriented = orient(part.vertices_mm, part.faces, None)
+    toward = _toward(o.region, part.vertices_mm, oriented)
+    oriented = orient(part.vertices_mm, part.faces, toward)
+    notes.extend(oriented.notes)
+    if oriented.flipped:
+        notes.append(f"turned {oriented.flipped} of {len(part.faces)} triangles to a consistent outward winding")
+    coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
+    v, f, _ = refined(part.vertices_mm, oriented.faces, coarse, part.file, "use a wider footprint or decimate the part")
+    mask = select_faces(v, f, face_normals(v, f)[0], o.region, toward, s.smoothing_mm)
+    if not mask.any():
+        raise EmptyRegionOfInterest(f"no face of the part that the gun sees lies in the region "
+                                    f"{describe_region(o.region, toward)}; choose another region",
+                                    parameters=("region",))
+    both = mask | smoothing_ring(v, f, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
+    sv, sf, _ = submesh(v, f, both)
+    sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
+                             "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm"))
+    normals = smooth_normals(sv, sf, s.smoothing_mm)
+    rv, rf, parent = submesh(sv, sf, inside.astype(bool))
+    # from here on the region is manifold: a bow-tie vertex or a non-manifold edge is split
+    rf, copies = manifold_split(rf)
+    if len(copies) > len(rv):
+        notes.append(f"split {len(copies) - len(rv)} vertices where the region is not manifold (bow-tie vertices, "
+                     "edges with more than two triangles); the region's border runs along them")
+    return rv[copies], rf, normals[parent][copies], oriented.faces
+
+
+def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
+    """The gun's side: the facing direction, or the part's default (see region.default_toward)."""
+    if isinstance(region, Facing) and region.direction is not None:
+        return unit_vector(region.direction, "region facing direction", "region")
+    return default_toward(vertices, oriented.faces, closed_faces(oriented.faces))
+
+
+def describe_region(region: RegionSpec, toward: np.ndarray) -> str:
+    """The region in words, for messages."""
+    if isinstance(region, Everything):
+        return "all"
+    if isinstance(region, Facing):
+        return f"facing ({', '.join(f'{x:.3g}' for x in toward)}) within {region.max_angle_deg:g} deg"
+    return f"box {tuple(region.low_mm)} .. {tuple(region.high_mm)}"
+
+
+def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
+            notes: list[str]) -> tuple[list[Piece], float, float]:
+    """The region's connected pieces (largest first, small islands dropped), with their normals
+    and border distances; also the region's area and the largest normal angle."""
+    face_n, face_area = face_normals(rv, rf)
+    angle = largest_angle_deg(normals, rf, face_n)
+    edges = mesh_edges(rf)
+    on_border = border_vertices(len(rv), edges)
+    count, label = face_components(len(rf), face_pairs(rf, edges)[0])
+    area = np.bincount(label, weights=face_area, minlength=count)
+    small = area < s.spacing_mm**2
+    if small.any():
+        notes.append(f"left out {int(small.sum())} island(s) of the region smaller than a spacing squared "
+                     f"({float(area[small].sum()):.4g} mm2 in all)")
+    pieces = []
+    for k in sorted(np.flatnonzero(~small), key=lambda k: (-area[k], k)):
+        v, f, parent = submesh(rv, rf, label == k)
+        marching = Marching(v, f)
+        border = marching.distance(source_vertices=np.flatnonzero(on_border[parent]))
+        pieces.append(Piece(v, f, normals[parent], border, marching=marching, surface=SmallTriangles(v, f)))
+    if not pieces:
+        raise EmptyRegionOfInterest("every piece of the region is smaller than a spacing squared; "
+                                    "use a smaller spacing_mm or a larger region", parameters=("spacing_mm", "region"))
+    return pieces, float(face_area.sum()), angle
+
+
+def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarray | None) -> list[Piece]:
+    """Each piece with its pattern's field and levels (pieces a geodesic start misses are left out)."""
+    band = o.edge_band_mm
+    if o.pattern == "raster":
+        return [p.with_field(p.vertices @ step, raster_levels(p.vertices, p.faces, p.normals, step, p.inside(band),
+                                                             s.spacing_mm, p.surface)) for p in pieces]
+    if o.pattern == "boundary":
+        return [boundary_piece(p, s.spacing_mm, band) for p in pieces]
+    points = (assign_points(pieces, o.start, s.spacing_mm) if isinstance(o.start, FromPoints)
+              else [None] * len(pieces))
+    done = [geodesic_piece(p, o.start, s.spacing_mm, band, pts) for p, pts in zip(pieces, points)]
+    if all(p is None for p in done):
+        raise EmptyRegionOfInterest("the start does not touch the region; give a plane that cuts it or points on it "
+                                    "as the start", parameters=("start",))
+    return [p for p in done if p is not None]
+
+
+def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
+    """The piece's level curves without the edge band, tagged with their level's rank."""
+    return [Trace(part, rank, index) for rank, level in enumerate(piece.levels)
+            for curve in level_curves(piece.vertices, piece.faces, piece.field, float(level))
+            for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces)]
+
+
+def _passes(pieces: list[Piece], traces: list[Trace], part: Part, outward_faces: np.ndarray, o: PlanOptions,
+            s: _Settings, notes: list[str]) -> tuple[Pass, ...]:
+    """Passes in spraying order with their normals (kept out of the part's faces at their points,
+    normals.kept_outward) and leads."""
+    boxes = TriangleBoxes(part.vertices_mm, outward_faces)
+    face_n = face_normals(part.vertices_mm, outward_faces)[0]
+    passes, turned = [], 0
+    for curve, index in spraying_order(traces, o.order):
+        piece = pieces[index]
+        normals = curve.sample(piece.faces, piece.normals)
+        normals, changed = kept_outward(curve.points, normals / np.linalg.norm(normals, axis=1)[:, None], boxes,
+                                        face_n, TOUCH_FRACTION * part.extent_mm)
+        turned += changed
+        if curve.closed:
+            lead_in = lead_out = np.zeros((0, 3))
+        else:
+            lead_in, lead_out = leads(curve.points, normals, s.margin_mm, 0.5 * s.spacing_mm)
+        passes.append(Pass(curve.points, normals, bool(curve.closed), lead_in, lead_out))
+    if turned:
+        notes.append(f"{turned} normal(s) that leaned into a face at their point (a crease sharper than the smoothing "
+                     "can follow, the foot of an overhanging wall) turned to the mean of the faces there")
+    return tuple(passes)
+
+
+def plan(part: Part, options: PlanOptions) -> SurfacePaths:
+    """Passes covering the region of ``part`` (see the module docstring)."""
+    s = _settings(options)
+    clock, notes = _Clock(), list(part.notes)
+    rv, rf, normals, outward_faces = _region_mesh(part, options, s, notes)
+    clock.lap("region and normals")
+    pieces, region_area, angle = _pieces(rv, rf, normals, s, notes)
+    clock.lap("border")
+    step = None
+    if options.pattern == "raster":
+        given = options.step_direction
+        step = (unit_vector(given, "step_direction", "step_direction") if given is not None
+                else sign_fixed(principal_axes(rv, rf)[1]))
+    pieces = _patterned(pieces, options, s, step)
+    clock.lap(options.pattern)
+    traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
+    gaps, covered = [np.zeros(0)], 0.0
+    for k, p in enumerate(pieces):
+        measured = measure(p, [t for t in traces if t.piece == k], s.spacing_mm)
+        gaps.append(measured.gaps_mm)
+        covered += measured.covered_mm2
+    clock.lap("measure")
+    passes = _passes(pieces, traces, part, outward_faces, options, s, notes)
+    if not passes:
+        raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm",
+                                    parameters=("edge_band_mm",))
+    gap = np.concatenate(gaps)
+    spacing_stats = (float(gap.min()), float(np.median(gap)), float(gap.max())) if len(gap) else (None,) * 3
+    stats = PlanStats(len(passes), region_area, min(1.0, covered / region_area), *spacing_stats, s.smoothing_mm, angle)
+    info = MeshInfo(part.file, part.sha256, len(part.vertices_mm), len(part.faces), tuple(map(float, options.pose)))
+    paths = SurfacePaths(info, options.pattern, s.spacing_mm, options.standoff_mm,
+                         ripple_pct(s.spacing_mm, options.footprint_sigma_mm), passes, stats, tuple(notes))
+    verify(part, paths)
+    clock.lap("verify")
+    return SurfacePaths(paths.mesh, paths.pattern, paths.spacing_mm, paths.standoff_mm, paths.ripple_pct,
+                        paths.passes, paths.stats, paths.notes, tuple(clock.marks))

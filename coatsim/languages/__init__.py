@@ -1,0 +1,1 @@
+"""Robot languages: a registry of plug-ins, one package per language."""

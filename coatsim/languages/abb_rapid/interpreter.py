@@ -1,0 +1,513 @@
+"""RAPID modules -> the ToolPath the robot executes, with the Reading check-program needs.
+
+Runs the entry routine (``main``, or the one named) with the routines it calls, its data
+(``CONST``, ``PERS``, ``VAR``; routine data local to each call), ``IF``/``FOR``/``WHILE``/``TEST``,
+labels and ``GOTO``, user ``FUNC``s. Motions follow :mod:`.motion`; ``SetDO``/``Set``/``Reset``
+switch outputs, each numbered by the digits its name ends with (``do1``, ``DO_12``) or by a
+``variables`` entry ``NAME=number``. ``WaitTime`` is a rest at the last point, ``WaitDI``/
+``WaitUntil`` wait for the inputs given (assumed met otherwise, with a warning). Interrupts
+(``CONNECT``, ``ISignalDI``) and ``TRAP`` routines are noted, not run; error handlers are not run.
+What a statement reads that no file gives (data of another module, a routine not loaded) skips
+the statement and is listed; a step budget stops a program that never ends.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.geometry.space.pose import Pose
+from coatsim.languages.abb_rapid import data as d
+from coatsim.languages.abb_rapid import syntax as s
+from coatsim.languages.abb_rapid.evaluate import Expressions, Unknown
+from coatsim.languages.abb_rapid.motion import MOVES, Motions
+from coatsim.languages.abb_rapid.names import MAX_NAME_LENGTH
+from coatsim.languages.abb_rapid.parser import parse_rapid
+from coatsim.languages.script import nodes as n
+from coatsim.path.language import ReadOptions
+from coatsim.path.process_record import decode as decode_record
+from coatsim.path.reading import MoveSource, OutputSwitch, Reading
+from coatsim.path.toolpath import Dwell, ToolPath
+
+MAX_STEPS = 1_000_000
+MAX_CALL_DEPTH = 50
+RECORD = re.compile(r"^\s*!\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
+_IGNORED = {"confl", "confj", "singarea", "accset", "pathacclim", "tpwrite", "tperase", "tpshow", "errwrite",
+            "corrclear", "corrcon", "corrdiscon", "waitrob", "idelete", "isleep", "iwatch", "iwatch", "ienable",
+            "idisable", "clkreset", "clkstart", "clkstop", "gripload", "worldaccim", "cornerpathwarn", "setsysdata",
+            "pathresol", "motionsup", "triggio", "triggequip", "triggint", "triggcheckio", "stoppmove",
+            "startmove", "clearpath", "storepath", "restopath", "softact", "softdeact", "tuneservo", "retry",
+            "trynext", "raise", "skipwarn", "load", "unload", "waitload", "eraseModule".lower(), "sectl", "conveyor"}
+_INTERRUPTS = {"isignaldi", "isignaldo", "itimer", "isignalai", "isignalao", "isignalgi", "isignalgo", "ipers",
+               "ierror", "connect"}
+_UNSIMULATED = {"searchl", "searchc", "searchj", "movelsync", "movejsync", "movecsync", "moveext", "csspdeact",
+                "csspdeact", "indamove", "indcmove", "inddmove", "indrmove", "indreset", "pulsedo", "tpreadfk",
+                "tpreadnum", "tpreaddnum"}
+
+
+class _Return(Exception):
+    def __init__(self, value: Any) -> None:
+        self.value = value
+
+
+class _Stop(Exception):
+    def __init__(self, how: str) -> None:
+        self.how = how
+
+
+class _Goto(Exception):
+    def __init__(self, label: str) -> None:
+        self.label = label
+
+
+class Interpreter(Expressions, Motions):
+    """One run of a RAPID program."""
+
+    def __init__(self, modules: Sequence[s.Module], options: ReadOptions) -> None:
+        self.modules, self.options = modules, options
+        self.routines: dict[str, s.Routine] = {}
+        self.globals: dict[str, tuple[str, Any]] = {}
+        self.frames: list[dict[str, tuple[str, Any]]] = []
+        self.moves: list = []
+        self.sources: list[MoveSource] = []
+        self.move_frames: list[Pose] = []
+        self.dwells: list[Dwell] = []
+        self.warnings: dict[str, str] = {}
+        self.switches: list[OutputSwitch] = []
+        self.outputs: set[int] = set()
+        self.skipped: list[str] = []
+        self.unsimulated: list[str] = []
+        self.unknowns: dict[str, str] = {}
+        self.spraying = False
+        self.steps = 0
+        self.line, self.source, self.routine = 0, modules[0].source, ""
+        self.init_motion()
+        for m in modules:
+            for r in m.routines:
+                key = r.name.lower()
+                if key in self.routines:
+                    other = self.routines[key]
+                    raise InputError(f"{r.source}:{r.line}: routine {r.name} is also defined in {other.source}:"
+                                     f"{other.line}")
+                self.routines[key] = r
+        for m in modules:
+            self.source = m.source
+            for decl in m.data:
+                self.globals[decl.name.lower()] = self._declare(decl)
+
+    # --- messages -------------------------------------------------------------------------
+    def where(self, line: Optional[int] = None) -> str:
+        return f"{self.source}:{self.line if line is None else line}"
+
+    def error(self, message: str) -> InputError:
+        return InputError(f"{self.where()}: {message}")
+
+    def failure(self, message: str) -> ExecutionError:
+        return ExecutionError(f"{self.where()}: {message}")
+
+    def warn(self, key: str, message: str) -> None:
+        self.warnings.setdefault(key, f"{self.where()}: {message}")
+
+    # --- data -----------------------------------------------------------------------------
+    def _declare(self, decl: s.DataDecl) -> tuple[str, Any]:
+        self.line = decl.line
+        if decl.dims:
+            sizes = [int(self._num(self.eval(e))) for e in decl.dims]
+            value: Any = self.eval(decl.value) if decl.value is not None else None
+            return decl.type, self._array(decl.type, sizes, value)
+        value = d.default(decl.type) if decl.value is None else d.coerce(decl.type, self.eval(decl.value), self.error)
+        return decl.type, value
+
+    def _array(self, type_: str, sizes: list[int], value: Any) -> list:
+        if value is None:
+            return [self._array(type_, sizes[1:], None) if len(sizes) > 1 else d.default(type_) for _ in range(sizes[0])]
+        if not isinstance(value, list) or len(value) != sizes[0]:
+            raise self.error(f"an array of {sizes[0]} where {d._shown(value)} is given")
+        return [self._array(type_, sizes[1:], v) if len(sizes) > 1 else d.coerce(type_, v, self.error) for v in value]
+
+    def lookup(self, name: str, line: int) -> Any:
+        key = name.lower()
+        for scope in (self.frames[-1] if self.frames else {}, self.globals):
+            if key in scope:
+                return scope[key][1]
+        if key in d.PREDEFINED:
+            return d.PREDEFINED[key][1]
+        for given, text in self.options.variables.items():
+            if given.lower() == key:
+                return self._given(given, text)
+        raise Unknown(name, line)
+
+    def _given(self, name: str, text: Any) -> Any:
+        if isinstance(text, (int, float)):
+            return float(text)
+        from coatsim.languages.script.parse import Stream
+        from coatsim.languages.script.tokens import NEWLINE, tokenize
+        from coatsim.languages.abb_rapid.parser import _aggregate, _argument
+
+        tokens = [t for t in tokenize(str(text), s.SYNTAX, f"{name}=") if t.kind != NEWLINE]
+        return self.eval(Stream(tokens, f"value of {name}", s.GRAMMAR, _aggregate, _argument).expression())
+
+    def _assign(self, target: n.Expr, value: Any) -> None:
+        path: list = []
+        e = target
+        while isinstance(e, (n.Field, n.Index)):
+            path.append(e)
+            e = e.base
+        if not isinstance(e, n.Name):
+            raise self.error("the left of := must be data")
+        key = e.name.lower()
+        scope = self.frames[-1] if self.frames and key in self.frames[-1] else self.globals
+        if key not in scope:
+            raise Unknown(e.name, target.line)
+        type_, current = scope[key]
+        if not path:
+            scope[key] = (type_, d.coerce(type_, value, self.error) if not isinstance(current, list) else value)
+            return
+        holder = current
+        for step in reversed(path[1:]):
+            holder = self._child(holder, step)
+        last = path[0]
+        if isinstance(last, n.Field):
+            if not isinstance(holder, d.Record) or last.field.lower() not in holder.fields:
+                raise self.error(f"no component {last.field}")
+            field_type = dict(d.RECORDS[holder.type])[last.field.lower()]
+            holder.fields[last.field.lower()] = d.coerce(field_type, value, self.error)
+        else:
+            k = int(self._num(self.eval(last.index[-1])))
+            if not isinstance(holder, list) or not 1 <= k <= len(holder):
+                raise self.error(f"index {k} out of the array")
+            holder[k - 1] = d.coerce(type_, value, self.error)
+
+    def _child(self, holder: Any, step: n.Expr) -> Any:
+        if isinstance(step, n.Field):
+            return holder.fields[step.field.lower()]
+        for i in step.index:
+            holder = holder[int(self._num(self.eval(i))) - 1]
+        return holder
+
+    # --- signals --------------------------------------------------------------------------
+    def signal_number(self, name: str) -> Optional[int]:
+        for given, text in self.options.variables.items():
+            if given.lower() == name.lower():
+                try:
+                    return int(float(text))
+                except (TypeError, ValueError):
+                    return None
+        m = re.search(r"(\d+)$", name)
+        return int(m.group(1)) if m else None
+
+    def _signal_name(self, e: n.Expr) -> str:
+        if isinstance(e, n.Name):
+            return e.name
+        value = self.eval(e)
+        if isinstance(value, str):
+            return value
+        raise self.error("expected a signal")
+
+    def set_output(self, signal: n.Expr, on: bool, call, text: str) -> None:
+        name = self._signal_name(signal)
+        number = self.signal_number(name)
+        gun = number == self.options.gun_signal
+        if number is not None:
+            self.outputs.add(number)
+        if gun:
+            self.spraying = on
+        if not any(sw.line == call.line and sw.source == self.source for sw in self.switches):
+            self.switches.append(OutputSwitch(self.source, call.line, text + (f" (gun {'on' if on else 'off'})"
+                                                                              if gun else "")))
+
+    def signal_state(self, e: n.Expr, function: str) -> bool:
+        name = self._signal_name(e)
+        number = self.signal_number(name)
+        if function == "doutput":
+            return self.spraying if number == self.options.gun_signal else False
+        if number is not None and number in self.options.inputs:
+            return bool(self.options.inputs[number])
+        self.unknowns.setdefault(name.lower(), f"{self.where()}: input {name} (taken as off)")
+        return False
+
+    # --- running --------------------------------------------------------------------------
+    def run(self, entry: str) -> None:
+        routine = self.routines.get(entry.lower())
+        if routine is None:
+            procs = [r.name for r in self.routines.values() if r.kind == "PROC"]
+            raise InputError(f"{self.modules[0].source}: no PROC {entry} in the files loaded"
+                             + (f" (routines: {', '.join(procs)})" if procs else ""))
+        self.main = routine
+        try:
+            self.call(routine, ())
+        except _Stop as stop:
+            self.stopped = stop.how
+
+    def call(self, routine: s.Routine, args: tuple[n.Arg, ...]) -> Any:
+        if len(self.frames) >= MAX_CALL_DEPTH:
+            raise self.failure(f"calls nested deeper than {MAX_CALL_DEPTH} (a routine calling itself?): {routine.name}")
+        frame = self._bind(routine, args)
+        saved = (self.source, self.routine)
+        self.frames.append(frame)
+        self.source, self.routine = routine.source, routine.name
+        try:
+            for decl in routine.data:
+                frame[decl.name.lower()] = self._declare(decl)
+            self.block(routine.body)
+        except _Return as ret:
+            return ret.value
+        finally:
+            self.frames.pop()
+            self.source, self.routine = saved
+        if routine.kind == "FUNC":
+            raise self.failure(f"FUNC {routine.name} ends without RETURN")
+        return None
+
+    def _bind(self, routine: s.Routine, args: tuple[n.Arg, ...]) -> dict:
+        required = [p for p in routine.params if not p.optional]
+        positional = [a for a in args if a.name is None]
+        if len(positional) != len(required):
+            raise self.error(f"{routine.name} takes {len(required)} argument{'s' if len(required) != 1 else ''} "
+                             f"({', '.join(p.name for p in required)}), got {len(positional)}")
+        frame: dict[str, tuple[str, Any]] = {}
+        for p, a in zip(required, positional):
+            frame[p.name.lower()] = (p.type, d.coerce(p.type, self.eval(a.value), self.error))
+        optional = {p.name.lower(): p for p in routine.params if p.optional}
+        self._present = getattr(self, "_present", [])
+        for a in args:
+            if a.name is None:
+                continue
+            p = optional.get(a.name.lower())
+            if p is None:
+                raise self.error(f"{routine.name} has no optional argument \\{a.name}")
+            value = True if a.value is None else d.coerce(p.type, self.eval(a.value), self.error)
+            frame[p.name.lower()] = (p.type, value)
+        return frame
+
+    def present(self, e: n.Expr) -> bool:
+        return isinstance(e, n.Name) and bool(self.frames) and e.name.lower() in self.frames[-1]
+
+    def block(self, body: tuple) -> None:
+        labels = {st.name.lower(): k for k, st in enumerate(body) if isinstance(st, s.Label)}
+        k = 0
+        while k < len(body):
+            try:
+                self.statement(body[k])
+                k += 1
+            except _Goto as jump:
+                if jump.label.lower() not in labels:
+                    raise
+                k = labels[jump.label.lower()]
+
+    def statement(self, st) -> None:
+        self.steps += 1
+        if self.steps > MAX_STEPS:
+            raise self.failure(f"more than {MAX_STEPS} statements run: a loop that never ends?")
+        self.line = st.line
+        try:
+            self._execute(st)
+        except Unknown as unknown:
+            self.unknowns.setdefault(unknown.name.lower(), f"{self.where(unknown.line)}: {unknown.name} (not declared "
+                                                           "in the files loaded)")
+            self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, which no file declares")
+
+    def _execute(self, st) -> None:
+        if isinstance(st, s.Assign):
+            self._assign(st.target, self.eval(st.value))
+        elif isinstance(st, s.ProcCall):
+            self.instruction(st)
+        elif isinstance(st, s.If):
+            for cond, body in st.branches:
+                if self._bool(self.eval(cond)):
+                    self.block(body)
+                    return
+            self.block(st.orelse)
+        elif isinstance(st, s.For):
+            self._for(st)
+        elif isinstance(st, s.While):
+            while self._bool(self.eval(st.cond)):
+                self.block(st.body)
+                self.line = st.line
+        elif isinstance(st, s.Test):
+            value = self.eval(st.value)
+            for values, body in st.cases:
+                if any(self.eval(v) == value for v in values):
+                    self.block(body)
+                    return
+            if st.default is not None:
+                self.block(st.default)
+        elif isinstance(st, s.Goto):
+            raise _Goto(st.label)
+        elif isinstance(st, s.Return):
+            raise _Return(None if st.value is None else self.eval(st.value))
+        elif isinstance(st, s.Connect):
+            self.warn("interrupt", f"interrupts (CONNECT ... WITH {st.trap}) are noted, not run: TRAP routines do not "
+                                   "run in the twin")
+
+    def _for(self, st: s.For) -> None:
+        start, stop = self._num(self.eval(st.start)), self._num(self.eval(st.stop))
+        step = self._num(self.eval(st.step)) if st.step is not None else (1.0 if stop >= start else -1.0)
+        if step == 0:
+            raise self.error("FOR ... STEP 0 never ends")
+        frame = self.frames[-1]
+        key = st.var.lower()
+        saved = frame.get(key)
+        value = start
+        while (value <= stop) if step > 0 else (value >= stop):
+            frame[key] = ("num", value)
+            self.block(st.body)
+            self.line = st.line
+            value += step
+        if saved is not None:
+            frame[key] = saved
+        else:
+            frame.pop(key, None)
+
+    def instruction(self, st: s.ProcCall) -> None:
+        if st.late is not None:
+            self.skipped.append(f"{self.where()}: late-bound call %...% skipped: its routine is named at run time")
+            return
+        name = st.name.lower()
+        positional = [a.value for a in st.args if a.name is None]
+        if name in MOVES:
+            self.motion(st, name)
+        elif name in ("setdo", "set", "reset"):
+            on = {"set": True, "reset": False}.get(name)
+            if on is None:
+                if len(positional) != 2:
+                    raise self.error("SetDO takes a signal and a value")
+                on = self._num(self.eval(positional[1])) != 0
+            if not positional:
+                raise self.error(f"{st.name} takes a signal")
+            self.set_output(positional[0], on, st, _text(st))
+        elif name == "waittime":
+            seconds = self._num(self.eval(positional[0])) if positional else 0.0
+            self.stop_previous()
+            self.dwells.append(Dwell(len(self.moves) - 1, seconds, self.spraying, st.line))
+        elif name in ("waitdi", "waituntil", "waitdo"):
+            self.stop_previous()
+            if name == "waitdi" and len(positional) == 2:
+                state = self.signal_state(positional[0], "dinput")
+                if state != (self._num(self.eval(positional[1])) != 0):
+                    self.warn(f"wait{st.line}", f"{st.name} waits for an input the cell does not set; coatsim goes on "
+                                                "as if it came")
+            elif name == "waituntil" and positional and not self._bool(self.eval(positional[0])):
+                self.warn(f"wait{st.line}", "WaitUntil waits for a condition that is false here; coatsim goes on as if "
+                                            "it came true")
+        elif name == "velset":
+            override, cap = (self._num(self.eval(a)) for a in positional[:2])
+            self.velset = (override, cap)
+        elif name in ("stop", "exit", "break", "systemstop"):
+            self.stop_previous()
+            raise _Stop(f"{self.where()}: {st.name}")
+        elif name in ("setao", "setgo", "pulsedo") and positional:
+            self.set_output(positional[0], True, st, _text(st)) if name == "pulsedo" else None
+            if name == "pulsedo" and self.signal_number(self._signal_name(positional[0])) == self.options.gun_signal:
+                raise self.failure("PulseDO of the gun output: a pulse of the gun is not simulated")
+        elif name in _INTERRUPTS:
+            self.warn("interrupt", f"interrupts ({st.name}) are noted, not run: TRAP routines do not run in the twin")
+        elif name in _IGNORED:
+            pass
+        elif name in self.routines:
+            routine = self.routines[name]
+            if routine.kind == "TRAP":
+                raise self.error(f"{st.name} is a TRAP routine: it runs on an interrupt, not as a call")
+            self.call(routine, st.args)
+        elif name in _UNSIMULATED:
+            where = f"{self.where()}: {st.name} skipped: the twin does not simulate it"
+            self.skipped.append(where)
+            self.unsimulated.append(where)
+        else:
+            self.skipped.append(f"{self.where()}: {st.name} skipped: no routine of that name in the files loaded")
+
+    def call_function(self, call: n.Call) -> Any:
+        value = self.builtin_function(call)
+        if value is not None:
+            return value
+        routine = self.routines.get(call.name.lower())
+        if routine is None or routine.kind != "FUNC":
+            raise Unknown(call.name, call.line)
+        saved = self.line
+        result = self.call(routine, call.args)
+        self.line = saved
+        return d.coerce(routine.type, result, self.error)
+
+    def add_move(self, move, call: s.ProcCall, frame: Pose) -> None:
+        self.moves.append(move)
+        self.sources.append(MoveSource(self.source, self.routine, call.line, call.end_line))
+        self.move_frames.append(frame)
+
+
+def _text(st: s.ProcCall) -> str:
+    from coatsim.languages.abb_rapid.printer import call_text
+
+    return call_text(st)
+
+
+def parse_files(paths: Sequence[Path]) -> tuple[tuple[s.Module, ...], dict[str, str]]:
+    """The modules of every file and each file's text."""
+    if not paths:
+        raise InputError("no program file given")
+    modules, texts = [], {}
+    for p in paths:
+        text = decode_text(read_input_bytes(p, "program"))
+        texts[str(p)] = text
+        modules += parse_rapid(text, str(p))
+    return tuple(modules), texts
+
+
+def read_rapid(paths: Sequence[Path], options: ReadOptions) -> Reading:
+    """Parse and run RAPID files loaded together; the Reading of the entry routine's run."""
+    modules, texts = parse_files(paths)
+    run = Interpreter(modules, options)
+    run.stopped = ""
+    run.run(options.program or "main")
+    main = run.main
+    record = decode_record([(k.strip(), v.strip()) for k, v in RECORD.findall(texts[main.source])], main.source)
+    toolpath = ToolPath(main.name, tuple(run.moves), record, tuple(run.dwells), tuple(run.warnings.values()),
+                        run.moves[-1].settings.tool if run.moves else None)
+    return Reading(
+        toolpath=toolpath, sources=tuple(str(p) for p in paths), program=main.name, program_source=main.source,
+        program_line=main.line, programs=tuple(r.name for r in run.routines.values()),
+        ended=f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}",
+        move_sources=tuple(run.sources), move_frames=tuple(run.move_frames),
+        n_steps=_count(main.body), n_poses=sum(1 for m in modules for x in m.data if x.type in ("robtarget", "jointtarget")),
+        switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(_problems(modules)),
+        unknowns=tuple(run.unknowns.values()), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
+        gun_on_at_end=run.spraying,
+        external_axes=any(_has_axes(v) for v in run.globals.values()),
+    )
+
+
+def _count(body: tuple) -> int:
+    total = 0
+    for st in body:
+        if isinstance(st, s.Label):
+            continue
+        total += 1
+        if isinstance(st, s.If):
+            total += sum(_count(b) for _, b in st.branches) + _count(st.orelse)
+        elif isinstance(st, (s.For, s.While)):
+            total += _count(st.body)
+        elif isinstance(st, s.Test):
+            total += sum(_count(b) for _, b in st.cases) + _count(st.default or ())
+    return total
+
+
+def _has_axes(entry: tuple[str, Any]) -> bool:
+    type_, value = entry
+    if type_ != "robtarget" or not isinstance(value, d.Record):
+        return False
+    return any(abs(v) < d.UNSET_AXIS * 0.999 for v in value.fields["extax"].fields.values())
+
+
+def _problems(modules: Sequence[s.Module]) -> list[str]:
+    """Names longer than RAPID allows; TRAP routines (noted, not run)."""
+    out = []
+    for m in modules:
+        named = [(m.name, m.line, "module")] + [(x.name, x.line, "data") for x in m.data] + \
+            [(r.name, r.line, r.kind) for r in m.routines]
+        out += [f"{m.source}:{line}: {what} name '{name}' is longer than {MAX_NAME_LENGTH} characters"
+                for name, line, what in named if len(name) > MAX_NAME_LENGTH]
+        out += [f"{m.source}:{r.line}: TRAP {r.name} runs on an interrupt; the twin does not run it"
+                for r in m.routines if r.kind == "TRAP"]
+    return out

@@ -1,0 +1,148 @@
+"""Flatten the nested statements of a program into code with jumps, so that GOTO may leave
+(or enter) any block, as on the controller. Each op is a tuple ``(opcode, line, ...)``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from coatsim.core.errors import InputError
+from coatsim.languages.kawasaki_as import ast
+
+EXEC, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, FOR_INIT, FOR_TEST, FOR_NEXT, CASE = range(8)
+
+
+@dataclass(frozen=True)
+class Code:
+    """The ops of one program; ``loops`` names the loop a backward jump closes (for the step
+    budget's message): op index -> (line, what)."""
+
+    ops: tuple[tuple, ...]
+    loops: dict[int, tuple[int, str]]
+
+
+class _Compiler:
+    def __init__(self, program: ast.Program) -> None:
+        self.program = program
+        self.ops: list[list] = []
+        self.labels: dict[str, int] = {}
+        self.label_lines: dict[str, int] = {}
+        self.gotos: list[tuple[int, str, int]] = []  # (op index, label, line)
+        self.exits: list[list[int]] = []  # per open loop: op indices of its EXITs
+        self.loops: dict[int, tuple[int, str]] = {}
+        self.slots = 0
+
+    def emit(self, *op) -> int:
+        self.ops.append(list(op))
+        return len(self.ops) - 1
+
+    def here(self) -> int:
+        return len(self.ops)
+
+    def body(self, statements: tuple[ast.Statement, ...]) -> None:
+        for st in statements:
+            self.statement(st)
+
+    def statement(self, st: ast.Statement) -> None:
+        """Compile one statement: a block into its jumps, anything else into one EXEC."""
+        compile_block = self._BLOCKS.get(type(st))
+        if compile_block is None:
+            self.emit(EXEC, st.line, st)
+        else:
+            compile_block(self, st)
+
+    def _label(self, st: ast.Label) -> None:
+        if st.name in self.labels:
+            raise InputError(f"{self.program.source}:{st.line}: label {st.name} is defined twice in program "
+                             f"'{self.program.name}' (first at line {self.label_lines[st.name]})")
+        self.labels[st.name], self.label_lines[st.name] = self.here(), st.line
+
+    def _goto(self, st: ast.Goto) -> None:
+        index = self.emit(JUMP if st.condition is None else JUMP_IF_TRUE, st.line, st.condition, None)
+        self.gotos.append((index, st.label, st.line))
+
+    def _if(self, st: ast.If) -> None:
+        ends = []
+        for condition, body in st.branches:
+            test = self.emit(JUMP_IF_FALSE, st.line, condition, None)
+            self.body(body)
+            ends.append(self.emit(JUMP, st.line, None, None))
+            self.ops[test][3] = self.here()
+        self.body(st.orelse)
+        for i in ends:
+            self.ops[i][3] = self.here()
+
+    def _while(self, st: ast.While) -> None:
+        top = self.here()
+        test = self.emit(JUMP_IF_FALSE, st.line, st.condition, None)
+        self.loop(st.body)
+        back = self.emit(JUMP, st.end_line, None, top)
+        self.loops[back] = (st.line, "WHILE loop")
+        self.ops[test][3] = self.here()
+        self.close_loop()
+
+    def _do_until(self, st: ast.DoUntil) -> None:
+        top = self.here()
+        self.loop(st.body)
+        back = self.emit(JUMP_IF_FALSE, st.end_line, st.condition, top)
+        self.loops[back] = (st.line, "DO ... UNTIL loop")
+        self.close_loop()
+
+    def _for(self, st: ast.For) -> None:
+        slot = self.slots
+        self.slots += 1
+        self.emit(FOR_INIT, st.line, st, slot)
+        test = self.emit(FOR_TEST, st.line, st, slot, None)
+        self.loop(st.body)
+        back = self.emit(FOR_NEXT, st.end_line, st, slot, test)
+        self.loops[back] = (st.line, "FOR loop")
+        self.ops[test][4] = self.here()
+        self.close_loop()
+
+    def _case(self, st: ast.Case) -> None:
+        case = self.emit(CASE, st.line, st, [], None, None)
+        ends = []
+        for _, body, _ in st.branches:
+            self.ops[case][3].append(self.here())
+            self.body(body)
+            ends.append(self.emit(JUMP, st.line, None, None))
+        self.ops[case][4] = self.here()
+        if st.default is not None:
+            self.body(st.default)
+        self.ops[case][5] = self.here()
+        for i in ends:
+            self.ops[i][3] = self.here()
+
+    def _exit(self, st: ast.Exit) -> None:
+        if not self.exits:
+            raise InputError(f"{self.program.source}:{st.line}: EXIT outside a loop (WHILE, DO, FOR)")
+        self.exits[-1].append(self.emit(JUMP, st.line, None, None))
+
+    _BLOCKS = {ast.Label: _label, ast.Goto: _goto, ast.If: _if, ast.While: _while, ast.DoUntil: _do_until,
+               ast.For: _for, ast.Case: _case, ast.Exit: _exit}
+
+    def loop(self, body: tuple[ast.Statement, ...]) -> None:
+        self.exits.append([])
+        self.body(body)
+
+    def close_loop(self) -> None:
+        for i in self.exits.pop():
+            self.ops[i][3] = self.here()
+
+    def finish(self) -> Code:
+        for index, label, line in self.gotos:
+            if label not in self.labels:
+                raise InputError(f"{self.program.source}:{line}: GOTO {label}: no such label in program "
+                                 f"'{self.program.name}'")
+            target = self.labels[label]
+            self.ops[index][3] = target
+            if target <= index:
+                self.loops[index] = (self.label_lines[label], f"GOTO {label} loop")
+        return Code(tuple(tuple(op) for op in self.ops), self.loops)
+
+
+def compile_program(program: ast.Program) -> Code:
+    """The flat code of ``program``; InputError for a GOTO to a missing label, a label
+    defined twice or an EXIT outside a loop."""
+    c = _Compiler(program)
+    c.body(program.body)
+    return c.finish()

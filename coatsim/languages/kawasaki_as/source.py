@@ -1,0 +1,30 @@
+"""AS source text: bytes -> lines, and the syntax error every reader stage raises.
+
+Controllers and editors save AS files as ASCII with CRLF or LF line ends; comments and strings
+may hold text in a Windows code page (or UTF-8, sometimes with a byte-order mark). Only
+comments and string literals may hold non-ASCII characters, so decoding as UTF-8 when the bytes
+are valid UTF-8 and byte-for-byte (Latin-1) otherwise never changes what a statement means.
+"""
+
+from __future__ import annotations
+
+from coatsim.core.errors import InputError
+
+
+
+class AsSyntaxError(InputError):
+    """An AS program text does not parse; the message is ``source:line:col: ...``."""
+
+
+def syntax_error(source: str, line: int, col: int, message: str) -> AsSyntaxError:
+    return AsSyntaxError(f"{source}:{line}:{col}: {message}")
+
+
+def split_lines(text: str) -> list[str]:
+    """Lines of ``text`` for any of the \\n, \\r\\n and \\r conventions (a BOM dropped)."""
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()
+    return lines

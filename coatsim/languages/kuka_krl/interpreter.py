@@ -1,0 +1,763 @@
+"""KRL routines -> the ToolPath the robot executes, with the Reading check-program needs.
+
+Runs the main routine (the first ``DEF`` of the first file, or the one named) with the routines
+it calls, the ``.dat`` data (``DECL E6POS``/``FRAME``/``POS`` ...), declarations, assignments,
+``IF``/``FOR``/``WHILE``/``LOOP``/``REPEAT``/``SWITCH``/``GOTO``. Motions: ``PTP``, ``LIN``,
+``CIRC aux, end`` (``CA`` not simulated), ``LIN_REL``/``PTP_REL``; a target's missing components
+are the current position's; poses are in ``$BASE`` (``BASE_DATA[n]``, ``BAS(#BASE, n)``) with
+``$TOOL`` (``TOOL_DATA[n]``, ``BAS(#TOOL, n)``); ``A : B`` composes frames. Speed ``$VEL.CP`` in
+m/s (``BAS(#VEL_CP, v)``); a point is an exact stop unless the motion carries ``C_DIS`` (blended
+within ``$APO.CDIS`` mm, cut to half the neighbouring moves; ``C_VEL``, ``C_ORI`` and ``C_PTP``
+are modelled as ``C_DIS``, a warning says so).
+
+Outputs (KUKA System Software 8, "Advance run"): ``$OUT[n] = ...`` stops the advance run, so the
+motion before it ends at rest and the output switches there (approximation is not possible);
+after ``CONTINUE`` it is set in the advance run — the twin switches it as the next motion starts
+and warns that the controller may set it up to ``$ADVANCE`` motions earlier; ``$OUT_C[n]`` and
+``TRIGGER WHEN DISTANCE=0 DELAY=0 DO $OUT[n]=...`` switch as the next motion starts (``DISTANCE=1``:
+as the one after starts, at its start point's approximation), without a stop. ``WAIT SEC`` and
+``WAIT FOR`` stop the advance run (a rest); interrupts and ``TRIGGER WHEN PATH`` are noted.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.geometry.space.pose import Pose
+from coatsim.languages.kuka_krl import values as v
+from coatsim.languages.kuka_krl.blocks import Block, build
+from coatsim.languages.kuka_krl.names import MAX_NAME_LENGTH
+from coatsim.languages.kuka_krl.parser import Line, Routine, parse_krl, stream
+from coatsim.languages.script import nodes as n
+from coatsim.languages.script.tokens import NAME, OP
+from coatsim.path.language import ReadOptions
+from coatsim.path.process_record import decode as decode_record
+from coatsim.path.reading import MoveSource, OutputSwitch, Reading
+from coatsim.path.toolpath import CircularMove, Dwell, JointMove, LinearMove, MotionSettings, ToolFrame, ToolPath
+
+MAX_STEPS = 1_000_000
+MAX_CALL_DEPTH = 50
+DEFAULT_VEL_CP_M_S = 2.0  # $VEL.CP after BAS(#INITMOV) (DEF_VEL_CP of a standard $config.dat) ⚠
+RECORD = re.compile(r"^\s*;\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
+_APPROX = ("C_DIS", "C_VEL", "C_ORI", "C_PTP")
+_NOTED = {"INTERRUPT", "BRAKE", "RESUME", "ANIN", "ANOUT", "SIGNAL", "ENUM", "STRUC", "EXT", "EXTFCT", "IMPORT"}
+
+
+class _Unknown(Exception):
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+
+class _Return(Exception):
+    def __init__(self, value: Any) -> None:
+        self.value = value
+
+
+class _Exit(Exception):
+    pass
+
+
+class _Goto(Exception):
+    def __init__(self, label: str, line: int) -> None:
+        self.label, self.line = label, line
+
+
+class _Halt(Exception):
+    def __init__(self, how: str) -> None:
+        self.how = how
+
+
+class Interpreter:
+    """One run of a KRL program."""
+
+    def __init__(self, routines: Sequence[Routine], datas, options: ReadOptions) -> None:
+        self.options = options
+        self.routines = {r.name.lower(): r for r in routines}
+        self.globals: dict[str, Any] = {}
+        self.system: dict[str, Any] = {"$VEL": v.Struct("VEL", {"CP": DEFAULT_VEL_CP_M_S}),
+                                       "$APO": v.Struct("APO", {"CDIS": 0.0, "CVEL": 0.0, "CORI": 0.0, "CPTP": 0.0}),
+                                       "$BASE": v.default("FRAME"), "$NULLFRAME": v.default("FRAME"),
+                                       "$ADVANCE": 3.0}
+        self.tool: Optional[ToolFrame] = None
+        self.frames: list[dict[str, Any]] = []
+        self.moves: list = []
+        self.sources: list[MoveSource] = []
+        self.move_frames: list[Pose] = []
+        self.dwells: list[Dwell] = []
+        self.warnings: dict[str, str] = {}
+        self.switches: list[OutputSwitch] = []
+        self.outputs: set[int] = set()
+        self.skipped: list[str] = []
+        self.unsimulated: list[str] = []
+        self.unknowns: dict[str, str] = {}
+        self.spraying = False
+        self.pending: list[tuple[int, bool]] = []  # (motions still to start, gun on) of triggered switches
+        self.tcp: Optional[Pose] = None
+        self.position: Optional[v.Struct] = None  # the last target, in its $BASE
+        self.steps, self.line, self.source, self.routine = 0, 0, "", ""
+        self.continue_next = False
+        self.cache: dict[int, Any] = {}
+        for data in datas:
+            self.source = data.source
+            for ln in data.body:
+                self.line = ln.line
+                self.declaration(ln, self.globals)
+
+    # --- messages -------------------------------------------------------------------------
+    def where(self, line: Optional[int] = None) -> str:
+        return f"{self.source}:{self.line if line is None else line}"
+
+    def error(self, message: str) -> InputError:
+        return InputError(f"{self.where()}: {message}")
+
+    def failure(self, message: str) -> ExecutionError:
+        return ExecutionError(f"{self.where()}: {message}")
+
+    def warn(self, key: str, message: str) -> None:
+        self.warnings.setdefault(key, f"{self.where()}: {message}")
+
+    # --- expressions ----------------------------------------------------------------------
+    def expr(self, tokens) -> n.Expr:
+        st = stream(tokens, self.source)
+        e = st.expression()
+        if st.tok.kind != "end":
+            raise st.error(f"unexpected {st.shown()}")
+        return e
+
+    def eval(self, e: n.Expr) -> Any:
+        if isinstance(e, n.Num):
+            return e.value
+        if isinstance(e, n.Str):
+            return e.value
+        if isinstance(e, n.Name):
+            return self.lookup(e.name)
+        if isinstance(e, n.Aggregate):
+            return v.Struct(e.type, {f: self.eval(item) for f, item in zip(e.fields, e.items)})
+        if isinstance(e, n.Field):
+            base = self.eval(e.base)
+            if not isinstance(base, v.Struct) or e.field.upper() not in base.fields:
+                raise self.error(f"no component {e.field} in this value")
+            return base.fields[e.field.upper()]
+        if isinstance(e, n.Index):
+            if isinstance(e.base, n.Name) and e.base.name.upper() in ("$IN", "$OUT", "$OUT_C"):
+                return self.signal(e.base.name.upper(), int(self._num(self.eval(e.index[0]))))
+            if isinstance(e.base, n.Name) and e.base.name.upper() in ("TOOL_DATA", "BASE_DATA"):
+                key = f"{e.base.name.upper()}[{int(self._num(self.eval(e.index[0])))}]"
+                return self.lookup(key)
+            base = self.eval(e.base)
+            for i in e.index:
+                k = int(self._num(self.eval(i)))
+                if not isinstance(base, list) or not 1 <= k <= len(base):
+                    raise self.error(f"index {k} out of the array")
+                base = base[k - 1]
+            return base
+        if isinstance(e, n.Unary):
+            x = self.eval(e.operand)
+            if e.op in ("NOT", "B_NOT"):
+                return not x if isinstance(x, bool) else float(~int(x))
+            return -self._num(x) if e.op == "-" else self._num(x)
+        if isinstance(e, n.Binary):
+            return self._binary(e)
+        if isinstance(e, n.Call):
+            return self.function(e)
+        raise self.error("cannot evaluate this expression")
+
+    def _num(self, x: Any) -> float:
+        if isinstance(x, bool) or not isinstance(x, float):
+            raise self.error(f"a number where {x!r} is given")
+        return x
+
+    def _binary(self, e: n.Binary) -> Any:
+        a, b = self.eval(e.left), self.eval(e.right)
+        op = e.op
+        if op == ":":
+            if not (isinstance(a, v.Struct) and isinstance(b, v.Struct)):
+                raise self.error("the geometric operator ':' joins two frames or positions")
+            return v.compose(a, b)
+        if op in ("AND", "OR", "EXOR"):
+            return {"AND": a and b, "OR": a or b, "EXOR": a != b}[op]
+        if op in ("==", "<>"):
+            return (a == b) if op == "==" else (a != b)
+        if isinstance(a, str) and isinstance(b, str) and op == "+":
+            return a + b
+        x, y = self._num(a), self._num(b)
+        if op == "/":
+            if y == 0:
+                raise self.error("division by zero")
+            return x / y
+        if op.startswith("B_"):
+            return float({"B_AND": int(x) & int(y), "B_OR": int(x) | int(y), "B_EXOR": int(x) ^ int(y)}[op])
+        return {"+": x + y, "-": x - y, "*": x * y, "<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y}[op]
+
+    def lookup(self, name: str) -> Any:
+        key = name.upper()
+        if key in ("TRUE", "FALSE"):
+            return key == "TRUE"
+        if key.startswith("#"):
+            return key
+        if self.frames and key in self.frames[-1]:
+            return self.frames[-1][key]
+        if key in self.globals:
+            return self.globals[key]
+        if key in self.system:
+            return self.system[key]
+        if key == "$POS_ACT":
+            self._stop_previous()
+            return self.position.copy() if self.position is not None else v.default("E6POS")
+        for given, text in self.options.variables.items():
+            if given.upper() == key:
+                return float(text) if _is_number(text) else self.eval(self.expr(
+                    [t for t in stream_tokens(str(text), self.source)]))
+        raise _Unknown(name)
+
+    def function(self, call: n.Call) -> Any:
+        name = call.name.upper()
+        args = [self.eval(a.value) for a in call.args]
+        math_fns = {"SIN": lambda x: np.sin(np.radians(x)), "COS": lambda x: np.cos(np.radians(x)),
+                    "TAN": lambda x: np.tan(np.radians(x)), "SQRT": np.sqrt, "ABS": abs,
+                    "ACOS": lambda x: np.degrees(np.arccos(x)), "ATAN2": lambda y, x: np.degrees(np.arctan2(y, x))}
+        if name in math_fns:
+            return float(math_fns[name](*[self._num(a) for a in args]))
+        if name == "INV_POS":
+            return v.frame_of(v.pose_of(args[0]).inverse(), args[0].type or "FRAME")
+        routine = self.routines.get(call.name.lower())
+        if routine is None:
+            raise _Unknown(call.name)
+        return self.call(routine, call.args)
+
+    # --- data -----------------------------------------------------------------------------
+    def declaration(self, ln: Line, scope: dict) -> bool:
+        """``[DECL] [GLOBAL] type name[dims] [= value], ...``: True if the line is one."""
+        toks = list(ln.tokens)
+        words = [t.text.upper() for t in toks if t.kind == NAME]
+        i = 0
+        while i < len(toks) and toks[i].kind == NAME and toks[i].text.upper() in ("DECL", "GLOBAL", "CONST"):
+            i += 1
+        if i >= len(toks) - 1 or toks[i].kind != NAME or toks[i + 1].kind != NAME:
+            return False
+        if i == 0 and not (toks[0].text.upper() in v.BASIC or toks[0].text.upper() in v.TYPES):
+            return False
+        if words[:1] in (["SIGNAL"], ["ENUM"], ["STRUC"], ["EXT"], ["EXTFCT"]):
+            return False
+        type_ = toks[i].text.upper()
+        items = _split_commas(toks[i + 1:])
+        for item in items:
+            name = item[0].text.upper()
+            if len(name) > MAX_NAME_LENGTH:
+                self.warn(f"long{name}", f"name {item[0].text} is longer than {MAX_NAME_LENGTH} characters")
+            rest = item[1:]
+            if rest and rest[0].kind == OP and rest[0].text == "[":
+                close = next(k for k, t in enumerate(rest) if t.text == "]")
+                dims = [int(float(t.text)) for t in rest[1:close] if t.kind == "num"]
+                scope[name] = [v.default(type_) for _ in range(dims[0] if dims else 0)]
+                continue
+            value = v.default(type_)
+            if rest and rest[0].kind == OP and rest[0].text == "=":
+                value = self.eval(self.expr(rest[1:]))
+                if isinstance(value, v.Struct) and not value.type:
+                    value.type = type_
+            scope[name] = value
+        return True
+
+    def assign(self, target: n.Expr, value: Any) -> None:
+        if isinstance(target, n.Name):
+            key = target.name.upper()
+            scope = self.frames[-1] if self.frames and key in self.frames[-1] else \
+                self.globals if key in self.globals else self.system if key.startswith("$") else None
+            if scope is None:
+                raise _Unknown(target.name)
+            old = scope.get(key)
+            if isinstance(old, v.Struct) and isinstance(value, v.Struct):
+                merged = old.copy()
+                merged.fields.update(value.fields)
+                value = merged
+            scope[key] = value
+            if key == "$TOOL":
+                pose = v.pose_of(value)
+                self.tool = ToolFrame(pose.rotation, pose.translation_mm, self.line)
+            return
+        if isinstance(target, n.Field):
+            holder = self.eval(target.base) if not (isinstance(target.base, n.Name) and
+                                                   target.base.name.upper() in self.system) else \
+                self.system[target.base.name.upper()]
+            if not isinstance(holder, v.Struct):
+                raise self.error(f"no component {target.field}")
+            holder.fields[target.field.upper()] = value
+            if isinstance(target.base, n.Name) and target.base.name.upper() == "$TOOL":
+                self.assign(target.base, holder)
+            return
+        if isinstance(target, n.Index):
+            base = target.base
+            if isinstance(base, n.Name) and base.name.upper() in ("$OUT", "$OUT_C"):
+                return  # handled by the caller
+            if isinstance(base, n.Name) and base.name.upper() in ("TOOL_DATA", "BASE_DATA"):
+                key = f"{base.name.upper()}[{int(self._num(self.eval(target.index[0])))}]"
+                self.globals[key] = value
+                return
+            holder = self.eval(base)
+            k = int(self._num(self.eval(target.index[-1])))
+            if not isinstance(holder, list) or not 1 <= k <= len(holder):
+                raise self.error(f"index {k} out of the array")
+            holder[k - 1] = value
+            return
+        raise self.error("the left of '=' must be a variable")
+
+    # --- signals --------------------------------------------------------------------------
+    def signal(self, which: str, number: int) -> bool:
+        if which == "$IN":
+            if number in self.options.inputs:
+                return bool(self.options.inputs[number])
+            self.unknowns.setdefault(f"$in[{number}]", f"{self.where()}: $IN[{number}] (taken as off)")
+            return False
+        return self.spraying if number == self.options.gun_signal else False
+
+    def switch(self, number: int, on: bool, text: str, when: str) -> None:
+        """Output ``number`` to ``on``: ``when`` "now" (at rest after an advance run stop), "next"
+        (as the next motion starts), "after" (as the motion after the next starts)."""
+        self.outputs.add(number)
+        gun = number == self.options.gun_signal
+        self.switches.append(OutputSwitch(self.source, self.line, text + (f" (gun {'on' if on else 'off'})" if gun
+                                                                          else "")))
+        if not gun:
+            return
+        if when == "now":
+            self.spraying = on
+        else:
+            self.pending.append((1 if when == "after" else 0, on))
+            if when == "next":
+                self.spraying = on
+                self.pending.pop()
+
+    # --- running --------------------------------------------------------------------------
+    def run(self, routine: Routine) -> None:
+        self.main = routine
+        try:
+            self.call(routine, ())
+        except _Halt as halt:
+            self.stopped = halt.how
+
+    def call(self, routine: Routine, args) -> Any:
+        if len(self.frames) >= MAX_CALL_DEPTH:
+            raise self.failure(f"calls nested deeper than {MAX_CALL_DEPTH}: {routine.name}")
+        values = [self.eval(a.value) for a in args]
+        if len(values) > len(routine.params):
+            raise self.error(f"{routine.name} takes {len(routine.params)} arguments, got {len(values)}")
+        frame = {p.upper(): val for p, val in zip(routine.params, values)}
+        saved = (self.source, self.routine, self.line)
+        self.frames.append(frame)
+        self.source, self.routine = routine.source, routine.name
+        try:
+            self.block(self._body(routine))
+        except _Return as ret:
+            return ret.value
+        except _Goto as jump:
+            raise InputError(f"{routine.source}:{jump.line}: GOTO {jump.label}: no such label in {routine.name} (a "
+                             "GOTO may leave a block, not enter one)") from None
+        finally:
+            self.frames.pop()
+            self.source, self.routine, self.line = saved
+        return None
+
+    def _body(self, routine: Routine) -> tuple:
+        key = id(routine)
+        if key not in self.cache:
+            self.cache[key] = build(routine.body, routine.source)
+        return self.cache[key]
+
+    def block(self, body: tuple) -> None:
+        labels = {ln.tokens[0].text.upper(): k for k, ln in enumerate(body) if isinstance(ln, Line)
+                  and len(ln.tokens) == 2 and ln.tokens[1].text == ":"}
+        k = 0
+        while k < len(body):
+            item = body[k]
+            k += 1
+            if isinstance(item, Block):
+                try:
+                    self.structure(item)
+                except _Goto as jump:  # out of a block to a label of this one
+                    if jump.label not in labels:
+                        raise
+                    k = labels[jump.label]
+                continue
+            self.steps += 1
+            if self.steps > MAX_STEPS:
+                raise self.failure(f"more than {MAX_STEPS} statements run: a loop that never ends?")
+            self.line = item.line
+            if item.word == "GOTO":
+                label = item.tokens[1].text.upper() if len(item.tokens) > 1 else ""
+                if label not in labels:
+                    raise _Goto(label, item.line)
+                k = labels[label]
+                continue
+            try:
+                self.simple(item)
+            except _Unknown as unknown:
+                self.unknowns.setdefault(unknown.name.lower(), f"{self.where()}: {unknown.name} (no file declares it)")
+                self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, which no file "
+                                    "declares")
+
+    def _cond(self, tokens) -> bool:
+        value = self.eval(self.expr(tokens))
+        if not isinstance(value, bool):
+            raise self.error("a condition must be TRUE or FALSE")
+        return value
+
+    def structure(self, b: Block) -> None:
+        self.line = b.line
+        toks = b.head.tokens
+        if b.kind == "IF":
+            then = next((k for k, t in enumerate(toks) if t.kind == NAME and t.text.upper() == "THEN"), len(toks))
+            branch = 0 if self._cond(toks[1:then]) else 1
+            if branch < len(b.parts):
+                self.block(b.parts[branch][1])
+        elif b.kind == "WHILE":
+            while self._cond(toks[1:]):
+                self.block(b.parts[0][1])
+                self.steps += 1
+                if self.steps > MAX_STEPS:
+                    raise self.failure("a WHILE loop that never ends")
+        elif b.kind in ("LOOP", "REPEAT"):
+            try:
+                while True:
+                    self.block(b.parts[0][1])
+                    self.steps += 1
+                    if self.steps > MAX_STEPS:
+                        raise self.failure(f"a {b.kind} loop that never ends")
+                    if b.kind == "REPEAT" and self._cond(b.tail.tokens[1:]):
+                        break
+            except _Exit:
+                pass
+        elif b.kind == "FOR":
+            self._for(b)
+        elif b.kind == "SWITCH":
+            value = self.eval(self.expr(toks[1:]))
+            for opener, body in b.parts:
+                if opener.word == "DEFAULT" or any(self.eval(self.expr(part)) == value
+                                                   for part in _split_commas(opener.tokens[1:])):
+                    self.block(body)
+                    return
+
+    def _for(self, b: Block) -> None:
+        toks = list(b.head.tokens)
+        words = [t.text.upper() if t.kind == NAME else "" for t in toks]
+        if "TO" not in words or len(toks) < 4 or toks[2].text != "=":
+            raise self.error("FOR needs: FOR i = start TO end [STEP s]")
+        to = words.index("TO")
+        step_at = words.index("STEP") if "STEP" in words else len(toks)
+        start = self._num(self.eval(self.expr(toks[3:to])))
+        stop = self._num(self.eval(self.expr(toks[to + 1:step_at])))
+        step = self._num(self.eval(self.expr(toks[step_at + 1:]))) if step_at < len(toks) else 1.0
+        if step == 0:
+            raise self.error("FOR ... STEP 0 never ends")
+        var = n.Name(toks[1].text, toks[1].line)
+        value = start
+        try:
+            while (value <= stop) if step > 0 else (value >= stop):
+                self.assign(var, value) if self._declared(var.name) else self._local(var.name, value)
+                self.block(b.parts[0][1])
+                value += step
+        except _Exit:
+            pass
+
+    def _declared(self, name: str) -> bool:
+        key = name.upper()
+        return (bool(self.frames) and key in self.frames[-1]) or key in self.globals
+
+    def _local(self, name: str, value: Any) -> None:
+        self.frames[-1][name.upper()] = value
+
+    def simple(self, ln: Line) -> None:
+        toks = ln.tokens
+        word = ln.word
+        if len(toks) == 2 and toks[1].text == ":":
+            return  # a label
+        if word in ("PTP", "LIN", "CIRC", "PTP_REL", "LIN_REL"):
+            self.motion(ln)
+        elif word == "CONTINUE":
+            self.continue_next = True
+            return
+        elif word == "WAIT":
+            self._stop_previous()
+            if len(toks) > 1 and toks[1].text.upper() == "SEC":
+                seconds = self._num(self.eval(self.expr(toks[2:])))
+                self.dwells.append(Dwell(len(self.moves) - 1, seconds, self.spraying, ln.line))
+            elif len(toks) > 1 and toks[1].text.upper() == "FOR" and not self._cond(toks[2:]):
+                self.warn(f"wait{ln.line}", "WAIT FOR waits for a condition that is false here; coatsim goes on as if "
+                                            "it came true")
+        elif word == "HALT":
+            self._stop_previous()
+            raise _Halt(f"{self.where()}: HALT")
+        elif word == "RETURN":
+            raise _Return(self.eval(self.expr(toks[1:])) if len(toks) > 1 else None)
+        elif word == "EXIT":
+            raise _Exit()
+        elif word == "TRIGGER":
+            self.trigger(ln)
+        elif word in _NOTED or (word == "GLOBAL" and len(toks) > 1 and toks[1].text.upper() == "INTERRUPT"):
+            self.warn("interrupt", f"{toks[0].text} ...: interrupts are noted, not run")
+        elif word == "BAS":
+            self.bas(ln)
+        elif word == "PULSE":
+            self.warn("pulse", "PULSE: a timed output is not simulated")
+        elif self.declaration(ln, self.frames[-1] if self.frames else self.globals):
+            pass
+        else:
+            self.statement(ln)
+        self.continue_next = False
+
+    def statement(self, ln: Line) -> None:
+        toks = ln.tokens
+        eq = next((k for k, t in enumerate(toks) if t.kind == OP and t.text == "="), None)
+        if eq is None:
+            e = self.expr(toks)
+            if isinstance(e, n.Call):
+                routine = self.routines.get(e.name.lower())
+                if routine is None:
+                    self.skipped.append(f"{self.where()}: {e.name} skipped: no routine of that name in the files "
+                                        "loaded")
+                    return
+                self.call(routine, e.args)
+                return
+            raise self.error(f"expected a statement, found {toks[0].text!r}")
+        target = self.expr(toks[:eq])
+        value = self.eval(self.expr(toks[eq + 1:]))
+        if isinstance(target, n.Index) and isinstance(target.base, n.Name) and \
+                target.base.name.upper() in ("$OUT", "$OUT_C"):
+            number = int(self._num(self.eval(target.index[0])))
+            text = _text(toks)
+            if target.base.name.upper() == "$OUT_C":
+                self.switch(number, bool(value), text, "next")
+            elif self.continue_next:
+                self.warn("continue", "an output set after CONTINUE switches in the advance run, up to $ADVANCE "
+                                      "motions before this point; the twin switches it as the next motion starts")
+                self.switch(number, bool(value), text, "next")
+            else:
+                self._stop_previous()  # the advance run stops: the motion before ends at rest
+                self.switch(number, bool(value), text, "now")
+            return
+        self.assign(target, value)
+
+    def trigger(self, ln: Line) -> None:
+        words = [t.text.upper() for t in ln.tokens]
+        if "DISTANCE" not in words or "DO" not in words:
+            self.warn("trigger", "TRIGGER WHEN PATH ...: a switch at a path distance is not simulated")
+            return
+        k = words.index("DISTANCE")
+        distance = ln.tokens[k + 2].text if k + 2 < len(ln.tokens) else "0"
+        if "DELAY" in words:
+            delay = ln.tokens[words.index("DELAY") + 2].text
+            if float(delay) != 0.0:
+                self.warn("delay", f"TRIGGER ... DELAY={delay}: the delay is not simulated")
+        action = list(ln.tokens[words.index("DO") + 1:])
+        if "PRIO" in [t.text.upper() for t in action]:
+            action = action[:[t.text.upper() for t in action].index("PRIO")]
+        eq = next((k for k, t in enumerate(action) if t.text == "="), None)
+        target = self.expr(action[:eq]) if eq else None
+        if isinstance(target, n.Index) and isinstance(target.base, n.Name) and target.base.name.upper() == "$OUT":
+            number = int(self._num(self.eval(target.index[0])))
+            on = bool(self.eval(self.expr(action[eq + 1:])))
+            self.switch(number, on, _text(ln.tokens), "next" if distance == "0" else "after")
+        else:
+            self.warn("trigger-action", "TRIGGER ... DO: only $OUT switches are simulated")
+
+    def bas(self, ln: Line) -> None:
+        call = self.expr(ln.tokens)
+        args = [a.value for a in call.args] if isinstance(call, n.Call) else []
+        what = args[0].name.upper() if args and isinstance(args[0], n.Name) else ""
+        value = self.eval(args[1]) if len(args) > 1 else None
+        if what == "#TOOL":
+            self.assign(n.Name("$TOOL", ln.line), self.lookup(f"TOOL_DATA[{int(value)}]"))
+        elif what == "#BASE":
+            self.assign(n.Name("$BASE", ln.line), self.lookup(f"BASE_DATA[{int(value)}]"))
+        elif what in ("#VEL_CP", "#CP_PARAMS") and value is not None:
+            self.system["$VEL"].fields["CP"] = float(value)
+        elif what == "#INITMOV":
+            self.system["$VEL"].fields["CP"] = DEFAULT_VEL_CP_M_S
+
+    # --- motions --------------------------------------------------------------------------
+    def _stop_previous(self) -> None:
+        if self.moves and not self.moves[-1].settings.stop_at_end:
+            last = self.moves[-1]
+            self.moves[-1] = replace(last, settings=replace(last.settings, stop_at_end=True))
+
+    def _target(self, e: n.Expr) -> v.Struct:
+        value = self.eval(e)
+        if not isinstance(value, v.Struct):
+            raise self.error("a motion's target must be a position ({X .., Y .., ...} or a POS/E6POS/FRAME)")
+        if self.position is not None:  # missing components: the current position's
+            merged = self.position.copy()
+            merged.fields.update(value.fields)
+            merged.type = value.type or merged.type
+            return merged
+        return value
+
+    def motion(self, ln: Line) -> None:
+        toks = list(ln.tokens)
+        word = ln.word
+        approx = ""
+        if toks[-1].kind == NAME and toks[-1].text.upper() in _APPROX:
+            approx = toks.pop().text.upper()
+        parts = _split_commas(toks[1:])
+        if word == "CIRC":
+            parts = [p for p in parts if not (p and p[0].text.upper() == "CA")]
+            if len(_split_commas(toks[1:])) > len(parts):
+                self.warn("ca", "CIRC ... CA: the circular angle is not simulated; the arc ends at its end point")
+        if word in ("PTP", "PTP_REL") and any(p and p[0].text.upper() == "C_PTP" for p in parts):
+            approx = "C_PTP"
+        base = v.pose_of(self.system["$BASE"])
+        if word == "CIRC":
+            if len(parts) != 2:
+                raise self.error("CIRC takes an auxiliary point and an end point")
+            via_s, end_s = self._target(self.expr(parts[0])), self._target(self.expr(parts[1]))
+            via, end = base @ v.pose_of(via_s), base @ v.pose_of(end_s)
+        else:
+            if len(parts) != 1:
+                raise self.error(f"{word} takes one target")
+            end_s = self.eval(self.expr(parts[0])) if word.endswith("_REL") else self._target(self.expr(parts[0]))
+            if word.endswith("_REL"):
+                if self.tcp is None:
+                    raise self.failure(f"{word} before any motion: the position it is relative to is unknown")
+                end = self.tcp @ v.pose_of(end_s) if self.position is None else \
+                    base @ (v.pose_of(self.position) @ v.pose_of(end_s))
+                end_s = v.frame_of(base.inverse() @ end, "E6POS", self.position)
+            else:
+                end = base @ v.pose_of(end_s)
+            via = None
+        if approx in ("C_VEL", "C_ORI", "C_PTP"):
+            self.warn("approx", f"{approx} is modelled as C_DIS with $APO.CDIS")
+        cdis = float(self.system["$APO"].fields.get("CDIS", 0.0))
+        blended = bool(approx) and cdis > 0
+        speed = float(self.system["$VEL"].fields.get("CP", DEFAULT_VEL_CP_M_S)) * 1000.0
+        if not speed > 0:
+            raise self.error(f"$VEL.CP = {speed / 1000:g} m/s: must be > 0")
+        settings = MotionSettings(speed, cdis if blended else 0.0, blended, not blended, self.tool)
+        if word.startswith("PTP"):
+            move = JointMove(self.tcp, end, settings, self.spraying, ln.line)
+        elif self.tcp is None:
+            raise self.failure(f"{word} is the first motion: the robot's position before it is unknown; start with PTP")
+        elif via is not None:
+            move = CircularMove(self.tcp, via, end, settings, self.spraying, ln.line)
+        else:
+            move = LinearMove(self.tcp, end, settings, self.spraying, ln.line)
+        self.moves.append(move)
+        self.sources.append(MoveSource(self.source, self.routine, ln.line, ln.line))
+        self.move_frames.append(base)
+        self.tcp, self.position = end, end_s
+        still = []
+        for left, on in self.pending:
+            if left == 0:
+                self.spraying = on
+            else:
+                still.append((left - 1, on))
+        self.pending = still
+
+
+def _split_commas(tokens) -> list[list]:
+    """Tokens split at the commas outside brackets."""
+    out, current, depth = [], [], 0
+    for t in tokens:
+        if t.kind == OP and t.text in "([{":
+            depth += 1
+        elif t.kind == OP and t.text in ")]}":
+            depth -= 1
+        if t.kind == OP and t.text == "," and depth == 0:
+            out.append(current)
+            current = []
+        else:
+            current.append(t)
+    if current:
+        out.append(current)
+    return out
+
+
+def _text(tokens) -> str:
+    """A statement's tokens as written (a space only between two words or numbers)."""
+    out, prev = "", None
+    for t in tokens:
+        if prev is not None and prev.kind in (NAME, "num") and t.kind in (NAME, "num"):
+            out += " "
+        out += t.text
+        prev = t
+    return out
+
+
+def _is_number(text: Any) -> bool:
+    try:
+        float(text)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
+def stream_tokens(text: str, source: str):
+    from coatsim.languages.kuka_krl.parser import SYNTAX
+    from coatsim.languages.script.tokens import END, NEWLINE, tokenize
+
+    return [t for t in tokenize(text, SYNTAX, source) if t.kind not in (NEWLINE, END)]
+
+
+def _files(paths: Sequence[Path]) -> list[Path]:
+    """The files given, with the ``.dat`` beside each ``.src`` that comes without it."""
+    items = [Path(p) for p in paths]
+    given = {p.resolve() for p in items if p.exists()}
+    out = list(items)
+    for p in items:
+        if p.suffix.lower() == ".src":
+            for dat in (p.with_suffix(".dat"), p.with_suffix(".DAT")):
+                if dat.exists() and dat.resolve() not in given:
+                    out.append(dat)
+                    given.add(dat.resolve())
+                    break
+    return out
+
+
+def read_krl(paths: Sequence[Path], options: ReadOptions) -> Reading:
+    """Parse and run KRL files loaded together (a ``.src`` with its ``.dat``)."""
+    if not paths:
+        raise InputError("no program file given")
+    routines, datas, texts = [], [], {}
+    for p in _files(paths):
+        text = decode_text(read_input_bytes(p, "program"))
+        texts[str(p)] = text
+        r, d = parse_krl(text, str(p))
+        routines += r
+        datas += d
+    if not routines:
+        raise InputError(f"{paths[0]}: no DEF in the files loaded")
+    run = Interpreter(routines, datas, options)
+    main = next((r for r in routines if r.name.lower() == options.program.lower()), None) if options.program \
+        else routines[0]
+    if main is None:
+        raise InputError(f"{paths[0]}: no DEF {options.program} in the files loaded (routines: "
+                         f"{', '.join(r.name for r in routines)})")
+    run.stopped = ""
+    run.run(main)
+    record = decode_record([(k.strip(), x.strip()) for k, x in RECORD.findall(texts[main.source])], main.source)
+    toolpath = ToolPath(main.name, tuple(run.moves), record, tuple(run.dwells), tuple(run.warnings.values()), run.tool)
+    problems = []
+    stem = Path(main.source).stem
+    if routines[0] is main and stem.lower() != main.name.lower() and Path(main.source).suffix.lower() == ".src":
+        problems.append(f"{main.source}:{main.line}: DEF {main.name} in a file named {Path(main.source).name}: the "
+                        "controller loads a program by its file's name")
+    problems += [f"{r.source}:{r.line}: routine name '{r.name}' is longer than {MAX_NAME_LENGTH} characters"
+                 for r in routines if len(r.name) > MAX_NAME_LENGTH]
+    return Reading(
+        toolpath=toolpath, sources=tuple(str(p) for p in paths), program=main.name, program_source=main.source,
+        program_line=main.line, programs=tuple(r.name for r in routines),
+        ended=f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}",
+        move_sources=tuple(run.sources), move_frames=tuple(run.move_frames), n_steps=len(main.body),
+        n_poses=sum(1 for val in run.globals.values() if isinstance(val, v.Struct) and val.type in v.TYPES),
+        switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(problems),
+        unknowns=tuple(run.unknowns.values()), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
+        gun_on_at_end=run.spraying,
+        external_axes=any(isinstance(val, v.Struct) and any(abs(float(val.fields.get(a, 0.0))) > 1e-9
+                                                             for a in v.AXES if isinstance(val.fields.get(a, 0.0), float))
+                          for val in run.globals.values()),
+    )

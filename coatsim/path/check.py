@@ -1,0 +1,133 @@
+"""``coatsim check-program``: read program files in their language and report what they do.
+
+A program that does not parse raises InputError (exit 2); one the twin cannot run raises
+ExecutionError (exit 3). Reading is not spraying: a program that never opens the gun is read and
+reported (``notes`` names the outputs it does switch), and what it reads that no file gives (a
+variable of the controller's memory) is an unknown, named with its first line in ``unknowns``;
+a statement that cannot run without a value is skipped and listed in ``skipped``. Anything legal
+but suspicious is listed in ``problems``; what the interpreter does not simulate in
+``warnings``. Every statement that switches outputs is listed with its line, and every stretch
+the gun sprays with its lines and length. The language reads (:class:`~coatsim.path.reading.Reading`);
+this module only reports.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from coatsim.core.errors import ExecutionError
+from coatsim.path.arcs import move_length
+from coatsim.path.language import Language, ReadOptions
+from coatsim.path.process import ProcessInfo
+from coatsim.path.reading import MoveSource, Reading, gun_never_on
+from coatsim.path.tool_frames import tool_mismatches
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, ToolPath
+
+
+@dataclass(frozen=True)
+class SprayRun:
+    """Consecutive moves with the gun on: source lines of the first and last (in ``source``,
+    the file of the first), length in mm."""
+
+    first_line: int
+    last_line: int
+    length_mm: float
+    moves: int
+    source: str
+
+
+@dataclass(frozen=True, eq=False)
+class ProgramCheck:
+    """Counts and lengths of one program; lengths in mm (joint moves as chords); ``unknowns``
+    the variables read that no file gives (name and first line), ``skipped`` the statements not
+    run for want of a value, ``outputs`` the outputs the program switches."""
+
+    source: str
+    program: str
+    n_steps: int
+    n_poses: int
+    n_joint_moves: int
+    n_linear_moves: int
+    n_arc_moves: int
+    path_length_mm: float
+    spray_length_mm: float
+    process: ProcessInfo
+    problems: tuple[str, ...]
+    signals: tuple[str, ...]
+    spray_runs: tuple[SprayRun, ...]
+    warnings: tuple[str, ...]
+    toolpath: ToolPath
+    notes: tuple[str, ...] = ()
+    unknowns: tuple[str, ...] = ()
+    skipped: tuple[str, ...] = ()
+    outputs: tuple[int, ...] = ()
+
+
+def spray_runs(toolpath: ToolPath, sources: Sequence[MoveSource]) -> tuple[SprayRun, ...]:
+    """The stretches of consecutive moves the gun is on for; ``sources`` where each move comes from."""
+    runs, current = [], []
+    for i, m in enumerate((*toolpath.moves, None)):
+        if m is not None and m.spray:
+            current.append(i)
+            continue
+        if current:
+            moves = [toolpath.moves[k] for k in current]
+            file = sources[current[0]].source
+            # a loop's moves come back to earlier lines: the span of the lines, in the first move's file
+            lines = [toolpath.moves[k].line for k in current if sources[k].source == file]
+            runs.append(SprayRun(min(lines), max(lines), float(sum(move_length(x) for x in moves)), len(moves), file))
+            current = []
+    return tuple(runs)
+
+
+def check_program(paths: Sequence[str | Path] | str | Path, language: Language, options: ReadOptions = ReadOptions(),
+                  *, gun_tcp: tuple[np.ndarray, np.ndarray] | None = None) -> ProgramCheck:
+    """Read the main program of files loaded together in ``language`` and inspect it;
+    ``gun_tcp`` (rotation, offset mm of the physical gun's TCP in the flange frame) makes every
+    tool that differs from it a problem."""
+    items = [Path(paths)] if isinstance(paths, (str, Path)) else [Path(p) for p in paths]
+    return check_reading(language.reading(items, options), options.gun_signal, gun_tcp)
+
+
+def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, np.ndarray] | None = None) -> ProgramCheck:
+    """The report of a program read (see :func:`check_program`)."""
+    toolpath = reading.toolpath
+    if not toolpath.moves:
+        others = [p for p in reading.programs if p != reading.program]
+        hint = f"; choose another main program (loaded: {', '.join(others)})" if others else ""
+        raise ExecutionError(f"{reading.program_source}:{reading.program_line}: program {reading.program} has no "
+                             f"motion ({reading.ended} before any motion){hint}")
+    problems = list(reading.problems)
+    if gun_tcp is not None:
+        problems += [f"{reading.program_source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]
+    notes = list(reading.notes)
+    if not toolpath.spray_moves:
+        notes.append(gun_never_on(reading.sources[0], gun_signal, reading.outputs))
+    elif reading.gun_on_at_end:
+        problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
+    cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
+    return ProgramCheck(
+        source=reading.source,
+        program=reading.program,
+        n_steps=reading.n_steps,
+        n_poses=reading.n_poses,
+        n_joint_moves=sum(isinstance(m, JointMove) for m in toolpath.moves),
+        n_linear_moves=sum(isinstance(m, LinearMove) for m in toolpath.moves),
+        n_arc_moves=sum(isinstance(m, CircularMove) for m in toolpath.moves),
+        path_length_mm=float(np.sum([move_length(m) for m in cartesian])) if cartesian else 0.0,
+        spray_length_mm=float(np.sum([move_length(m) for m in cartesian if m.spray])) if cartesian else 0.0,
+        process=toolpath.process,
+        problems=tuple(problems),
+        signals=tuple(str(s) for s in reading.switches),
+        spray_runs=spray_runs(toolpath, reading.move_sources),
+        warnings=toolpath.warnings,
+        toolpath=toolpath,
+        notes=tuple(notes),
+        unknowns=reading.unknowns,
+        skipped=reading.skipped,
+        outputs=reading.outputs,
+    )

@@ -1,0 +1,377 @@
+"""``coatsim convert``: an existing program in, the same process path sprayed with arcs out.
+
+The program is read in its language (:class:`~coatsim.path.reading.Reading`). The process path
+is every stretch of Cartesian moves the gun sprays (or the moves of a range of lines). Each is
+fitted in its plane with the default fitter within the tolerance (minus what the path leaves its
+plane by) and written as linear and circular moves: in place of the statements that made it, by
+a language that edits its programs in place (:mod:`coatsim.path.edit`; same poses, tool, speed
+and signals around it, every other line kept byte for byte), or as a clean standalone program in
+any language (the same frame, tool, speed and gun output). The result is read back and
+interpreted: the deviation reported is measured on the program as written, against the original
+path.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from coatsim.core import defaults
+from coatsim.core.errors import CoatsimError, InputError
+from coatsim.core.fileio import read_input_bytes
+from coatsim.core.numbers import fmt_short
+from coatsim.geometry.space.pose import Pose
+from coatsim.path.edit import EditsInPlace, FittedPath
+from coatsim.path.frames import DEFAULT_TOOL
+from coatsim.path.language import Language, ReadOptions
+from coatsim.path.placement import PlacedMove, PlacedPath, placed_arc, placed_line
+from coatsim.path.plan import ProgramPlan
+from coatsim.path.process import ProcessInfo
+from coatsim.path.process_path import PlaneFrame, ProcessPath, dense_points, moves_in_lines, path_distance, \
+    path_of, planar_frame, rotation_along, spray_runs
+from coatsim.path.reading import Reading
+from coatsim.path.toolpath import Kinematics, ToolPath
+
+Paths = Union[str, Path, Sequence[Union[str, Path]]]
+
+PLANE_SHARE = 0.5  # the part of the tolerance a path may leave its plane by
+
+
+@dataclass(frozen=True)
+class ConvertOptions:
+    """What to convert and how; ``lines`` a (first, last) source line range instead of the
+    sprayed moves."""
+
+    tolerance_mm: float
+    gun_signal: int = 1
+    program: Optional[str] = None
+    lines: Optional[tuple[int, int]] = None
+    standalone: bool = False
+    corner_deg: float = defaults.CORNER_DEG
+    approach_mm: float = 50.0
+    name: Optional[str] = None
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.tolerance_mm) and self.tolerance_mm > 0.0):
+            raise InputError(f"--tol {self.tolerance_mm}: must be a finite number > 0 (mm)")
+        if not (math.isfinite(self.approach_mm) and self.approach_mm >= 0.0):
+            raise InputError(f"--approach {self.approach_mm}: must be a finite number >= 0 (mm)")
+
+
+@dataclass(frozen=True)
+class PathReport:
+    """Figures of one converted path: the source lines replaced (in place) or the path came
+    from (standalone); ``deviation_mm`` measured on the program written."""
+
+    first_line: int
+    last_line: int
+    moves_before: int
+    moves_after: int
+    n_arcs: int
+    n_lines: int
+    plane_deviation_mm: float
+    deviation_mm: float
+    length_mm: float
+
+
+@dataclass(frozen=True, eq=False)
+class Conversion:
+    """The written program text, the input file it replaces (None: standalone), the figures;
+    ``data`` the bytes to write (the original's encoding and line ends kept)."""
+
+    text: str
+    replaces: Optional[str]
+    paths: tuple[PathReport, ...]
+    notes: tuple[str, ...]
+    tolerance_mm: float
+    data: bytes
+
+
+def _candidates(reading: Reading, options: ConvertOptions, motions: str) -> list[tuple[int, ...]]:
+    toolpath = reading.toolpath
+    if options.lines is not None:
+        moves = moves_in_lines(toolpath, reading.move_sources, *options.lines, motions)
+        sprayed = {toolpath.moves[i].spray for i in moves}
+        if len(sprayed) > 1:
+            off = next(toolpath.moves[i].line for i in moves if not toolpath.moves[i].spray)
+            raise InputError(f"--lines {options.lines[0]}-{options.lines[1]}: the gun sprays some of these moves and "
+                             f"not others (line {off}); choose lines the gun sprays throughout, or none of")
+        return [moves]
+    runs = [r for r in spray_runs(toolpath) if len(r) >= 2]
+    if not runs:
+        outputs = reading.outputs
+        switched = f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}" \
+            if outputs else "it switches no output"
+        raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
+                         f"consecutive {motions} moves ({switched}: is the process signal one of "
+                         "them?); name the moves with --lines FIRST-LAST")
+    return runs
+
+
+def _line_span(reading: Reading, moves: Sequence[int]) -> tuple[int, int]:
+    sources = reading.move_sources
+    return min(sources[i].first_line for i in moves), max(sources[i].last_line for i in moves)
+
+
+def _planar(reading: Reading, moves: tuple[int, ...], tol: float) -> tuple[tuple[int, ...], ProcessPath, PlaneFrame, list[str]]:
+    """The moves (a sprayed approach or depart leaving the plane dropped) and their plane."""
+    tries = [(moves, [])]
+    if len(moves) > 2:
+        tries += [(moves[1:], ["first"]), (moves[:-1], ["last"])]
+    if len(moves) > 3:
+        tries.append((moves[1:-1], ["first", "last"]))
+    first = None
+    for subset, dropped in tries:
+        path = path_of(reading.toolpath, subset, tol)
+        tool_z = np.mean(path.rotations[:, :, 2], axis=0)
+        plane = planar_frame(path.points, tool_z)
+        first = first or (path, plane)
+        if plane.deviation_mm <= PLANE_SHARE * tol:
+            notes = [f"line {reading.toolpath.moves[moves[0] if d == 'first' else moves[-1]].line}: the {d} sprayed "
+                     "move leaves the plane of the path and is kept as it is" for d in dropped]
+            return subset, path, plane, notes
+    a, b = _line_span(reading, moves)
+    raise InputError(f"the process path of lines {a}-{b} is not planar: it leaves its best plane by "
+                     f"{first[1].deviation_mm:.3f} mm, more than {PLANE_SHARE:g} x the tolerance; coatsim fits planar "
+                     "paths only")
+
+
+def fit_path(reading: Reading, moves: tuple[int, ...], options: ConvertOptions) -> FittedPath:
+    """Fit one process path with the default fitter in its plane."""
+    from coatsim.geometry import make_curve, segment_curve
+    from coatsim.geometry.primitives import Line
+
+    tol = options.tolerance_mm
+    moves, path, plane, notes = _planar(reading, moves, tol)
+    fit_tol = math.sqrt(tol * tol - plane.deviation_mm ** 2)
+    curve = make_curve(plane.to_plane(path.points), "process path", "no")
+    seg = segment_curve(curve, fit_tol, corner_deg=options.corner_deg)
+    poly = seg.polysegment
+    ends = np.array([s.start for s in poly.segments] + [poly.end], dtype=float)
+    space = plane.to_space(ends)
+    rotations = rotation_along(path, space)
+    poses = [Pose(r, p) for p, r in zip(space, rotations)]
+    segments = []
+    for k, s in enumerate(poly.segments):
+        if isinstance(s, Line):
+            segments.append(placed_line(poses[k], poses[k + 1]))
+        else:
+            normal = plane.normal if s.sweep > 0 else -plane.normal
+            arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
+            segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
+    return FittedPath(path, plane, tuple(segments), poly.n_arcs, poly.n_lines, seg.max_deviation_mm,
+                      _line_span(reading, moves), tuple(notes))
+
+
+def _settings(toolpath: ToolPath, f: FittedPath) -> tuple[float, float, bool]:
+    """Speed (of the longest move), accuracy and CP a path was sprayed with."""
+    moves = [toolpath.moves[i] for i in f.path.moves]
+    lengths = np.array([float(np.linalg.norm(m.end.translation_mm - m.start.translation_mm)) for m in moves])
+    first = moves[0].settings
+    return float(moves[int(np.argmax(lengths))].settings.speed_mm_s), float(first.accuracy_mm), first.cp
+
+
+def _program_name(target: Language, options: ConvertOptions, original: str) -> str:
+    """The standalone program's name: ``options.name`` (checked), else the original's if the
+    target language allows it (cut to its length), else one made from it."""
+    if options.name is not None:
+        return target.check_name(options.name, "name")
+    cut = original[:target.capabilities.max_name_length]
+    try:
+        return target.check_name(cut, "program name")
+    except InputError:
+        return target.program_name(original)
+
+
+def _standalone(reading: Reading, fitted: list[FittedPath], options: ConvertOptions, target: Language) -> str:
+    """One clean program spraying every path in turn (each approached and departed alike), in
+    the frame the original gave the first path's poses in, with its tool."""
+    toolpath = reading.toolpath
+    spans = ", ".join(f"{f.lines[0]}-{f.lines[1]}" for f in fitted)
+    settings = {_settings(toolpath, f) for f in fitted}
+    if len(settings) != 1:
+        raise InputError(f"{len(fitted)} process paths (lines {spans}) sprayed with different speeds or accuracies; "
+                         "--standalone writes them with one: choose a path with --lines FIRST-LAST")
+    speed, accuracy, cp = settings.pop()
+    tool = toolpath.tool
+    tool_frame = Pose(tool.rotation, tool.offset_mm) if tool is not None else DEFAULT_TOOL
+    paths = tuple(PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
+                  for f in fitted)
+    n_moves = sum(len(f.path.moves) for f in fitted)
+    n_segments = sum(len(f.segments) for f in fitted)
+    process = ProcessInfo(variant="convert", source=f"{toolpath.name} lines {spans}",
+                          tolerance_mm=options.tolerance_mm, curve_length_mm=sum(p.length for p in paths),
+                          gun_signal=options.gun_signal, n_segments=n_segments,
+                          n_lines=sum(f.n_lines for f in fitted), n_arcs=sum(f.n_arcs for f in fitted))
+    frame = reading.move_frames[fitted[0].path.moves[0]] if reading.move_frames else None
+    plan = ProgramPlan(
+        name=_program_name(target, options, toolpath.name), paths=paths, speed_mm_s=speed,
+        accuracy_mm=accuracy, exact_stop=not cp, approach_mm=options.approach_mm, gun_signal=options.gun_signal,
+        tool=tool_frame, process=process, work_frame=frame,
+        comments=(f"coatsim convert: lines {spans} of {toolpath.name}, {n_moves} moves -> "
+                  f"{n_segments} lines and arcs within {fmt_short(options.tolerance_mm)} mm",),
+    )
+    return target.write(plan)
+
+
+def _read_written(language: Language, files: Sequence[tuple[str, bytes]], options: ReadOptions) -> Reading:
+    """Read program files not yet saved ((name, bytes), the main first) from a temporary folder,
+    so any reader reads them as it reads files."""
+    with tempfile.TemporaryDirectory(prefix="coatsim-convert-") as folder:
+        written = []
+        for name, data in files:
+            path = Path(folder) / name
+            path.write_bytes(data)
+            written.append(path)
+        return language.reading(written, options)
+
+
+def convert_program(paths: Paths, options: ConvertOptions, *, language: Language, target: Optional[Language] = None,
+                    inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
+                    variables: Optional[Mapping[str, Union[str, float]]] = None) -> Conversion:
+    """Convert the process path(s) of program files of ``language`` loaded together: in place
+    (a language that edits in place, ``target`` None or the same language, not ``standalone``)
+    or as a standalone program in ``target`` (default: the same language). InputError on what
+    cannot be converted (not planar, not editable in place, a statement skipped for want of a
+    value that ``variables`` does not give), with the reason."""
+    items = [Path(paths)] if isinstance(paths, (str, Path)) else [Path(p) for p in paths]
+    target = target or language
+    standalone = options.standalone or target is not language
+    read_options = ReadOptions(gun_signal=options.gun_signal, program=options.program, inputs=inputs or {},
+                               kinematics=kinematics, variables=variables or {})
+    if options.name is not None:
+        target.check_name(options.name, "name")
+    if not standalone and not isinstance(language, EditsInPlace):
+        raise InputError(f"{language.title} programs are not edited in place: write a standalone program",
+                         parameters=("standalone",))
+    reading = language.reading(items, read_options)
+    reading.require_complete()
+    motions = language.capabilities.motions
+    fitted = [fit_path(reading, c, options) for c in _candidates(reading, options, motions)]
+    notes = [n for f in fitted for n in f.notes]
+    if standalone:
+        text, replaces, counts, ranges = _standalone(reading, fitted, options, target), None, None, [f.lines for f in fitted]
+        data = text.encode("ascii")
+        written = [(f"converted{suffix}", body.encode("ascii")) for suffix, body in target.files(text)]
+        notes += _dwells_dropped(reading.toolpath, fitted)
+        if reading.external_axes:
+            notes.append("the original's poses hold external axis values (a rail, a positioner); the standalone "
+                         "program's poses have none: add them before loading it on such a cell")
+    else:
+        edit = language.edit_in_place(items, read_options, fitted, options.tolerance_mm)
+        replaces, data, counts, ranges = edit.source, edit.data, list(edit.counts), list(edit.ranges)
+        text = data.decode("utf-8" if _is_utf8(data) else "latin-1")
+    try:
+        if standalone:
+            new = _read_written(target, written, replace(read_options, program=None))
+        else:
+            new = _read_edited(language, items, replaces, data, read_options)
+    except CoatsimError as exc:
+        raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
+    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm / 20.0,
+                      replaces or "the standalone program")
+    notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
+              f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over "
+              f"{target.capabilities.max_arc_sweep_deg:g} deg takes several {target.capabilities.motions} moves)"
+              for r in reports if r.moves_after >= r.moves_before]
+    return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
+
+
+def _read_edited(language: Language, items: Sequence[Path], replaces: str, data: bytes, options: ReadOptions) -> Reading:
+    """Read ``items`` with the file ``replaces`` holding ``data`` instead, in their order: every
+    file from a temporary folder (the edited one under its own name)."""
+    with tempfile.TemporaryDirectory(prefix="coatsim-convert-") as folder:
+        paths = []
+        for k, item in enumerate(items):
+            path = Path(folder) / str(k) / item.name
+            path.parent.mkdir()
+            path.write_bytes(data if str(item) == replaces else read_input_bytes(item, "program"))
+            paths.append(path)
+        return language.reading(paths, options)
+
+
+def _dwells_dropped(toolpath: ToolPath, fitted: list[FittedPath]) -> list[str]:
+    """Notes for the waits inside a process path (TWAIT, DELAY between two sprayed moves: a
+    thick spot in the original) that the standalone program, moving on, does not have."""
+    notes = []
+    for f in fitted:
+        first, last = f.path.moves[0], f.path.moves[-1]
+        inside = [d for d in toolpath.dwells if first <= d.after < last and d.seconds > 0]
+        if inside:
+            waits = ", ".join(f"line {d.line} ({d.seconds:g} s)" for d in inside)
+            notes.append(f"lines {f.lines[0]}-{f.lines[1]}: the original waits on the path at {waits}; the "
+                         "standalone program sprays the path without stopping")
+    return notes
+
+
+def _is_utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
+
+
+def _same(a, b) -> bool:
+    end_a = a.target if a.kind == "joint" else a.end
+    end_b = b.target if b.kind == "joint" else b.end
+    return a.kind == b.kind and a.spray == b.spray and np.allclose(end_a.translation_mm, end_b.translation_mm, atol=1e-6)
+
+
+def _verify(original: ToolPath, converted: ToolPath, fitted: list[FittedPath], counts: Optional[list[int]],
+            ranges: list[tuple[int, int]], step: float, where: str) -> list[PathReport]:
+    """Each new process path against its original, measured both ways on the programs' paths;
+    in place, every other move must be the same as before (``where`` names the file edited)."""
+    old, new = original.moves, converted.moves
+    blocks = []
+    if counts is None:
+        blocks = [[new[i] for i in r] for r in spray_runs(converted)]
+        if len(blocks) != len(fitted):
+            raise InputError(f"the standalone program sprays {len(blocks)} paths, not the {len(fitted)} converted")
+    else:
+        if len(new) != len(old) + sum(c - len(f.path.moves) for f, c in zip(fitted, counts)):
+            raise InputError(f"{where}: the converted program moves differently from the original outside the "
+                             "process path; use --standalone")
+        offset, done = 0, 0
+        for f, c in zip(fitted, counts):
+            first, n = f.path.moves[0], len(f.path.moves)
+            if not all(_same(old[i], new[i + offset]) for i in range(done, first)):
+                raise InputError(f"{where}: the converted program moves differently from the original before the "
+                                 "process path; use --standalone")
+            block = list(new[first + offset:first + offset + c])
+            if any(m.spray != old[first].spray for m in block):
+                raise InputError(f"{where}: the gun does not spray the converted path as it sprayed the original; "
+                                 "use --standalone")
+            blocks.append(block)
+            offset, done = offset + c - n, first + n
+        if not all(_same(old[i], new[i + offset]) for i in range(done, len(old))):
+            raise InputError(f"{where}: the converted program moves differently from the original after the "
+                             "process path; use --standalone")
+    reports = []
+    for f, block, (first, last) in zip(fitted, blocks, ranges):
+        old_moves = [old[i] for i in f.path.moves]
+        a, b = dense_points(old_moves, step), dense_points(block, step)
+        deviation = max(path_distance(a, b), path_distance(b, a))
+        reports.append(PathReport(first, last, len(old_moves), len(block), f.n_arcs, f.n_lines,
+                                  f.plane.deviation_mm, deviation, f.path.length_mm))
+    return reports
+
+
+def conversion_summary(c: Conversion) -> str:
+    """The report of ``coatsim convert``: one line per path, then the notes."""
+    out = []
+    for r in c.paths:
+        out.append(f"lines {r.first_line}-{r.last_line}: {r.moves_before} moves -> {r.moves_after} "
+                   f"({r.n_lines} lines + {r.n_arcs} arcs), path {r.length_mm:.3f} mm, deviation {r.deviation_mm:.4f} mm "
+                   f"(tolerance {c.tolerance_mm:g} mm; out of plane {r.plane_deviation_mm:.4f} mm)")
+    before, after = sum(r.moves_before for r in c.paths), sum(r.moves_after for r in c.paths)
+    out.append(f"moves on the process path: {before} -> {after}; "
+               + (f"path replaced in a copy of {c.replaces} (every other line as it was)" if c.replaces
+                  else "standalone program"))
+    out += [f"note: {n}" for n in c.notes]
+    return "\n".join(out)

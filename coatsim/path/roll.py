@@ -1,0 +1,206 @@
+"""The tool's full orientation along a 3-D pass: its spray axis (given) and its roll about it.
+
+A pass comes as pieces (a Line3 or an Arc3) with the unit spray axis at each piece's start, via
+point and end, the interpolated axis within the fit's angle tolerance of the wanted one when it
+turns along the great circle between them (coatsim.geometry.space.orient). A controller turns
+the whole tool between two given poses by the shortest rotation (slerp); the roll rule decides
+the tool's x axis at every pose:
+
+- ``fixed``: the tool is carried along without turning about its axis (parallel transport: the
+  rotation between consecutive poses is the smallest one that turns one axis onto the next), from
+  a start frame whose x is a program-wide reference direction. The slerp between such poses turns
+  the axis exactly along the great circle, so the fit's bound holds as it is.
+- ``follow``: the tool's x axis lies along the line of travel (the move's tangent at each pose,
+  projected across the axis), pointing with it or against it, whichever is nearer the reference
+  (for a pass after another, the tool's x where that one ended: serpentine passes do not wind
+  the wrist up by half a turn each). The roll then turns too, which bends the slerped axis off
+  the great circle.
+
+Pieces are halved, the new pose on the wanted axis, until the slerped axis stays within the angle
+tolerance of the wanted one and the tool's turning rate changes little at every pose (a rate
+that jumps makes the joints change speed at once: the tool slows there).
+
+``roll_deg`` turns the tool about its axis by a constant angle on top of either rule.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+import numpy as np
+
+from coatsim.core.errors import InputError
+from coatsim.geometry.space.pose import log_rotation, slerp
+from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
+from coatsim.geometry.space.rotations import rot_z
+
+ROLL_RULES = ("fixed", "follow")
+#: Largest change of the tool's turning rate at a pose, rad per mm of travel (0.06 degree/mm).
+MAX_RATE_JUMP_RAD_MM = 1e-3
+_SAMPLES = 17  # the slerped axis is compared with the wanted one this often per half piece
+Wanted = Callable[[np.ndarray], np.ndarray]  # points (n, 3) -> the wanted unit axes there (n, 3)
+_MIN_PIECE_MM = 1e-3
+_MAX_ROUNDS = 12
+
+
+@dataclass(frozen=True, eq=False)
+class AxisPiece:
+    """A move's geometry with the unit spray axis at its start, via point and end."""
+
+    geometry: Segment3
+    axes: tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+@dataclass(frozen=True, eq=False)
+class Oriented:
+    """A piece with the tool rotation at its start, via point (arcs; None for a line) and end."""
+
+    geometry: Segment3
+    start: np.ndarray
+    via: np.ndarray | None
+    end: np.ndarray
+
+
+def check_rule(rule: str) -> str:
+    if rule not in ROLL_RULES:
+        raise InputError(f"roll: expected one of {', '.join(ROLL_RULES)}, got {rule!r}", parameters=("roll",))
+    return rule
+
+
+def reference_direction(axes: np.ndarray) -> np.ndarray:
+    """The direction (3,) the tool's x axis starts from under ``fixed`` (projected across the
+    axis): minus the base x axis, as a planar program holds the tool (pointing back to the robot),
+    unless that comes within 30 degrees of an axis (n, 3); then the base y axis, the base z axis,
+    or else the direction most nearly perpendicular to every axis (the eigenvector of Σ a aᵀ with
+    the smallest eigenvalue, its largest component positive)."""
+    a = np.asarray(axes, dtype=float)
+    for r in (np.array([-1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])):
+        if float(np.abs(a @ r).max()) < math.cos(math.radians(30.0)):
+            return r
+    _, vectors = np.linalg.eigh(a.T @ a)
+    r = vectors[:, 0]
+    return r if r[int(np.argmax(np.abs(r)))] > 0 else -r
+
+
+def _frame(z: np.ndarray, x_hint: np.ndarray) -> np.ndarray:
+    """The rotation whose z is ``z`` and whose x is ``x_hint`` made perpendicular to it."""
+    x = x_hint - (x_hint @ z) * z
+    n = float(np.linalg.norm(x))
+    if n < 1e-9:  # the hint lies along the axis: any perpendicular
+        x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+        n = float(np.linalg.norm(x))
+    x = x / n
+    return np.column_stack((x, np.cross(z, x), z))
+
+
+def _carry(rotation: np.ndarray, z_to: np.ndarray) -> np.ndarray:
+    """``rotation`` turned by the smallest rotation taking its z onto ``z_to`` (made orthonormal
+    again, so that long chains of such turns do not drift)."""
+    z = rotation[:, 2]
+    axis = np.cross(z, z_to)
+    s, c = float(np.linalg.norm(axis)), float(z @ z_to)
+    if s < 1e-15:
+        return _frame(z_to, rotation[:, 0] if c > 0 else -rotation[:, 0])
+    k = axis / s
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    turn = np.eye(3) + s * kx + (1.0 - c) * (kx @ kx)
+    return _frame(z_to, turn @ rotation[:, 0])
+
+
+def _tangent(seg: Segment3, where: str) -> np.ndarray:
+    if isinstance(seg, Line3):
+        return seg.direction
+    return {"start": seg.start_tangent, "via": seg.tangents(np.array([seg.length / 2]))[0], "end": seg.end_tangent}[where]
+
+
+def orient(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: np.ndarray) -> list[Oriented]:
+    """The tool rotation at every pose of the pieces (consecutive pieces share their junction pose);
+    ``reference`` the direction the tool's x starts nearest to (see the module text)."""
+    roll = rot_z(math.radians(roll_deg))
+    out: list[Oriented] = []
+    here = None  # the rotation at the current pose, before the roll offset
+    start_tangent = _tangent(pieces[0].geometry, "start")
+    sign = 1.0 if float(start_tangent @ reference) >= 0.0 else -1.0  # follow: along or against the travel
+    for k, piece in enumerate(pieces):
+        a0, av, a1 = piece.axes
+        seg = piece.geometry
+        if here is None:
+            here = _frame(a0, reference if rule == "fixed" else sign * start_tangent)
+        elif rule == "fixed":
+            here = _carry(here, a0)  # the same axis at a junction: no turn at all
+        via = None
+        if isinstance(seg, Arc3):
+            via = _carry(here, av) if rule == "fixed" else _frame(av, sign * _tangent(seg, "via"))
+        end = _carry(via if via is not None else here, a1) if rule == "fixed" else _frame(a1, sign * _tangent(seg, "end"))
+        out.append(Oriented(seg, here @ roll, None if via is None else via @ roll, end @ roll))
+        here = end
+    return out
+
+
+def _axes_along(o: Oriented, u: np.ndarray) -> np.ndarray:
+    """The slerped tool axis (n, 3) at fractions ``u`` of a piece (through its via on an arc)."""
+    if o.via is None:
+        return slerp(o.start, o.end, u)[:, :, 2]
+    first = u <= 0.5
+    out = np.empty((len(u), 3))
+    out[first] = slerp(o.start, o.via, 2 * u[first])[:, :, 2]
+    out[~first] = slerp(o.via, o.end, 2 * u[~first] - 1)[:, :, 2]
+    return out
+
+
+def _axis_error(o: Oriented, wanted: Wanted) -> float:
+    """Largest angle (rad) between the slerped tool axis and the wanted one along a piece."""
+    u = np.linspace(0.0, 1.0, 2 * _SAMPLES - 1)
+    got, want = _axes_along(o, u), wanted(o.geometry.points(u * o.geometry.length))
+    return float(np.arctan2(np.linalg.norm(np.cross(got, want), axis=1), np.einsum("ij,ij->i", got, want)).max())
+
+
+def _rates(o: Oriented) -> list[np.ndarray]:
+    """The tool's turning rates (world frame, rad/mm) along a piece: one for a line, two for an arc."""
+    length = o.geometry.length
+    stops = [(o.start, o.end, length)] if o.via is None else [(o.start, o.via, length / 2), (o.via, o.end, length / 2)]
+    return [a @ log_rotation(a.T @ b) / step for a, b, step in stops]
+
+
+def _kinks(out: list[Oriented], bound: float) -> set[int]:
+    """Pieces at whose via, or at either end of which, the turning rate changes by more than ``bound``."""
+    rates = [_rates(o) for o in out]
+    bad = {k for k, r in enumerate(rates) if len(r) == 2 and np.linalg.norm(r[1] - r[0]) > bound}
+    for k in range(len(out) - 1):
+        if np.linalg.norm(rates[k + 1][0] - rates[k][-1]) > bound:
+            bad |= {k, k + 1}
+    return bad
+
+
+def _halves(piece: AxisPiece, wanted: Wanted) -> tuple[AxisPiece, AxisPiece]:
+    """A piece split at its middle, the new poses' axes the wanted ones there."""
+    seg, (a0, _, a1) = piece.geometry, piece.axes
+    if isinstance(seg, Line3):
+        first, second = Line3(seg.start, seg.via), Line3(seg.via, seg.end)
+    else:
+        first = Arc3(seg.start, seg.via, seg.center, seg.normal, seg.radius, seg.sweep / 2)
+        second = Arc3(seg.via, seg.end, seg.center, seg.normal, seg.radius, seg.sweep / 2)
+    q0, mid, q1 = wanted(np.array([first.via, seg.via, second.via]))
+    return AxisPiece(first, (a0, q0, mid)), AxisPiece(second, (mid, q1, a1))
+
+
+def oriented_pieces(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: np.ndarray,
+                    wanted: Wanted, angle_tol_rad: float,
+                    max_rate_jump: float = MAX_RATE_JUMP_RAD_MM) -> list[Oriented]:
+    """The pieces with their tool rotations, halved (the new poses on the wanted axis) where the
+    slerped axis strays more than ``angle_tol_rad`` from the wanted one (the roll of ``follow``
+    bends it off the great circle), or where the tool's turning rate changes by more than
+    ``max_rate_jump`` rad/mm at a pose: the joints must change speed there, within the
+    controller's orientation zone, so a large jump slows the tool."""
+    check_rule(rule)
+    pieces = list(pieces)
+    for _ in range(_MAX_ROUNDS):
+        out = orient(pieces, rule, roll_deg, reference)
+        bad = {k for k, o in enumerate(out) if _axis_error(o, wanted) > angle_tol_rad} | _kinks(out, max_rate_jump)
+        bad = {k for k in bad if pieces[k].geometry.length / 2 >= _MIN_PIECE_MM}
+        if not bad:
+            return out
+        pieces = [h for k, p in enumerate(pieces) for h in (_halves(p, wanted) if k in bad else (p,))]
+    return orient(pieces, rule, roll_deg, reference)

@@ -1,0 +1,403 @@
+"""Programs of 3-D passes: a surfacepaths file becomes one program spraying every pass.
+
+Per pass the tool centre point runs at ``point + standoff · normal`` with the spray axis along
+minus the normal (both placed in the robot base frame by the part's pose). Variants:
+
+- ``polysegment``: the orientation-aware 3-D fit (coatsim.geometry.space.orient): tangent-
+  continuous lines and arcs, each in its own plane, within ``tolerance_mm``, with a pose at every
+  segment end and arc middle so that the axis the controller interpolates stays within
+  ``angle_tol_deg`` of the surface normal; blended.
+- ``polyline-stop`` / ``polyline-blend``: straight moves through the pass's TCP points kept by a
+  Douglas–Peucker pass on position (``tolerance_mm``) and axis (``angle_tol_deg``) together, as a
+  waypoint planner emits them (no pose added for a smooth turning rate); exact stop at every
+  vertex, or blended.
+
+The roll about the axis follows coatsim.path.roll. Each pass gets a lead-in and a lead-out that
+continue its first and last line or arc, the tool turning on at the same rate (the lengths of
+the file's leads unless given), the gun open
+along the whole pass and its leads (an open pass) or exactly once around (a closed one); the
+tool approaches and departs along the axis and travels between passes with the gun off, at a
+clearance raised where the straight travel would pass closer to the part than the stand-off.
+With ``speed_on="trace"`` every move gets the speed that moves the spray spot on the surface
+(TCP + standoff · axis, as the controller interpolates the poses) at ``speed_mm_s``; the
+stretches where a move's own speed exceeds what its arc allows (v² / r above the tool
+acceleration) are the program's speed limits.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from coatsim.core import defaults
+from coatsim.core.errors import InputError
+from coatsim.core.numbers import fmt_short
+from coatsim.geometry.space.orient import ANGLE_TOL_DEG, fit_surface_pass, slerp_axes
+from coatsim.geometry.space.pose import Pose, exp_rotation, log_rotation, slerp
+from coatsim.geometry.space.primitives import Arc3, Line3, rotate_about
+from coatsim.geometry.space.rotations import rot_z
+from coatsim.path.build import ProgramOptions
+from coatsim.path.frames import DEFAULT_FRAME
+from coatsim.path.language import Language
+from coatsim.path.placement import PlacedMove, PlacedPath
+from coatsim.path.plan import ProgramPlan
+from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
+from coatsim.path.roll import AxisPiece, Oriented, check_rule, oriented_pieces, reference_direction
+from coatsim.path.speed_limits import SpeedLimit
+from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
+
+_TRACE_SAMPLES = 33      # samples per move when its trace length is measured
+_CLEARANCE_STEPS = 6     # the travel clearance is doubled at most this many times
+_KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
+_MAX_LEAD_TURN_RAD = math.radians(120.0)  # a lead continuing a tighter circle is a tangent line
+
+
+@dataclass(frozen=True)
+class SurfaceOptions:
+    """How the passes are placed and fitted: the stand-off (None: the file's, else the default),
+    the part's pose in the base frame (None: the file's, else the default workpiece frame), the
+    fit's tolerances, the roll rule and offset, where the speed holds, the lead lengths (None:
+    the file's), and the tool acceleration the speed limits are computed for (None: corners only)."""
+
+    standoff_mm: Optional[float] = None
+    pose: Optional[Pose] = None
+    tolerance_mm: float = defaults.TOLERANCE_MM
+    angle_tol_deg: float = ANGLE_TOL_DEG
+    roll: str = "fixed"
+    roll_deg: float = 0.0
+    speed_on: str = "tcp"
+    lead_in_mm: Optional[float] = None
+    lead_out_mm: Optional[float] = None
+    tool_accel_mm_s2: Optional[float] = None
+
+    def __post_init__(self) -> None:
+        check_rule(self.roll)
+        if self.speed_on not in SPEED_ON:
+            raise InputError(f"speed_on: expected one of {', '.join(SPEED_ON)}, got {self.speed_on!r}",
+                             parameters=("speed_on",))
+        for name in ("standoff_mm", "tolerance_mm", "tool_accel_mm_s2"):
+            value = getattr(self, name)
+            if value is not None and not (math.isfinite(value) and value > 0):
+                raise InputError(f"{name}: must be a positive number, got {value}", parameters=(name,))
+        for name in ("lead_in_mm", "lead_out_mm"):
+            value = getattr(self, name)
+            if value is not None and not (math.isfinite(value) and value >= 0):
+                raise InputError(f"{name}: must be a number >= 0 (mm), got {value}", parameters=(name,))
+        if not math.isfinite(self.roll_deg):
+            raise InputError(f"roll_deg: must be a finite number of degrees, got {self.roll_deg}",
+                             parameters=("roll_deg",))
+
+
+@dataclass(frozen=True, eq=False)
+class SurfaceProgram:
+    """A written program of 3-D passes: its text, plan, per pass the number of lines and arcs,
+    the largest angle (rad) between the fitted axis and the wanted one, and what the language
+    could not say as asked (arcs written as lines)."""
+
+    text: str
+    plan: ProgramPlan
+    counts: tuple[tuple[int, int], ...]
+    max_axis_error_rad: float
+    notes: tuple[str, ...] = ()
+
+
+def pass_tcp(surface_pass: SurfacePass, standoff_mm: float, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
+    """TCP points (n, 3) and spray axes (n, 3) of a pass in the base frame; a closed pass ends
+    where it starts."""
+    points, normals = surface_pass.points, surface_pass.normals
+    if surface_pass.closed and not np.array_equal(points[0], points[-1]):
+        points, normals = np.vstack((points, points[:1])), np.vstack((normals, normals[:1]))
+    return pose.apply(points + standoff_mm * normals), -pose.apply_vectors(normals)
+
+
+def oriented_polyline(points: np.ndarray, axes: np.ndarray, tolerance_mm: float, angle_tol_rad: float) -> np.ndarray:
+    """Indices of the vertices Douglas–Peucker keeps when a point must lie within
+    ``tolerance_mm`` of its line and its axis within ``angle_tol_rad`` of the axis slerped along
+    that line (at the point's fraction of it); the worse of the two ratios picks the split."""
+    n = len(points)
+    keep = np.zeros(n, dtype=bool)
+    keep[[0, n - 1]] = True
+    stack = [(0, n - 1)]
+    while stack:
+        i, j = stack.pop()
+        if j - i < 2:
+            continue
+        a, b = points[i], points[j]
+        ab = b - a
+        den = float(ab @ ab)
+        inner = points[i + 1:j]
+        u = np.clip((inner - a) @ ab / den, 0.0, 1.0) if den > 0 else np.zeros(len(inner))
+        dist = np.linalg.norm(inner - a - u[:, None] * ab, axis=1)
+        want = slerp_axes(axes[i], axes[j], u)
+        got = axes[i + 1:j]
+        angle = np.arctan2(np.linalg.norm(np.cross(got, want), axis=1), np.einsum("ij,ij->i", got, want))
+        worst = np.maximum(dist / tolerance_mm, angle / angle_tol_rad)
+        k = int(np.argmax(worst))
+        if worst[k] > 1.0:
+            m = i + 1 + k
+            keep[m] = True
+            stack += [(i, m), (m, j)]
+    return np.flatnonzero(keep)
+
+
+class WantedAxes:
+    """The wanted spray axis at points near a pass: the input axes interpolated along the input
+    polyline at the nearest point of the edges around the nearest input point."""
+
+    def __init__(self, points: np.ndarray, axes: np.ndarray) -> None:
+        from scipy.spatial import cKDTree
+
+        self.points, self.axes, self.tree = points, axes, cKDTree(points)
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        _, i = self.tree.query(x)
+        last = len(self.points) - 1
+        best_d, best_v = np.full(len(x), np.inf), np.zeros((len(x), 3))
+        for a in (np.clip(i - 1, 0, last - 1), np.clip(i, 0, last - 1)):
+            p, q = self.points[a], self.points[a + 1]
+            pq = q - p
+            u = np.clip(np.einsum("ij,ij->i", x - p, pq) / np.maximum(np.einsum("ij,ij->i", pq, pq), 1e-300), 0, 1)
+            d = np.linalg.norm(x - p - u[:, None] * pq, axis=1)
+            v = (1 - u)[:, None] * self.axes[a] + u[:, None] * self.axes[a + 1]
+            closer = d < best_d
+            best_d[closer], best_v[closer] = d[closer], v[closer]
+        return best_v / np.linalg.norm(best_v, axis=1)[:, None]
+
+
+def _fitted(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions, speed_mm_s: Optional[float],
+            name: str) -> tuple[list[AxisPiece], float, tuple[int, ...]]:
+    """The pass fitted in 3-D: its pieces with axes, the largest axis error (rad) and the corners."""
+    accel = options.tool_accel_mm_s2 if speed_mm_s is not None else None
+    fit = fit_surface_pass(tcp, axes, options.tolerance_mm, options.angle_tol_deg,
+                           speed_mm_s=speed_mm_s if accel is not None else None, tool_accel_mm_s2=accel, name=name)
+    chain = fit.chain
+    pieces = [AxisPiece(seg, tuple(np.array(a) for a in trio)) for seg, trio in zip(chain.segments, chain.axes)]
+    return pieces, fit.max_axis_error_rad, chain.corners
+
+
+def _polyline(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions) -> list[AxisPiece]:
+    keep = oriented_polyline(tcp, axes, options.tolerance_mm, math.radians(options.angle_tol_deg))
+    out = []
+    for i, j in zip(keep[:-1], keep[1:]):
+        if not np.array_equal(tcp[i], tcp[j]):
+            mid = slerp_axes(axes[i], axes[j], np.array([0.5]))[0]
+            out.append(AxisPiece(Line3(tcp[i], tcp[j]), (axes[i], mid, axes[j])))
+    return out
+
+
+def _trace_ratio(o: Oriented, standoff_mm: float) -> float:
+    """TCP length over the length of the spot's trace (TCP + standoff · axis) along one move."""
+    u = np.linspace(0.0, 1.0, _TRACE_SAMPLES)
+    seg = o.geometry
+    p = seg.points(u * seg.length)
+    if o.via is None:
+        z = slerp(o.start, o.end, u)[:, :, 2]
+    else:
+        half = u <= 0.5
+        z = np.vstack((slerp(o.start, o.via, 2 * u[half])[:, :, 2], slerp(o.via, o.end, 2 * u[~half] - 1)[:, :, 2]))
+    trace = float(np.linalg.norm(np.diff(p + standoff_mm * z, axis=0), axis=1).sum())
+    return seg.length / trace if trace > 0 else 1.0
+
+
+def _limits(moves: list[PlacedMove], speed: float, accel: Optional[float], corners: set[int]) -> tuple[SpeedLimit, ...]:
+    """Stretches of the curve proper where a move's speed exceeds what its arc allows, and its corners."""
+    out, s = [], 0.0
+    for k, m in enumerate(moves):
+        v = m.speed_mm_s if m.speed_mm_s is not None else speed
+        if accel is not None and isinstance(m.geometry, Arc3) and v * v / m.geometry.radius > accel:
+            out.append(SpeedLimit(s, s + m.length, math.sqrt(accel * m.geometry.radius)))
+        s += m.length
+        if k in corners and k < len(moves) - 1:
+            out.append(SpeedLimit(s, s, 0.0))
+    return tuple(out)
+
+
+def _corners(pieces: list[AxisPiece]) -> set[int]:
+    """Junctions (end of piece k) where the tangent breaks."""
+    return {k for k, (a, b) in enumerate(zip(pieces[:-1], pieces[1:]))
+            if math.atan2(float(np.linalg.norm(np.cross(a.geometry.end_tangent, b.geometry.start_tangent))),
+                          float(a.geometry.end_tangent @ b.geometry.start_tangent)) > _KINK_RAD}
+
+
+def _placed(oriented: list[Oriented], leads: tuple[float, float], standoff: float, trace_speed: Optional[float]
+            ) -> list[PlacedMove]:
+    """The pass's moves (lead-in, the pieces, lead-out) with their poses and, on the trace, speeds."""
+    moves = []
+    for o in oriented:
+        seg = o.geometry
+        v = None if trace_speed is None else trace_speed * _trace_ratio(o, standoff)
+        via = None if o.via is None else Pose(o.via, seg.via)
+        moves.append(PlacedMove(seg, Pose(o.start, seg.start), Pose(o.end, seg.end), "curve", False, via, v))
+    if leads[0] > 0:
+        moves.insert(0, _lead(oriented[0], leads[0], "lead_in", moves[0].speed_mm_s))
+    if leads[1] > 0:
+        moves.append(_lead(oriented[-1], leads[1], "lead_out", moves[-1].speed_mm_s))
+    return moves
+
+
+def _lead(o: Oriented, length: float, part: str, speed_mm_s: Optional[float]) -> PlacedMove:
+    """A lead-in before the first piece or a lead-out after the last: the piece's own line or
+    circle continued by ``length`` (a line along its tangent where the circle would turn more
+    than ``_MAX_LEAD_TURN_RAD``), the tool turning on at the rate it turns at that end, so that
+    neither the path's tangent nor the tool's turning rate changes where the pass begins or ends."""
+    seg = o.geometry
+    before = part == "lead_in"
+    anchor = Pose(o.start, seg.start) if before else Pose(o.end, seg.end)
+    if o.via is None:
+        rate = log_rotation(o.start.T @ o.end) / seg.length
+    else:
+        rate = log_rotation(o.start.T @ o.via if before else o.via.T @ o.end) / (seg.length / 2)
+    def turned(ds: float) -> np.ndarray:  # the rotation ds mm along the lead from the anchor, outward
+        return anchor.rotation @ exp_rotation((-ds if before else ds) * rate)
+    far = turned(length)
+    if isinstance(seg, Arc3) and length / seg.radius <= _MAX_LEAD_TURN_RAD:
+        sweep = length / seg.radius
+        normal = seg.normal
+        if before:  # the circle run backwards from the start: the arc from its far end to the start
+            tip = seg.start + rotate_about(seg.start - seg.center, normal, np.array([-sweep]))[0]
+            arc = Arc3(tip, seg.start, seg.center, normal, seg.radius, sweep)
+        else:
+            arc = Arc3(seg.end, seg.at_angles(np.array([seg.sweep + sweep]))[0], seg.center, normal, seg.radius, sweep)
+        mid = Pose(turned(length / 2), arc.via)
+        ends = (Pose(far, arc.start), anchor) if before else (anchor, Pose(far, arc.end))
+        return PlacedMove(arc, *ends, part, False, mid, speed_mm_s)
+    t = seg.start_tangent if before else seg.end_tangent
+    tip = anchor.translation_mm + (-length if before else length) * t
+    ends = (Pose(far, tip), anchor) if before else (anchor, Pose(far, tip))
+    return PlacedMove(Line3(ends[0].translation_mm, ends[1].translation_mm), *ends, part, speed_mm_s=speed_mm_s)
+
+
+def _principal(normal: np.ndarray) -> bool:
+    return bool(np.isclose(np.abs(normal).max(), 1.0, rtol=0.0, atol=1e-9))
+
+
+def expressible(moves: list[PlacedMove], arc_planes: str, tolerance_mm: float) -> tuple[list[PlacedMove], int]:
+    """The moves as a language with native arcs in ``arc_planes`` ("any", "principal" or "none")
+    can write them: every other arc as the lines through poses on it whose chords stay within
+    ``tolerance_mm`` of it; and how many arcs became lines."""
+    if arc_planes == "any":
+        return moves, 0
+    out: list[PlacedMove] = []
+    changed = 0
+    for m in moves:
+        arc = m.geometry
+        if not m.is_arc or (arc_planes == "principal" and _principal(arc.normal)):
+            out.append(m)
+            continue
+        changed += 1
+        step = 2.0 * math.acos(max(-1.0, 1.0 - tolerance_mm / arc.radius))
+        n = max(1, math.ceil(arc.sweep / step))
+        poses = [m.pose_at(k / n) for k in range(n + 1)]
+        out += [PlacedMove(Line3(a.translation_mm, b.translation_mm), a, b, m.part, speed_mm_s=m.speed_mm_s)
+                for a, b in zip(poses[:-1], poses[1:])]
+    return out, changed
+
+
+def _clear(a: np.ndarray, b: np.ndarray, points: np.ndarray) -> float:
+    """Smallest distance from the segment a-b to the points (n, 3)."""
+    ab = b - a
+    den = float(ab @ ab)
+    u = np.clip((points - a) @ ab / den, 0.0, 1.0) if den > 0 else np.zeros(len(points))
+    return float(np.linalg.norm(points - a - u[:, None] * ab, axis=1).min())
+
+
+def _clearances(paths: list[PlacedPath], approach: float, surface: np.ndarray, standoff: float, source: str) -> list[float]:
+    """Per path the approach/depart distance: ``approach``, doubled for both ends of a travel
+    until the straight travel keeps at least the stand-off from every surface point."""
+    out = [approach] * len(paths)
+    for k in range(len(paths) - 1):
+        a, b = paths[k].end, paths[k + 1].start
+        for _ in range(_CLEARANCE_STEPS + 1):
+            c = max(out[k], out[k + 1])
+            p, q = a.translation_mm - c * a.rotation[:, 2], b.translation_mm - c * b.rotation[:, 2]
+            if _clear(p, q, surface) >= standoff:
+                out[k] = out[k + 1] = c
+                break
+            out[k] = out[k + 1] = 2 * c
+        else:
+            raise InputError(f"{source}: the travel from pass {k + 1} to pass {k + 2} passes closer to the part than "
+                             f"the stand-off even {fmt_short(c)} mm off it; spray them in another order or split the program",
+                             parameters=("approach_mm",))
+    return out
+
+
+def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions,
+                          language: Language) -> SurfaceProgram:
+    """The ``options.variant`` program of every pass of ``paths`` in ``language`` (module text)."""
+    standoff = surface.standoff_mm or paths.standoff_mm or defaults.STANDOFF_MM
+    pose = surface.pose or paths.pose or DEFAULT_FRAME
+    leads = [p.lead_lengths_mm() for p in paths.passes]
+    lead_in = surface.lead_in_mm if surface.lead_in_mm is not None else max(a for a, _ in leads)
+    lead_out = surface.lead_out_mm if surface.lead_out_mm is not None else max(b for _, b in leads)
+    if len(paths.passes) > 1 and not options.approach_mm > 0:
+        raise InputError(f"approach_mm {options.approach_mm:g}: passes are joined by travel at this clearance; "
+                         "it must be > 0 mm", parameters=("approach_mm",))
+    tcps = [pass_tcp(p, standoff, pose) for p in paths.passes]
+    start_x = reference_direction(np.vstack([a for _, a in tcps]))
+    trace_speed = options.speed_mm_s if surface.speed_on == "trace" else None
+    placed, contours, counts, worst, arcs_as_lines = [], [], [], 0.0, 0
+    for k, ((tcp, axes), surface_pass) in enumerate(zip(tcps, paths.passes)):
+        name = f"{paths.source}: passes[{k}]"
+        step = np.linalg.norm(np.diff(tcp, axis=0), axis=1)
+        trace_step = np.linalg.norm(np.diff(tcp + standoff * axes, axis=0), axis=1)
+        peak = options.speed_mm_s * (float(np.max(step / np.maximum(trace_step, 1e-12))) if trace_speed else 1.0)
+        pieces, error, _ = _fitted(tcp, axes, surface, peak, name)
+        wanted = WantedAxes(tcp, axes)
+        angle_tol = math.radians(surface.angle_tol_deg)
+        oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, start_x, wanted, angle_tol)
+        fit_moves = _placed(oriented, (0.0, 0.0), standoff, trace_speed)
+        curve_length = float(sum(m.length for m in fit_moves))
+        limits = _limits(fit_moves, options.speed_mm_s, surface.tool_accel_mm_s2,
+                         _corners([AxisPiece(o.geometry, (np.zeros(3),) * 3) for o in oriented]))
+        if options.variant != "polysegment":
+            oriented = oriented_pieces(_polyline(tcp, axes, surface), surface.roll, surface.roll_deg, start_x,
+                                       wanted, angle_tol, max_rate_jump=math.inf)
+        if surface.roll == "follow":  # the next pass starts nearest to where this one ends
+            start_x = (oriented[-1].end @ rot_z(-math.radians(surface.roll_deg)))[:, 0]
+        moves, lined = expressible(_placed(oriented, (lead_in, lead_out), standoff, trace_speed),
+                                   language.capabilities.arc_planes, surface.tolerance_mm)
+        arcs_as_lines += lined
+        length = float(sum(m.length for m in moves if m.part == "curve"))
+        limits = tuple(lim.scaled(length / curve_length) for lim in limits)
+        worst = max(worst, error)
+        n_arcs = sum(m.is_arc for m in moves if m.part == "curve")
+        counts.append((sum(m.part == "curve" for m in moves) - n_arcs, n_arcs))
+        placed.append(PlacedPath(tuple(moves), -axes[0], standoff, lead_in, lead_out, length))
+        contours.append(SprayedContour(closed=surface_pass.closed, leads_sprayed=not surface_pass.closed,
+                                       speed_limits=limits))
+    surface_points = np.vstack([pose.apply(p.points) for p in paths.passes])
+    clearance = _clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
+    placed = [PlacedPath(p.segments, p.normal, p.standoff_mm, p.lead_in_mm, p.lead_out_mm, p.curve_length_mm, c)
+              for p, c in zip(placed, clearance)]
+    _check_range(placed, language, paths.source)
+    n_lines, n_arcs = sum(c[0] for c in counts), sum(c[1] for c in counts)
+    process = ProcessInfo(
+        variant=options.variant, source=paths.source, tolerance_mm=surface.tolerance_mm,
+        curve_length_mm=sum(p.curve_length_mm for p in placed), lead_in_mm=lead_in, lead_out_mm=lead_out,
+        standoff_mm=standoff, speed_mm_s=options.speed_mm_s, accuracy_mm=options.accuracy_mm,
+        gun_signal=options.gun_signal, frame=pose, n_segments=n_lines + n_arcs, n_lines=n_lines, n_arcs=n_arcs,
+        contours=tuple(contours), contour_order=tuple(range(1, len(placed) + 1)) if len(placed) > 1 else None,
+        speed_on=surface.speed_on,
+    )
+    stem = paths.source.replace("\\", "/").split("/")[-1].rsplit(".", 1)[0]
+    name = language.check_name(options.name, "name") if options.name is not None else language.program_name(stem)
+    comment = (f"coatsim {options.variant} program of {len(placed)} surface passes: {n_lines} lines + {n_arcs} arcs "
+               f"in 3-D, tolerance {fmt_short(surface.tolerance_mm)} mm, tool axis within "
+               f"{fmt_short(surface.angle_tol_deg)} deg of the normal, roll {surface.roll}, speed on the {surface.speed_on}")
+    notes = (() if not arcs_as_lines else
+             (f"{arcs_as_lines} arcs written as lines within {fmt_short(surface.tolerance_mm)} mm: "
+              f"{language.title} has circular moves only in {language.capabilities.arc_planes} planes",))
+    plan = ProgramPlan(name=name, paths=tuple(placed), speed_mm_s=options.speed_mm_s, accuracy_mm=options.accuracy_mm,
+                       exact_stop=options.variant == "polyline-stop", approach_mm=options.approach_mm,
+                       gun_signal=options.gun_signal, tool=options.tool, process=process, comments=(comment, *notes))
+    return SurfaceProgram(language.write(plan), plan, tuple(counts), worst, notes)
+
+
+def _check_range(paths: list[PlacedPath], language: Language, source: str) -> None:
+    corners = np.array([p.translation_mm for path in paths for m in path.segments for p in (m.start, m.end)])
+    reach = language.capabilities.max_coordinate_mm
+    if not (np.isfinite(corners).all() and np.abs(corners).max() <= reach):
+        raise InputError(f"{source}: the placed passes leave the range a program can hold (|x| <= {reach:g} mm)")

@@ -1,8 +1,0 @@
-"""Kawasaki AS as real cells use it: source decoding, lexer, parser into a typed syntax tree,
-expressions, interpreter to a ToolPath, writer, and the dialect object for the pipeline."""
-
-from coatsim.program.as_lang.interpreter import MAX_STEPS, Run, interpret, interpret_run
-from coatsim.program.as_lang.parser import parse_as, parse_as_bytes
-from coatsim.program.as_lang.source import AsSyntaxError
-
-__all__ = ["AsSyntaxError", "MAX_STEPS", "Run", "interpret", "interpret_run", "parse_as", "parse_as_bytes"]

@@ -1,0 +1,1 @@
+"""Scenario runs: the schema, what a scenario reads, the pipeline and its typed results."""

@@ -1,0 +1,252 @@
+"""The 3-D fit: planar curves in any orientation give their 2-D fit; space curves within σ,
+G1, honest; the certified 3-D deviation against a brute-force dense oracle; polysegment/2."""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from coatsim.core.errors import InputError
+from coatsim.geometry import builtin_curve, make_curve, segment_curve
+from coatsim.geometry.curves import read_curve_file
+from coatsim.geometry.space.biarc import biarc
+from coatsim.geometry.space.chain import SpaceChain
+from coatsim.geometry.space.curve import SpaceCurve, make_space_curve, read_any_curve
+from coatsim.geometry.space.deviation import hausdorff3
+from coatsim.geometry.space.families import FAMILIES
+from coatsim.geometry.space.polysegment_json import chain_document, chain_from_document, read_chain_json, write_chain_json
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.primitives import Arc3
+from coatsim.geometry.space.segment import segment_space_curve
+
+from strategies import poses, unit_vectors
+
+
+@functools.lru_cache(maxsize=None)
+def fitted(name: str, tol: float):
+    return segment_space_curve(make_space_curve(FAMILIES[name](1500), name), tol)
+
+
+def brute_hausdorff(points: np.ndarray, chain: SpaceChain, step: float) -> float:
+    """Both directions between dense samples of the polyline and of the chain (KD-trees)."""
+    from scipy.spatial import cKDTree
+
+    dense = [points[:1]]
+    for a, b in zip(points[:-1], points[1:]):
+        n = max(1, int(math.ceil(np.linalg.norm(b - a) / step)))
+        dense.append(a + np.linspace(0, 1, n + 1)[1:, None] * (b - a))
+    poly = np.vstack(dense)
+    ours = chain.sample(step)[0]
+    return max(cKDTree(ours).query(poly)[0].max(), cKDTree(poly).query(ours)[0].max())
+
+
+def assert_g1(chain: SpaceChain) -> None:
+    breaks = chain.junction_breaks()
+    smooth = [k for k in range(len(breaks)) if k not in chain.corners]
+    assert np.all(breaks[smooth] < 1e-9), breaks[smooth].max()
+    for a, b in zip(chain.segments[:-1], chain.segments[1:]):
+        assert np.array_equal(a.end, b.start)
+
+
+@pytest.mark.parametrize("name", ["paper-spiral", "ellipse", "cam", "rounded-rectangle"])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_planar_curve_in_any_orientation_gives_its_2d_fit(name, seed):
+    curve = builtin_curve(name)
+    flat = segment_curve(curve, 0.1)
+    rng = np.random.default_rng(seed)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    pose = Pose(q * np.sign(np.linalg.det(q)), rng.normal(scale=300, size=3))
+    pts = pose.apply(np.column_stack((curve.points, np.zeros(len(curve.points)))))
+    fit = segment_space_curve(make_space_curve(pts, name, "yes" if curve.closed else "no"), 0.1)
+    assert fit.planar_pose is not None
+    assert fit.chain.n_segments == flat.polysegment.n_segments
+    assert fit.chain.n_arcs == flat.polysegment.n_arcs and len(fit.chain.corners) == len(flat.polysegment.corners)
+    assert fit.max_deviation_mm <= 0.1
+    assert_g1(fit.chain)
+
+
+@settings(max_examples=10, deadline=None)
+@given(poses(), st.floats(5.0, 200.0))
+def test_circle_in_a_random_plane_is_one_circle(pose, radius):
+    t = np.linspace(0, 2 * math.pi, 800)
+    flat = np.column_stack((radius * np.cos(t), radius * np.sin(t), np.zeros_like(t)))
+    fit = segment_space_curve(make_space_curve(pose.apply(flat), "circle"), 0.05)
+    arcs = fit.chain.segments
+    assert all(isinstance(a, Arc3) for a in arcs) and fit.chain.closed
+    centre = pose.translation_mm
+    for a in arcs:  # every arc on the one circle
+        assert np.linalg.norm(a.center - centre) < 0.05 and abs(a.radius - radius) < 0.05
+        assert abs(abs(a.normal @ pose.rotation[:, 2]) - 1) < 1e-9 and a.normal @ arcs[0].normal > 0
+    assert math.fsum(a.sweep for a in arcs) == pytest.approx(2 * math.pi, abs=1e-6)
+    assert fit.chain.n_segments == segment_curve(make_curve(flat[:, :2], "c"), 0.05).polysegment.n_segments
+
+
+def test_helix_within_tolerance_with_fewer_segments_as_it_grows():
+    counts = []
+    for tol in (0.05, 0.1, 0.5):
+        fit = fitted("helix", tol)
+        assert fit.planar_pose is None and fit.max_deviation_mm <= tol and fit.limits_kept
+        counts.append(fit.chain.n_segments)
+        assert_g1(fit.chain)
+    assert counts[0] > counts[1] > counts[2]
+
+
+@pytest.mark.parametrize("name", sorted(FAMILIES))
+def test_space_families_within_tolerance_g1_and_honest(name):
+    fit = fitted(name, 0.1)
+    assert fit.max_deviation_mm <= 0.1
+    assert brute_hausdorff(fit.curve.points, fit.chain, 0.005) <= 0.1 + 0.005
+    assert_g1(fit.chain)
+    assert fit.limits_kept
+    profile_radius = fit.input_min_radius_mm
+    tightest = min((s.radius for s in fit.chain.segments if isinstance(s, Arc3)), default=math.inf)
+    assert tightest >= profile_radius / 1.25  # no arc much tighter than the curve anywhere
+
+
+@st.composite
+def chains_and_polylines(draw):
+    """A random G1 chain of biarcs and a polyline wandering near it."""
+    rng = np.random.default_rng(draw(st.integers(0, 2**31)))
+    knots = np.cumsum(rng.normal(scale=20, size=(4, 3)) + [25, 0, 0], axis=0)
+    tangents = [draw(unit_vectors()) for _ in knots]
+    segments = []
+    for k in range(3):
+        pair = biarc(knots[k], tangents[k], knots[k + 1], tangents[k + 1], draw(st.sampled_from([0.5, 1.0, 2.0])))
+        assume(pair is not None)
+        segments.extend(s for s in pair if s.length > 1e-6)
+    chain = SpaceChain(tuple(segments))
+    s = np.sort(rng.uniform(0, 1, draw(st.integers(5, 60)))) * chain.length
+    base = chain.sample(chain.length / 400)
+    pts = np.array([base[0][np.argmin(np.abs(base[1] - v))] for v in s])
+    pts = pts + rng.normal(scale=draw(st.sampled_from([0.01, 0.3, 3.0])), size=pts.shape)
+    return chain, pts
+
+
+@settings(max_examples=30, deadline=None)
+@given(chains_and_polylines())
+def test_deviation_against_a_dense_oracle(data):
+    chain, pts = data
+    assume(len(np.unique(pts, axis=0)) >= 2)
+    exact = hausdorff3(pts, chain, 0.1).hausdorff
+    step = 0.01
+    oracle = brute_hausdorff(pts, chain, step)
+    assert oracle - step <= exact <= oracle + step  # both within half a sample step of the truth
+
+
+def test_polysegment2_round_trip(tmp_path):
+    fit = fitted("torus", 0.1)
+    path = tmp_path / "torus.json"
+    write_chain_json(path, fit.chain, 0.1, fit.stats())
+    doc = json.loads(path.read_text())
+    assert doc["format"] == "coatsim.polysegment/2" and doc["segments"][0]["kind"] == "arc"
+    back = read_chain_json(path)
+    assert back.n_segments == fit.chain.n_segments and back.closed == fit.chain.closed
+    for a, b in zip(back.segments, fit.chain.segments):
+        assert np.array_equal(a.start, b.start) and np.array_equal(a.end, b.end)
+        if isinstance(a, Arc3):
+            assert np.array_equal(a.center, b.center) and a.sweep == b.sweep and a.radius == b.radius
+    assert chain_document(back, 0.1, fit.stats()) == doc
+
+
+@pytest.mark.parametrize("edit, field", [
+    (lambda d: d["segments"][0].update(normal=[0, 0, 2]), "segments[0].normal"),
+    (lambda d: d["segments"][0].update(sweep=-1.0), "segments[0]"),
+    (lambda d: d["segments"][1].update(start=[0, 0, 0]), "segments[1].start"),
+    (lambda d: d["segments"][0].update(radius=d["segments"][0]["radius"] * 1.01), "segments[0].start"),
+    (lambda d: d.update(format="coatsim.polysegment/1"), "not a 3-D polysegment"),
+])
+def test_polysegment2_defects_name_their_field(edit, field):
+    doc = chain_document(fitted("torus", 0.1).chain, 0.1, {})
+    edit(doc)
+    with pytest.raises(InputError, match=field.replace("[", r"\[").replace("]", r"\]")):
+        chain_from_document(doc, "t.json")
+
+
+def test_three_columns_make_a_space_curve(tmp_path):
+    path = tmp_path / "xyz.csv"
+    path.write_text("x,y,z\n0,0,0\n1,1,5\n2,4,9\n")
+    curve = read_any_curve(path)
+    assert isinstance(curve, SpaceCurve) and curve.points.shape == (3, 3)
+    with pytest.raises(InputError, match="3-D curve"):
+        read_curve_file(path)
+    np.save(tmp_path / "xyz.npy", curve.points)
+    assert isinstance(read_any_curve(tmp_path / "xyz.npy"), SpaceCurve)
+    (tmp_path / "four.csv").write_text("0,0,0\n1,1,5,7\n")
+    with pytest.raises(InputError, match=r"four.csv:2: 4 numeric columns"):
+        read_any_curve(tmp_path / "four.csv")
+    (tmp_path / "mixed.csv").write_text("0,0,0\n1,1\n")
+    with pytest.raises(InputError, match=r"mixed.csv:2: 2 columns where the rows above have 3"):
+        read_any_curve(tmp_path / "mixed.csv")
+    np.save(tmp_path / "wide.npy", np.zeros((4, 5)))
+    with pytest.raises(InputError, match=r"\(n, 2\) or \(n, 3\)"):
+        read_any_curve(tmp_path / "wide.npy")
+
+
+def test_segment_command_on_a_3d_curve(tmp_path, run_cli):
+    path = tmp_path / "helix.csv"
+    np.savetxt(path, FAMILIES["helix"](1500), delimiter=",")
+    out = tmp_path / "helix.json"
+    code, stdout, stderr = run_cli(["segment", str(path), "--tol", "0.1", "-o", str(out)])
+    assert code == 0, stderr
+    assert "not planar" in stdout and json.loads(out.read_text())["format"] == "coatsim.polysegment/2"
+    code, _, stderr = run_cli(["segment", str(path), "--method", "paper"])
+    assert code == 2 and stderr.count("\n") == 1 and "default method only" in stderr
+    code, _, stderr = run_cli(["segment", str(path), "--tol", "-1"])
+    assert code == 2 and "--tol" in stderr
+
+
+def test_speed_limits_on_a_space_curve():
+    """At v²/a below the helix's radius (40.5 mm) nothing is limited; above it every arc is a
+    speed-limited stretch whose v_max is √(a·r)."""
+    curve = make_space_curve(FAMILIES["helix"](1500), "helix")
+    free = segment_space_curve(curve, 0.1, speed_mm_s=300.0, tool_accel_mm_s2=5000.0)  # v²/a = 18 mm
+    assert free.chain.speed_limited == () and free.max_deviation_mm <= 0.1
+    fast = segment_space_curve(curve, 0.1, speed_mm_s=600.0, tool_accel_mm_s2=5000.0)  # v²/a = 72 mm
+    (s0, s1, v_max), = fast.chain.speed_limited
+    assert s0 == 0.0 and s1 == pytest.approx(fast.chain.length)
+    assert v_max == pytest.approx(math.sqrt(5000.0 * min(s.radius for s in fast.chain.segments)))
+    assert "speed-limited" in fast.summary()
+    with pytest.raises(InputError, match="go together"):
+        segment_space_curve(curve, 0.1, speed_mm_s=600.0)
+
+
+def test_a_true_corner_in_space_is_kept():
+    """Two helical arcs meeting at 90 degrees: one listed corner there, G1 everywhere else."""
+    t = np.linspace(0.0, math.pi, 800)
+    first = np.column_stack((40 * np.cos(t), 40 * np.sin(t), 10 * t))
+    turn = Pose(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]), np.zeros(3))
+    second = turn.apply(first - first[0]) + first[-1]
+    fit = segment_space_curve(make_space_curve(np.vstack((first, second[1:])), "kinked"), 0.1)
+    assert len(fit.chain.corners) == 1 and fit.max_deviation_mm <= 0.1
+    k = fit.chain.corners[0]
+    assert np.allclose(fit.chain.segments[k].end, first[-1])
+    assert_g1(fit.chain)
+
+
+def test_a_sparse_polyline_keeps_its_vertices_as_corners():
+    pts = np.array([[0, 0, 0], [10, 0, 0], [10, 10, 5], [0, 10, 10.0]])
+    fit = segment_space_curve(make_space_curve(pts, "sparse"), 0.1)
+    assert [s.kind for s in fit.chain.segments] == ["line"] * 3 and fit.chain.corners == (0, 1)
+    assert fit.max_deviation_mm < 1e-9
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 2**31), st.integers(4, 40), st.sampled_from([0.05, 0.5, 2.0]))
+def test_no_tangent_break_is_left_unlisted(seed, n, tol):
+    """Whatever the input (random walks in space, sparse or dense), the chain is within σ and
+    every junction is tangent-continuous or a listed corner."""
+    rng = np.random.default_rng(seed)
+    pts = np.cumsum(rng.normal(scale=rng.choice([0.2, 5.0, 30.0]), size=(n, 3)), axis=0)
+    try:
+        curve = make_space_curve(pts, "walk")
+    except InputError:
+        return
+    fit = segment_space_curve(curve, tol)
+    assert fit.max_deviation_mm <= tol
+    assert fit.chain.max_tangent_break() <= 1e-9

@@ -1,0 +1,32 @@
+.PROGRAM cell.run()
+  ; instructions of the index the twin does not simulate
+  WEIGHT 12.5, 0, 0, 80
+  ULIMIT 170, 130, 90, 270, 120, 360
+  L3ACCURACY 1
+  ON 1010 CALL stop.cycle
+  IGNORE 1010
+  RUNMASK 9, 4
+  SETHOME 1, #[0, 0, 35, 0, 55, 0]
+  HSENSESET 2 = 1001, 3
+  SPEED 50 MM/S ALWAYS
+  JMOVE #[0, 0, 35, 0, 55, 0]
+  LMOVE q1
+  SIGNAL 1
+  LMOVE q2
+  MVWAIT 10 MM
+  SIGNAL -1
+  LMOVE q3
+  XMOVE q4 TILL 1011
+  DLYSIG -9, 0.5
+  SIGPOINT
+  OPEINFOCLR
+.END
+.PROGRAM stop.cycle()
+  HALT
+.END
+.TRANS
+q1 600 -100 300 0 180 0
+q2 700 -100 300 0 180 0
+q3 700 100 300 0 180 0
+q4 600 100 300 0 180 0
+.END

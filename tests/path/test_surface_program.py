@@ -1,0 +1,211 @@
+"""Programs of 3-D surface passes: reading surfacepaths, the fitted and polyline variants, the roll
+rules, speeds on the trace, lines for a language without arcs in any plane, travel clearance, and
+the O-A-T of every written pose read back."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from coatsim.core.errors import InputError
+from coatsim.geometry.space.orient import slerp_axes
+from coatsim.geometry.space.pose import slerp
+from coatsim.geometry.space.rotations import oat_to_matrix
+from coatsim.languages.registry import language
+from coatsim.path.build import ProgramOptions
+from coatsim.path.language import ReadOptions
+from coatsim.path.surface_program import SurfaceOptions, build_surface_program, expressible, oriented_polyline
+from coatsim.path.surfacepaths import read_surfacepaths
+from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
+
+AS = language("kawasaki-as")
+
+
+@pytest.fixture(scope="module")
+def torus(tmp_path_factory) -> Path:
+    return write_surfacepaths(tmp_path_factory.mktemp("torus"), torus_section(), points_per_pass=300)[0]
+
+
+def build(path: Path, variant: str = "polysegment", **surface) -> object:
+    return build_surface_program(read_surfacepaths(path), ProgramOptions(variant=variant), SurfaceOptions(**surface), AS)
+
+
+def read_back(text: str, tmp_path: Path):
+    path = tmp_path / "p.as"
+    path.write_text(text, encoding="ascii")
+    return AS.read([path], ReadOptions())
+
+
+def test_every_pose_round_trips_through_its_oat(torus, tmp_path):
+    """The controller's poses read back from the text are the plan's poses (6 decimals of degree)."""
+    prog = build(torus, roll="follow")
+    planned = [p for path in prog.plan.paths for m in path.segments
+               for p in ((m.via_pose, m.end) if m.is_arc else (m.end,))]
+    toolpath = read_back(prog.text, tmp_path)
+    read = [p for m in toolpath.moves if m.kind != "joint" for p in ((m.via, m.end) if m.kind == "arc" else (m.end,))]
+    for pose in planned:  # every planned pose is among the poses read (travel moves come in between)
+        best = min(read, key=lambda r: float(np.abs(r.translation_mm - pose.translation_mm).max()))
+        assert np.abs(best.translation_mm - pose.translation_mm).max() < 1e-7
+        assert pose.angle_to(best) < 1e-7
+    text = prog.text.split(".TRANS\n")[1].splitlines()[:-1]
+    for line in text:
+        o, a, t = (float(v) for v in line.split()[4:7])
+        r = oat_to_matrix(o, a, t)
+        assert np.abs(r.T @ r - np.eye(3)).max() < 1e-12
+
+
+def test_fitted_passes_are_arcs_in_3d_and_the_polylines_lines(torus):
+    fitted, stop, blend = (build(torus, v) for v in ("polysegment", "polyline-stop", "polyline-blend"))
+    assert all(n_lines == 0 and n_arcs >= 1 for n_lines, n_arcs in fitted.counts)  # latitude circles: arcs
+    assert all(n_arcs == 0 and n_lines > 10 for n_lines, n_arcs in stop.counts)
+    assert stop.counts == blend.counts and "CP OFF" in stop.text and "CP ON" in blend.text
+    assert fitted.text.count("C1MOVE") >= 3 and "C1MOVE" not in stop.text
+    assert fitted.max_axis_error_rad <= math.radians(2.0)
+    assert len(fitted.plan.paths) == 3 and fitted.plan.process.contour_order == (1, 2, 3)
+
+
+def test_the_same_passes_give_the_same_bytes(torus):
+    assert build(torus).text == build(torus).text
+
+
+@pytest.mark.parametrize("rule", ["fixed", "follow"])
+def test_roll_rules(torus, rule):
+    """fixed: consecutive poses differ by the smallest turn of the axis (no spin about it);
+    follow: the tool's x lies along the line of travel at every pose of a curve move."""
+    prog = build(torus, roll=rule)
+    for path in prog.plan.paths:
+        curve = [m for m in path.segments if m.part == "curve"]
+        for m in curve:
+            poses = [m.start, m.via_pose, m.end] if m.is_arc else [m.start, m.end]
+            if rule == "fixed":
+                for a, b in zip(poses[:-1], poses[1:]):
+                    rel = a.rotation.T @ b.rotation  # in the tool frame: a turn about an axis across z
+                    axis = np.array([rel[2, 1] - rel[1, 2], rel[0, 2] - rel[2, 0], rel[1, 0] - rel[0, 1]])
+                    assert abs(axis[2]) < 1e-9 * max(1.0, float(np.linalg.norm(axis)))
+            else:
+                tangents = [m.geometry.start_tangent, m.geometry.tangents(np.array([m.length / 2]))[0],
+                            m.geometry.end_tangent] if m.is_arc else [m.geometry.direction] * 2
+                for pose, t in zip(poses, tangents):
+                    across = t - (t @ pose.rotation[:, 2]) * pose.rotation[:, 2]
+                    assert abs(abs(float(pose.rotation[:, 0] @ across)) / np.linalg.norm(across) - 1.0) < 1e-9
+
+
+def test_speed_on_the_trace_moves_the_spot_at_the_programmed_speed(tmp_path):
+    """Each move's own speed times the spot's path length over the TCP's is the trace speed; on
+    the cylinder (R 60, stand-off 100) that is v (R + h) / R."""
+    path = write_surfacepaths(tmp_path, cylinder(), points_per_pass=200)[0]
+    prog = build_surface_program(read_surfacepaths(path), ProgramOptions(speed_mm_s=150.0),
+                                 SurfaceOptions(speed_on="trace"), AS)
+    assert prog.plan.process.speed_on == "trace" and "speed_on=trace" in prog.text
+    for p in prog.plan.paths:
+        for m in p.segments:
+            assert m.speed_mm_s == pytest.approx(150.0 * 160.0 / 60.0, rel=1e-3)
+    toolpath = read_back(prog.text, tmp_path)
+    sprayed = [m.settings.speed_mm_s for m in toolpath.moves if m.spray]
+    assert min(sprayed) == pytest.approx(400.0, rel=1e-3) and toolpath.process.speed_on == "trace"
+
+
+def test_arcs_become_lines_within_the_tolerance_for_a_language_without_them(torus):
+    prog = build(torus)
+    moves = [m for p in prog.plan.paths for m in p.segments]
+    lines, changed = expressible(moves, "none", 0.05)
+    assert changed == sum(m.is_arc for m in moves) and not any(m.is_arc for m in lines)
+    arcs = [m for m in moves if m.is_arc]
+    for arc in arcs:
+        pts = arc.geometry.points(np.linspace(0.0, arc.length, 400))
+        chords = [m for m in lines if m.part == arc.part]
+        d = np.min([m.geometry.distance(pts) for m in chords], axis=0)
+        assert d.max() <= 0.05 + 1e-9
+    assert expressible(moves, "any", 0.05) == (moves, 0)
+    flat = [m for m in moves if m.is_arc and abs(abs(m.geometry.normal[2]) - 1.0) < 1e-9]
+    kept, _ = expressible(flat, "principal", 0.05)
+    assert kept == flat  # the latitude circles lie in horizontal planes: principal ones
+
+
+def test_oriented_polyline_keeps_position_and_axis():
+    """A straight pass over a wavy surface: position alone needs two points; the axis, which tilts
+    ±10 degrees, needs more, and every point's axis stays within the bound of the slerped one."""
+    x = np.linspace(0.0, 200.0, 801)
+    tilt = np.radians(10.0) * np.sin(x / 200.0 * 4 * math.pi)
+    points = np.column_stack((x, np.zeros_like(x), np.zeros_like(x)))
+    axes = np.column_stack((np.sin(tilt), np.zeros_like(x), -np.cos(tilt)))
+    tol, angle = 0.1, math.radians(0.5)
+    keep = oriented_polyline(points, axes, tol, angle)
+    assert len(oriented_polyline(points, axes, tol, math.pi)) == 2 and len(keep) > 10
+    for i, j in zip(keep[:-1], keep[1:]):
+        u = (x[i:j + 1] - x[i]) / (x[j] - x[i])
+        got = slerp_axes(axes[i], axes[j], u)
+        cos = np.einsum("ij,ij->i", got, axes[i:j + 1])
+        assert np.arccos(np.clip(cos, -1, 1)).max() <= angle + 1e-12
+
+
+def test_travel_between_passes_keeps_clear_of_the_part(tmp_path):
+    """Passes on a saddle are joined by travel at the approach clearance or higher, never closer to
+    any surface point than the stand-off."""
+    path = write_surfacepaths(tmp_path, saddle(), points_per_pass=200)[0]
+    prog = build_surface_program(read_surfacepaths(path), ProgramOptions(approach_mm=5.0), SurfaceOptions(), AS)
+    surface = np.vstack([np.array(p["points"]) for p in json.loads(path.read_text())["passes"]]) + [900.0, 0.0, 300.0]
+    paths = prog.plan.paths
+    for a, b in zip(paths[:-1], paths[1:]):
+        c = a.clearance_mm
+        p, q = a.end.translation_mm - c * a.end.rotation[:, 2], b.start.translation_mm - c * b.start.rotation[:, 2]
+        u = np.linspace(0, 1, 400)[:, None]
+        line = p + u * (q - p)
+        assert np.min(np.linalg.norm(line[:, None] - surface[None], axis=2)) >= 100.0 - 1e-6
+        assert c >= 5.0
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda d: d.update(format="coatsim.polysegment/2"), "format: expected 'coatsim.surfacepaths/1'"),
+    (lambda d: d["passes"][1].update(normals=d["passes"][1]["normals"][:-1]), r"passes\[1\].normals: 199 normals for 200"),
+    (lambda d: d["passes"][0]["normals"].__setitem__(3, [0.0, 0.0, 2.0]), r"passes\[0\].normals\[3\]: length 2"),
+    (lambda d: d["passes"][0]["points"].__setitem__(5, [0.0, "x", 1.0]), r"passes\[0\].points: expected a list"),
+    (lambda d: d.update(passes=[]), "passes: expected a non-empty list"),
+    (lambda d: d.update(standoff_mm=-5), "standoff_mm: expected a positive number"),
+    (lambda d: d["mesh"].update(pose=[1, 2, 3]), r"mesh.pose: expected \[x, y, z, o, a, t\]"),
+])
+def test_bad_surfacepaths_are_refused_naming_the_field(tmp_path, edit, message):
+    path = write_surfacepaths(tmp_path, saddle(), points_per_pass=200)[0]
+    doc = json.loads(path.read_text())
+    edit(doc)
+    path.write_text(json.dumps(doc))
+    with pytest.raises(InputError, match=message):
+        read_surfacepaths(path)
+
+
+def test_the_program_command_writes_one_program_for_all_passes(torus, tmp_path, run_cli):
+    out = tmp_path / "t.as"
+    code, stdout, err = run_cli(["program", str(torus), "--variant", "polyline-blend", "--follow-tangent", "-o", str(out)])
+    assert code == 0, err
+    assert "over 3 passes" in stdout and out.read_text().count("LAPPRO") == 2
+    code, _, err = run_cli(["program", "builtin:ellipse", "--tol", "0.1", "--speed-on", "trace"])
+    assert code == 2 and "--speed-on" in err and err.count("\n") == 1
+
+
+def test_slerp_of_written_follow_poses_stays_near_the_normal(torus):
+    """The axis the controller turns between consecutive written poses (slerp) stays within the
+    angle tolerance of the sampled normal along every curve move (the roll's share included)."""
+    doc = json.loads(torus.read_text())
+    prog = build(torus, roll="follow")
+    for path, spec in zip(prog.plan.paths, doc["passes"]):
+        pts = np.array(spec["points"]) + [900.0, 0.0, 300.0]
+        normals = np.array(spec["normals"])
+        tcp = pts + 100.0 * normals
+        for m in path.segments:
+            if m.part != "curve":
+                continue
+            u = np.linspace(0.0, 1.0, 41)
+            if m.is_arc:
+                rot = np.concatenate((slerp(m.start.rotation, m.via_pose.rotation, u[:21] * 2),
+                                      slerp(m.via_pose.rotation, m.end.rotation, u[21:] * 2 - 1)))
+                x = m.geometry.points(u * m.length)
+            else:
+                rot = slerp(m.start.rotation, m.end.rotation, u)
+                x = m.geometry.points(u * m.length)
+            near = np.argmin(np.linalg.norm(x[:, None] - tcp[None], axis=2), axis=1)
+            cos = np.einsum("ij,ij->i", rot[:, :, 2], -normals[near])
+            assert np.degrees(np.arccos(np.clip(cos, -1, 1))).max() <= 2.0 + 0.05  # + the input's sampling

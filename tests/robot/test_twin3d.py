@@ -1,0 +1,166 @@
+"""The twin in 3-D: the tool tilts with the surface as executed, the spray spot's speed against its
+closed form, IK with orientation, reachability reasons, configuration flips and collisions."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from coatsim.core.errors import ExecutionError
+from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.xyzoat import pose_from_xyzoat
+from coatsim.languages.kawasaki_as.files import read_toolpath
+from coatsim.languages.registry import language
+from coatsim.path.build import ProgramOptions
+from coatsim.path.surface_program import SurfaceOptions, build_surface_program
+from coatsim.path.surfacepaths import read_surfacepaths
+from coatsim.robot.cell import load_cell
+from coatsim.robot.collisions import Collision, convex_pieces, load_part, with_part
+from coatsim.robot.configuration import ConfigurationFlip, branch_values, check_no_flip
+from coatsim.robot.execute import execute
+from coatsim.robot.ik import Tracker
+from coatsim.robot.motion_metrics import spot_speed
+from coatsim.robot.reachability import reachable_fraction
+from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
+
+AS = language("kawasaki-as")
+STANDOFF = 100.0
+
+
+@pytest.fixture(scope="module")
+def cell():
+    return load_cell()
+
+
+def program(folder: Path, part, speed: float = 300.0, pose=None, **surface) -> Path:
+    source = write_surfacepaths(folder, part, pose=pose, points_per_pass=250)[0]
+    prog = build_surface_program(read_surfacepaths(source), ProgramOptions(speed_mm_s=speed), SurfaceOptions(**surface), AS)
+    path = folder / f"{part.name}.as"
+    path.write_text(prog.text, encoding="ascii")
+    return path
+
+
+def test_the_orientation_bound_holds_along_a_torus_section_as_executed(cell, tmp_path):
+    """The simulated spray axis against the torus's own normal at the point the spot is over, on
+    every sprayed row: within the 2 degree tolerance (the fit's bound, the roll's share, the
+    controller's orientation zone and the servo together)."""
+    part = torus_section()
+    result = execute(read_toolpath(program(tmp_path, part, roll="follow")), cell)
+    log = result.log
+    rows = log.spray
+    x = log.position[rows] - np.array(part.pose[:3]) + [150.0, 0.0, 0.0]  # torus frame: ring about z
+    ring = np.column_stack((x[:, :2] / np.linalg.norm(x[:, :2], axis=1)[:, None] * 150.0, np.zeros(len(x))))
+    normal = (x - ring) / np.linalg.norm(x - ring, axis=1)[:, None]
+    angle = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", log.axis[rows], -normal), -1.0, 1.0)))
+    assert rows.sum() > 500 and angle.max() <= 2.0
+    assert result.metrics.stops == 0
+
+
+@pytest.mark.parametrize("concave", [False, True])
+def test_spot_speed_on_a_cylinder_is_the_closed_form(cell, tmp_path, concave):
+    """At a constant tool speed v on the normal at stand-off h the spot moves at v R / (R + h) over
+    a convex cylinder and v R / (R - h) inside a concave one."""
+    radius = 250.0 if concave else 60.0
+    result = execute(read_toolpath(program(tmp_path, cylinder(radius, concave=concave))), cell)
+    expected = radius / (radius - STANDOFF) if concave else radius / (radius + STANDOFF)
+    log, trace = result.log, result.trace
+    steady = log.spray & (np.abs(log.speed - 300.0) < 0.5)  # at the programmed speed, not ramping
+    assert steady.sum() > 300
+    assert np.median(log.trace_speed[steady] / log.speed[steady]) == pytest.approx(expected, rel=2e-3)
+    assert trace.standoff_mm == STANDOFF and trace.min_ratio == pytest.approx(expected, rel=0.02)
+
+
+def test_spot_speed_of_a_tool_turning_about_a_centre():
+    t = np.linspace(0.0, 1.0, 501)
+    phi = 0.5 * t  # rad: the tool on a circle of radius 160 about the origin, axis pointing at it
+    position = 160.0 * np.column_stack((np.sin(phi), np.zeros_like(t), np.cos(phi)))
+    axis = -position / 160.0
+    assert np.allclose(spot_speed(t, position, axis, 100.0), 0.5 * 60.0, rtol=1e-4)
+    assert np.allclose(spot_speed(t, position, axis, 0.0), 0.5 * 160.0, rtol=1e-4)
+
+
+def test_speed_on_the_trace_keeps_the_spot_at_the_programmed_speed(cell, tmp_path):
+    result = execute(read_toolpath(program(tmp_path, cylinder(), speed=150.0, speed_on="trace")), cell)
+    assert result.trace.target_mm_s == 150.0
+    assert 0.97 <= result.trace.min_ratio <= result.trace.max_ratio <= 1.1
+    assert result.metrics.stops == 0
+
+
+def test_ik_with_orientation_reaches_poses_of_known_joint_solutions(cell):
+    rng = np.random.default_rng(7)
+    tracker = Tracker(cell)
+    data_tcp = []
+    for _ in range(12):
+        q = cell.home + rng.uniform(-0.6, 0.6, 6)
+        q[4] = math.copysign(max(abs(q[4]), 0.4), q[4])  # away from the wrist singularity
+        p, r = cell.forward(tracker._single, q)
+        start = q + rng.uniform(-0.15, 0.15, 6)
+        solved = tracker.solve_pose(start, p, r, "known")
+        p2, r2 = cell.forward(tracker._single, solved)
+        assert np.linalg.norm(p2 - p) < 1e-3 and Pose(r, p).angle_to(Pose(r2, p2)) < 1e-5
+        assert np.abs(solved - q).max() < 1e-4  # the same branch, so the same joints
+        data_tcp.append(p)
+    assert np.ptp(np.array(data_tcp), axis=0).min() > 50.0  # the poses spread over the workspace
+
+
+def test_unreachable_poses_are_counted_with_their_reason(cell, tmp_path):
+    path = program(tmp_path, saddle(), pose=(1600.0, 0.0, 300.0, 0.0, 0.0, 0.0))
+    toolpath = read_toolpath(path)
+    reach = reachable_fraction(toolpath, cell)
+    assert reach.checked > 10 and reach.fraction < 0.5
+    assert all("out of reach" in reason for _, reason in reach.unreachable)
+    with pytest.raises(ExecutionError, match=r"line \d+ \(joint move\): cannot reach pose .*: out of reach"):
+        execute(toolpath, cell)
+    assert reachable_fraction(read_toolpath(program(tmp_path, saddle())), cell).fraction == 1.0
+
+
+def test_a_flip_inside_a_pass_is_reported(cell, tmp_path):
+    """The cylinder's passes tilt the gun 40 degrees away from the robot on its near side: the wrist
+    passes JT5 = 0 inside the pass."""
+    path = program(tmp_path, cylinder(), pose=(900.0, 0.0, 300.0, 0.0, 0.0, 0.0))
+    with pytest.raises(ConfigurationFlip) as info:
+        execute(read_toolpath(path), cell)
+    assert info.value.branch == "wrist" and info.value.exit_code == 3
+    assert "flips its wrist configuration inside a sprayed pass" in str(info.value) and "line" in info.value.step
+
+
+def test_flip_check_looks_only_inside_sprayed_passes(cell):
+    q = np.tile(cell.home, (5, 1))
+    q[:, 4] = [0.3, 0.1, 0.0, -0.1, -0.3]  # JT5 through zero: the wrist flips
+    assert np.sign(branch_values(cell, q)[[0, -1], 2]).tolist() == [1.0, -1.0]
+    check_no_flip(cell, q, np.array([True, True, False, False, False]), str)  # flips with the gun off
+    with pytest.raises(ConfigurationFlip, match="^3: the arm flips its wrist"):
+        check_no_flip(cell, q, np.ones(5, dtype=bool), str)
+    q[:, 4] = [0.3, 0.1, 0.0, 0.1, 0.3]  # to the singularity and back: no flip
+    check_no_flip(cell, q, np.ones(5, dtype=bool), str)
+
+
+def test_a_gun_driven_into_the_part_stops_naming_the_step(cell, tmp_path, run_cli):
+    source, mesh = write_surfacepaths(tmp_path, saddle(), points_per_pass=200)
+    prog = tmp_path / "low.as"
+    code, _, err = run_cli(["program", str(source), "--standoff", "10", "-o", str(prog)])
+    assert code == 0, err
+    raised = pose_from_xyzoat((900.0, 0.0, 330.0, 0.0, 0.0, 0.0))  # the part 30 mm higher: the TCP 20 mm inside
+    with pytest.raises(Collision) as info:
+        execute(read_toolpath(prog), with_part(cell, load_part(mesh, raised)))
+    assert info.value.bodies == ("gun", "part") and info.value.exit_code == 3
+    line = int(info.value.step.split("line ")[1].split()[0])
+    assert prog.read_text().splitlines()[line - 1].split()[0] in ("LMOVE", "C1MOVE", "C2MOVE")
+    code, out, err = run_cli(["execute", str(prog), "--part", str(mesh), "--part-pose", "900,0,330,0,0,0",
+                              "-o", str(tmp_path / "out")])
+    assert code == 3 and err.count("\n") == 1 and "the gun touches the part" in err and f"line {line} " in err
+    code, out, err = run_cli(["execute", str(prog), "--part", str(mesh), "--part-pose", "900,0,300,0,0,0",
+                              "-o", str(tmp_path / "out2")])
+    assert code == 0, err  # at its stand-off the same program clears the part
+
+
+def test_the_part_is_covered_by_convex_slabs(tmp_path):
+    mesh = write_surfacepaths(tmp_path, saddle())[1]
+    part = load_part(mesh, Pose.identity())
+    pieces = convex_pieces(part)
+    assert 40 <= len(pieces) <= 200
+    covered = np.vstack(pieces)
+    assert np.isin(part.vertices.round(9), covered.round(9)).all(axis=1).all()  # every vertex in some slab
