@@ -169,7 +169,8 @@ def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slope
                  width: int = 256) -> list[int]:
     """_farthest after _reach for many states at once (the look-ahead's candidates): the same
     arithmetic element by element on one (states, ``width``) block of the knots that follow
-    each; a state whose band still holds at the block's end goes through _reach itself."""
+    each (the band open at each knot by its share, prob.width); a state whose band still holds at the
+    block's end goes through _reach itself."""
     n = len(prob.s)
     a = np.asarray(knots, dtype=np.int64)
     if not len(a):
@@ -181,8 +182,9 @@ def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slope
     base = np.asarray(values)[:, None] + np.asarray(slopes)[:, None] * u
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = 2.0 / (u * u)
-        lo = np.maximum.accumulate(np.where(inside, (prob.phi[idx] - band - base) * inv, np.inf), axis=1)
-        hi = np.minimum.accumulate(np.where(inside, (prob.phi[idx] + band - base) * inv, -np.inf), axis=1)
+        half = band * prob.width[idx]
+        lo = np.maximum.accumulate(np.where(inside, (prob.phi[idx] - half - base) * inv, np.inf), axis=1)
+        hi = np.minimum.accumulate(np.where(inside, (prob.phi[idx] + half - base) * inv, -np.inf), axis=1)
     cap = np.maximum.accumulate(np.concatenate((prob.cap[a][:, None], prob.cap[idx]), axis=1), axis=1)[:, 1:]
     bad = lo > hi  # (past the last knot every entry is bad)
     held = np.where(bad.any(axis=1), bad.argmax(axis=1), width)
