@@ -10,12 +10,13 @@ languages claim a suffix, or none does, the opening of the first file decides
 
 from __future__ import annotations
 
+import os
 from collections import Counter
 from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import decode_text
+from coatsim.core.fileio import decode_text, open_input
 from coatsim.languages.abb_rapid.language import ABB_RAPID
 from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.languages.kuka_krl.language import KUKA_KRL
@@ -49,9 +50,9 @@ def language(name: str) -> Language:
 
 def _opening(path: Path) -> str:
     try:
-        with open(path, "rb") as handle:
-            return decode_text(handle.read(SNIFF_BYTES))
-    except OSError:
+        with open_input(path, "program") as fd:  # never blocks on a FIFO, never reads a device
+            return decode_text(os.read(fd, SNIFF_BYTES))
+    except (InputError, OSError):
         return ""  # reading the file proper says what is wrong with it
 
 

@@ -10,15 +10,15 @@ from __future__ import annotations
 
 import sys
 import time
-from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Callable, Iterator, Mapping, Optional
+from typing import Callable, Mapping, Optional
 
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
+from coatsim.core.progress import Advance, progress as progress_bar
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
 from coatsim.geometry.cad import PartSegmentation
 from coatsim.geometry.deviation import hausdorff
@@ -77,27 +77,14 @@ from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
 from coatsim.spray.surfaces import Surface
 
 Step = Callable[[str], None]
+
+
+def _labelled(advance: Advance) -> Step:
+    """A step function that names the step starting now (and checks the time budget)."""
+    return lambda label: advance(1, label)
+
+
 FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
-
-
-@contextmanager
-def progress_steps(total: int, enabled: bool) -> Iterator[Step]:
-    """A rich progress bar on stderr when ``enabled``; otherwise a no-op step function."""
-    if not enabled:
-        yield lambda label: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-    columns = (TextColumn("{task.description:<40}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
-               TimeElapsedColumn())
-    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
-        task = bar.add_task("starting", total=total)
-
-        def step(label: str) -> None:
-            bar.update(task, advance=1, description=label)
-
-        yield step
 
 
 @dataclass(frozen=True, eq=False)
@@ -316,7 +303,8 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     """Every stage of a loaded scenario, writing into the held folder ``out``."""
     spec = loaded.spec
     show = sys.stderr.isatty() if progress is None else progress
-    with progress_steps(3 + 3 * len(spec.variants) + int(video), show) as step:
+    with progress_bar("running the scenario", 3 + 3 * len(spec.variants) + int(video), show) as advance:
+        step = _labelled(advance)
         step("segmenting the curve")
         contours, part, offset = _segmentation(loaded, cell)
         segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")

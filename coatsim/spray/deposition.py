@@ -37,7 +37,7 @@ import numpy as np
 
 from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core import defaults
-from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_SPRAY_SUBSTEPS, check_budget
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
 from coatsim.spray.culling import Pairs, cone_pairs, vertex_tree
@@ -139,9 +139,10 @@ def substeps(log: TrajectoryLog, model: SprayModel) -> SubSteps:
     dp = p[k + 1] - p[k]
     turn = np.arccos(np.clip(np.sum(a[k] * a[k + 1], axis=1), -1.0, 1.0))
     travel = np.maximum(np.linalg.norm(dp, axis=1), model.standoff_mm * turn)
-    n = np.maximum(1, np.ceil(travel / model.step_mm - ROUND_OFF)).astype(np.int64)
+    steps = np.maximum(1.0, np.ceil(travel / model.step_mm - ROUND_OFF))  # inf for a step of no length
     check_budget(f"coating sub-steps of {model.step_mm:g} mm along {float(travel.sum()):.6g} mm of sprayed path",
-                 float(n.sum()), MAX_SPRAY_SUBSTEPS, "use a wider footprint or a longer sub-step")
+                 float(steps.sum()), "spray_substeps", "use a wider footprint or a longer sub-step")
+    n = steps.astype(np.int64)
     rep = np.repeat(np.arange(len(k)), n)
     j = np.arange(len(rep)) - np.repeat(np.cumsum(n) - n, n)
     f = ((j + 0.5) / n[rep])[:, None]
