@@ -205,7 +205,19 @@ BUILTINS: dict[str, Callable[..., np.ndarray]] = {
 
 
 def builtin_curve(name: str, **params: float | int | str) -> Curve:
-    """Sample the named built-in curve; unknown names or parameters raise InputError."""
+    """Sample the named built-in curve.
+
+    Args:
+        name: a built-in curve (ellipse, paper-spiral, sine, ...; the InputError lists them).
+        **params: its parameters (e.g. ``a``, ``b``, ``turns``, ``points``).
+
+    Returns:
+        The sampled Curve.
+
+    Raises:
+        InputError: an unknown name or parameter, or a value out of range.
+        BudgetExceeded: more points than the curve_points budget.
+    """
     if name not in BUILTINS:
         raise InputError(f"builtin:{name}: unknown curve; choose one of {', '.join(sorted(BUILTINS))}")
     func = BUILTINS[name]

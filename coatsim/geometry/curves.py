@@ -46,6 +46,17 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
 
     Drops consecutive duplicate points silently; rejects NaN/inf, fewer than two distinct
     points and zero length with an InputError naming ``name``.
+
+    Args:
+        points: an (n, 2) array, mm.
+        name: how errors name the input (a file, a built-in curve).
+        closed: ``auto`` (closed when the ends meet), ``yes`` or ``no``.
+
+    Returns:
+        The Curve.
+
+    Raises:
+        InputError: non-finite values, fewer than two distinct points, zero length.
     """
     pts = np.asarray(points, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2:

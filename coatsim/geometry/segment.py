@@ -157,6 +157,24 @@ def segment_curve(
     ``speed_limited``. ``paper`` is the paper's literal method: RDP on θ with
     ``theta_tolerance`` if given, otherwise the largest θ tolerance (by bisection) whose
     result stays within ``tol``.
+
+    Args:
+        curve: the planar input (make_curve, builtin_curve or a reader's).
+        tol: the tolerance σ, mm (the library's ``tolerance_mm``).
+        method: ``optimal`` (default) or ``paper``.
+        corner_deg: turns sharper than this are true corners, degrees.
+        theta_tolerance: the paper method's θ tolerance, if given.
+        min_segment_mm: the shortest segment, mm.
+        speed_mm_s: the programmed speed, with ``tool_accel_mm_s2`` the tool's acceleration.
+        tool_accel_mm_s2: see ``speed_mm_s``.
+
+    Returns:
+        The Segmentation: the polysegment, its certified deviation and its statistics.
+
+    Raises:
+        InputError: a tolerance, speed or length out of range, or an input that no chain
+            within ``tol`` fits (too noisy for the tolerance).
+        BudgetExceeded: an exact deviation check or a fit over its budget.
     """
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise InputError(f"tolerance_mm: must be a positive number of mm, got {tol}", parameters=("tolerance_mm",))

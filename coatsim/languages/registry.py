@@ -46,7 +46,18 @@ def _aliases() -> dict[str, str]:
 
 def language(name: str) -> Language:
     """The language called ``name`` (or a part of its name only it has); InputError listing the
-    valid names otherwise."""
+    valid names otherwise.
+
+    Args:
+        name: a language's name (kawasaki-as, abb-rapid, kuka-krl, fanuc-tp, urscript, gcode)
+            or a part of it that only one has (``rapid``).
+
+    Returns:
+        The Language plug-in.
+
+    Raises:
+        InputError: no language or several go by that name.
+    """
     key = name.strip().lower()
     found = LANGUAGES.get(key) or LANGUAGES.get(_aliases().get(key, ""))
     if found is None:
@@ -65,7 +76,18 @@ def _opening(path: Path) -> str:
 def language_of(files: Sequence[str | Path], name: str | None = None) -> Language:
     """The language to read ``files`` with: ``name`` if given, else the one whose suffixes
     include the files' suffixes, else (a suffix several languages or none claim) the one that
-    recognizes the opening of the first file, else the default language."""
+    recognizes the opening of the first file, else the default language.
+
+    Args:
+        files: the program's files.
+        name: a language's name (see ``language``), if the user gave one.
+
+    Returns:
+        The Language plug-in to read them with.
+
+    Raises:
+        InputError: ``name`` names no language.
+    """
     if name is not None:
         return language(name)
     suffixes = {Path(f).suffix.lower() for f in files}

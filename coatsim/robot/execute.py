@@ -102,6 +102,19 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
     ExecutionError when it diverged, warnings for small excesses. Before playback the commanded
     motion is checked for contact between the arm (with its gun) and the rest of the cell, a part
     added with :func:`coatsim.robot.collisions.with_part` included (Collision, exit 3).
+
+    Args:
+        toolpath: the program as read by its language (coatsim.path.toolpath.ToolPath).
+        cell: the arm, its gun and anything placed in the cell; default the shipped cell.
+        step_mm: the IK sampling step along Cartesian moves, mm.
+
+    Returns:
+        The Execution: timed joint trajectory, simulated TCP, motion metrics and events.
+
+    Raises:
+        ExecutionError: a pose out of reach (UnreachablePose, with the reason), a configuration
+            flip inside a sprayed pass, a collision, or a simulated arm that diverged (exit 3).
+        BudgetExceeded: more IK samples or simulation steps than their budgets (exit 2).
     """
     cell = cell or load_cell()
     watch = Stopwatch()

@@ -285,6 +285,14 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     document's ``failed``, which then does not pass; gates on it are left out) while the others
     run. ``report=False`` skips report.html (so does a run where no variant ran); ``video`` also
     writes an MP4 of the reference (polysegment) run.
+
+    Returns:
+        The RunResult: every variant's program, execution and coat, the metrics document and
+        the files written; ``passed`` tells whether every gate held.
+
+    Raises:
+        InputError: a scenario, input file or output folder that is not usable (exit 2).
+        ExecutionError: a variant that cannot run on the arm, unless ``keep_going`` (exit 3).
     """
     from coatsim.core.outputs_guard import check_distinct, output_folder
 

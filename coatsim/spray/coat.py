@@ -58,7 +58,30 @@ def coat(log: TrajectoryLog, surface: Surface, model: SprayModel, roi: str = "ba
          tolerance_pct: float = defaults.TOLERANCE_PCT) -> CoatingResult:
     """Deposit the sprayed part of ``log`` on ``surface`` and measure it over the ROI
     (``away``: the surface's vertices clear of the edge band, if already computed;
-    ``tolerance_pct``: the specification band around the target)."""
+    ``tolerance_pct``: the specification band around the target).
+
+    Args:
+        log: the executed trajectory (gun on/off and TCP per step).
+        surface: the part's surface mesh.
+        model: the gun's footprint, rate, efficiency and shadowing.
+        roi: the region measured: ``band`` (around the sprayed path) or ``part`` (the whole part
+            clear of its edge band).
+        target_um: the specified thickness, µm (default the mean over the region).
+        edge_band_mm: the border left out of the measured region, mm.
+        band_halfwidth_mm: the half-width of the ``band`` region, mm.
+        spacing: the integration sub-step along the path, mm.
+        progress: called with the share done.
+        away: precomputed vertices clear of the edge band.
+        tolerance_pct: the specification band around the target, %.
+
+    Returns:
+        The CoatingResult: thickness per vertex, the region's metrics and the mass balance.
+
+    Raises:
+        InputError: an unknown ``roi`` or widths out of range; EmptyRegionOfInterest when the
+            spray misses the measured region.
+        BudgetExceeded: more sub-steps, vertices or shadow memory than their budgets.
+    """
     result = deposit(surface, log, model, progress)
     mask = region_of_interest(surface, result, model, roi, edge_band_mm, band_halfwidth_mm, spacing, away)
     metrics = coating_metrics(surface, result, model, mask, target_um, tolerance_pct)

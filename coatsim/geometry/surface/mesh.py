@@ -54,7 +54,20 @@ class Part:
 
 
 def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
-    """Read a mesh file (see the module docstring); ``units`` is mm, cm, m, in or auto."""
+    """Read a mesh file (see the module docstring), repaired and checked.
+
+    Args:
+        path: an STL (ASCII or binary), PLY, OBJ, OFF, GLB or glTF file.
+        units: the file's length unit: mm, cm, m, in, or auto (from the extent, with a note).
+
+    Returns:
+        The Part: its mesh in mm, with the notes of what was repaired.
+
+    Raises:
+        InputError: a file that is not a mesh, or a mesh that cannot be repaired (one line
+            naming the problem and the fix).
+        BudgetExceeded: more triangles or bytes than the plan budgets.
+    """
     import trimesh
 
     path = Path(path)

@@ -317,7 +317,21 @@ def _passes(pieces: list[Piece], traces: list[Trace], part: Part, outward_faces:
 
 
 def plan(part: Part, options: PlanOptions) -> SurfacePaths:
-    """Passes covering the region of ``part`` (see the module docstring)."""
+    """Passes covering the region of ``part`` (see the module docstring).
+
+    Args:
+        part: the mesh (load_part).
+        options: pattern, spacing or ripple, stand-off, region, margins, order (PlanOptions).
+
+    Returns:
+        The SurfacePaths: passes on the surface with their normals, leads and statistics,
+        checked independently (every point on the mesh, every normal near its faces).
+
+    Raises:
+        InputError: an empty region, options that contradict each other, or a plan that fails
+            its own check.
+        BudgetExceeded: more triangles or passes than the plan budgets.
+    """
     s = _settings(options)
     clock, notes = _Clock(), list(part.notes)
     rv, rf, normals, outward_faces = _region_mesh(part, options, s, notes)
