@@ -166,8 +166,20 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     mesh.update_faces(mesh.nondegenerate_faces())
     if len(mesh.faces) == 0:
         raise InputError(f"{path}: every triangle of the mesh is degenerate (zero area)")
+    return mesh_surface(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces), spacing, pose, str(path))
+
+
+def mesh_surface(vertices: np.ndarray, faces: np.ndarray, spacing: float, pose: np.ndarray | None = None,
+                 name: str = "mesh") -> Surface:
+    """A part's triangles (mm, its own frame) refined so no edge exceeds ``spacing`` and placed
+    by ``pose`` (4x4) in the base frame; the refined size is checked against the budget first."""
+    import trimesh
+    import trimesh.remesh
+
+    _check_spacing(spacing)
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
     estimate = max(len(mesh.faces), mesh.area / (math.sqrt(3) / 4 * spacing**2))
-    check_budget(f"{path} refined to edges of {spacing:g} mm: triangles", estimate, MAX_TRIANGLES,
+    check_budget(f"{name} refined to edges of {spacing:g} mm: triangles", estimate, MAX_TRIANGLES,
                  "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
     vertices, faces = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=spacing, max_iter=20)
     refined = trimesh.Trimesh(vertices, faces, process=True)
@@ -176,7 +188,7 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     vertices = _transform(np.asarray(refined.vertices, dtype=float), pose)
     faces = np.asarray(refined.faces, dtype=np.int64)
     normals = _transform(np.asarray(refined.vertex_normals, dtype=float), pose, vectors=True)
-    return Surface(str(path), "mesh", vertices, faces, normals, vertex_areas(vertices, faces),
+    return Surface(name, "mesh", vertices, faces, normals, vertex_areas(vertices, faces),
                    vertices[:, :2].copy(), ("x (mm)", "y (mm)"))
 
 
