@@ -161,7 +161,7 @@ def run_part_variant(name: str, variant: str, language_name: str, job: PartJob, 
     execution.log.write_csv(out / f"{name}.trajectory.csv")
     step(f"{name}: spraying")
     try:
-        result = coat(execution.log, job.surface, job.model, target_um=spec.gun.target_thickness_um,
+        result = coat(execution.log, job.surface, job.model, roi="field", target_um=spec.gun.target_thickness_um,
                       edge_band_mm=spec.coating.edge_band_mm, band_halfwidth_mm=spec.coating.band_halfwidth_mm,
                       spacing=job.spacing_mm, away=job.away_mm)
     except EmptyRegionOfInterest as exc:

@@ -4,7 +4,9 @@ ROI kinds: ``part`` is the part minus an edge band along its border (default 3σ
 the strip the spray actually traced (vertices that came within a half-width, default 2σ, of
 the footprint centre while spraying), minus the same edge band and minus the run-in and
 run-out (within the edge band of the first and last footprint centre of every spray-on
-stretch that does not close on itself). Every statistic is weighted by vertex area, so it
+stretch that does not close on itself); ``field`` is that band without the edge band along its
+own border as well: the area a raster of passes coats evenly, its outer passes' falling flanks
+left out (a run on a 3-D part measures its region so). Every statistic is weighted by vertex area, so it
 does not depend on how the mesh is tessellated.
 
 Where the sprayed material went: sprayed = deposited + lost (bounced off, deposition
@@ -18,6 +20,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from coatsim.core.numeric import TINY
 from coatsim.core import defaults
@@ -26,7 +29,7 @@ from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
 from coatsim.spray.surfaces import Surface, border_distance
 
-ROI_KINDS = ("band", "part")
+ROI_KINDS = ("band", "field", "part")
 COVERAGE_FRACTION = 0.8
 THICK_SPOT_FRACTION = 1.2
 
@@ -80,11 +83,25 @@ def region_of_interest(surface: Surface, deposit: Deposit, model: SprayModel, ki
     if not (edge >= 0 and half > 0 and np.isfinite(edge) and np.isfinite(half)):
         raise InputError(f"ROI widths must be finite, >= 0 (edge band) and > 0 (band half-width), found {edge:g}, {half:g} mm")
     mask = (away_from_border(surface, edge, spacing) if away is None else away).copy()
-    if kind == "band":
-        mask &= deposit.track_distance_mm <= half
+    if kind != "part":
+        band = deposit.track_distance_mm <= half
+        mask &= band
         for step in _stretch_ends(deposit, closing_mm=model.step_mm):
             mask &= _footprint_radius(surface, deposit, model, step) >= edge
+        if kind == "field":
+            mask &= inside(surface.vertices, band, edge)
     return mask
+
+
+def inside(vertices: np.ndarray, mask: np.ndarray, margin_mm: float) -> np.ndarray:
+    """Vertices of ``mask`` at least ``margin_mm`` (3-D distance) from every vertex outside it."""
+    outside = vertices[~mask]
+    if not len(outside) or margin_mm <= 0:
+        return mask.copy()
+    out = np.zeros(len(vertices), dtype=bool)
+    near = cKDTree(outside).query(vertices[mask], distance_upper_bound=margin_mm)[0]
+    out[np.flatnonzero(mask)] = ~(near < margin_mm)
+    return out
 
 
 def weighted_quantile(values: np.ndarray, weights: np.ndarray, q: float) -> float:

@@ -107,48 +107,53 @@ def histogram_section(data: Any) -> Section:
         "tolerance). The legend gives each variant's share inside it (coating.within_spec_fraction).")))
 
 
-def _view_axes(data: Any) -> np.ndarray:
-    """Two orthonormal directions (2, 3) of the maps' view: across the mean normal of the region."""
+def _view(data: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Two orthonormal directions (2, 3) across the region's mean normal (the maps look along it)
+    and the normal itself."""
     run = data.reference
-    normal = (run.coating.surface.normals[run.coating.roi] * run.coating.surface.areas[run.coating.roi, None]).sum(0)
-    normal = normal / max(np.linalg.norm(normal), 1e-12)
+    surface, roi = run.coating.surface, run.coating.roi
+    normal = (surface.normals[roi] * surface.areas[roi, None]).sum(axis=0)
+    normal = normal / max(float(np.linalg.norm(normal)), 1e-12)
     helper = np.eye(3)[int(np.argmin(np.abs(normal)))]
     u = np.cross(helper, normal)
     u /= np.linalg.norm(u)
-    return np.vstack([u, np.cross(normal, u)])
+    return np.vstack([u, np.cross(normal, u)]), normal
 
 
-def _map(ax: Any, data: Any, xy: np.ndarray, values: np.ndarray, vmin: float, vmax: float, cmap: str) -> Any:
-    coarse = data.coarse
-    shown = coarse.field(values)
-    image = ax.tripcolor(xy[:, 0], xy[:, 1], coarse.faces, shown, shading="gouraud", cmap=cmap, vmin=vmin, vmax=vmax,
-                         rasterized=True)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    return image
+def _front(coarse: Any, normal: np.ndarray) -> np.ndarray:
+    """The coarse mesh's triangles that face the viewer (the back of a closed part is not drawn
+    over its front)."""
+    v = coarse.vertices[coarse.faces]
+    return coarse.faces[np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]) @ normal > 0]
 
 
 def maps_figure(data: Any) -> bytes:
     """Thickness of every variant (one scale), then the reference's spray angle and stand-off."""
     coarse = data.coarse
-    xy = (coarse.vertices - coarse.vertices.mean(axis=0)) @ _view_axes(data).T
+    axes2, normal = _view(data)
+    xy = (coarse.vertices - coarse.vertices.mean(axis=0)) @ axes2.T
+    faces = _front(coarse, normal)
     panels = len(data.runs) + 2
     cols = min(panels, 3)
     rows = -(-panels // cols)
     fig = figure(11.0, 3.3 * rows)
     axes = grid(fig, rows, cols, margins=(0.2, 0.2, 0.35, 0.2), gaps=(0.7, 0.45)).ravel()
     vmin, vmax = data.scale_um
-    ref = data.reference.coating.deposit
-    angle = np.nan_to_num(ref.spray_angle_deg, nan=0.0)
-    standoff = ref.standoff_mm
-    low, high = (np.nanmin(standoff), np.nanmax(standoff)) if np.isfinite(standoff).any() else (0.0, 1.0)
+    ref = data.reference.coating
+    angle = np.nan_to_num(ref.deposit.spray_angle_deg, nan=0.0)
+    standoff = ref.deposit.standoff_mm
+    measured = standoff[ref.roi & np.isfinite(standoff)]
+    low, high = (float(measured.min()), float(measured.max())) if len(measured) else (0.0, 1.0)
     fields = [(r.coating.thickness_um, vmin, vmax, "viridis", f"{r.name}: thickness (µm)") for r in data.runs]
     fields += [(angle, 30.0, 90.0, "magma", f"{data.reference.name}: spray angle (deg, 90 = normal)"),
-               (np.nan_to_num(standoff, nan=low), low, max(high, low + 1e-6), "cividis",
+               (np.nan_to_num(standoff, nan=low), low, max(high, low + 1e-3), "cividis",
                 f"{data.reference.name}: stand-off where coating landed (mm)")]
     for ax, (values, lo, hi, cmap, label) in zip(axes, fields):
-        image = _map(ax, data, xy, values, lo, hi, cmap)
+        image = ax.tripcolor(xy[:, 0], xy[:, 1], faces, coarse.field(values), shading="gouraud", cmap=cmap,
+                             vmin=lo, vmax=hi, rasterized=True)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xticks([])
+        ax.set_yticks([])
         fig.colorbar(image, ax=ax, shrink=0.8, pad=0.02).ax.tick_params(labelsize=7)
         title(ax, label, loc="left", fontsize=8)
     for ax in axes[len(fields):]:
@@ -159,10 +164,11 @@ def maps_figure(data: Any) -> bytes:
 def maps_section(data: Any) -> Section:
     body = figure_html(Figure(
         "Thickness, spray angle and stand-off on the part", maps_figure(data),
-        "The part seen along the region's mean normal. First each variant's thickness on the report's one colour scale "
+        "The part seen along the region's mean normal (its faces turned away not drawn). First each variant's thickness on the report's one colour scale "
         f"(the 3-D view's), then, for {data.reference.name}, the deposit-weighted spray angle (90 deg: the spray meets "
         f"the surface square on; below {LOW_SPRAY_ANGLE_DEG:g} deg counts in coating.low_angle_fraction; 0 where "
-        "nothing landed) and the stand-off at which the coating landed."))
+        "nothing landed) and the stand-off at which the coating landed (its scale: the range over the region of "
+        "interest)."))
     return Section("maps", "Maps on the part", body)
 
 
