@@ -16,7 +16,7 @@ from typing import Mapping, Optional
 
 import numpy as np
 
-from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest
+from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
 from coatsim.geometry.cad import PartSegmentation

@@ -20,14 +20,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from coatsim.core.numeric import TINY
 from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
-from coatsim.spray.surfaces import Surface, border_distance
+from coatsim.spray.surfaces import Surface, merged_vertices, border_distance
 
 ROI_KINDS = ("band", "field", "part")
 COVERAGE_FRACTION = 0.8
@@ -89,19 +88,39 @@ def region_of_interest(surface: Surface, deposit: Deposit, model: SprayModel, ki
         for step in _stretch_ends(deposit, closing_mm=model.step_mm):
             mask &= _footprint_radius(surface, deposit, model, step) >= edge
         if kind == "field":
-            mask &= inside(surface.vertices, band, edge)
+            mask &= inside(surface, band, edge)
     return mask
 
 
-def inside(vertices: np.ndarray, mask: np.ndarray, margin_mm: float) -> np.ndarray:
-    """Vertices of ``mask`` at least ``margin_mm`` (3-D distance) from every vertex outside it."""
-    outside = vertices[~mask]
-    if not len(outside) or margin_mm <= 0:
+def inside(surface: Surface, mask: np.ndarray, margin_mm: float) -> np.ndarray:
+    """Vertices of ``mask`` at least ``margin_mm`` from every vertex outside it, measured along
+    the surface (shortest paths over the mesh's edges, coincident vertices merged: never through
+    the air, so the far side of a thin part does not count; a path along edges is at most about
+    8 % longer than the geodesic on a well-shaped mesh)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    if mask.all() or margin_mm <= 0:
         return mask.copy()
-    out = np.zeros(len(vertices), dtype=bool)
-    near = cKDTree(outside).query(vertices[mask], distance_upper_bound=margin_mm)[0]
-    out[np.flatnonzero(mask)] = ~(near < margin_mm)
-    return out
+    ids = merged_vertices(surface.vertices)
+    faces = ids[surface.faces]
+    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    edges = edges[edges[:, 0] != edges[:, 1]]
+    n = int(ids.max()) + 1
+    merged_in = np.zeros(n, dtype=bool)
+    merged_in[ids[mask]] = True
+    merged_out = np.zeros(n, dtype=bool)
+    merged_out[ids[~mask]] = True
+    border = np.unique(edges[merged_out[edges[:, 0]] != merged_out[edges[:, 1]]])
+    sources = border[merged_out[border]]
+    if not len(sources):
+        return mask.copy()
+    first = np.zeros(n, dtype=np.int64)
+    first[ids] = np.arange(len(ids))
+    length = np.linalg.norm(surface.vertices[first[edges[:, 0]]] - surface.vertices[first[edges[:, 1]]], axis=1)
+    graph = coo_matrix((length, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
+    distance = dijkstra(graph, directed=False, indices=sources, min_only=True, limit=margin_mm * (1 + 1e-9))
+    return mask & ~merged_out[ids] & (distance[ids] >= margin_mm)
 
 
 def weighted_quantile(values: np.ndarray, weights: np.ndarray, q: float) -> float:

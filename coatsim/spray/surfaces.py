@@ -256,7 +256,7 @@ def parse_surface_spec(spec: str, spacing: float) -> Surface:
     return mesh_file(path, spacing)
 
 
-def _merged_vertices(vertices: np.ndarray) -> np.ndarray:
+def merged_vertices(vertices: np.ndarray) -> np.ndarray:
     """Vertex ids with coincident vertices (within 1e-7 of the part size) sharing one id."""
     scale = float(np.ptp(vertices, axis=0).max()) or 1.0
     key = np.round(vertices / (1e-7 * scale)).astype(np.int64)
@@ -274,7 +274,7 @@ def border_distance(surface: Surface, spacing: float | None = None, within_mm: f
     not within ``within_mm`` (the search stops there, so an edge band costs time in
     proportion to the vertices it holds). Accurate to spacing/16 (border edges are sampled
     at spacing/8)."""
-    merged = _merged_vertices(surface.vertices)
+    merged = merged_vertices(surface.vertices)
     faces = merged[surface.faces]
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     key = edges[:, 0] * (int(merged.max()) + 1) + edges[:, 1]
