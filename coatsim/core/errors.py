@@ -5,7 +5,6 @@ Exit codes: 0 success; 1 a gate failed; 2 invalid input; 3 cannot execute.
 
 from __future__ import annotations
 
-import copy
 import re
 from typing import Mapping
 
@@ -31,7 +30,15 @@ class CoatsimError(Exception):
         for name in self.parameters:
             if name in words:
                 text = re.sub(rf"(?<![\w.-]){re.escape(name)}(?![\w])", words[name], text, count=1)
-        new = copy.copy(self)
+        return self._saying(text)
+
+    def prefixed(self, where: str) -> CoatsimError:
+        """The same error (its class and details kept) with ``where`` said before its message."""
+        return self._saying(f"{where}: {self}")
+
+    def _saying(self, text: str) -> CoatsimError:
+        new = type(self).__new__(type(self))  # not copy.copy: it calls __init__ with the message alone
+        new.__dict__.update(self.__dict__)
         new.args = (text,)
         return new
 

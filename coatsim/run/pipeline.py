@@ -133,7 +133,7 @@ def run_program_variant(entry: ProgramVariantSpec, job: Job, step: Step) -> Vari
         toolpath = replace(toolpath, warnings=(*toolpath.warnings, *program.notes))  # they reach metrics.json
         return replace(simulate_variant(entry.name, program, toolpath, job, step), program_file=copy)
     except CoatsimError as exc:
-        raise type(exc)(f"{entry.name}: {exc}") from None
+        raise exc.prefixed(entry.name) from None
 
 
 def _user_contour(job: Job, program: UserProgram) -> np.ndarray:
@@ -297,7 +297,7 @@ def _segmentation(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation,
     try:
         user = user_program(toolpath, curve_frame(spec), "")
     except CoatsimError as exc:
-        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {exc}") from None
+        raise exc.prefixed(f"{loaded.where('variants')}: variant {entry.name}") from None
     seg = segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
                         method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
                         speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2)
@@ -341,7 +341,7 @@ def _run_variants(job: Job, step: Step, keep_going: bool) -> tuple[list[VariantR
                 runs.append(run_program_variant(entry, job, step))  # its errors name the variant
         except CoatsimError as exc:
             if not keep_going:
-                raise (exc if builtin is None else type(exc)(f"{name}: {exc}")) from None
+                raise (exc if builtin is None else exc.prefixed(name)) from None
             failures[name] = str(exc).removeprefix(f"{name}: ")
     return runs, failures
 

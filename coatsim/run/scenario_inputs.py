@@ -158,7 +158,7 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
         toolpath = language_of(files, entry.language).read(files, options)
     except CoatsimError as exc:
         said = exc.reworded({"gun_signal": "gun.signal"})
-        raise type(exc)(f"{loaded.where('variants')}: variant {entry.name}: {said}") from None
+        raise said.prefixed(f"{loaded.where('variants')}: variant {entry.name}") from None
     return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
 
 

@@ -15,7 +15,7 @@ from typing import Any, Optional
 import numpy as np
 
 from coatsim.geometry.space.pose import Pose
-from coatsim.geometry.space.rotations import rot_x, rot_y, rot_z
+from coatsim.geometry.space.rotations import matrix_to_abc, rot_x, rot_y, rot_z
 from coatsim.languages.abb_rapid import data as d
 from coatsim.languages.script import nodes as n
 
@@ -128,19 +128,49 @@ class Expressions:
         name = call.name.lower()
         pos, named = _arg_map(call.args)
         if name in _MATH:
-            fn, count = _MATH[name]
-            values = [self._num(self.eval(a)) for a in pos]
-            if len(values) != count:
-                raise self.error(f"{call.name} takes {count} argument{'s' if count > 1 else ''}")
-            try:
-                return float(fn(*values))
-            except (ValueError, OverflowError):
-                raise self.error(f"{call.name}({', '.join(f'{v:g}' for v in values)}) is not defined") from None
+            return self._math(call.name, _MATH[name], pos)
+        for group in (self._number_function, self._pose_function, self._target_function):
+            value = group(name, pos, named)
+            if value is not None:
+                return value
+        return None
+
+    def _math(self, shown: str, entry: tuple, pos: list) -> float:
+        fn, count = entry
+        values = [self._num(self.eval(a)) for a in pos]
+        if len(values) != count:
+            raise self.error(f"{shown} takes {count} argument{'s' if count > 1 else ''}")
+        try:
+            return float(fn(*values))
+        except (ValueError, OverflowError):
+            raise self.error(f"{shown}({', '.join(f'{v:g}' for v in values)}) is not defined") from None
+
+    def _number_function(self, name: str, pos: list, named: dict) -> Any:
+        """Rounding, signals, array sizes and strings."""
         if name in ("round", "trunc"):
             value = self._num(self.eval(pos[0]))
             decimals = int(self._num(self.eval(named["dec"]))) if named.get("dec") is not None else 0
             scale = 10.0 ** decimals
             return (round(value * scale) if name == "round" else math.trunc(value * scale)) / scale
+        if name in ("dinput", "doutput", "testdi"):
+            return self.signal_state(pos[0], name)
+        if name == "dim":
+            base = self.eval(pos[0])
+            k = int(self._num(self.eval(pos[1])))
+            for _ in range(k - 1):
+                base = base[0]
+            return float(len(base))
+        if name == "numtostr":
+            value = self._num(self.eval(pos[0]))
+            return f"{value:.{int(self._num(self.eval(pos[1])))}f}"
+        if name == "strlen":
+            return float(len(self.eval(pos[0])))
+        if name == "present":
+            return self.present(pos[0])
+        return None
+
+    def _target_function(self, name: str, pos: list, named: dict) -> Any:
+        """Functions of robtargets: offsets, the current position."""
         if name == "offs":
             p = self._target(pos[0], "robtarget")
             dx, dy, dz = (self._num(self.eval(a)) for a in pos[1:4])
@@ -161,12 +191,14 @@ class Expressions:
             return target if name == "crobt" else target.fields["trans"].copy()
         if name == "cjointt":
             return self.current_joints()
+        return None
+
+    def _pose_function(self, name: str, pos: list, named: dict) -> Any:
+        """Orientations and poses: OrientZYX, EulerZYX, PoseMult, PoseInv, PoseVect."""
         if name == "orientzyx":
             z, y, x = (math.radians(self._num(self.eval(a))) for a in pos[:3])
             return d.make_orient(rot_z(z) @ rot_y(y) @ rot_x(x))
         if name == "eulerzyx":
-            from coatsim.geometry.space.rotations import matrix_to_abc
-
             rot = d.rotation_of(self._target(pos[0], "orient"), self.error)
             z, y, x = matrix_to_abc(rot)
             axis = next((k for k in ("x", "y", "z") if k in named), None)
@@ -182,21 +214,6 @@ class Expressions:
                 return d.with_pose(d.record("pose", [0, 0, 0], [1, 0, 0, 0]), a @ b)
             p = d.pos_array(self._target(pos[1], "pos"))
             return d.make_pos(a.rotation @ p + a.translation_mm)
-        if name in ("dinput", "doutput", "testdi"):
-            return self.signal_state(pos[0], name)
-        if name == "dim":
-            base = self.eval(pos[0])
-            k = int(self._num(self.eval(pos[1])))
-            for _ in range(k - 1):
-                base = base[0]
-            return float(len(base))
-        if name == "numtostr":
-            value = self._num(self.eval(pos[0]))
-            return f"{value:.{int(self._num(self.eval(pos[1])))}f}"
-        if name == "strlen":
-            return float(len(self.eval(pos[0])))
-        if name == "present":
-            return self.present(pos[0])
         return None
 
     def _target(self, e: n.Expr, type_: str) -> d.Record:

@@ -36,7 +36,7 @@ MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
 RECORD = re.compile(r"^\s*!\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
 _IGNORED = {"confl", "confj", "singarea", "accset", "pathacclim", "tpwrite", "tperase", "tpshow", "errwrite",
-            "corrclear", "corrcon", "corrdiscon", "waitrob", "idelete", "isleep", "iwatch", "iwatch", "ienable",
+            "corrclear", "corrcon", "corrdiscon", "waitrob", "idelete", "isleep", "iwatch", "ienable",
             "idisable", "clkreset", "clkstart", "clkstop", "gripload", "worldaccim", "cornerpathwarn", "setsysdata",
             "pathresol", "motionsup", "triggio", "triggequip", "triggint", "triggcheckio", "stoppmove",
             "startmove", "clearpath", "storepath", "restopath", "softact", "softdeact", "tuneservo", "retry",
@@ -44,7 +44,7 @@ _IGNORED = {"confl", "confj", "singarea", "accset", "pathacclim", "tpwrite", "tp
 _INTERRUPTS = {"isignaldi", "isignaldo", "itimer", "isignalai", "isignalao", "isignalgi", "isignalgo", "ipers",
                "ierror", "connect"}
 _UNSIMULATED = {"searchl", "searchc", "searchj", "movelsync", "movejsync", "movecsync", "moveext", "csspdeact",
-                "csspdeact", "indamove", "indcmove", "inddmove", "indrmove", "indreset", "pulsedo", "tpreadfk",
+                "indamove", "indcmove", "inddmove", "indrmove", "indreset", "pulsedo", "tpreadfk",
                 "tpreadnum", "tpreaddnum"}
 
 

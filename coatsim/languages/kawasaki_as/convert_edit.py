@@ -19,7 +19,7 @@ from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.edit import edit_lines, indentation
 from coatsim.languages.kawasaki_as.files import parse_files
-from coatsim.languages.kawasaki_as.interpreter import interpret_run
+from coatsim.languages.kawasaki_as.interpreter import Run, interpret_run
 from coatsim.languages.kawasaki_as.names import sanitize_comment
 from coatsim.languages.kawasaki_as.reading import used_names, walk
 from coatsim.languages.kawasaki_as.writer import fmt, fmt_short, path_moves, pose_values
@@ -127,31 +127,12 @@ def edit_in_place(items: Sequence[Path], options: ReadOptions, fitted: Sequence[
     prefix = next(p for p in ("cv", "cva", "cvb", "cvc", "cvz") if not any(t.startswith(p) for t in taken))
     replacements, trans, counts, ranges = [], [], [], []
     for k, f in enumerate(fitted, start=1):
-        origins = [run.move_origins[i] for i in f.path.moves]
-        names = {o[0] for o in origins}
-        if len(names) != 1:
-            raise InputError(f"the process path of lines {f.lines[0]}-{f.lines[1]} comes from programs "
-                             f"{', '.join(sorted(names))}{_HINT}")
-        program = run.programs[names.pop().lower()]
+        program, lo, hi, first_line, last_line = _replaced_lines(run, f, source)
         body = program.body
-        touched = [i for i, st in enumerate(body)
-                   if any(_span(st)[0] <= a <= _span(st)[1] or _span(st)[0] <= b <= _span(st)[1] for _, a, b in origins)]
-        lo, hi = _goto_loops(body, touched[0], touched[-1])
-        first_line, last_line = _span(body[lo])[0], _span(body[hi])[1]
-        made = [i for i, (name, a, b) in enumerate(run.move_origins)
-                if name.lower() == program.name.lower() and first_line <= a and b <= last_line]
-        if made != list(f.path.moves):
-            raise InputError(f"{source}:{first_line}: lines {first_line}-{last_line} make other moves than the process "
-                             f"path (they run more than once, or hold other motions){_HINT}")
         switch = _check_statements(body[lo:hi + 1], program, options.gun_signal)
         extra = _external_axes(files, body[lo:hi + 1], f"{source}:{first_line}")
         moves = [run.toolpath.moves[i] for i in f.path.moves]
-        settings = {(m.settings.speed_mm_s, m.settings.accuracy_mm, m.settings.cp) for m in moves}
-        if len(settings) != 1:
-            raise InputError(f"{source}:{first_line}: the speed or accuracy changes along the process path{_HINT}")
-        base = run.move_bases[f.path.moves[0]]
-        if any(run.move_bases[i] is not base for i in f.path.moves):
-            raise InputError(f"{source}:{first_line}: BASE changes along the process path{_HINT}")
+        base = _one_setting(run, f, moves, f"{source}:{first_line}")
         inverse = base.inverse()
 
         def name(pose: Pose, _k=k) -> str:
@@ -176,3 +157,37 @@ def edit_in_place(items: Sequence[Path], options: ReadOptions, fitted: Sequence[
         counts.append(sum(1 for s, _ in statements if not s.startswith("C1MOVE")))
     new = edit_lines(data, replacements, [".TRANS", *trans, ".END"])
     return InPlaceEdit(source, new, tuple(counts), tuple(ranges))
+
+
+def _replaced_lines(run: Run, f: FittedPath, source: str) -> tuple[ast.Program, int, int, int, int]:
+    """The program and the statements (``lo``..``hi``, lines ``first``..``last``) that make
+    exactly the moves of the process path ``f``, or an InputError saying why none do."""
+    origins = [run.move_origins[i] for i in f.path.moves]
+    names = {o[0] for o in origins}
+    if len(names) != 1:
+        raise InputError(f"the process path of lines {f.lines[0]}-{f.lines[1]} comes from programs "
+                         f"{', '.join(sorted(names))}{_HINT}")
+    program = run.programs[names.pop().lower()]
+    body = program.body
+    touched = [i for i, st in enumerate(body)
+               if any(_span(st)[0] <= a <= _span(st)[1] or _span(st)[0] <= b <= _span(st)[1] for _, a, b in origins)]
+    lo, hi = _goto_loops(body, touched[0], touched[-1])
+    first_line, last_line = _span(body[lo])[0], _span(body[hi])[1]
+    made = [i for i, (name, a, b) in enumerate(run.move_origins)
+            if name.lower() == program.name.lower() and first_line <= a and b <= last_line]
+    if made != list(f.path.moves):
+        raise InputError(f"{source}:{first_line}: lines {first_line}-{last_line} make other moves than the process "
+                         f"path (they run more than once, or hold other motions){_HINT}")
+    return program, lo, hi, first_line, last_line
+
+
+def _one_setting(run: Run, f: FittedPath, moves: list, where: str) -> Pose:
+    """The BASE of the process path ``f``, whose moves must share speed, accuracy and BASE
+    (one set of replacement moves carries one of each)."""
+    settings = {(m.settings.speed_mm_s, m.settings.accuracy_mm, m.settings.cp) for m in moves}
+    if len(settings) != 1:
+        raise InputError(f"{where}: the speed or accuracy changes along the process path{_HINT}")
+    base = run.move_bases[f.path.moves[0]]
+    if any(run.move_bases[i] is not base for i in f.path.moves):
+        raise InputError(f"{where}: BASE changes along the process path{_HINT}")
+    return base

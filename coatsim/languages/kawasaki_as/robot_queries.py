@@ -27,14 +27,14 @@ class RobotQueries:
         try:
             return kin.forward(q, self.controller.tool)
         except CoatsimError as exc:
-            raise type(exc)(f"{self.where()}: {exc}") from None
+            raise exc.prefixed(self.where()) from None
 
     def home_joints(self, number: int) -> np.ndarray:
         kin = self.need_kinematics("HOME")
         try:
             return np.asarray(kin.home(number), dtype=float)
         except CoatsimError as exc:
-            raise type(exc)(f"{self.where()}: {exc}") from None
+            raise exc.prefixed(self.where()) from None
 
     def home_pose(self):
         """The pose and joints every program starts from: the cell's home."""
