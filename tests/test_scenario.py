@@ -191,7 +191,7 @@ def test_json_schema_is_strict_and_lists_the_choices() -> None:
     schema = json.loads(json_schema())
     assert schema["additionalProperties"] is False
     assert all(d.get("additionalProperties") is False for d in schema["$defs"].values() if d.get("type") == "object")
-    assert set(schema["required"]) == {"name", "workpiece"}
+    assert set(schema["required"]) == {"name"}  # and exactly one of workpiece or part (checked on loading)
     items = schema["properties"]["variants"]["items"]
     choices = items.get("anyOf") or items["oneOf"]
     assert choices[0]["enum"] == list(VARIANTS) and choices[1]["$ref"].endswith("ProgramVariantSpec")

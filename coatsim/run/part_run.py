@@ -109,7 +109,7 @@ def plan_part(loaded: ScenarioFile, model: SprayModel) -> tuple[Part, Plan]:
     try:
         return part, plan(part, options)
     except CoatsimError as exc:
-        raise type(exc)(f"{loaded.where('paths')}: {exc.reworded(PLAN_KEYS)}") from None
+        raise exc.reworded(PLAN_KEYS).prefixed(loaded.where("paths")) from None
 
 
 def program_input(planned: Plan, pose: Pose, source: str) -> SurfacePaths:
@@ -207,7 +207,7 @@ def _variants(job: PartJob, step: Step, keep_going: bool) -> tuple[list[VariantR
             runs.append(run_part_variant(name, *job.loaded.spec.builtin(entry), job, step))
         except CoatsimError as exc:
             if not keep_going:
-                raise type(exc)(f"{name}: {exc}") from None
+                raise exc.prefixed(name) from None
             failures[name] = str(exc)
     return runs, failures
 
