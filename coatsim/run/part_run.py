@@ -19,6 +19,7 @@ from typing import Optional
 
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
 from coatsim.geometry.space.pose import Pose
@@ -132,12 +133,9 @@ def part_job(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, part: Part
         raise InputError(f"{loaded.where('coating', 'spacing_mm')}: {exc}") from None
     away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
     placed = with_part(cell, PartMesh(pose.apply(part.vertices_mm), part.faces))
-    sample = spec.fast.sample_step_mm if fast else FULL_SAMPLE_STEP_MM
+    sample = spec.fast.sample_step_mm if fast else defaults.STEP_MM
     return PartJob(loaded, planned, program_input(planned, pose, PATHS_FILE), surface, model, placed, out, sample,
                    spacing, away)
-
-
-FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
 
 
 def run_part_variant(name: str, variant: str, language_name: str, job: PartJob, step: Step) -> VariantRun:

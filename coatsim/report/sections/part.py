@@ -164,7 +164,8 @@ def maps_figure(data: Any) -> bytes:
 def maps_section(data: Any) -> Section:
     body = figure_html(Figure(
         "Thickness, spray angle and stand-off on the part", maps_figure(data),
-        "The part seen along the region's mean normal (its faces turned away not drawn). First each variant's thickness on the report's one colour scale "
+        "The part seen along the region's mean normal (its faces turned away not drawn). First each variant's "
+        "thickness on the report's one colour scale "
         f"(the 3-D view's), then, for {data.reference.name}, the deposit-weighted spray angle (90 deg: the spray meets "
         f"the surface square on; below {LOW_SPRAY_ANGLE_DEG:g} deg counts in coating.low_angle_fraction; 0 where "
         "nothing landed) and the stand-off at which the coating landed (its scale: the range over the region of "
