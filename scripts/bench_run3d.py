@@ -66,13 +66,19 @@ def main() -> None:
         for name in args.scenarios.split(","):
             spent.clear()
             t, result = cpu(lambda: run_scenario(ROOT / "scenarios" / f"{name}.yaml", Path(tmp) / name,
-                                                 fast=not args.full, progress=False))
+                                                 fast=not args.full, progress=False,
+                                                 keep_going=True))
             print(head)
             for v, groups in result.document["variants"].items():
                 m, c, s = groups["motion"], groups["coating"], groups["segmentation"]
                 ratio = "-" if m["min_speed_ratio"] is None else f"{m['min_speed_ratio']:.3f}"
                 print(f"{name:<15} {v:<15} {s['n_segments']:>6} {m['cycle_time_s']:>8.3f} {ratio:>7} "
                       f"{c['thickness_cv']:>7.4f} {100 * c['within_spec_fraction']:>7.1f}%")
+            for v, why in result.failures.items():
+                print(f"{name:<15} {v:<15} failed: {why}")
+            gates = result.document["gates"]
+            print(f"  gates: {sum(g['passed'] for g in gates)} of {len(gates)} passed"
+                  + "".join(f"; FAILED {g['label']}" for g in gates if not g["passed"]))
             stages = ", ".join(f"{k} {spent[k]:.1f}" for k in ("plan", "programs", "execution", "coating", "report"))
             vertices = result.variants[0].coating.surface.n_vertices
             print(f"  CPU {t:.1f} s in all ({stages}); coating mesh {vertices} vertices, "

@@ -43,7 +43,9 @@ def check_run(result, variants: list[str]) -> None:
 
 @pytest.mark.parametrize("name", ["blade_3d", "wear_plate_3d", "scan_patch_3d"])
 def test_each_shipped_part_runs_end_to_end(tmp_path, name: str) -> None:
-    variants = ["polysegment", "polyline-stop"]
+    # (with passes 40 mm apart the exact-stop polyline jerks the blade's wrist past its limit:
+    # the tube's run has it)
+    variants = ["polysegment", "polyline-blend"]
     scenario = cheap_scenario(tmp_path, name, variants, spacing_mm=40.0, coating_mm=5.0, sample_mm=4.0)
     result = run_scenario(scenario, tmp_path / "out", fast=True, progress=False, report=False)
     check_run(result, variants)
