@@ -24,13 +24,14 @@ settings.register_profile("ci", derandomize=True, database=None, print_blob=True
 settings.register_profile("explore", derandomize=False, print_blob=True)
 settings.load_profile("ci")
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+METRICS_PAGE = Path(__file__).resolve().parents[1] / "docs" / "reference" / "metrics.md"
 
 
 
 @pytest.fixture(scope="session")
 def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, str, Path]:
-    """`coatsim run SMALL --fast` once per session, in-process: (exit code, stdout, stderr, output folder)."""
+    """`coatsim run SMALL --fast --junit gates.xml` once per session, in-process: (exit code, stdout,
+    stderr, output folder); the JUnit file is written beside the output folder."""
     import contextlib
     import io
 
@@ -40,7 +41,7 @@ def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, st
     outdir = folder / "out"
     out, err = io.StringIO(), io.StringIO()
     old = sys.argv
-    sys.argv = ["coatsim", "run", str(scenario), "--fast", "-o", str(outdir)]
+    sys.argv = ["coatsim", "run", str(scenario), "--fast", "-o", str(outdir), "--junit", str(folder / "gates.xml")]
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
             cli.main()
@@ -50,14 +51,10 @@ def small_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, str, st
 
 
 @pytest.fixture(scope="session")
-def readme_metric_names() -> list[str]:
-    """Metric names listed, in order, in README.md's table under the ``## Metrics`` heading."""
-    lines = README.read_text(encoding="utf-8").splitlines()
-    start = lines.index("## Metrics")
+def reference_metric_names() -> list[str]:
+    """Metric names listed, in order, in the generated reference page docs/reference/metrics.md."""
     names: list[str] = []
-    for line in lines[start + 1:]:
-        if line.startswith("## "):
-            break
+    for line in METRICS_PAGE.read_text(encoding="utf-8").splitlines():
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
         if line.lstrip().startswith("|") and cells[0].startswith("`"):
             names.append(cells[0].strip("`"))

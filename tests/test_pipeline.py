@@ -64,7 +64,7 @@ def test_a_failing_gate_exits_1_after_writing_everything(small_run: tuple[Cli, P
     assert "gates: 3 of 4 passed" in cli.out
 
 
-def test_metrics_json_keys_match_the_readme_table(small_run: tuple[Cli, Path], readme_metric_names: list[str]) -> None:
+def test_metrics_json_keys_match_the_metrics_reference(small_run: tuple[Cli, Path], reference_metric_names: list[str]) -> None:
     _, outdir = small_run
     doc = json.loads((outdir / "metrics.json").read_text(encoding="utf-8"))
     assert doc["format"] == "coatsim.metrics/1" and doc["mode"] == "fast" and doc["passed"] is False
@@ -72,7 +72,7 @@ def test_metrics_json_keys_match_the_readme_table(small_run: tuple[Cli, Path], r
     assert list(doc["variants"]) == list(VARIANTS)
     for groups in doc["variants"].values():
         keys = [f"{g}.{n}" for g, values in groups.items() for n in values]
-        assert keys == readme_metric_names
+        assert keys == reference_metric_names
     assert [g["passed"] for g in doc["gates"]] == [True, True, True, False]
 
 

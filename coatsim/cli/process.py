@@ -39,6 +39,7 @@ def _one_line_warnings(show_other: Callable) -> Callable:
     return show
 
 
+INTERNAL_ERROR_EXIT = 70  # EX_SOFTWARE of sysexits.h
 _SIGNAL_EXITS = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
 
 
@@ -70,7 +71,7 @@ def _run(app: typer.Typer) -> int:
         first = (str(exc).strip().splitlines() or [""])[0][:200]
         typer.echo(f"coatsim: internal error: {type(exc).__name__}: {first} (a bug in coatsim; "
                    "COATSIM_TRACEBACK=1 shows the traceback)", err=True)
-        return 70
+        return INTERNAL_ERROR_EXIT
     return code if isinstance(code, int) else 0
 
 

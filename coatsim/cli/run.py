@@ -16,17 +16,29 @@ def run(
     timings: bool = typer.Option(False, "--timings", help="Print wall times per stage on stderr."),
     video: bool = typer.Option(False, "--video", help="Also write polysegment.mp4: the polysegment run rendered offscreen (needs imageio-ffmpeg)."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
+    junit: Optional[Path] = typer.Option(None, "--junit", help="Also write the gates as JUnit XML to this file: one test case per gate (for CI test reports)."),
 ) -> None:
     """Run a scenario: programs, simulated arm, coating, metrics.json and report.html for every
     variant; exit 1 if a gate fails, 3 if the simulated arm diverges."""
     import time
 
-    from coatsim.core.errors import GateFailure
+    from coatsim.core.errors import CoatsimError, GateFailure
+    from coatsim.core.fileio import write_text
+    from coatsim.core.outputs_guard import check_distinct
+    from coatsim.report.junit import error_junit, gates_junit
     from coatsim.report.summary import summary_text
     from coatsim.run.pipeline import run_scenario
 
+    check_distinct([("the scenario", scenario)], [("--junit", junit)])
     started = time.perf_counter()
-    result = run_scenario(scenario, outdir, fast=fast, model=model, force=force, video=video)
+    try:
+        result = run_scenario(scenario, outdir, fast=fast, model=model, force=force, video=video)
+    except CoatsimError as exc:
+        if junit is not None:  # the CI report shows why the run stopped
+            write_text(junit, error_junit(scenario.stem, str(exc), type(exc).__name__))
+        raise
+    if junit is not None:
+        write_text(junit, gates_junit(result.document))
     typer.echo(summary_text(result.document))
     for warning in result.document["warnings"]:
         typer.echo(f"warning: {warning['variant']}: {warning['message']}", err=True)

@@ -4,7 +4,7 @@ Each budget bounds one quantity that a small input can blow up (a tiny step, a t
 slow speed, a YAML alias). Past a budget the stage raises an InputError (exit 2) that names the
 quantity, the amount asked for, the budget and the option that would fix it. The values are
 sized for a workstation: at each budget a stage needs about 1 to 2.5 GB and a few minutes
-(``python scripts/bench_budgets.py`` measures the cost per unit; figures in the README).
+(``python scripts/bench_budgets.py`` measures the cost per unit; figures in docs/guide/conventions.md).
 """
 
 from __future__ import annotations

@@ -1,8 +1,8 @@
 """The metrics of ``metrics.json``: every name, its unit and its meaning, in one place.
 
 Each variant of a run holds the groups ``segmentation``, ``motion`` and ``coating`` with
-exactly these names (a value is null where it does not apply). The README's metrics table
-lists the same names; a test keeps the two equal.
+exactly these names (a value is null where it does not apply). The documentation's metrics
+page (docs/reference/metrics.md) is generated from this catalogue by scripts/docs_reference.py.
 """
 
 from __future__ import annotations
@@ -75,7 +75,7 @@ def names(group: str) -> list[str]:
 
 
 def markdown_table() -> str:
-    """The README table: ``name | unit | meaning``."""
+    """The metrics table of the documentation: ``name | unit | meaning``."""
     rows = ["| name | unit | meaning |", "|---|---|---|"]
     rows += [f"| `{key}` | {info.unit} | {info.meaning} |" for key, info in METRICS.items()]
     return "\n".join(rows) + "\n"

@@ -29,6 +29,11 @@ def headline_rows(document: Mapping[str, Any]) -> list[tuple[str, list[Any]]]:
     return rows
 
 
+def gate_line(gate: Mapping[str, Any]) -> str:
+    """One gate's line of the summary: PASS or FAIL, its label, its value and its reference."""
+    return f"{'PASS' if gate['passed'] else 'FAIL'}  {gate['label']}  (value {fmt(gate['value'])}, reference {fmt(gate['reference'])})"
+
+
 def summary_text(document: Mapping[str, Any]) -> str:
     """Fixed-width comparison table, then one line per gate and the verdict."""
     names = list(document["variants"])
@@ -46,7 +51,7 @@ def summary_text(document: Mapping[str, Any]) -> str:
     if gates:
         lines.append("")
         for g in gates:
-            lines.append(f"{'PASS' if g['passed'] else 'FAIL'}  {g['label']}  (value {fmt(g['value'])}, reference {fmt(g['reference'])})")
+            lines.append(gate_line(g))
         failed = sum(not g["passed"] for g in gates)
         lines.append(f"gates: {len(gates) - failed} of {len(gates)} passed")
     return "\n".join(lines)

@@ -38,7 +38,7 @@ RAMP_FACTOR = 1.5
 
 @dataclass(frozen=True)
 class MotionMetrics:
-    """Figures of one run; names carry their units (see the README metrics table)."""
+    """Figures of one run; names carry their units (see the metric catalogue, coatsim.report.catalogue)."""
 
     programmed_speed_mm_s: float
     curve_length_mm: float

@@ -1,6 +1,6 @@
 """ToolPath -> dense Cartesian samples, split into rest-to-rest pieces.
 
-Controller semantics modelled here (see the README's robot section):
+Controller semantics modelled here (docs/explanation/controller.md and docs/guide/execute.md):
 - a move with ``stop_at_end`` brings the tool to rest at its end point (piece boundary);
 - a joint move (JMOVE) starts and ends at rest;
 - where two Cartesian moves meet tangentially (heading change below ``TANGENT_TOL_RAD``) the

@@ -1,4 +1,4 @@
-"""The logged tool trajectory and its CSV file (contract in the README).
+"""The logged tool trajectory and its CSV file (contract in docs/formats.md).
 
 One row per simulation step, robot base frame:
 ``t_s,x_mm,y_mm,z_mm,ax,ay,az,speed_mm_s,spray,progress_mm,path_error_mm,q1,...,q6,trace_speed_mm_s``.

@@ -109,6 +109,6 @@ def load_sweep(path: str | Path) -> SweepFile:
     for i, metric in enumerate(spec.metrics):
         if metric not in METRICS:
             close = difflib.get_close_matches(metric, list(METRICS), n=1)
-            hint = f"did you mean {close[0]!r}?" if close else "see the README's metrics table"
+            hint = f"did you mean {close[0]!r}?" if close else "see the metrics reference (docs/reference/metrics.md)"
             raise InputError(f"{loaded.where('metrics', i)}: metrics[{i}]: unknown metric {metric!r}; {hint}")
     return loaded

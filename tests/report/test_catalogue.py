@@ -1,4 +1,4 @@
-"""The metric catalogue, the README's metrics table and the assembled metrics document agree."""
+"""The metric catalogue, the generated metrics reference page and the assembled metrics document agree."""
 
 from __future__ import annotations
 
@@ -14,8 +14,8 @@ from coatsim.report.catalogue import GROUPS, METRICS, markdown_table, names
 from coatsim.report.metrics import assemble, coating_group, plain, segmentation_group, to_json
 
 
-def test_readme_table_lists_exactly_the_catalogue(readme_metric_names: list[str]) -> None:
-    assert readme_metric_names == list(METRICS)
+def test_the_reference_page_lists_exactly_the_catalogue(reference_metric_names: list[str]) -> None:
+    assert reference_metric_names == list(METRICS)
 
 
 def test_markdown_table_has_three_cells_per_row() -> None:

@@ -41,7 +41,7 @@ def metrics_table(variants: Mapping[str, Mapping[str, Mapping[str, Any]]], basel
 
 def metrics_section(data: Any) -> Section:
     baseline = data.reference.name
-    note = ('<p class="muted">Hover a name for the metric\'s key in metrics.json and its meaning (also in the README). '
+    note = ('<p class="muted">Hover a name for the metric\'s key in metrics.json and its meaning (also in the metrics reference of the documentation). '
             "Fractions and ratios of like quantities are shown in %. The ratio columns divide each variant's value by "
             f"the {esc(baseline)}'s where that means something (times, speeds, lengths, thickness, counts of moves); "
             "'–' elsewhere.</p>")
