@@ -89,15 +89,17 @@ def _outward(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return faces if volume > 0 else faces[:, ::-1].copy()
 
 
-def wear_plate(length_mm: float = 240.0, width_mm: float = 160.0, pitch_mm: float = 60.0, height_mm: float = 12.0,
-               per_pitch: int = 16, across: int = 21) -> Mesh:
+def wear_plate(length_mm: float = 240.0, width_mm: float = 160.0, pitch_mm: float = 120.0, height_mm: float = 6.0,
+               per_pitch: int = 32, across: int = 21) -> Mesh:
     """The top of a corrugated plate: rounded ridges across x, ``height_mm`` from valley to
-    crest every ``pitch_mm`` (a raised cosine sharpened toward the crests, as worn teeth)."""
+    crest every ``pitch_mm`` (a raised cosine). The defaults keep the valleys' radius of curvature
+    (pitch² / (2 pi² height) = 122 mm) above the 100 mm stand-off: over a tighter valley the tool
+    points, offset along the normals, cross over one another."""
     nx = int(round(length_mm / pitch_mm * per_pitch)) + 1
     x = np.linspace(-length_mm / 2, length_mm / 2, nx)
     y = np.linspace(-width_mm / 2, width_mm / 2, across)
     wave = 0.5 * (1 + np.cos(2 * math.pi * x / pitch_mm))
-    z = height_mm * wave**1.5
+    z = height_mm * wave
     xx, yy = np.meshgrid(x, y, indexing="ij")
     zz = np.repeat(z[:, None], across, axis=1)
     vertices = np.column_stack([xx.ravel(), yy.ravel(), zz.ravel()])

@@ -63,6 +63,11 @@ def test_the_wear_plate_has_its_ridges() -> None:
     assert vertices[:, 2].max() == pytest.approx(12.0) and vertices[:, 2].min() == pytest.approx(0.0, abs=1e-12)
     crests = np.unique(np.round(vertices[np.isclose(vertices[:, 2], 12.0), 0], 6))
     assert np.allclose(np.diff(crests), 60.0)
+    x = np.linspace(-30, 30, 2001)  # the default's valleys are wider than the stand-off (122 mm radius)
+    z = 3.0 * (1 + np.cos(2 * np.pi * x / 120.0))
+    curvature = np.abs(np.gradient(np.gradient(z, x), x)) / (1 + np.gradient(z, x) ** 2) ** 1.5
+    assert 1 / curvature.max() == pytest.approx(120.0**2 / (2 * np.pi**2 * 6.0), rel=1e-3)
+    assert 1 / curvature.max() > 100.0
     assert (m.face_normals[:, 2] > 0).all()
 
 
