@@ -171,28 +171,45 @@ def exit_codes_page() -> str:
 
 
 def budgets_page() -> str:
-    """The resource budgets: each constant of coatsim.core.budgets, its value and its ``#:`` comment."""
+    """The resource budgets: each named budget of coatsim.core.budgets (what ``--budget NAME=N``
+    changes), its default and the ``#:`` comment of its constant; then the fixed limits."""
     from coatsim.core import budgets
 
     source = Path(budgets.__file__).read_text(encoding="utf-8")
     lines = source.splitlines()
-    rows = ["| budget | value | what it bounds |", "|---|---|---|"]
-    comment = ""
-    for node in ast.parse(source).body:
+    comments, comment = {}, ""
+    tree = ast.parse(source)
+    for node in tree.body:
         if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Name) and node.targets[0].id.isupper():
             above, k = [], node.lineno - 2
             while k >= 0 and lines[k].lstrip().startswith("#:"):
                 above.insert(0, lines[k].lstrip()[2:].strip())
                 k -= 1
             comment = " ".join(above) or comment  # a block of constants shares the comment above it
-            name = node.targets[0].id
-            value = getattr(budgets, name)
-            rows.append(f"| `{name}` | {value:,} | {_cell(comment)} |")
+            comments[node.targets[0].id] = comment
+    constant_of = {call.args[0].value: call.args[1].id for call in ast.walk(tree)
+                   if isinstance(call, ast.Call) and getattr(call.func, "id", "") == "Budget"
+                   and len(call.args) >= 2 and isinstance(call.args[1], ast.Name)}
+    rows = ["| budget | default | what it bounds |", "|---|---|---|"]
+    for name, budget in budgets.BUDGETS.items():
+        text = comments.get(constant_of.get(name, ""), "") or budget.bounds
+        rows.append(f"| `{name}` | {_number(budget.default)} | {_cell(text)} |")
+    fixed = ["| limit | value | what it bounds |", "|---|---|---|"]
+    for const, text in comments.items():
+        if const not in constant_of.values() and isinstance(getattr(budgets, const), (int, float)):
+            fixed.append(f"| `{const}` | {_number(getattr(budgets, const))} | {_cell(text)} |")
     return ("# Resource budgets\n\n"
             "Work that a small input can blow up is checked before it is allocated and refused with exit 2 and\n"
-            "a message naming the amount, the budget and the setting to change. The budgets are the constants\n"
-            "of `coatsim.core.budgets`; measured costs per unit are in\n"
-            "[Errors, outputs and budgets](../guide/conventions.md#resource-budgets).\n\n" + "\n".join(rows) + "\n")
+            "a message naming the amount, the budget and the setting to change. Change a budget for one command\n"
+            "with `coatsim --budget NAME=N` (repeatable; `inf` lifts it) or for a shell with\n"
+            "`COATSIM_BUDGET=\"NAME=N,...\"`; measured costs per unit are in\n"
+            "[Errors, outputs and budgets](../guide/conventions.md#resource-budgets), what is refused and how in\n"
+            "[Hostile input](../guide/hostile-input.md).\n\n" + "\n".join(rows)
+            + "\n\n## Fixed limits\n\n" + "\n".join(fixed) + "\n")
+
+
+def _number(value: float) -> str:
+    return "unbounded" if value == float("inf") else f"{value:,}"
 
 
 PAGES: dict[str, Callable[[], str]] = {

@@ -5,9 +5,15 @@ Every CoatsimError becomes one line on stderr and its exit code (coatsim.cli.pro
 
 from __future__ import annotations
 
+from typing import Optional
+
 import typer
 
+from coatsim.cli.flags import speaking_flags
 from coatsim.cli import check_program, coat, convert, execute, plan, program, run, schema, segment, sweep
+
+BUDGET_HELP = ("Change a resource budget for this command, NAME=N (repeatable; N may be inf): curve_points, "
+               "drawing_entities, sweep_points, input_bytes, seconds, ... (docs/reference/budgets.md).")
 
 app = typer.Typer(
     add_completion=False,
@@ -26,11 +32,28 @@ def _version(value: bool) -> None:
         raise typer.Exit(0)
 
 
+def _budgets(settings: Optional[list[str]]) -> None:
+    """--budget NAME=VALUE: change a resource budget for this command (and the Dask workers it starts)."""
+    if not settings:
+        return
+    import os
+
+    from coatsim.core.budgets import ENV, parse_settings
+
+    merged = parse_settings(os.environ.get(ENV, ""))
+    for text in settings:
+        with speaking_flags({ENV: "--budget"}):
+            merged.update(parse_settings(text))
+    os.environ[ENV] = ",".join(f"{name}={value!r}" for name, value in merged.items())
+
+
 @app.callback()
 def _main(
     version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
+    budget: Optional[list[str]] = typer.Option(None, "--budget", metavar="NAME=N", help=BUDGET_HELP),
 ) -> None:
     """coatsim: curves -> tangent-continuous arc/line robot programs -> simulated arm -> coating."""
+    _budgets(budget)
 
 
 app.command()(segment.segment)

@@ -24,3 +24,9 @@ def speaking_flags(flags: Mapping[str, str]) -> Iterator[None]:
             raise
         raise exc.reworded(flags) from None
 
+
+
+def budget_words(error: CoatsimError) -> dict[str, str]:
+    """How the command line says the budgets an error names: ``coatsim --budget NAME=N``."""
+    prefix = "the budget "
+    return {p: f"the budget with coatsim --budget {p[len(prefix):]}=N" for p in error.parameters if p.startswith(prefix)}

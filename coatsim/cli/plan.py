@@ -140,4 +140,4 @@ def _summary(paths, spec: str) -> str:
     return (f"{paths.pattern}: {s.passes} passes, {length:.0f} mm in all, on {s.region_area_mm2:.0f} mm2; spacing "
             f"{paths.spacing_mm:.3g} mm (ripple {paths.ripple_pct:.3g} % for {spec}), {gaps}; coverage "
             f"{100 * s.coverage:.1f} %; normals smoothed over {s.normal_smoothing_mm:.3g} mm (largest angle to a face "
-            f"{s.normal_max_angle_deg:.1f} deg)")
+            f"{s.normal_max_angle_deg:.1f} deg, {s.normal_off_faces_deg:.1f} deg outside the faces near a pass point)")

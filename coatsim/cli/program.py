@@ -68,7 +68,7 @@ def program(
             surface = run_surface_program(input, options, tol=tol, frame=frame, standoff_mm=standoff,
                                           lead_in_mm=lead_in, lead_out_mm=lead_out, roll_deg=roll,
                                           follow_tangent=follow_tangent, angle_tol_deg=angle_tol, speed_on=speed_on,
-                                          tool_accel_mm_s2=accel_mm_s2, output=output)
+                                          tool_accel_mm_s2=accel_mm_s2, output=output, language=writer)
             if output is None:
                 typer.echo(surface.text, nl=False)
             typer.echo(surface_summary(surface) + (f"\nwrote {output}" if output else ""), err=output is None)
@@ -141,15 +141,15 @@ def run_surface_program(spec: str, options: ProgramOptions, *, tol: Optional[flo
                         language: Optional[Language] = None) -> SurfaceProgram:
     """The program of every pass of a surfacepaths file (coatsim.path.surface_program), read
     back in its own language and written to ``output`` if given."""
-    from coatsim.core.fileio import write_text
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
+    from coatsim.path.program_files import program_paths, write_program
     from coatsim.path.surface_program import SurfaceOptions, build_surface_program
     from coatsim.path.surfacepaths import read_surfacepaths
 
     language = language or language_named(DEFAULT_LANGUAGE)
-    check_distinct([("the input", spec)], [("-o", output)])
+    check_distinct([("the input", spec)], [("-o", p) for p in (program_paths(language, output) if output else ())])
     surface = SurfaceOptions(standoff_mm=standoff_mm, pose=None if frame is None else parse_xyzoat(frame, "pose"),
                              tolerance_mm=defaults.TOLERANCE_MM if tol is None else tol, angle_tol_deg=angle_tol_deg,
                              roll="follow" if follow_tangent else "fixed", roll_deg=roll_deg, speed_on=speed_on,
@@ -157,7 +157,7 @@ def run_surface_program(spec: str, options: ProgramOptions, *, tol: Optional[flo
     built = build_surface_program(read_surfacepaths(spec), options, surface, language)
     _reads_back(built.text, language)
     if output is not None:
-        write_text(output, built.text)
+        write_program(language, built.text, output)
     return built
 
 

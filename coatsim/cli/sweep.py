@@ -15,6 +15,7 @@ def sweep(
     workers: Optional[int] = typer.Option(None, "--workers", help="worker processes of the local cluster [default: one per core]"),
     keep_outputs: bool = typer.Option(False, "--keep-outputs", help="keep every run's full outputs in OUTDIR/points/ID/"),
     metric: Optional[list[str]] = typer.Option(None, "--metric", metavar="NAME", help="metric sweep.html plots against each axis (repeatable) [default: the sweep file's]"),
+    force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
 ) -> None:
     """Run many scenario points on Dask: results.parquet, results.csv, sweep.html; exit 1 if a
     point or a gate failed. Rerunning into the same folder runs only what is missing."""
@@ -24,7 +25,7 @@ def sweep(
     # an interrupt ends here like any command's (exit 130); the finished points stay for a rerun
     with speaking_flags({"workers": "--workers", "metrics": "--metric"}):
         result = run_sweep(sweep_file, outdir, scheduler=scheduler, workers=workers, keep_outputs=keep_outputs,
-                           metrics=metric)
+                           metrics=metric, force=force)
     rows = result.table.rows
     ok = sum(r[result.table.columns.index("status")] == "ok" for r in rows)
     typer.echo(f"{len(result.points)} points ({len(result.ran)} run, {reused_count(result.points, result.ran)} reused), "

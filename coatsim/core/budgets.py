@@ -1,17 +1,26 @@
 """Resource budgets: the largest work coatsim accepts, checked before anything big is allocated.
 
 Each budget bounds one quantity that a small input can blow up (a tiny step, a tiny spacing, a
-slow speed, a YAML alias). Past a budget the stage raises an InputError (exit 2) that names the
-quantity, the amount asked for, the budget and the option that would fix it. The values are
-sized for a workstation: at each budget a stage needs about 1 to 2.5 GB and a few minutes
-(``python scripts/bench_budgets.py`` measures the cost per unit; figures in docs/guide/conventions.md).
+slow speed, a YAML alias, a nested block, a FIFO given as a file). Past a budget the stage raises
+a BudgetExceeded (an InputError, exit 2) naming the quantity, the amount asked for, the budget and
+what would fix it, before the work starts. The values are sized for a workstation: at each budget
+a stage needs about 1 to 2.5 GB and a few minutes (``python scripts/bench_budgets.py`` measures
+the cost per unit; figures in docs/guide/conventions.md).
+
+Every budget has a name and can be changed for one process: ``COATSIM_BUDGET="name=value,..."``
+(the command line's ``coatsim --budget name=value`` sets it, and Dask workers started by the
+command inherit it). ``seconds`` bounds the wall time of long work (unbounded by default).
 """
 
 from __future__ import annotations
 
 import math
+import os
+from dataclasses import dataclass
 
 from coatsim.core.errors import InputError
+
+ENV = "COATSIM_BUDGET"
 
 #: Cartesian IK samples of one program (path length / --step-mm, blends included); ~5 kB each
 #: through IK and timing.
@@ -30,7 +39,7 @@ MAX_SPRAY_SUBSTEPS = 2_000_000
 #: Memory of the coating stage's ray caster for shadows: Embree's scene (~100 bytes per
 #: triangle with our float32 copies) and one batch of rays, estimated before it is built.
 MAX_SHADOW_BYTES = 1_500_000_000
-#: Points of an input curve (files and built-in curves).
+#: Distinct points of an input curve (files and built-in curves), after dropping repeated ones.
 MAX_CURVE_POINTS = 2_000_000
 #: Size of a curve text file (CSV/TXT): 64 bytes per point at the point budget.
 MAX_CURVE_FILE_BYTES = 64 * MAX_CURVE_POINTS
@@ -42,6 +51,25 @@ MAX_YAML_BYTES = 1 << 20
 MAX_YAML_DEPTH = 32
 MAX_YAML_ALIASES = 100
 MAX_YAML_NODES = 100_000
+#: Any other input file (drawings, programs, JSON, meshes, cell models, footprint tables).
+MAX_INPUT_BYTES = 256 << 20
+#: Entities of a drawing once its blocks (DXF INSERT/MINSERT) and uses (SVG <use>) are expanded;
+#: ~10 kB and 0.2 ms each through reading, chaining and fitting.
+MAX_DRAWING_ENTITIES = 200_000
+#: Nesting of a drawing: SVG elements inside each other, DXF blocks inside blocks.
+MAX_DRAWING_DEPTH = 64
+#: Nesting of a JSON document (a polysegment is 4 deep).
+MAX_JSON_DEPTH = 64
+#: Characters of one string value of a program (an AS string holds 128 on a controller).
+MAX_STRING_CHARS = 1 << 20
+#: Lines of one robot program file (~50 us each to parse and run; a controller holds far fewer).
+MAX_PROGRAM_LINES = 500_000
+#: Points of a sweep (the grid product and the explicit points); each point is a run.
+MAX_SWEEP_POINTS = 10_000
+#: Point-feature pairs the exact deviation check compares at once (~100 bytes each through the
+#: distance kernels); a curve with structure puts a few features near each of the 16 points of a
+#: batch, one that crosses itself everywhere (random or aliased points) nearly all of them.
+MAX_DEVIATION_PAIRS = 5_000_000
 #: Triangles ``plan`` works on (a part mesh as read, and its region refined to the pass spacing);
 #: ~2 kB each through normals, the heat method's factorisation and fast marching.
 MAX_PLAN_TRIANGLES = 1_000_000
@@ -51,12 +79,83 @@ MAX_PLAN_MESH_BYTES = 256 * MAX_PLAN_TRIANGLES
 MAX_PLAN_PASSES = 20_000
 
 
-def check_budget(what: str, needed: float, budget: int, fix: str, parameters: tuple[str, ...] = ()) -> None:
-    """Raise an InputError when ``needed`` (a count: any int, or a float that may be inf or
-    nan) exceeds ``budget``; ``parameters`` those the message names (see CoatsimError)."""
-    if not needed <= budget:
+@dataclass(frozen=True)
+class Budget:
+    """One named budget: its default and what it bounds (docs/reference/budgets.md is generated from them)."""
+
+    name: str
+    default: float
+    bounds: str
+
+
+BUDGETS: dict[str, Budget] = {b.name: b for b in (
+    Budget("path_samples", MAX_PATH_SAMPLES, "IK samples of a program: path length / step"),
+    Budget("sim_steps", MAX_SIM_STEPS, "2 ms simulation steps of a program"),
+    Budget("trajectory_bytes", MAX_TRAJECTORY_BYTES, "bytes of a trajectory CSV"),
+    Budget("mesh_vertices", MAX_MESH_VERTICES, "vertices of a coated surface"),
+    Budget("spray_substeps", MAX_SPRAY_SUBSTEPS, "coating sub-steps along the sprayed path"),
+    Budget("shadow_bytes", MAX_SHADOW_BYTES, "memory of the coating stage's ray caster for shadows"),
+    Budget("curve_points", MAX_CURVE_POINTS, "distinct points of an input curve"),
+    Budget("curve_file_bytes", MAX_CURVE_FILE_BYTES, "bytes of a CSV/TXT/NPY curve file"),
+    Budget("yaml_bytes", MAX_YAML_BYTES, "bytes of a scenario or sweep file"),
+    Budget("input_bytes", MAX_INPUT_BYTES, "bytes of any other input file"),
+    Budget("drawing_entities", MAX_DRAWING_ENTITIES, "entities of a drawing with its blocks and uses expanded"),
+    Budget("drawing_depth", MAX_DRAWING_DEPTH, "nesting of SVG elements and DXF blocks"),
+    Budget("json_depth", MAX_JSON_DEPTH, "nesting of a JSON document"),
+    Budget("string_chars", MAX_STRING_CHARS, "characters of a program's string value"),
+    Budget("program_lines", MAX_PROGRAM_LINES, "lines of one robot program file"),
+    Budget("sweep_points", MAX_SWEEP_POINTS, "points of a sweep"),
+    Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "point-feature pairs the exact deviation check compares at once"),
+    Budget("plan_triangles", MAX_PLAN_TRIANGLES, "triangles of a part mesh plan works on"),
+    Budget("plan_mesh_bytes", MAX_PLAN_MESH_BYTES, "bytes of a part mesh file plan reads"),
+    Budget("plan_passes", MAX_PLAN_PASSES, "passes of one plan"),
+    Budget("seconds", math.inf, "wall time of one command's long work (fitting, drawings, runs, sweeps)"),
+)}
+
+
+class BudgetExceeded(InputError):
+    """Work over a budget, refused before it starts (exit 2)."""
+
+
+def parse_settings(text: str) -> dict[str, float]:
+    """``"name=value,..."`` as {name: value}; InputError naming a bad item (``parameters``
+    names the budget setting itself)."""
+    out: dict[str, float] = {}
+    for item in filter(None, (part.strip() for part in text.split(","))):
+        name, sep, value = item.partition("=")
+        name = name.strip()
+        if name not in BUDGETS:
+            raise InputError(f"budget {name!r} ({ENV}): no such budget; budgets: {', '.join(BUDGETS)}",
+                             parameters=(ENV,))
         try:
-            amount = f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"
-        except OverflowError:  # an int beyond float range
-            amount = "an unbounded number"
-        raise InputError(f"{what}: {amount} needed, over the budget of {budget:,}; {fix}", parameters=parameters)
+            number = float(value)
+        except ValueError:
+            number = math.nan
+        if not sep or not number > 0:
+            raise InputError(f"budget {item!r} ({ENV}): expected {name}=N with N > 0 (or inf)", parameters=(ENV,))
+        out[name] = number
+    return out
+
+
+def limit(name: str) -> float:
+    """The budget ``name`` for this process: its default unless ``COATSIM_BUDGET`` sets it."""
+    return parse_settings(os.environ.get(ENV, "")).get(name, BUDGETS[name].default)
+
+
+def _amount(needed: float) -> str:
+    try:
+        return f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"
+    except OverflowError:  # an int beyond float range
+        return "an unbounded number"
+
+
+def check_budget(what: str, needed: float, name: str, fix: str, parameters: tuple[str, ...] = (),
+                 left: float | None = None) -> None:
+    """Raise a BudgetExceeded when ``needed`` (a count: any int, or a float that may be inf or
+    nan) exceeds the budget ``name`` (or ``left`` of it, when earlier work used the rest). ``fix``
+    says what would make the work smaller (naming ``parameters`` in the library's terms); the
+    message ends with the budget's own name, which the command line says as its option."""
+    budget = limit(name) if left is None else left
+    if not needed <= budget:
+        raise BudgetExceeded(f"{what}: {_amount(needed)} needed, over the budget of {budget:,.0f}; {fix}, or raise "
+                             f"the budget {name}", parameters=(*parameters, f"the budget {name}"))

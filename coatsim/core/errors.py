@@ -84,3 +84,18 @@ def shown(field: str, names: bool = False) -> str:
     if _NUMBER_LIKE.match(text) or (names and _NAME_LIKE.match(text)):
         return repr(text)
     return f"a {len(text)}-character text" if text else "an empty field"
+
+
+#: Longest message line a command prints; a longer one keeps its start and end.
+MAX_MESSAGE_CHARS = 1000
+_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f\u2028\u2029]")
+
+
+def one_line(text: str, limit: int = MAX_MESSAGE_CHARS) -> str:
+    """``text`` as one printable line of at most ``limit`` characters: control characters (line
+    breaks, terminal escapes) shown escaped, a long middle left out with a count."""
+    flat = _CONTROL.sub(lambda m: repr(m.group())[1:-1], str(text))
+    if len(flat) <= limit:
+        return flat
+    keep = limit - 40
+    return f"{flat[:keep * 3 // 4]} ... ({len(flat) - keep} characters left out) ... {flat[-(keep // 4):]}"

@@ -17,8 +17,9 @@ from typing import Any, Mapping, Union
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from coatsim.core.budgets import MAX_YAML_ALIASES, MAX_YAML_BYTES, MAX_YAML_DEPTH, MAX_YAML_NODES
+from coatsim.core.budgets import MAX_YAML_ALIASES, MAX_YAML_DEPTH, MAX_YAML_NODES
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import read_input
 
 Loc = tuple[Union[str, int], ...]
 
@@ -147,27 +148,17 @@ def _check_expansion(root: yaml.Node) -> None:
     visit(root, 1)
 
 
-def _read_bounded(path: Path) -> str:
-    """The file's text, refused unread past MAX_YAML_BYTES."""
-    with open(path, "rb") as handle:
-        data = handle.read(MAX_YAML_BYTES + 1)
-    if len(data) > MAX_YAML_BYTES:
-        raise InputError(f"{path}: larger than {MAX_YAML_BYTES // 1024} KiB, the budget for a YAML file")
-    return data.decode("utf-8")
-
-
 def load_yaml_with_lines(path: Path, expected: str = "a scenario (name, curve, workpiece, ...)") -> tuple[Any, dict[Loc, int]]:
     """Parse one YAML document; return the data and the line of every key path. ``expected``
     says what the file should hold (for the messages on a folder or an empty file)."""
     try:
-        text = _read_bounded(path)
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise InputError(f"{path}: is a folder, expected a YAML file with {expected}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
-    loader = _Loader(text)
+        text = read_input(path, "YAML file", "yaml_bytes").decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not UTF-8 text; expected a YAML file with {expected}") from None
+    try:
+        loader = _Loader(text)  # its reader refuses control characters at once
+    except yaml.YAMLError as exc:
+        raise InputError(f"{path}: invalid YAML: {str(exc).splitlines()[0]}") from None
     try:
         node = loader.get_single_node()
         if node is None:

@@ -20,9 +20,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import linprog
-
 from coatsim.geometry.limits import FitLimits
+from coatsim.geometry.lp import solve_lp
 
 N_END_CANDIDATES = 12
 N_CURVATURE_CANDIDATES = 5
@@ -156,6 +155,39 @@ def _farthest(prob: BandProblem, a: int, lo: np.ndarray, hi: np.ndarray) -> int:
     return a + 1 + int(ok[-1]) if len(ok) else a
 
 
+def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slopes: list[float], band: float,
+                 width: int = 256) -> list[int]:
+    """_farthest after _reach for many states at once (the look-ahead's candidates): the same
+    arithmetic element by element on one (states, ``width``) block of the knots that follow
+    each; a state whose band still holds at the block's end goes through _reach itself."""
+    n = len(prob.s)
+    a = np.asarray(knots, dtype=np.int64)
+    if not len(a):
+        return []
+    idx = a[:, None] + 1 + np.arange(width)
+    inside = idx < n
+    idx = np.minimum(idx, n - 1)
+    u = prob.s[idx] - prob.s[a][:, None]
+    base = np.asarray(values)[:, None] + np.asarray(slopes)[:, None] * u
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 2.0 / (u * u)
+        lo = np.maximum.accumulate(np.where(inside, (prob.phi[idx] - band - base) * inv, np.inf), axis=1)
+        hi = np.minimum.accumulate(np.where(inside, (prob.phi[idx] + band - base) * inv, -np.inf), axis=1)
+    cap = np.maximum.accumulate(np.concatenate((prob.cap[a][:, None], prob.cap[idx]), axis=1), axis=1)[:, 1:]
+    bad = lo > hi  # (past the last knot every entry is bad)
+    held = np.where(bad.any(axis=1), bad.argmax(axis=1), width)
+    ok = (np.maximum(lo, -cap) <= np.minimum(hi, cap)) & (np.arange(width) < held[:, None])
+    last_ok = np.where(ok.any(axis=1), width - 1 - ok[:, ::-1].argmax(axis=1), -1)
+    out = []
+    for k, knot in enumerate(knots):
+        if held[k] == width:  # the band holds past the block: the knots beyond decide
+            _, lo_k, hi_k = _reach(prob, knot, values[k], slopes[k], band)
+            out.append(_farthest(prob, knot, lo_k, hi_k))
+        else:
+            out.append(knot + 1 + int(last_ok[k]) if last_ok[k] >= 0 else knot)
+    return out
+
+
 def _advance(prob: BandProblem, a: int, b: int, value: float, slope: float, kappa: float) -> tuple[float, float]:
     u = prob.s[b] - prob.s[a]
     return value + slope * u + 0.5 * kappa * u * u, slope + kappa * u
@@ -200,16 +232,15 @@ def _best_step(prob: BandProblem, a: int, value: float, slope: float, band: floa
         kappa = 0.0 if k_lo <= 0.0 <= k_hi and abs(ideal) * u * u < 0.2 * band else float(np.clip(ideal, k_lo, k_hi))
         v, t = _advance(prob, a, last, value, slope, kappa)
         return Piece(a, last, kappa, float(prob.s[last] - prob.s[a])), v, t, np.inf
+    choices = [(int(b), kappa, *_advance(prob, a, b, value, slope, kappa)) for b in _end_candidates(prob, a, lo, hi)
+               for kappa in _curvature_candidates(lo[b - a - 1], hi[b - a - 1])]
+    reached = _farthest_of(prob, [c[0] for c in choices], [c[2] for c in choices], [c[3] for c in choices], band)
     options = []
-    for b in _end_candidates(prob, a, lo, hi):
-        for kappa in _curvature_candidates(lo[b - a - 1], hi[b - a - 1]):
-            v, t = _advance(prob, a, b, value, slope, kappa)
-            _, lo2, hi2 = _reach(prob, b, v, t, band)
-            nxt = _farthest(prob, b, lo2, hi2)
-            if nxt != last and prob.s[nxt] - prob.s[b] < prob.min_length:
-                continue  # the next piece could not be long enough: a dead end
-            score = np.inf if nxt == last else float(prob.s[nxt])
-            options.append((score, float(prob.s[b]), float(kappa), int(b), v, t))
+    for (b, kappa, v, t), nxt in zip(choices, reached):
+        if nxt != last and prob.s[nxt] - prob.s[b] < prob.min_length:
+            continue  # the next piece could not be long enough: a dead end
+        score = np.inf if nxt == last else float(prob.s[nxt])
+        options.append((score, float(prob.s[b]), float(kappa), b, v, t))
     if not options:
         raise _Stuck(a)
     top = max(o[0] for o in options)
@@ -244,10 +275,10 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
         cap = float(prob.cap[: b + 1].max())
         out = []
         for c in (1.0, -1.0):
-            res = linprog([c, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None), (-cap, cap)], method="highs")
-            if res.status != 0:
+            x = solve_lp(np.array([c, 0.0]), a_ub, b_ub, np.array([-np.inf, -cap]), np.array([np.inf, cap]))
+            if x is None:
                 return None
-            out.append(res.x[0])
+            out.append(x[0])
         return out[0], out[1]
 
     lo, hi = 1, n - 1

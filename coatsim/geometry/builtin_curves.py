@@ -10,7 +10,7 @@ from typing import Callable
 
 import numpy as np
 
-from coatsim.core.budgets import MAX_CURVE_POINTS, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
 from coatsim.geometry.curves import Curve, make_curve
 from coatsim.geometry.polysegment import Polysegment, chain
@@ -217,7 +217,7 @@ def builtin_curve(name: str, **params: float | int | str) -> Curve:
     if "points" in params and params["points"] < 3:
         raise InputError(f"builtin:{name}: points must be at least 3")
     for key in sorted(INTEGER_PARAMETERS & params.keys()):
-        check_budget(f"builtin:{name}: {key}", params[key], MAX_CURVE_POINTS, f"give fewer {key}")
+        check_budget(f"builtin:{name}: {key}", params[key], "curve_points", f"give fewer {key}")
     try:
         with np.errstate(all="ignore"):  # overflowing parameters give inf/nan, which make_curve rejects
             xy = func(**params)

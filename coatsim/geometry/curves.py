@@ -3,16 +3,18 @@ closure detection."""
 
 from __future__ import annotations
 
-import math
-import re
+import io
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
 
-from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_CURVE_FILE_BYTES, MAX_CURVE_POINTS, check_budget
-from coatsim.core.errors import InputError, shown
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
+from coatsim.core.errors import CoatsimWarning, InputError
+from coatsim.core.fileio import read_input
+from coatsim.core.number_text import read_rows
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
@@ -56,7 +58,6 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
     (points, closed), a closed curve repeating its first point as its last."""
     if len(pts) == 0:
         raise InputError(f"{name}: no points")
-    check_budget(f"{name}: curve points", len(pts), MAX_CURVE_POINTS, "thin the curve out")
     bad = ~np.isfinite(pts).all(axis=1)
     if bad.any():
         raise InputError(f"{name}: point {int(np.argmax(bad)) + 1} is not finite (NaN or inf)")
@@ -67,6 +68,7 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
     keep = np.ones(len(pts), dtype=bool)
     keep[1:] = np.any(np.diff(pts, axis=0) != 0.0, axis=1)
     pts = pts[keep]
+    check_budget(f"{name}: distinct curve points", len(pts), "curve_points", "thin the curve out")
     if len(pts) < 2:
         what = "one point" if keep.size == 1 else "all points are equal"
         raise InputError(f"{name}: a curve needs at least two distinct points ({what})")
@@ -88,87 +90,58 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
     return pts, is_closed
 
 
-_SEPARATORS = re.compile(r"[,;\s]+")
-
-
 def _read_text_points(path: Path) -> np.ndarray:
-    check_budget(f"{path}: bytes of curve text", path.stat().st_size, MAX_CURVE_FILE_BYTES,
-                 "thin the curve out or save it as an (n, 2) or (n, 3) .npy array")
+    data = read_input(path, "curve file", "curve_file_bytes")
     try:
-        text = path.read_text(encoding="utf-8-sig")
+        text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not a text file (expected x,y or x,y,z columns)") from None
-    rows: list[list[float]] = []
-    header_seen = False
-    for number, raw in enumerate(text.splitlines(), start=1):
-        line = raw.split("#", 1)[0].strip()
-        if not line:
-            continue
-        if ";" in line:  # semicolon-separated files may use decimal commas
-            fields = [f.replace(",", ".") for f in re.split(r"[;\s]+", line) if f]
-        else:
-            fields = [f for f in _SEPARATORS.split(line) if f]
-        try:
-            values = [float(f) for f in fields]
-        except ValueError:
-            if not rows and not header_seen and not _is_float(fields[0]):
-                header_seen = True
-                continue  # header row: its first field is a name such as "x" or "x (mm)"
-            column = next(k for k, f in enumerate(fields, start=1) if not _is_float(f))
-            raise InputError(f"{path}:{number}: field {column} is not a number: {shown(fields[column - 1])} "
-                             "(expected x,y or x,y,z columns)") from None
+        raise InputError(f"{path}: not a UTF-8 text file (expected x,y or x,y,z columns; save it as UTF-8 text "
+                         "or an (n, 2) or (n, 3) .npy array)") from None
+    rows = read_rows(text, str(path), "x,y or x,y,z columns")
+    for k, values in enumerate(rows.values):
+        number = rows.lines[k]
         if len(values) < 2:
             raise InputError(f"{path}:{number}: expected two columns x,y (or three x,y,z), found {len(values)}")
         if len(values) > 3:
             raise InputError(f"{path}:{number}: {len(values)} numeric columns; a curve has x,y or x,y,z (mm)")
-        if rows and len(values) != len(rows[0]):
-            raise InputError(f"{path}:{number}: {len(values)} columns where the rows above have {len(rows[0])}")
-        if not all(math.isfinite(v) for v in values):
-            raise InputError(f"{path}:{number}: value is not finite (NaN or inf)")
-        rows.append(values)
-    if not rows:
+        if len(values) != len(rows.values[0]):
+            raise InputError(f"{path}:{number}: {len(values)} columns where the rows above have {len(rows.values[0])}")
+    if not rows.values:
         raise InputError(f"{path}: no points (empty file)")
-    return np.asarray(rows, dtype=float)
-
-
-def _is_float(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+    for note in rows.notes:
+        warnings.warn(note, CoatsimWarning, stacklevel=2)
+    return np.asarray(rows.values, dtype=float)
 
 
 def _read_npy_points(path: Path) -> np.ndarray:
-    with open(path, "rb") as handle:
-        if handle.read(6) != b"\x93NUMPY":
-            raise InputError(f"{path}: not a .npy file (no NumPy header); save the points with numpy.save")
-    try:
-        data = np.load(path, allow_pickle=False, mmap_mode="r")  # the header first: shape before reading
-    except (ValueError, OSError) as exc:
+    data = read_input(path, "curve file", "curve_file_bytes")
+    if not data.startswith(b"\x93NUMPY"):
+        raise InputError(f"{path}: not a .npy file (no NumPy header); save the points with numpy.save")
+    stream = io.BytesIO(data)
+    try:  # the header first: shape and type before the array is built
+        version = np.lib.format.read_magic(stream)
+        read_header = {(1, 0): np.lib.format.read_array_header_1_0, (2, 0): np.lib.format.read_array_header_2_0}
+        if version not in read_header:
+            raise ValueError(f"format version {version[0]}.{version[1]}; save it with numpy.save of plain numbers")
+        shape, fortran, dtype = read_header[version](stream)
+    except (ValueError, OSError, SyntaxError, TypeError) as exc:
         raise InputError(f"{path}: not a readable .npy array ({str(exc).splitlines()[0][:120]})") from None
-    if data.ndim == 2:
-        check_budget(f"{path}: curve points", data.shape[0], MAX_CURVE_POINTS, "thin the curve out")
-    real = np.issubdtype(data.dtype, np.integer) or np.issubdtype(data.dtype, np.floating)
-    if data.ndim != 2 or data.shape[1] not in (2, 3) or not real:
-        raise InputError(f"{path}: expected a real-valued (n, 2) or (n, 3) array of x,y or x,y,z, got {data.dtype} {data.shape}")
-    return data.astype(float)
+    real = np.issubdtype(dtype, np.integer) or np.issubdtype(dtype, np.floating)
+    if len(shape) != 2 or shape[1] not in (2, 3) or not real:
+        raise InputError(f"{path}: expected a real-valued (n, 2) or (n, 3) array of x,y or x,y,z, got {dtype} {shape}")
+    if shape[0] * shape[1] * dtype.itemsize != len(data) - stream.tell():
+        raise InputError(f"{path}: the array holds {len(data) - stream.tell()} bytes where its header promises "
+                         f"{shape[0]} x {shape[1]} values of {dtype.itemsize} bytes (a truncated file?)")
+    flat = np.frombuffer(data, dtype=dtype, offset=stream.tell())
+    return flat.reshape(shape, order="F" if fortran else "C").astype(float)
 
 
 def read_points_file(path: str | Path) -> np.ndarray:
     """The raw points of a curve file: (n, 2) for x,y columns, (n, 3) for x,y,z. CSV/TXT
-    (comma, space, tab or semicolon; optional header; '#' comments) or NPY."""
+    (comma, space, tab or semicolon; decimal commas and other written forms of numbers as
+    coatsim.core.number_text reads them; optional header; '#' comments) or NPY."""
     path = Path(path)
-    if not path.exists():
-        raise InputError(f"{path}: no such file")
-    if path.is_dir():
-        raise InputError(f"{path}: is a folder, expected a curve file")
-    try:
-        return _read_npy_points(path) if path.suffix.lower() == ".npy" else _read_text_points(path)
-    except PermissionError:
-        raise InputError(f"{path}: permission denied") from None
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    return _read_npy_points(path) if path.suffix.lower() == ".npy" else _read_text_points(path)
 
 
 def read_curve_file(path: str | Path, closed: ClosedMode = "auto") -> Curve:

@@ -12,7 +12,12 @@ from __future__ import annotations
 
 import math
 
+from coatsim.core.errors import InputError
 from coatsim.geometry.polysegment import Polysegment
+
+#: Programmed speeds coatsim plans for, mm/s: a micrometre a second up to a kilometre a second
+#: (outside, v² under- or overflows the arithmetic long before any machine could move so).
+SPEED_RANGE_MM_S = (1e-3, 1e6)
 
 Stretch = tuple[float, float, float]  # (s0 mm, s1 mm, v_max mm/s) along the polysegment
 
@@ -21,6 +26,18 @@ def _pairs(poly: Polysegment) -> list[tuple[int, int]]:
     """(k, k + 1) segment index pairs of every junction, the seam last for a closed chain."""
     n = poly.n_segments
     return [(k, k + 1) for k in range(n - 1)] + ([(n - 1, 0)] if poly.closed and n > 1 else [])
+
+
+def curvature_limit(speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> float | None:
+    """The tightest curvature (1/mm) the tool takes at ``speed_mm_s`` without slowing down, a / v²
+    (None without a speed); InputError naming speed_mm_s outside SPEED_RANGE_MM_S."""
+    if speed_mm_s is None or tool_accel_mm_s2 is None:
+        return None
+    lo, hi = SPEED_RANGE_MM_S
+    if not lo <= speed_mm_s <= hi:
+        raise InputError(f"speed_mm_s: {speed_mm_s:g} mm/s is outside the speeds coatsim plans for ({lo:g} to "
+                         f"{hi:g} mm/s); give a speed in that range", parameters=("speed_mm_s",))
+    return tool_accel_mm_s2 / (speed_mm_s * speed_mm_s)
 
 
 def max_curvature_jump(poly: Polysegment) -> float:

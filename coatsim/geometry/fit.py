@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.core.errors import InputError
+from coatsim.core.progress import check_time
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
@@ -129,6 +130,7 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     tried: dict[tuple[bytes, float], tuple] = {}  # a chain refined before (band fits often repeat one) is not again
     while budget[0] > 0:
         budget[0] -= 1
+        check_time("fitting the curve")  # the budget seconds bounds a slow fit (coatsim.core.progress)
         if params is None:
             try:
                 slope, pieces = fit_band(prob, ref, band, start_slope=pinned_slope, end_turn=turn, landed=landed)
@@ -219,6 +221,11 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     """
     pts = np.asarray(points, dtype=float)
     pins = (start_heading, end_heading) if not closed_loop else (None, None)
+    if fillet and not quick and _single_kink(pts, closed_loop, tolerance, pins):
+        segs = fillet_chain(pts, tolerance, closed_loop)
+        dev = hausdorff(pts, Polysegment(segs)).hausdorff
+        if dev <= tolerance:
+            return RunFit(segs, dev, limits_kept=False)
     if quick:
         found = _constrained(pts, tolerance, closed_loop, limits, [QUICK_ATTEMPTS], *pins)
         return None if found is None else RunFit(*found)
@@ -247,6 +254,18 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
         if dev <= tolerance:
             return RunFit(segs, dev, limits_kept=False)
     raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
+
+
+def _single_kink(pts: np.ndarray, closed_loop: bool, tolerance: float, pins: tuple) -> bool:
+    """An open, unpinned run of three points whose middle one is off the chord by more than the
+    tolerance: a lone kink (sparse or random input) that only a fillet follows. The band fit
+    and its fallbacks would spend ~50 attempts (about a second) before ending there too."""
+    if closed_loop or len(pts) != 3 or pins != (None, None):
+        return False
+    chord = pts[2] - pts[0]
+    length = float(np.hypot(*chord))
+    off = abs(float(chord[0] * (pts[1][1] - pts[0][1]) - chord[1] * (pts[1][0] - pts[0][0])))
+    return length > 0 and off / length > tolerance
 
 
 def _simplified(pts: np.ndarray, closed_loop: bool, tolerance: float) -> np.ndarray:

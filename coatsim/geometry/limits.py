@@ -16,12 +16,21 @@ from functools import cached_property
 
 import numpy as np
 
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM
+from coatsim.core.errors import InputError
 from coatsim.geometry.envelope import CurvatureProfile, curvature_profile, kink_demand
 
 TIGHTER = 1.22  # an arc may be this much tighter than the input near it (1.25 with the fit's 2 % slack)
 MIN_LENGTH_SIGMAS = 5.0  # the default shortest segment, in σ ...
 MIN_LENGTH_SHARE = 1 / 500  # ... or this share of the run, if that is longer
 NEIGHBOURHOOD_WINDOWS = 2.0  # the neighbourhood of a stretch: this many curvature windows
+
+
+def check_min_segment(min_segment_mm: float | None) -> None:
+    """InputError when a shortest segment is asked that is longer than any curve coatsim reads."""
+    if min_segment_mm is not None and min_segment_mm > MAX_ABS_COORDINATE_MM:
+        raise InputError(f"min_segment_mm: {min_segment_mm:g} mm is longer than any curve coatsim reads "
+                         f"({MAX_ABS_COORDINATE_MM:g} mm); give a shorter one", parameters=("min_segment_mm",))
 
 
 @dataclass(frozen=True, eq=False)

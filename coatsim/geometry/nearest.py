@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
+from coatsim.core.budgets import check_budget
 from coatsim.geometry.segment_table import SegmentTable
 
 SEGMENT_SAMPLES = 1024  # samples along a polysegment (at least one per segment)
@@ -36,6 +37,14 @@ def edge_distance(points: np.ndarray, verts: np.ndarray, edge: np.ndarray) -> np
     return np.hypot(ap[:, 0] - u * ab[:, 0], ap[:, 1] - u * ab[:, 1])
 
 
+def _check_pairs(count: int) -> None:
+    """The exact deviation check compares each point with every feature near it: a chain that
+    crosses itself everywhere (random or aliased input) puts nearly all of them near each point."""
+    check_budget("the exact deviation check: point-feature pairs at once", count, "deviation_pairs",
+                 "the curve has no structure at this tolerance (random or aliased points): smooth or resample it, "
+                 "or raise tolerance_mm", parameters=("tolerance_mm",))
+
+
 class _Layer:
     """Samples (k, 2) in a KD-tree, sample i owning features [lo[i], hi[i]); every point of
     every feature lies within ``reach`` of a sample that owns it."""
@@ -56,10 +65,12 @@ class _Layer:
         if self.tree is None:
             return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
         radius = upper * (1 + 1e-9) + self.reach * (1 + 1e-9) + 1e-12
+        _check_pairs(int(np.sum(self.tree.query_ball_point(points, radius, return_length=True))))
         hits = self.tree.query_ball_point(points, radius, return_sorted=False)
         counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(points))
         sample = np.fromiter((i for h in hits for i in h), dtype=np.int64, count=int(counts.sum()))
         owner = np.repeat(np.arange(len(points)), counts)
+        _check_pairs(int((self.hi[sample] - self.lo[sample]).sum()))
         pair_row, feature = expand_ranges(self.lo[sample], self.hi[sample])
         return owner[pair_row], feature
 
@@ -98,6 +109,11 @@ class _Index:
         by a sample within upper + reach. Returns (distance, feature, nearest point)."""
         pts = np.asarray(points, dtype=float)
         pairs = [layer.within(pts, upper) for layer in self.layers]
+        missing = np.setdiff1d(np.arange(len(pts)), np.concatenate([r for r, _ in pairs]))
+        if len(missing):  # an upper bound that rounding made too tight: the nearest samples' features too
+            for layer in self.layers:
+                r, f = layer.nearest(pts[missing], 0, self.n_features)
+                pairs.append((missing[r], f))
         row = np.concatenate([r for r, _ in pairs])
         feature = np.concatenate([f for _, f in pairs])
         key = np.unique(row * self.n_features + feature)

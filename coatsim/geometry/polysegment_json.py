@@ -11,6 +11,7 @@ import numpy as np
 
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import write_text
+from coatsim.core.jsonfile import read_json
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 
@@ -122,17 +123,9 @@ def _speed_limited(value: Any, length: float, source: str) -> tuple[tuple[float,
 
 
 def read_json_document(path: Path) -> Any:
-    """The parsed JSON of ``path``; a missing, unreadable or invalid file is an InputError."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})") from None
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"{path}:{exc.lineno}: invalid JSON ({exc.msg})") from None
+    """The parsed JSON of ``path``; a missing, unreadable, invalid or too deeply nested file is an
+    InputError (coatsim.core.jsonfile)."""
+    return read_json(path, "JSON document")
 
 
 def read_polysegment_json(path: str | Path) -> Polysegment:

@@ -14,9 +14,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import linprog
-
 from coatsim.geometry.limits import FitLimits
+from coatsim.geometry.lp import solve_lp
 
 MAX_SAMPLES = 400
 EXCHANGE = 60  # worst points added to the samples per exchange round
@@ -124,11 +123,10 @@ def _minimax_step(
         np.hstack((-jc, zeros_k, -ones_k)),
     ))
     b_ub = np.concatenate((-r - lift_l, r - lift_r, -c, c))
-    box = list(zip(lower, upper)) + [(0, None), (0, None)]
-    lp = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=box, method="highs-ds")
-    if lp.status != 0:
+    x = solve_lp(cost, a_ub, b_ub, np.concatenate((lower, [0.0, 0.0])), np.concatenate((upper, [np.inf, np.inf])))
+    if x is None:
         return None
-    return lp.x[:d], float(lp.x[d] + weight * lp.x[d + 1])
+    return x[:d], float(x[d] + weight * x[d + 1])
 
 
 class ChainProblem:

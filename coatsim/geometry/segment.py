@@ -10,12 +10,14 @@ from typing import Literal
 import numpy as np
 
 from coatsim.core import defaults
+from coatsim.core.progress import progress
 from coatsim.core.errors import InputError
 from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs
 from coatsim.geometry.deviation import hausdorff
-from coatsim.geometry.dynamics import max_curvature_jump, speed_limited
+from coatsim.geometry.limits import check_min_segment
+from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed_limited
 from coatsim.geometry.fit import fit_free, fit_run
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
@@ -161,6 +163,7 @@ def segment_curve(
     if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
         raise InputError(f"corner_deg: must be between 0 and 180 degrees, got {corner_deg}", parameters=("corner_deg",))
     _positive(min_segment_mm, "min_segment_mm", "mm")
+    check_min_segment(min_segment_mm)
     _positive(speed_mm_s, "speed_mm_s", "mm/s")
     _positive(tool_accel_mm_s2, "tool_accel_mm_s2", "mm/s²")
     if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
@@ -179,7 +182,7 @@ def segment_curve(
         return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                             time.perf_counter() - started, theta, approx, eps,
                             speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
-    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
+    speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
     poly = obvious_answer(pts, curve.closed, tol)
     input_radius, kept = None, True
     if poly is not None:
@@ -218,13 +221,15 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
         return _fit_loop(pts, tol, min_segment_mm, speed_kappa)
     pieces: list[tuple[Segment, ...]] = []
     deviations, radii, kept = [], [], True
-    for run in runs:
-        limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-        found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
-        pieces.append(split_long_arcs(found.segments))
-        deviations.append(found.deviation_mm)
-        radii.append(limits.profile.tightest_radius_mm)
-        kept = kept and found.limits_kept
+    with progress(f"{curve.name}: fitting runs between corners", len(runs)) as advance:
+        for run in runs:  # the time budget is checked after each run (coatsim.core.progress)
+            limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
+            found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
+            pieces.append(split_long_arcs(found.segments))
+            deviations.append(found.deviation_mm)
+            radii.append(limits.profile.tightest_radius_mm)
+            kept = kept and found.limits_kept
+            advance()
     segments = tuple(seg for piece in pieces for seg in piece)
     junctions = _corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0)
     poly = Polysegment(segments, closed=curve.closed, corners=junctions)

@@ -10,21 +10,28 @@ languages claim a suffix, or none does, the opening of the first file decides
 
 from __future__ import annotations
 
+import os
 from collections import Counter
 from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import decode_text
+from coatsim.core.fileio import decode_text, open_input
 from coatsim.languages.abb_rapid.language import ABB_RAPID
+from coatsim.languages.fanuc_tp.language import FANUC_TP
+from coatsim.languages.gcode.language import GCODE
 from coatsim.languages.kawasaki_as.language import KAWASAKI_AS
 from coatsim.languages.kuka_krl.language import KUKA_KRL
+from coatsim.languages.urscript.language import URSCRIPT
 from coatsim.path.language import Language
 
 LANGUAGES: dict[str, Language] = {language.name: language for language in (
     KAWASAKI_AS,
     ABB_RAPID,
     KUKA_KRL,
+    FANUC_TP,
+    URSCRIPT,
+    GCODE,
 )}
 #: The language coatsim writes when none is asked for.
 DEFAULT_LANGUAGE = KAWASAKI_AS.name
@@ -49,9 +56,9 @@ def language(name: str) -> Language:
 
 def _opening(path: Path) -> str:
     try:
-        with open(path, "rb") as handle:
-            return decode_text(handle.read(SNIFF_BYTES))
-    except OSError:
+        with open_input(path, "program") as fd:  # never blocks on a FIFO, never reads a device
+            return decode_text(os.read(fd, SNIFF_BYTES))
+    except (InputError, OSError):
         return ""  # reading the file proper says what is wrong with it
 
 

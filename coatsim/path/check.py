@@ -78,8 +78,10 @@ def spray_runs(toolpath: ToolPath, sources: Sequence[MoveSource]) -> tuple[Spray
             moves = [toolpath.moves[k] for k in current]
             file = sources[current[0]].source
             # a loop's moves come back to earlier lines: the span of the lines, in the first move's file
-            lines = [toolpath.moves[k].line for k in current if sources[k].source == file]
-            runs.append(SprayRun(min(lines), max(lines), float(sum(move_length(x) for x in moves)), len(moves), file))
+            mine = [k for k in current if sources[k].source == file]
+            first = min(toolpath.moves[k].line for k in mine)
+            last = max(max(toolpath.moves[k].line, sources[k].last_line) for k in mine)  # an arc's end line
+            runs.append(SprayRun(first, last, float(sum(move_length(x) for x in moves)), len(moves), file))
             current = []
     return tuple(runs)
 

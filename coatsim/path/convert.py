@@ -23,7 +23,7 @@ import numpy as np
 
 from coatsim.core import defaults
 from coatsim.core.errors import CoatsimError, InputError
-from coatsim.core.fileio import read_input_bytes
+from coatsim.core.fileio import read_input
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.pose import Pose
 from coatsim.path.edit import EditsInPlace, FittedPath
@@ -290,7 +290,7 @@ def _read_edited(language: Language, items: Sequence[Path], replaces: str, data:
         for k, item in enumerate(items):
             path = Path(folder) / str(k) / item.name
             path.parent.mkdir()
-            path.write_bytes(data if str(item) == replaces else read_input_bytes(item, "program"))
+            path.write_bytes(data if str(item) == replaces else read_input(item, "program"))
             paths.append(path)
         return language.reading(paths, options)
 

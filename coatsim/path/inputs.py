@@ -3,7 +3,6 @@ polysegment JSON written by ``coatsim segment``."""
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -27,12 +26,14 @@ class ProgramInput:
     builtin: bool
 
 
-def _json_tolerance(path: str) -> Optional[float]:
-    try:
-        value = json.loads(Path(path).read_text(encoding="utf-8")).get("tolerance_mm")
-    except (OSError, ValueError, AttributeError):
-        return None
+def _json_tolerance(doc: object) -> Optional[float]:
+    value = doc.get("tolerance_mm") if isinstance(doc, dict) else None
     return float(value) if isinstance(value, (int, float)) and math.isfinite(value) and value > 0 else None
+
+
+def _check_tolerance(tol: Optional[float]) -> None:
+    if tol is not None and not (math.isfinite(tol) and tol > 0.0):
+        raise InputError(f"tolerance_mm {tol}: must be a finite number > 0 (mm)", parameters=("tolerance_mm",))
 
 
 def load_program_input(spec: str, tol: Optional[float], corner_deg: float = defaults.CORNER_DEG, speed_mm_s: Optional[float] = None,
@@ -41,17 +42,17 @@ def load_program_input(spec: str, tol: Optional[float], corner_deg: float = defa
     taken as is (``tol`` defaults to the file's ``tolerance_mm``). With the programmed speed and
     the tool acceleration limit, a curve is segmented for them (no arc tighter than v² / a where
     the curve allows v), and the speed-limited stretches of a JSON are listed again for them."""
-    if tol is not None and not (math.isfinite(tol) and tol > 0.0):
-        raise InputError(f"--tol {tol}: must be a finite number > 0 (mm)")
+    _check_tolerance(tol)
     if spec.lower().endswith(".json"):
-        from coatsim.geometry import read_polysegment_json
+        from coatsim.geometry.polysegment_json import polysegment_from_document, read_json_document
 
-        poly = read_polysegment_json(spec)
+        doc = read_json_document(Path(spec))
+        poly = polysegment_from_document(doc, spec)
         if speed_mm_s is not None and tool_accel_mm_s2 is not None:
             from coatsim.geometry.dynamics import speed_limited
 
             poly = replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))
-        tolerance = tol if tol is not None else _json_tolerance(spec)
+        tolerance = tol if tol is not None else _json_tolerance(doc)
         if tolerance is None:
             raise InputError(f"{spec}: no tolerance_mm in the file; give --tol MM")
         return ProgramInput(poly, None, tolerance, spec, False)
@@ -97,8 +98,7 @@ def load_part_input(spec: str, tol: Optional[float], layers: Optional[list[str]]
         return PartInput(tuple(c.polysegment for c in part.contours), tuple(c.curve.points for c in part.contours),
                          tol, spec, False, part.notes)
     if spec.lower().endswith(".json"):
-        if tol is not None and not (math.isfinite(tol) and tol > 0.0):
-            raise InputError(f"--tol {tol}: must be a finite number > 0 (mm)")
+        _check_tolerance(tol)
         from coatsim.geometry.part_json import read_part_json
 
         part_file = read_part_json(spec)

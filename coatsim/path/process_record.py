@@ -1,6 +1,11 @@
-"""The process record of a coatsim program as ``key=value`` fields, which each language writes
-in its own comments (AS ``; coatsim: key=value``, RAPID ``! coatsim: key=value``, KRL
-``;coatsim: key=value``) and its reader hands back to :func:`decode`.
+"""The process record of a coatsim program as ``key=value`` fields, and as comment lines.
+
+Every language carries the record in the comments it allows, one line per field: AS
+``; coatsim: key=value``, RAPID ``! coatsim: key=value``, KRL ``;coatsim: key=value``, Fanuc TP
+``! coatsim: ...``, URScript ``# coatsim: ...``, G-code ``(coatsim: ...)``. :func:`encode` and
+:func:`decode` are the fields; :func:`comment_lines` and :func:`read_comment_lines` the comment
+texts, where a language that limits the length of a comment (Fanuc's 32 characters) continues a
+long field on further lines, ``coatsim+ rest`` (after one space) or ``coatsim& rest`` (directly).
 
 One line per field, in a fixed order; a field the record does not hold is not written. A program
 of several contours holds its per-contour fields (``closed``, ``sprayed``, ``speed_limits``) as one
@@ -13,7 +18,7 @@ is not of its kind is an InputError naming the program and the field.
 from __future__ import annotations
 
 import math
-from typing import Callable, Iterable, Sequence
+from typing import Callable, Iterable, Optional, Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
@@ -189,3 +194,58 @@ def _speed_on(where: str, raw: str | None) -> str | None:
     if raw is not None and raw not in SPEED_ON:
         raise InputError(f"{where}: header field speed_on={raw!r}: expected one of {', '.join(SPEED_ON)}")
     return raw
+
+
+RECORD_MARK = "coatsim:"
+_AFTER_SPACE, _JOINED = "coatsim+", "coatsim&"  # a field continued after one space, or directly
+_MARK_WIDTH = len(RECORD_MARK) + 1
+
+
+def _chunks(text: str, room: int) -> list[tuple[str, str]]:
+    """(mark, content) lines of at most ``room`` characters of content holding ``text`` (single
+    spaces between words): whole words where they fit, a longer word split."""
+    out: list[tuple[str, str]] = []
+    mark, current = RECORD_MARK, ""
+    for index, word in enumerate(text.split(" ")):
+        if index and len(current) + 1 + len(word) <= room:
+            current += " " + word
+            continue
+        if index:
+            out.append((mark, current))
+            mark, current = _AFTER_SPACE, ""
+        while len(word) > room:
+            out.append((mark, word[:room]))
+            mark, word = _JOINED, word[room:]
+        current = word
+    out.append((mark, current))
+    return out
+
+
+def comment_lines(info: ProcessInfo, width: Optional[int] = None,
+                  clean: Callable[[str], str] = lambda text: text) -> list[str]:
+    """The record of ``info`` as comment texts (without the language's comment marks) of at most
+    ``width`` characters (None: one line per field); ``clean`` makes a value safe inside the
+    language's comment (e.g. no parentheses in G-code), runs of whitespace become one space."""
+    if width is not None and width <= _MARK_WIDTH + 1:
+        raise ValueError(f"a record comment needs more than {_MARK_WIDTH + 1} characters")
+    lines = []
+    for key, value in encode(info):
+        text = f"{key}={' '.join(clean(value).split())}"
+        room = len(text) if width is None else width - _MARK_WIDTH
+        lines += [f"{mark} {content}" for mark, content in _chunks(text, max(room, 1))]
+    return lines
+
+
+def read_comment_lines(texts: Iterable[str], where: str) -> ProcessInfo:
+    """The record held in a program's comment texts (any other comment is skipped); the empty
+    record when there is none."""
+    fields: list[str] = []
+    for raw in texts:
+        text = raw.strip()
+        head, rest = text[:len(RECORD_MARK)], text[len(RECORD_MARK):].strip()
+        if head == RECORD_MARK:
+            fields.append(rest)
+        elif head in (_AFTER_SPACE, _JOINED) and fields:
+            fields[-1] += (" " if head == _AFTER_SPACE else "") + rest
+    pairs = [tuple(part.strip() for part in f.split("=", 1)) for f in fields if "=" in f]
+    return decode(pairs, where)  # type: ignore[arg-type]

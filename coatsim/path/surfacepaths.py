@@ -9,7 +9,6 @@ defect is an InputError naming the file and the field.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from coatsim.core.jsonfile import read_json
 from coatsim.core.errors import InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.xyzoat import pose_from_xyzoat
@@ -65,8 +65,8 @@ def is_surfacepaths(path: str | Path) -> bool:
     if not str(path).lower().endswith(".json"):
         return False
     try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        doc = read_json(path, "surface paths file")
+    except InputError:
         return False
     return isinstance(doc, dict) and doc.get("format") == FORMAT
 
@@ -110,12 +110,7 @@ def _pass(doc: Any, where: str) -> SurfacePass:
 def read_surfacepaths(path: str | Path) -> SurfacePaths:
     """The passes of a surfacepaths file; InputError naming the file and field on any defect."""
     name = str(path)
-    try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputError(f"{name}: cannot read ({exc.strerror or exc})") from None
-    except ValueError as exc:
-        raise InputError(f"{name}: not JSON ({exc})") from None
+    doc = read_json(path, "surface paths file")
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
         raise InputError(f"{name}: format: expected {FORMAT!r} (a file written by coatsim plan)")
     if doc.get("units", "mm") != "mm":

@@ -6,6 +6,7 @@ robot modules hand in or out of the model goes through ``MM`` / ``M_TO_MM``.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from importlib.resources import as_file, files
 from pathlib import Path
@@ -14,6 +15,7 @@ import mujoco
 import numpy as np
 
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import check_input
 
 MM = 1e-3  # metres per millimetre
 M_TO_MM = 1e3
@@ -86,8 +88,9 @@ def load_cell(path: str | Path | None = None) -> Cell:
         with as_file(MODELS) as folder:
             return _load(Path(folder) / DEFAULT_MODEL_NAME)
     path = Path(path)
-    if not path.is_file():
+    if not os.path.lexists(path):
         raise InputError(f"{path}: model file not found (give an MJCF cell model, or leave it out for the shipped one)")
+    check_input(path, "cell model")
     return _load(path)
 
 

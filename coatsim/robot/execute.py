@@ -9,7 +9,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from coatsim.core import defaults
-from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
@@ -110,7 +110,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
     pieces = plan_pieces(toolpath, step_mm)
     least_s = min_motion_time_s(toolpath, pieces)
     check_budget(f"{toolpath.name}: simulation steps of {cell.timestep * 1e3:g} ms (at least {least_s:.4g} s of "
-                 "motion and dwells at the programmed speeds)", least_s / cell.timestep, MAX_SIM_STEPS,
+                 "motion and dwells at the programmed speeds)", least_s / cell.timestep, "sim_steps",
                  "raise the programmed speed (speed_mm_s) or shorten the dwells", parameters=("speed_mm_s",))
     path = solve_and_time(toolpath, cell, pieces, watch)
     label = lambda i: step_label(toolpath, None if path.row_move[i] < 0 else int(path.row_move[i]))  # noqa: E731

@@ -19,7 +19,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from coatsim.core.numeric import ROUND_OFF, TINY
-from coatsim.core.budgets import MAX_SIM_STEPS
+from coatsim.core.budgets import limit
 from coatsim.core.errors import ExecutionError
 from coatsim.geometry.space.primitives import Line3, Segment3
 from coatsim.path.toolpath import Dwell, ToolPath
@@ -185,7 +185,7 @@ class _Timeline:
             return
         with self.watch.phase("timing_s"):
             timed = time_joint(self.cell, self.q_now, q_goal, piece.speed_mm_s, label,
-                               max_steps=MAX_SIM_STEPS - self.steps)
+                               max_steps=limit("sim_steps") - self.steps)
         tcp = tcp_positions_mm(self.cell, timed.q)
         chords = tuple(Line3(p0, p1) for p0, p1 in zip(tcp[:-1], tcp[1:]))
         owner = -1 if piece.move is None else piece.move
@@ -229,7 +229,7 @@ class _Timeline:
         label = step_label(self.toolpath, int(piece.move[0]))
         with self.watch.phase("timing_s"):
             timed = time_cartesian(self.cell, piece.s, qs, piece.speed, piece.curvature, label,
-                                   max_steps=MAX_SIM_STEPS - self.steps)
+                                   max_steps=limit("sim_steps") - self.steps)
         idx = np.clip(np.searchsorted(piece.s, timed.s), 0, len(piece.s) - 1)
         self.add(TimedSegment(timed, self.offset + np.interp(timed.s, piece.s, piece.ref_s), piece.spray[idx],
                               piece.move[idx]))

@@ -30,7 +30,7 @@ import mujoco
 import numpy as np
 
 from coatsim.core.numeric import TINY, steps_over
-from coatsim.core.budgets import MAX_PATH_SAMPLES, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, ToolPath
@@ -317,7 +317,7 @@ def _chain_piece(spans: list[_Span], step: float) -> CartesianPiece:
 def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
     """Split ``toolpath`` into rest-to-rest pieces, Cartesian ones sampled every ``step`` mm.
 
-    The number of samples is checked against MAX_PATH_SAMPLES before any is made."""
+    The number of samples is checked against the budget path_samples before any is made."""
     if not (math.isfinite(step) and step > 0):
         raise InputError(f"sampling step (--step-mm) must be a positive number of mm, got {step}")
     if not toolpath.moves:
@@ -330,7 +330,7 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
             spans[index] = _span(toolpath, index)
     length = sum(sp.prim.length for sp in spans.values())
     check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
-                 length / step + 10 * len(spans), MAX_PATH_SAMPLES,
+                 length / step + 10 * len(spans), "path_samples",
                  "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
     pieces: list[Piece] = []
     chain: list[_Span] = []

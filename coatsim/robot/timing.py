@@ -26,7 +26,7 @@ import mujoco
 import numpy as np
 
 from coatsim.core.numeric import TINY, steps_over
-from coatsim.core.budgets import MAX_SIM_STEPS, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import MM, Cell
 
@@ -64,7 +64,7 @@ class TimedPiece:
 
 
 def _sample(path: Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_scale: float, label: str,
-            max_steps: int) -> TimedPiece:
+            max_steps: float | None) -> TimedPiece:
     """Evaluate the piecewise-constant path acceleration between gridpoints (toppra's
     ParametrizeConstAccel, vectorised) on the time grid k*dt; at most ``max_steps`` steps
     (checked before they are allocated)."""
@@ -77,7 +77,8 @@ def _sample(path: Spline, gridpoints: np.ndarray, sd: np.ndarray, dt: float, s_s
     if not math.isfinite(duration):
         raise ExecutionError("timing: a path piece has no room to move (zero speed along it); sample it more finely")
     check_budget(f"{label}: simulation steps of {dt * 1e3:g} ms ({duration:.4g} s of motion under the joint limits)",
-                 duration / dt, max_steps, "raise the programmed SPEED or shorten the program")
+                 duration / dt, "sim_steps", "raise the programmed SPEED or shorten the program",
+                 left=max_steps)
     m = steps_over(duration, dt)
     t = np.minimum(np.arange(m + 1) * dt, duration)
     k = np.minimum(np.searchsorted(knots, t, side="right") - 1, len(accel) - 1)
@@ -96,7 +97,7 @@ def _over_bound(cell: Cell, piece: TimedPiece) -> np.ndarray:
 
 
 def _timed(cell: Cell, path: Spline, extra: list, grid: np.ndarray, s_scale: float, label: str,
-           max_steps: int) -> TimedPiece:
+           max_steps: float | None) -> TimedPiece:
     """Parametrise and sample, halving the grid intervals where the command exceeds a joint bound."""
     from coatsim.robot.timing_toppra import parametrize
 
@@ -113,7 +114,7 @@ def _timed(cell: Cell, path: Spline, extra: list, grid: np.ndarray, s_scale: flo
 
 
 def time_cartesian(cell: Cell, s_mm: np.ndarray, q: np.ndarray, speed_mm_s: np.ndarray,
-                   curvature_per_mm: np.ndarray, label: str, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
+                   curvature_per_mm: np.ndarray, label: str, max_steps: float | None = None) -> TimedPiece:
     """Time a Cartesian piece given its IK samples q (n, 6) at TCP arc lengths s_mm (n,)."""
     from coatsim.robot.timing_toppra import PathSpeedBound, Spline, ToolAcceleration
 
@@ -144,7 +145,7 @@ def _bang_bang(cell: Cell, q0: np.ndarray, q1: np.ndarray) -> TimedPiece:
 
 
 def time_joint(cell: Cell, q0: np.ndarray, q1: np.ndarray, speed_mm_s: float, label: str,
-               n_grid: int = 60, max_steps: int = MAX_SIM_STEPS) -> TimedPiece:
+               n_grid: int = 60, max_steps: float | None = None) -> TimedPiece:
     """Time a joint-interpolated move q0 -> q1; the TCP speed stays within ``speed_mm_s``."""
     if float(np.max(np.abs(q1 - q0))) < TINY_JOINT_MOVE_RAD:
         return _bang_bang(cell, np.asarray(q0, float), np.asarray(q1, float))

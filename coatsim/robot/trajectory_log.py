@@ -8,17 +8,16 @@ file without it (written before it existed) reads with the tool speed there.
 
 from __future__ import annotations
 
-import csv
 import io
-import math
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from coatsim.core.budgets import MAX_TRAJECTORY_BYTES, check_budget
-from coatsim.core.errors import InputError, shown
-from coatsim.core.fileio import write_text
+from coatsim.core.errors import CoatsimWarning, InputError
+from coatsim.core.fileio import read_input, write_text
+from coatsim.core.number_text import read_rows
 
 COLUMNS = (
     "t_s", "x_mm", "y_mm", "z_mm", "ax", "ay", "az", "speed_mm_s", "spray",
@@ -71,43 +70,37 @@ class TrajectoryLog:
 
 
 def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
-    """Read a trajectory CSV; any defect raises InputError naming the file and line."""
+    """Read a trajectory CSV (numbers as coatsim.core.number_text reads them); any defect raises
+    InputError naming the file and line."""
     path = Path(path)
+    data = read_input(path, "trajectory", "trajectory_bytes")
     try:
-        check_budget(f"{path}: bytes of trajectory", path.stat().st_size, MAX_TRAJECTORY_BYTES,
-                     "log the motion at a coarser rate")
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read trajectory ({getattr(exc, 'strerror', None) or exc})") from None
-    rows = list(csv.reader(io.StringIO(text)))
-    if not rows:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not UTF-8 text; expected a trajectory CSV with header "
+                         f"{','.join(COLUMNS[:4])},...") from None
+    if not text.strip():
         raise InputError(f"{path}: empty file, expected a trajectory CSV with header {','.join(COLUMNS[:4])},...")
-    header = [h.strip() for h in rows[0]]
+    rows = read_rows(text, str(path), f"the trajectory columns {','.join(COLUMNS[:4])},...")
+    header = rows.header
     missing = [c for c in COLUMNS if c not in header and c not in OPTIONAL]
     if missing:
         raise InputError(f"{path}:1: trajectory CSV header lacks column(s) {', '.join(missing)}")
+    for values, line in zip(rows.values, rows.lines):
+        if len(values) < len(header):
+            raise InputError(f"{path}:{line}: expected {len(header)} values, found {len(values)}")
+    for note in rows.notes:
+        warnings.warn(note, CoatsimWarning, stacklevel=2)
     columns = [c for c in COLUMNS if c in header]
     index = [header.index(c) for c in columns]
-    data = np.empty((len(rows) - 1, len(columns)))
-    for i, row in enumerate(rows[1:]):
-        line = i + 2
-        if len(row) < len(header):
-            raise InputError(f"{path}:{line}: expected {len(header)} values, found {len(row)}")
-        for j, k in enumerate(index):
-            try:
-                value = float(row[k])
-            except ValueError:
-                raise InputError(f"{path}:{line}: column {columns[j]} is not a number: {shown(row[k])}") from None
-            if not math.isfinite(value):
-                raise InputError(f"{path}:{line}: column {columns[j]} is not finite: {shown(row[k], names=True)}")
-            data[i, j] = value
-    if len(data) < 2:
-        raise InputError(f"{path}: a trajectory needs at least 2 rows, found {len(data)}")
-    if np.any(np.diff(data[:, 0]) <= 0):
-        bad = int(np.argmax(np.diff(data[:, 0]) <= 0)) + 3
+    table = np.array([[values[k] for k in index] for values in rows.values], dtype=float).reshape(-1, len(columns))
+    if len(table) < 2:
+        raise InputError(f"{path}: a trajectory needs at least 2 rows, found {len(table)}")
+    if np.any(np.diff(table[:, 0]) <= 0):
+        bad = rows.lines[int(np.argmax(np.diff(table[:, 0]) <= 0)) + 1]
         raise InputError(f"{path}:{bad}: t_s must increase strictly")
     return TrajectoryLog(
-        t=data[:, 0], position=data[:, 1:4], axis=data[:, 4:7], speed=data[:, 7],
-        spray=data[:, 8] > 0.5, progress=data[:, 9], path_error=data[:, 10], q=data[:, 11:17],
-        trace_speed=data[:, 17] if len(columns) > 17 else None,
+        t=table[:, 0], position=table[:, 1:4], axis=table[:, 4:7], speed=table[:, 7],
+        spray=table[:, 8] > 0.5, progress=table[:, 9], path_error=table[:, 10], q=table[:, 11:17],
+        trace_speed=table[:, 17] if len(columns) > 17 else None,
     )

@@ -315,9 +315,11 @@ class ProgramVariantSpec(_Strict):
 
 
 def _variant_kind(value: Any) -> str:
+    """The kind of a variant entry, as read (a string, a mapping) or as a model being written out."""
     if isinstance(value, str):
         return "builtin"
-    return "language" if isinstance(value, dict) and "variant" in value else "program"
+    built_in = isinstance(value, BuiltinVariantSpec) or (isinstance(value, dict) and "variant" in value)
+    return "language" if built_in else "program"
 
 
 # A built-in variant by name, one in its own language, or a user's program (a mapping): errors

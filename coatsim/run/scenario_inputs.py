@@ -10,7 +10,7 @@ from typing import Optional
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.geometry import (
     Curve,
     builtin_curve,
@@ -159,7 +159,7 @@ def read_user_program(loaded: ScenarioFile, entry: ProgramVariantSpec, cell: Cel
     except CoatsimError as exc:
         said = exc.reworded({"gun_signal": "gun.signal"})
         raise said.prefixed(f"{loaded.where('variants')}: variant {entry.name}") from None
-    return toolpath, "\n".join(decode_text(read_input_bytes(f, "program")) for f in files)
+    return toolpath, "\n".join(decode_text(read_program_file(f)) for f in files)
 
 
 

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from coatsim.core.errors import InputError, shown
+from coatsim.core.fileio import read_input
 
 #: Knots (spray angle deg, DE) of the default ``angle`` curve; see the module docstring.
 DEFAULT_ANGLE_KNOTS: tuple[tuple[float, float], ...] = ((0.0, 0.0), (30.0, 0.75), (45.0, 0.9), (60.0, 1.0), (90.0, 1.0))
@@ -105,9 +106,9 @@ def load_efficiency_table(path: str | Path) -> AngleTable:
     """Read a ``spray_angle_deg,efficiency`` CSV (one knot per row, any order)."""
     path = Path(path)
     try:
-        rows = list(csv.reader(path.read_text(encoding="utf-8").splitlines()))
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read efficiency table ({getattr(exc, 'strerror', None) or exc})") from None
+        rows = list(csv.reader(read_input(path, "efficiency table").decode("utf-8").splitlines()))
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: cannot read efficiency table ({exc})") from None
     header = [h.strip() for h in rows[0]] if rows else []
     if header != ["spray_angle_deg", "efficiency"]:
         found = ", ".join(shown(h, names=True) for h in header[:3]) or "nothing"

@@ -26,6 +26,7 @@ import numpy as np
 from scipy.special import beta as beta_fn
 
 from coatsim.core.errors import InputError, shown
+from coatsim.core.fileio import read_input
 
 #: Gaussian footprints are cut off at this many standard deviations (mass outside: 1.5e-8)
 #: and renormalised, so the kernel conserves volume exactly.
@@ -288,9 +289,9 @@ def load_footprint_table(path: str | Path) -> Tabulated:
     """Read a ``u_mm,v_mm,rate`` CSV holding every node of a regular grid once (any order)."""
     path = Path(path)
     try:
-        rows = list(csv.reader(path.read_text(encoding="utf-8").splitlines()))
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read footprint table ({getattr(exc, 'strerror', None) or exc})") from None
+        rows = list(csv.reader(read_input(path, "footprint table").decode("utf-8").splitlines()))
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: cannot read footprint table ({exc})") from None
     header = [h.strip() for h in rows[0]] if rows else []
     if header != ["u_mm", "v_mm", "rate"]:
         found = ", ".join(shown(h, names=True) for h in header[:4]) or "nothing"

@@ -18,11 +18,9 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from coatsim.core.numeric import ROUND_OFF, TINY, steps_over
-from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, MAX_MESH_VERTICES, check_budget
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import InputError
 
-#: refinement refuses to build meshes with more triangles than this (about two per vertex)
-MAX_TRIANGLES = 2 * MAX_MESH_VERTICES
 MIN_PART_MM = 1e-3  # smallest plate or cylinder dimension (a micrometre)
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
 
@@ -63,9 +61,9 @@ def _check_spacing(spacing: float) -> None:
 
 def _grid_size(what: str, extent_u: float, extent_v: float, spacing: float, min_u: int = 1) -> tuple[int, int]:
     """Cells along u and v of a structured grid at ``spacing``; its vertex count is checked
-    against MAX_MESH_VERTICES before anything is allocated."""
+    against the budget mesh_vertices before anything is allocated."""
     cells_u, cells_v = max(min_u, extent_u / spacing), max(1.0, extent_v / spacing)
-    check_budget(f"{what} meshed every {spacing:g} mm: vertices", (cells_u + 1) * (cells_v + 1), MAX_MESH_VERTICES,
+    check_budget(f"{what} meshed every {spacing:g} mm: vertices", (cells_u + 1) * (cells_v + 1), "mesh_vertices",
                  "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
     return max(min_u, steps_over(extent_u, spacing)), max(1, steps_over(extent_v, spacing))
 
@@ -179,7 +177,7 @@ def mesh_surface(vertices: np.ndarray, faces: np.ndarray, spacing: float, pose: 
     _check_spacing(spacing)
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     estimate = max(len(mesh.faces), mesh.area / (math.sqrt(3) / 4 * spacing**2))
-    check_budget(f"{name} refined to edges of {spacing:g} mm: triangles", estimate, MAX_TRIANGLES,
+    check_budget(f"{name} refined to edges of {spacing:g} mm: vertices (half the triangles)", estimate / 2, "mesh_vertices",
                  "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
     vertices, faces = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=spacing, max_iter=20)
     refined = trimesh.Trimesh(vertices, faces, process=True)

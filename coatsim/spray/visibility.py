@@ -22,7 +22,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from coatsim.core.numeric import ROUND_OFF
-from coatsim.core.budgets import MAX_SHADOW_BYTES, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
 
 SHADOW_MODES = ("auto", "on", "off")
@@ -163,10 +163,10 @@ class Visibility:
 
 def visibility(vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray, mode: str) -> Visibility:
     """The surface's Visibility for shadows ``mode`` (``auto`` or ``on``), its memory checked
-    against MAX_SHADOW_BYTES first. Without the Embree binding: an error when shadows were asked
+    against the budget shadow_bytes first. Without the Embree binding: an error when shadows were asked
     for (``on``); in ``auto``, ``unavailable`` (the caller warns and coats without shadows)."""
     check_budget(f"shadows: convex hull and ray-casting scene of {len(vertices)} vertices, {len(faces)} "
-                 f"triangles, bytes", shadow_memory_bytes(len(vertices), len(faces)), MAX_SHADOW_BYTES,
+                 f"triangles, bytes", shadow_memory_bytes(len(vertices), len(faces)), "shadow_bytes",
                  "use a larger spacing, or set shadows off")
     exposed = exposed_vertices(vertices, normals)
     if exposed.all():

@@ -20,6 +20,8 @@ from pathlib import Path
 from typing import Callable, Iterator, Optional, Sequence
 
 from coatsim.core.errors import ExecutionError, InputError
+from coatsim.core.fileio import read_input
+from coatsim.core.progress import progress
 from coatsim.sweep.task import PointOutcome, PointTask, failed, one_line, run_point, variant_names
 
 
@@ -118,7 +120,7 @@ def run_tasks(client, tasks: Sequence[tuple[PointTask, dict[str, Path]]], on_out
             if path not in shared:
                 # a task that returns the bytes, not scattered data: if the worker holding them
                 # dies, the scheduler recomputes them from the task instead of losing the point
-                shared[path] = client.submit(file_bytes, path.read_bytes(), key=f"coatsim-input-{name}", pure=False)
+                shared[path] = client.submit(file_bytes, read_input(path, "input file"), key=f"coatsim-input-{name}", pure=False)
             inputs[name] = shared[path]
         future = client.submit(run_point, task, inputs, key=f"coatsim-point-{task.point}-{task.key[:16]}", pure=False)
         futures[future] = task
@@ -165,22 +167,14 @@ def _lost(exc: Exception) -> str:
 
 @contextmanager
 def _progress(total: int, enabled: bool) -> Iterator[Callable[[PointOutcome], None]]:
-    """A rich progress bar of finished points on stderr, or nothing."""
-    if not enabled:
-        yield lambda outcome: None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
-
+    """A rich progress bar of finished points on stderr when ``enabled`` (and the time budget
+    checked as each point finishes)."""
     bad = 0
-    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-               TextColumn("eta"), TimeRemainingColumn())
-    with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
-        job = bar.add_task("points", total=total)
+    with progress("points", total, enabled) as step:
 
         def advance(outcome: PointOutcome) -> None:
             nonlocal bad
             bad += outcome.status != "ok"
-            bar.update(job, advance=1, description=f"points ({bad} failed)" if bad else "points")
+            step(1, f"points ({bad} failed)" if bad else "points")
 
         yield advance

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import check_input, read_input
 
 # element -> compiler attribute its ``file`` is relative to (MuJoCo's rules; assetdir sets both)
 _ASSET_DIRS = {"mesh": "meshdir", "skin": "meshdir", "hfield": "meshdir", "texture": "texturedir"}
@@ -40,7 +41,7 @@ def _digest(paths: list[Path], root: Path) -> str:
     h = hashlib.sha256()
     for p in paths:
         name = p.relative_to(root).as_posix().encode()
-        data = p.read_bytes()
+        data = read_input(p, "input file")
         h.update(b"%d:%s%d:" % (len(name), name, len(data)) + data)
     return h.hexdigest()
 
@@ -53,12 +54,12 @@ def _mjcf_files(model: Path) -> list[Path]:
     dirs: dict[str, Path] = {"meshdir": root_dir, "texturedir": root_dir}
     while todo:
         current = todo.pop()
-        if current in found or not current.is_file():
+        if current in found or not os.path.lexists(current):  # a FIFO or a device is refused when read
             continue
         found.append(current)
         try:
-            tree = ET.parse(current)
-        except (ET.ParseError, OSError):
+            tree = ET.ElementTree(ET.fromstring(read_input(current, "cell model")))
+        except ET.ParseError:
             continue  # MuJoCo will say what is wrong with it on the worker
         for compiler in tree.iter("compiler"):
             for attr in ("assetdir", "meshdir", "texturedir"):
@@ -75,7 +76,7 @@ def _mjcf_files(model: Path) -> list[Path]:
                     todo.append(root_dir / name)
                 else:
                     found_path = dirs[_ASSET_DIRS[element.tag]] / name if element.tag in _ASSET_DIRS else root_dir / name
-                    if found_path.is_file() and found_path not in found:
+                    if os.path.lexists(found_path) and found_path not in found:
                         found.append(found_path)
     return found
 
@@ -121,14 +122,13 @@ def bundle(scenario: Mapping[str, Any], base_dir: Path) -> Bundle:
     for key, role, written in _references(scenario):
         path = Path(written).expanduser()
         path = path if path.is_absolute() else base_dir / path
-        if not path.is_file():
-            raise InputError(f"{dotted(key)}: {path}: no such file")
         try:
+            check_input(path, "input file")
             members = _mjcf_files(path) if role == "robot" else [path]
             root = Path(os.path.commonpath([p.parent for p in members]))
             digest = _digest(members, root)
-        except OSError as exc:
-            raise InputError(f"{dotted(key)}: {path}: cannot read ({exc.strerror or exc})") from None
+        except InputError as exc:
+            raise InputError(f"{dotted(key)}: {exc}") from None
         digests[dotted(key)] = digest
         if role == "robot":
             folder = f"inputs/robot_{digest[:12]}"

@@ -16,11 +16,13 @@ import difflib
 import hashlib
 import itertools
 import json
+import math
 from dataclasses import dataclass
 from typing import Any, Mapping, Optional
 
 from pydantic import ValidationError
 
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import CoatsimError, InputError
 from coatsim.run.scenario import Scenario, ScenarioFile, check_gate_metrics, check_references, load_scenario
 from coatsim.sweep.spec import SweepFile, parse_key
@@ -67,8 +69,9 @@ def _number_neutral(value: Any) -> Any:
 
 
 def point_id(params: Mapping[str, Any]) -> str:
-    """A stable 10-hex-digit id of a point's parameters."""
-    return hashlib.sha256(canonical_json(_number_neutral(dict(params))).encode()).hexdigest()[:10]
+    """A stable id of a point's parameters: the whole SHA-256 (64 hex digits), so that two
+    different points never share an id (a 40-bit prefix collides within a million points)."""
+    return hashlib.sha256(canonical_json(_number_neutral(dict(params))).encode()).hexdigest()
 
 
 def lookup(data: Any, path: tuple[str | int, ...]) -> Any:
@@ -201,13 +204,17 @@ def _label(params: Mapping[str, Any]) -> str:
 def expand(sweep: SweepFile) -> tuple[tuple[str, ...], tuple[Point, ...]]:
     """The sweep's axes (dotted keys, grid first, in file order) and its points (grid product in
     file order, the first key varying slowest, then the explicit points)."""
+    spec = sweep.spec
+    keys = list(spec.grid)
+    count = math.prod(len(spec.grid[k]) for k in keys) if keys else 0
+    check_budget(f"{sweep.where('grid' if keys else 'points')}: sweep points (the grid's product "
+                 f"{' x '.join(str(len(spec.grid[k])) for k in keys) or '0'} and {len(spec.points)} explicit points)",
+                 count + len(spec.points), "sweep_points", "sweep fewer values (each point is a run)")
     base = load_scenario(sweep.base_path)
     check_gate_metrics(base)
     raw = _raw_data(base)
     resolver = _Resolver(sweep, base, raw)
-    spec = sweep.spec
     wanted: list[tuple[dict[str, Any], dict[str, tuple], str]] = []
-    keys = list(spec.grid)
     for combo in itertools.product(*(spec.grid[k] for k in keys)) if keys else ():
         where = {k: ("grid", k) for k in keys}
         wanted.append((dict(zip(keys, combo)), where, "grid point"))

@@ -19,14 +19,17 @@ from typing import Mapping, Optional, Sequence
 from coatsim import __version__
 from coatsim.core.errors import CoatsimError, InputError
 from coatsim.core.fileio import write_text
+from coatsim.core.outputs_guard import output_folder
+from coatsim.sweep.cluster import default_workers
 from coatsim.sweep.inputs import bundle, with_absolute_paths
 from coatsim.sweep.points import Point, canonical_json, expand
 from coatsim.sweep.spec import SweepFile, load_sweep
-from coatsim.sweep.store import load_point, locked_outdir, save_point, write_manifest
+from coatsim.sweep.store import OUTPUTS, load_point, save_point, write_manifest
 from coatsim.sweep.table import Table, build_table, write_csv, write_parquet
 from coatsim.sweep.task import PointOutcome, PointTask, failed, variant_names
 
 FORMAT = "coatsim.sweep/1"
+MAX_WORKERS_PER_CORE = 4  # a local cluster's workers are processes of ~0.3-1 GB each
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,16 +66,22 @@ def _gate_failures(outcome: PointOutcome) -> tuple[str, ...]:
 
 def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, scheduler: Optional[str] = None,
               workers: Optional[int] = None, keep_outputs: bool = False, progress: Optional[bool] = None,
-              metrics: Optional[Sequence[str]] = None) -> SweepResult:
+              metrics: Optional[Sequence[str]] = None, force: bool = False) -> SweepResult:
     """Run the sweep at ``path`` into ``outdir`` (default ``runs/<sweep file stem>``).
 
     ``scheduler`` is a Dask scheduler address (default: a LocalCluster of ``workers`` processes,
     one per core); ``keep_outputs`` keeps every run's full outputs; ``progress`` defaults to a
-    bar when stderr is a terminal; ``metrics`` overrides the sweep file's plotted metrics.
+    bar when stderr is a terminal; ``metrics`` overrides the sweep file's plotted metrics; ``force``
+    replaces files of the sweep's output names that coatsim did not write there.
     """
     started = time.perf_counter()
     if workers is not None and workers < 1:
         raise InputError(f"workers {workers}: give at least 1", parameters=("workers",))
+    if workers is not None and workers > MAX_WORKERS_PER_CORE * default_workers():
+        raise InputError(f"workers {workers}: more than {MAX_WORKERS_PER_CORE} worker processes per core "
+                         f"({default_workers()} here) only make the points wait for memory; give at most "
+                         f"{MAX_WORKERS_PER_CORE * default_workers()}, or use a scheduler for more machines",
+                         parameters=("workers",))
     if workers is not None and scheduler is not None:
         raise InputError("workers sizes the local cluster only; with a scheduler the cluster's own workers run the "
                          "points", parameters=("workers",))
@@ -88,7 +97,7 @@ def run_sweep(path: str | Path, outdir: Optional[str | Path] = None, *, schedule
     variants_of = {p.id: variant_names(p.scenario["variants"]) if p.scenario else base_variants for p in points}
     variants = list(dict.fromkeys(v for p in points for v in variants_of[p.id]))
     session = None
-    with locked_outdir(out):
+    with output_folder(out, OUTPUTS, "coatsim sweep", force):
         write_manifest(out, _manifest(sweep, axes, points))
         outcomes, pending = _prepare(out, sweep, points, variants_of, keep_outputs)
         if pending:

@@ -1,6 +1,7 @@
 """The sweep's output folder: one folder per point, the manifest, the lock, and resuming.
 
-``OUTDIR/points/<id>/`` holds ``point.json`` (written last: the point is finished once it is
+The folder is held like every output folder (coatsim.core.outputs_guard: one process at a time,
+only files coatsim wrote there replaced). ``OUTDIR/points/<id>/`` holds ``point.json`` (written last: the point is finished once it is
 there), the run's ``metrics.json``, the resolved ``scenario.yaml`` (``coatsim run`` reproduces
 the point from it) and, with ``--keep-outputs``, every output of the run. A rerun reuses a
 point whose ``point.json`` has the same cache key (resolved scenario, input file contents,
@@ -10,51 +11,41 @@ fast mode, coatsim version) and a reusable outcome; everything else runs again.
 from __future__ import annotations
 
 import json
+import os
 import shutil
-from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Iterator, Mapping, Optional
+from typing import Any, Mapping, Optional
 
 import yaml
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import write_bytes, write_text
+from coatsim.core.fileio import os_problem, read_input, write_bytes, write_text
+from coatsim.core.jsonfile import read_json
 from coatsim.sweep.task import PointOutcome
 
 MANIFEST = "sweep.json"
 POINT_FORMAT = "coatsim.sweep-point/1"
-_LOCK = ".coatsim-sweep.lock"
 
 
-@contextmanager
-def locked_outdir(outdir: Path) -> Iterator[Path]:
-    """Create or reopen a sweep folder and hold it for this process; InputError when it is a
-    file, a folder that is not a sweep's (so nothing of the user's is overwritten), or in use."""
-    if outdir.exists() and not outdir.is_dir():
-        raise InputError(f"{outdir}: is a file; give a folder for the sweep's outputs")
-    if outdir.is_dir() and any(outdir.iterdir()) and not (outdir / MANIFEST).is_file():
-        raise InputError(f"{outdir}: folder exists and holds no {MANIFEST}: not a sweep's output folder; "
-                         "give a new or empty folder")
-    try:
-        outdir.mkdir(parents=True, exist_ok=True)
-        handle = open(outdir / _LOCK, "a+")
-    except OSError as exc:
-        raise InputError(f"{outdir}: cannot write ({exc.strerror or exc})") from None
-    with handle:
-        try:
-            import fcntl
-
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except ImportError:  # no advisory locks on this platform
-            pass
-        except OSError:
-            raise InputError(f"{outdir}: another sweep is writing into this folder; wait for it or choose "
-                             "another") from None
-        yield outdir
+#: What a sweep writes into its folder (held with coatsim.core.outputs_guard: one lock, one manifest)
+OUTPUTS = (MANIFEST, "results.parquet", "results.csv", "sweep.html", "points/")
 
 
 def point_dir(outdir: Path, point: str) -> Path:
     return outdir / "points" / point
+
+
+def _clear(folder: Path) -> None:
+    """An empty new ``points/<id>`` folder: whatever is there is removed, a symbolic link itself
+    and never what it points to (``points/`` is the sweep's own folder, see OUTPUTS)."""
+    if folder.is_symlink() or folder.exists() and not folder.is_dir():
+        folder.unlink()
+    elif folder.exists():
+        shutil.rmtree(folder)
+    try:
+        folder.mkdir(parents=True)
+    except OSError as exc:
+        raise InputError(f"{folder}: cannot create the point's folder ({os_problem(exc)})") from None
 
 
 def _json(value: Any) -> str:
@@ -65,9 +56,7 @@ def save_point(outdir: Path, outcome: PointOutcome, params: Mapping[str, Any],
                scenario: Optional[Mapping[str, Any]]) -> None:
     """Replace the point's folder with this outcome (its metrics, scenario and outputs)."""
     folder = point_dir(outdir, outcome.point)
-    if folder.exists():
-        shutil.rmtree(folder)
-    folder.mkdir(parents=True)
+    _clear(folder)
     for name, data in outcome.files.items():
         write_bytes(folder / name, data)
     if outcome.metrics is not None:
@@ -100,10 +89,10 @@ def load_point(outdir: Path, point: str, key: str, keep_outputs: bool) -> Option
     when asked for), else None."""
     folder = point_dir(outdir, point)
     try:
-        record = json.loads((folder / "point.json").read_text(encoding="utf-8"))
+        record = read_json(folder / "point.json", "point record")
         metrics_path = folder / "metrics.json"
-        metrics = metrics_path.read_text(encoding="utf-8") if metrics_path.is_file() else None
-    except (OSError, ValueError):
+        metrics = read_input(metrics_path, "metrics").decode("utf-8") if os.path.lexists(metrics_path) else None
+    except (InputError, ValueError):  # missing, unreadable or not a file coatsim wrote: run the point again
         return None
     if not isinstance(record, dict) or record.get("format") != POINT_FORMAT or record.get("key") != key:
         return None

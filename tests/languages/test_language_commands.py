@@ -32,10 +32,18 @@ def test_files_are_told_apart_by_their_opening(tmp_path):
     assert language_of([tmp_path / "b.txt"]).name == "kuka-krl"
     assert language_of([tmp_path / "c.txt"]).name == "kawasaki-as"
     assert language("krl").name == "kuka-krl" and language("RAPID").name == "abb-rapid"
+    (tmp_path / "d.txt").write_text("/PROG  D\n/ATTR\n/MN\n   1:  DO[1]=ON ;\n/POS\n/END\n")
+    (tmp_path / "e.txt").write_text("def e():\n  movel(p[0.5, 0, 0.3, 0, 3.1416, 0], v=0.2)\nend\n")
+    (tmp_path / "f.txt").write_text("%\n(a CAM post)\nN10 G21 G90\nN20 G1X10Y5F600\n%\n")
+    assert language_of([tmp_path / "d.txt"]).name == "fanuc-tp"
+    assert language_of([tmp_path / "e.txt"]).name == "urscript"  # a def with a colon is not KRL's DEF
+    assert language_of([tmp_path / "f.txt"]).name == "gcode"
+    assert language("fanuc").name == "fanuc-tp" and language("TP").name == "fanuc-tp"
 
 
 @pytest.mark.parametrize("target, suffix, words", [("rapid", ".mod", "MoveC"), ("krl", ".src", "CIRC"),
-                                                   ("as", ".as", "C1MOVE")])
+                                                   ("as", ".as", "C1MOVE"), ("fanuc", ".ls", "C P["),
+                                                   ("urscript", ".script", "movec("), ("gcode", ".ngc", "G3")])
 def test_convert_a_polyline_program_to_arcs_in_another_language(tmp_path, run_cli, target, suffix, words):
     poly = tmp_path / "poly.mod"
     code, _, err = run_cli(["program", "builtin:ellipse", "--tol", "0.05", "--variant", "polyline-blend", "--language",
@@ -55,3 +63,22 @@ def test_rapid_is_not_edited_in_place(tmp_path, run_cli):
              "-o", str(poly)])
     code, _, err = run_cli(["convert", str(poly), "--tol", "0.1"])
     assert code == 2 and "not edited in place" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("source, suffix", [("fanuc-tp", ".ls"), ("urscript", ".script"), ("gcode", ".ngc")])
+def test_a_polyline_program_in_each_language_converts_to_arcs_in_as(tmp_path, run_cli, source, suffix):
+    """check-program reports a Fanuc, URScript or G-code program as it does any (its switches and
+    sprayed lines), and convert --to rewrites its sprayed path with arcs."""
+    poly = tmp_path / f"poly{suffix}"
+    code, _, err = run_cli(["program", "builtin:ellipse", "--tol", "0.05", "--variant", "polyline-blend", "--language",
+                            source, "-o", str(poly)])
+    assert code == 0, err
+    code, text, err = run_cli(["check-program", str(poly)])
+    assert code == 0, err
+    assert "(gun on)" in text and "(gun off)" in text and re.search(r"sprayed: lines \d+-\d+ of ", text)
+    out = tmp_path / "arcs.as"
+    code, text, err = run_cli(["convert", str(poly), "--tol", "0.1", "--to", "as", "-o", str(out)])
+    assert code == 0, err
+    m = re.search(r"(\d+) moves -> (\d+) .*deviation ([0-9.]+) mm", text)
+    assert m and int(m.group(2)) < int(m.group(1)) and float(m.group(3)) <= 0.1
+    assert "C1MOVE" in out.read_text()

@@ -209,3 +209,19 @@ def test_slerp_of_written_follow_poses_stays_near_the_normal(torus):
             near = np.argmin(np.linalg.norm(x[:, None] - tcp[None], axis=2), axis=1)
             cos = np.einsum("ij,ij->i", rot[:, :, 2], -normals[near])
             assert np.degrees(np.arccos(np.clip(cos, -1, 1))).max() <= 2.0 + 0.05  # + the input's sampling
+
+
+@pytest.mark.parametrize("name, suffix, arc", [("fanuc-tp", ".ls", ":  P["), ("urscript", ".script", "movec("),
+                                               ("kuka-krl", ".src", "CIRC ")])
+def test_the_program_command_writes_surface_passes_in_the_language_asked(torus, tmp_path, run_cli, name, suffix, arc):
+    out = tmp_path / f"passes{suffix}"
+    code, _, err = run_cli(["program", str(torus), "--language", name, "-o", str(out)])
+    assert code == 0, err
+    assert arc in out.read_text() and ".PROGRAM" not in out.read_text()
+    if name == "kuka-krl":
+        assert out.with_suffix(".dat").exists()  # the language's files, not one text
+
+
+def test_gcode_refuses_surface_passes_that_tilt_the_gun(torus, tmp_path, run_cli):
+    code, _, err = run_cli(["program", str(torus), "--language", "gcode", "-o", str(tmp_path / "p.ngc")])
+    assert code == 2 and "no tool orientation" in err and err.count("\n") == 1

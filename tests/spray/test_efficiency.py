@@ -76,7 +76,7 @@ def test_bad_tables_name_the_file_and_line(tmp_path, text, words):
 @pytest.mark.parametrize("spec, words", [
     ("sometimes", "unknown law 'sometimes'"), ("angle:60", "knots are spray_angle_deg=efficiency"),
     ("angle:60=2", "efficiency must be between 0 and 1"), ("cosine:n=0.5", "cosine:n=N with N >= 1"),
-    ("cosine", "cosine:n=N"), ("table:", "give the table file"), ("table:/nonexistent/de.csv", "cannot read"),
+    ("cosine", "cosine:n=N"), ("table:", "give the table file"), ("table:/nonexistent/de.csv", "no such file"),
 ])
 def test_bad_specs(spec, words):
     with pytest.raises(InputError, match=words):

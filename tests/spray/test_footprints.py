@@ -73,7 +73,7 @@ def test_spec_round_trip(fp):
     ("beta:radius=10,beta=0.5", "at least 1"),
     ("double-beta:a=1,b=2,beta1=2", "missing beta2"),
     ("table:", "table file"),
-    ("table:/nonexistent/spot.csv", "cannot read"),
+    ("table:/nonexistent/spot.csv", "no such file"),
 ])
 def test_bad_specs_name_the_problem(spec, words):
     with pytest.raises(InputError, match=words):

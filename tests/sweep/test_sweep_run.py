@@ -147,16 +147,19 @@ def test_cache_key_follows_the_input_file_contents(tmp_path):
     assert before != cache_key(points[0].scenario, bundle(points[0].scenario, base_dir).digests, True)
 
 
-def test_a_folder_that_is_not_a_sweep_is_left_alone(tmp_path):
+def test_a_users_files_in_the_sweep_folder_are_left_alone(tmp_path):
+    """The sweep holds its folder like every output folder: its own names only, foreign ones need --force."""
     path = write_case(tmp_path)
     keep = tmp_path / "mine"
     keep.mkdir()
     (keep / "notes.txt").write_text("mine")
+    (keep / "sweep.html").write_text("my page")
     from coatsim.core.errors import InputError
 
-    with pytest.raises(InputError, match="not a sweep's output folder"):
+    with pytest.raises(InputError, match="sweep.html: not written by coatsim"):
         run_sweep(path, keep, progress=False)
-    assert [p.name for p in keep.iterdir()] == ["notes.txt"]
+    assert sorted(p.name for p in keep.iterdir()) == ["notes.txt", "sweep.html"]
+    assert (keep / "sweep.html").read_text() == "my page"
 
 
 def _free_port() -> int:

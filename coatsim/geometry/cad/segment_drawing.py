@@ -17,7 +17,7 @@ from coatsim.geometry.cad.chaining import chain_pieces
 from coatsim.geometry.cad.contour_fit import fit_contour
 from coatsim.geometry.cad.read import read_drawing
 from coatsim.geometry.curves import Curve
-from coatsim.geometry.dynamics import speed_limited
+from coatsim.geometry.dynamics import curvature_limit, speed_limited
 from coatsim.geometry.segment import Segmentation
 from coatsim.geometry.theta import theta_of_polyline
 
@@ -122,7 +122,7 @@ def segment_drawing(
     if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
         raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither",
                          parameters=("speed_mm_s", "tool_accel_mm_s2"))
-    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
+    speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
     started = time.perf_counter()
     flatten_mm = FLATTEN_FRACTION * tolerance_mm / max(scale, 1e-300)
     drawing = read_drawing(path, layers, flatten_mm)

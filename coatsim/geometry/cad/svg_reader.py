@@ -27,9 +27,11 @@ from typing import Iterator, Optional, Sequence
 
 import numpy as np
 
-from coatsim.core.errors import InputError
+from coatsim.core.errors import InputError, shown
+from coatsim.core.fileio import read_input
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
 from coatsim.geometry.cad.pieces import Piece, arc_piece, free_or_native, line_piece
+from coatsim.geometry.cad.svg_scan import check_svg_structure
 
 MM_PER_USER_UNIT = 25.4 / 96.0
 # svgelements converts mm and cm with 0.0393701 inch per mm (rounded); its px of a document
@@ -88,21 +90,22 @@ def path_data_error(d: str) -> Optional[str]:
             return f"{cmd!r} at character {i} has no coordinates"
 
 
-def _parse(path: Path):
+def _parse(path: Path, data: bytes):
     import io
 
     import svgelements as se
 
+    check_svg_structure(data, str(path))
     try:
-        data = path.read_bytes()
         if b"<symbol" in data:
             data = symbols_placed(data)
         svg = se.SVG.parse(io.BytesIO(data), ppi=96.0, reify=False)
     except ET.ParseError as exc:
         line, col = exc.position
         raise InputError(f"{path}:{line}:{col}: not well-formed SVG ({str(exc).split(':')[0]})") from None
-    except (ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
-        raise InputError(f"{path}: not a readable SVG ({exc})") from None
+    except (ValueError, TypeError, IndexError, KeyError, AttributeError, ArithmeticError) as exc:
+        raise InputError(f"{path}: not a readable SVG ({type(exc).__name__}: {str(exc)[:100]}; a number that "
+                         "overflows or vanishes, or an attribute svgelements cannot read)") from None
     if not isinstance(svg, se.SVG):
         raise InputError(f"{path}: not an SVG (the root element is not <svg>)")
     return svg
@@ -173,10 +176,10 @@ def symbols_placed(data: bytes) -> bytes:
     return ET.tostring(root)
 
 
-def hidden_layers(path: Path) -> list[str]:
+def hidden_layers(data: bytes) -> list[str]:
     """Labels of Inkscape layers hidden with ``display:none`` (svgelements drops them whole)."""
     hidden = []
-    for el in ET.parse(path).iter():
+    for el in ET.fromstring(data).iter():
         if el.get(f"{_INKSCAPE}groupmode") == "layer":
             style = (el.get("style") or "").replace(" ", "").lower()
             if "display:none" in style or el.get("display") == "none":
@@ -271,6 +274,24 @@ def _shape_pieces(shape, label: str, flatten_mm: float, mm_px: float) -> list[Pi
     return pieces
 
 
+def _attribute_error(el) -> Optional[str]:
+    """Why a shape's own numbers are malformed (svgelements reads what it can and drops the
+    rest, or takes a negative size as a positive one), or None."""
+    values = el.values
+    if _tag(el) in ("polyline", "polygon"):
+        tokens = [t for t in re.split(r"[\s,]+", str(values.get("points", "")).strip()) if t]
+        bad = next((t for t in tokens if not _NUMBER.fullmatch(t)), None)
+        if bad is not None:
+            return f"points: {shown(bad)} is not a number"
+        if len(tokens) % 2:
+            return f"points: {len(tokens)} numbers, expected x,y pairs"
+    for name in ("r", "rx", "ry", "width", "height"):
+        raw = str(values.get(name, "")).strip()
+        if raw.startswith("-") and _NUMBER.match(raw) and float(_NUMBER.match(raw).group()) < 0:
+            return f"{name}={shown(raw)} is negative; SVG draws nothing for a negative size (give it a size >= 0)"
+    return None
+
+
 def _degenerate(arc) -> bool:
     """An arc SVG draws as a straight line: a radius of zero, or no sweep."""
     return float(arc.rx) == 0.0 or float(arc.ry) == 0.0 or float(arc.sweep) == 0.0
@@ -280,11 +301,12 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     """The geometry of an SVG file in mm, y up; see the module docstring."""
     import svgelements as se
 
-    svg = _parse(path)
+    data = read_input(path, "drawing")
+    svg = _parse(path, data)
     k = mm_per_px(svg)
     elements = list(_walk(svg, ()))
     known = sorted({label for _, labels in elements for label in labels})
-    hidden_names = hidden_layers(path)
+    hidden_names = hidden_layers(data)
     for name in layers or ():
         if name.lower() in {h.lower() for h in hidden_names} and name.lower() not in {k.lower() for k in known}:
             raise InputError(f"{path}: layer {name!r} (--layer) is hidden in the drawing (display:none); "
@@ -304,10 +326,9 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
             hidden += 1
             continue
         label = _name(el, index)
-        if isinstance(el, se.Path):
-            problem = path_data_error(str(el.values.get("d", "")))
-            if problem is not None:
-                raise InputError(f"{path}: {label}: {problem}")
+        problem = path_data_error(str(el.values.get("d", ""))) if isinstance(el, se.Path) else _attribute_error(el)
+        if problem is not None:
+            raise InputError(f"{path}: {label}: {problem}")
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
     notes = []
     if ignored:

@@ -10,7 +10,8 @@ certified between them, as the planar check does (coatsim.geometry.certify):
   derivative of at least −1 / (r − d) (an arc of radius r: a torus tube), so
   max(f_a, f_b) + c·length² / 8 bounds it too; edges whose bound exceeds the maximum found are
   halved and their midpoints measured;
-- chain -> polyline: at points every ``tolerance / 4`` along the chain and every segment end;
+- chain -> polyline: at points every ``tolerance / 4`` along the chain, or every median input
+  edge if that is longer, and every segment end;
   between two of them the same two bounds hold with the input edge nearest either end (the
   distance to an edge is convex in space, so along an arc of radius r it bends by at least
   −1 / r); stretches in doubt are halved.
@@ -55,7 +56,10 @@ def hausdorff3(polyline: np.ndarray, chain: SpaceChain, tolerance: float) -> Dev
         raise ValueError(f"hausdorff3 needs a polyline of at least two 3-D points, got shape {verts.shape}")
     table = SegmentTable.of(chain)
     step = tolerance / CHAIN_SAMPLES_PER_SIGMA
-    return Deviation3(_input_to_chain(verts, table, step), _chain_to_input(verts, table, step))
+    # the chain is measured at about the input's own spacing (or finer): between two such
+    # points the bounds certify it, halving where they do not
+    edge = float(np.median(np.linalg.norm(np.diff(verts, axis=0), axis=1)))
+    return Deviation3(_input_to_chain(verts, table, step), _chain_to_input(verts, table, max(step, edge)))
 
 
 def distance_to_chain(points: np.ndarray, chain: SpaceChain, tolerance: float) -> np.ndarray:

@@ -3,6 +3,8 @@
 Each is a dense polyline (mm) of a curve a gun could follow on a curved part: a helix, a wave
 wound on a cylinder, a spiral on a sphere, a closed curve on a saddle, a section of a torus
 knot, and a blade-like pass (an airfoil-shaped sweep over a twisted, cambered surface).
+``HELD_OUT`` are families the fit was never tuned on: Viviani's curve, a conical spiral, a
+trefoil knot, a seam over a free-form surface, and irregular noisy samples.
 """
 
 from __future__ import annotations
@@ -60,8 +62,51 @@ def blade_pass(n: int = 3000) -> np.ndarray:
                             chord * np.sin(twist) + camber * np.cos(twist)))
 
 
+def viviani(n: int = 3000) -> np.ndarray:
+    """Viviani's curve (a sphere of radius 80 mm cut by a cylinder of radius 40 mm through
+    its centre): a closed figure eight."""
+    t = np.linspace(0.0, 4 * math.pi, n)
+    return np.column_stack((40 * (1 + np.cos(t)), 40 * np.sin(t), 80 * np.sin(t / 2)))
+
+
+def conical_spiral(n: int = 3000) -> np.ndarray:
+    """Three turns up a cone, the radius growing from 10 to 60 mm over 80 mm of height."""
+    u = np.linspace(0.0, 1.0, n)
+    r, angle = 10 + 50 * u, 6 * math.pi * u
+    return np.column_stack((r * np.cos(angle), r * np.sin(angle), 80 * u))
+
+
+def trefoil(n: int = 3000) -> np.ndarray:
+    """The closed trefoil knot, 20 mm to the unit."""
+    t = np.linspace(0.0, 2 * math.pi, n)
+    return 20 * np.column_stack((np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)))
+
+
+def freeform_seam(n: int = 3000) -> np.ndarray:
+    """A seam 150 mm long weaving over a free-form surface (two Gaussian bumps and a twist)."""
+    u = np.linspace(0.0, 1.0, n)
+    x, y = 150 * u, 30 * np.sin(2 * math.pi * u) + 10 * u**2
+    z = 25 * np.exp(-((x - 50) ** 2 + (y - 10) ** 2) / 900) - 15 * np.exp(-((x - 110) ** 2 + (y + 5) ** 2) / 600) \
+        + 0.002 * x * y
+    return np.column_stack((x, y, z))
+
+
+def noisy_lissajous(n: int = 3000) -> np.ndarray:
+    """A space Lissajous arc sampled at irregular spacing with 0.01 mm of Gaussian noise
+    (seeded: the same points every time)."""
+    rng = np.random.default_rng(23)
+    t = np.sort(rng.uniform(0.0, math.pi, n))
+    t[[0, -1]] = 0.0, math.pi
+    pts = np.column_stack((60 * np.sin(t), 40 * np.sin(2 * t + 0.5), 25 * np.sin(3 * t)))
+    return pts + rng.normal(scale=0.01, size=pts.shape)
+
+
 FAMILIES: dict[str, Family] = {
     "helix": helix, "cylinder": cylinder_wave, "sphere": sphere_spiral,
     "saddle": saddle, "torus": torus_section, "blade": blade_pass,
 }
 TOLERANCES_MM = (0.05, 0.1, 0.5)
+HELD_OUT: dict[str, Family] = {
+    "viviani": viviani, "cone": conical_spiral, "trefoil": trefoil, "freeform": freeform_seam,
+    "noisy": noisy_lissajous,
+}

@@ -30,10 +30,12 @@ MERGE_TOL = 1e-9  # lines this collinear, arcs this co-circular (relative) merge
 
 @dataclass(frozen=True)
 class RunChain:
-    """A run's segments and whether every arc kept its cap and minimum length."""
+    """A run's segments, whether every arc kept its cap and minimum length, and the chain's
+    certified deviation from the run (mm) when it is known."""
 
     segments: tuple[Segment3, ...]
     limits_kept: bool
+    deviation_mm: float | None = None
 
 
 class _Run:

@@ -3,10 +3,11 @@
 A curve that lies in a plane within σ/2 is fitted by the planar fitter (the paper's method,
 coatsim.geometry.segment) in that plane and placed back, so it gets exactly the segments of
 its 2-D fit (the plane's distance h is taken off the planar tolerance: √(σ² − h²)). A space
-curve is split at its true corners and each run fitted by spatial biarcs
-(coatsim.geometry.space.fit); a closed loop without corners keeps its tangent across the
-seam. Either way the result is certified by the exact 3-D Hausdorff check; a fit that misses
-σ is repeated at a narrower working tolerance.
+curve is split at its true corners and each run fitted by an arc spline whose junctions are
+free inside the σ-tube (coatsim.geometry.space.tube_fit), or, where that finds nothing, by
+spatial biarcs through the input narrowed until within (coatsim.geometry.space.fit); a
+closed loop without corners keeps its tangent across the seam, which is tried at a few places
+(the one knot the fit cannot move). Every run is certified by the exact 3-D Hausdorff check.
 """
 
 from __future__ import annotations
@@ -20,20 +21,24 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.geometry.curves import make_curve
-from coatsim.geometry.dynamics import speed_limited
+from coatsim.geometry.limits import check_min_segment
+from coatsim.geometry.dynamics import curvature_limit, speed_limited
 from coatsim.geometry.limits import MIN_LENGTH_SHARE, MIN_LENGTH_SIGMAS, NEIGHBOURHOOD_WINDOWS, FitLimits
 from coatsim.geometry.segment import segment_curve
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import SpaceCurve
 from coatsim.geometry.space.deviation import hausdorff3
-from coatsim.geometry.space.fit import fit_run3
+from coatsim.geometry.space.fit import RunChain, fit_run3
+from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.local import curvature_profile3, detect_corners3, tangent_at, arc_length, window_mm
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import Arc3, place
+from coatsim.geometry.space.tube_fit import fit_tube_run
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
 NARROWER = (0.9, 0.75, 0.5, 0.3)  # working tolerances (shares of σ) tried in turn
 KINK_RAD = 1e-9  # a junction breaking its tangent by more is listed as a corner
+SEAM_SHIFTS = (0.0, 1 / 3, 2 / 3)  # a loop's seams tried, in shares of a greedy arc past its first point
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,6 +124,7 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
     ``segment_curve``."""
     _check(tolerance_mm, "tolerance_mm", "mm")
     _check(min_segment_mm, "min_segment_mm", "mm")
+    check_min_segment(min_segment_mm)
     _check(speed_mm_s, "speed_mm_s", "mm/s")
     _check(tool_accel_mm_s2, "tool_accel_mm_s2", "mm/s²")
     if not (math.isfinite(corner_deg) and 0 < corner_deg < 180):
@@ -156,7 +162,7 @@ def _fit_planar(curve: SpaceCurve, pose: Pose, height: float, tol: float, corner
 
 def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm: float | None,
                speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> tuple[SpaceChain, float, float | None, bool]:
-    """Biarc chains over the runs between corners, narrowed until certified within ``tol``."""
+    """G1 chains over the runs between corners, each certified within ``tol``."""
     pts = curve.points
     corners = detect_corners3(pts, curve.closed, corner_deg, tol)
     if curve.closed and len(corners):
@@ -168,29 +174,64 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
     else:
         cuts = [0, *[int(c) for c in corners], len(pts) - 1]
     loop = curve.closed and not len(corners)
-    speed_kappa = None if speed_mm_s is None else tool_accel_mm_s2 / speed_mm_s**2
-    for share in NARROWER:
-        segments, kept, radii, junctions = [], True, [], []
-        for a, b in zip(cuts[:-1], cuts[1:]):
-            run = pts[a : b + 1]
-            limits, window = _limits(run, loop, tol, min_segment_mm, speed_kappa)
-            seam = tangent_at(*_seam_view(pts, window), window) if loop else None
-            fitted = fit_run3(run, share * tol, limits, window, seam, seam)
-            segments.extend(fitted.segments)
-            junctions.append(len(segments) - 1)
-            kept = kept and fitted.limits_kept
-            radii.append(limits.profile.tightest_radius_mm)
-        corner_junctions = tuple(junctions[:-1]) + ((junctions[-1],) if curve.closed and len(corners) else ())
-        chain, kinked = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
-        kept = kept and not kinked
-        dev = hausdorff3(pts, chain, tol).hausdorff
-        if dev <= tol:
-            break
-    else:
-        raise InputError(f"{curve.name}: no chain within {tol:g} mm was found (deviation {dev:.4g} mm); "
-                         "the input may be too noisy for tolerance_mm")
+    speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
+    segments, kept, radii, junctions, devs = [], True, [], [], []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        if loop:
+            fitted, dev, limits = _fit_loop(curve.name, pts, tol, min_segment_mm, speed_kappa)
+        else:
+            limits, window = _limits(pts[a : b + 1], False, tol, min_segment_mm, speed_kappa)
+            fitted, dev = _fit_run(curve.name, pts[a : b + 1], tol, limits, window, None)
+        segments.extend(fitted.segments)
+        junctions.append(len(segments) - 1)
+        kept = kept and fitted.limits_kept
+        radii.append(limits.profile.tightest_radius_mm)
+        devs.append(dev)
+    corner_junctions = tuple(junctions[:-1]) + ((junctions[-1],) if curve.closed and len(corners) else ())
+    chain, kinked = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
+    # one run: its certified deviation is the chain's; several: the whole is certified again
+    # (an input point may lie nearer another run's segments than its own)
+    dev = devs[0] if len(devs) == 1 else hausdorff3(pts, chain, tol).hausdorff
     tightest = min(radii)
-    return chain, dev, tightest if math.isfinite(tightest) else None, kept
+    return chain, dev, tightest if math.isfinite(tightest) else None, kept and not kinked
+
+
+def _fit_run(name: str, run: np.ndarray, tol: float, limits: FitLimits, window: float,
+             seam: np.ndarray | None) -> tuple[RunChain, float]:
+    """A run's chain and its certified deviation: the arc spline in the tube
+    (coatsim.geometry.space.tube_fit), else biarcs through the input narrowed until within."""
+    fitted = fit_tube_run(run, tol, limits, window, seam_tangent=seam)
+    if fitted is not None:
+        return fitted, fitted.deviation_mm
+    for share in NARROWER:
+        fitted = fit_run3(run, share * tol, limits, window, seam, seam)
+        dev = hausdorff3(run, SpaceChain(fitted.segments, seam is not None), tol).hausdorff
+        if dev <= tol:
+            return fitted, dev
+    raise InputError(f"{name}: no chain within {tol:g} mm was found (deviation {dev:.4g} mm); "
+                     "the input may be too noisy for tolerance_mm")
+
+
+def _fit_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | None,
+              speed_kappa: float | None) -> tuple[RunChain, float, FitLimits]:
+    """A closed loop without corners, its seam (where the chain's knots start) tried at a few
+    shares of a greedy arc past the input's first point (SEAM_SHIFTS) until the chain has no
+    more pieces than the greedy fitter; the fewest kept (the chain, its certified deviation
+    and the limits it was fitted under). The seam is the one knot the fit cannot move."""
+    body, s = loop[:-1], arc_length(loop)
+    greedy = max(len(greedy_knots(loop, tol)) - 1, 1)
+    arc = s[-1] / greedy
+    best = None
+    for share in SEAM_SHIFTS:
+        k = int(np.searchsorted(s, share * arc)) % len(body)
+        pts = np.vstack((body[k:], body[:k], body[k : k + 1]))
+        limits, window = _limits(pts, True, tol, min_segment_mm, speed_kappa)
+        fitted, dev = _fit_run(name, pts, tol, limits, window, tangent_at(*_seam_view(pts, window), window))
+        if best is None or len(fitted.segments) < len(best[0].segments):
+            best = (fitted, dev, limits)
+        if len(fitted.segments) <= greedy:
+            break
+    return best
 
 
 def _with_kinks(chain: SpaceChain) -> tuple[SpaceChain, bool]:

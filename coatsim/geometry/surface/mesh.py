@@ -16,8 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from coatsim.core import defaults
-from coatsim.core.budgets import MAX_PLAN_MESH_BYTES, MAX_PLAN_TRIANGLES, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import read_input
 
 #: millimetres per unit of a mesh file
 UNITS_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -62,11 +63,7 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     if path.suffix.lower() not in MESH_SUFFIXES:
         raise InputError(f"{path}: not a mesh file this reader knows (suffix {path.suffix or 'none'}); "
                          f"export the part as {', '.join(s[1:].upper() for s in MESH_SUFFIXES)}")
-    if not path.is_file():
-        raise InputError(f"{path}: part mesh file not found")
-    check_budget(f"{path}: file size in bytes", path.stat().st_size, MAX_PLAN_MESH_BYTES,
-                 "decimate the mesh (e.g. MeshLab quadric edge collapse) or export it as binary STL")
-    data = path.read_bytes()
+    data = read_input(path, "part mesh", "plan_mesh_bytes")
     if path.suffix.lower() == ".stl":
         _check_binary_stl(path, data)
     try:
@@ -79,7 +76,7 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     if len(faces) == 0:
         raise InputError(f"{path}: the file holds no triangles (a point cloud or an empty export); "
                          "mesh the scan first (e.g. Poisson reconstruction) and export the surface")
-    check_budget(f"{path}: triangles", len(faces), MAX_PLAN_TRIANGLES,
+    check_budget(f"{path}: triangles", len(faces), "plan_triangles",
                  "decimate the mesh (e.g. MeshLab quadric edge collapse)")
     file_units = _TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
     vertices = np.asarray(mesh.vertices, dtype=float)
@@ -95,7 +92,7 @@ def _check_binary_stl(path: Path, data: bytes) -> None:
     if len(data) != 84 + 50 * count:
         raise InputError(f"{path}: a binary STL of {count} triangles should be {84 + 50 * count} bytes, the file has "
                          f"{len(data)}; the file is truncated or damaged, export it again")
-    check_budget(f"{path}: triangles", count, MAX_PLAN_TRIANGLES,
+    check_budget(f"{path}: triangles", count, "plan_triangles",
                  "decimate the mesh (e.g. MeshLab quadric edge collapse)")
 
 
@@ -109,7 +106,7 @@ def part_from_arrays(vertices: np.ndarray, faces: np.ndarray, name: str = "mesh"
         raise InputError(f"{name}: the mesh holds no triangles")
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise InputError(f"{name}: a triangle refers to a vertex that does not exist")
-    check_budget(f"{name}: triangles", len(faces), MAX_PLAN_TRIANGLES, "decimate the mesh")
+    check_budget(f"{name}: triangles", len(faces), "plan_triangles", "decimate the mesh")
     digest = hashlib.sha256(vertices.tobytes() + faces.tobytes()).hexdigest()
     return _part(name, digest, vertices, faces, units, None)
 

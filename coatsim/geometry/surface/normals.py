@@ -22,6 +22,8 @@ from coatsim.geometry.surface.topology import Edges, face_components, face_pairs
 
 #: relative residual at which the smoothing solve stops (normals to about 1e-8)
 SMOOTHING_RTOL = 1e-9
+#: a probe counts as behind a face when more than this fraction of its step behind it (kept_outward)
+BEHIND_FRACTION = 1e-3
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,7 +166,8 @@ def kept_outward(points: np.ndarray, normals: np.ndarray, boxes: TriangleBoxes, 
     owner, face, distance = boxes.touching(points, tolerance)
     keep = distance <= tolerance
     owner, face = owner[keep], face[keep]
-    bad = np.flatnonzero(_behind(points + tolerance * normals, owner, face, boxes.triangles, face_n, len(points)))
+    probes = points + tolerance * normals
+    bad = np.flatnonzero(_behind(probes, owner, face, boxes.triangles, face_n, len(points), BEHIND_FRACTION * tolerance))
     if not len(bad):
         return normals, 0
     fixed = normals.copy()
@@ -177,9 +180,11 @@ def kept_outward(points: np.ndarray, normals: np.ndarray, boxes: TriangleBoxes, 
 
 
 def _behind(probes: np.ndarray, owner: np.ndarray, face: np.ndarray, triangles: np.ndarray, face_n: np.ndarray,
-            count: int) -> np.ndarray:
-    """Whether each probe lies behind the nearest of its faces (ties at an edge or a vertex
-    judged by the sum of the tied faces' normals, a pseudo-normal), (count,) bool."""
+            count: int, slack: float) -> np.ndarray:
+    """Whether each probe lies more than ``slack`` behind the nearest of its faces (ties at an
+    edge or a vertex judged by the sum of the tied faces' normals, a pseudo-normal), (count,)
+    bool. The slack keeps a probe that runs along a face (a normal at a concave sharp edge
+    that is the other face's normal) from counting as behind it by rounding."""
     import trimesh
 
     closest = trimesh.triangles.closest_point(triangles[face], probes[owner])
@@ -193,4 +198,4 @@ def _behind(probes: np.ndarray, owner: np.ndarray, face: np.ndarray, triangles: 
     foot[owner[tied]] = closest[tied]
     side = np.einsum("ij,ij->i", probes - foot, pseudo)
     has = np.isfinite(best)
-    return has & (side < 0)
+    return has & (side < -slack)

@@ -3,11 +3,12 @@
 1. The part is wound consistently and outward (an open scan toward the gun's side) and refined
    so that no edge exceeds the smoothing length (or 1/200 of the part).
 2. The region is selected by its face normals (facing, box or all; only what the gun sees) and
-   refined to edges of at most ``max_edge_mm`` (a quarter of the spacing by default); its normals
-   are smoothed over the region and over the surface running on past its border (up to two
-   smoothing lengths, not across a sharp edge, region.smoothing_ring); it is split into
-   connected pieces (islands smaller than a spacing squared are dropped) and the distance to its
-   border is measured along the surface.
+   refined to edges of at most ``max_edge_mm`` (a quarter of the spacing by default); it is cut
+   along its sharp edges (features.py), and its normals are smoothed within each feature region
+   and over the surface running on past its border (up to two smoothing lengths, not across a
+   sharp edge, region.smoothing_ring); it is split into connected pieces (a sharp edge bounds
+   them like a border, so no pass crosses one; islands smaller than a spacing squared are
+   dropped) and the distance to its border is measured along the surface.
 3. Each piece gets the pattern's field and levels (raster, geodesic, boundary); the level curves
    lose the edge band and become passes in spraying order with lead-in and lead-out.
 4. The gaps between passes and the coverage are measured along the surface, and the result is
@@ -18,7 +19,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Literal
 
 import numpy as np
@@ -29,6 +30,8 @@ from coatsim.geometry.surface.boundary import boundary_piece
 from coatsim.geometry.surface.boxes import SmallTriangles, TriangleBoxes
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
+from coatsim.geometry.surface.features import SHARP_EDGE_DEG, feature_split, sharp_length_mm
+from coatsim.geometry.surface.fill import filled
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.normals import (
@@ -56,7 +59,7 @@ from coatsim.geometry.surface.region import (
     smoothing_ring,
     unit_vector,
 )
-from coatsim.geometry.surface.spacing import measure, ripple_pct, spacing_for_ripple
+from coatsim.geometry.surface.spacing import band_note, measure, ripple_pct, spacing_for_ripple
 from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
 from coatsim.geometry.surface.topology import (
     border_vertices,
@@ -162,9 +165,10 @@ class _Clock:
 
 def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
                  notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``) and
-    smoothed unit vertex normals (smoothed over the region and the surface running on past it);
-    and the part's own faces wound outward."""
+    """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``, made
+    manifold and cut along sharp edges) and unit vertex normals (smoothed within each feature
+    region, over the region and the surface running on past it); and the part's own faces
+    wound outward."""
     oriented = orient(part.vertices_mm, part.faces, None)
     toward = _toward(o.region, part.vertices_mm, oriented)
     oriented = orient(part.vertices_mm, part.faces, toward)
@@ -182,14 +186,23 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     sv, sf, _ = submesh(v, f, both)
     sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
                              "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm"))
+    inside = inside.astype(bool)
+    # from here on the surface is manifold: a bow-tie vertex or a non-manifold edge is split
+    split, copies = manifold_split(sf)
+    added = len(np.unique(split[inside])) - len(np.unique(sf[inside]))
+    if added:
+        notes.append(f"split {added} vertices where the region is not manifold (bow-tie vertices, edges with more "
+                     "than two triangles); the region's border runs along them")
+    sv, sf = sv[copies], split
+    sharp_mm = sharp_length_mm(sv, sf[inside], face_normals(sv, sf[inside])[0])
+    if sharp_mm > 0:
+        notes.append(f"the region has {sharp_mm:.4g} mm of sharp edges (faces meeting at more than {SHARP_EDGE_DEG:g} "
+                     "deg): normals are smoothed on either side, never across, and passes stop at them")
+    sf, copies = feature_split(sf, face_normals(sv, sf)[0])
+    sv = sv[copies]
     normals = smooth_normals(sv, sf, s.smoothing_mm)
-    rv, rf, parent = submesh(sv, sf, inside.astype(bool))
-    # from here on the region is manifold: a bow-tie vertex or a non-manifold edge is split
-    rf, copies = manifold_split(rf)
-    if len(copies) > len(rv):
-        notes.append(f"split {len(copies) - len(rv)} vertices where the region is not manifold (bow-tie vertices, "
-                     "edges with more than two triangles); the region's border runs along them")
-    return rv[copies], rf, normals[parent][copies], oriented.faces
+    rv, rf, parent = submesh(sv, sf, inside)
+    return rv, rf, normals[parent], oriented.faces
 
 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
@@ -234,8 +247,11 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
     return pieces, float(face_area.sum()), angle
 
 
-def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarray | None) -> list[Piece]:
-    """Each piece with its pattern's field and levels (pieces a geodesic start misses are left out)."""
+def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarray | None,
+               notes: list[str]) -> list[Piece]:
+    """Each piece with its pattern's field and levels. A piece a geodesic plane or points miss
+    (a face behind a sharp edge, an island) takes its passes from its own border, with a note;
+    a closed one is left out."""
     band = o.edge_band_mm
     if o.pattern == "raster":
         return [p.with_field(p.vertices @ step, raster_levels(p.vertices, p.faces, p.normals, step, p.inside(band),
@@ -248,6 +264,12 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
     if all(p is None for p in done):
         raise EmptyRegionOfInterest("the start does not touch the region; give a plane that cuts it or points on it "
                                     "as the start", parameters=("start",))
+    missed = [k for k, p in enumerate(done) if p is None and pieces[k].on_border.any()]
+    for k in missed:
+        done[k] = geodesic_piece(pieces[k], FromBoundary(), s.spacing_mm, band)
+    if missed:
+        notes.append(f"{len(missed)} piece(s) of the region that the start does not reach (beyond a sharp edge, "
+                     f"islands; {sum(pieces[k].area_mm2 for k in missed):.4g} mm2) take passes from their own border")
     return [p for p in done if p is not None]
 
 
@@ -256,6 +278,18 @@ def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
     return [Trace(part, rank, index) for rank, level in enumerate(piece.levels)
             for curve in level_curves(piece.vertices, piece.faces, piece.field, float(level))
             for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces)]
+
+
+def _filling(pieces: list[Piece], traces: list[Trace], band: float, spacing_mm: float, notes: list[str]) -> list[Trace]:
+    """Passes where the levels leave a patch uncovered (fill.py), sprayed after each piece's
+    levels."""
+    added = [Trace(part, len(p.levels), k) for k, p in enumerate(pieces)
+             for curve in filled(p, [t.curve for t in traces if t.piece == k], spacing_mm)
+             for part in clip(curve, p.border_mm, band, p.vertices, p.faces)]
+    if added:
+        notes.append(f"added {len(added)} pass(es) where the levels leave patches more than half a spacing from every "
+                     "pass (strips narrower than a spacing, ridges short of the next level)")
+    return added
 
 
 def _passes(pieces: list[Piece], traces: list[Trace], part: Part, outward_faces: np.ndarray, o: PlanOptions,
@@ -295,14 +329,19 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
         given = options.step_direction
         step = (unit_vector(given, "step_direction", "step_direction") if given is not None
                 else sign_fixed(principal_axes(rv, rf)[1]))
-    pieces = _patterned(pieces, options, s, step)
+    pieces = _patterned(pieces, options, s, step, notes)
     clock.lap(options.pattern)
     traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
-    gaps, covered = [np.zeros(0)], 0.0
+    traces += _filling(pieces, traces, options.edge_band_mm, s.spacing_mm, notes)
+    clock.lap("fill")
+    gaps, ends, covered = [np.zeros(0)], [np.zeros(0, dtype=bool)], 0.0
     for k, p in enumerate(pieces):
-        measured = measure(p, [t for t in traces if t.piece == k], s.spacing_mm)
+        measured = measure(p, [t for t in traces if t.piece == k], s.spacing_mm, options.pattern != "raster")
         gaps.append(measured.gaps_mm)
+        ends.append(measured.at_end)
         covered += measured.covered_mm2
+    note = band_note(np.concatenate(gaps), np.concatenate(ends), s.spacing_mm)
+    notes.extend([note] if note else [])
     clock.lap("measure")
     passes = _passes(pieces, traces, part, outward_faces, options, s, notes)
     if not passes:
@@ -314,7 +353,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     info = MeshInfo(part.file, part.sha256, len(part.vertices_mm), len(part.faces), tuple(map(float, options.pose)))
     paths = SurfacePaths(info, options.pattern, s.spacing_mm, options.standoff_mm,
                          ripple_pct(s.spacing_mm, options.footprint_sigma_mm), passes, stats, tuple(notes))
-    verify(part, paths)
+    stats = replace(stats, normal_off_faces_deg=verify(part, paths))
     clock.lap("verify")
     return SurfacePaths(paths.mesh, paths.pattern, paths.spacing_mm, paths.standoff_mm, paths.ripple_pct,
-                        paths.passes, paths.stats, paths.notes, tuple(clock.marks))
+                        paths.passes, stats, paths.notes, tuple(clock.marks))

@@ -26,7 +26,7 @@ from typing import Callable
 
 import numpy as np
 
-from coatsim.core.budgets import MAX_PLAN_PASSES, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
 from coatsim.geometry.surface.distance import Marching, NearestOnCurves
@@ -56,7 +56,7 @@ def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, 
         return np.array([0.5 * (low + high)])
     levels = [first]
     while True:
-        check_budget("raster passes", len(levels), MAX_PLAN_PASSES, "use a larger spacing_mm", ("spacing_mm",))
+        check_budget("raster passes", len(levels), "plan_passes", "use a larger spacing_mm", ("spacing_mm",))
         step = _next_level(mesh, levels[-1], spacing_mm, surface)
         if step < last:
             levels.append(step)

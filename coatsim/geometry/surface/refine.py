@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from coatsim.core.budgets import MAX_PLAN_TRIANGLES, check_budget
+from coatsim.core.budgets import check_budget
 from coatsim.geometry.surface.topology import face_pairs, mesh_edges
 
 #: two faces count as coplanar when their unit normals' dot product exceeds 1 minus this
@@ -39,7 +39,7 @@ def refined(vertices: np.ndarray, faces: np.ndarray, max_edge_mm: float, what: s
         return vertices, faces, labels
     # bisected triangles end with edges between max_edge/2 and max_edge: at least a quarter of max_edge^2 each
     estimate = max(len(faces), 4.0 * area / max_edge_mm**2)
-    check_budget(f"{what} refined to edges of {max_edge_mm:.3g} mm: triangles", estimate, MAX_PLAN_TRIANGLES, fix,
+    check_budget(f"{what} refined to edges of {max_edge_mm:.3g} mm: triangles", estimate, "plan_triangles", fix,
                  parameters)
     iterations = int(np.ceil(np.log2(max(lengths.max() / max_edge_mm, 1.0)))) + 2
     v, f, index = trimesh.remesh.subdivide_to_size(vertices, faces, max_edge=max_edge_mm, max_iter=iterations,

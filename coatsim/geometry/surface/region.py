@@ -25,12 +25,8 @@ import numpy as np
 
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
+from coatsim.geometry.surface.features import smooth_pairs
 from coatsim.geometry.surface.normals import face_normals
-from coatsim.geometry.surface.topology import face_pairs, mesh_edges
-
-#: an edge whose faces' normals differ by more than this is sharp: normals are not smoothed across
-#: it from outside the region
-SHARP_EDGE_DEG = 40.0
 
 
 @dataclass(frozen=True)
@@ -159,10 +155,7 @@ def smoothing_ring(vertices: np.ndarray, faces: np.ndarray, mask: np.ndarray, re
     border the normals at the border are not biased inward."""
     from scipy.spatial import cKDTree
 
-    normals, _ = face_normals(vertices, faces)
-    pairs, _ = face_pairs(faces, mesh_edges(faces))
-    smooth = np.einsum("ij,ij->i", normals[pairs[:, 0]], normals[pairs[:, 1]]) > math.cos(math.radians(SHARP_EDGE_DEG))
-    pairs = pairs[smooth]
+    pairs = smooth_pairs(faces, face_normals(vertices, faces)[0])
     centres = vertices[faces].mean(axis=1)
     near = cKDTree(centres[mask]).query(centres, distance_upper_bound=reach_mm)[0] <= reach_mm
     grown = mask.copy()

@@ -18,6 +18,7 @@ from typing import Any, Optional
 
 import numpy as np
 
+from coatsim.core.jsonfile import read_json
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import write_text
 
@@ -65,8 +66,11 @@ class MeshInfo:
 class PlanStats:
     """Figures of a plan: pass count, region area (mm^2), coverage (share of the region within
     half a spacing of a pass), spacing along the surface (min, median, max mm; None without
-    neighbouring passes), the normal smoothing length (mm) and the largest angle between a
-    smoothed normal and a face around it (deg)."""
+    neighbouring passes), the normal smoothing length (mm), the largest angle between a
+    smoothed normal and a face around it (deg; on a coarsely faceted mesh the faces around one
+    vertex differ by as much) and the largest angle by which a pass normal leaves the cone of
+    the face normals near its point in its feature region (deg; the independent check's figure,
+    verify.py)."""
 
     passes: int
     region_area_mm2: float
@@ -76,6 +80,7 @@ class PlanStats:
     spacing_max_mm: Optional[float]
     normal_smoothing_mm: float
     normal_max_angle_deg: float
+    normal_off_faces_deg: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,6 +130,7 @@ def to_document(paths: SurfacePaths) -> dict[str, Any]:
                                                "max": _number(s.spacing_max_mm)},
                   "normal_smoothing_mm": _number(s.normal_smoothing_mm),
                   "normal_max_angle_deg": _number(s.normal_max_angle_deg, 4),
+                  "normal_off_faces_deg": _number(s.normal_off_faces_deg, 4),
                   "seconds": None},
     }
 
@@ -149,13 +155,7 @@ def write_surfacepaths(path: str | Path, paths: SurfacePaths) -> None:
 def read_surfacepaths(path: str | Path) -> SurfacePaths:
     """Read a ``coatsim.surfacepaths/1`` file; an InputError naming the field at fault."""
     path = Path(path)
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    except (UnicodeDecodeError, ValueError) as exc:
-        raise InputError(f"{path}: not a JSON document ({str(exc).splitlines()[0][:120]})") from None
-    return from_document(doc, str(path))
+    return from_document(read_json(path, "surface paths file"), str(path))
 
 
 def _field(doc: Any, key: str, where: str) -> Any:
@@ -232,7 +232,9 @@ def from_document(doc: Any, where: str) -> SurfacePaths:
                       *(_optional(_field(gaps, k, f"{where}.stats.spacing_along_surface_mm"),
                                   f"{where}.stats.spacing_along_surface_mm.{k}") for k in ("min", "median", "max")),
                       _positive(st, "normal_smoothing_mm", f"{where}.stats", True),
-                      _positive(st, "normal_max_angle_deg", f"{where}.stats", True))
+                      _positive(st, "normal_max_angle_deg", f"{where}.stats", True),
+                      _positive(st, "normal_off_faces_deg", f"{where}.stats", True) if "normal_off_faces_deg" in st
+                      else 0.0)
     return SurfacePaths(info, pattern, _positive(doc, "spacing_mm", where), _positive(doc, "standoff_mm", where),
                         _positive(doc, "ripple_pct", where, True), passes, stats)
 

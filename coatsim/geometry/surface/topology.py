@@ -89,15 +89,17 @@ def submesh(vertices: np.ndarray, faces: np.ndarray, keep: np.ndarray) -> tuple[
     return vertices[used], local.reshape(-1, 3), used
 
 
-def manifold_split(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def manifold_split(faces: np.ndarray, pairs: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Faces on vertices made manifold: each vertex is split into one copy per fan of faces
     around it joined by manifold edges (a bow-tie vertex becomes two, the faces of a
-    non-manifold edge part along it). Returns (new faces, original vertex of each new vertex),
-    new vertices numbered in order of their first face corner."""
+    non-manifold edge part along it); only by the face ``pairs`` (K, 2) given, when given (a
+    subset of face_pairs: the others part too). Returns (new faces, original vertex of each new
+    vertex), new vertices numbered in order of their first face corner."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
-    pairs, _ = face_pairs(faces, mesh_edges(faces))
+    if pairs is None:
+        pairs, _ = face_pairs(faces, mesh_edges(faces))
     f, g = pairs[:, 0], pairs[:, 1]
     rows, cols = [], []
     for k in range(3):  # the corners of f and g at each vertex they share are one corner group

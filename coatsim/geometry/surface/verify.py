@@ -2,10 +2,12 @@
 
 It uses only the part as read (not the refined and cut meshes the planner worked on) and the
 plan's passes: every point must lie on the part's surface, every normal must be a unit vector
-within a few degrees of the cone of the part's face normals around it (the faces whose bounding
-boxes reach within two smoothing lengths per axis, where the smoothing draws nearly all its weight; a
-sharp edge widens the cone, a flat face narrows it to its normal), and on a closed part every
-normal must point out of it.
+within a few degrees of the cone of the part's face normals near it, and on a closed part every
+normal must point out of it. The faces near a point are those of its own feature region (the
+faces joined to the ones it lies on by edges that are not sharp, features.py; a point on a
+sharp edge may take either side) whose bounding boxes reach within two smoothing lengths per
+axis, where the smoothing draws nearly all its weight: facets of a curved surface widen the
+cone, a flat face narrows it to its normal, and a normal averaged across a sharp edge fails.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import numpy as np
 
 from coatsim.core.errors import ExecutionError
 from coatsim.geometry.surface.boxes import TriangleBoxes
+from coatsim.geometry.surface.features import feature_labels
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.normals import face_normals
 from coatsim.geometry.surface.surfacepaths import SurfacePaths
@@ -26,6 +29,10 @@ CONE_SMOOTHING_LENGTHS = 2.0
 CONE_CELLS = 6.0
 #: points checked at once (bounds the memory of the point-face pairs)
 VERIFY_CHUNK = 2048
+#: on a closed part a normal's probe of this fraction of the extent must not end inside it ...
+INWARD_STEP_FRACTION = 1e-4
+#: ... deeper than this fraction of the probe (about 6 deg into the part)
+INWARD_DEPTH_FRACTION = 0.1
 #: a normal may leave the cone of the face normals around it by this much
 NORMAL_TOLERANCE_DEG = 5.0
 
@@ -46,12 +53,13 @@ def _fail(paths: SurfacePaths, index: int, problem: str) -> None:
                           "repair the mesh (holes, folds) or report it with the mesh")
 
 
-def verify(part: Part, paths: SurfacePaths) -> None:
-    """Raise PlanCheckFailed naming the first point that fails (see the module docstring)."""
+def verify(part: Part, paths: SurfacePaths) -> float:
+    """Raise PlanCheckFailed naming the first point that fails (see the module docstring);
+    return the largest angle (deg) by which a normal leaves the cone of the faces near it."""
     import trimesh
 
     if not paths.passes:
-        return
+        return 0.0
     points = np.concatenate([p.points for p in paths.passes])
     normals = np.concatenate([p.normals for p in paths.passes])
     length = np.linalg.norm(normals, axis=1)
@@ -59,48 +67,83 @@ def verify(part: Part, paths: SurfacePaths) -> None:
     if len(bad):
         _fail(paths, int(bad[0]), f"has a normal of length {length[bad[0]]:.6g}")
     tolerance = ON_MESH_FRACTION * part.extent_mm
-    owner, _, distance = TriangleBoxes(part.vertices_mm, part.faces).touching(points, tolerance)
+    surface = TriangleBoxes(part.vertices_mm, part.faces)
+    owner, _, distance = surface.touching(points, tolerance)
     nearest = np.full(len(points), np.inf)
     np.minimum.at(nearest, owner, distance)
     off = np.flatnonzero(~(nearest <= tolerance))
     if len(off):
         _fail(paths, int(off[0]), "lies off the part's surface")
     radius = CONE_SMOOTHING_LENGTHS * paths.stats.normal_smoothing_mm
-    chosen, face_n, area = _representatives(part, radius / CONE_CELLS)
+    face_n, area = face_normals(part.vertices_mm, part.faces)
+    label = feature_labels(part.faces, face_n, consistent_only=False)
+    chosen = _representatives(part, face_n, label, radius / CONE_CELLS)
+    group_area = np.bincount(chosen, weights=area, minlength=len(part.faces))
+    weight = np.where(group_area > 0, group_area, area)  # a representative stands for its group's area
+    chosen = np.unique(chosen)
     cone = TriangleBoxes(part.vertices_mm, part.faces[chosen])
+    worst_deg = 0.0
     for chunk in np.array_split(np.arange(len(points)), max(1, len(points) // VERIFY_CHUNK)):
-        owner, face = cone.near(points[chunk], radius)
-        excess = _normal_excess_deg(normals[chunk], owner, face_n[face], area[face])
+        owner, face, distance = surface.touching(points[chunk], tolerance)
+        own = (owner[distance <= tolerance], face[distance <= tolerance])
+        owner, rep = cone.near(points[chunk], radius)
+        near = (owner, chosen[rep])
+        excess = _normal_excess_deg(normals[chunk], own, near, face_n, weight, label)
         worst = int(np.argmax(excess))
+        worst_deg = max(worst_deg, float(excess[worst]))
         if excess[worst] > NORMAL_TOLERANCE_DEG:
             _fail(paths, int(chunk[worst]), f"has a normal {excess[worst]:.3g} deg outside the faces around it")
     mesh = trimesh.Trimesh(part.vertices_mm, part.faces, process=False)
     if mesh.is_watertight:
-        inward = np.flatnonzero(mesh.contains(points + 1e-4 * part.extent_mm * normals))
+        step = INWARD_STEP_FRACTION * part.extent_mm
+        probes = points + step * normals
+        inside = np.flatnonzero(mesh.contains(probes))
+        # a probe running along a face (at a concave sharp edge) is not inside by rounding alone
+        depth = np.linalg.norm(trimesh.proximity.closest_point(mesh, probes[inside])[0] - probes[inside], axis=1) \
+            if len(inside) else np.zeros(0)
+        inward = inside[depth > INWARD_DEPTH_FRACTION * step]
         if len(inward):
             _fail(paths, int(inward[0]), "has a normal pointing into the part")
+    return worst_deg
 
 
-def _representatives(part: Part, cell_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One face for each cell of a grid and each direction (to about 20 deg) of the faces whose
-    centres lie in it: (their ids, unit normals, the area of all the faces they stand for). The
-    cone test then sees every direction near a point without visiting every face of a fine scan."""
-    normals, area = face_normals(part.vertices_mm, part.faces)
+def _representatives(part: Part, face_n: np.ndarray, label: np.ndarray, cell_mm: float) -> np.ndarray:
+    """For each face, the face that stands for it: one per feature region, cell of a grid and
+    direction (to about 20 deg) of the faces whose centres lie in it. The cone test then sees
+    every direction near a point without visiting every face of a fine scan."""
     centres = part.vertices_mm[part.faces].mean(axis=1)
-    key = np.column_stack([np.floor((centres - centres.min(axis=0)) / cell_mm), np.round(normals * 3)]).astype(np.int64)
+    key = np.column_stack([label, np.floor((centres - centres.min(axis=0)) / cell_mm),
+                           np.round(face_n * 3)]).astype(np.int64)
     _, first, group = np.unique(key, axis=0, return_index=True, return_inverse=True)
-    return first, normals[first], np.bincount(group.ravel(), weights=area, minlength=len(first))
+    return first[group.ravel()]
 
 
-def _normal_excess_deg(normals: np.ndarray, owner: np.ndarray, near: np.ndarray, area: np.ndarray) -> np.ndarray:
-    """By how much each normal leaves the cone of the face normals near it (deg): ``near``
-    (k, 3) with their ``area`` for the pairs (``owner`` ascending, every point at least once);
-    the cone is centred on their area-weighted mean, face normals taken on the normal's side."""
-    aligned = near * np.where(np.einsum("ij,ij->i", near, normals[owner]) < 0, -1.0, 1.0)[:, None]
-    starts = np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]])
-    mean = np.add.reduceat(aligned * area[:, None], starts, axis=0)
+def _normal_excess_deg(normals: np.ndarray, own: tuple[np.ndarray, np.ndarray], near: tuple[np.ndarray, np.ndarray],
+                       face_n: np.ndarray, area: np.ndarray, label: np.ndarray) -> np.ndarray:
+    """By how much each normal leaves the cone of the face normals near it (deg). ``own``: pairs
+    (point, face) of the faces each point lies on; ``near``: pairs (point, face) of the faces
+    near it, with their ``area``. Per point and feature region of its own faces, the cone holds
+    that region's near and own faces, centred on their area-weighted mean, face normals taken
+    on the normal's side; a point takes the region that fits best (inf with no face at all)."""
+    count = int(label.max()) + 1
+    allowed = np.unique(own[0] * count + label[own[1]])
+    key_near = near[0] * count + label[near[1]]
+    keep = np.isin(key_near, allowed)
+    owner = np.concatenate([own[0], near[0][keep]])
+    face = np.concatenate([own[1], near[1][keep]])
+    key = owner * count + label[face]
+    order = np.argsort(key, kind="stable")
+    key, owner, near_n, weight = key[order], owner[order], face_n[face[order]], area[face[order]]
+    aligned = near_n * np.where(np.einsum("ij,ij->i", near_n, normals[owner]) < 0, -1.0, 1.0)[:, None]
+    starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]]) if len(key) else np.zeros(0, dtype=np.int64)
+    excess = np.full(len(normals), np.inf)
+    if not len(starts):
+        return excess
+    mean = np.add.reduceat(aligned * weight[:, None], starts, axis=0)
     mean /= np.maximum(np.linalg.norm(mean, axis=1), 1e-300)[:, None]
-    group = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(owner)]))
+    group = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(key)]))
     cos = np.clip(np.einsum("ij,ij->i", aligned, mean[group]), -1, 1)
     spread = np.arccos(np.minimum.reduceat(cos, starts))
-    return np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", normals, mean), -1, 1)) - spread)
+    off = np.arccos(np.clip(np.einsum("ij,ij->i", normals[owner[starts]], mean), -1, 1))
+    np.minimum.at(excess, owner[starts], np.degrees(off - spread))
+    return excess

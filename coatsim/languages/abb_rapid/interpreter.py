@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any, Optional, Sequence
 
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.abb_rapid import data as d
 from coatsim.languages.abb_rapid import syntax as s
@@ -449,7 +449,7 @@ def parse_files(paths: Sequence[Path]) -> tuple[tuple[s.Module, ...], dict[str, 
         raise InputError("no program file given")
     modules, texts = [], {}
     for p in paths:
-        text = decode_text(read_input_bytes(p, "program"))
+        text = decode_text(read_program_file(p))
         texts[str(p)] = text
         modules += parse_rapid(text, str(p))
     return tuple(modules), texts

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Sequence
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import read_input_bytes
+from coatsim.core.fileio import read_input
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.edit import edit_lines, indentation
@@ -122,7 +122,7 @@ def edit_in_place(items: Sequence[Path], options: ReadOptions, fitted: Sequence[
         raise InputError(f"the process paths lie in several files ({', '.join(sorted(sources))}){_HINT}")
     source = sources.pop()
     path = next(p for p in items if str(p) == source)
-    data = read_input_bytes(path, "program")
+    data = read_input(path, "program")
     taken = _names_taken(files)
     prefix = next(p for p in ("cv", "cva", "cvb", "cvc", "cvz") if not any(t.startswith(p) for t in taken))
     replacements, trans, counts, ranges = [], [], [], []

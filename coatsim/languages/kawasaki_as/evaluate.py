@@ -16,6 +16,7 @@ from typing import Optional, Union
 
 import numpy as np
 
+from coatsim.core.budgets import check_budget
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kawasaki_as import ast
@@ -204,12 +205,19 @@ class Evaluator:
         if t is ast.Name and e.kind == "string" and not e.whole:
             return self.run.get_string(e)
         if t is ast.Binary and e.op == "+":
-            return self.string(e.left) + self.string(e.right)
+            return self.joined([self.string(e.left), self.string(e.right)])
         if t is ast.Chain and all(op == "+" for op, _ in e.rest):
-            return "".join([self.string(e.first), *(self.string(x) for _, x in e.rest)])
+            return self.joined([self.string(e.first), *(self.string(x) for _, x in e.rest)])
         if t is ast.Call and e.name.startswith("$"):
             return string_call(self, e)
         raise self.error(f"expected a string, found {self.describe(e)}")
+
+    def joined(self, parts: list[str]) -> str:
+        """The strings one after the other, refused past the budget string_chars before they are
+        joined (a few lines doubling a string would otherwise fill memory)."""
+        check_budget(f"{self.run.where()}: characters of a string", sum(map(len, parts)), "string_chars",
+                     "build shorter strings (a controller's string holds 128 characters)")
+        return "".join(parts)
 
     def encode(self, items: tuple[Optional[ast.Expr], ...]) -> str:
         """$ENCODE / TYPE text: values in the current format (/D, /Fw.d, /Ew.d, /Gw.d, /Xn)."""

@@ -10,6 +10,8 @@ from typing import Optional
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.machine import Evaluation
 
+_MAX_FIELD = 1000  # widths and digits of a number format (a controller's string holds 128 characters)
+
 # $-functions of the index the twin does not compute (clock, errors, system data): "".
 _NOT_SIMULATED = {"$DATE", "$TIME", "$ERROR", "$ERRORS", "$ERRLOG", "$SYSDATA"}
 
@@ -75,7 +77,7 @@ def encode(ev: Evaluation, items: tuple[Optional[ast.Expr], ...]) -> str:
             out.append(ev.string(item))
             continue
         out.append(format_number(ev.real(item), fmt))
-    return "".join(out)
+    return ev.joined(out)
 
 
 def decode(ev: Evaluation, e: ast.Call) -> str:
@@ -102,8 +104,8 @@ def format_number(x: float, fmt: str) -> str:
     """``x`` in the format ``fmt`` (D, Fw.d, Ew.d, Gw.d; w the width, d the digits)."""
     kind, spec = fmt[0], fmt[1:]
     width, _, digits = spec.partition(".")
-    w = int(width) if width.isdigit() else 0
-    d = int(digits) if digits.isdigit() else None
+    w = min(int(width), _MAX_FIELD) if width.isdigit() else 0
+    d = min(int(digits), _MAX_FIELD) if digits.isdigit() else None
     if kind == "D":
         return f"{int(round(x)):{w}d}"
     if kind == "F":

@@ -6,7 +6,7 @@ from pathlib import Path
 from typing import Mapping, Optional, Sequence, Union
 
 from coatsim.core.errors import InputError
-from coatsim.core.fileio import read_input_bytes
+from coatsim.core.fileio import read_program_file
 from coatsim.languages.kawasaki_as.interpreter import Run, interpret_run
 from coatsim.languages.kawasaki_as.parser import parse_as_bytes
 from coatsim.languages.kawasaki_as.ast import AsFile
@@ -20,7 +20,7 @@ def parse_files(paths: Paths) -> tuple[AsFile, ...]:
     items = [paths] if isinstance(paths, (str, Path)) else list(paths)
     if not items:
         raise InputError("no program file given")
-    return tuple(parse_as_bytes(read_input_bytes(p, "program"), str(p)) for p in items)
+    return tuple(parse_as_bytes(read_program_file(p), str(p)) for p in items)
 
 
 def read_program(paths: Paths, gun_signal: int = 1, program: Optional[str] = None, *,

@@ -29,7 +29,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.core.fileio import decode_text, read_input_bytes
+from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kuka_krl import values as v
 from coatsim.languages.kuka_krl.blocks import Block, build
@@ -724,7 +724,7 @@ def read_krl(paths: Sequence[Path], options: ReadOptions) -> Reading:
         raise InputError("no program file given")
     routines, datas, texts = [], [], {}
     for p in _files(paths):
-        text = decode_text(read_input_bytes(p, "program"))
+        text = decode_text(read_program_file(p))
         texts[str(p)] = text
         r, d = parse_krl(text, str(p))
         routines += r

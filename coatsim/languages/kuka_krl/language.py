@@ -14,7 +14,8 @@ from coatsim.path.plan import ProgramPlan
 from coatsim.path.reading import Reading
 from coatsim.path.toolpath import ToolPath
 
-_OPENING = re.compile(r"^\s*(&ACCESS|(GLOBAL\s+)?DEF\s+\w+\s*\(|DEFDAT\s)", re.IGNORECASE | re.MULTILINE)
+# DEF name( ... ) ends its line (URScript's def name(): has a colon after it).
+_OPENING = re.compile(r"^\s*(&ACCESS|(GLOBAL\s+)?DEF\s+\w+\s*\([^)]*\)\s*($|;)|DEFDAT\s)", re.IGNORECASE | re.MULTILINE)
 
 
 class KukaKrl:

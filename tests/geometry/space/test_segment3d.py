@@ -19,7 +19,8 @@ from coatsim.geometry.space.biarc import biarc
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import SpaceCurve, make_space_curve, read_any_curve
 from coatsim.geometry.space.deviation import hausdorff3
-from coatsim.geometry.space.families import FAMILIES
+from coatsim.geometry.space.families import FAMILIES, HELD_OUT
+from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.polysegment_json import chain_document, chain_from_document, read_chain_json, write_chain_json
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import Arc3
@@ -28,9 +29,15 @@ from coatsim.geometry.space.segment import segment_space_curve
 from strategies import poses, unit_vectors
 
 
+ALL_FAMILIES = {**FAMILIES, **HELD_OUT}
+# measured at 1500 points and σ 0.1: the G1 chain needs more pieces than the kinked greedy
+# arcs on these (the optimiser's local optima on a fast twist and on noisy samples)
+ABOVE_GREEDY = {"torus", "noisy"}
+
+
 @functools.lru_cache(maxsize=None)
 def fitted(name: str, tol: float):
-    return segment_space_curve(make_space_curve(FAMILIES[name](1500), name), tol)
+    return segment_space_curve(make_space_curve(ALL_FAMILIES[name](1500), name), tol)
 
 
 def brute_hausdorff(points: np.ndarray, chain: SpaceChain, step: float) -> float:
@@ -97,7 +104,7 @@ def test_helix_within_tolerance_with_fewer_segments_as_it_grows():
     assert counts[0] > counts[1] > counts[2]
 
 
-@pytest.mark.parametrize("name", sorted(FAMILIES))
+@pytest.mark.parametrize("name", sorted(ALL_FAMILIES))
 def test_space_families_within_tolerance_g1_and_honest(name):
     fit = fitted(name, 0.1)
     assert fit.max_deviation_mm <= 0.1
@@ -107,6 +114,29 @@ def test_space_families_within_tolerance_g1_and_honest(name):
     profile_radius = fit.input_min_radius_mm
     tightest = min((s.radius for s in fit.chain.segments if isinstance(s, Arc3)), default=math.inf)
     assert tightest >= profile_radius / 1.25  # no arc much tighter than the curve anywhere
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="measured: more pieces than the greedy"))
+    if n in ABOVE_GREEDY else n for n in sorted(ALL_FAMILIES)])
+def test_no_more_segments_than_the_greedy_fitter(name):
+    """The G1 chain against the greedy 3-D arc fitter (kinks at every junction) on the same points."""
+    fit = fitted(name, 0.1)
+    assert fit.chain.n_segments <= len(greedy_knots(fit.curve.points, 0.1)) - 1
+
+
+@settings(max_examples=6, deadline=None)
+@given(poses(), st.floats(15.0, 80.0), st.floats(5.0, 60.0), st.sampled_from([0.05, 0.2]))
+def test_random_helices_within_tolerance_by_a_dense_oracle(pose, radius, rise_per_turn, tol):
+    """Helices of any radius, pitch and placement: within σ by the brute-force oracle, G1,
+    and no more pieces than the greedy fitter."""
+    t = np.linspace(0.0, 4 * math.pi, 1200)
+    pts = pose.apply(np.column_stack((radius * np.cos(t), radius * np.sin(t), rise_per_turn * t / (2 * math.pi))))
+    fit = segment_space_curve(make_space_curve(pts, "helix"), tol)
+    assert fit.max_deviation_mm <= tol
+    assert brute_hausdorff(pts, fit.chain, tol / 20) <= tol * 1.05
+    assert_g1(fit.chain)
+    assert fit.chain.n_segments <= len(greedy_knots(pts, tol)) - 1
 
 
 @st.composite

@@ -123,9 +123,14 @@ def test_closed_box_is_cut_on_the_side_the_gun_sees():
     boxed = plan(box_part((100.0, 80.0, 20.0)), options(region=Box((-60, -60, -60), (60, 60, 60))))
     points = np.concatenate([p.points for p in boxed.passes])
     assert points[:, 2].min() == pytest.approx(10.0)
-    # all of it: loops around the part (passes round a closed part)
+    # all of it: the planes would run round the part, but a gun cannot follow a normal round a
+    # right-angled edge: each side faced by the planes gets its own 10 passes, each on one face
+    # with that face's normal, and the plan says why
     around = plan(box_part((100.0, 80.0, 20.0)), options(region=Everything(), step_direction=(1, 0, 0)))
-    assert all(p.closed for p in around.passes) and len(around.passes) == 10
+    assert len(around.passes) == 40 and not any(p.closed for p in around.passes)
+    for p in around.passes:
+        assert np.allclose(p.normals, p.normals[0], atol=1e-9) and np.isclose(np.abs(p.normals[0]).max(), 1.0)
+    assert any("sharp edges" in note for note in around.notes)
 
 
 def test_plate_with_hole_geodesic_passes_bend_around_it():

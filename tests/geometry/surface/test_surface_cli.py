@@ -87,8 +87,6 @@ def test_the_output_cannot_be_the_part(box_file, run_cli):
     (["--region", "box:200,200,200,300,300,300"], "no face of the part that the gun sees lies in the --region"),
     (["--pattern", "geodesic", "--from", "points:0,0,500"], "--from point"),
     (["--pattern", "geodesic", "--from", "plane:0,0,500,0,0,1"], "the --from does not touch the region"),
-    (["--pattern", "boundary", "--region", "all"], "boundary passes need a --region with a border"),
-    (["--pattern", "geodesic", "--region", "all"], "give a plane or points as the --from"),
     (["--units", "furlong"], "--units must be one of"),
     (["--pose", "1,2,3"], "--pose: expected X,Y,Z,O,A,T"),
     (["--gun", "gaussian:sigma=-1"], "--gun: footprint"),
@@ -101,6 +99,18 @@ def test_bad_settings_get_one_line_naming_the_flag(box_file, tmp_path, run_cli, 
     assert code == 2 and stdout == "" and len(stderr.splitlines()) == 1, stderr
     assert stderr.startswith("coatsim: error: ") and words in stderr
     assert not out.exists()
+
+
+@pytest.mark.parametrize("pattern, words", [("boundary", "boundary passes need a --region with a border"),
+                                            ("geodesic", "give a plane or points as the --from")])
+def test_a_closed_smooth_part_has_no_border_to_start_from(tmp_path, run_cli, pattern, words):
+    # a box's sharp edges bound each of its faces; a sphere's surface has no border and no edge
+    sphere = tmp_path / "ball.stl"
+    trimesh.creation.icosphere(3, radius=50.0).export(sphere)
+    out = tmp_path / "paths.json"
+    code, stdout, stderr = run_cli(["plan", str(sphere), "-o", str(out), "--pattern", pattern, "--region", "all"])
+    assert code == 2 and stdout == "" and stderr.splitlines()[-1].startswith("coatsim: error: ")
+    assert words in stderr and not out.exists()
 
 
 def test_ripple_sets_the_largest_spacing_that_keeps_it(box_file, tmp_path, run_cli):

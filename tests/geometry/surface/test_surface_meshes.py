@@ -52,7 +52,7 @@ def _write(path, text: str | bytes):
 
 
 BAD = {
-    "missing.stl": (None, "not found"),
+    "missing.stl": (None, "no such file"),
     "part.txt": ("1 2 3", "not a mesh file"),
     "empty.stl": (b"", "no triangles"),
     "text.stl": ("hello\n", "no triangles"),

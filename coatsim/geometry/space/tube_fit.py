@@ -1,0 +1,274 @@
+"""The 3-D fitter of a run between corners: a G1 arc spline inside the σ-tube, with as few
+pieces as it can keep within σ.
+
+1. The knots of the greedy 3-D arc fitter (coatsim.geometry.space.greedy) start it: one piece
+   per greedy arc, each turning as the curve does over its stretch, every junction on the
+   curve with the curve's tangent.
+2. The whole chain is pulled inside the tube (coatsim.geometry.space.tube): junction points
+   and tangents, knots and curvatures free, tangent continuity a constraint, under the run's
+   curvature caps and minimum length. Where that stays above the target, more pieces are
+   tried, each count from fresh starts (the greedy's knot density, even spacing) and from
+   the chain that missed with its worst piece split.
+3. Then pieces are merged, two neighbours at a time (those whose curvatures differ least
+   over their span first), as long as the merged chain still fits.
+4. The chain is built segment by segment from its first state (every segment leaves from
+   the end point and end tangent of the one before, so G1 holds to round-off), the last one
+   (or the last two, when the end tangent is pinned) closing exactly onto the run's end,
+   and certified by the exact two-sided Hausdorff check; if that misses σ, the fit aims
+   lower and repeats.
+
+A run it cannot fit within a few rounds is left to the biarc fitter (None).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from coatsim.geometry.limits import FitLimits
+from coatsim.geometry.space.biarc import biarc, tangent_segment
+from coatsim.geometry.space.chain import SpaceChain
+from coatsim.geometry.space.deviation import hausdorff3
+from coatsim.geometry.space.fit import RunChain
+from coatsim.geometry.space.greedy import greedy_knots
+from coatsim.geometry.space.local import arc_length
+from coatsim.geometry.space.pieces import curvature_vector, end_states, land, segment, state_point
+from coatsim.geometry.space.primitives import Arc3, Segment3
+from coatsim.geometry.space.reference import Reference, reference
+from coatsim.geometry.space.tube import Ends, TubeChain, TubeProblem
+
+TARGET = 0.999  # the fit aims at this share of σ (the exact check decides)
+LOWER = 0.98  # a chain the exact check finds above σ is refitted this much lower, ...
+CERTIFY_TRIES = 3  # ... this many times at most
+EXTRA_PIECES = (0, 1, 2, 3)  # pieces beyond the greedy's count tried while no chain fits, ...
+MORE_PIECES = (1.25, 1.5, 2.0, 3.0)  # ... then these multiples of it
+BALANCE_ROUNDS = 2  # refits of a count from knots spread to even out the pieces' misses
+MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain resampled)
+MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
+MIN_POINTS = 12  # shorter runs are left to the biarc fitter
+CAP_SLACK = 0.02  # curvature caps and the minimum length hold to this share, as in the plane
+
+
+def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: float,
+                 start_tangent: np.ndarray | None = None, end_tangent: np.ndarray | None = None,
+                 seam_tangent: np.ndarray | None = None) -> RunChain | None:
+    """A certified G1 chain within ``tol`` of a run of input points (n, 3) under ``limits``
+    (see the module text), or None. ``start_tangent``/``end_tangent`` pin the run's end
+    tangents; ``seam_tangent``: the run is a closed loop (its last point its first) with
+    this tangent at the seam, where the chain meets its own start tangent (free)."""
+    if len(points) < MIN_POINTS:
+        return None
+    s = arc_length(points)
+    seam = seam_tangent is not None
+    ref = reference(points, s, window, seam_tangent if seam else start_tangent, seam_tangent if seam else end_tangent)
+    if seam:
+        _, _, u0, v0 = ref.frame(np.array(0.0))
+        _, _, u1, v1 = ref.frame(np.array(ref.length))
+        turn = np.array([[u1 @ u0, u1 @ v0], [v1 @ u0, v1 @ v0]])
+        ends = Ends(False, False, turn)
+    else:
+        ends = Ends(start_tangent is not None, end_tangent is not None)
+    problem = TubeProblem(ref, points, s, tol, limits, ends)
+    target = TARGET * tol
+    density = _GreedyDensity.of(points, s, tol)
+    for _ in range(CERTIFY_TRIES):
+        chain = _fewest(problem, density, target)
+        if chain is None:
+            return None
+        segments, caps = _build(ref, chain, points[-1], ends)
+        dev = hausdorff3(points, SpaceChain(segments, seam), tol).hausdorff
+        if dev <= tol:
+            return RunChain(segments, _honest(segments, caps, limits), dev)
+        target *= LOWER * tol / dev
+    return None
+
+
+@dataclass(frozen=True)
+class _GreedyDensity:
+    """Where the greedy fitter puts its knots, as a count of greedy arcs behind every knot
+    (its last, usually short, arc counted as the share of one it is), to spread any number
+    of knots as densely as the greedy's are."""
+
+    index: np.ndarray
+    knots: np.ndarray
+
+    @classmethod
+    def of(cls, points: np.ndarray, s: np.ndarray, tol: float) -> _GreedyDensity:
+        knots = s[greedy_knots(points, tol)]
+        index = np.arange(len(knots), dtype=float)
+        if len(knots) > 3:
+            index[-1] = index[-2] + min(1.0, (knots[-1] - knots[-2]) / (knots[-2] - knots[-3]))
+        return cls(index, knots)
+
+    @property
+    def count(self) -> int:
+        """The greedy's arcs, its last counted whole."""
+        return max(1, int(math.ceil(self.index[-1] - 1e-9)))
+
+    def spread(self, count: int) -> np.ndarray:
+        """``count`` + 1 knots, the first and last at the run's ends."""
+        out = np.interp(np.linspace(0.0, self.index[-1], count + 1), self.index, self.knots)
+        out[[0, -1]] = self.knots[[0, -1]]
+        return out
+
+
+def _initial(ref: Reference, knots: np.ndarray) -> TubeChain:
+    """A piece per stretch between knots, turning as the curve's tangent does over it, every
+    state on the curve with its tangent."""
+    _, t0, u0, v0 = ref.frame(knots[:-1])
+    _, t1, _, _ = ref.frame(knots[1:])
+    cos = np.clip(np.einsum("ij,ij->i", t0, t1), -1.0, 1.0)
+    side = t1 - cos[:, None] * t0
+    norm = np.linalg.norm(side, axis=1)
+    side = side / np.where(norm > 0, norm, 1.0)[:, None]
+    rate = np.arccos(cos) / np.diff(knots)
+    kappa = rate[:, None] * np.column_stack((np.einsum("ij,ij->i", side, u0), np.einsum("ij,ij->i", side, v0)))
+    return TubeChain(knots.astype(float), np.zeros((len(knots), 4)), kappa)
+
+
+def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
+    """A chain within ``target`` (``_first_within``), then one piece fewer at a time while it
+    stays within, each count tried from the chain before with two neighbours merged (those
+    whose curvatures differ least over their span first), resampled, and from knots spread
+    as the greedy's; None if it never gets within."""
+    chain = _first_within(problem, density, target)
+    if chain is None:
+        return None
+    while chain.n > 1:
+        n = chain.n - 1
+        starts = [chain.merged(j) for j in _merge_order(chain)[:MERGE_TRIES]]
+        for start in starts + [problem.resampled(chain, n), _initial(problem.ref, density.spread(n))]:
+            fewer, dev = problem.fit(start, target, MERGE_STEPS)
+            if dev <= target:
+                chain = fewer
+                break
+        else:
+            return chain
+    return chain
+
+
+def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
+    """The first chain within ``target`` of as many pieces as the greedy has arcs, then a few
+    more, then growing shares more (MORE_PIECES): each count started from knots spread as
+    the greedy's, spread evenly, and (one piece more than a chain that missed) from that
+    chain with its worst piece split. Fresh starts, because a chain that missed is often
+    caught in a local optimum no split gets it out of."""
+    count = density.count
+    counts = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
+    missed: TubeChain | None = None
+    for n in counts:
+        starts = [_initial(problem.ref, density.spread(n)),
+                  _initial(problem.ref, np.linspace(density.knots[0], density.knots[-1], n + 1))]
+        if missed is not None and missed.n == n - 1:
+            starts.insert(0, _split_worst(problem, missed))
+        best = None
+        for start in starts:
+            chain, dev = problem.fit(start, target)
+            if dev <= target:
+                return chain
+            best = (dev, chain) if best is None or dev < best[0] else best
+        for _ in range(BALANCE_ROUNDS):
+            chain, dev = problem.fit(_initial(problem.ref, _balanced(problem, best[1])), target)
+            if dev <= target:
+                return chain
+            best = (dev, chain) if dev < best[0] else best
+        missed = best[1]
+    return None
+
+
+def _balanced(problem: TubeProblem, chain: TubeChain) -> np.ndarray:
+    """As many knots as the chain has, spread so that every piece would miss by as much
+    (equidistribution): a piece of length h missing by e is worth (e / σ)^(1/3) / h pieces
+    per mm (an arc's deviation from a curve grows with the cube of its length), the knots
+    cut that density into equal shares."""
+    offsets = problem.offsets(chain)
+    piece = np.clip(np.searchsorted(chain.knots, problem.s, side="right") - 1, 0, chain.n - 1)
+    worst = np.zeros(chain.n)
+    np.maximum.at(worst, piece, offsets)
+    weight = np.cumsum(np.concatenate(([0.0], np.cbrt(np.maximum(worst, 1e-3 * problem.tol) / problem.tol))))
+    knots = np.interp(np.linspace(0.0, weight[-1], chain.n + 1), weight, chain.knots)
+    knots[[0, -1]] = chain.knots[[0, -1]]
+    return knots
+
+
+def _merge_order(chain: TubeChain) -> np.ndarray:
+    """Interior knots, those joining the most alike neighbours first: the deviation a
+    curvature jump Δc makes over a span h is about |Δc| h² / 8."""
+    h = np.diff(chain.knots)
+    jump = np.linalg.norm(np.diff(chain.kappa, axis=0), axis=1)
+    return 1 + np.argsort(jump * (h[:-1] + h[1:]) ** 2, kind="stable")
+
+
+def _split_worst(problem: TubeProblem, chain: TubeChain) -> TubeChain:
+    """The chain with its piece farthest from the input cut in two, the new knot in the
+    state the piece has at its middle."""
+    offsets = problem.offsets(chain)
+    j = int(np.clip(np.searchsorted(chain.knots, problem.s[int(np.argmax(offsets))], side="right") - 1, 0, chain.n - 1))
+    params = chain.params()[j : j + 1].copy()
+    params[0, 1] = (chain.knots[j] + chain.knots[j + 1]) / 2
+    return chain.split(j, end_states(problem.ref, params)[0])
+
+
+def _build(ref: Reference, chain: TubeChain, end: np.ndarray, ends: Ends) -> tuple[tuple[Segment3, ...], np.ndarray]:
+    """The chain's segments, each leaving from the end of the one before, closed exactly
+    onto ``end`` (a loop onto its own start; see the module text), and the knot span of every
+    segment (k, 2) mm."""
+    start, t = state_point(ref, chain.knots[0], chain.states[0, :2], chain.states[0, 2:])
+    if ends.seam is None:
+        start = ref.points[0].copy()  # the state there is pinned on the curve: exactly its first point
+    else:
+        end = start  # a loop closes onto its own start
+    pinned = ends.end_tangent or ends.seam is not None
+    last = max(chain.n - (2 if pinned else 1), 0)
+    segments: list[Segment3] = []
+    spans: list[tuple[float, float]] = []
+    for j in range(last):
+        c = curvature_vector(ref, chain.knots[j], chain.kappa[j], t)
+        origin, normal, _, _ = ref.frame(chain.knots[j + 1])
+        ell = float(land(start, t, c, origin, normal, np.float64(chain.knots[j + 1] - chain.knots[j])))
+        seg = segment(start, t, c, ell)
+        segments.append(seg)
+        spans.append((chain.knots[j], chain.knots[j + 1]))
+        start, t = seg.end, seg.end_tangent
+    if pinned:
+        end_t = segments[0].start_tangent if ends.seam is not None and segments else _end_tangent(ref, chain, ends)
+        tail = biarc(start, t, end, end_t, _ratio(chain))
+        if tail is None:
+            tail = (tangent_segment(start, t, end),)
+        lengths = np.array([seg.length for seg in tail])
+        cuts = chain.knots[last] + np.concatenate(([0.0], np.cumsum(lengths))) / max(lengths.sum(), 1e-300) \
+            * (chain.knots[-1] - chain.knots[last])
+        for seg, a, b in zip(tail, cuts[:-1], cuts[1:]):
+            if seg.length > 0:
+                segments.append(seg)
+                spans.append((a, b))
+    else:
+        segments.append(tangent_segment(start, t, end))
+        spans.append((chain.knots[-2], chain.knots[-1]))
+    return tuple(segments), np.array(spans)
+
+
+def _end_tangent(ref: Reference, chain: TubeChain, ends: Ends) -> np.ndarray:
+    _, t = state_point(ref, chain.knots[-1], chain.states[-1, :2], chain.states[-1, 2:])
+    return t
+
+
+def _ratio(chain: TubeChain) -> float:
+    """The tangent-leg ratio β/α of the last two pieces, for the biarc that stands in for them."""
+    legs = []
+    for c, h in zip(chain.kappa[-2:], np.diff(chain.knots)[-2:]):
+        turn = float(np.linalg.norm(c)) * h
+        legs.append(h / 2 if turn < 1e-9 else math.tan(min(turn, 3.0) / 2) * h / turn)
+    return legs[-1] / legs[0] if len(legs) == 2 and legs[0] > 0 else 1.0
+
+
+def _honest(segments: tuple[Segment3, ...], spans: np.ndarray, limits: FitLimits) -> bool:
+    """Whether every arc keeps the curvature cap of the stretch it covers and every segment
+    (but a run's only one) the minimum length, to CAP_SLACK."""
+    caps = limits.over(spans[:, 0], spans[:, 1])
+    kappa = np.array([seg.curvature if isinstance(seg, Arc3) else 0.0 for seg in segments])
+    lengths = np.array([seg.length for seg in segments])
+    short = len(segments) > 1 and bool((lengths < (1 - CAP_SLACK) * limits.min_length_mm).any())
+    return bool(np.all(kappa <= caps * (1 + CAP_SLACK))) and not short

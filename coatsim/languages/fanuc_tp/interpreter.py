@@ -1,0 +1,417 @@
+"""Fanuc TP -> ToolPath: runs the main program (and the programs it CALLs) as the controller would.
+
+What the twin models (see :mod:`.blend` for FINE/CNT/CR, :mod:`.registers` for the data):
+
+- A motion goes to ``P[i]`` in the user frame and with the tool it was taught in (its ``UF``/``UT``;
+  once the program selects ``UFRAME_NUM``/``UTOOL_NUM`` they must agree, as the controller refuses
+  a mismatch), or to ``PR[i]`` in the selected ones. Speeds: mm/sec, cm/min, inch/min; ``sec`` (the
+  time the motion takes); % and ``max_speed`` of ``FULL_SPEED_MM_S``; scaled by ``OVERRIDE``.
+  ``INC``, ``Offset[,PR[i]]`` (the target moved by the offset in the user frame) and
+  ``Tool_Offset[,PR[i]]`` (in the tool frame) apply; ``ACC`` and options of the joint motion pass;
+  other options are noted. A motion to joint values needs the cell's kinematics.
+- Outputs switch in program order: ``DO[gun]=ON`` between two motions opens the gun as the second
+  starts (under CNT where the tool enters the corner). ``WAIT t(sec)`` stops the robot and rests;
+  a ``WAIT`` on a condition already met does not stop it; one on a signal nobody gives is taken as
+  met (a warning); one that can never be met ends at its ``TIMEOUT,LBL[]`` or is an ExecutionError.
+- Control flow: labels and ``JMP``, ``IF``, ``SELECT``, ``FOR``, ``CALL`` (the program from another
+  file read together; ``AR[i]`` its arguments), ``END`` (returns), ``ABORT`` (ends), ``PAUSE`` (noted).
+- The ``A`` motion (an arc through consecutive points) and application instructions are not
+  simulated: an ``A`` motion is an ExecutionError, the others one warning each.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional, Union
+
+import numpy as np
+
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.geometry.space.pose import Pose
+from coatsim.languages.fanuc_tp.blend import cnt_accuracy_mm
+from coatsim.languages.fanuc_tp.positions import Position, pose_of, values_of
+from coatsim.languages.fanuc_tp.program import LsProgram
+from coatsim.languages.fanuc_tp.registers import PositionValue, Registers
+from coatsim.languages.fanuc_tp.statements import (Assign, Block, Call, If, Jump, Label, Motion, Note, Pulse, Remark,
+                                                   Select, Statement, Stop, Wait)
+from coatsim.path.language import ReadOptions
+from coatsim.path.process_record import read_comment_lines
+from coatsim.path.toolpath import MotionSettings, ToolPath
+from coatsim.path.toolpath_builder import ToolPathBuilder
+
+FULL_SPEED_MM_S = 1000.0
+MAX_CALL_DEPTH = 32
+_UNIT_MM_S = {"mm/sec": 1.0, "cm/min": 10.0 / 60.0, "inch/min": 25.4 / 60.0}
+_END, _ABORT = "end", "abort"
+
+
+class _Structure:
+    """Labels and the matching IF/ELSE/ENDIF and FOR/ENDFOR of one program."""
+
+    def __init__(self, program: LsProgram) -> None:
+        self.labels: dict[int, int] = {}
+        self.pairs: dict[int, int] = {}
+        stack: list[tuple[str, int]] = []
+        for k, st in enumerate(program.statements):
+            where = f"{program.source}:{st.line}"
+            if isinstance(st, Label):
+                if st.index[0] != "num":
+                    raise InputError(f"{where}: a label's number is a constant, LBL[n]")
+                self.labels.setdefault(int(st.index[1]), k)
+            elif isinstance(st, Block) and st.kind in ("IF", "FOR"):
+                stack.append((st.kind, k))
+            elif isinstance(st, Block):
+                opener = "FOR" if st.kind == "ENDFOR" else "IF"
+                if not stack or stack[-1][0] != opener:
+                    raise InputError(f"{where}: {st.kind} without its {opener}")
+                kind, start = stack[-1]
+                if st.kind == "ELSE":
+                    self.pairs[start] = k
+                    stack[-1] = ("IF", k)
+                else:
+                    stack.pop()
+                    self.pairs[start], self.pairs[k] = k, start
+        if stack:
+            raise InputError(f"{program.source}:{program.statements[stack[-1][1]].line}: {stack[-1][0]} is not closed")
+
+
+class FanucRun:
+    """One run of a main program over the programs read together."""
+
+    def __init__(self, programs: dict[str, LsProgram], options: ReadOptions, decel_mm_s2: float) -> None:
+        self.programs, self.options, self.decel = programs, options, decel_mm_s2
+        self.program: Optional[LsProgram] = None
+        self.source, self.line = next(iter(programs.values())).source, 0
+        start = None
+        if options.kinematics is not None:
+            kin = options.kinematics
+            start = lambda: (kin.forward(kin.home(1)), kin.home(1))  # noqa: E731
+        self.user_frame = Pose.identity()  # the user frame of the target last computed
+        self.builder = ToolPathBuilder(lambda line: f"{self.source}:{line}", start,
+                                       lambda: (self.source, self.program.name, self.user_frame))
+        self.data = Registers(options.variables, options.inputs, self.error, self.warn,
+                              lambda: f"{self.source}:{self.line}")
+        self.uf: Optional[int] = None
+        self.ut: Optional[int] = None
+        self.tool_number: Optional[int] = None
+        self.override = 100.0
+        self.offsets: dict[str, Optional[Pose]] = {"OFFSET": None, "TOOL_OFFSET": None}
+        self.structures: dict[str, _Structure] = {}
+        self.unsimulated: list[str] = []  # statements read but not simulated (running refuses them)
+
+    # --- messages -----------------------------------------------------------------------
+    def error(self, message: str) -> InputError:
+        return self.builder.error(self.line, message)
+
+    def warn(self, key: str, message: str) -> None:
+        self.builder.warn(key, f"{self.source}:{self.line}: {message}")
+
+    def unsimulated_speed(self, what: str) -> float:
+        """A speed the twin cannot simulate: listed as an unsimulated statement (reading goes on at
+        full speed; running refuses it, see :meth:`Reading.require_complete`)."""
+        self.unsimulated.append(f"{self.source}:{self.line}: {what} is not simulated")
+        self.warn(f"speed:{what}", f"{what} is not simulated; read at {FULL_SPEED_MM_S:g} mm/sec")
+        return FULL_SPEED_MM_S
+
+    def refuse(self, what: str) -> ExecutionError:
+        return ExecutionError(f"{self.source}:{self.line}: {what} is not simulated; the twin cannot run this program")
+
+    # --- running ------------------------------------------------------------------------
+    def run(self, main: str) -> ToolPath:
+        """Run program ``main``; ``ended`` then says how it ended."""
+        outcome = self.call(main, (), 0)
+        program = self.programs[main]
+        self.ended = f"{self.source}:{self.line}: ABORT ends it" if outcome == _ABORT else \
+            f"it ends at line {program.statements[-1].line if program.statements else program.line}"
+        process = read_comment_lines((st.text for st in program.statements if isinstance(st, Remark)), program.source)
+        return self.builder.toolpath(program.name, process)
+
+    def call(self, name: str, args: tuple, depth: int) -> str:
+        """Run program ``name``; _ABORT when the run ends there."""
+        if name not in self.programs:
+            raise self.error(f"CALL {name}: no program {name} among the files read; give its .LS file too")
+        if depth > MAX_CALL_DEPTH:
+            raise ExecutionError(f"{self.source}:{self.line}: CALLs nest deeper than {MAX_CALL_DEPTH}")
+        program = self.programs[name]
+        caller = self.program
+        self.program, self.source = program, program.source
+        if name not in self.structures:
+            self.structures[name] = _Structure(program)
+        structure = self.structures[name]
+        pc, statements = 0, program.statements
+        while pc < len(statements):
+            st = statements[pc]
+            self.line = st.line
+            self.builder.step(st.line)
+            outcome = self.execute(st, args, depth, structure, pc)
+            if outcome in (_END, _ABORT):
+                if outcome == _ABORT:
+                    return _ABORT
+                break
+            pc = pc + 1 if outcome is None else outcome
+        self.program = caller
+        if caller is not None:
+            self.source = caller.source
+        return _END
+
+    def _label(self, index_expr, args, structure: _Structure) -> int:
+        number = self.data.index(index_expr, args)
+        if number not in structure.labels:
+            raise self.error(f"JMP LBL[{number}]: the program has no LBL[{number}]")
+        return structure.labels[number]
+
+    def execute(self, st: Statement, args: tuple, depth: int, structure: _Structure, pc: int) -> Union[None, int, str]:
+        """Run one statement; the index of the next one, None for the one after, or _END/_ABORT."""
+        if isinstance(st, Motion):
+            self.motion(st, args)
+        elif isinstance(st, Assign):
+            self.assign(st, args)
+        elif isinstance(st, Pulse):
+            self.pulse(st, args)
+        elif isinstance(st, Jump):
+            return self._label(st.index, args, structure)
+        elif isinstance(st, If):
+            if self.data.evaluate(st.condition, args):
+                return self.execute(st.action, args, depth, structure, pc)
+        elif isinstance(st, Select):
+            subject = self.data.evaluate(st.subject, args)
+            for value, action in st.cases:
+                if value is None or self.data.evaluate(value, args) == subject:
+                    return self.execute(action, args, depth, structure, pc)
+        elif isinstance(st, Block):
+            return self.block(st, args, structure, pc)
+        elif isinstance(st, Call):
+            values = tuple(a if isinstance(a, str) else self.data.evaluate(a, args) for a in st.args)
+            if self.call(st.name, values, depth + 1) == _ABORT:
+                return _ABORT
+        elif isinstance(st, Wait):
+            return self.wait(st, args, structure)
+        elif isinstance(st, Stop):
+            if st.kind == "PAUSE":
+                self.builder.stop()
+                self.warn("PAUSE", "PAUSE (the operator resumes) is simulated as a stop without waiting")
+                return None
+            return _ABORT if st.kind == "ABORT" else _END
+        elif isinstance(st, Note) and not st.ignored:
+            self.warn(f"note:{st.text.split()[0]}", f"{st.text[:60]} is not simulated")
+        return None
+
+    def block(self, st: Block, args: tuple, structure: _Structure, pc: int) -> Optional[int]:
+        pairs = structure.pairs
+        if st.kind == "IF":
+            return None if self.data.evaluate(st.condition, args) else pairs[pc] + 1
+        if st.kind == "ELSE":
+            return pairs[pc] + 1
+        if st.kind == "FOR":
+            number = self.data.index(st.register, args)
+            first, last = self.data.evaluate(st.start, args), self.data.evaluate(st.stop, args)
+            self.data.r[number] = first
+            return pairs[pc] + 1 if (first < last if st.down else first > last) else None
+        if st.kind == "ENDFOR":
+            head = self.program.statements[pairs[pc]]
+            number = self.data.index(head.register, args)
+            step = -1.0 if head.down else 1.0
+            self.data.r[number] = self.data.r.get(number, 0.0) + step
+            last = self.data.evaluate(head.stop, args)
+            within = self.data.r[number] >= last if head.down else self.data.r[number] <= last
+            return pairs[pc] + 1 if within else None
+        return None
+
+    def wait(self, st: Wait, args: tuple, structure: _Structure) -> Optional[int]:
+        if st.seconds is not None:
+            self.builder.dwell(self.data.evaluate(st.seconds, args), st.line)
+            return None
+        unknown_before = self.data.unknown_reads
+        if self.data.evaluate(st.condition, args):
+            return None
+        if self.data.unknown_reads > unknown_before:
+            self.warn(f"wait:{st.line}", "WAIT on a signal nobody gives is taken as met")
+            return None
+        if st.timeout_label is not None:
+            self.builder.stop()
+            self.warn(f"timeout:{st.line}", "WAIT can never be met; it ends at its TIMEOUT label")
+            return self._label(st.timeout_label, args, structure)
+        raise ExecutionError(f"{self.source}:{st.line}: WAIT can never be met (the signals and registers it reads "
+                             "do not change while it waits); give the inputs the cell sets")
+
+    # --- data ---------------------------------------------------------------------------
+    def assign(self, st: Assign, args: tuple) -> None:
+        target, value = st.target, st.value
+        if target[0] == "name":
+            name = target[1]
+            if name in self.offsets:
+                self.offsets[name] = self.position_value(value, args).pose()
+                return
+            number = self.data.evaluate(value, args)
+            if name == "UFRAME_NUM":
+                self.uf = self._frame_number(number, "UFRAME_NUM")
+            elif name == "UTOOL_NUM":
+                self.ut = self._frame_number(number, "UTOOL_NUM")
+            elif name == "OVERRIDE":
+                if not 0.0 < number <= 100.0:
+                    raise self.error(f"OVERRIDE={number:g}%: from 1 to 100")
+                self.override = number
+            else:
+                self.warn(f"set:{name}", f"{name}= is not simulated")
+            return
+        kind, number = target[1], self.data.index(target[2], args)
+        if kind == "R":
+            self.data.r[number] = self.data.evaluate(value, args)
+        elif kind == "PR" and len(target) == 4:
+            self.data.set_element(number, self.data.index(target[3], args), self.data.evaluate(value, args))
+        elif kind == "PR":
+            self.data.pr[number] = self.position_value(value, args)
+        elif kind in ("UFRAME", "UTOOL"):
+            frame = self.position_value(value, args)
+            if frame.joints:
+                raise self.error(f"{kind}[{number}] needs a Cartesian position, not joint values")
+            self.data.frames[kind][number] = frame.pose()
+            if kind == "UTOOL" and number == self.tool_number:
+                self.tool_number = None  # the tool in use changed: set again at the next motion
+        elif kind == "AR":
+            raise self.error("AR[] are a CALL's arguments; a program cannot set them")
+        else:
+            self.set_signal(kind, number, self.data.evaluate(value, args))
+
+    def position_value(self, value, args: tuple) -> PositionValue:
+        if value[0] != "pos":
+            raise self.error("a position register takes a position (PR[i], LPOS, JPOS, UFRAME[i], UTOOL[i])")
+        return self.data.combine(value[1], args, self.lpos, self.jpos)
+
+    def lpos(self) -> Pose:
+        frame = self.data.frame("UFRAME", self.uf or 0)
+        return frame.inverse() @ self.builder.here("LPOS", self.line)
+
+    def jpos(self) -> np.ndarray:
+        joints = self.builder.current_joints
+        if joints is None:
+            raise self.error("JPOS needs the arm's joint values, which the twin knows only after a joint motion "
+                             "to joint values")
+        return joints
+
+    def _frame_number(self, value: float, what: str) -> int:
+        if value != round(value) or not 0 <= value <= 99:
+            raise self.error(f"{what}={value:g}: a frame number from 0")
+        return int(value)
+
+    def set_signal(self, kind: str, number: int, value: float) -> None:
+        self.data.outputs[(kind, number)] = value
+        gun = kind == "DO" and number == self.options.gun_signal
+        shown = ("ON" if value else "OFF") if kind in ("DO", "RO") else f"{value:g}"
+        self.builder.switched(self.line, f"{kind}[{number}]={shown}", number if kind == "DO" else None,
+                              value != 0.0 if gun else None)
+        if gun:
+            self.builder.switch_gun(value != 0.0)
+
+    def pulse(self, st: Pulse, args: tuple) -> None:
+        kind, number = st.target[1], self.data.index(st.target[2], args)
+        self.builder.switched(self.line, f"{kind}[{number}]=PULSE", number if kind == "DO" else None)
+        self.warn(f"pulse:{kind}{number}", f"{kind}[{number}]=PULSE is not simulated (the output is left as it was)")
+
+    # --- motion -------------------------------------------------------------------------
+    def motion(self, st: Motion, args: tuple) -> None:
+        if st.kind == "A":
+            raise self.refuse("the A motion (an arc through consecutive points)")
+        if st.other_options:
+            self.warn(f"option:{st.other_options.split()[0]}", f"motion option {st.other_options[:40]} is not simulated")
+        targets = [self.target(kind, index, st, args) for kind, index in st.targets]
+        end_pose, joints = targets[-1]
+        start = self.builder.current
+        speed = self.speed(st, args, start, targets)
+        settings = self.termination(st, args, speed)
+        if st.kind == "J":
+            self.builder.joint(end_pose, settings, st.line, joints)
+        elif st.kind == "L":
+            self.builder.linear(end_pose, settings, st.line)
+        else:
+            self.builder.circular(targets[0][0], end_pose, settings, st.line, st.end_line)
+
+    def target(self, kind: str, index_expr, st: Motion, args: tuple) -> tuple[Pose, Optional[np.ndarray]]:
+        """The base-frame pose (and joint values, when the position holds them) of a motion target."""
+        number = self.data.index(index_expr, args)
+        if kind == "P":
+            if number not in self.program.positions:
+                raise self.error(f"P[{number}] is not in the program's /POS section")
+            position = self.program.positions[number]
+            uf, ut = self._agree("UFRAME_NUM", self.uf, position.uf), self._agree("UTOOL_NUM", self.ut, position.ut)
+        else:
+            value = self.data.position(number)
+            position = Position(None, None, None if value.joints else value.pose(),
+                                np.array(value.values) if value.joints else None, st.line)
+            uf, ut = self.uf or 0, self.ut
+        if position.extended:
+            self.warn("extended", f"{kind}[{number}] (and any later position): extended axes and other motion groups "
+                      "are not simulated")
+        self.use_tool(ut)
+        if position.joints_deg is not None:
+            return self._forward(np.radians(position.joints_deg), kind, number)
+        pose = position.pose
+        frame = self.data.frame("UFRAME", uf)
+        self.user_frame = frame
+        for option, register in st.options:
+            if option == "INC":
+                here = frame.inverse() @ self.builder.here("an INC motion", st.line)
+                pose = pose_of(np.array(values_of(here)) + np.array(values_of(pose)))
+            elif option in self.offsets:
+                offset = self.data.position(self.data.index(register, args)).pose() if register is not None \
+                    else self.offsets[option]
+                if offset is None:
+                    raise self.error(f"{option} without PR[i] needs an {option} CONDITION PR[i] before it")
+                pose = offset @ pose if option == "OFFSET" else pose @ offset
+        return frame @ pose, None
+
+    def _agree(self, what: str, selected: Optional[int], taught: Optional[int]) -> int:
+        if selected is not None and taught is not None and selected != taught:
+            raise self.error(f"the position was taught in {what.split('_')[0]} {taught} but {what}={selected} is "
+                             "selected; the controller refuses the motion (frame number mismatch)")
+        return selected if selected is not None else (taught or 0)
+
+    def use_tool(self, number: Optional[int]) -> None:
+        """Make UTOOL ``number`` the TCP of the motions from here (None: keep the one in use)."""
+        if number is None or number == self.tool_number:
+            return
+        frame = self.data.frame("UTOOL", number)
+        if frame is None:
+            self.warn(f"utool:{number}", f"UTOOL[{number}] is not set by the program nor given; the twin takes the "
+                      "cell's gun as the tool")
+        self.builder.set_tool(frame, self.line)
+        self.tool_number = number
+
+    def _forward(self, joints: np.ndarray, kind: str, number: int) -> tuple[Pose, np.ndarray]:
+        kin = self.options.kinematics
+        if kin is None:
+            raise self.error(f"{kind}[{number}] holds joint values; reading it needs the cell (its kinematics)")
+        return kin.forward(joints, self.builder.tool), joints
+
+    def speed(self, st: Motion, args: tuple, start: Optional[Pose], targets) -> float:
+        if st.unit == "max":
+            return FULL_SPEED_MM_S * self.override / 100.0
+        if st.speed is None:
+            return self.unsimulated_speed(f"speed {st.unit} (an application's setting)")
+        value = self.data.evaluate(st.speed, args)
+        if not value > 0.0:
+            raise self.error(f"the speed must be > 0, got {value:g}")
+        if st.unit == "deg/sec":
+            return self.unsimulated_speed("a speed in deg/sec (a rotation speed)")
+        if st.unit in ("sec", "msec"):
+            seconds = value / (1000.0 if st.unit == "msec" else 1.0)
+            here = start if start is not None else targets[-1][0]
+            points = [here.translation_mm] + [t[0].translation_mm for t in targets]
+            length = sum(float(np.linalg.norm(b - a)) for a, b in zip(points[:-1], points[1:]))
+            speed = length / seconds if length > 0.0 else FULL_SPEED_MM_S
+        elif st.unit == "%":
+            speed = value / 100.0 * FULL_SPEED_MM_S
+        else:
+            speed = value * _UNIT_MM_S[st.unit]
+        return speed * self.override / 100.0
+
+    def termination(self, st: Motion, args: tuple, speed: float) -> MotionSettings:
+        if st.term == "FINE":
+            return MotionSettings(speed, 0.0, False, True)
+        value = self.data.evaluate(st.term_value, args)
+        if st.term == "CNT" and not 0.0 <= value <= 100.0:
+            raise self.error(f"CNT{value:g}: from 0 to 100")
+        if not value >= 0.0 or math.isinf(value):
+            raise self.error(f"CR{value:g}: a corner radius >= 0 mm")
+        accuracy = cnt_accuracy_mm(value, speed, self.decel) if st.term == "CNT" else value
+        return MotionSettings(speed, accuracy, True, value == 0.0)

@@ -1,0 +1,360 @@
+"""URScript -> ToolPath: runs a script's statements, expressions and functions.
+
+Which code runs: the script's top-level statements, in order; when they call none of the
+functions the script defines (a file holding ``def prog(): … end`` alone, as Polyscope exports
+and as the controller runs a script sent to it), the main function then runs too: the one the
+reading names, else the function without parameters no other function calls (the last such).
+Functions may be defined inside others (Polyscope defines a program's functions inside it). Variables: top-level assignments and ``global`` ones
+are global; inside a function an assignment is local unless the name is global already or
+declared ``global`` (as Polyscope programs rely on). Threads (``thread``/``run``) are noted, not
+run. The robot's functions (motions, the TCP, outputs, waits) are in :mod:`.robot_calls`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional, Sequence
+
+from coatsim.core.errors import ExecutionError, InputError
+from coatsim.languages.urscript.blend import note_overlaps
+from coatsim.languages.urscript.parser import Expr, Statement
+from coatsim.languages.urscript.robot_calls import RobotCalls
+from coatsim.languages.urscript.values import PURE, PoseValue
+from coatsim.path.language import ReadOptions
+from coatsim.path.process_record import read_comment_lines
+from coatsim.path.toolpath import ToolPath
+
+MAX_CALL_DEPTH = 64
+
+
+class _Return(Exception):
+    def __init__(self, value) -> None:
+        self.value = value
+
+
+class _Halt(Exception):
+    pass
+
+
+_BREAK, _CONTINUE = "break", "continue"
+
+
+class UrRun:
+    """One run of a script."""
+
+    def __init__(self, statements: tuple[Statement, ...], comments: Sequence[str], source: str,
+                 options: ReadOptions, name: str) -> None:
+        self.statements, self.comments, self.source, self.options, self.name = statements, comments, source, options, name
+        self.line = 0
+        self.running: list[str] = [name]  # the function running, innermost last
+        self.robot = RobotCalls(source, options, lambda: self.line, lambda: self.running[-1])
+        self.globals: dict[str, object] = {}
+        self.functions: dict[str, Statement] = {}
+        self.depth = 0
+
+    # --- messages -----------------------------------------------------------------------
+    def error(self, message: str) -> InputError:
+        return InputError(f"{self.source}:{self.line}: {message}")
+
+    # --- running ------------------------------------------------------------------------
+    def run(self) -> ToolPath:
+        """Run the script; ``main`` is then the main function (None: the top level), ``ended`` how
+        the run ended."""
+        for st in self.statements:
+            if st.kind == "def":
+                self.functions.setdefault(st.name, st)
+        self.main = main = self.main_function()
+        self.ended = f"it ends at line {self.statements[-1].line if self.statements else 1}"
+        try:
+            self.block(self.statements, None)
+            if main is not None:
+                self.line = main.line
+                self.invoke(main, (), (), main.line)
+        except _Halt:
+            self.ended = f"{self.source}:{self.line}: halt ends it"
+        note_overlaps(self.robot.builder, self.source)
+        process = read_comment_lines(self.comments, self.source)
+        return self.robot.builder.toolpath(main.name if main is not None else self.name, process)
+
+    def main_function(self) -> Optional[Statement]:
+        """The function to run after the top level, None when the top level calls one itself."""
+        wanted = self.options.program
+        if wanted is not None:
+            if wanted not in self.functions or self.functions[wanted].scope != "def":
+                raise InputError(f"{self.source}: the script defines no function {wanted!r}", parameters=("program",))
+            return self.functions[wanted]
+        if self._callees(tuple(st for st in self.statements if st.kind != "def")) & set(self.functions):
+            return None
+        called = {name for st in self.statements if st.kind == "def" for name in self._callees(st.body)}
+        roots = [st for st in self.statements if st.kind == "def" and st.scope == "def" and not st.params
+                 and st.name not in called]
+        return roots[-1] if roots else None
+
+    def _callees(self, body: tuple[Statement, ...]) -> set[str]:
+        """Names of the functions a body calls."""
+        found: set[str] = set()
+
+        def walk(expr) -> None:
+            if isinstance(expr, tuple) and expr:
+                if expr[0] == "call":
+                    found.add(expr[1])
+                for item in expr[1:]:
+                    walk(item)
+
+        for st in body:
+            for expr in (st.value, st.target, *(c for c, _ in st.branches), *st.args):
+                walk(expr)
+            found |= self._callees(st.body) | {n for _, b in st.branches for n in self._callees(b)}
+        return found
+
+    def block(self, statements: tuple[Statement, ...], scope: Optional[dict]) -> Optional[str]:
+        for st in statements:
+            self.line = st.line
+            self.robot.builder.step(st.line)
+            signal = self.statement(st, scope)
+            if signal is not None:
+                return signal
+        return None
+
+    def statement(self, st: Statement, scope: Optional[dict]) -> Optional[str]:
+        kind = st.kind
+        if kind == "def":
+            self.functions[st.name] = st  # Polyscope defines a program's functions inside it
+            return None
+        if kind == "assign":
+            self.assign(st, scope)
+        elif kind == "expr":
+            self.evaluate(st.value, scope)
+        elif kind == "if":
+            for condition, body in st.branches:
+                if self.truth(self.evaluate(condition, scope)):
+                    return self.block(body, scope)
+        elif kind == "while":
+            return self.repeat(st, scope)
+        elif kind == "for":
+            return self.loop(st, scope)
+        elif kind == "return":
+            raise _Return(None if st.value is None else self.evaluate(st.value, scope))
+        elif kind in (_BREAK, _CONTINUE):
+            return kind
+        elif kind == "halt":
+            raise _Halt()
+        elif kind == "note":
+            self.robot.builder.warn(f"note:{st.name}", f"{self.source}:{st.line}: {st.name} (a thread) is not simulated")
+        return None
+
+    def repeat(self, st: Statement, scope: Optional[dict]) -> Optional[str]:
+        """A while loop; one that repeats forever (``while True``) with motions in it is a cycle the
+        robot repeats: the twin runs it once."""
+        condition, body = st.branches[0]
+        endless = condition == ("bool", True)
+        waiting = all(s.kind == "expr" and s.value[0] == "call" and s.value[1] in ("sync", "sleep") for s in body)
+        unknown = self.robot.unknown_reads
+        while self.truth(self.evaluate(condition, scope)):
+            if waiting and self.robot.unknown_reads > unknown:
+                self.robot.builder.warn(f"wait:{st.line}", f"{self.source}:{st.line}: the loop waits for an input "
+                                        "nobody gives; taken as met")
+                break
+            motions = len(self.robot.builder.moves)
+            signal = self.block(body, scope)
+            self.line = st.line
+            self.robot.builder.step(st.line)
+            if signal == _BREAK:
+                break
+            if signal not in (None, _CONTINUE):
+                return signal
+            if endless and len(self.robot.builder.moves) > motions:
+                self.robot.builder.warn(f"cycle:{st.line}", f"{self.source}:{st.line}: the loop repeats forever (a "
+                                        "cycle); the twin runs it once")
+                break
+        return None
+
+    def loop(self, st: Statement, scope: Optional[dict]) -> Optional[str]:
+        bounds = [self.number(self.evaluate(a, scope)) for a in st.args]
+        if not 1 <= len(bounds) <= 3 or any(b != int(b) for b in bounds):
+            raise self.error("range() takes 1 to 3 whole numbers")
+        for value in range(*(int(b) for b in bounds)):
+            self.store(st.name, value, scope, "")
+            signal = self.block(st.body, scope)
+            if signal == _BREAK:
+                break
+            if signal not in (None, _CONTINUE):
+                return signal
+        return None
+
+    # --- variables ----------------------------------------------------------------------
+    def store(self, name: str, value, scope: Optional[dict], declared: str) -> None:
+        if scope is None or declared == "global" or (declared != "local" and name in self.globals and
+                                                     name not in scope):
+            self.globals[name] = value
+        else:
+            scope[name] = value
+
+    def assign(self, st: Statement, scope: Optional[dict]) -> None:
+        value = self.evaluate(st.value, scope)
+        if st.target[0] == "name":
+            self.store(st.target[1], self.copy(value), scope, st.scope)
+            return
+        container = self.evaluate(st.target[1], scope)
+        index = self.index(self.evaluate(st.target[2], scope), container)
+        if isinstance(container, PoseValue):
+            items = list(container)
+            items[index] = self.number(value)
+            self.store(st.target[1][1], PoseValue(items), scope, "")
+        else:
+            container[index] = value
+
+    @staticmethod
+    def copy(value):
+        return list(value) if isinstance(value, list) else value
+
+    def lookup(self, name: str, scope: Optional[dict]):
+        if scope is not None and name in scope:
+            return scope[name]
+        if name in self.globals:
+            return self.globals[name]
+        if name in self.options.variables:
+            return self.given(name)
+        raise self.error(f"variable {name!r} is used before it is set (a value the controller keeps can be given "
+                         "in the variables)")
+
+    def given(self, name: str):
+        """A variable the reading gives: a number, or a pose p[...] / list [...] as text."""
+        raw = self.options.variables[name]
+        if isinstance(raw, (int, float)):
+            return raw
+        text = str(raw).strip()
+        try:
+            items = [float(v) for v in text.lstrip("p").strip("[]").split(",")]
+        except ValueError:
+            raise InputError(f"variable {name}: expected a number, p[x,y,z,rx,ry,rz] or a list, got {text[:40]!r}") \
+                from None
+        return PoseValue(items) if text.startswith("p") else items
+
+    # --- expressions --------------------------------------------------------------------
+    def number(self, value) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(f"expected a number, got {self.describe(value)}")
+        return value
+
+    @staticmethod
+    def describe(value) -> str:
+        if isinstance(value, PoseValue):
+            return "a pose"
+        if isinstance(value, list):
+            return "a list"
+        return "nothing" if value is None else f"{type(value).__name__} {str(value)[:20]!r}"
+
+    def truth(self, value) -> bool:
+        if isinstance(value, bool):
+            return value
+        return self.number(value) != 0
+
+    def index(self, value, container) -> int:
+        if not isinstance(container, (list, PoseValue)):
+            raise self.error(f"only a list or a pose has elements, not {self.describe(container)}")
+        k = self.number(value)
+        if k != int(k) or not 0 <= k < len(container):
+            raise self.error(f"index {k:g} is outside 0..{len(container) - 1}")
+        return int(k)
+
+    def evaluate(self, expr: Expr, scope: Optional[dict]):
+        kind = expr[0]
+        if kind in ("num", "str", "bool"):
+            return expr[1]
+        if kind == "name":
+            return self.lookup(expr[1], scope)
+        if kind == "list":
+            return [self.evaluate(e, scope) for e in expr[1]]
+        if kind == "pose":
+            values = [self.number(self.evaluate(e, scope)) for e in expr[1]]
+            if len(values) != 6:
+                raise self.error(f"a pose p[...] has 6 values, not {len(values)}")
+            return PoseValue(values)
+        if kind == "index":
+            container = self.evaluate(expr[1], scope)
+            return container[self.index(self.evaluate(expr[2], scope), container)]
+        if kind == "un":
+            value = self.evaluate(expr[2], scope)
+            return (not self.truth(value)) if expr[1] == "not" else -self.number(value)
+        if kind == "bin":
+            return self.binary(expr[1], expr[2], expr[3], scope)
+        return self.call(expr, scope)
+
+    def binary(self, op: str, left: Expr, right: Expr, scope: Optional[dict]):
+        a = self.evaluate(left, scope)
+        if op in ("and", "or"):
+            if self.truth(a) == (op == "or"):
+                return op == "or"
+            return self.truth(self.evaluate(right, scope))
+        b = self.evaluate(right, scope)
+        if op == "xor":
+            return self.truth(a) != self.truth(b)
+        if op in ("==", "!="):
+            return (a == b) == (op == "==")
+        if op == "+" and isinstance(a, str) and isinstance(b, str):
+            return a + b
+        x, y = self.number(a), self.number(b)
+        if op in ("<", ">", "<=", ">="):
+            return {"<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y}[op]
+        if op in ("/", "%") and y == 0:
+            raise self.error("division by zero")
+        try:
+            result = x + y if op == "+" else x - y if op == "-" else x * y if op == "*" else x / y if op == "/" \
+                else math.fmod(x, y)
+        except (ValueError, OverflowError):
+            result = math.nan
+        if isinstance(result, float) and not math.isfinite(result):
+            raise self.error("the value is not a finite number")
+        return result
+
+    def call(self, expr: Expr, scope: Optional[dict]):
+        _, name, arg_exprs, kwarg_exprs, line = expr
+        args = tuple(self.evaluate(a, scope) for a in arg_exprs)
+        kwargs = tuple((k, self.evaluate(v, scope)) for k, v in kwarg_exprs)
+        self.line = line
+        if name in self.functions:
+            return self.invoke(self.functions[name], args, kwargs, line)
+        if name in PURE:
+            if kwargs:
+                raise self.error(f"{name}() takes no keyword arguments")
+            try:
+                result = PURE[name](*args)
+            except (TypeError, ValueError, OverflowError, ZeroDivisionError) as exc:
+                raise self.error(f"{name}(): {exc}") from None
+            if isinstance(result, float) and not math.isfinite(result):
+                raise self.error(f"{name}() has no finite value here")
+            return result
+        return self.robot.call(name, args, kwargs)
+
+    def invoke(self, function: Statement, args: tuple, kwargs: tuple, line: int):
+        if function.scope != "def":
+            self.robot.builder.warn(f"thread:{function.name}", f"{self.source}:{line}: {function.name} is a "
+                                    f"{function.scope}; it is not run")
+            return None
+        if self.depth >= MAX_CALL_DEPTH:
+            raise ExecutionError(f"{self.source}:{line}: calls nest deeper than {MAX_CALL_DEPTH}")
+        local: dict[str, object] = {}
+        given = dict(kwargs)
+        if len(args) > len(function.params) or set(given) - set(function.params):
+            raise self.error(f"{function.name}() takes the parameters {', '.join(function.params) or 'none'}")
+        for k, param in enumerate(function.params):
+            if k < len(args):
+                local[param] = self.copy(args[k])
+            elif param in given:
+                local[param] = self.copy(given[param])
+            elif function.defaults[k] is not None:
+                local[param] = self.evaluate(function.defaults[k], None)
+            else:
+                raise self.error(f"{function.name}() needs its parameter {param}")
+        self.depth += 1
+        self.running.append(function.name)
+        try:
+            self.block(function.body, local)
+        except _Return as result:
+            return result.value
+        finally:
+            self.running.pop()
+            self.depth -= 1
+            self.line = line
+        return None

@@ -1,0 +1,101 @@
+"""Numbers in text tables read as people write them, or refused: never misread without a word."""
+
+from __future__ import annotations
+
+import re
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from coatsim.core.errors import CoatsimWarning, InputError
+from coatsim.core.number_text import read_rows
+from coatsim.geometry.curves import read_points_file
+
+RECT = [(0.0, 0.0), (100.5, 0.0), (100.5, 50.25), (0.0, 50.25), (0.0, 0.0)]
+
+
+def _comma(x: float) -> str:
+    return f"{x:g}".replace(".", ",")
+
+
+@pytest.mark.parametrize("sep", ["\t", " ", ";", "  ", " ; "])
+def test_decimal_commas_with_any_separator_are_read_as_decimals(tmp_path, sep):
+    path = tmp_path / "eu.csv"
+    path.write_text("".join(f"{_comma(x)}{sep}{_comma(y)}\n" for x, y in RECT), encoding="utf-8")
+    with pytest.warns(CoatsimWarning, match="decimal mark"):
+        points = read_points_file(path)
+    assert np.array_equal(points, np.array(RECT))
+
+
+@pytest.mark.parametrize("minus", ["\u2212", "\u2013", "\uff0d"])
+def test_a_unicode_minus_in_the_first_row_is_a_number_not_a_header(tmp_path, minus):
+    path = tmp_path / "minus.csv"
+    rows = [(-5.0, 0.0), (5.0, 0.0), (5.0, 5.0), (-5.0, 0.0)]
+    path.write_text("".join(f"{x:g},{y:g}\n".replace("-", minus) for x, y in rows), encoding="utf-8")
+    with pytest.warns(CoatsimWarning, match="minus sign"):
+        points = read_points_file(path)
+    assert np.array_equal(points, np.array(rows))  # the closed curve stays closed: its first row is kept
+
+
+def test_a_header_is_a_first_row_without_any_number():
+    rows = read_rows("x;y\n1;2\n", "t.csv", "x,y")
+    assert rows.header == ["x", "y"] and rows.values == [[1.0, 2.0]]
+    with pytest.raises(InputError, match=r"t.csv:1: field 1 is not a number"):
+        read_rows("x1,2\n1,2\n", "t.csv", "x,y")
+
+
+@pytest.mark.parametrize("text, fragment", [
+    ("1,5;2,5\n1.5;2.5\n", "decimal commas (line 1) and decimal points (line 2)"),
+    ("1_000,2\n", "field 1 is not a number"),
+    ("0x10,2\n", "field 1 is not a number"),
+    ("1.2.3,2\n", "field 1 is not a number"),
+    ("2mm,2\n", "field 1 is not a number"),
+    ("1,nan\n", "not finite"),
+])
+def test_forms_that_are_not_numbers_are_refused_with_line_and_field(text, fragment):
+    with pytest.raises(InputError, match=re.escape(fragment)):
+        read_rows(text, "t.csv", "x,y")
+
+
+def test_three_columns_are_a_3d_curve_never_cut_to_two(tmp_path):
+    path = tmp_path / "xyz.csv"
+    t = np.linspace(0, 4 * np.pi, 50)
+    helix = np.c_[np.cos(t), np.sin(t), t]
+    np.savetxt(path, helix, delimiter=",")
+    assert read_points_file(path).shape == (50, 3)
+    np.save(tmp_path / "xyz.npy", helix)
+    assert read_points_file(tmp_path / "xyz.npy").shape == (50, 3)
+
+
+@pytest.mark.parametrize("columns", [4, 5])
+def test_more_than_three_columns_are_refused(tmp_path, columns):
+    path = tmp_path / "wide.csv"
+    np.savetxt(path, np.ones((5, columns)) * np.arange(5)[:, None], delimiter=",")
+    with pytest.raises(InputError, match=f"{columns} numeric columns"):
+        read_points_file(path)
+    np.save(tmp_path / "wide.npy", np.ones((5, columns)))
+    with pytest.raises(InputError, match=r"\(n, 2\) or \(n, 3\)"):
+        read_points_file(tmp_path / "wide.npy")
+
+
+finite = st.floats(-1e6, 1e6, allow_nan=False).map(lambda v: round(v, 6))
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.tuples(finite, finite), min_size=1, max_size=20),
+       st.sampled_from([",", ";", "\t", " "]), st.booleans(), st.booleans())
+def test_any_table_reads_back_exactly_or_is_refused(points, sep, comma, unicode_minus):
+    """Written with any separator, decimal mark and minus sign, a table reads back to the same
+    numbers (a decimal comma cannot share the comma separator: that one is written with points)."""
+    comma = comma and sep != ","
+    def fmt(v: float) -> str:
+        text = repr(float(v))
+        text = text.replace(".", ",") if comma else text
+        return text.replace("-", "\u2212") if unicode_minus else text
+    text = "".join(sep.join(fmt(v) for v in row) + "\n" for row in points)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        rows = read_rows(text, "t.csv", "x,y")
+    assert rows.values == [list(map(float, row)) for row in points]

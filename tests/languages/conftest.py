@@ -1,0 +1,1 @@
+"""Puts the helpers shared by the language tests (language_plans.py) on the import path."""
