@@ -29,7 +29,7 @@ from scaling import cpu, report  # noqa: E402
 import coatsim.run.part_run as part_run  # noqa: E402
 from coatsim.run.pipeline import run_scenario  # noqa: E402
 
-SCENARIOS = ("cylinder_3d", "blade_3d", "scan_patch_3d")
+SCENARIOS = ("cylinder_3d", "blade_3d", "unfinished/scan_patch_3d")
 STAGES = {"plan_part": "plan", "build_surface_program": "programs", "execute": "execution", "coat": "coating",
           "write_part_report": "report", "write_thickness_files": "report"}
 
@@ -65,7 +65,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.scenarios.split(","):
             spent.clear()
-            t, result = cpu(lambda: run_scenario(ROOT / "scenarios" / f"{name}.yaml", Path(tmp) / name,
+            t, result = cpu(lambda: run_scenario(ROOT / "scenarios" / f"{name}.yaml", Path(tmp) / Path(name).name,
                                                  fast=not args.full, progress=False,
                                                  keep_going=True))
             print(head)
