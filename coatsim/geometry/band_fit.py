@@ -33,8 +33,10 @@ LANDED_BAND = 0.9  # a re-measured state keeps its offset within this share of t
 @dataclass(frozen=True, eq=False)
 class BandProblem:
     """Knots ``s`` (n,) and integrated heading ``phi`` (n,) of one open run of a curve, the
-    curvature cap of a piece covering each knot (n,) 1/mm, the shortest piece (mm), and the
-    run's ``points`` (n, 2) with their tangent headings ``tangent`` (n,) rad."""
+    curvature cap of a piece covering each knot (n,) 1/mm, the shortest piece (mm), the
+    run's ``points`` (n, 2) with their tangent headings ``tangent`` (n,) rad, and the share
+    of the band open at each knot ``width`` (n,) (1 on dense input; narrower where a sparse
+    polyline's channel is, coatsim.geometry.sparse)."""
 
     s: np.ndarray
     phi: np.ndarray
@@ -42,11 +44,15 @@ class BandProblem:
     min_length: float
     points: np.ndarray
     tangent: np.ndarray
+    width: np.ndarray
     first_steps: dict = field(default_factory=dict, repr=False)  # see _first_step
 
     @classmethod
-    def from_points(cls, points: np.ndarray, limits: FitLimits) -> tuple["BandProblem", float]:
-        """Build from a polyline; returns the problem and the reference heading θ is taken from."""
+    def from_points(cls, points: np.ndarray, limits: FitLimits, width: np.ndarray | None = None,
+                    run_length: float | None = None) -> tuple["BandProblem", float]:
+        """Build from a polyline; returns the problem and the reference heading θ is taken from.
+        ``width``: the band's share per point (default 1); ``run_length``: the length of the
+        run ``limits`` belong to, when ``points`` are a guide of slightly different length."""
         d = np.diff(points, axis=0)
         ell = np.linalg.norm(d, axis=1)
         heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
@@ -54,7 +60,9 @@ class BandProblem:
         s = np.concatenate(([0.0], np.cumsum(ell)))
         phi = np.concatenate(([0.0], np.cumsum((heading - ref) * ell)))
         tangent = np.concatenate(([heading[0]], (heading[:-1] + heading[1:]) / 2, [heading[-1]]))
-        return cls(s, phi, limits.at_knots(s), limits.min_length_mm, np.asarray(points, float), tangent), ref
+        cap = limits.at_knots(s if run_length is None else s * (run_length / s[-1]))
+        share = np.ones(len(s)) if width is None else np.asarray(width, float)
+        return cls(s, phi, cap, limits.min_length_mm, np.asarray(points, float), tangent, share), ref
 
     def ends_allowed(self, a: int, b: np.ndarray) -> np.ndarray:
         """Whether a piece from knot ``a`` may end at each knot of ``b``: long enough, and
@@ -113,7 +121,8 @@ def _landed(prob: BandProblem, ref: float, pose: _Pose, piece: Piece, band: floa
     if not 0.5 * piece.length <= length <= 1.5 * piece.length:
         length = piece.length
     end = pose.along(piece.kappa, length)
-    offset = float(np.clip(-(end.x - px) * ty + (end.y - py) * tx, -LANDED_BAND * band, LANDED_BAND * band))
+    edge = LANDED_BAND * band * float(prob.width[b])
+    offset = float(np.clip(-(end.x - px) * ty + (end.y - py) * tx, -edge, edge))
     return Piece(piece.a, b, piece.kappa, length), end, float(prob.phi[b] + offset), end.heading - ref
 
 
@@ -133,8 +142,9 @@ def _reach(prob: BandProblem, a: int, value: float, slope: float, band: float) -
         u = prob.s[start:stop] - prob.s[a]
         base = value + slope * u
         inv = 2.0 / (u * u)
-        lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - band - base) * inv)))[1:]
-        hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + band - base) * inv)))[1:]
+        half = band * prob.width[start:stop]
+        lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - half - base) * inv)))[1:]
+        hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + half - base) * inv)))[1:]
         cap = np.maximum.accumulate(np.concatenate(([cap_run], prob.cap[start:stop])))[1:]
         bad = np.flatnonzero(lo > hi)
         stop_at = bad[0] if len(bad) else len(lo)
@@ -159,7 +169,8 @@ def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slope
                  width: int = 256) -> list[int]:
     """_farthest after _reach for many states at once (the look-ahead's candidates): the same
     arithmetic element by element on one (states, ``width``) block of the knots that follow
-    each; a state whose band still holds at the block's end goes through _reach itself."""
+    each (the band open at each knot by its share, prob.width); a state whose band still holds at the
+    block's end goes through _reach itself."""
     n = len(prob.s)
     a = np.asarray(knots, dtype=np.int64)
     if not len(a):
@@ -171,8 +182,9 @@ def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slope
     base = np.asarray(values)[:, None] + np.asarray(slopes)[:, None] * u
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = 2.0 / (u * u)
-        lo = np.maximum.accumulate(np.where(inside, (prob.phi[idx] - band - base) * inv, np.inf), axis=1)
-        hi = np.minimum.accumulate(np.where(inside, (prob.phi[idx] + band - base) * inv, -np.inf), axis=1)
+        half = band * prob.width[idx]
+        lo = np.maximum.accumulate(np.where(inside, (prob.phi[idx] - half - base) * inv, np.inf), axis=1)
+        hi = np.minimum.accumulate(np.where(inside, (prob.phi[idx] + half - base) * inv, -np.inf), axis=1)
     cap = np.maximum.accumulate(np.concatenate((prob.cap[a][:, None], prob.cap[idx]), axis=1), axis=1)[:, 1:]
     bad = lo > hi  # (past the last knot every entry is bad)
     held = np.where(bad.any(axis=1), bad.argmax(axis=1), width)
@@ -271,7 +283,8 @@ def _start_heading_range(prob: BandProblem, band: float) -> tuple[float, float]:
         u = prob.s[knots] - prob.s[0]
         a_ub = np.vstack((np.column_stack((u, 0.5 * u * u)), -np.column_stack((u, 0.5 * u * u))))
         rhs = prob.phi[knots] - prob.phi[0]
-        b_ub = np.concatenate((rhs + band, band - rhs))
+        half = band * prob.width[knots]
+        b_ub = np.concatenate((rhs + half, half - rhs))
         cap = float(prob.cap[: b + 1].max())
         out = []
         for c in (1.0, -1.0):

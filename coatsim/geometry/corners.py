@@ -6,9 +6,11 @@ import math
 
 import numpy as np
 
+from coatsim.geometry.sparse import corner_note, sparse_vertices, unroundable
 
 SPARSE = 10.0  # a polyline whose median edge is this many σ long has only its vertices to go by
 CONCENTRATED = 2.0  # a corner turns at most this much more over 3w than over w
+STANDS_OUT = 2.0  # a polygon's corner turns more than this many times either neighbouring vertex
 
 
 def _point_at(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -16,17 +18,52 @@ def _point_at(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
 
 
 def detect_corners(points: np.ndarray, closed: bool, corner_deg: float, tolerance: float) -> np.ndarray:
-    """Indices of the vertices where the curve turns by more than ``corner_deg`` within a
-    window w = max(3 median edge lengths, σ) on each side, and still does over 3w.
+    """Indices of the vertices where the curve has a true corner at tolerance σ (see
+    corners_and_notes)."""
+    return corners_and_notes(points, closed, corner_deg, tolerance)[0]
 
-    The turn is measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so fine
-    sampling of a smooth bend does not count while a sharp vertex does; requiring the turn
-    over 3w too rejects digitising noise, and requiring it to be at most twice the turn over
-    w rejects smooth bends that a large tolerance makes turn much within w. Neighbouring detections within 2w collapse to the
-    vertex with the largest turn. End points of an open curve are never corners. A sparse
-    polyline (median edge >= 10 σ) has its sharp vertices as corners.
+
+def corners_and_notes(points: np.ndarray, closed: bool, corner_deg: float,
+                      tolerance: float) -> tuple[np.ndarray, tuple[str, ...]]:
+    """Indices of the vertices where the curve has a true corner at tolerance σ, and a note
+    on the vertices σ is too small to round.
+
+    Between short edges: where the curve turns by more than ``corner_deg`` within a window
+    w = max(3 median edge lengths, σ) on each side, and still does over 3w. The turn is
+    measured between the chords p(s - w) -> p(s) and p(s) -> p(s + w), so fine sampling of a
+    smooth bend does not count while a sharp vertex does; requiring the turn over 3w too
+    rejects digitising noise, and requiring it to be at most twice the turn over w rejects
+    smooth bends that a large tolerance makes turn much within w. Neighbouring detections
+    within 2w collapse to the vertex with the largest turn. A polyline whose median edge is
+    SPARSE σ or longer has its vertices turning more than ``corner_deg`` as corners instead.
+
+    Between long edges (coatsim.geometry.sparse, a taught path): where σ is below what the
+    polyline allows (no arc as gentle as its own turning rounds the vertex within σ), or
+    where it turns more than ``corner_deg`` and more than STANDS_OUT times either
+    neighbour (a polygon's corner, not a step of a taught curve). End points of an open
+    curve are never corners.
     """
     pts = np.asarray(points, dtype=float)
+    dense = _dense_corners(pts, closed, corner_deg, tolerance)
+    long = sparse_vertices(pts, closed, tolerance)
+    if not long.any():
+        return dense, ()
+    turn = _vertex_turns(pts, closed)
+    prev_turn, next_turn = np.roll(turn, 1), np.roll(turn, -1)
+    if closed:
+        prev_turn[0] = turn[-2]  # the seam's neighbour across it
+    sharp = long & (turn > math.radians(corner_deg)) & (turn > STANDS_OUT * np.maximum(prev_turn, next_turn))
+    sharp[-1] = False
+    if not closed:
+        sharp[0] = False
+    kept = [int(c) for c in dense if not long[c]]
+    tight, needs = unroundable(pts, closed, tolerance)
+    corners = np.array(sorted(set(kept) | set(np.flatnonzero(sharp).tolist()) | set(tight.tolist())), dtype=int)
+    return corners, ((corner_note(pts, tight, needs, tolerance),) if len(tight) else ())
+
+
+def _dense_corners(pts: np.ndarray, closed: bool, corner_deg: float, tolerance: float) -> np.ndarray:
+    """Corners by the rule for short edges (see detect_corners)."""
     edges = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     if float(np.median(edges)) >= SPARSE * tolerance:
         return _vertex_corners(pts, closed, corner_deg)

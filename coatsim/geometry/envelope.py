@@ -187,10 +187,18 @@ def curvature_profile(points: np.ndarray, closed: bool, tolerance: float) -> Cur
     eta = noise_mm(pts)
     # Noise of std η moves the estimate by about √6·η·√edge / w^2.5 (means over w / edge
     # vertices): widen the window until four of those are a small share of the typical |κ|.
+    # Where the curve turns much tighter than is typical (a tight turn of a noisy curve), a
+    # narrower window already meets that share of the |κ| there, and keeps the turn's
+    # curvature instead of smoothing it away: each point keeps the narrowest window that does.
+    narrow = np.full(len(grid), np.nan)
     while eta > 1e-9 * length and window < cap:
+        error = 4 * math.sqrt(6) * eta * math.sqrt(edge) / window**2.5
         typical = float(np.percentile(np.abs(kappa), 90))
-        if 4 * math.sqrt(6) * eta * math.sqrt(edge) / window**2.5 <= NOISE_SHARE * max(typical, 1e-12):
+        if error <= NOISE_SHARE * max(typical, 1e-12):
             break
+        settled = np.isnan(narrow) & (error <= NOISE_SHARE * np.abs(kappa))
+        narrow[settled] = kappa[settled]
         window = min(cap, window * 1.5)
         kappa = _estimate(pts, closed, window, grid)
+    kappa = np.where(np.isnan(narrow), kappa, narrow)
     return CurvatureProfile(kappa, step, length, window, closed)

@@ -10,8 +10,10 @@ Per run of the curve between true corners (or the whole closed loop):
    fails, the band fit is repeated with its states re-measured on the real arcs, then with a
    narrower band,
 4. if the refined deviation is just above σ, the worst segment is split in two instead,
-5. if no chain keeps the limits, chains within a fraction of σ are tried, then looser caps,
-   and as the last resort fillets at every vertex.
+5. if no chain keeps the limits, chains within a fraction of σ are tried, then (dense runs)
+   looser caps, and as the last resort fillets at every vertex; a sparse run (taught points,
+   coatsim.geometry.sparse) is band-fitted along its guide and, where even that finds no
+   chain, comes back as its own lines with a note rather than with arcs tighter than it turns.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
+from coatsim.geometry.sparse import guide as sparse_guide, is_sparse
 
 MAX_ATTEMPTS = 20
 PIN_RAD = 1e-9  # a pinned end tangent is kept to this (rad)
@@ -48,12 +51,16 @@ BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a ru
 
 @dataclass(frozen=True)
 class RunFit:
-    """A run's chain, its verified deviation (mm), and whether it keeps the run's curvature
-    caps and minimum length (False: loosened caps or the fillet fallback)."""
+    """A run's chain, its verified deviation (mm), whether it keeps the run's curvature
+    caps and minimum length (False: loosened caps or the fillet fallback), the junctions
+    of the chain that are corners (k: end of segment k; a sparse run σ cannot follow with
+    arcs as gentle as its own turning comes back as its lines) and what the user should know."""
 
     segments: tuple[Segment, ...]
     deviation_mm: float
     limits_kept: bool = True
+    corners: tuple[int, ...] = ()
+    notes: tuple[str, ...] = ()
 
 
 def total_turn(points: np.ndarray) -> float:
@@ -111,23 +118,75 @@ def _pins_kept(segs: tuple[Segment, ...], start_heading: float | None, end_headi
     return ok and (end_heading is None or abs(math.remainder(segs[-1].end_heading - end_heading, 2 * math.pi)) <= PIN_RAD)
 
 
+@dataclass(frozen=True, eq=False)
+class _Target:
+    """What the chains of one run are refined against and checked on: the run's points
+    ``pts``, the samples the refinement measures (``measured``: the points, or a sparse
+    run's points along its edges), the start and end points, the total turn (loops and
+    pinned ends), the direction a sparse loop's start may slide along, the caps, the run's
+    length and tolerance, and the pinned end tangents."""
+
+    pts: np.ndarray
+    measured: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    turn: float | None
+    slide: np.ndarray | None
+    limits: FitLimits
+    total: float
+    tolerance: float
+    closed_loop: bool
+    start_heading: float | None
+    end_heading: float | None
+
+    def settle(self, params: ChainParams, target: float) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
+        """Refine, close and build a chain: (parameters, sampled deviation, segments, whether
+        it keeps the caps and pins, exact deviation (inf when it does not))."""
+        params, sampled = refine_chain(self.start, params, self.measured, self.end, self.turn, self.limits, target,
+                                       fixed_heading=self.start_heading is not None, closed_loop=self.closed_loop,
+                                       slide=self.slide, slide_mm=self.tolerance)
+        origin = self.origin(params)
+        end = origin if self.slide is not None else self.end
+        params = close_exactly(origin, params, end, self.turn)
+        segs = build_chain(origin, params, end)
+        honest = _honest(params, self.limits, self.total) and _pins_kept(segs, self.start_heading, self.end_heading)
+        dev = hausdorff(self.pts, Polysegment(segs)).hausdorff if honest else math.inf
+        return params, sampled, segs, honest, dev
+
+    def origin(self, params: ChainParams) -> np.ndarray:
+        """Where the chain of ``params`` starts."""
+        return self.start if self.slide is None else self.start + params.shift * self.slide
+
+
 def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,
                  budget: list[int], start_heading: float | None = None,
                  end_heading: float | None = None) -> tuple[tuple[Segment, ...], float] | None:
     """Band fit, refinement and the exact check under ``limits``; None if no chain within
     ``tolerance`` is found within the attempt ``budget`` (a shared one-element counter).
-    ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents."""
-    end = pts[-1]
+    ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents.
+    A sparse run is band-fitted along its guide (coatsim.geometry.sparse), a sparse loop
+    starts in the channel of its first vertex, and a sparse run's chain gives up every
+    junction it can (_fewer)."""
     total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     turn = total_turn(pts) if closed_loop else None
     if start_heading is not None and end_heading is not None:
         turn = _pinned_turn(pts, start_heading, end_heading)
-    prob, ref = BandProblem.from_points(_band_knots(pts), limits)
+    path = sparse_guide(pts, closed_loop, tolerance, limits)
+    if path is None:
+        tgt = _Target(pts, pts, pts[0], pts[-1], turn, None, limits, total, tolerance, closed_loop,
+                      start_heading, end_heading)
+        prob, ref = BandProblem.from_points(_band_knots(pts), limits)
+    else:
+        start = path.points[0]
+        tgt = _Target(pts, path.edges, start, start if closed_loop else pts[-1], turn,
+                      path.slide if closed_loop else None, limits, total, tolerance, closed_loop,
+                      start_heading, end_heading)
+        prob, ref = BandProblem.from_points(path.points, limits, path.width, total)
     pinned_slope = None if start_heading is None else math.remainder(start_heading - ref, 2 * math.pi)
     band, target = tolerance, TARGET * tolerance
     params: ChainParams | None = None
     splits, landed, shrink, at_start = 0, False, 0.9, 0
-    tried: dict[tuple[bytes, float], tuple] = {}  # a chain refined before (band fits often repeat one) is not again
+    tried: dict[tuple[bytes, float, float], tuple] = {}  # a chain refined before (band fits often repeat one) is not again
     while budget[0] > 0:
         budget[0] -= 1
         check_time("fitting the curve")  # the budget seconds bounds a slow fit (coatsim.core.progress)
@@ -142,26 +201,20 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
                 landed = False
                 continue
             params = _params_from_band(prob, ref, slope, pieces)
-        key = (params.vector().tobytes(), target)
+        key = (params.vector().tobytes(), params.shift, target)
         if key not in tried:
-            refined, sampled = refine_chain(pts[0], params, pts, end, turn, limits, target,
-                                            fixed_heading=start_heading is not None)
-            refined = close_exactly(pts[0], refined, end, turn)
-            segs = build_chain(pts[0], refined, end)
-            honest = _honest(refined, limits, total) and _pins_kept(segs, start_heading, end_heading)
-            dev = hausdorff(pts, Polysegment(segs)).hausdorff if honest else math.inf  # unused when not honest
-            tried[key] = refined, sampled, segs, honest, dev
+            tried[key] = tgt.settle(params, target)
         params, sampled, segs, honest, dev = tried[key]
         if dev <= tolerance and honest:
-            return segs, dev
+            return (segs, dev) if path is None else _fewer(tgt, params, segs, dev)
         if honest and sampled <= target:
             # The samples met the target but the exact check did not (chords of the input
             # cut inside the chain): aim lower with the same segments.
             target *= 0.99 * tolerance / dev
         elif (honest and (sampled < SPLIT_BELOW * tolerance or len(params.length) == 1) and splits < MAX_SPLITS
-              and _splittable(params, pts, limits)):
+              and _splittable(params, tgt.origin(params), tgt.measured, limits)):
             # (one refined segment is the best single arc: no narrower band makes it fit)
-            params = split_segment(params, worst_segment(pts[0], params, pts))
+            params = split_segment(params, worst_segment(tgt.origin(params), params, tgt.measured))
             splits += 1
         else:
             # A new band fit: the same band with states re-measured on the real arcs, then
@@ -174,6 +227,25 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     return None
 
 
+def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
+           dev: float) -> tuple[tuple[Segment, ...], float]:
+    """The chain with junctions given up, the calmest first (two segments become one of their
+    length and turn, refined again), while the chain stays within the tolerance and caps."""
+    while len(params.kappa) > 1:
+        for j in np.argsort(np.abs(np.diff(params.kappa)), kind="stable"):
+            length = params.length[j] + params.length[j + 1]
+            kappa = (params.kappa[j] * params.length[j] + params.kappa[j + 1] * params.length[j + 1]) / length
+            merged = ChainParams(params.heading, np.concatenate((params.kappa[:j], [kappa], params.kappa[j + 2:])),
+                                 np.concatenate((params.length[:j], [length], params.length[j + 2:])), params.shift)
+            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance)
+            if honest and fewer_dev <= tgt.tolerance:
+                params, segs, dev = fewer, fewer_segs, fewer_dev
+                break
+        else:
+            break
+    return segs, dev
+
+
 def _band_knots(pts: np.ndarray) -> np.ndarray:
     """The points the band fit works on: all of them up to BAND_KNOTS, else every k-th one
     (and the last), so its cost stays linear; the refinement and the exact check see all."""
@@ -183,9 +255,9 @@ def _band_knots(pts: np.ndarray) -> np.ndarray:
     return np.vstack((pts[:-1:step], pts[-1:]))
 
 
-def _splittable(params: ChainParams, pts: np.ndarray, limits: FitLimits) -> bool:
+def _splittable(params: ChainParams, start: np.ndarray, pts: np.ndarray, limits: FitLimits) -> bool:
     """Whether the worst segment is long enough to be cut in two."""
-    return params.length[worst_segment(pts[0], params, pts)] >= 2 * limits.min_length_mm
+    return params.length[worst_segment(start, params, pts)] >= 2 * limits.min_length_mm
 
 
 def fit_simple(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None = None,
@@ -221,7 +293,8 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     """
     pts = np.asarray(points, dtype=float)
     pins = (start_heading, end_heading) if not closed_loop else (None, None)
-    if fillet and not quick and _single_kink(pts, closed_loop, tolerance, pins):
+    lone_kink = _single_kink(pts, closed_loop, tolerance, pins) and not is_sparse(pts, closed_loop, tolerance)
+    if fillet and not quick and lone_kink:
         segs = fillet_chain(pts, tolerance, closed_loop)
         dev = hausdorff(pts, Polysegment(segs)).hausdorff
         if dev <= tolerance:
@@ -238,6 +311,8 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
             found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
     if found is not None:
         return RunFit(*found)
+    if is_sparse(pts, closed_loop, tolerance):
+        return taught_lines(pts, closed_loop, tolerance)
     for factor in RELAX:
         found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
         if found is not None:
@@ -256,10 +331,24 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
     raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
 
 
+def taught_lines(pts: np.ndarray, closed_loop: bool, tolerance: float) -> RunFit:
+    """A sparse run as its own lines (those of its vertices RDP keeps within half the
+    tolerance), a corner at every vertex, with a note: looser caps or fillets would turn
+    tighter than the taught points do."""
+    v = pts[_simplified(pts, closed_loop, tolerance / 2)]
+    lines = tuple(Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))) for a, b in zip(v[:-1], v[1:]))
+    corners = tuple(range(len(lines) - (0 if closed_loop else 1)))
+    note = (f"the {len(pts)} points from ({pts[0][0]:.6g}, {pts[0][1]:.6g}) to ({pts[-1][0]:.6g}, {pts[-1][1]:.6g}) are "
+            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning stays within "
+            f"tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
+    return RunFit(lines, hausdorff(pts, Polysegment(lines)).hausdorff, True, corners, (note,))
+
+
 def _single_kink(pts: np.ndarray, closed_loop: bool, tolerance: float, pins: tuple) -> bool:
     """An open, unpinned run of three points whose middle one is off the chord by more than the
     tolerance: a lone kink (sparse or random input) that only a fillet follows. The band fit
-    and its fallbacks would spend ~50 attempts (about a second) before ending there too."""
+    and its fallbacks would spend ~50 attempts (about a second) before ending there too
+    (a sparse run's taught points are not filleted: fit_free's caller skips it for them)."""
     if closed_loop or len(pts) != 3 or pins != (None, None):
         return False
     chord = pts[2] - pts[0]

@@ -11,6 +11,7 @@ the minimum (FitLimits).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,24 +26,29 @@ EARLY = 12
 
 @dataclass(frozen=True, eq=False)
 class ChainParams:
-    """start heading (rad), curvatures (n,) 1/mm, lengths (n,) mm."""
+    """start heading (rad), curvatures (n,) 1/mm, lengths (n,) mm, and how far (mm) the
+    start has slid from where it was given (refine_chain's ``slide``; 0 otherwise)."""
 
     heading: float
     kappa: np.ndarray
     length: np.ndarray
+    shift: float = 0.0
 
     def vector(self) -> np.ndarray:
+        """(2n + 1,): heading, curvatures, lengths (not the shift)."""
         return np.concatenate(([self.heading], self.kappa, self.length))
 
     @classmethod
-    def from_vector(cls, x: np.ndarray) -> "ChainParams":
+    def from_vector(cls, x: np.ndarray, shift: float = 0.0) -> "ChainParams":
         n = (len(x) - 1) // 2
-        return cls(float(x[0]), x[1 : n + 1].copy(), x[n + 1 :].copy())
+        return cls(float(x[0]), x[1 : n + 1].copy(), x[n + 1 : 2 * n + 1].copy(), shift)
 
 
 def _segment_starts(start: np.ndarray, heading0: np.ndarray, kappa: np.ndarray, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Segment start points (B, n+1, 2) (index n = chain end) and start headings (B, n+1)
-    for a batch of B parameter sets (heading0 (B,), kappa and length (B, n))."""
+    for a batch of B parameter sets (heading0 (B,), kappa and length (B, n)) from ``start``
+    (2,) or one start per set (B, 2)."""
+    start = np.asarray(start, dtype=float).reshape(-1, 1, 2)
     sweep = kappa * length
     heading = heading0[:, None] + np.concatenate((np.zeros((len(sweep), 1)), np.cumsum(sweep, axis=1)), axis=1)
     small = np.abs(sweep) < 1e-9
@@ -55,7 +61,8 @@ def _segment_starts(start: np.ndarray, heading0: np.ndarray, kappa: np.ndarray, 
 
 
 def batch_residuals(start: np.ndarray, x: np.ndarray, samples: np.ndarray, s_frac: np.ndarray) -> np.ndarray:
-    """Signed lateral distance (B, m) of every sample for a batch of parameter vectors (B, 2n+1).
+    """Signed lateral distance (B, m) of every sample for a batch of parameter vectors (B, 2n+1)
+    from ``start`` (2,) or (B, 2).
 
     Each sample is compared with the carrier circle (or line) of the segment at the same
     normalised arc length on the chain as the sample has on the input.
@@ -81,8 +88,8 @@ def lateral_residuals(start: np.ndarray, p: ChainParams, samples: np.ndarray, s_
 
 
 def closure_gap(start: np.ndarray, x: np.ndarray, end: np.ndarray, turn: float | None) -> np.ndarray:
-    """Gap (B, 2 or 3) between each chain's end and the required end point, and between its
-    total turning and the required ``turn`` (closed curves)."""
+    """Gap (B, 2 or 3) between each chain's end and the required end point (2,) or (B, 2),
+    and between its total turning and the required ``turn`` (closed curves)."""
     n = (x.shape[1] - 1) // 2
     pts, heading = _segment_starts(start, x[:, 0], x[:, 1 : n + 1], x[:, n + 1 :])
     gap = pts[:, -1] - end
@@ -131,11 +138,13 @@ def _minimax_step(
 
 class ChainProblem:
     """A run to fit a chain of ``n`` segments to, in scaled variables z = x / ``unit``
-    (angles; curvature x run length; length / mean length), with the samples the deviation
-    is measured at (``pick``, grown by exchange rounds)."""
+    (angles; curvature x run length; length / mean length; the start's slide in mm, when it
+    may slide), with the samples the deviation is measured at (``pick``, grown by exchange
+    rounds)."""
 
     def __init__(self, start: np.ndarray, points: np.ndarray, end: np.ndarray, turn: float | None,
-                 limits: FitLimits, n: int, fixed_heading: bool = False) -> None:
+                 limits: FitLimits, n: int, fixed_heading: bool = False, closed_loop: bool = False,
+                 slide: np.ndarray | None = None, slide_mm: float = 0.0) -> None:
         seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
         s = np.concatenate(([0.0], np.cumsum(seg)))
         self.total = float(s[-1])
@@ -147,15 +156,27 @@ class ChainProblem:
         self.limits = limits
         self.n = n
         self.fixed_heading = fixed_heading
-        self.inset_left, self.inset_right = chord_insets(points)
+        self.inset_left, self.inset_right = chord_insets(points, closed_loop)
         grid = np.linspace(0, self.total, min(MAX_SAMPLES, len(points)))
         self.pick = np.unique(np.searchsorted(s, grid).clip(0, len(points) - 1))
-        self.unit = np.concatenate(([1.0], np.full(n, 1.0 / self.total), np.full(n, self.total / n)))
-        self.min_len_z = max(limits.min_length_mm if n > 1 else 0.0, 1e-6 * self.total) / self.unit[n + 1 :]
+        self.slide = None if slide is None else np.asarray(slide, dtype=float)
+        self.slide_mm = slide_mm
+        self.unit = np.concatenate(([1.0], np.full(n, 1.0 / self.total), np.full(n, self.total / n),
+                                    [1.0] * (self.slide is not None)))
+        self.min_len_z = max(limits.min_length_mm if n > 1 else 0.0, 1e-6 * self.total) / self.unit[n + 1 : 2 * n + 1]
+
+    def _split(self, zb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The chain parameters (B, 2n+1) and the start of each chain (B, 2) of scaled vectors."""
+        x = zb * self.unit
+        chain = x[:, : 2 * self.n + 1]
+        if self.slide is None:
+            return chain, np.broadcast_to(self.start, (len(x), 2))
+        return chain, self.start + x[:, -1:] * self.slide
 
     def residuals(self, zb: np.ndarray) -> np.ndarray:
         """Lateral residuals (B, samples) for a batch of scaled vectors."""
-        return batch_residuals(self.start, zb * self.unit, self.points[self.pick], self.frac[self.pick])
+        chain, start = self._split(zb)
+        return batch_residuals(start, chain, self.points[self.pick], self.frac[self.pick])
 
     def excess(self, r: np.ndarray, where: np.ndarray | slice) -> np.ndarray:
         """Distance bound per sample: the lateral residual, plus the chord inset of the input
@@ -169,7 +190,9 @@ class ChainProblem:
     def closure(self, zb: np.ndarray) -> np.ndarray:
         """End gap (and turning gap times the run length) (B, 2 or 3)."""
         scale = np.append([1.0, 1.0], [self.total] * (self.turn is not None))
-        return closure_gap(self.start, zb * self.unit, self.end, self.turn) * scale
+        chain, start = self._split(zb)
+        end = self.end if self.slide is None else start  # a sliding start is a loop's: its end slides along
+        return closure_gap(start, chain, end, self.turn) * scale
 
     def bounds(self, z: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
         """Step bounds: the trust region, the curvature caps of the segments' present
@@ -177,22 +200,26 @@ class ChainProblem:
         not go farther)."""
         n = self.n
         x = z * self.unit
-        ends = np.concatenate(([0.0], np.cumsum(x[n + 1 :])))
+        ends = np.concatenate(([0.0], np.cumsum(x[n + 1 : 2 * n + 1])))
         ends = ends / ends[-1] * self.total
         cap_z = self.limits.over(ends[:-1], ends[1:]) / self.unit[1 : n + 1]
-        lower, upper = np.full(2 * n + 1, -radius), np.full(2 * n + 1, radius)
+        lower, upper = np.full(len(z), -radius), np.full(len(z), radius)
         kappa = z[1 : n + 1]
         lower[1 : n + 1] = np.clip(np.minimum(-cap_z - kappa, 0.0), -radius, radius)
         upper[1 : n + 1] = np.clip(np.maximum(cap_z - kappa, 0.0), -radius, radius)
-        lower[n + 1 :] = np.clip(np.minimum(self.min_len_z - z[n + 1 :], 0.0), -radius, radius)
+        lower[n + 1 : 2 * n + 1] = np.clip(np.minimum(self.min_len_z - z[n + 1 : 2 * n + 1], 0.0), -radius, radius)
         if self.fixed_heading:  # a start tangent pinned by the caller
             lower[0] = upper[0] = 0.0
+        if self.slide is not None:  # the start stays within slide_mm of where it was given
+            lower[-1] = np.clip(-self.slide_mm - z[-1], -radius, 0.0)
+            upper[-1] = np.clip(self.slide_mm - z[-1], 0.0, radius)
         return lower, upper
 
     def add_missing(self, z: np.ndarray) -> bool:
         """Add the points whose distance bound exceeds every sampled one (the samples missed
         a peak); whether there were any."""
-        full = self.excess(batch_residuals(self.start, (z * self.unit)[None], self.points, self.frac)[0], slice(None))
+        chain, start = self._split(z[None])
+        full = self.excess(batch_residuals(start, chain, self.points, self.frac)[0], slice(None))
         sampled = float(full[self.pick].max())
         order = np.argsort(-full)[:EXCHANGE]
         missing = order[full[order] > 1.001 * sampled + 1e-12]
@@ -210,6 +237,9 @@ def refine_chain(
     target: float,
     max_iter: int = 40,
     fixed_heading: bool = False,
+    closed_loop: bool = False,
+    slide: np.ndarray | None = None,
+    slide_mm: float = 0.0,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -218,17 +248,21 @@ def refine_chain(
     penalty on the end gap" is solved with HiGHS. ``end``: the point the chain must end
     at; ``turn``: the total turning it must have (closed curves: 2π·k), or None.
     Curvatures stay under the caps of ``limits`` for the stretches their segments cover now,
-    lengths above its minimum; ``fixed_heading`` keeps the start heading as it is. Stops early once the sampled deviation is below ``target``
+    lengths above its minimum; ``fixed_heading`` keeps the start heading as it is;
+    ``closed_loop``: ``points`` close on themselves (their seam is a vertex with chord insets);
+    ``slide`` (a unit vector, loops only): the start (and with it the end) may move along it
+    by up to ``slide_mm``, from ``start`` plus the ``shift`` of ``params``.
+    Stops early once the sampled deviation is below ``target``
     with the end gap closed, or when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
-    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading)
+    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading, closed_loop, slide, slide_mm)
     weight = 100.0  # the end gap costs this many times a lateral deviation
 
     def merit(zb: np.ndarray) -> np.ndarray:
         return prob.deviation(zb) + weight * np.abs(prob.closure(zb)).max(axis=1)
 
-    z = params.vector() / prob.unit
+    z = np.append(params.vector(), [params.shift] * (slide is not None)) / prob.unit
     f = float(merit(z[None])[0])
     radius = 0.05
     iteration = 0  # LP steps, shared by all exchange rounds
@@ -258,23 +292,29 @@ def refine_chain(
         if not prob.add_missing(z):
             break
         f = float(merit(z[None])[0])
-    return ChainParams.from_vector(z * prob.unit), f
+    x = z * prob.unit
+    return ChainParams.from_vector(x[: 2 * prob.n + 1], float(x[-1]) if slide is not None else params.shift), f
 
 
-def chord_insets(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def chord_insets(points: np.ndarray, closed_loop: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """How far the input's edges next to each vertex dip inside a smooth curve through the
     vertices (the sagitta ℓ²|κ|/8), on the left and on the right side, shape (n,) each.
 
     A chain that passes a vertex on the outer side of a bend is farther from the chords
-    than from the vertex by about this much.
+    than from the vertex by about this much. The ends of an open run have none; the seam
+    of a ``closed_loop`` (last point = first) is a vertex like the others.
     """
     d = np.diff(points, axis=0)
     ell = np.linalg.norm(d, axis=1)
     heading = np.arctan2(d[:, 1], d[:, 0])
     turn = np.zeros(len(points))
     turn[1:-1] = np.remainder(np.diff(heading) + np.pi, 2 * np.pi) - np.pi
-    longest = np.maximum(np.concatenate(([0.0], ell)), np.concatenate((ell, [0.0])))
-    span = np.concatenate(([ell[0]], ell[:-1] + ell[1:], [ell[-1]]))
+    before, after = np.concatenate(([0.0], ell)), np.concatenate((ell, [0.0]))
+    if closed_loop and len(ell) > 1:
+        turn[0] = turn[-1] = math.remainder(float(heading[0] - heading[-1]), 2 * math.pi)
+        before[0], after[-1] = ell[-1], ell[0]
+    longest = np.maximum(before, after)
+    span = before + after
     inset = longest**2 * 2 * np.abs(turn) / span / 8
     return np.where(turn > 0, inset, 0.0), np.where(turn < 0, inset, 0.0)
 
@@ -294,6 +334,7 @@ def split_segment(params: ChainParams, j: int) -> ChainParams:
         params.heading,
         np.insert(params.kappa, j, params.kappa[j]),
         np.concatenate((params.length[:j], [params.length[j] / 2] * 2, params.length[j + 1 :])),
+        params.shift,
     )
 
 
@@ -317,5 +358,5 @@ def close_exactly(start: np.ndarray, params: ChainParams, end: np.ndarray, turn:
             cols.append((closure_gap(start, dx[None], end, turn)[0] - gap) / eps)
         step = np.linalg.lstsq(np.column_stack(cols), -gap, rcond=None)[0]
         x[free] += step / scale
-    out = ChainParams.from_vector(x)
+    out = ChainParams.from_vector(x, params.shift)
     return out if np.all(out.length > 0) else params

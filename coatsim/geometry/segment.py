@@ -12,13 +12,13 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.progress import progress
 from coatsim.core.errors import InputError
-from coatsim.geometry.corners import detect_corners
+from coatsim.geometry.corners import corners_and_notes
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.limits import check_min_segment
 from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed_limited
-from coatsim.geometry.fit import fit_free, fit_run
+from coatsim.geometry.fit import RunFit, fit_free, fit_run, taught_lines
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
@@ -50,6 +50,7 @@ class Segmentation:
     speed_mm_s: float | None = None
     tool_accel_mm_s2: float | None = None
     limits_kept: bool | None = None
+    notes: tuple[str, ...] = ()
 
     def summary(self) -> str:
         """One screen of text: counts, verified deviation, tangency."""
@@ -75,6 +76,7 @@ class Segmentation:
             lines.append(f"at {self.speed_mm_s:g} mm/s and {self.tool_accel_mm_s2 / 1000:g} m/s²: "
                          + (f"{len(limited)} speed-limited stretch(es), slowest {slowest:.1f} mm/s"
                             if limited else "no speed-limited stretch"))
+        lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
 
     def stats(self) -> dict:
@@ -184,18 +186,18 @@ def segment_curve(
                             speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
     speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
     poly = obvious_answer(pts, curve.closed, tol)
-    input_radius, kept = None, True
+    input_radius, kept, notes = None, True, ()
     if poly is not None:
         dev = hausdorff(pts, poly).hausdorff
     else:
         try:
-            poly, dev, input_radius, kept = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+            poly, dev, input_radius, kept, notes = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
         except InputError as exc:
             raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
     check_chain(poly, extent_mm(pts))
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
-                        speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept)
+                        speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept, notes=notes)
 
 
 def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> Polysegment:
@@ -205,36 +207,48 @@ def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: f
 
 
 def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
-         speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool]:
+         speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
     """The default fitter over the curve's runs between corners (or its whole closed loop).
     Returns (polysegment, verified deviation, the input's tightest radius (robust, mm),
-    whether every run kept its curvature caps and minimum length)."""
+    whether every run kept its curvature caps and minimum length, notes)."""
     pts = curve.points
     exact = recover_exact(pts, curve.closed, tol)
     if exact is not None:  # before corners: a large tolerance must not turn a fillet into one
         exact = split_long_arcs(exact)  # an open run that ends where it starts: one full circle
-        return Polysegment(exact, closed=curve.closed), hausdorff(pts, Polysegment(exact)).hausdorff, None, True
-    corners = detect_corners(pts, curve.closed, corner_deg, tol)
+        return Polysegment(exact, closed=curve.closed), hausdorff(pts, Polysegment(exact)).hausdorff, None, True, ()
+    corners, notes = corners_and_notes(pts, curve.closed, corner_deg, tol)
     rotated, runs = _runs(pts, corners, curve.closed)
     closed_loop = curve.closed and len(corners) == 0
     if closed_loop:
-        return _fit_loop(pts, tol, min_segment_mm, speed_kappa)
+        poly, dev, radius, kept, more = _fit_loop(pts, tol, min_segment_mm, speed_kappa)
+        return poly, dev, radius, kept, notes + more
     pieces: list[tuple[Segment, ...]] = []
+    inner: list[int] = []  # corners inside runs (taught points kept as their lines)
     deviations, radii, kept = [], [], True
     with progress(f"{curve.name}: fitting runs between corners", len(runs)) as advance:
         for run in runs:  # the time budget is checked after each run (coatsim.core.progress)
             limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
             found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
-            pieces.append(split_long_arcs(found.segments))
+            segments, run_corners = _split_arcs(found)
+            inner += [sum(len(p) for p in pieces) + k for k in run_corners]
+            pieces.append(segments)
             deviations.append(found.deviation_mm)
             radii.append(limits.profile.tightest_radius_mm)
             kept = kept and found.limits_kept
+            notes += found.notes
             advance()
     segments = tuple(seg for piece in pieces for seg in piece)
     junctions = _corner_junctions([len(p) for p in pieces], curve.closed, len(corners) > 0)
-    poly = Polysegment(segments, closed=curve.closed, corners=junctions)
+    poly = Polysegment(segments, closed=curve.closed, corners=tuple(sorted(set(junctions) | set(inner))))
     dev = deviations[0] if len(runs) == 1 else hausdorff(rotated, poly).hausdorff
-    return poly, dev, _finite(min(radii)), kept
+    return poly, dev, _finite(min(radii)), kept, notes
+
+
+def _split_arcs(found: RunFit) -> tuple[tuple[Segment, ...], list[int]]:
+    """A run's segments with long arcs split (split_long_arcs) and its corners renumbered."""
+    parts = [split_long_arcs((seg,)) for seg in found.segments]
+    ends = np.cumsum([len(p) for p in parts]) - 1
+    return tuple(s for p in parts for s in p), [int(ends[k]) for k in found.corners]
 
 
 def _hooked(segments: tuple[Segment, ...]) -> bool:
@@ -251,10 +265,11 @@ def _hooked(segments: tuple[Segment, ...]) -> bool:
 
 
 def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
-              speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool]:
+              speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
     """A free-form closed loop without corners: a quick fit from the first point, unless it
     closes with a hook (see _hooked) and a fit from the loop's calmest point, started again at
-    the first point, needs at most one segment more (or the quick fit fails)."""
+    the first point, needs at most one segment more (or the quick fit fails). Taught points
+    no chain of honest arcs follows come back as their lines from the first point."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     quick = fit_free(pts, tol, True, limits, quick=True)
     found = quick
@@ -262,11 +277,13 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
         run = rotated_loop(pts, calm_start(pts))
         calm = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa),
                         fillet=min_segment_mm is None)
-        calm = replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
+        calm = taught_lines(pts, True, tol) if calm.corners else \
+            replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
         if quick is None or len(calm.segments) <= len(quick.segments) + 1:
             found = calm
-    poly = Polysegment(split_long_arcs(found.segments), closed=True)
-    return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept
+    segments, corners = _split_arcs(found)
+    poly = Polysegment(segments, closed=True, corners=tuple(corners))
+    return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept, found.notes
 
 
 def _paper(curve: Curve, tol: float, theta_tolerance: float | None) -> tuple[Polysegment, ThetaFunction, float]:

@@ -9,17 +9,21 @@ from coatsim.geometry.band_fit import BandProblem, _farthest, _farthest_of, _rea
 from coatsim.geometry.limits import fit_limits
 
 
-def _problem(seed: int, n: int) -> BandProblem:
+def _problem(seed: int, n: int, narrowed: bool = False) -> BandProblem:
+    """A band problem; ``narrowed``: the band open by a share of its width at each knot (as
+    along a sparse run's channels)."""
     rng = np.random.default_rng(seed)
     s = np.cumsum(rng.uniform(0.02, 0.3, n))
     points = np.column_stack((s, 2.0 * np.sin(s / 3.0) + 0.02 * rng.normal(size=n)))
-    return BandProblem.from_points(points, fit_limits(points, False, 0.05, None, None))[0]
+    width = rng.uniform(0.1, 1.0, n) if narrowed else None
+    return BandProblem.from_points(points, fit_limits(points, False, 0.05, None, None), width)[0]
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(10, 700), st.sampled_from([8, 64, 256]), st.floats(0.005, 0.5))
-def test_batched_lookahead_matches_reach(seed, n, width, band):
-    prob = _problem(seed, n)
+@given(st.integers(0, 2**32 - 1), st.integers(10, 700), st.sampled_from([8, 64, 256]), st.floats(0.005, 0.5),
+       st.booleans())
+def test_batched_lookahead_matches_reach(seed, n, width, band, narrowed):
+    prob = _problem(seed, n, narrowed)
     rng = np.random.default_rng(seed + 1)
     knots = [int(k) for k in rng.integers(0, n, 12)]
     values = [float(prob.phi[k] + rng.uniform(-band, band)) for k in knots]

@@ -272,10 +272,7 @@ def _jittered(spec, sigma, seed):
 
 NOISE_CASES = [
     pytest.param("builtin:paper-spiral:points=5000", id="spiral"),
-    # measured limit: seeds 0, 1, 3, 4, 5 keep 19-20 segments, but seed 2 needs 25 (its chain
-    # ends 0.0297 mm from the input: the fit fell back to a narrower band than the tolerance)
-    pytest.param("builtin:ellipse:points=5000", id="ellipse",
-                 marks=pytest.mark.xfail(strict=True, reason="jitter seed 2: 25 segments against 19 clean")),
+    pytest.param("builtin:ellipse:points=5000", id="ellipse"),
 ]
 
 

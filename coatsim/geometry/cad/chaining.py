@@ -5,16 +5,21 @@ Pieces are joined end to end where their ends lie within the join tolerance of e
 the join tolerance) and duplicates (same ends and middle within it) are dropped first. Where
 three or more ends meet, they are paired by tangent continuity (the straightest
 continuation first) and what is left over ends a contour; this is noted. A contour whose
-last end meets its first is closed. Two open ends closer than ``near_mm`` but farther apart
-than the join tolerance are an error: the drawing is almost joined there, and spraying it
-either way would be a guess.
+last end meets its first is closed.
+
+Ends a few micrometres apart are everyday CAD rounding. Two open ends farther apart than the
+join tolerance but closer than ``near_mm`` (the fit's tolerance σ) are joined too, nearest
+first, where the join moves no drawn point by more than ``NEAR_SHARE`` σ (the contour is then
+fitted within what is left of σ); a note gives the largest gap closed. Ends closer than σ
+that are not joined stay the ends of their own contours, and a note names them.
 
 At each join the ends are made to coincide exactly: an arc keeps its end point (a line or
 free-form piece moves to it), two arcs meet at the first one's end (the second keeps its
 radius), otherwise the ends meet half way. A join between native pieces is *tangent* when
 their headings agree to ``TANGENT_EXACT_RAD`` (round-off); a join with a free-form piece
 is tangent within ``TANGENT_FREE_DEG``, because fitting that piece makes it tangent exactly.
-Every other join is a corner.
+Every other join is a corner. Each contour records how far its joins moved the drawing
+(``moved_mm``).
 
 Contours come out in drawing order (by their first drawn piece); a closed contour starts at
 its first drawn piece, in the direction it was drawn.
@@ -36,18 +41,21 @@ from coatsim.geometry.primitives import Arc
 
 TANGENT_EXACT_RAD = 1e-6
 TANGENT_FREE_DEG = 0.5
+NEAR_SHARE = 0.5  # a near-miss join may move the drawing by this share of σ
 
 
 @dataclass(frozen=True, eq=False)
 class Contour:
     """Oriented pieces, each starting exactly where the previous one ends; ``tangent[k]``
     tells whether the join after piece k (the seam last, for a closed contour) is tangent,
-    ``breaks[k]`` its heading change (rad)."""
+    ``breaks[k]`` its heading change (rad); ``moved_mm`` bounds how far making the ends meet
+    moved any drawn point."""
 
     pieces: tuple[Piece, ...]
     closed: bool
     tangent: tuple[bool, ...]
     breaks: tuple[float, ...]
+    moved_mm: float = 0.0
 
     @property
     def name(self) -> str:
@@ -199,53 +207,132 @@ def _junction(a: Piece, b: Piece) -> tuple[float, float]:
     return ((a.end[0] + b.start[0]) / 2, (a.end[1] + b.start[1]) / 2)
 
 
-def _snap(oriented: list[Piece], closed: bool) -> tuple[Piece, ...]:
-    """The pieces with coinciding ends at every join."""
+def _snap(oriented: list[Piece], closed: bool) -> tuple[tuple[Piece, ...], float]:
+    """The pieces with coinciding ends at every join, and how far that moved any drawn point
+    (mm: an end, or an arc's centre, which bounds how far its points moved)."""
     n = len(oriented)
     joins = [_junction(oriented[k], oriented[k + 1]) for k in range(n - 1)]
     seam = _junction(oriented[-1], oriented[0]) if closed else None
-    out = []
+    out, moved = [], 0.0
     for k, piece in enumerate(oriented):
         start = joins[k - 1] if k > 0 else (seam if closed else piece.start)
         end = joins[k] if k < n - 1 else (seam if closed else piece.end)
         if (start, end) != (piece.start, piece.end):
-            piece = piece.with_ends(start, end)
+            snapped = piece.with_ends(start, end)
+            moved = max(moved, _moved(piece, snapped))
+            piece = snapped
         out.append(piece)
-    return tuple(out)
+    return tuple(out), moved
 
 
-def _contour(pieces: tuple[Piece, ...], closed: bool) -> Contour:
+def _moved(old: Piece, new: Piece) -> float:
+    """How far moving a piece's ends moved its points, at most (mm)."""
+    ends = max(math.dist(old.start, new.start), math.dist(old.end, new.end))
+    if _is_native(old) and isinstance(old.segment, Arc):
+        return max(ends, math.dist(old.segment.center, new.segment.center) + abs(old.segment.radius - new.segment.radius))
+    return ends
+
+
+def _contour(pieces: tuple[Piece, ...], closed: bool, moved: float) -> Contour:
     pairs = list(zip(pieces[:-1], pieces[1:])) + ([(pieces[-1], pieces[0])] if closed else [])
     breaks = tuple(_wrap(b.start_heading - a.end_heading) for a, b in pairs)
     tangent = tuple(join_is_tangent(a, b, brk) for (a, b), brk in zip(pairs, breaks))
-    return Contour(pieces, closed, tangent, breaks)
+    return Contour(pieces, closed, tangent, breaks, moved)
 
 
-def _near_misses(contours: list[tuple[list[Piece], bool]], tol: float, near_mm: float, source: str) -> None:
-    """Raise on two open ends within ``near_mm`` of each other (but not joined)."""
-    ends, owners = [], []
-    for k, (pieces, closed) in enumerate(contours):
-        if not closed:
-            ends += [pieces[0].start, pieces[-1].end]
-            owners += [(k, pieces[0]), (k, pieces[-1])]
+def _chains(kept: list[Piece], partner: dict) -> list[tuple[list[Piece], list[int], bool]]:
+    """Every chain of pieces joined through ``partner``, in drawing order."""
+    seen = np.zeros(len(kept), dtype=bool)
+    chains = []
+    for i in range(len(kept)):
+        if not seen[i]:
+            oriented, members, closed = _walk(i, partner, kept)
+            seen[members] = True
+            chains.append((oriented, members, closed))
+    return chains
+
+
+def _open_ends(kept: list[Piece], chains: list) -> list[tuple[tuple[int, int], tuple[float, float], int]]:
+    """The free ends of open chains: (piece index, side), point, chain index."""
+    out = []
+    for c, (oriented, members, closed) in enumerate(chains):
+        if closed:
+            continue
+        first, last = members[0], members[-1]
+        for index, point in ((first, oriented[0].start), (last, oriented[-1].end)):
+            side = 0 if kept[index].start == point else 1
+            out.append(((index, side), point, c))
+    return out
+
+
+def _near_joins(kept: list[Piece], partner: dict, tol: float, near_mm: float,
+                notes: list[str]) -> list[tuple[tuple[int, int], tuple[int, int]]]:
+    """Join open ends farther apart than ``tol`` but within NEAR_SHARE of ``near_mm`` (nearest
+    first, each end once), into ``partner``; note what was joined and what was left apart.
+    Returns the ends joined."""
+    ends = _open_ends(kept, _chains(kept, partner))
     if len(ends) < 2:
-        return
-    pts = np.array(ends, dtype=float)
-    pairs = sorted(cKDTree(pts).query_pairs(near_mm))
-    if not pairs:
-        return
-    i, j = min(pairs, key=lambda ij: float(np.linalg.norm(pts[ij[0]] - pts[ij[1]])))
-    gap = float(np.linalg.norm(pts[i] - pts[j]))
-    what = "its own start" if owners[i][0] == owners[j][0] else owners[j][1].source
-    raise InputError(
-        f"{source}: cannot chain {owners[i][1].source}: its end at ({pts[i][0]:.6g}, {pts[i][1]:.6g}) is "
-        f"{gap:.3g} mm from {what}, more than the join tolerance {tol:g} mm (raise the join tolerance, --join-tol, to join them)"
-    )
+        return []
+    pts = np.array([p for _, p, _ in ends], dtype=float)
+    pairs = sorted(((float(np.linalg.norm(pts[i] - pts[j])), i, j) for i, j in cKDTree(pts).query_pairs(near_mm)))
+    joined, apart, used = [], [], set()
+    for gap, i, j in pairs:
+        if gap <= tol or i in used or j in used:
+            continue
+        (a, b) = ends[i][0], ends[j][0]
+        if gap <= NEAR_SHARE * near_mm and a != b:
+            partner[a], partner[b] = b, a
+            used |= {i, j}
+            joined.append((gap, i, j))
+        else:
+            apart.append((gap, i, j))
+    name = lambda i: kept[ends[i][0][0]].source  # noqa: E731
+    if joined:
+        gap, i, j = max(joined)
+        notes.append(f"joined {_pairs(len(joined))} of ends closer than the tolerance but farther apart than the join "
+                     f"tolerance {tol:g} mm; the largest gap closed is {gap:.3g} mm, at ({pts[i][0]:.6g}, {pts[i][1]:.6g}) "
+                     f"between {name(i)} and {name(j)}")
+    apart = [(g, i, j) for g, i, j in apart if i not in used and j not in used]
+    if apart:
+        gap, i, j = min(apart)
+        what = "its own start" if ends[i][2] == ends[j][2] else name(j)
+        notes.append(f"{_pairs(len(apart))} of ends {near_mm:g} mm or less apart not joined (joining them would move "
+                     f"the drawing by more than {NEAR_SHARE * near_mm:g} mm): they end contours of their own, first "
+                     f"{name(i)} at ({pts[i][0]:.6g}, {pts[i][1]:.6g}), {gap:.3g} mm from {what}")
+    return [(ends[i][0], ends[j][0]) for _, i, j in joined]
+
+
+def _contours(kept: list[Piece], partner: dict, near: list, tol: float, limit: float,
+              notes: list[str]) -> tuple[Contour, ...]:
+    """The contours with their ends made to meet (moves within the join tolerance ``tol`` are
+    round-off, not counted in ``moved_mm``); a near-miss join that would move an arc (its
+    centre) by more than ``limit`` is undone, and noted."""
+    while True:
+        contours, undone = [], False
+        for oriented, members, closed in _chains(kept, partner):
+            snapped, moved = _snap(oriented, closed)
+            inside = [(a, b) for a, b in near if a[0] in members]
+            if moved > limit and inside:
+                for a, b in inside:
+                    partner.pop(a), partner.pop(b)
+                    near.remove((a, b))
+                notes.append(f"{len(inside)} near-miss joins in the contour from {kept[members[0]].source} undone: "
+                             f"they would move it by {moved:.3g} mm")
+                undone = True
+                break
+            contours.append(_contour(snapped, closed, moved if moved > tol else 0.0))
+        if not undone:
+            return tuple(contours)
+
+
+def _pairs(n: int) -> str:
+    return f"{n} pair" + ("s" if n != 1 else "")
 
 
 def chain_pieces(pieces: Sequence[Piece], join_tol_mm: float, source: str = "drawing",
                  near_mm: Optional[float] = None) -> Chaining:
-    """Contours of ``pieces`` joined within ``join_tol_mm``; see the module docstring."""
+    """Contours of ``pieces`` joined within ``join_tol_mm``, and near misses within
+    ``near_mm`` (σ) where that moves the drawing little; see the module docstring."""
     if not (math.isfinite(join_tol_mm) and join_tol_mm > 0):
         raise InputError(f"join tolerance {join_tol_mm} mm (--join-tol): must be a finite number > 0")
     notes: list[str] = []
@@ -257,16 +344,6 @@ def chain_pieces(pieces: Sequence[Piece], join_tol_mm: float, source: str = "dra
         notes.append(f"{len(overlaps)} pairs of lines overlap along one line, kept and sprayed twice there "
                      f"(first: {overlaps[0][0].source} and {overlaps[0][1].source})")
     partner = _pair_ends(kept, join_tol_mm, notes)
-    seen = np.zeros(len(kept), dtype=bool)
-    chains: list[tuple[list[Piece], bool]] = []
-    for i in range(len(kept)):
-        if seen[i]:
-            continue
-        oriented, members, closed = _walk(i, partner, kept)
-        seen[members] = True
-        chains.append((oriented, closed))
-    if near_mm is not None and near_mm > join_tol_mm:
-        _near_misses(chains, join_tol_mm, near_mm, source)
-    contours = tuple(_contour(_snap(oriented, closed), closed) for oriented, closed in chains)
-    return Chaining(contours, tuple(notes))
-
+    near = _near_joins(kept, partner, join_tol_mm, near_mm, notes) if near_mm is not None and near_mm > join_tol_mm else []
+    limit = NEAR_SHARE * near_mm if near_mm is not None else math.inf
+    return Chaining(_contours(kept, partner, near, join_tol_mm, limit, notes), tuple(notes))

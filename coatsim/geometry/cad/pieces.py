@@ -86,8 +86,10 @@ class NativePiece:
 
 
 def refit_arc(arc: Arc, start: Point, end: Point) -> Arc:
-    """The arc of ``arc``'s radius and sense from ``start`` to ``end`` (ends moved by round-off
-    or within the join tolerance), its centre on the side of the old one."""
+    """The arc of ``arc``'s sense from ``start`` to ``end`` (ends moved by round-off or within
+    the join tolerance, or a near miss closed) that moves least: of its radius (its centre on
+    the side of the old one) or of its sweep (a half circle whose end moves along its chord
+    keeps its shape), the one whose centre and radius change least."""
     scale = max(1.0, arc.radius)
     if math.dist(start, arc.start) <= _ROUND_OFF * scale and math.dist(end, arc.end) <= _ROUND_OFF * scale:
         return Arc(_xy(start), _xy(end), arc.center, arc.radius, arc.sweep)
@@ -97,11 +99,19 @@ def refit_arc(arc: Arc, start: Point, end: Point) -> Arc:
     if d <= _ROUND_OFF * scale:  # a full circle: move it with its start point
         shift = a - np.asarray(arc.start, float)
         return Arc(_xy(a), _xy(a), _xy(np.asarray(arc.center) + shift), arc.radius, arc.sweep)
-    radius = max(arc.radius, d / 2)
     mid = (a + b) / 2
     normal = np.array([-chord[1], chord[0]]) / d
     side = 1.0 if float(np.dot(np.asarray(arc.center) - mid, normal)) >= 0 else -1.0
-    center = mid + side * math.sqrt(max(radius * radius - d * d / 4, 0.0)) * normal
+    candidates = [max(arc.radius, d / 2)]
+    if 1e-6 < abs(arc.sweep) < 2 * math.pi - 1e-6:
+        candidates.append(d / (2 * abs(math.sin(arc.sweep / 2))))
+    best = None
+    for radius in candidates:
+        center = mid + side * math.sqrt(max(radius * radius - d * d / 4, 0.0)) * normal
+        change = math.dist(center, arc.center) + abs(radius - arc.radius)
+        if best is None or change < best[0]:
+            best = (change, center, radius)
+    _, center, radius = best
     turn = math.atan2(b[1] - center[1], b[0] - center[0]) - math.atan2(a[1] - center[1], a[0] - center[0])
     turn += 2 * math.pi * round((arc.sweep - turn) / (2 * math.pi))  # the sweep nearest the old one
     return Arc(_xy(a), _xy(b), _xy(center), radius, turn)

@@ -12,7 +12,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from coatsim.core import defaults
-from coatsim.core.errors import InputError
+from coatsim.core.errors import CoatsimError, InputError
 from coatsim.geometry.cad.chaining import chain_pieces
 from coatsim.geometry.cad.contour_fit import fit_contour
 from coatsim.geometry.cad.read import read_drawing
@@ -131,21 +131,33 @@ def segment_drawing(
         matrix = np.eye(2) if rotation is None else np.asarray(rotation, float)
         pieces = tuple(p.transformed(matrix, np.zeros(2), scale) for p in pieces)
     chaining = chain_pieces(pieces, join, drawing.source, near_mm=tolerance_mm)
-    contours = []
+    contours, skipped = [], []
     cache: dict = {}  # translated copies of a free-form stretch share one fit
-    for k, contour in enumerate(chaining.contours):
+    for contour in chaining.contours:
         t0 = time.perf_counter()
-        fit = fit_contour(contour, tolerance_mm, FLATTEN_FRACTION * tolerance_mm, corner_deg, speed_kappa, cache)
+        # joins that moved the drawing leave the fit what remains of the tolerance
+        fit_tol = tolerance_mm - contour.moved_mm
+        try:
+            fit = fit_contour(contour, fit_tol, FLATTEN_FRACTION * tolerance_mm, corner_deg, speed_kappa, cache)
+        except CoatsimError as exc:
+            skipped.append(f"{contour.name}: {exc}")
+            continue
         poly = fit.polysegment
         if speed_mm_s is not None:
             poly = replace(poly, speed_limited=speed_limited(poly, speed_mm_s, tool_accel_mm_s2))
-        curve = Curve(_distinct(fit.points), contour.closed, f"{drawing.source} contour {k + 1} ({contour.name})")
-        contours.append(ContourSegmentation(curve, poly, "drawing", tolerance_mm, fit.deviation_mm,
+        name = f"{drawing.source} contour {len(contours) + 1} ({contour.name})"
+        curve = Curve(_distinct(fit.points), contour.closed, name)
+        contours.append(ContourSegmentation(curve, poly, "drawing", tolerance_mm, fit.deviation_mm + contour.moved_mm,
                                             time.perf_counter() - t0, theta_of_polyline(curve.points),
                                             speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2,
                                             n_pieces=len(contour.pieces), origin=contour.name))
+    if not contours:
+        raise InputError(f"{drawing.source}: no contour could be segmented ({skipped[0]})")
+    notes = drawing.notes + chaining.notes
+    if skipped:
+        notes += (f"{len(skipped)} contours left out, the others segmented (first: {skipped[0]})",)
     return PartSegmentation(drawing.source, tuple(contours), drawing.units, tolerance_mm, join,
-                            drawing.notes + chaining.notes, time.perf_counter() - started)
+                            notes, time.perf_counter() - started)
 
 
 def _distinct(points: np.ndarray) -> np.ndarray:

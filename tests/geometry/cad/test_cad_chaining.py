@@ -67,18 +67,40 @@ def test_branches_pair_the_straightest_continuation():
     assert any("three or more pieces meet" in n for n in chaining.notes)
 
 
-def test_near_miss_is_an_error_naming_both_pieces():
+def test_near_miss_is_joined_and_noted():
     pieces = [native(Line((0.0, 0.0), (10.0, 0.0)), "LINE #A"), native(Line((10.01, 0.0), (20.0, 0.0)), "LINE #B")]
-    with pytest.raises(InputError, match=r"cannot chain LINE #A: its end at \(10, 0\) is 0\.01 mm from LINE #B"):
-        chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
-    assert len(chain_pieces(pieces, JOIN, "d.dxf").contours) == 2  # without the check: two open contours
+    chaining = chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+    (contour,) = chaining.contours
+    assert contour.pieces[0].end == contour.pieces[1].start and contour.moved_mm == pytest.approx(0.005)
+    assert any("largest gap closed is 0.01 mm, at (10, 0) between LINE #A and LINE #B" in n for n in chaining.notes)
+    assert len(chain_pieces(pieces, JOIN, "d.dxf").contours) == 2  # without near_mm: two open contours
 
 
-def test_nearly_closed_contour_is_an_error():
+def test_near_miss_wider_than_half_the_tolerance_stays_apart_and_is_named():
+    pieces = [native(Line((0.0, 0.0), (10.0, 0.0)), "LINE #A"), native(Line((10.08, 0.0), (20.0, 0.0)), "LINE #B")]
+    chaining = chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+    assert len(chaining.contours) == 2 and all(c.moved_mm == 0.0 for c in chaining.contours)
+    assert any("first LINE #A at (10, 0), 0.08 mm from LINE #B" in n for n in chaining.notes)
+
+
+def test_nearly_closed_contour_is_closed():
     pts = [(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0), (0.0, 0.02)]
     pieces = [native(Line(a, b), f"e{k}") for k, (a, b) in enumerate(zip(pts[:-1], pts[1:]))]
-    with pytest.raises(InputError, match=r"0\.02 mm from its own start"):
-        chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+    chaining = chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+    (contour,) = chaining.contours
+    assert contour.closed and contour.pieces[-1].end == contour.pieces[0].start
+    assert any("largest gap closed is 0.02 mm" in n for n in chaining.notes)
+
+
+def test_nearest_ends_pair_first_and_each_end_once():
+    """Three ends within the tolerance of each other: the nearest two are joined, the third
+    ends its contour (and is named)."""
+    pieces = [native(Line((0.0, 0.0), (10.0, 0.0)), "A"), native(Line((10.01, 0.0), (10.01, 10.0)), "B"),
+              native(Line((10.0, -0.03), (20.0, -5.0)), "C")]
+    chaining = chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)
+    assert sorted(len(c.pieces) for c in chaining.contours) == [1, 2]
+    joined = next(c for c in chaining.contours if len(c.pieces) == 2)
+    assert {p.source for p in joined.pieces} == {"A", "B"}
 
 
 def test_tangency_native_exact_and_free_within_its_limit():

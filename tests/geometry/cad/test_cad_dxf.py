@@ -5,6 +5,7 @@ of bad drawing."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -430,13 +431,23 @@ def test_everything_on_frozen_layers(tmp_path):
     _error(write_dxf(tmp_path, draw), r"no visible geometry.*ICE.*--layer")
 
 
-def test_contour_that_cannot_be_chained_names_its_entities(tmp_path):
-    def draw(msp, doc):
-        msp.add_line((0, 0), (10, 0))
-        msp.add_line((10.05, 0), (10, 10))
+def test_ends_nearly_meeting_are_joined_or_named(tmp_path):
+    """A gap below half the tolerance is closed (the contour is fitted within what is left
+    of it); a wider one below the tolerance leaves two contours, and a note names them."""
+    def draw(gap):
+        def inner(msp, doc):
+            msp.add_line((0, 0), (10, 0))
+            msp.add_line((10 + gap, 0), (10, 10))
+        return inner
 
-    _error(write_dxf(tmp_path, draw), r"cannot chain LINE #\w+: .* 0\.05 mm from LINE #\w+, more than the join tolerance")
-    part = segment_drawing(write_dxf(tmp_path, draw), TOL, join_tolerance_mm=0.06)
+    part = segment_drawing(write_dxf(tmp_path, draw(0.04)), TOL)
+    assert len(part.contours) == 1 and part.contours[0].polysegment.n_segments == 2
+    assert part.contours[0].max_deviation_mm <= TOL
+    assert any("largest gap closed is 0.04 mm" in n for n in part.notes)
+    part = segment_drawing(write_dxf(tmp_path, draw(0.08), name="apart.dxf"), TOL)
+    assert len(part.contours) == 2
+    assert any(re.search(r"not joined .* first LINE #\w+ at \(10, 0\), 0\.08 mm from LINE #\w+", n) for n in part.notes)
+    part = segment_drawing(write_dxf(tmp_path, draw(0.08), name="wide.dxf"), TOL, join_tolerance_mm=0.09)
     assert len(part.contours) == 1 and part.contours[0].polysegment.n_segments == 2
 
 

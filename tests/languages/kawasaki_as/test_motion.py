@@ -208,7 +208,7 @@ def test_no_program_and_bad_gun():
 
 
 def test_read_toolpath_file_errors(tmp_path):
-    with pytest.raises(InputError, match="cannot read program"):
+    with pytest.raises(InputError, match="missing.as: no such file"):
         read_toolpath(tmp_path / "missing.as")
     bad = tmp_path / "bad.as"
     bad.write_text(".PROGRAM x()\n  JMOVE a\n  LMOVE nowhere\n.END\n" + TRANS)

@@ -1,0 +1,171 @@
+"""Taught paths and honest arcs, as properties over curve families the fitter was not tuned on:
+a regular polygon within σ of a circle is one circle; a taught polygon of a smooth curve
+(clean or with hand-like jitter) needs no more segments than it has moves, and its arcs are
+no tighter than its own turning (the circle through three consecutive vertices); an open
+3:2 Lissajous figure gets no arc tighter than the curve; every contour of a drawing whose
+ends nearly meet is read or named."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from hypothesis import Phase, assume, given, settings
+from hypothesis import strategies as st
+
+from coatsim.geometry import Arc, make_curve, segment_curve
+from coatsim.geometry.cad import segment_drawing
+
+from geometry_helpers import assert_contract
+
+FEW = settings(max_examples=6, deadline=None, derandomize=True, database=None,
+               phases=[Phase.explicit, Phase.generate])  # a failing fit is slow to shrink
+TAU = 2 * math.pi
+
+
+def _superellipse(t: np.ndarray) -> np.ndarray:
+    c, s = np.cos(t), np.sin(t)
+    return np.column_stack((80 * np.sign(c) * np.abs(c) ** (2 / 3), 50 * np.sign(s) * np.abs(s) ** (2 / 3)))
+
+
+# name -> (p(t), t0, t1, closed): smooth curves a user teaches with a few points
+FAMILIES = {
+    "ellipse": (lambda t: np.column_stack((100 * np.cos(t), 50 * np.sin(t))), 0.0, TAU, True),
+    "superellipse": (_superellipse, 0.0, TAU, True),
+    "limacon": (lambda t: (50 + 20 * np.cos(t))[:, None] * np.column_stack((np.cos(t), np.sin(t))), 0.0, TAU, True),
+    "archimedes": (lambda t: (10 + 6 * t)[:, None] * np.column_stack((np.cos(t), np.sin(t))), 0.0, 4 * math.pi, False),
+    "sine": (lambda t: np.column_stack((t, 20 * np.sin(TAU * t / 100))), 0.0, 200.0, False),
+    "lissajous": (lambda t: np.column_stack((200 * np.sin(3 * t + 1.47), 150 * np.sin(2 * t))), 0.0, 0.9 * TAU, False),
+}
+
+
+def _along(name: str, count: int) -> tuple[np.ndarray, bool, float]:
+    """``count`` vertices evenly along the curve (a closed one repeats its first), whether it
+    is closed and the polygon's chordal deviation (mm: the largest sagitta of an edge)."""
+    f, t0, t1, closed = FAMILIES[name]
+    dense = f(np.linspace(t0, t1, 40_001))
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))))
+    knots = np.linspace(0.0, s[-1], count + 1 if closed else count)
+    poly = np.column_stack((np.interp(knots, s, dense[:, 0]), np.interp(knots, s, dense[:, 1])))
+    if closed:
+        poly[-1] = poly[0]
+    edge = np.searchsorted(knots, s, side="right").clip(1, len(poly) - 1) - 1
+    d = poly[edge + 1] - poly[edge]
+    sag = np.abs(_cross(d, dense - poly[edge])) / np.linalg.norm(d, axis=1)
+    return poly, closed, float(sag.max())
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+
+
+def _own_radius(points: np.ndarray, closed: bool) -> float:
+    """The tightest circle through three consecutive vertices (mm)."""
+    p = points[:-1] if closed else points
+    a, b, c = (np.roll(p, 1, axis=0), p, np.roll(p, -1, axis=0)) if closed else (p[:-2], p[1:-1], p[2:])
+    cross = np.abs(_cross(b - a, c - a))
+    sides = np.linalg.norm(b - a, axis=1) * np.linalg.norm(c - b, axis=1) * np.linalg.norm(a - c, axis=1)
+    return float((sides / (2 * cross)).min())
+
+
+@FEW
+@given(n=st.integers(12, 72), radius=st.floats(10.0, 200.0), phase=st.floats(0.0, TAU),
+       share=st.floats(0.6, 1.5), centre=st.tuples(st.floats(-500, 500), st.floats(-500, 500)))
+def test_a_regular_polygon_within_sigma_of_its_circle_is_one_circle(n, radius, phase, share, centre):
+    """The n-gon's edges dip c = r (1 − cos(π/n)) inside its circumcircle; at σ ≥ 0.6 c the
+    circle of radius r − c/2 is within c/2 of vertices and edges: one circle comes back."""
+    t = phase + np.linspace(0.0, TAU, n + 1)
+    pts = np.column_stack((centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t)))
+    pts[-1] = pts[0]
+    tol = share * radius * (1 - math.cos(math.pi / n))
+    curve = make_curve(pts, "n-gon", "yes")
+    seg = segment_curve(curve, tol)
+    assert_contract(seg, tol)
+    poly = seg.polysegment
+    assert poly.n_lines == 0 and len(poly.corners) == 0
+    circles = {(round(s.center[0], 6), round(s.center[1], 6), round(s.radius, 6)) for s in poly.segments}
+    assert len(circles) == 1, f"{poly.n_segments} arcs on {len(circles)} circles"
+
+
+@FEW
+@given(name=st.sampled_from(sorted(FAMILIES)), n=st.integers(8, 80), share=st.floats(0.7, 1.5),
+       jitter=st.sampled_from([0.0, 0.2]), seed=st.integers(0, 2**16))
+def test_a_taught_polygon_needs_no_more_segments_than_moves(name, n, share, jitter, seed):
+    """Vertices evenly along a smooth curve (chordal deviation 0.05–5 mm), σ a share of it,
+    clean or jittered by 0.2 σ: within σ, at most one segment per move, and no arc tighter
+    than half the polygon's own tightest turning (a fillet at a vertex is far tighter)."""
+    pts, closed, sag = _along(name, n)
+    assume(0.05 <= sag <= 5.0)  # a taught polygon of the curve, not a sketch of it
+    tol = share * sag
+    rng = np.random.default_rng(seed)
+    body = slice(0, len(pts) - 1) if closed else slice(1, len(pts) - 1)
+    pts[body] += rng.normal(0.0, jitter * tol, pts[body].shape)
+    if closed:
+        pts[-1] = pts[0]
+    curve = make_curve(pts, name, "yes" if closed else "no")
+    seg = segment_curve(curve, tol)
+    assert_contract(seg, tol)
+    moves = len(pts) - 1
+    assert seg.polysegment.n_segments <= moves
+    own = _own_radius(pts, closed)
+    for k, s in enumerate(seg.polysegment.segments):
+        if isinstance(s, Arc):
+            assert s.radius >= 0.5 * own, f"segment {k}: r {s.radius:.4g} mm, the polygon's own {own:.4g} mm"
+
+
+def _lissajous(a: float, b: float, phase: float, stop: float, count: int = 4000) -> tuple[np.ndarray, float]:
+    """An open 3:2 Lissajous figure, ``count`` points evenly along its length, and its
+    tightest radius from the formula."""
+    t = np.linspace(0.0, stop * TAU, 400_001)
+    xy = np.column_stack((a * np.sin(3 * t + phase), b * np.sin(2 * t)))
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))))
+    at = np.linspace(0.0, s[-1], count)
+    d1 = np.gradient(xy, t, axis=0)
+    d2 = np.gradient(d1, t, axis=0)
+    kappa = np.abs(_cross(d1, d2)) / np.linalg.norm(d1, axis=1) ** 3
+    return np.column_stack((np.interp(at, s, xy[:, 0]), np.interp(at, s, xy[:, 1]))), float(1 / kappa[2:-2].max())
+
+
+@FEW
+@given(a=st.floats(120.0, 200.0), b=st.floats(100.0, 150.0), phase=st.sampled_from([0.1, 0.2, 1.47, 1.65]),
+       stop=st.floats(0.75, 0.95), tol=st.sampled_from([0.05, 0.1]))
+def test_an_open_lissajous_figure_gets_no_arc_tighter_than_itself(a, b, phase, stop, tol):
+    """Tight turns where both coordinates turn at once, open ends near one: the envelope is
+    within a small factor of the formula's tightest radius and no arc is below 0.8 of it."""
+    pts, tightest = _lissajous(a, b, phase, stop)
+    curve = make_curve(pts, "lissajous", "no")
+    seg = segment_curve(curve, tol)
+    assert_contract(seg, tol)
+    assert 0.5 * tightest <= seg.input_min_radius_mm <= 2 * tightest
+    radii = [s.radius for s in seg.polysegment.segments if isinstance(s, Arc)]
+    assert min(radii) >= 0.8 * tightest, f"r {min(radii):.4g} mm, the curve's tightest {tightest:.4g} mm"
+
+
+@settings(max_examples=8, deadline=None, derandomize=True, database=None)
+@given(gaps=st.lists(st.floats(0.0, 0.3), min_size=8, max_size=8), tol=st.sampled_from([0.05, 0.1, 0.2]))
+def test_every_contour_of_a_near_miss_drawing_is_read_or_named(tmp_path_factory, gaps, tol):
+    """Two rectangles drawn as four separate sides each, every join missed by its own gap:
+    the drawing is never refused, every side ends up in a contour within σ, joins below σ/2
+    close the outline, and ends closer than σ left apart are named in a note."""
+    folder = tmp_path_factory.mktemp("near")
+    body, k = [], 0
+    for x, y, w, h in ((10.0, 10.0, 80.0, 50.0), (110.0, 20.0, 60.0, 60.0)):
+        corners = [(x, y), (x + w, y), (x + w, y + h), (x, y + h)]
+        for i in range(4):
+            (ax, ay), (bx, by) = corners[i], corners[(i + 1) % 4]
+            ux, uy = (bx - ax) / math.hypot(bx - ax, by - ay), (by - ay) / math.hypot(bx - ax, by - ay)
+            g = gaps[k]
+            body.append(f'<path id="side{k}" d="M {ax:.4f},{ay:.4f} L {bx - g * ux:.4f},{by - g * uy:.4f}"/>')
+            k += 1
+    path = folder / "sides.svg"
+    path.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="100mm" viewBox="0 0 200 100">'
+                    f'<g style="fill:none;stroke:black">{"".join(body)}</g></svg>\n', encoding="utf-8")
+    part = segment_drawing(path, tol)
+    assert part.contours and all(c.max_deviation_mm <= tol * (1 + 1e-9) for c in part.contours)
+    assert sum(c.n_pieces for c in part.contours) == 8, [c.origin for c in part.contours]
+    for square in (gaps[:4], gaps[4:]):
+        if max(square) < tol / 2 - 1e-4:
+            assert any(c.polysegment.closed and c.n_pieces == 4 for c in part.contours)
+    apart = [g for g in gaps if tol / 2 + 1e-4 < g < tol - 1e-4]
+    if apart:
+        assert any("not joined" in n for n in part.notes), part.notes
