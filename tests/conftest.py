@@ -77,3 +77,16 @@ def run_cli(capsys) -> Callable[[list[str]], tuple[int, str, str]]:
         return info.value.code, out, err
 
     return run
+
+
+@pytest.fixture(scope="session")
+def tube_run(tmp_path_factory: pytest.TempPathFactory):
+    """The tube scenario with its three variants in fast mode at coarse numerics, report written:
+    (RunResult, scenario file)."""
+    from part_scenarios import cheap_scenario
+
+    from coatsim.run.pipeline import run_scenario
+
+    folder = tmp_path_factory.mktemp("tube")
+    scenario = cheap_scenario(folder, "cylinder_3d", ["polysegment", "polyline-stop", "polyline-blend"])
+    return run_scenario(scenario, folder / "out", fast=True, progress=False), scenario

@@ -21,7 +21,7 @@ def coat(
     rate: float = typer.Option(defaults.FLOW_MM3_S, "--rate", help="Deposited volume rate Q, mm3/s."),
     standoff: float = typer.Option(defaults.STANDOFF_MM, "--standoff", help="Reference stand-off h0 at which the footprint is given, mm."),
     target_um: Optional[float] = typer.Option(None, "--target-um", help="Target thickness for coverage, um (default: the ROI mean)."),
-    roi: str = typer.Option("band", "--roi", help="band (sprayed strip) | part (whole part), both minus an edge band."),
+    roi: str = typer.Option("band", "--roi", help="band (sprayed strip) | field (the strip without the edge band along its own border) | part (whole part), all minus an edge band."),
     edge_band: Optional[float] = typer.Option(None, "--edge-band", help="Edge band left out of the ROI, mm (default: 3 sigma)."),
     tolerance_pct: float = typer.Option(defaults.TOLERANCE_PCT, "--tolerance-pct", help="Specification band: thickness within this % of the target."),
     efficiency: str = typer.Option(defaults.EFFICIENCY, "--efficiency", help="Deposition efficiency by spray angle: none | angle (1 down to 60 deg, the documented curve below) | angle:60=1,45=0.9,... | table:FILE.csv | cosine:n=N."),

@@ -53,3 +53,6 @@ PLAN_FACING_DEG = 80.0
 PLAN_EDGE_BAND_MM = 0.0
 PLAN_EDGES_PER_SPACING = 4.0
 PLAN_UNITS = "auto"
+#: Where a scenario's programs of 3-D passes hold the programmed speed: on the spray spot's trace
+#: (the thickness follows the spot's speed; ``coatsim program --speed-on`` keeps tcp for programs).
+SCENARIO_SPEED_ON = "trace"

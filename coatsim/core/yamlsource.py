@@ -245,7 +245,16 @@ def _is_model(annotation: Any) -> bool:
 
 
 def _tags(annotation: Any) -> list[str]:
-    """The ``kind`` values a discriminated union accepts."""
+    """The ``kind`` values a discriminated union accepts (an optional one's too)."""
+    while True:
+        if typing.get_origin(annotation) is typing.Annotated:
+            annotation = typing.get_args(annotation)[0]
+            continue
+        present = [a for a in typing.get_args(annotation) if a is not type(None)]
+        if typing.get_origin(annotation) is Union and len(present) == 1:
+            annotation = present[0]
+            continue
+        break
     options = typing.get_args(annotation) if typing.get_origin(annotation) is Union else ()
     return [t for o in options if _is_model(o) and "kind" in o.model_fields for t in typing.get_args(o.model_fields["kind"].annotation)]
 

@@ -110,6 +110,12 @@ class ReportData:
         return self.loaded.spec
 
     @property
+    def standoff_mm(self) -> float:
+        """The programmed stand-off: the planned passes' on a 3-D part, else the gun's."""
+        paths = getattr(self.spec, "paths", None)
+        return paths.standoff_mm if paths is not None and paths.standoff_mm else self.spec.gun.standoff_mm
+
+    @property
     def surface(self) -> Surface:
         return self.runs[0].coating.surface
 
@@ -142,8 +148,8 @@ class ReportData:
     def _samples(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
         """The centre line's (s, points), then each run's track (points, gun open)."""
         spec = self.spec
-        centre = centre_samples(self.reference, spec.gun.standoff_mm, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
-        return (centre, *(track_samples(r, spec.gun.standoff_mm) for r in self.runs))
+        centre = centre_samples(self.reference, self.standoff_mm, spec.motion.lead_in_mm, spec.motion.lead_out_mm)
+        return (centre, *(track_samples(r, self.standoff_mm) for r in self.runs))
 
     @cached_property
     def _located(self) -> tuple[SurfacePoints, ...]:

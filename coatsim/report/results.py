@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Mapping, Optional
 
 from coatsim.path.part_program import PartProgram
+from coatsim.path.surface_program import SurfaceProgram
 from coatsim.path.toolpath import ToolPath
 from coatsim.path.user import UserProgram
 from coatsim.robot.execute import Execution
@@ -22,7 +23,7 @@ class VariantRun:
     """One program variant carried through every stage."""
 
     name: str
-    program: PartProgram | UserProgram
+    program: PartProgram | UserProgram | SurfaceProgram
     execution: Execution
     coating: CoatingResult
     groups: dict[str, dict[str, float | int | None]]

@@ -43,7 +43,7 @@ def payload(data: Any) -> dict[str, Any]:
         "bar": ["#%02x%02x%02x" % tuple(int(c) for c in rgb) for rgb in colours(stops, vmin, vmax)],
         "variants": [
             {"name": r.name, "colours": _b64(colours(coarse.field(r.coating.thickness_um), vmin, vmax)),
-             "paths": [_b64((p - centre).astype("<f4")) for p in aim_paths(r.execution.log, data.spec.gun.standoff_mm,
+             "paths": [_b64((p - centre).astype("<f4")) for p in aim_paths(r.execution.log, data.standoff_mm,
                                                                            PATH_POINTS)]}
             for r in data.runs
         ],

@@ -34,8 +34,7 @@ from coatsim.path.part_program import (
     part_centering_offset,
 )
 from coatsim.path.placement import Placement
-from coatsim.path.program_files import program_paths, program_suffixes, write_program
-from coatsim.path.language import Language
+from coatsim.path.program_files import write_program
 from coatsim.path.toolpath import ToolPath
 from coatsim.path.user import UserProgram, user_program
 from coatsim.report.gates import evaluate_gates
@@ -54,7 +53,6 @@ from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.run.scenario import (
     ProgramVariantSpec,
-    Scenario,
     ScenarioFile,
     as_dict,
     check_gate_metrics,
@@ -70,11 +68,18 @@ from coatsim.run.scenario_inputs import (
     user_program_suffix,
     spray_model,
 )
-from coatsim.spray.coat import coat, remeasured
+from coatsim.spray.coat import coat
 from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel
-from coatsim.spray.outputs import write_thickness_glb, write_thickness_ply
 from coatsim.spray.surfaces import Surface
+from coatsim.run.part_run import part_output_names, run_part
+from coatsim.run.variants import (
+    on_common_roi,
+    program_files,
+    reference_variant,
+    variant_names,
+    write_thickness_files,
+)
 
 Step = Callable[[str], None]
 
@@ -104,14 +109,6 @@ class Job:
     # per contour, the polyline variants' curve and its deviation, computed once for both
     polylines: tuple[Optional[Polysegment], ...] = ()
     polyline_deviations_mm: tuple[Optional[float], ...] = ()
-
-
-def program_files(name: str, writer: Language) -> tuple[str, ...]:
-    """The files of variant ``name``'s program in ``writer``'s language, the main first: named
-    after the variant, or (a language whose controller loads a program by its file's name) after
-    the program, which is then named after the variant."""
-    stem = writer.program_name(name) if writer.capabilities.named_by_file else name
-    return tuple(p.name for p in program_paths(writer, Path(stem + program_suffixes(writer)[0])))
 
 
 def run_variant(name: str, variant: str, language_name: str, job: Job, step: Step) -> VariantRun:
@@ -207,33 +204,6 @@ def simulate_variant(name: str, program: PartProgram | UserProgram, toolpath: To
     return VariantRun(name, program, execution, result, groups, per_contour, toolpath)
 
 
-def on_common_roi(runs: list[VariantRun], target_um: float) -> list[VariantRun]:
-    """Every variant's coating measured over the same region of interest: the vertices inside
-    every variant's band. Each band follows its own sprayed track, and the tracks differ within
-    the tolerance and the corner blends, so a vertex near a band's edge may fall in one and not
-    in another; the variants are compared on the same area instead."""
-    common = np.logical_and.reduce([r.coating.roi for r in runs])
-    if not common.any():
-        raise InputError("the variants' regions of interest share no vertex; check coating.band_halfwidth_mm")
-    measured = []
-    for r in runs:
-        coating = remeasured(r.coating, common, target_um)
-        measured.append(replace(r, coating=coating, groups={**r.groups, "coating": coating_group(coating.metrics)}))
-    return measured
-
-
-def variant_names(spec: Scenario) -> list[str]:
-    """The names of the scenario's variants (built-in variants and program variants)."""
-    return [entry if isinstance(entry, str) else entry.name for entry in spec.variants]
-
-
-def reference_variant(spec: Scenario) -> str:
-    """The variant the report compares the others with (and ``--video`` shows): the
-    polysegment, else the first."""
-    names = variant_names(spec)
-    return "polysegment" if "polysegment" in names else names[0]
-
-
 def variant_files(loaded: ScenarioFile, entry) -> tuple[str, ...]:
     """The program file(s) a variant writes: a built-in variant's in its language, a copy of a
     user's program with its language's suffix."""
@@ -247,29 +217,14 @@ def output_names(loaded: ScenarioFile, video: bool = False) -> list[str]:
     """The files a run of the scenario ``loaded`` may write into its output folder, in writing
     order (a drawing of several contours writes part.json instead of polysegment.json)."""
     spec = loaded.spec
+    if spec.part is not None:
+        return part_output_names(loaded)
     names = variant_names(spec)
     programs = [f for entry, v in zip(spec.variants, names) for f in (*variant_files(loaded, entry),
                                                                        f"{v}.trajectory.csv")]
     coats = [f"{v}.{kind}" for v in names for kind in ("thickness.ply", "thickness.glb")]
     movie = [f"{reference_variant(spec)}.mp4"] if video else []
     return ["polysegment.json", "part.json", *programs, "metrics.json", *coats, *movie, "report.html"]
-
-
-def write_thickness_files(runs: list[VariantRun], out: Path, standoff_mm: float) -> list[Path]:
-    """Every variant's ``V.thickness.ply`` (the properties ``coatsim coat`` writes) and
-    ``V.thickness.glb`` (vertex colours, the sprayed tool path), all on the report's one
-    colour scale."""
-    from coatsim.report.data import aim_paths, thickness_scale
-
-    vmin, vmax = thickness_scale([r.coating.thickness_um for r in runs])
-    files = []
-    for r in runs:
-        ply, glb = out / f"{r.name}.thickness.ply", out / f"{r.name}.thickness.glb"
-        write_thickness_ply(ply, r.coating.surface, r.coating.thickness_um, vmin, vmax, r.coating.deposit.exposure_s)
-        write_thickness_glb(glb, r.coating.surface, r.coating.thickness_um, vmin, vmax, r.coating.deposit.exposure_s,
-                            aim_paths(r.execution.log, standoff_mm))
-        files += [ply, glb]
-    return files
 
 
 def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bool = False,
@@ -302,7 +257,13 @@ def run_scenario(path: str | Path, outdir: Optional[str | Path] = None, fast: bo
     names = output_names(loaded, video)
     check_distinct(input_files(loaded, model), [("output", out / name) for name in names])
     cell = load_arm(loaded, model)
+    if loaded.spec.part is not None and video:
+        raise InputError(f"{loaded.where('part')}: the cell's video is made for runs of a curve; a run on a 3-D part "
+                         "shows the part and the passes in report.html and VARIANT.thickness.glb (video)",
+                         parameters=("video",))
     with output_folder(out, names, "coatsim run", force):
+        if loaded.spec.part is not None:
+            return run_part(loaded, cell, out, fast, progress, keep_going, report)
         return _run_in(loaded, cell, out, fast, progress, keep_going, report, video)
 
 

@@ -130,6 +130,73 @@ class MeshSpec(_Strict):
 WorkpieceSpec = Annotated[Union[PlateSpec, CylinderSpec, MeshSpec], Field(discriminator="kind")]
 
 
+# --- 3-D parts: a mesh, its pose and region, and the passes planned on it -------------------
+Vec6 = Annotated[list[float], Field(min_length=6, max_length=6)]
+
+
+class RegionSpec(_Strict):
+    """Which faces of the part are coated, in the part's own frame: those whose outward normal
+    lies within ``max_angle_deg`` of ``facing`` (default: the part's thinnest axis on the side
+    its normals face), those whose centre is inside ``box`` [xmin, ymin, zmin, xmax, ymax, zmax]
+    (mm), or ``all``; facing and box keep only the faces the gun sees."""
+
+    facing: Optional[Vec3] = Field(None, description="the gun's side, a direction in the part's frame")
+    max_angle_deg: Annotated[float, Field(gt=0, lt=180)] = defaults.PLAN_FACING_DEG
+    box: Optional[Vec6] = Field(None, description="xmin, ymin, zmin, xmax, ymax, zmax (mm, part frame)")
+    all: bool = False
+
+    @model_validator(mode="after")
+    def _one_kind(self) -> RegionSpec:
+        if (self.facing is not None) + (self.box is not None) + self.all > 1:
+            raise ValueError("give at most one of 'facing', 'box' or 'all: true'")
+        if "max_angle_deg" in self.model_fields_set and (self.box is not None or self.all):
+            raise ValueError("'max_angle_deg' applies to a facing region")
+        if self.box is not None and not all(lo < hi for lo, hi in zip(self.box[:3], self.box[3:])):
+            raise ValueError("'box' is xmin, ymin, zmin, xmax, ymax, zmax with each min below its max")
+        return self
+
+
+class PartSpec(_Strict):
+    """A 3-D part: its mesh file (STL, PLY, OBJ, OFF, GLB; relative to the scenario), the unit
+    the file is in, its pose in the robot base frame [x, y, z (mm), O, A, T (deg)] and the
+    region of it that is coated."""
+
+    mesh: str
+    units: Literal["mm", "cm", "m", "in", "auto"] = defaults.PLAN_UNITS
+    pose: Vec6 = Field(default_factory=lambda: list(defaults.WORKPIECE_FRAME))
+    region: RegionSpec = Field(default_factory=RegionSpec)
+
+
+class PathsSpec(_Strict):
+    """The passes planned on the part (``coatsim plan``): the pattern, the spacing along the
+    surface (``spacing_mm``, or the largest that keeps the overlap ``ripple_pct``; default two
+    standard deviations of the footprint), the stand-off (default the gun's), the raster's step
+    ``direction`` (part frame), the lead past the region's edge, the band kept free along its
+    border, the spraying order; then how each pass becomes a program: the spray axis within
+    ``angle_tol_deg`` of the normal, and where the programmed speed holds (``trace``: the spray
+    spot on the surface, so the coat does not thin where the tool swings round a bend)."""
+
+    pattern: Literal["raster", "geodesic", "boundary"] = defaults.PLAN_PATTERN
+    spacing_mm: Optional[Positive] = None
+    ripple_pct: Optional[Annotated[float, Field(gt=0, lt=100)]] = None
+    standoff_mm: Optional[Positive] = Field(None, description="default: gun.standoff_mm")
+    direction: Optional[Vec3] = Field(None, description="raster: the planes' normal, from one pass to the next")
+    margin_mm: Optional[NonNegative] = Field(None, description="lead past the region's edge (default 3 sigma)")
+    edge_band_mm: NonNegative = defaults.PLAN_EDGE_BAND_MM
+    order: Literal["serpentine", "oneway"] = defaults.PLAN_ORDER
+    angle_tol_deg: Annotated[float, Field(gt=0, lt=90)] = defaults.ANGLE_TOL_DEG
+    speed_on: Literal["tcp", "trace"] = defaults.SCENARIO_SPEED_ON
+
+    @model_validator(mode="after")
+    def _one_spacing(self) -> PathsSpec:
+        if self.spacing_mm is not None and self.ripple_pct is not None:
+            raise ValueError("give at most one of 'spacing_mm' or 'ripple_pct'")
+        if self.direction is not None and self.pattern != "raster":
+            raise ValueError("'direction' applies to the raster pattern")
+        return self
+# --- end 3-D parts ------------------------------------------------------------------------
+
+
 class RobotSpec(_Strict):
     """The arm: ``default`` (the project's MJCF arm) or an MJCF file relative to the scenario."""
 
@@ -308,7 +375,10 @@ class Scenario(_Strict):
     curve: Optional[CurveSpec] = Field(None, description="the curve; without it, the sprayed path of the first "
                                        "program variant")
     segmentation: SegmentationSpec = Field(default_factory=SegmentationSpec)
-    workpiece: WorkpieceSpec
+    workpiece: Optional[WorkpieceSpec] = Field(None, description="the plate, cylinder or mesh a curve is sprayed on "
+                                               "(or give a 'part')")
+    part: Optional[PartSpec] = Field(None, description="a 3-D part whose passes are planned on its mesh")
+    paths: Optional[PathsSpec] = Field(None, description="with a 'part': the passes planned on it")
     robot: RobotSpec = Field(default_factory=RobotSpec)
     gun: GunSpec = Field(default_factory=GunSpec)
     motion: MotionSpec = Field(default_factory=MotionSpec)
@@ -337,10 +407,26 @@ class Scenario(_Strict):
 
     @model_validator(mode="after")
     def _curve_or_program(self) -> Scenario:
+        if (self.workpiece is None) == (self.part is None):
+            raise ValueError("give exactly one of 'workpiece' (a curve sprayed on a plate, cylinder or mesh) or "
+                             "'part' (passes planned on a 3-D part)")
+        if self.part is None:
+            if self.paths is not None:
+                raise ValueError("'paths' plans passes on a 'part'; give 'part: {mesh: FILE}'")
+        elif self.curve is not None or self.programs:
+            raise ValueError("a 'part' is sprayed along the passes planned on it ('paths'); a curve or a user's "
+                             "program over a mesh is 'workpiece: {kind: mesh, file: ...}'")
+        else:
+            return self
         if self.curve is None and not self.programs:
             raise ValueError("give a 'curve', or a program variant ({name: ..., program: FILE.as}) whose sprayed "
                              "path is the curve")
         return self
+
+    @property
+    def planned(self) -> PathsSpec:
+        """The planning options of a part (the defaults when ``paths`` is not given)."""
+        return self.paths if self.paths is not None else PathsSpec()
 
     @property
     def variant_names(self) -> list[str]:

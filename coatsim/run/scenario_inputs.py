@@ -177,7 +177,9 @@ def input_files(loaded: ScenarioFile, model: Optional[str | Path] = None) -> lis
     files: list[tuple[str, Optional[Path]]] = [
         ("the scenario", loaded.path),
         ("curve.file", loaded.resolve(spec.curve.file) if spec.curve is not None and spec.curve.file else None),
-        ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece.kind == "mesh" else None),
+        ("workpiece.file", loaded.resolve(spec.workpiece.file) if spec.workpiece is not None
+         and spec.workpiece.kind == "mesh" else None),
+        ("part.mesh", loaded.resolve(spec.part.mesh) if spec.part is not None else None),
         ("gun.footprint", loaded.resolve(table.split(":", 1)[1].strip()) if table.lower().startswith("table:") else None),
         ("gun.efficiency", loaded.resolve(spec.gun.efficiency.split(":", 1)[1].strip())
          if spec.gun.efficiency.strip().lower().startswith("table:") else None),

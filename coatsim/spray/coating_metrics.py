@@ -4,7 +4,9 @@ ROI kinds: ``part`` is the part minus an edge band along its border (default 3σ
 the strip the spray actually traced (vertices that came within a half-width, default 2σ, of
 the footprint centre while spraying), minus the same edge band and minus the run-in and
 run-out (within the edge band of the first and last footprint centre of every spray-on
-stretch that does not close on itself). Every statistic is weighted by vertex area, so it
+stretch that does not close on itself); ``field`` is that band without the edge band along its
+own border as well: the area a raster of passes coats evenly, its outer passes' falling flanks
+left out (a run on a 3-D part measures its region so). Every statistic is weighted by vertex area, so it
 does not depend on how the mesh is tessellated.
 
 Where the sprayed material went: sprayed = deposited + lost (bounced off, deposition
@@ -24,9 +26,9 @@ from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.spray.deposition import Deposit, SprayModel
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
-from coatsim.spray.surfaces import Surface, border_distance
+from coatsim.spray.surfaces import Surface, merged_vertices, border_distance
 
-ROI_KINDS = ("band", "part")
+ROI_KINDS = ("band", "field", "part")
 COVERAGE_FRACTION = 0.8
 THICK_SPOT_FRACTION = 1.2
 
@@ -80,11 +82,45 @@ def region_of_interest(surface: Surface, deposit: Deposit, model: SprayModel, ki
     if not (edge >= 0 and half > 0 and np.isfinite(edge) and np.isfinite(half)):
         raise InputError(f"ROI widths must be finite, >= 0 (edge band) and > 0 (band half-width), found {edge:g}, {half:g} mm")
     mask = (away_from_border(surface, edge, spacing) if away is None else away).copy()
-    if kind == "band":
-        mask &= deposit.track_distance_mm <= half
+    if kind != "part":
+        band = deposit.track_distance_mm <= half
+        mask &= band
         for step in _stretch_ends(deposit, closing_mm=model.step_mm):
             mask &= _footprint_radius(surface, deposit, model, step) >= edge
+        if kind == "field":
+            mask &= inside(surface, band, edge)
     return mask
+
+
+def inside(surface: Surface, mask: np.ndarray, margin_mm: float) -> np.ndarray:
+    """Vertices of ``mask`` at least ``margin_mm`` from every vertex outside it, measured along
+    the surface (shortest paths over the mesh's edges, coincident vertices merged: never through
+    the air, so the far side of a thin part does not count; a path along edges is at most about
+    8 % longer than the geodesic on a well-shaped mesh)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    if mask.all() or margin_mm <= 0:
+        return mask.copy()
+    ids = merged_vertices(surface.vertices)
+    faces = ids[surface.faces]
+    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    edges = edges[edges[:, 0] != edges[:, 1]]
+    n = int(ids.max()) + 1
+    merged_in = np.zeros(n, dtype=bool)
+    merged_in[ids[mask]] = True
+    merged_out = np.zeros(n, dtype=bool)
+    merged_out[ids[~mask]] = True
+    border = np.unique(edges[merged_out[edges[:, 0]] != merged_out[edges[:, 1]]])
+    sources = border[merged_out[border]]
+    if not len(sources):
+        return mask.copy()
+    first = np.zeros(n, dtype=np.int64)
+    first[ids] = np.arange(len(ids))
+    length = np.linalg.norm(surface.vertices[first[edges[:, 0]]] - surface.vertices[first[edges[:, 1]]], axis=1)
+    graph = coo_matrix((length, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
+    distance = dijkstra(graph, directed=False, indices=sources, min_only=True, limit=margin_mm * (1 + 1e-9))
+    return mask & ~merged_out[ids] & (distance[ids] >= margin_mm)
 
 
 def weighted_quantile(values: np.ndarray, weights: np.ndarray, q: float) -> float:

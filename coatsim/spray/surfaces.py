@@ -164,8 +164,20 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     mesh.update_faces(mesh.nondegenerate_faces())
     if len(mesh.faces) == 0:
         raise InputError(f"{path}: every triangle of the mesh is degenerate (zero area)")
+    return mesh_surface(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces), spacing, pose, str(path))
+
+
+def mesh_surface(vertices: np.ndarray, faces: np.ndarray, spacing: float, pose: np.ndarray | None = None,
+                 name: str = "mesh") -> Surface:
+    """A part's triangles (mm, its own frame) refined so no edge exceeds ``spacing`` and placed
+    by ``pose`` (4x4) in the base frame; the refined size is checked against the budget first."""
+    import trimesh
+    import trimesh.remesh
+
+    _check_spacing(spacing)
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
     estimate = max(len(mesh.faces), mesh.area / (math.sqrt(3) / 4 * spacing**2))
-    check_budget(f"{path} refined to edges of {spacing:g} mm: vertices (half the triangles)", estimate / 2, "mesh_vertices",
+    check_budget(f"{name} refined to edges of {spacing:g} mm: vertices (half the triangles)", estimate / 2, "mesh_vertices",
                  "use a larger spacing (coat --spacing, the scenario's coating.spacing_mm)")
     vertices, faces = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=spacing, max_iter=20)
     refined = trimesh.Trimesh(vertices, faces, process=True)
@@ -174,7 +186,7 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     vertices = _transform(np.asarray(refined.vertices, dtype=float), pose)
     faces = np.asarray(refined.faces, dtype=np.int64)
     normals = _transform(np.asarray(refined.vertex_normals, dtype=float), pose, vectors=True)
-    return Surface(str(path), "mesh", vertices, faces, normals, vertex_areas(vertices, faces),
+    return Surface(name, "mesh", vertices, faces, normals, vertex_areas(vertices, faces),
                    vertices[:, :2].copy(), ("x (mm)", "y (mm)"))
 
 
@@ -242,7 +254,7 @@ def parse_surface_spec(spec: str, spacing: float) -> Surface:
     return mesh_file(path, spacing)
 
 
-def _merged_vertices(vertices: np.ndarray) -> np.ndarray:
+def merged_vertices(vertices: np.ndarray) -> np.ndarray:
     """Vertex ids with coincident vertices (within 1e-7 of the part size) sharing one id."""
     scale = float(np.ptp(vertices, axis=0).max()) or 1.0
     key = np.round(vertices / (1e-7 * scale)).astype(np.int64)
@@ -260,7 +272,7 @@ def border_distance(surface: Surface, spacing: float | None = None, within_mm: f
     not within ``within_mm`` (the search stops there, so an edge band costs time in
     proportion to the vertices it holds). Accurate to spacing/16 (border edges are sampled
     at spacing/8)."""
-    merged = _merged_vertices(surface.vertices)
+    merged = merged_vertices(surface.vertices)
     faces = merged[surface.faces]
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     key = edges[:, 0] * (int(merged.max()) + 1) + edges[:, 1]

@@ -86,8 +86,10 @@ def _references(scenario: Mapping[str, Any]) -> list[tuple[tuple, str, str]]:
     refs: list[tuple[tuple, str, str]] = []
     if (scenario.get("curve") or {}).get("file"):
         refs.append((("curve", "file"), "curve", scenario["curve"]["file"]))
-    if scenario["workpiece"].get("kind") == "mesh":
+    if (scenario.get("workpiece") or {}).get("kind") == "mesh":
         refs.append((("workpiece", "file"), "mesh", scenario["workpiece"]["file"]))
+    if scenario.get("part"):
+        refs.append((("part", "mesh"), "mesh", scenario["part"]["mesh"]))
     if scenario["robot"]["model"] != "default":
         refs.append((("robot", "model"), "robot", scenario["robot"]["model"]))
     footprint = scenario["gun"]["footprint"].strip()
