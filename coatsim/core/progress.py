@@ -14,6 +14,8 @@ from coatsim.core.budgets import check_budget
 
 #: Called as ``advance(amount=1, description=None)`` after each step of the work.
 Advance = Callable[..., None]
+#: Called with the name of the step that starts now.
+Step = Callable[[str], None]
 
 _clock: list[float] = []  # when the command started (set by the command line; a library call has no bound)
 
@@ -54,3 +56,8 @@ def progress(label: str, total: Optional[float], show: Optional[bool] = None) ->
             bar.update(task, advance=amount, description=description or label)
 
         yield advance
+
+
+def labelled(advance: Advance) -> Step:
+    """A step function that names the step starting now (and checks the time budget)."""
+    return lambda label: advance(1, label)

@@ -42,7 +42,7 @@ from coatsim.robot.collisions import PartMesh, with_part
 from coatsim.robot.execute import execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
-from coatsim.run.progress import Step, progress_steps
+from coatsim.core.progress import Step, labelled, progress as progress_bar
 from coatsim.run.scenario import RegionSpec, ScenarioFile, as_dict
 from coatsim.run.scenario_inputs import spray_model
 from coatsim.run.variants import on_common_roi, program_files, write_thickness_files
@@ -231,7 +231,8 @@ def run_part(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: 
 
     spec = loaded.spec
     show = sys.stderr.isatty() if progress is None else progress
-    with progress_steps(3 + 3 * len(spec.variants), show) as step:
+    with progress_bar("running the scenario", 3 + 3 * len(spec.variants), show) as advance:
+        step = labelled(advance)
         step("planning passes on the part")
         started = time.perf_counter()
         model = spray_model(loaded)

@@ -12,13 +12,13 @@ import sys
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Callable, Mapping, Optional
+from typing import Mapping, Optional
 
 import numpy as np
 
 from coatsim.core.errors import CoatsimError, EmptyRegionOfInterest, InputError
 from coatsim.core.fileio import write_text
-from coatsim.core.progress import Advance, progress as progress_bar
+from coatsim.core.progress import Step, labelled, progress as progress_bar
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
 from coatsim.geometry.cad import PartSegmentation
 from coatsim.geometry.deviation import hausdorff
@@ -80,14 +80,6 @@ from coatsim.run.variants import (
     variant_names,
     write_thickness_files,
 )
-
-Step = Callable[[str], None]
-
-
-def _labelled(advance: Advance) -> Step:
-    """A step function that names the step starting now (and checks the time budget)."""
-    return lambda label: advance(1, label)
-
 
 FULL_SAMPLE_STEP_MM = 1.0  # path sampling of the arm simulation outside fast mode
 
@@ -273,7 +265,7 @@ def _run_in(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, progress: O
     spec = loaded.spec
     show = sys.stderr.isatty() if progress is None else progress
     with progress_bar("running the scenario", 3 + 3 * len(spec.variants) + int(video), show) as advance:
-        step = _labelled(advance)
+        step = labelled(advance)
         step("segmenting the curve")
         contours, part, offset = _segmentation(loaded, cell)
         segmentation_file = out / ("part.json" if len(contours) > 1 else "polysegment.json")
