@@ -3,7 +3,6 @@ with exit 2 (or a result), never an internal error, a traceback, a hang or a mem
 
 from __future__ import annotations
 
-import os
 import time
 
 import ezdxf

@@ -10,7 +10,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.core.errors import InputError
 from coatsim.geometry import Arc, Line
 from coatsim.geometry.cad.chaining import TANGENT_FREE_DEG, chain_pieces
 from coatsim.geometry.cad.pieces import FreePiece, NativePiece
