@@ -373,13 +373,25 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
     placed = [PlacedPath(p.segments, p.normal, p.standoff_mm, p.lead_in_mm, p.lead_out_mm, p.curve_length_mm, c)
               for p, c in zip(placed, clearance)]
     _check_range(placed, language, paths.source)
+    plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
+                                arcs_as_lines, (lead_in, lead_out), standoff, pose)
+    return SurfaceProgram(language.write(plan), plan, tuple(counts), worst, notes)
+
+
+def _surface_plan(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions, language: Language,
+                  placed: list[PlacedPath], contours: tuple[SprayedContour, ...], counts: list[tuple[int, int]],
+                  arcs_as_lines: int, leads_mm: tuple[float, float], standoff: float,
+                  pose: Pose) -> tuple[ProgramPlan, tuple[str, ...]]:
+    """The program plan of the placed passes, with its process record and comments, and the notes
+    for the user (arcs written as lines)."""
+    lead_in, lead_out = leads_mm
     n_lines, n_arcs = sum(c[0] for c in counts), sum(c[1] for c in counts)
     process = ProcessInfo(
         variant=options.variant, source=paths.source, tolerance_mm=surface.tolerance_mm,
         curve_length_mm=sum(p.curve_length_mm for p in placed), lead_in_mm=lead_in, lead_out_mm=lead_out,
         standoff_mm=standoff, speed_mm_s=options.speed_mm_s, accuracy_mm=options.accuracy_mm,
         gun_signal=options.gun_signal, frame=pose, n_segments=n_lines + n_arcs, n_lines=n_lines, n_arcs=n_arcs,
-        contours=tuple(contours), contour_order=tuple(range(1, len(placed) + 1)) if len(placed) > 1 else None,
+        contours=contours, contour_order=tuple(range(1, len(placed) + 1)) if len(placed) > 1 else None,
         speed_on=surface.speed_on,
     )
     stem = paths.source.replace("\\", "/").split("/")[-1].rsplit(".", 1)[0]
@@ -393,7 +405,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
     plan = ProgramPlan(name=name, paths=tuple(placed), speed_mm_s=options.speed_mm_s, accuracy_mm=options.accuracy_mm,
                        exact_stop=options.variant == "polyline-stop", approach_mm=options.approach_mm,
                        gun_signal=options.gun_signal, tool=options.tool, process=process, comments=(comment, *notes))
-    return SurfaceProgram(language.write(plan), plan, tuple(counts), worst, notes)
+    return plan, notes
 
 
 def _check_range(paths: list[PlacedPath], language: Language, source: str) -> None:
