@@ -238,3 +238,9 @@ def test_an_empty_region_of_interest_names_each_commands_own_settings(tmp_path):
     code, _, err = cli("run", scenario, "--fast", "-o", tmp_path / "run")
     assert code == 2 and err.count("\n") == 1, err
     assert "banded.yaml:" in err and "coating.edge_band_mm" in err and "--roi" not in err and "--edge-band" not in err
+
+
+def test_coatsim_alone_shows_the_help_exit_2() -> None:
+    done = subprocess.run([sys.executable, "-m", "coatsim.cli"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith("Usage: coatsim") and "\nCommands:" in done.stderr and "\\n" not in done.stderr

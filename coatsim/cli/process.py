@@ -97,6 +97,9 @@ def _run(app: typer.Typer) -> int:
         _say(_OUT_OF_MEMORY)
         return 3
     except typer.TyperException as exc:  # usage errors
+        if len(sys.argv) <= 1:  # `coatsim` alone: the help, as it is shown for --help, exit 2
+            typer.echo(exc.format_message(), err=True)
+            return exc.exit_code
         # one line, like every other error; `coatsim COMMAND --help` shows the usage
         _say(f"coatsim: error: {exc.format_message()} (see --help)")
         return exc.exit_code
