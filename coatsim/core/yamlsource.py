@@ -261,17 +261,20 @@ def _tags(annotation: Any) -> list[str]:
 
 def _pick(annotation: Any, node: Any) -> Any:
     """Unwrap Annotated/Optional/discriminated unions to the class that validates ``node``."""
-    while typing.get_origin(annotation) is typing.Annotated:
-        annotation = typing.get_args(annotation)[0]
-    if typing.get_origin(annotation) is Union:
+    while True:
+        while typing.get_origin(annotation) is typing.Annotated:
+            annotation = typing.get_args(annotation)[0]
+        if typing.get_origin(annotation) is not Union:
+            return annotation
         options = [a for a in typing.get_args(annotation) if a is not type(None)]
         for option in options:
             fields = getattr(option, "model_fields", {})
             kind = fields.get("kind")
             if kind is not None and isinstance(node, dict) and node.get("kind") in typing.get_args(kind.annotation):
                 return option
-        return options[0] if len(options) == 1 else annotation
-    return annotation
+        if len(options) != 1:
+            return annotation
+        annotation = options[0]  # an optional one: what it holds when present
 
 
 def _short(value: Any) -> str:

@@ -123,7 +123,7 @@ def test_bad_input_exits_2_with_one_line(tmp_path, monkeypatch, capsys, args, wo
 
 def test_missing_trajectory_and_dry_trajectory(tmp_path, monkeypatch, capsys):
     code, _, err = run_cli(monkeypatch, capsys, tmp_path / "none.csv", "--surface", "plate:100x100", "-o", tmp_path / "o")
-    assert code == 2 and "none.csv: cannot read trajectory" in err
+    assert code == 2 and "none.csv: no such file" in err
     dry = write_pass_csv(tmp_path / "dry.csv", spray=False)
     code, _, err = run_cli(monkeypatch, capsys, dry, "--surface", "plate:200x100", "-o", tmp_path / "o")
     assert code == 2 and "never sprays" in err
@@ -170,7 +170,7 @@ def test_cli_on_a_mesh_part_with_a_leaning_gun_and_shadows(tmp_path, monkeypatch
 @pytest.mark.parametrize("args, words", [
     (["--shadows", "sometimes"], "--shadows must be one of auto, on, off"),
     (["--efficiency", "angle:100=1"], "spray angle must be between 0 and 90"),
-    (["--efficiency", "table:missing.csv"], "missing.csv: cannot read efficiency table"),
+    (["--efficiency", "table:missing.csv"], "missing.csv: no such file"),
     (["--tolerance-pct", "-1"], "--tolerance-pct: the thickness tolerance must be a percentage >= 0"),
 ])
 def test_bad_coating_options_exit_2_with_one_line(tmp_path, monkeypatch, capsys, args, words):

@@ -165,7 +165,7 @@ def test_no_ray_from_a_nozzle_in_front_ever_reaches_an_exposed_vertex_blocked(ca
 
 def test_the_budget_refuses_a_scene_before_it_is_built(monkeypatch):
     surface, _ = shelf_over_floor(4.0)
-    monkeypatch.setattr(visibility, "MAX_SHADOW_BYTES", 1000)
+    monkeypatch.setenv("COATSIM_BUDGET", "shadow_bytes=1000")
     with pytest.raises(InputError, match="shadows: convex hull and ray-casting scene of .* triangles, bytes: .* over the budget of 1,000"):
         deposit(surface, shelf_pass(), gun())
     assert not deposit(surface, shelf_pass(), gun(shadows="off")).shadows
