@@ -14,7 +14,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from coatsim.core.errors import CoatsimWarning, InputError
-from coatsim.spray import visibility
 from coatsim.spray.coating_metrics import coating_metrics
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import cylinder, plate
