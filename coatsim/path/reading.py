@@ -9,6 +9,7 @@ language builds it; everything here is language-neutral.
 
 from __future__ import annotations
 
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from coatsim.core.errors import ExecutionError, InputError
@@ -88,14 +89,7 @@ class Reading:
     def require_complete(self) -> None:
         """What simulates or rewrites the path needs every statement: InputError naming the first
         one skipped for want of a value, ExecutionError when it is one the twin does not simulate."""
-        if not self.skipped:
-            return
-        more = f" (and {len(self.skipped) - 1} more)" if len(self.skipped) > 1 else ""
-        if self.skipped[0] in self.unsimulated:
-            raise ExecutionError(f"{self.skipped[0]}{more}; a simulation runs every statement, and the twin does not "
-                                 "simulate this one")
-        raise InputError(f"{self.skipped[0]}{more}; a simulation runs every statement (give missing values as "
-                         "NAME=VALUE)")
+        require_every_statement(self.skipped, self.unsimulated)
 
     def toolpath_to_run(self, gun_signal: int, needs_spray: bool, first_file: str) -> ToolPath:
         """The ToolPath the twin runs: every statement run (see :meth:`require_complete`), and
@@ -112,3 +106,16 @@ def gun_never_on(source: str, gun_signal: int, outputs: tuple[int, ...]) -> str:
     switched = f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}" if outputs \
         else "it switches no output"
     return f"{source}: the gun (output {gun_signal}) is never on during a motion; {switched}"
+
+
+def require_every_statement(skipped: Sequence[str], unsimulated: Collection[str]) -> None:
+    """What simulates or rewrites a path needs every statement: InputError naming the first of
+    ``skipped`` (left out for want of a value), ExecutionError when it is one of ``unsimulated``."""
+    if not skipped:
+        return
+    more = f" (and {len(skipped) - 1} more)" if len(skipped) > 1 else ""
+    if skipped[0] in unsimulated:
+        raise ExecutionError(f"{skipped[0]}{more}; a simulation runs every statement, and the twin does not "
+                             "simulate this one")
+    raise InputError(f"{skipped[0]}{more}; a simulation runs every statement (give missing values as "
+                     "NAME=VALUE)")

@@ -27,6 +27,7 @@ from typing import Mapping, Optional, Sequence, Union
 from coatsim.geometry.space.pose import InvalidPose, Pose
 from coatsim.core.errors import CoatsimError, ExecutionError, InputError
 from coatsim.path.process_record import decode as decode_header
+from coatsim.path.reading import require_every_statement
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
@@ -71,14 +72,7 @@ class Run:
     def require_complete(self) -> None:
         """What simulates or rewrites the path needs every statement: InputError naming the first
         one skipped for want of a value, ExecutionError when it is one the twin does not simulate."""
-        if not self.skipped:
-            return
-        more = f" (and {len(self.skipped) - 1} more)" if len(self.skipped) > 1 else ""
-        if self.skipped[0] in self.unsimulated:
-            raise ExecutionError(f"{self.skipped[0]}{more}; a simulation runs every statement, and the twin does not "
-                                 "simulate this one")
-        raise InputError(f"{self.skipped[0]}{more}; a simulation runs every statement (give missing values as "
-                         "NAME=VALUE)")
+        require_every_statement(self.skipped, self.unsimulated)
 
 
 @dataclass
