@@ -109,7 +109,7 @@ def main() -> None:
             if fast_vertices != vertices and t1 > 0:
                 exponent = f"{math.log(t2 / t1) / math.log(vertices / fast_vertices):.2f}"
             print(f"  fast mode: {fast_vertices} vertices, report.html {t1:.2f} s; exponent against vertices {exponent}")
-        summary.append((scenario.stem, full["report.html"], full["PLY + GLB files"], vertices, exponent))
+        summary.append((scenario.stem, full["report.html"], full.get("PLY + GLB files", 0.0), vertices, exponent))
     print(f"\n{'scenario':<18} {'report.html s':>13} {'PLY+GLB s':>10} {'vertices':>9} {'exponent':>9}")
     for name, report_s, files_s, vertices, exponent in summary:
         print(f"{name:<18} {report_s:>13.2f} {files_s:>10.2f} {vertices:>9} {exponent:>9}")

@@ -16,7 +16,7 @@ from typing import Any, Sequence
 VARIANT_COLOURS = {"polysegment": "#1b6ca8", "polyline-stop": "#c0392b", "polyline-blend": "#e08e0b"}
 _OTHER_COLOURS = ("#6a3d9a", "#33a02c", "#b15928", "#e7298a", "#1f78b4", "#666666")
 DPI = 80    # the report's figures: about 900 pixels across for an 11-inch figure
-TICKS = 4   # at most about this many ticks per axis
+TICKS = 3   # at most about this many ticks per axis (each tick is two lines and two labels to make)
 COLOURS = 256  # PNGs are stored with a palette of at most this many colours (a third of the bytes)
 
 
@@ -49,6 +49,13 @@ def lean(ax: Any, labelsize: float = 8) -> None:
     ax.xaxis.set_major_locator(MaxNLocator(TICKS))
     ax.yaxis.set_major_locator(MaxNLocator(TICKS))
     ax.tick_params(labelsize=labelsize)
+
+
+def bar_ticks() -> Any:
+    """The locator of a colour bar's ticks: as few as on the axes."""
+    from matplotlib.ticker import MaxNLocator
+
+    return MaxNLocator(TICKS)
 
 
 def title(ax: Any, text: str, **style: Any) -> None:

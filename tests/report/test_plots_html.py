@@ -7,7 +7,7 @@ import re
 
 
 from coatsim.geometry.polysegment import Polysegment, chain
-from coatsim.report import curve_figures
+from coatsim.report import curve_figures, plots
 from coatsim.report.catalogue import METRICS, names
 from coatsim.report.html import Figure, Section, gates_table, render_html
 from coatsim.report.metric_names import SHOWN, ratio_text, value_text
@@ -26,6 +26,22 @@ def test_figures_are_png_and_deterministic() -> None:
     first = curve_figures.part_figure([poly, poly], [xy, xy + 40.0], order=[1, 0])
     assert first.startswith(PNG_MAGIC)
     assert curve_figures.part_figure([poly, poly], [xy, xy + 40.0], order=[1, 0]) == first
+
+
+def test_axes_and_colour_bars_carry_few_ticks() -> None:
+    """Every tick is two lines and two labels to make and draw: the report's axes and colour bars
+    show at most about plots.TICKS of them, whatever the data's range."""
+    import numpy as np
+
+    fig = plots.figure(6.0, 3.0)
+    ax, bar_ax = plots.grid(fig, 1, 2)[0]
+    ax.plot([-3.7, 1234.5], [0.001, 987.0])
+    image = bar_ax.imshow(np.linspace(-17.0, 4321.0, 100).reshape(10, 10))
+    bar = fig.colorbar(image, ax=bar_ax, ticks=plots.bar_ticks())
+    plots.png_bytes(fig)
+    for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim()), (bar.ax.yaxis, bar.ax.get_ylim())):
+        shown = [t for t in axis.get_majorticklocs() if lo <= t <= hi]
+        assert 2 <= len(shown) <= plots.TICKS + 1
 
 
 def _variants() -> dict:

@@ -10,7 +10,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 
 from coatsim.report.html import Figure, Section, esc, figure_html
-from coatsim.report.plots import figure, lean, png_bytes, title
+from coatsim.report.plots import bar_ticks, figure, lean, png_bytes, title
 from coatsim.spray.outputs import COLOUR_MAP
 
 DIFF_MAP = "RdBu_r"
@@ -70,7 +70,7 @@ def maps_figure(data: Any, other: Optional[Any]) -> tuple[bytes, float]:
                        vmax=vmax)
         title(ax, run.name)
     axes[0].set_ylabel(data.surface.view_labels[1], fontsize=8)
-    fig.colorbar(image, cax=bars[0]).set_label("thickness (µm)", fontsize=8)
+    fig.colorbar(image, cax=bars[0], ticks=bar_ticks()).set_label("thickness (µm)", fontsize=8)
     limit = 0.0
     if other is not None:
         diff = data.reference.coating.thickness_um - other.coating.thickness_um
@@ -79,7 +79,7 @@ def maps_figure(data: Any, other: Optional[Any]) -> tuple[bytes, float]:
         image = _image(ax, data, diff, data.track_view(data.reference), "black", cmap=DIFF_MAP, vmin=-limit, vmax=limit)
         title(ax, f"{data.reference.name} − {other.name}")
         ax.set_ylabel(data.surface.view_labels[1], fontsize=8)
-        fig.colorbar(image, cax=bars[1]).set_label("thickness difference (µm)", fontsize=8)
+        fig.colorbar(image, cax=bars[1], ticks=bar_ticks()).set_label("thickness difference (µm)", fontsize=8)
     return png_bytes(fig), limit
 
 

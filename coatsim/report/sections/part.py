@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from coatsim.report.html import Figure, Section, esc, figure_html, fmt, key_value_table
-from coatsim.report.plots import colour, figure, grid, png_bytes, title
+from coatsim.report.plots import bar_ticks, colour, figure, grid, png_bytes, title
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
 
 HISTOGRAM_BINS = 60
@@ -154,7 +154,7 @@ def maps_figure(data: Any) -> bytes:
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xticks([])
         ax.set_yticks([])
-        fig.colorbar(image, ax=ax, shrink=0.8, pad=0.02).ax.tick_params(labelsize=7)
+        fig.colorbar(image, ax=ax, shrink=0.8, pad=0.02, ticks=bar_ticks()).ax.tick_params(labelsize=7)
         title(ax, label, loc="left", fontsize=8)
     for ax in axes[len(fields):]:
         ax.set_visible(False)
