@@ -37,6 +37,7 @@ from coatsim.languages.kuka_krl.names import MAX_NAME_LENGTH
 from coatsim.languages.kuka_krl.parser import Line, Routine, parse_krl, stream
 from coatsim.languages.script import nodes as n
 from coatsim.languages.script.tokens import NAME, OP
+from coatsim.languages.script.unknowns import UnknownLog
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import decode as decode_record
 from coatsim.path.reading import MoveSource, OutputSwitch, Reading
@@ -51,8 +52,10 @@ _NOTED = {"INTERRUPT", "BRAKE", "RESUME", "ANIN", "ANOUT", "SIGNAL", "ENUM", "ST
 
 
 class _Unknown(Exception):
-    def __init__(self, name: str) -> None:
-        self.name = name
+    """A name no file declares, or (``declared``) one declared without a value."""
+
+    def __init__(self, name: str, declared: bool = False) -> None:
+        self.name, self.declared = name, declared
 
 
 class _Return(Exception):
@@ -96,7 +99,9 @@ class Interpreter:
         self.outputs: set[int] = set()
         self.skipped: list[str] = []
         self.unsimulated: list[str] = []
-        self.unknowns: dict[str, str] = {}
+        self.unknowns: dict[str, str] = {}  # the inputs read that nobody gives
+        self.valueless: set[int] = set()  # ids of the positions declared without a value, not set since
+        self.unknown = UnknownLog("a variable of $CONFIG.DAT or of a module the files loaded do not include")
         self.spraying = False
         self.pending: list[tuple[int, bool]] = []  # (motions still to start, gun on) of triggered switches
         self.tcp: Optional[Pose] = None
@@ -202,10 +207,9 @@ class Interpreter:
             return key == "TRUE"
         if key.startswith("#"):
             return key
-        if self.frames and key in self.frames[-1]:
-            return self.frames[-1][key]
-        if key in self.globals:
-            return self.globals[key]
+        found = self.frames[-1].get(key) if self.frames and key in self.frames[-1] else self.globals.get(key)
+        if found is not None and id(found) not in self.valueless:
+            return found
         if key in self.system:
             return self.system[key]
         if key == "$POS_ACT":
@@ -215,7 +219,15 @@ class Interpreter:
             if given.upper() == key:
                 return float(text) if _is_number(text) else self.eval(self.expr(
                     [t for t in stream_tokens(str(text), self.source)]))
-        raise _Unknown(name)
+        raise _Unknown(name, found is not None)
+
+    def _stored(self, name: n.Name) -> Any:
+        """The value held under ``name`` to set a component of, declared with a value or not."""
+        key = name.name.upper()
+        for scope in ((self.frames[-1],) if self.frames else ()) + (self.globals, self.system):
+            if key in scope:
+                return scope[key]
+        return self.eval(name)
 
     def function(self, call: n.Call) -> Any:
         name = call.name.upper()
@@ -259,6 +271,8 @@ class Interpreter:
                 scope[name] = [v.default(type_) for _ in range(dims[0] if dims else 0)]
                 continue
             value = v.default(type_)
+            if type_ in v.TYPES and not (rest and rest[0].kind == OP and rest[0].text == "="):
+                self.valueless.add(id(value))  # a position declared without one: reading it is an unknown
             if rest and rest[0].kind == OP and rest[0].text == "=":
                 value = self.eval(self.expr(rest[1:]))
                 if isinstance(value, v.Struct) and not value.type:
@@ -284,9 +298,8 @@ class Interpreter:
                 self.tool = ToolFrame(pose.rotation, pose.translation_mm, self.line)
             return
         if isinstance(target, n.Field):
-            holder = self.eval(target.base) if not (isinstance(target.base, n.Name) and
-                                                   target.base.name.upper() in self.system) else \
-                self.system[target.base.name.upper()]
+            holder = self._stored(target.base) if isinstance(target.base, n.Name) else self.eval(target.base)
+            self.valueless.discard(id(holder))  # a component set: the position has a value
             if not isinstance(holder, v.Struct):
                 raise self.error(f"no component {target.field}")
             holder.fields[target.field.upper()] = value
@@ -399,9 +412,10 @@ class Interpreter:
             try:
                 self.simple(item)
             except _Unknown as unknown:
-                self.unknowns.setdefault(unknown.name.lower(), f"{self.where()}: {unknown.name} (no file declares it)")
-                self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, which no file "
-                                    "declares")
+                self.unknown.read(unknown.name, self.where(), unknown.name.lower())
+                which = "which has no value in the files (declared without one)" if unknown.declared else \
+                    "which no file declares"
+                self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, {which}")
 
     def _cond(self, tokens) -> bool:
         value = self.eval(self.expr(tokens))
@@ -755,7 +769,7 @@ def read_krl(paths: Sequence[Path], options: ReadOptions) -> Reading:
         move_sources=tuple(run.sources), move_frames=tuple(run.move_frames), n_steps=len(main.body),
         n_poses=sum(1 for val in run.globals.values() if isinstance(val, v.Struct) and val.type in v.TYPES),
         switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(problems),
-        unknowns=tuple(run.unknowns.values()), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
+        unknowns=tuple(run.unknowns.values()) + run.unknown.unknowns(), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
         gun_on_at_end=run.spraying,
         external_axes=any(isinstance(val, v.Struct) and any(abs(float(val.fields.get(a, 0.0))) > 1e-9
                                                              for a in v.AXES if isinstance(val.fields.get(a, 0.0), float))
