@@ -27,6 +27,7 @@ from coatsim.languages.abb_rapid.motion import MOVES, Motions
 from coatsim.languages.abb_rapid.names import MAX_NAME_LENGTH
 from coatsim.languages.abb_rapid.parser import parse_rapid
 from coatsim.languages.script import nodes as n
+from coatsim.languages.script.flow import Halt, Jump, Return
 from coatsim.languages.script.unknowns import UnknownLog
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import decode as decode_record
@@ -47,23 +48,7 @@ _INTERRUPTS = {"isignaldi", "isignaldo", "itimer", "isignalai", "isignalao", "is
 _UNSIMULATED = {"searchl", "searchc", "searchj", "movelsync", "movejsync", "movecsync", "moveext", "csspdeact",
                 "indamove", "indcmove", "inddmove", "indrmove", "indreset", "pulsedo", "tpreadfk",
                 "tpreadnum", "tpreaddnum"}
-
-
 _POSITIONS = ("robtarget", "pose", "orient")  # the types whose declaration without a value is no value
-
-class _Return(Exception):
-    def __init__(self, value: Any) -> None:
-        self.value = value
-
-
-class _Stop(Exception):
-    def __init__(self, how: str) -> None:
-        self.how = how
-
-
-class _Goto(Exception):
-    def __init__(self, label: str) -> None:
-        self.label = label
 
 
 class Interpreter(Expressions, Motions):
@@ -251,7 +236,7 @@ class Interpreter(Expressions, Motions):
         self.main = routine
         try:
             self.call(routine, ())
-        except _Stop as stop:
+        except Halt as stop:
             self.stopped = stop.how
 
     def call(self, routine: s.Routine, args: tuple[n.Arg, ...]) -> Any:
@@ -265,7 +250,7 @@ class Interpreter(Expressions, Motions):
             for decl in routine.data:
                 frame[decl.name.lower()] = self._declare(decl)
             self.block(routine.body)
-        except _Return as ret:
+        except Return as ret:
             return ret.value
         finally:
             self.frames.pop()
@@ -305,7 +290,7 @@ class Interpreter(Expressions, Motions):
             try:
                 self.statement(body[k])
                 k += 1
-            except _Goto as jump:
+            except Jump as jump:
                 if jump.label.lower() not in labels:
                     raise
                 k = labels[jump.label.lower()]
@@ -348,9 +333,9 @@ class Interpreter(Expressions, Motions):
             if st.default is not None:
                 self.block(st.default)
         elif isinstance(st, s.Goto):
-            raise _Goto(st.label)
+            raise Jump(st.label)
         elif isinstance(st, s.Return):
-            raise _Return(None if st.value is None else self.eval(st.value))
+            raise Return(None if st.value is None else self.eval(st.value))
         elif isinstance(st, s.Connect):
             self.warn("interrupt", f"interrupts (CONNECT ... WITH {st.trap}) are noted, not run: TRAP routines do not "
                                    "run in the twin")
@@ -410,7 +395,7 @@ class Interpreter(Expressions, Motions):
             self.velset = (override, cap)
         elif name in ("stop", "exit", "break", "systemstop"):
             self.stop_previous()
-            raise _Stop(f"{self.where()}: {st.name}")
+            raise Halt(f"{self.where()}: {st.name}")
         elif name in ("setao", "setgo", "pulsedo") and positional:
             self.set_output(positional[0], True, st, _text(st)) if name == "pulsedo" else None
             if name == "pulsedo" and self.signal_number(self._signal_name(positional[0])) == self.options.gun_signal:

@@ -36,6 +36,7 @@ from coatsim.languages.kuka_krl.motion import DEFAULT_VEL_CP_M_S, Motions
 from coatsim.languages.kuka_krl.names import MAX_NAME_LENGTH
 from coatsim.languages.kuka_krl.parser import Line, Routine, parse_krl, split_commas, statement_text
 from coatsim.languages.script import nodes as n
+from coatsim.languages.script.flow import Halt, Jump, LeaveLoop, Return
 from coatsim.languages.script.tokens import NAME, OP
 from coatsim.languages.script.unknowns import UnknownLog
 from coatsim.path.language import ReadOptions
@@ -47,25 +48,6 @@ MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
 RECORD = re.compile(r"^\s*;\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
 _NOTED = {"INTERRUPT", "BRAKE", "RESUME", "ANIN", "ANOUT", "SIGNAL", "ENUM", "STRUC", "EXT", "EXTFCT", "IMPORT"}
-
-
-class _Return(Exception):
-    def __init__(self, value: Any) -> None:
-        self.value = value
-
-
-class _Exit(Exception):
-    pass
-
-
-class _Goto(Exception):
-    def __init__(self, label: str, line: int) -> None:
-        self.label, self.line = label, line
-
-
-class _Halt(Exception):
-    def __init__(self, how: str) -> None:
-        self.how = how
 
 
 class Interpreter(Expressions, Motions):
@@ -228,7 +210,7 @@ class Interpreter(Expressions, Motions):
         self.main = routine
         try:
             self.call(routine, ())
-        except _Halt as halt:
+        except Halt as halt:
             self.stopped = halt.how
 
     def call(self, routine: Routine, args) -> Any:
@@ -243,9 +225,9 @@ class Interpreter(Expressions, Motions):
         self.source, self.routine = routine.source, routine.name
         try:
             self.block(self._body(routine))
-        except _Return as ret:
+        except Return as ret:
             return ret.value
-        except _Goto as jump:
+        except Jump as jump:
             raise InputError(f"{routine.source}:{jump.line}: GOTO {jump.label}: no such label in {routine.name} (a "
                              "GOTO may leave a block, not enter one)") from None
         finally:
@@ -269,7 +251,7 @@ class Interpreter(Expressions, Motions):
             if isinstance(item, Block):
                 try:
                     self.structure(item)
-                except _Goto as jump:  # out of a block to a label of this one
+                except Jump as jump:  # out of a block to a label of this one
                     if jump.label not in labels:
                         raise
                     k = labels[jump.label]
@@ -281,7 +263,7 @@ class Interpreter(Expressions, Motions):
             if item.word == "GOTO":
                 label = item.tokens[1].text.upper() if len(item.tokens) > 1 else ""
                 if label not in labels:
-                    raise _Goto(label, item.line)
+                    raise Jump(label, item.line)
                 k = labels[label]
                 continue
             try:
@@ -321,7 +303,7 @@ class Interpreter(Expressions, Motions):
                         raise self.failure(f"a {b.kind} loop that never ends")
                     if b.kind == "REPEAT" and self._cond(b.tail.tokens[1:]):
                         break
-            except _Exit:
+            except LeaveLoop:
                 pass
         elif b.kind == "FOR":
             self._for(b)
@@ -352,7 +334,7 @@ class Interpreter(Expressions, Motions):
                 self.assign(var, value) if self._declared(var.name) else self._local(var.name, value)
                 self.block(b.parts[0][1])
                 value += step
-        except _Exit:
+        except LeaveLoop:
             pass
 
     def _declared(self, name: str) -> bool:
@@ -382,11 +364,11 @@ class Interpreter(Expressions, Motions):
                                             "it came true")
         elif word == "HALT":
             self._stop_previous()
-            raise _Halt(f"{self.where()}: HALT")
+            raise Halt(f"{self.where()}: HALT")
         elif word == "RETURN":
-            raise _Return(self.eval(self.expr(toks[1:])) if len(toks) > 1 else None)
+            raise Return(self.eval(self.expr(toks[1:])) if len(toks) > 1 else None)
         elif word == "EXIT":
-            raise _Exit()
+            raise LeaveLoop()
         elif word == "TRIGGER":
             self.trigger(ln)
         elif word in _NOTED or (word == "GLOBAL" and len(toks) > 1 and toks[1].text.upper() == "INTERRUPT"):
