@@ -275,3 +275,49 @@ def test_check_program_lists_unknowns_and_set_gives_them(tmp_path, run_cli):
     assert code == 0 and "unknown:" not in out and "1 linear" in out
     code, out, err = run_cli(["execute", str(paths[0]), "-o", str(tmp_path / "out")])
     assert code == 2 and "Plane_1" in err and len(err.strip().splitlines()) == 1
+
+
+RAPID_CELL_DATA = """MODULE CoatMain
+  CONST robtarget pStart := [[0,0,0],[0,1,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];
+  PROC main()
+    MoveJ pStart, v200, fine, tSprayGun \\WObj:=wobjTable;
+    SetDO doGun, 1;
+    MoveL Offs(pStart, 100, 0, 0), v200, z1, tSprayGun \\WObj:=wobjTable;
+    SetDO doGun, 0;
+  ENDPROC
+ENDMODULE
+"""
+KRL_BAS = """DEF coat()
+  BAS(#INITMOV, 0)
+  BAS(#TOOL, 1)
+  BAS(#BASE, 3)
+  PTP {X 0, Y 0, Z 50, A 0, B 90, C 0}
+  LIN {X 0, Y 0, Z 0}
+  $OUT[1] = TRUE
+  LIN {X 100, Y 0, Z 0}
+  $OUT[1] = FALSE
+END
+"""
+
+
+def test_rapid_tool_and_work_object_of_another_module_are_unknowns(tmp_path):
+    paths = _files(tmp_path, "CoatMain", [(".mod", RAPID_CELL_DATA)])
+    r = _reading("rapid", paths)
+    assert [u.split(" is read")[0] for u in r.unknowns] == [f"{paths[0]}:4: tSprayGun"]
+    assert "also read at line 6" in r.unknowns[0] and len(r.skipped) == 2
+    given = _reading("rapid", paths, tSprayGun="[TRUE,[[0,0,250],[1,0,0,0]],[1,[0,0,1],[1,0,0,0],0,0,0]]",
+                     wobjTable='[FALSE,TRUE,"",[[600,-100,200],[1,0,0,0]],[[0,0,0],[1,0,0,0]]]')
+    assert not given.unknowns and not given.skipped
+    assert _ends(given) == [(600, -100, 200), (700, -100, 200)]
+    assert np.allclose(given.move_frames[-1].translation_mm, [600, -100, 200])
+
+
+def test_krl_base_of_the_controllers_table_is_an_unknown(tmp_path):
+    paths = _files(tmp_path, "coat", [(".src", KRL_BAS)])
+    r = _reading("krl", paths)
+    assert [u.split(" is read")[0] for u in r.unknowns] == [f"{paths[0]}:3: TOOL_DATA[1]", f"{paths[0]}:4: BASE_DATA[3]"]
+    with pytest.raises(InputError, match="TOOL_DATA"):
+        language("krl").read(paths, ReadOptions())
+    given = _reading("krl", paths, **{"TOOL_DATA[1]": "{X 0,Y 0,Z 250,A 0,B 0,C 0}",
+                                      "BASE_DATA[3]": "{X 500,Y 100,Z 300,A 0,B 0,C 0}"})
+    assert not given.skipped and _ends(given)[-1] == (600, 100, 300)
