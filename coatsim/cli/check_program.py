@@ -59,9 +59,11 @@ def check_summary(check: ProgramCheck) -> str:
               for r in check.spray_runs]
     lines += [f"warning: {w}" for w in check.warnings]
     lines += [f"note: {n}" for n in check.notes]
+    lines += [f"unknown: {u}" for u in check.unknowns if u not in check.warnings]
+    lines += [f"skipped: {s}" for s in check.skipped if s not in check.warnings]
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
     if check.unknowns or check.skipped:
         lines.append(f"read with {len(check.unknowns)} unknown variable{'' if len(check.unknowns) == 1 else 's'} "
-                     f"and {len(check.skipped)} statement{'' if len(check.skipped) == 1 else 's'} skipped (see "
-                     "the warnings); give values as NAME=VALUE")
+                     f"and {len(check.skipped)} statement{'' if len(check.skipped) == 1 else 's'} skipped; give "
+                     "values as --set NAME=VALUE")
     return "\n".join(lines)

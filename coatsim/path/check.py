@@ -101,6 +101,9 @@ def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, 
     if not toolpath.moves:
         others = [p for p in reading.programs if p != reading.program]
         hint = f"; choose another main program (loaded: {', '.join(others)})" if others else ""
+        if reading.skipped:
+            more = f" (and {len(reading.skipped) - 1} more)" if len(reading.skipped) > 1 else ""
+            hint = f"; {reading.skipped[0]}{more}: give missing values as NAME=VALUE"
         raise ExecutionError(f"{reading.program_source}:{reading.program_line}: program {reading.program} has no "
                              f"motion ({reading.ended} before any motion){hint}")
     problems = list(reading.problems)

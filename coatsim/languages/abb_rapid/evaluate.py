@@ -21,11 +21,12 @@ from coatsim.languages.script import nodes as n
 
 
 class Unknown(Exception):
-    """A name no file declares (nor ``variables`` gives): the statement reading it is skipped."""
+    """A name no file declares (nor ``variables`` gives), or (``declared``) a position declared
+    without a value and not set since: the statement reading it is skipped."""
 
-    def __init__(self, name: str, line: int) -> None:
+    def __init__(self, name: str, line: int, declared: bool = False) -> None:
         super().__init__(name)
-        self.name, self.line = name, line
+        self.name, self.line, self.declared = name, line, declared
 
 
 def _arg_map(args: tuple[n.Arg, ...]) -> tuple[list[n.Expr], dict[str, Optional[n.Expr]]]:

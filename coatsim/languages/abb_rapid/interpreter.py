@@ -27,6 +27,8 @@ from coatsim.languages.abb_rapid.motion import MOVES, Motions
 from coatsim.languages.abb_rapid.names import MAX_NAME_LENGTH
 from coatsim.languages.abb_rapid.parser import parse_rapid
 from coatsim.languages.script import nodes as n
+from coatsim.languages.script.flow import Halt, Jump, Return
+from coatsim.languages.script.unknowns import UnknownLog
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import decode as decode_record
 from coatsim.path.reading import MoveSource, OutputSwitch, Reading
@@ -46,21 +48,7 @@ _INTERRUPTS = {"isignaldi", "isignaldo", "itimer", "isignalai", "isignalao", "is
 _UNSIMULATED = {"searchl", "searchc", "searchj", "movelsync", "movejsync", "movecsync", "moveext", "csspdeact",
                 "indamove", "indcmove", "inddmove", "indrmove", "indreset", "pulsedo", "tpreadfk",
                 "tpreadnum", "tpreaddnum"}
-
-
-class _Return(Exception):
-    def __init__(self, value: Any) -> None:
-        self.value = value
-
-
-class _Stop(Exception):
-    def __init__(self, how: str) -> None:
-        self.how = how
-
-
-class _Goto(Exception):
-    def __init__(self, label: str) -> None:
-        self.label = label
+_POSITIONS = ("robtarget", "pose", "orient")  # the types whose declaration without a value is no value
 
 
 class Interpreter(Expressions, Motions):
@@ -80,7 +68,9 @@ class Interpreter(Expressions, Motions):
         self.outputs: set[int] = set()
         self.skipped: list[str] = []
         self.unsimulated: list[str] = []
-        self.unknowns: dict[str, str] = {}
+        self.unknowns: dict[str, str] = {}  # the inputs read that nobody gives
+        self.valueless: set[int] = set()  # ids of the positions declared without a value, not set since
+        self.unknown = UnknownLog("a variable of a module the files loaded do not include")
         self.spraying = False
         self.steps = 0
         self.line, self.source, self.routine = 0, modules[0].source, ""
@@ -119,6 +109,8 @@ class Interpreter(Expressions, Motions):
             value: Any = self.eval(decl.value) if decl.value is not None else None
             return decl.type, self._array(decl.type, sizes, value)
         value = d.default(decl.type) if decl.value is None else d.coerce(decl.type, self.eval(decl.value), self.error)
+        if decl.value is None and decl.type in _POSITIONS:
+            self.valueless.add(id(value))  # its zero quaternion is no orientation: reading it is an unknown
         return decl.type, value
 
     def _array(self, type_: str, sizes: list[int], value: Any) -> list:
@@ -130,15 +122,19 @@ class Interpreter(Expressions, Motions):
 
     def lookup(self, name: str, line: int) -> Any:
         key = name.lower()
+        declared = False
         for scope in (self.frames[-1] if self.frames else {}, self.globals):
             if key in scope:
-                return scope[key][1]
-        if key in d.PREDEFINED:
+                declared = id(scope[key][1]) in self.valueless
+                if not declared:
+                    return scope[key][1]
+                break
+        if key in d.PREDEFINED and not declared:
             return d.PREDEFINED[key][1]
         for given, text in self.options.variables.items():
             if given.lower() == key:
                 return self._given(given, text)
-        raise Unknown(name, line)
+        raise Unknown(name, line, declared)
 
     def _given(self, name: str, text: Any) -> Any:
         if isinstance(text, (int, float)):
@@ -163,6 +159,7 @@ class Interpreter(Expressions, Motions):
         if key not in scope:
             raise Unknown(e.name, target.line)
         type_, current = scope[key]
+        self.valueless.discard(id(current))  # set, whole or in part: it has a value
         if not path:
             scope[key] = (type_, d.coerce(type_, value, self.error) if not isinstance(current, list) else value)
             return
@@ -239,7 +236,7 @@ class Interpreter(Expressions, Motions):
         self.main = routine
         try:
             self.call(routine, ())
-        except _Stop as stop:
+        except Halt as stop:
             self.stopped = stop.how
 
     def call(self, routine: s.Routine, args: tuple[n.Arg, ...]) -> Any:
@@ -253,7 +250,7 @@ class Interpreter(Expressions, Motions):
             for decl in routine.data:
                 frame[decl.name.lower()] = self._declare(decl)
             self.block(routine.body)
-        except _Return as ret:
+        except Return as ret:
             return ret.value
         finally:
             self.frames.pop()
@@ -293,7 +290,7 @@ class Interpreter(Expressions, Motions):
             try:
                 self.statement(body[k])
                 k += 1
-            except _Goto as jump:
+            except Jump as jump:
                 if jump.label.lower() not in labels:
                     raise
                 k = labels[jump.label.lower()]
@@ -306,9 +303,9 @@ class Interpreter(Expressions, Motions):
         try:
             self._execute(st)
         except Unknown as unknown:
-            self.unknowns.setdefault(unknown.name.lower(), f"{self.where(unknown.line)}: {unknown.name} (not declared "
-                                                           "in the files loaded)")
-            self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, which no file declares")
+            self.unknown.read(unknown.name, self.where(unknown.line), unknown.name.lower())
+            which = "which has no value (declared without one)" if unknown.declared else "which no file declares"
+            self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, {which}")
 
     def _execute(self, st) -> None:
         if isinstance(st, s.Assign):
@@ -336,9 +333,9 @@ class Interpreter(Expressions, Motions):
             if st.default is not None:
                 self.block(st.default)
         elif isinstance(st, s.Goto):
-            raise _Goto(st.label)
+            raise Jump(st.label)
         elif isinstance(st, s.Return):
-            raise _Return(None if st.value is None else self.eval(st.value))
+            raise Return(None if st.value is None else self.eval(st.value))
         elif isinstance(st, s.Connect):
             self.warn("interrupt", f"interrupts (CONNECT ... WITH {st.trap}) are noted, not run: TRAP routines do not "
                                    "run in the twin")
@@ -398,7 +395,7 @@ class Interpreter(Expressions, Motions):
             self.velset = (override, cap)
         elif name in ("stop", "exit", "break", "systemstop"):
             self.stop_previous()
-            raise _Stop(f"{self.where()}: {st.name}")
+            raise Halt(f"{self.where()}: {st.name}")
         elif name in ("setao", "setgo", "pulsedo") and positional:
             self.set_output(positional[0], True, st, _text(st)) if name == "pulsedo" else None
             if name == "pulsedo" and self.signal_number(self._signal_name(positional[0])) == self.options.gun_signal:
@@ -472,7 +469,7 @@ def read_rapid(paths: Sequence[Path], options: ReadOptions) -> Reading:
         move_sources=tuple(run.sources), move_frames=tuple(run.move_frames),
         n_steps=_count(main.body), n_poses=sum(1 for m in modules for x in m.data if x.type in ("robtarget", "jointtarget")),
         switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(_problems(modules)),
-        unknowns=tuple(run.unknowns.values()), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
+        unknowns=tuple(run.unknowns.values()) + run.unknown.unknowns(), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
         gun_on_at_end=run.spraying,
         external_axes=any(_has_axes(v) for v in run.globals.values()),
     )

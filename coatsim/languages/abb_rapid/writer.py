@@ -24,10 +24,11 @@ from coatsim.core.numbers import MM_DECIMALS, fmt_short
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.geometry.space.rotations import matrix_to_quaternion
-from coatsim.languages.abb_rapid.names import check_name, sanitize_comment
+from coatsim.languages.abb_rapid.names import check_name
+from coatsim.languages.script.header import header_comments
+from coatsim.languages.script.names import sanitize_comment
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.process_record import encode as encode_record
 
 MAX_ARC_SWEEP_DEG = 170.0  # one MoveC: the circle point well inside the arc
 MAX_COORDINATE_MM = 1e6  # RAPID num is a 32-bit float: exact to ~1e-4 mm up to a metre
@@ -147,8 +148,7 @@ def write_rapid(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG)
         body.move("MoveL", f"RelTool({body.name(path.segments[-1].end)},0,0,{back})", index == len(plan.paths) - 1,
                   "back along the tool axis")
     lines = [f"MODULE {plan.name}"]
-    lines += [f"{INDENT}! {sanitize_comment(c)}" for c in plan.comments]
-    lines += [f"{INDENT}! coatsim: {sanitize_comment(k)}={sanitize_comment(v, None)}" for k, v in encode_record(plan.process)]
+    lines += header_comments(plan, f"{INDENT}! ")
     tool = plan.tool
     lines.append(f"{INDENT}PERS tooldata {TOOL} := [TRUE,{pose_text(tool)},[1,[0,0,1],[1,0,0,0],0,0,0]];")
     lines.append(f'{INDENT}PERS wobjdata {WOBJ} := [FALSE,TRUE,"",{pose_text(frame)},[[0,0,0],[1,0,0,0]]];')

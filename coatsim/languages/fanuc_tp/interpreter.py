@@ -34,6 +34,7 @@ from coatsim.languages.fanuc_tp.program import LsProgram
 from coatsim.languages.fanuc_tp.registers import PositionValue, Registers
 from coatsim.languages.fanuc_tp.statements import (Assign, Block, Call, If, Jump, Label, Motion, Note, Pulse, Remark,
                                                    Select, Statement, Stop, Wait)
+from coatsim.languages.script.unknowns import DependsOn
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import read_comment_lines
 from coatsim.path.toolpath import MotionSettings, ToolPath
@@ -143,7 +144,11 @@ class FanucRun:
             st = statements[pc]
             self.line = st.line
             self.builder.step(st.line)
-            outcome = self.execute(st, args, depth, structure, pc)
+            try:
+                outcome = self.execute(st, args, depth, structure, pc)
+            except DependsOn as unknown:
+                self.data.unknown.skip(f"{self.source}:{st.line}", _what(st), unknown.names)
+                outcome = None
             if outcome in (_END, _ABORT):
                 if outcome == _ABORT:
                     return _ABORT
@@ -206,6 +211,7 @@ class FanucRun:
             number = self.data.index(st.register, args)
             first, last = self.data.evaluate(st.start, args), self.data.evaluate(st.stop, args)
             self.data.r[number] = first
+            self.data.unset.pop(f"R[{number}]", None)
             return pairs[pc] + 1 if (first < last if st.down else first > last) else None
         if st.kind == "ENDFOR":
             head = self.program.statements[pairs[pc]]
@@ -255,6 +261,17 @@ class FanucRun:
                 self.warn(f"set:{name}", f"{name}= is not simulated")
             return
         kind, number = target[1], self.data.index(target[2], args)
+        try:
+            self.set_register(kind, number, target, value, args)
+        except DependsOn as unknown:
+            if kind not in ("R", "PR", "UFRAME", "UTOOL"):
+                raise
+            self.data.unset[f"{kind}[{number}]"] = unknown.names  # set from an unknown: unknown too
+
+    def set_register(self, kind: str, number: int, target, value, args: tuple) -> None:
+        """``R[i]=``, ``PR[i]=``, ``PR[i,j]=``, ``UFRAME[i]=``, ``UTOOL[i]=`` or a signal's ``=``."""
+        if kind in ("R", "UFRAME", "UTOOL") or (kind == "PR" and len(target) != 4):
+            self.data.unset.pop(f"{kind}[{number}]", None)
         if kind == "R":
             self.data.r[number] = self.data.evaluate(value, args)
         elif kind == "PR" and len(target) == 4:
@@ -415,3 +432,13 @@ class FanucRun:
             raise self.error(f"CR{value:g}: a corner radius >= 0 mm")
         accuracy = cnt_accuracy_mm(value, speed, self.decel) if st.term == "CNT" else value
         return MotionSettings(speed, accuracy, True, value == 0.0)
+
+
+def _what(st: Statement) -> str:
+    """A statement as a skipped one is named."""
+    if isinstance(st, Block):
+        return st.kind
+    if isinstance(st, Call):
+        return f"CALL {st.name}"
+    return {Motion: "the motion", Assign: "the assignment", Pulse: "PULSE", Jump: "JMP", If: "IF", Select: "SELECT",
+            Wait: "WAIT"}.get(type(st), "the statement")

@@ -76,8 +76,9 @@ class FanucTp:
         return run.builder.reading(toolpath, tuple(str(f) for f in files), (program.source, program.line),
                                    tuple(programs), run.ended, len(program.statements),
                                    sum(len(p.positions) for p in programs.values()), problems=problems,
-                                   unknowns=tuple(run.data.unknowns.values()),
-                                   skipped=tuple(run.unsimulated), unsimulated=tuple(run.unsimulated))
+                                   unknowns=run.data.unknown.unknowns(),
+                                   skipped=tuple(run.data.unknown.skipped) + tuple(run.unsimulated),
+                                   unsimulated=tuple(run.unsimulated))
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 
 from coatsim.core.errors import InputError
+from coatsim.languages.script.names import printable, upper_case_name
 
 MAX_NAME_LENGTH = 36
 REMARK_WIDTH = 32
@@ -19,7 +20,7 @@ _NAME = re.compile(r"[A-Z][A-Z0-9_]*\Z")
 
 def clean_remark(text: str) -> str:
     """``text`` fit for a remark: printable ASCII, ';' as ','."""
-    return "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in text.replace(";", ","))
+    return printable(text.replace(";", ","))
 
 
 def check_name(name: str, what: str = "program name") -> str:
@@ -33,7 +34,4 @@ def check_name(name: str, what: str = "program name") -> str:
 
 def program_name(text: str) -> str:
     """A valid program name from any text."""
-    name = re.sub(r"[^A-Z0-9_]+", "_", text.upper()).strip("_")
-    if not name or not name[0].isalpha():
-        name = "C" + name
-    return name[:MAX_NAME_LENGTH].rstrip("_") or "COAT"
+    return upper_case_name(text, MAX_NAME_LENGTH)

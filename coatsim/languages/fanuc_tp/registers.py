@@ -3,9 +3,11 @@
 The controller keeps registers ``R[i]``, position registers ``PR[i]``, user frames ``UFRAME[i]``
 and tool frames ``UTOOL[i]`` between programs; an .LS file holds none of their values. A program
 sets them, or the cell gives them (the reading's ``variables``: ``{"R[1]": 5, "PR[2]":
-"x,y,z,w,p,r", "UFRAME[1]": "x,y,z,w,p,r", "UTOOL[1]": "…"}``, mm and deg). A register read
-before any value is 0 with a warning; a position register, user frame or tool a motion needs
-without a value is an InputError naming it. ``UFRAME[0]`` is the world frame (the twin's robot
+"x,y,z,w,p,r", "UFRAME[1]": "x,y,z,w,p,r", "UTOOL[1]": "…"}``, mm and deg). A register,
+position register or user frame read before any value is an unknown
+(:mod:`coatsim.languages.script.unknowns`): reading it raises DependsOn, a register set from one
+is unknown too (``unset``), and the statement that needs one is skipped. A tool not given is the
+cell's gun. ``UFRAME[0]`` is the world frame (the twin's robot
 base), ``UTOOL[0]`` the flange. Position registers hold X, Y, Z, W, P, R (or joint values) and add
 component by component, as on the controller (``PR[1]=PR[2]+PR[3]``). Inputs ``DI[i]`` come from
 the reading's ``inputs``; any other signal the program reads before it sets it is OFF with a
@@ -25,6 +27,7 @@ from coatsim.core.errors import InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.fanuc_tp.expressions import Expr
 from coatsim.languages.fanuc_tp.positions import pose_of, values_of
+from coatsim.languages.script.unknowns import DependsOn, UnknownLog
 
 _KEY = re.compile(r"\s*(R|PR|UFRAME|UTOOL)\s*\[\s*(\d+)\s*\]\s*\Z", re.I)
 _FUNCTIONS: dict[str, Callable[..., float]] = {
@@ -59,14 +62,15 @@ def _six(text: Union[str, float], key: str) -> tuple[float, ...]:
 
 class Registers:
     """Registers, frames and signals of one run; ``error(message)`` and ``warn(key, message)``
-    speak for the line being run, ``where()`` names it; ``unknowns`` the registers read before
-    any value (with the line that first reads each)."""
+    speak for the line being run, ``where()`` names it; ``unknown`` the registers read before
+    any value (with the lines that read each), ``unset`` those set from them."""
 
     def __init__(self, given: Mapping[str, Union[str, float]], inputs: Mapping[int, bool],
                  error: Callable[[str], InputError], warn: Callable[[str, str], None],
                  where: Callable[[], str] = lambda: "") -> None:
         self.error, self.warn, self.where = error, warn, where
-        self.unknowns: dict[str, str] = {}
+        self.unknown = UnknownLog("a register the controller keeps")
+        self.unset: dict[str, tuple[str, ...]] = {}  # "R[1]", "PR[2]", "UFRAME[3]" set from unknowns
         self.r: dict[int, float] = {}
         self.pr: dict[int, PositionValue] = {}
         self.frames: dict[str, dict[int, Pose]] = {"UFRAME": {0: Pose.identity()}, "UTOOL": {0: Pose.identity()}}
@@ -149,10 +153,8 @@ class Registers:
     def _register(self, expr: Expr, args: tuple) -> float:
         kind, number = expr[1], self.index(expr[2], args)
         if kind == "R":
-            if number not in self.r:
-                self.warn(f"R{number}", f"R[{number}] is not set by the program nor given; taken as 0")
-                self.unknowns.setdefault(f"R{number}", f"R[{number}] (first read at {self.where()}): taken as 0")
-            return self.r.get(number, 0.0)
+            self.known(f"R[{number}]", number in self.r)
+            return self.r[number]
         if kind == "AR":
             if not 1 <= number <= len(args) or isinstance(args[number - 1], str):
                 raise self.error(f"AR[{number}]: the CALL gives no number there")
@@ -168,22 +170,29 @@ class Registers:
         return self.signal(kind, number)
 
     # --- positions and frames ------------------------------------------------------------
+    def known(self, key: str, has_value: bool) -> None:
+        """DependsOn when register ``key`` (``R[1]``) is set from unknowns or, ``has_value`` False,
+        never set (an unknown read here)."""
+        if key in self.unset:
+            raise DependsOn(self.unset[key])
+        if not has_value:
+            raise DependsOn(self.unknown.read(key, self.where()).names)
+
     def position(self, number: int) -> PositionValue:
-        if number not in self.pr:
-            raise self.error(f"PR[{number}] is not set by the program; give its value (x,y,z,w,p,r) as variable "
-                             f"PR[{number}]")
+        self.known(f"PR[{number}]", number in self.pr)
         return self.pr[number]
 
     def frame(self, kind: str, number: int) -> Optional[Pose]:
         """UFRAME/UTOOL ``number`` (None: a tool the program does not give)."""
         found = self.frames[kind].get(number)
-        if found is None and kind == "UFRAME":
-            raise self.error(f"UFRAME[{number}] is not set by the program; give it (x,y,z,w,p,r) as variable "
-                             f"UFRAME[{number}]")
+        if kind == "UFRAME" or f"{kind}[{number}]" in self.unset:
+            self.known(f"{kind}[{number}]", found is not None)
         return found
 
     def set_element(self, number: int, element: int, value: float) -> None:
         """``PR[i,j] = value`` (an unset register becomes a Cartesian zero first)."""
+        if f"PR[{number}]" in self.unset:
+            return  # an element of a register set from unknowns: it stays unknown
         current = list(self.pr.get(number, PositionValue((0.0,) * 6)).values)
         if not 1 <= element <= len(current):
             raise self.error(f"PR[{number},{element}]: a position register has elements 1 to 6")

@@ -133,7 +133,7 @@ def _path(out: _Program, path: PlacedPath, spray_leads: bool, gun: int, speed: s
 def write_ls(plan: ProgramPlan, decel_mm_s2: float = DECEL_MM_S2) -> str:
     """The complete .LS text of ``plan`` (ASCII, '\\n' line ends); InputError for an invalid name."""
     check_name(plan.name)
-    frame = plan.process.frame if plan.process.frame is not None else Pose.identity()
+    frame = plan.user_frame
     out = _Program(frame)
     for text in plan.comments:
         for piece in textwrap.wrap(clean_remark(text), REMARK_WIDTH):

@@ -39,6 +39,7 @@ from coatsim.languages.gcode.blocks import Block
 from coatsim.languages.gcode.gun import GunCodes
 from coatsim.languages.gcode.parameters import (G92_BASE, WORK_OFFSET_BASE, WORK_OFFSET_STEP, WORK_ROTATION,
                                                 Parameters)
+from coatsim.languages.script.unknowns import DependsOn
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import read_comment_lines
 from coatsim.path.toolpath import MotionSettings, ToolPath
@@ -50,6 +51,8 @@ _AXES = "XYZ"
 _SAME_POINT_MM = 1e-9  # a move this short goes nowhere (a control skips it)
 _TILT_AXES = "ABCUVW"
 _PASS_WORDS = set("FSTNPQRLHDE") | set("IJK") | set(_AXES)
+_TARGET_WORDS = set(_AXES) | set("IJKR")  # a motion's target: unknown in them skips the motion alone
+_WORDS_OF_AXES = {4.0, 10.0, 28.0, 30.0, 92.0}  # codes whose axis words are not a motion's target
 _SYSTEMS = {54.0: 1, 55.0: 2, 56.0: 3, 57.0: 4, 58.0: 5, 59.0: 6, 59.1: 7, 59.2: 8, 59.3: 9}
 _REFUSED_G = {41.0: "cutter radius compensation", 42.0: "cutter radius compensation", 93.0: "inverse-time feed",
               95.0: "feed per revolution", 5.0: "splines", 5.1: "splines", 5.2: "splines", 33.0: "threading",
@@ -77,7 +80,8 @@ class Interpreter:
             kin = options.kinematics
             start = lambda: (kin.forward(kin.home(1)), kin.home(1))  # noqa: E731
         self.builder = ToolPathBuilder(lambda line: f"{source}:{line}", start, lambda: (source, name, self.work()))
-        self.params = Parameters(options.variables, lambda message: self.builder.error(self.line, message))
+        self.params = Parameters(options.variables, lambda message: self.builder.error(self.line, message),
+                                 lambda: f"{source}:{self.line}")
         self.controls: list[Optional[PathControl]] = []
         self.switched: list[str] = []
         self.motion: Optional[float] = None
@@ -86,6 +90,7 @@ class Interpreter:
         self.feed_mm_min: Optional[float] = None
         self.control = PathControl()
         self.system = 1
+        self.unknown_target: tuple[str, ...] = ()  # the unknowns of the running block's motion target
 
     # --- messages -----------------------------------------------------------------------
     def error(self, message: str) -> InputError:
@@ -126,7 +131,7 @@ class Interpreter:
         for block in self.blocks:
             self.line = block.line
             self.builder.step(block.line)
-            if self.execute(block):
+            if self.run_block(block):
                 self.ended = f"{self.source}:{block.line}: M2/M30 ends it"
                 break
         if self.inch is None:
@@ -136,10 +141,20 @@ class Interpreter:
         return self.builder.toolpath(self.name, process)
 
     def words(self, block: Block) -> tuple[list[float], list[float], dict[str, float]]:
-        """G codes, M codes and the other words of a block, evaluated."""
+        """G codes, M codes and the other words of a block, evaluated; DependsOn when an unknown
+        is in a word the block needs before its motion (the unknowns of a motion's target are
+        in ``self.unknown_target``)."""
         gs, ms, other = [], [], {}
+        target: dict[str, None] = {}
         for letter, expr in block.words:
-            value = self.params.evaluate(expr)
+            try:
+                value = self.params.evaluate(expr)
+            except DependsOn as unknown:
+                if letter not in _TARGET_WORDS:
+                    raise
+                target.update(dict.fromkeys(unknown.names))
+                other[letter] = math.nan
+                continue
             if letter == "G":
                 gs.append(_code(value))
             elif letter == "M":
@@ -151,13 +166,30 @@ class Interpreter:
         for letter in other:
             if letter not in _PASS_WORDS and letter not in _TILT_AXES:
                 raise self.error(f"word {letter} is not a G-code word this reader knows")
+        if target and _WORDS_OF_AXES & set(gs):
+            raise DependsOn(tuple(target))
+        self.unknown_target = tuple(target)
         return gs, ms, other
+
+    def run_block(self, block: Block) -> bool:
+        """Run one block, or skip it when its words need an unknown (its parameter settings are made
+        all the same); True at the end of the program (M2, M30)."""
+        self.unknown_target: tuple[str, ...] = ()
+        try:
+            return self.execute(block)
+        except DependsOn as unknown:
+            if not self.unknown_target:  # the words before the motion: the block is not run
+                for target, expr in block.settings:
+                    self.params.assign(target, expr)
+            what = "the motion" if self.unknown_target else "the block"
+            self.params.unknown.skip(f"{self.source}:{block.line}", what, unknown.names)
+            return False
 
     def execute(self, block: Block) -> bool:
         """Run one block; True at the end of the program (M2, M30)."""
         gs, ms, w = self.words(block)
         for target, expr in block.settings:  # after the line's words are read (RS274/NGC)
-            self.params.assign(target, self.params.evaluate(expr))
+            self.params.assign(target, expr)
         for letter in _TILT_AXES:
             if w.get(letter, 0.0) != 0.0:
                 raise self.refuse(f"axis {letter} (a gun tilted away from −Z or a second linear axis)")
@@ -172,6 +204,8 @@ class Interpreter:
             self.feed_mm_min = self.mm(w["F"])
         self.m_codes(ms, w)
         self.modes(gs, w)
+        if self.unknown_target:
+            raise DependsOn(self.unknown_target)
         self.motion_block(gs, w)
         return bool({2.0, 30.0} & set(ms))
 

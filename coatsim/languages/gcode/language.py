@@ -49,6 +49,7 @@ class GCode:
 
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
         reading, interpreter = self._read(files, options)
+        reading.require_complete()
         if options.needs_spray and not reading.toolpath.spray_moves:
             switched = ", ".join(dict.fromkeys(interpreter.switched)) or "no M-code of an output"
             raise InputError(f"{files[0]}: the gun ({self.gun.describe()}, or M62-M65 P{options.gun_signal}) is never on "
@@ -67,7 +68,9 @@ class GCode:
         toolpath = interpreter.run()
         n_poses = sum(any(letter in "XYZ" for letter, _ in b.words) for b in blocks)
         return interpreter.builder.reading(toolpath, (str(path),), (str(path), 1), (toolpath.name,),
-                                           interpreter.ended, len(blocks), n_poses), interpreter
+                                           interpreter.ended, len(blocks), n_poses,
+                                           unknowns=interpreter.params.unknown.unknowns(),
+                                           skipped=tuple(interpreter.params.unknown.skipped)), interpreter
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

@@ -1,7 +1,10 @@
 """G-code parameters and the values of expressions.
 
-Numbered parameters ``#1``..``#5999`` and named ones ``#<name>`` (case-insensitive); a parameter
-never set reads 0 (RS274/NGC), except a named one, which is an error (LinuxCNC). The work offsets
+Numbered parameters ``#1``..``#5999`` and named ones ``#<name>`` (case-insensitive). A parameter
+the program reads but never sets holds a value the controller keeps (LinuxCNC's var file, a Fanuc
+macro's common variable): it is an unknown (:mod:`coatsim.languages.script.unknowns`), listed
+with where it is read; a parameter set from one is unknown too, and a block whose words need one
+is skipped. The work offsets the motions use without naming them read 0 until set. The work offsets
 live where LinuxCNC keeps them: G54 at #5221 (X, Y, Z, then A B C U V W, and #5230 the rotation
 about Z in degrees), G55 at #5241 and so on by 20 up to G59.3 at #5381; the G92 offsets at
 #5211. A program sets them with G10 L2/L20 and G92, or the cell gives them (the reading's
@@ -15,6 +18,7 @@ from typing import Callable, Mapping, Union
 
 from coatsim.core.errors import InputError
 from coatsim.languages.gcode.blocks import Expr
+from coatsim.languages.script.unknowns import DependsOn, UnknownLog
 
 MAX_PARAMETER = 5999
 WORK_OFFSET_BASE = 5221  # G54 X; G55 starts 20 further on
@@ -53,10 +57,13 @@ class Parameters:
     """The parameters of a running program; ``error(message)`` makes the InputError of the line
     being run."""
 
-    def __init__(self, given: Mapping[str, Union[str, float]], error: Callable[[str], InputError]) -> None:
+    def __init__(self, given: Mapping[str, Union[str, float]], error: Callable[[str], InputError],
+                 where: Callable[[], str] = lambda: "") -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {}
-        self.error = error
+        self.unset: dict[Union[int, str], tuple[str, ...]] = {}  # parameters set from unknowns
+        self.unknown = UnknownLog("a parameter the controller keeps")
+        self.error, self.where = error, where
         for key, raw in given.items():
             name = str(key).strip().lstrip("#")
             try:
@@ -75,29 +82,48 @@ class Parameters:
         return index
 
     def get(self, index: int) -> float:
+        """Parameter ``index`` as a motion uses it (0 if never set); DependsOn if set from unknowns."""
+        if index in self.unset:
+            raise DependsOn(self.unset[index])
         return self.numbered.get(index, 0.0)
 
     def set(self, index: int, value: float) -> None:
-        self.numbered[self._index(index)] = value
+        index = self._index(index)
+        self.numbered[index] = value
+        self.unset.pop(index, None)
 
-    def assign(self, target: Union[Expr, str], value: float) -> None:
-        """``#n = value`` (target an expression) or ``#<name> = value``."""
-        if isinstance(target, str):
-            self.named[target] = value
+    def assign(self, target: Union[Expr, str], value: Expr) -> None:
+        """``#n = value`` (target an expression) or ``#<name> = value``; the parameter set from an
+        unknown is unknown."""
+        key: Union[int, str] = target if isinstance(target, str) else self._index(self.evaluate(target))
+        try:
+            number = self.evaluate(value)
+        except DependsOn as unknown:
+            self.unset[key] = unknown.names
+            return
+        if isinstance(key, str):
+            self.named[key] = number
+            self.unset.pop(key, None)
         else:
-            self.set(self._index(self.evaluate(target)), value)
+            self.set(key, number)
+
+    def read(self, key: Union[int, str]) -> float:
+        """A parameter a program reads: DependsOn naming the unknowns when it has no value."""
+        if key in self.unset:
+            raise DependsOn(self.unset[key])
+        found = self.named.get(key) if isinstance(key, str) else self.numbered.get(key)
+        if found is None:
+            shown = f"#<{key.lower()}>" if isinstance(key, str) else f"#{key}"
+            raise DependsOn(self.unknown.read(shown, self.where()).names)
+        return found
 
     def evaluate(self, expr: Expr) -> float:
-        """The value of an expression; InputError for a domain error or an unset named parameter."""
+        """The value of an expression; InputError for a domain error, DependsOn for an unknown."""
         kind = expr[0]
         if kind == "num":
             return expr[1]
         if kind == "par":
-            if isinstance(expr[1], str):
-                if expr[1] not in self.named:
-                    raise self.error(f"named parameter #<{expr[1].lower()}> is read before it is set")
-                return self.named[expr[1]]
-            return self.get(self._index(self.evaluate(expr[1])))
+            return self.read(expr[1] if isinstance(expr[1], str) else self._index(self.evaluate(expr[1])))
         if kind == "neg":
             return -self.evaluate(expr[1])
         if kind == "bin":
@@ -108,7 +134,7 @@ class Parameters:
             result = math.nan if isinstance(result, complex) else result
         elif expr[1] == "EXISTS":
             target = expr[2][1]
-            return float(target in self.named if isinstance(target, str) else True)
+            return float(target in self.named or target in self.unset if isinstance(target, str) else True)
         elif expr[1] == "ATAN":
             result = math.degrees(math.atan2(self.evaluate(expr[2]), self.evaluate(expr[3])))
         else:

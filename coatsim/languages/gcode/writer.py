@@ -56,8 +56,8 @@ def num(value: float) -> str:
 def program_frame(plan: ProgramPlan) -> Pose:
     """The work frame of the program: the plan's workpiece frame turned about the base's Z only
     (its normal the base's +Z), else the base frame."""
-    frame = plan.process.frame
-    if frame is None or abs(float(frame.rotation[2, 2]) - 1.0) > 1e-12:
+    frame = plan.user_frame
+    if abs(float(frame.rotation[2, 2]) - 1.0) > 1e-12:
         return Pose.identity()
     heading = math.atan2(float(frame.rotation[1, 0]), float(frame.rotation[0, 0]))
     return Pose(rot_z(heading), frame.translation_mm)

@@ -1,4 +1,5 @@
-"""KRL routines -> the ToolPath the robot executes, with the Reading check-program needs.
+"""KRL routines -> the ToolPath the robot executes, with the Reading check-program needs: the
+statements and data here, expressions in :mod:`.evaluate`, motions in :mod:`.motion`.
 
 Runs the main routine (the first ``DEF`` of the first file, or the one named) with the routines
 it calls, the ``.dat`` data (``DECL E6POS``/``FRAME``/``POS`` ...), declarations, assignments,
@@ -22,59 +23,34 @@ as the one after starts, at its start point's approximation), without a stop. ``
 from __future__ import annotations
 
 import re
-from dataclasses import replace
 from pathlib import Path
 from typing import Any, Optional, Sequence
-
-import numpy as np
 
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kuka_krl import values as v
 from coatsim.languages.kuka_krl.blocks import Block, build
+from coatsim.languages.kuka_krl.evaluate import Expressions, Unknown
+from coatsim.languages.kuka_krl.motion import DEFAULT_VEL_CP_M_S, Motions
 from coatsim.languages.kuka_krl.names import MAX_NAME_LENGTH
-from coatsim.languages.kuka_krl.parser import Line, Routine, parse_krl, stream
+from coatsim.languages.kuka_krl.parser import Line, Routine, parse_krl, split_commas, statement_text
 from coatsim.languages.script import nodes as n
+from coatsim.languages.script.flow import Halt, Jump, LeaveLoop, Return
 from coatsim.languages.script.tokens import NAME, OP
+from coatsim.languages.script.unknowns import UnknownLog
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import decode as decode_record
 from coatsim.path.reading import MoveSource, OutputSwitch, Reading
-from coatsim.path.toolpath import CircularMove, Dwell, JointMove, LinearMove, MotionSettings, ToolFrame, ToolPath
+from coatsim.path.toolpath import Dwell, ToolFrame, ToolPath
 
 MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
-DEFAULT_VEL_CP_M_S = 2.0  # $VEL.CP after BAS(#INITMOV) (DEF_VEL_CP of a standard $config.dat) ⚠
 RECORD = re.compile(r"^\s*;\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
-_APPROX = ("C_DIS", "C_VEL", "C_ORI", "C_PTP")
 _NOTED = {"INTERRUPT", "BRAKE", "RESUME", "ANIN", "ANOUT", "SIGNAL", "ENUM", "STRUC", "EXT", "EXTFCT", "IMPORT"}
 
 
-class _Unknown(Exception):
-    def __init__(self, name: str) -> None:
-        self.name = name
-
-
-class _Return(Exception):
-    def __init__(self, value: Any) -> None:
-        self.value = value
-
-
-class _Exit(Exception):
-    pass
-
-
-class _Goto(Exception):
-    def __init__(self, label: str, line: int) -> None:
-        self.label, self.line = label, line
-
-
-class _Halt(Exception):
-    def __init__(self, how: str) -> None:
-        self.how = how
-
-
-class Interpreter:
+class Interpreter(Expressions, Motions):
     """One run of a KRL program."""
 
     def __init__(self, routines: Sequence[Routine], datas, options: ReadOptions) -> None:
@@ -96,7 +72,9 @@ class Interpreter:
         self.outputs: set[int] = set()
         self.skipped: list[str] = []
         self.unsimulated: list[str] = []
-        self.unknowns: dict[str, str] = {}
+        self.unknowns: dict[str, str] = {}  # the inputs read that nobody gives
+        self.valueless: set[int] = set()  # ids of the positions declared without a value, not set since
+        self.unknown = UnknownLog("a variable of $CONFIG.DAT or of a module the files loaded do not include")
         self.spraying = False
         self.pending: list[tuple[int, bool]] = []  # (motions still to start, gun on) of triggered switches
         self.tcp: Optional[Pose] = None
@@ -123,115 +101,6 @@ class Interpreter:
     def warn(self, key: str, message: str) -> None:
         self.warnings.setdefault(key, f"{self.where()}: {message}")
 
-    # --- expressions ----------------------------------------------------------------------
-    def expr(self, tokens) -> n.Expr:
-        st = stream(tokens, self.source)
-        e = st.expression()
-        if st.tok.kind != "end":
-            raise st.error(f"unexpected {st.shown()}")
-        return e
-
-    def eval(self, e: n.Expr) -> Any:
-        if isinstance(e, n.Num):
-            return e.value
-        if isinstance(e, n.Str):
-            return e.value
-        if isinstance(e, n.Name):
-            return self.lookup(e.name)
-        if isinstance(e, n.Aggregate):
-            return v.Struct(e.type, {f: self.eval(item) for f, item in zip(e.fields, e.items)})
-        if isinstance(e, n.Field):
-            base = self.eval(e.base)
-            if not isinstance(base, v.Struct) or e.field.upper() not in base.fields:
-                raise self.error(f"no component {e.field} in this value")
-            return base.fields[e.field.upper()]
-        if isinstance(e, n.Index):
-            if isinstance(e.base, n.Name) and e.base.name.upper() in ("$IN", "$OUT", "$OUT_C"):
-                return self.signal(e.base.name.upper(), int(self._num(self.eval(e.index[0]))))
-            if isinstance(e.base, n.Name) and e.base.name.upper() in ("TOOL_DATA", "BASE_DATA"):
-                key = f"{e.base.name.upper()}[{int(self._num(self.eval(e.index[0])))}]"
-                return self.lookup(key)
-            base = self.eval(e.base)
-            for i in e.index:
-                k = int(self._num(self.eval(i)))
-                if not isinstance(base, list) or not 1 <= k <= len(base):
-                    raise self.error(f"index {k} out of the array")
-                base = base[k - 1]
-            return base
-        if isinstance(e, n.Unary):
-            x = self.eval(e.operand)
-            if e.op in ("NOT", "B_NOT"):
-                return not x if isinstance(x, bool) else float(~int(x))
-            return -self._num(x) if e.op == "-" else self._num(x)
-        if isinstance(e, n.Binary):
-            return self._binary(e)
-        if isinstance(e, n.Call):
-            return self.function(e)
-        raise self.error("cannot evaluate this expression")
-
-    def _num(self, x: Any) -> float:
-        if isinstance(x, bool) or not isinstance(x, float):
-            raise self.error(f"a number where {x!r} is given")
-        return x
-
-    def _binary(self, e: n.Binary) -> Any:
-        a, b = self.eval(e.left), self.eval(e.right)
-        op = e.op
-        if op == ":":
-            if not (isinstance(a, v.Struct) and isinstance(b, v.Struct)):
-                raise self.error("the geometric operator ':' joins two frames or positions")
-            return v.compose(a, b)
-        if op in ("AND", "OR", "EXOR"):
-            return {"AND": a and b, "OR": a or b, "EXOR": a != b}[op]
-        if op in ("==", "<>"):
-            return (a == b) if op == "==" else (a != b)
-        if isinstance(a, str) and isinstance(b, str) and op == "+":
-            return a + b
-        x, y = self._num(a), self._num(b)
-        if op == "/":
-            if y == 0:
-                raise self.error("division by zero")
-            return x / y
-        if op.startswith("B_"):
-            return float({"B_AND": int(x) & int(y), "B_OR": int(x) | int(y), "B_EXOR": int(x) ^ int(y)}[op])
-        return {"+": x + y, "-": x - y, "*": x * y, "<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y}[op]
-
-    def lookup(self, name: str) -> Any:
-        key = name.upper()
-        if key in ("TRUE", "FALSE"):
-            return key == "TRUE"
-        if key.startswith("#"):
-            return key
-        if self.frames and key in self.frames[-1]:
-            return self.frames[-1][key]
-        if key in self.globals:
-            return self.globals[key]
-        if key in self.system:
-            return self.system[key]
-        if key == "$POS_ACT":
-            self._stop_previous()
-            return self.position.copy() if self.position is not None else v.default("E6POS")
-        for given, text in self.options.variables.items():
-            if given.upper() == key:
-                return float(text) if _is_number(text) else self.eval(self.expr(
-                    [t for t in stream_tokens(str(text), self.source)]))
-        raise _Unknown(name)
-
-    def function(self, call: n.Call) -> Any:
-        name = call.name.upper()
-        args = [self.eval(a.value) for a in call.args]
-        math_fns = {"SIN": lambda x: np.sin(np.radians(x)), "COS": lambda x: np.cos(np.radians(x)),
-                    "TAN": lambda x: np.tan(np.radians(x)), "SQRT": np.sqrt, "ABS": abs,
-                    "ACOS": lambda x: np.degrees(np.arccos(x)), "ATAN2": lambda y, x: np.degrees(np.arctan2(y, x))}
-        if name in math_fns:
-            return float(math_fns[name](*[self._num(a) for a in args]))
-        if name == "INV_POS":
-            return v.frame_of(v.pose_of(args[0]).inverse(), args[0].type or "FRAME")
-        routine = self.routines.get(call.name.lower())
-        if routine is None:
-            raise _Unknown(call.name)
-        return self.call(routine, call.args)
-
     # --- data -----------------------------------------------------------------------------
     def declaration(self, ln: Line, scope: dict) -> bool:
         """``[DECL] [GLOBAL] type name[dims] [= value], ...``: True if the line is one."""
@@ -247,7 +116,7 @@ class Interpreter:
         if words[:1] in (["SIGNAL"], ["ENUM"], ["STRUC"], ["EXT"], ["EXTFCT"]):
             return False
         type_ = toks[i].text.upper()
-        items = _split_commas(toks[i + 1:])
+        items = split_commas(toks[i + 1:])
         for item in items:
             name = item[0].text.upper()
             if len(name) > MAX_NAME_LENGTH:
@@ -259,6 +128,8 @@ class Interpreter:
                 scope[name] = [v.default(type_) for _ in range(dims[0] if dims else 0)]
                 continue
             value = v.default(type_)
+            if type_ in v.TYPES and not (rest and rest[0].kind == OP and rest[0].text == "="):
+                self.valueless.add(id(value))  # a position declared without one: reading it is an unknown
             if rest and rest[0].kind == OP and rest[0].text == "=":
                 value = self.eval(self.expr(rest[1:]))
                 if isinstance(value, v.Struct) and not value.type:
@@ -272,7 +143,7 @@ class Interpreter:
             scope = self.frames[-1] if self.frames and key in self.frames[-1] else \
                 self.globals if key in self.globals else self.system if key.startswith("$") else None
             if scope is None:
-                raise _Unknown(target.name)
+                raise Unknown(target.name)
             old = scope.get(key)
             if isinstance(old, v.Struct) and isinstance(value, v.Struct):
                 merged = old.copy()
@@ -284,9 +155,8 @@ class Interpreter:
                 self.tool = ToolFrame(pose.rotation, pose.translation_mm, self.line)
             return
         if isinstance(target, n.Field):
-            holder = self.eval(target.base) if not (isinstance(target.base, n.Name) and
-                                                   target.base.name.upper() in self.system) else \
-                self.system[target.base.name.upper()]
+            holder = self._stored(target.base) if isinstance(target.base, n.Name) else self.eval(target.base)
+            self.valueless.discard(id(holder))  # a component set: the position has a value
             if not isinstance(holder, v.Struct):
                 raise self.error(f"no component {target.field}")
             holder.fields[target.field.upper()] = value
@@ -340,7 +210,7 @@ class Interpreter:
         self.main = routine
         try:
             self.call(routine, ())
-        except _Halt as halt:
+        except Halt as halt:
             self.stopped = halt.how
 
     def call(self, routine: Routine, args) -> Any:
@@ -355,9 +225,9 @@ class Interpreter:
         self.source, self.routine = routine.source, routine.name
         try:
             self.block(self._body(routine))
-        except _Return as ret:
+        except Return as ret:
             return ret.value
-        except _Goto as jump:
+        except Jump as jump:
             raise InputError(f"{routine.source}:{jump.line}: GOTO {jump.label}: no such label in {routine.name} (a "
                              "GOTO may leave a block, not enter one)") from None
         finally:
@@ -381,7 +251,7 @@ class Interpreter:
             if isinstance(item, Block):
                 try:
                     self.structure(item)
-                except _Goto as jump:  # out of a block to a label of this one
+                except Jump as jump:  # out of a block to a label of this one
                     if jump.label not in labels:
                         raise
                     k = labels[jump.label]
@@ -393,15 +263,16 @@ class Interpreter:
             if item.word == "GOTO":
                 label = item.tokens[1].text.upper() if len(item.tokens) > 1 else ""
                 if label not in labels:
-                    raise _Goto(label, item.line)
+                    raise Jump(label, item.line)
                 k = labels[label]
                 continue
             try:
                 self.simple(item)
-            except _Unknown as unknown:
-                self.unknowns.setdefault(unknown.name.lower(), f"{self.where()}: {unknown.name} (no file declares it)")
-                self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, which no file "
-                                    "declares")
+            except Unknown as unknown:
+                self.unknown.read(unknown.name, self.where(), unknown.name.lower())
+                which = "which has no value in the files (declared without one)" if unknown.declared else \
+                    "which no file declares"
+                self.skipped.append(f"{self.where()}: statement skipped: it reads {unknown.name}, {which}")
 
     def _cond(self, tokens) -> bool:
         value = self.eval(self.expr(tokens))
@@ -432,7 +303,7 @@ class Interpreter:
                         raise self.failure(f"a {b.kind} loop that never ends")
                     if b.kind == "REPEAT" and self._cond(b.tail.tokens[1:]):
                         break
-            except _Exit:
+            except LeaveLoop:
                 pass
         elif b.kind == "FOR":
             self._for(b)
@@ -440,7 +311,7 @@ class Interpreter:
             value = self.eval(self.expr(toks[1:]))
             for opener, body in b.parts:
                 if opener.word == "DEFAULT" or any(self.eval(self.expr(part)) == value
-                                                   for part in _split_commas(opener.tokens[1:])):
+                                                   for part in split_commas(opener.tokens[1:])):
                     self.block(body)
                     return
 
@@ -463,7 +334,7 @@ class Interpreter:
                 self.assign(var, value) if self._declared(var.name) else self._local(var.name, value)
                 self.block(b.parts[0][1])
                 value += step
-        except _Exit:
+        except LeaveLoop:
             pass
 
     def _declared(self, name: str) -> bool:
@@ -493,11 +364,11 @@ class Interpreter:
                                             "it came true")
         elif word == "HALT":
             self._stop_previous()
-            raise _Halt(f"{self.where()}: HALT")
+            raise Halt(f"{self.where()}: HALT")
         elif word == "RETURN":
-            raise _Return(self.eval(self.expr(toks[1:])) if len(toks) > 1 else None)
+            raise Return(self.eval(self.expr(toks[1:])) if len(toks) > 1 else None)
         elif word == "EXIT":
-            raise _Exit()
+            raise LeaveLoop()
         elif word == "TRIGGER":
             self.trigger(ln)
         elif word in _NOTED or (word == "GLOBAL" and len(toks) > 1 and toks[1].text.upper() == "INTERRUPT"):
@@ -531,7 +402,7 @@ class Interpreter:
         if isinstance(target, n.Index) and isinstance(target.base, n.Name) and \
                 target.base.name.upper() in ("$OUT", "$OUT_C"):
             number = int(self._num(self.eval(target.index[0])))
-            text = _text(toks)
+            text = statement_text(toks)
             if target.base.name.upper() == "$OUT_C":
                 self.switch(number, bool(value), text, "next")
             elif self.continue_next:
@@ -543,165 +414,6 @@ class Interpreter:
                 self.switch(number, bool(value), text, "now")
             return
         self.assign(target, value)
-
-    def trigger(self, ln: Line) -> None:
-        words = [t.text.upper() for t in ln.tokens]
-        if "DISTANCE" not in words or "DO" not in words:
-            self.warn("trigger", "TRIGGER WHEN PATH ...: a switch at a path distance is not simulated")
-            return
-        k = words.index("DISTANCE")
-        distance = ln.tokens[k + 2].text if k + 2 < len(ln.tokens) else "0"
-        if "DELAY" in words:
-            delay = ln.tokens[words.index("DELAY") + 2].text
-            if float(delay) != 0.0:
-                self.warn("delay", f"TRIGGER ... DELAY={delay}: the delay is not simulated")
-        action = list(ln.tokens[words.index("DO") + 1:])
-        if "PRIO" in [t.text.upper() for t in action]:
-            action = action[:[t.text.upper() for t in action].index("PRIO")]
-        eq = next((k for k, t in enumerate(action) if t.text == "="), None)
-        target = self.expr(action[:eq]) if eq else None
-        if isinstance(target, n.Index) and isinstance(target.base, n.Name) and target.base.name.upper() == "$OUT":
-            number = int(self._num(self.eval(target.index[0])))
-            on = bool(self.eval(self.expr(action[eq + 1:])))
-            self.switch(number, on, _text(ln.tokens), "next" if distance == "0" else "after")
-        else:
-            self.warn("trigger-action", "TRIGGER ... DO: only $OUT switches are simulated")
-
-    def bas(self, ln: Line) -> None:
-        call = self.expr(ln.tokens)
-        args = [a.value for a in call.args] if isinstance(call, n.Call) else []
-        what = args[0].name.upper() if args and isinstance(args[0], n.Name) else ""
-        value = self.eval(args[1]) if len(args) > 1 else None
-        if what == "#TOOL":
-            self.assign(n.Name("$TOOL", ln.line), self.lookup(f"TOOL_DATA[{int(value)}]"))
-        elif what == "#BASE":
-            self.assign(n.Name("$BASE", ln.line), self.lookup(f"BASE_DATA[{int(value)}]"))
-        elif what in ("#VEL_CP", "#CP_PARAMS") and value is not None:
-            self.system["$VEL"].fields["CP"] = float(value)
-        elif what == "#INITMOV":
-            self.system["$VEL"].fields["CP"] = DEFAULT_VEL_CP_M_S
-
-    # --- motions --------------------------------------------------------------------------
-    def _stop_previous(self) -> None:
-        if self.moves and not self.moves[-1].settings.stop_at_end:
-            last = self.moves[-1]
-            self.moves[-1] = replace(last, settings=replace(last.settings, stop_at_end=True))
-
-    def _target(self, e: n.Expr) -> v.Struct:
-        value = self.eval(e)
-        if not isinstance(value, v.Struct):
-            raise self.error("a motion's target must be a position ({X .., Y .., ...} or a POS/E6POS/FRAME)")
-        if self.position is not None:  # missing components: the current position's
-            merged = self.position.copy()
-            merged.fields.update(value.fields)
-            merged.type = value.type or merged.type
-            return merged
-        return value
-
-    def motion(self, ln: Line) -> None:
-        toks = list(ln.tokens)
-        word = ln.word
-        approx = ""
-        if toks[-1].kind == NAME and toks[-1].text.upper() in _APPROX:
-            approx = toks.pop().text.upper()
-        parts = _split_commas(toks[1:])
-        if word == "CIRC":
-            parts = [p for p in parts if not (p and p[0].text.upper() == "CA")]
-            if len(_split_commas(toks[1:])) > len(parts):
-                self.warn("ca", "CIRC ... CA: the circular angle is not simulated; the arc ends at its end point")
-        if word in ("PTP", "PTP_REL") and any(p and p[0].text.upper() == "C_PTP" for p in parts):
-            approx = "C_PTP"
-        base = v.pose_of(self.system["$BASE"])
-        if word == "CIRC":
-            if len(parts) != 2:
-                raise self.error("CIRC takes an auxiliary point and an end point")
-            via_s, end_s = self._target(self.expr(parts[0])), self._target(self.expr(parts[1]))
-            via, end = base @ v.pose_of(via_s), base @ v.pose_of(end_s)
-        else:
-            if len(parts) != 1:
-                raise self.error(f"{word} takes one target")
-            end_s = self.eval(self.expr(parts[0])) if word.endswith("_REL") else self._target(self.expr(parts[0]))
-            if word.endswith("_REL"):
-                if self.tcp is None:
-                    raise self.failure(f"{word} before any motion: the position it is relative to is unknown")
-                end = self.tcp @ v.pose_of(end_s) if self.position is None else \
-                    base @ (v.pose_of(self.position) @ v.pose_of(end_s))
-                end_s = v.frame_of(base.inverse() @ end, "E6POS", self.position)
-            else:
-                end = base @ v.pose_of(end_s)
-            via = None
-        if approx in ("C_VEL", "C_ORI", "C_PTP"):
-            self.warn("approx", f"{approx} is modelled as C_DIS with $APO.CDIS")
-        cdis = float(self.system["$APO"].fields.get("CDIS", 0.0))
-        blended = bool(approx) and cdis > 0
-        speed = float(self.system["$VEL"].fields.get("CP", DEFAULT_VEL_CP_M_S)) * 1000.0
-        if not speed > 0:
-            raise self.error(f"$VEL.CP = {speed / 1000:g} m/s: must be > 0")
-        settings = MotionSettings(speed, cdis if blended else 0.0, blended, not blended, self.tool)
-        if word.startswith("PTP"):
-            move = JointMove(self.tcp, end, settings, self.spraying, ln.line)
-        elif self.tcp is None:
-            raise self.failure(f"{word} is the first motion: the robot's position before it is unknown; start with PTP")
-        elif via is not None:
-            move = CircularMove(self.tcp, via, end, settings, self.spraying, ln.line)
-        else:
-            move = LinearMove(self.tcp, end, settings, self.spraying, ln.line)
-        self.moves.append(move)
-        self.sources.append(MoveSource(self.source, self.routine, ln.line, ln.line))
-        self.move_frames.append(base)
-        self.tcp, self.position = end, end_s
-        still = []
-        for left, on in self.pending:
-            if left == 0:
-                self.spraying = on
-            else:
-                still.append((left - 1, on))
-        self.pending = still
-
-
-def _split_commas(tokens) -> list[list]:
-    """Tokens split at the commas outside brackets."""
-    out, current, depth = [], [], 0
-    for t in tokens:
-        if t.kind == OP and t.text in "([{":
-            depth += 1
-        elif t.kind == OP and t.text in ")]}":
-            depth -= 1
-        if t.kind == OP and t.text == "," and depth == 0:
-            out.append(current)
-            current = []
-        else:
-            current.append(t)
-    if current:
-        out.append(current)
-    return out
-
-
-def _text(tokens) -> str:
-    """A statement's tokens as written (a space only between two words or numbers)."""
-    out, prev = "", None
-    for t in tokens:
-        if prev is not None and prev.kind in (NAME, "num") and t.kind in (NAME, "num"):
-            out += " "
-        out += t.text
-        prev = t
-    return out
-
-
-def _is_number(text: Any) -> bool:
-    try:
-        float(text)
-    except (TypeError, ValueError):
-        return False
-    return True
-
-
-def stream_tokens(text: str, source: str):
-    from coatsim.languages.kuka_krl.parser import SYNTAX
-    from coatsim.languages.script.tokens import END, NEWLINE, tokenize
-
-    return [t for t in tokenize(text, SYNTAX, source) if t.kind not in (NEWLINE, END)]
-
 
 def _files(paths: Sequence[Path]) -> list[Path]:
     """The files given, with the ``.dat`` beside each ``.src`` that comes without it."""
@@ -755,7 +467,7 @@ def read_krl(paths: Sequence[Path], options: ReadOptions) -> Reading:
         move_sources=tuple(run.sources), move_frames=tuple(run.move_frames), n_steps=len(main.body),
         n_poses=sum(1 for val in run.globals.values() if isinstance(val, v.Struct) and val.type in v.TYPES),
         switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(problems),
-        unknowns=tuple(run.unknowns.values()), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
+        unknowns=tuple(run.unknowns.values()) + run.unknown.unknowns(), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
         gun_on_at_end=run.spraying,
         external_axes=any(isinstance(val, v.Struct) and any(abs(float(val.fields.get(a, 0.0))) > 1e-9
                                                              for a in v.AXES if isinstance(val.fields.get(a, 0.0), float))

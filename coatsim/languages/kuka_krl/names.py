@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 
 from coatsim.core.errors import InputError
+from coatsim.languages.script.names import sanitize_comment
 
 MAX_NAME_LENGTH = 24
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -37,8 +38,3 @@ def program_name(text: str) -> str:
         name = "p" + name
     name = name[:MAX_NAME_LENGTH].rstrip("_") or "coat"
     return name + "_" if name.upper() in KEYWORDS else name
-
-
-def sanitize_comment(text: str, limit: int | None = 200) -> str:
-    clean = "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in text)
-    return clean if limit is None or len(clean) <= limit else clean[:limit - 3] + "..."

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from coatsim.core.errors import InputError
 from coatsim.languages.script import nodes as n
 from coatsim.languages.script.parse import Grammar, Stream
-from coatsim.languages.script.tokens import END, NAME, NEWLINE, Syntax, Token, tokenize
+from coatsim.languages.script.tokens import END, NAME, NEWLINE, OP, Syntax, Token, tokenize
 
 SYNTAX = Syntax(comment=";", name_start="$#", operators=("==", "<>", "<=", ">=", "=", "<", ">", "+", "-", "*", "/",
                                                          ":", "(", ")", "[", "]", "{", "}", ",", ".", "'"))
@@ -127,3 +127,32 @@ def parse_krl(text: str, source: str) -> tuple[tuple[Routine, ...], tuple[DataLi
     if not routines and not datas:
         raise InputError(f"{source}:1: no DEF or DEFDAT in the file")
     return tuple(routines), tuple(datas)
+
+
+def split_commas(tokens) -> list[list]:
+    """Tokens split at the commas outside brackets."""
+    out, current, depth = [], [], 0
+    for t in tokens:
+        if t.kind == OP and t.text in "([{":
+            depth += 1
+        elif t.kind == OP and t.text in ")]}":
+            depth -= 1
+        if t.kind == OP and t.text == "," and depth == 0:
+            out.append(current)
+            current = []
+        else:
+            current.append(t)
+    if current:
+        out.append(current)
+    return out
+
+
+def statement_text(tokens) -> str:
+    """A statement's tokens as written (a space only between two words or numbers)."""
+    out, prev = "", None
+    for t in tokens:
+        if prev is not None and prev.kind in (NAME, "num") and t.kind in (NAME, "num"):
+            out += " "
+        out += t.text
+        prev = t
+    return out

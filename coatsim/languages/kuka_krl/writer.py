@@ -21,10 +21,11 @@ from coatsim.core.numbers import MM_DECIMALS, fmt_short
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.geometry.space.rotations import matrix_to_abc
-from coatsim.languages.kuka_krl.names import check_name, sanitize_comment
+from coatsim.languages.kuka_krl.names import check_name
+from coatsim.languages.script.header import header_comments
+from coatsim.languages.script.names import sanitize_comment
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
-from coatsim.path.process_record import encode as encode_record
 
 MAX_ARC_SWEEP_DEG = 170.0
 MAX_COORDINATE_MM = 1e6  # KRL REAL is a 32-bit float
@@ -126,8 +127,7 @@ def write_krl(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -
         end = body.name(path.segments[-1].end)
         body.move(f"LIN {end}:{back}", index == len(plan.paths) - 1, "back along the tool axis")
     src = ["&ACCESS RVP", "&REL 1"]
-    src += [f";{sanitize_comment(c)}" for c in plan.comments]
-    src += [f";coatsim: {sanitize_comment(k)}={sanitize_comment(x, None)}" for k, x in encode_record(plan.process)]
+    src += header_comments(plan, ";")
     src += [f"DEF {plan.name}( )", ";FOLD INI", "  BAS(#INITMOV,0)", ";ENDFOLD (INI)",
             f"  $TOOL={frame_text(plan.tool)}", f"  $BASE={frame_text(frame)}",
             f"  $VEL.CP={_n(plan.speed_mm_s / 1000.0, 9)}", f"  $APO.CDIS={_n(plan.accuracy_mm)}",

@@ -6,8 +6,11 @@ and as the controller runs a script sent to it), the main function then runs too
 reading names, else the function without parameters no other function calls (the last such).
 Functions may be defined inside others (Polyscope defines a program's functions inside it). Variables: top-level assignments and ``global`` ones
 are global; inside a function an assignment is local unless the name is global already or
-declared ``global`` (as Polyscope programs rely on). Threads (``thread``/``run``) are noted, not
-run. The robot's functions (motions, the TCP, outputs, waits) are in :mod:`.robot_calls`.
+declared ``global`` (as Polyscope programs rely on). A variable the script reads but never sets
+(an installation variable, a feature) is an unknown unless the reading gives it
+(:mod:`coatsim.languages.script.unknowns`): what needs its value is skipped and listed.
+``pose_trans(feature, p)`` with ``feature`` a pose variable gives ``p`` in that frame, the user
+frame the reading reports for the move. Threads (``thread``/``run``) are noted, not run. The robot's functions (motions, the TCP, outputs, waits) are in :mod:`.robot_calls`.
 """
 
 from __future__ import annotations
@@ -19,7 +22,8 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.languages.urscript.blend import note_overlaps
 from coatsim.languages.urscript.parser import Expr, Statement
 from coatsim.languages.urscript.robot_calls import RobotCalls
-from coatsim.languages.urscript.values import PURE, PoseValue
+from coatsim.languages.urscript.values import PURE, FramedPose, PoseValue
+from coatsim.languages.script.unknowns import DependsOn, Unset, UnknownLog, require_known, unset_names
 from coatsim.path.language import ReadOptions
 from coatsim.path.process_record import read_comment_lines
 from coatsim.path.toolpath import ToolPath
@@ -51,6 +55,7 @@ class UrRun:
         self.globals: dict[str, object] = {}
         self.functions: dict[str, Statement] = {}
         self.depth = 0
+        self.unknown = UnknownLog("an installation variable or a feature the controller keeps")
 
     # --- messages -----------------------------------------------------------------------
     def error(self, message: str) -> InputError:
@@ -111,7 +116,11 @@ class UrRun:
         for st in statements:
             self.line = st.line
             self.robot.builder.step(st.line)
-            signal = self.statement(st, scope)
+            try:
+                signal = self.statement(st, scope)
+            except DependsOn as unknown:
+                self.unknown.skip(f"{self.source}:{st.line}", _what(st), unknown.names)
+                continue
             if signal is not None:
                 return signal
         return None
@@ -196,7 +205,12 @@ class UrRun:
             self.store(st.target[1], self.copy(value), scope, st.scope)
             return
         container = self.evaluate(st.target[1], scope)
-        index = self.index(self.evaluate(st.target[2], scope), container)
+        position = self.evaluate(st.target[2], scope)
+        names = unset_names((container, position, value))
+        if names and (isinstance(container, (PoseValue, Unset)) or isinstance(position, Unset)):
+            self.store(st.target[1][1], Unset(names), scope, "")  # an element unknown: the whole value is
+            return
+        index = self.index(position, container)
         if isinstance(container, PoseValue):
             items = list(container)
             items[index] = self.number(value)
@@ -215,8 +229,7 @@ class UrRun:
             return self.globals[name]
         if name in self.options.variables:
             return self.given(name)
-        raise self.error(f"variable {name!r} is used before it is set (a value the controller keeps can be given "
-                         "in the variables)")
+        return self.unknown.read(name, f"{self.source}:{self.line}")
 
     def given(self, name: str):
         """A variable the reading gives: a number, or a pose p[...] / list [...] as text."""
@@ -225,14 +238,17 @@ class UrRun:
             return raw
         text = str(raw).strip()
         try:
+            if not text.startswith(("p", "[")):
+                return float(text)
             items = [float(v) for v in text.lstrip("p").strip("[]").split(",")]
         except ValueError:
-            raise InputError(f"variable {name}: expected a number, p[x,y,z,rx,ry,rz] or a list, got {text[:40]!r}") \
+            raise InputError(f"variable {name}: expected a number, p[x,y,z,rx,ry,rz] or a list [...], got {text[:40]!r}") \
                 from None
         return PoseValue(items) if text.startswith("p") else items
 
     # --- expressions --------------------------------------------------------------------
     def number(self, value) -> float:
+        require_known(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise self.error(f"expected a number, got {self.describe(value)}")
         return value
@@ -246,6 +262,7 @@ class UrRun:
         return "nothing" if value is None else f"{type(value).__name__} {str(value)[:20]!r}"
 
     def truth(self, value) -> bool:
+        require_known(value)
         if isinstance(value, bool):
             return value
         return self.number(value) != 0
@@ -267,15 +284,22 @@ class UrRun:
         if kind == "list":
             return [self.evaluate(e, scope) for e in expr[1]]
         if kind == "pose":
-            values = [self.number(self.evaluate(e, scope)) for e in expr[1]]
+            items = [self.evaluate(e, scope) for e in expr[1]]
+            if unset_names(items):
+                return Unset(unset_names(items))
+            values = [self.number(item) for item in items]
             if len(values) != 6:
                 raise self.error(f"a pose p[...] has 6 values, not {len(values)}")
             return PoseValue(values)
         if kind == "index":
-            container = self.evaluate(expr[1], scope)
-            return container[self.index(self.evaluate(expr[2], scope), container)]
+            container, position = self.evaluate(expr[1], scope), self.evaluate(expr[2], scope)
+            if unset_names((container, position)):
+                return Unset(unset_names((container, position)))
+            return container[self.index(position, container)]
         if kind == "un":
             value = self.evaluate(expr[2], scope)
+            if isinstance(value, Unset):
+                return value
             return (not self.truth(value)) if expr[1] == "not" else -self.number(value)
         if kind == "bin":
             return self.binary(expr[1], expr[2], expr[3], scope)
@@ -283,11 +307,14 @@ class UrRun:
 
     def binary(self, op: str, left: Expr, right: Expr, scope: Optional[dict]):
         a = self.evaluate(left, scope)
-        if op in ("and", "or"):
+        if op in ("and", "or") and not isinstance(a, Unset):
             if self.truth(a) == (op == "or"):
                 return op == "or"
-            return self.truth(self.evaluate(right, scope))
+            b = self.evaluate(right, scope)
+            return b if isinstance(b, Unset) else self.truth(b)
         b = self.evaluate(right, scope)
+        if unset_names((a, b)):
+            return Unset(unset_names((a, b)))
         if op == "xor":
             return self.truth(a) != self.truth(b)
         if op in ("==", "!="):
@@ -315,6 +342,8 @@ class UrRun:
         self.line = line
         if name in self.functions:
             return self.invoke(self.functions[name], args, kwargs, line)
+        if name in PURE and unset_names(args + tuple(v for _, v in kwargs)):
+            return Unset(unset_names(args + tuple(v for _, v in kwargs)))
         if name in PURE:
             if kwargs:
                 raise self.error(f"{name}() takes no keyword arguments")
@@ -324,7 +353,10 @@ class UrRun:
                 raise self.error(f"{name}(): {exc}") from None
             if isinstance(result, float) and not math.isfinite(result):
                 raise self.error(f"{name}() has no finite value here")
-            return result
+            return _framed(name, arg_exprs, args, result)
+        if self.robot.harmless(name):
+            return None  # a message or a set-up value: an unknown in it changes no motion
+        require_known(args + tuple(v for _, v in kwargs))
         return self.robot.call(name, args, kwargs)
 
     def invoke(self, function: Statement, args: tuple, kwargs: tuple, line: int):
@@ -358,3 +390,26 @@ class UrRun:
             self.depth -= 1
             self.line = line
         return None
+
+
+def _what(st: Statement) -> str:
+    """A statement as a skipped one is named: the function it calls, the variable it sets, its keyword."""
+    if st.kind == "expr" and st.value[0] == "call":
+        return f"{st.value[1]}()"
+    if st.kind == "assign":
+        target = st.target[1] if st.target[0] == "name" else st.target[1][1]
+        return f"the assignment to {target}"
+    return st.kind
+
+
+def _framed(name: str, arg_exprs: tuple, args: tuple, result):
+    """``pose_trans(feature, p)`` with ``feature`` a pose variable: the pose given in that frame
+    (a pose already given in one keeps its frame: ``pose_trans(target, tool_offset)``)."""
+    if name != "pose_trans" or not isinstance(result, PoseValue):
+        return result
+    first = args[0]
+    if isinstance(first, FramedPose):
+        return FramedPose(result, first.feature)
+    if arg_exprs[0][0] == "name":
+        return FramedPose(result, first)
+    return result

@@ -46,6 +46,7 @@ class UrScript:
 
     def read(self, files: Sequence[Path], options: ReadOptions) -> ToolPath:
         reading, run = self._read(files, options)
+        reading.require_complete()
         if options.needs_spray and not reading.toolpath.spray_moves:
             switched = ", ".join(dict.fromkeys(run.robot.switched)) or "no output"
             raise InputError(f"{files[0]}: the gun (digital output {options.gun_signal}) is never on during a motion; "
@@ -66,7 +67,8 @@ class UrScript:
         body = run.main.body if run.main is not None else statements
         return run.robot.builder.reading(toolpath, (str(path),), (str(path), run.main.line if run.main else 1),
                                          functions or (toolpath.name,), run.ended, _count(body),
-                                         _poses(statements)), run
+                                         _poses(statements), unknowns=run.unknown.unknowns(),
+                                         skipped=tuple(run.unknown.skipped)), run
 
     def check_name(self, name: str, what: str) -> str:
         return check_name(name, what)

@@ -32,7 +32,7 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose, exp_rotation
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.urscript.blend import M_TO_MM, blend_settings
-from coatsim.languages.urscript.values import PoseJoints, PoseValue
+from coatsim.languages.urscript.values import FramedPose, PoseJoints, PoseValue
 from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath_builder import ToolPathBuilder
 
@@ -65,7 +65,8 @@ class RobotCalls:
             kin = options.kinematics
             start = lambda: (kin.forward(kin.home(1)), kin.home(1))  # noqa: E731
         self.builder = ToolPathBuilder(lambda number: f"{source}:{number}", start,
-                                       lambda: (source, program(), Pose.identity()))
+                                       lambda: (source, program(), self.frame))
+        self.frame = Pose.identity()  # the user frame of the last motion's target (a feature's pose)
         self.outputs: dict[str, bool] = {}
         self.switched: list[str] = []  # the outputs switched, as messages name them
         self.unknown_reads = 0  # reads of an input nobody gives (a loop that waits on one is taken as met)
@@ -74,6 +75,12 @@ class RobotCalls:
         return self.builder.error(self.line(), message)
 
     # --- dispatch -----------------------------------------------------------------------
+    @staticmethod
+    def harmless(name: str) -> bool:
+        """Whether a call changes no motion, output or wait (a message, a set-up value): an unknown
+        in its arguments skips nothing."""
+        return name == "popup" or name.startswith(_SILENT)
+
     def call(self, name: str, args: tuple, kwargs: tuple):
         if name in _SIGNATURES:
             return self.motion(name, self.bind(name, args, kwargs))
@@ -207,6 +214,7 @@ class RobotCalls:
                                   or not math.isfinite(values[key]) or values[key] < 0):
                 raise self.error(f"{name}(): {key} must be a number >= 0")
         line = self.line()
+        self.frame = self._frame(values["pose_to" if name == "movec" else "pose" if name != "movej" else "q"])
         if name == "movec":
             self._movec(values, line)
             return
@@ -216,6 +224,10 @@ class RobotCalls:
             self.builder.joint(target, settings, line, joints)
         else:
             self.builder.linear(target, settings, line)
+
+    def _frame(self, target) -> Pose:
+        """The user frame a target is given in: its feature's pose (base otherwise)."""
+        return self._pose(target.feature) if isinstance(target, FramedPose) else Pose.identity()
 
     def _movec(self, values: dict, line: int) -> None:
         via, _ = self._target(values["pose_via"])

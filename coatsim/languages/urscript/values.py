@@ -48,6 +48,19 @@ class PoseValue(tuple):
         return "p[" + ", ".join(f"{v:g}" for v in self) + "]"
 
 
+class FramedPose(PoseValue):
+    """A pose made as ``pose_trans(feature, p)`` with ``feature`` a pose variable (a Polyscope
+    feature, a plane, the workpiece frame): the user frame ``p`` is given in, which the reading
+    reports for each move so that a converted program keeps it."""
+
+    feature: PoseValue
+
+    def __new__(cls, values: Sequence[float], feature: PoseValue) -> "FramedPose":
+        made = super().__new__(cls, values)
+        made.feature = feature
+        return made
+
+
 class PoseJoints(tuple):
     """The joint solution of a pose (``get_inverse_kin(p)``): a movej goes to the pose."""
 

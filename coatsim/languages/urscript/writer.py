@@ -115,7 +115,7 @@ def write_urscript(plan: ProgramPlan) -> str:
     if not 0 <= plan.gun_signal <= MAX_OUTPUT:
         raise InputError(f"gun_signal {plan.gun_signal}: a UR controller has standard digital outputs 0 to "
                          f"{MAX_OUTPUT}", parameters=("gun_signal",))
-    frame = plan.process.frame if plan.process.frame is not None else Pose.identity()
+    frame = plan.user_frame
     frame_inv = frame.inverse()
     speed = fmt_short(plan.speed_mm_s / 1000.0, M_DECIMALS)
     head = [f"# {clean_comment(text)}" for text in plan.comments]

@@ -116,8 +116,8 @@ def test_a_position_taught_in_another_frame_is_refused(tmp_path):
     assert "\n" not in str(info.value)
 
 
-def test_an_unknown_user_frame_is_an_error_and_an_unknown_tool_a_warning(tmp_path):
-    with pytest.raises(InputError, match=r"UFRAME\[4\] is not set by the program; give it"):
+def test_an_unknown_user_frame_is_an_unknown_and_an_unknown_tool_a_warning(tmp_path):
+    with pytest.raises(InputError, match=r"the motion skipped: it depends on UFRAME\[4\], which the program never"):
         run(ls(["J P[1] 50% FINE"], P, uf=4), tmp_path)
     tp = run(ls(["J P[1] 50% FINE"], P, ut=5), tmp_path)
     assert any("UTOOL[5] is not set" in w for w in tp.warnings) and tp.moves[0].settings.tool is None
@@ -133,11 +133,14 @@ def test_registers_and_expressions(tmp_path):
     assert tp2.moves[1].settings.speed_mm_s == 9.0
 
 
-def test_a_register_the_cell_keeps_comes_as_a_variable_or_reads_zero_with_a_warning(tmp_path):
+def test_a_register_the_cell_keeps_comes_as_a_variable_or_is_an_unknown(tmp_path):
     tp = run(ls(["J P[1] 50% FINE", "L P[2] R[7]mm/sec FINE"], P), tmp_path, variables={"R[7]": 123})
     assert tp.moves[1].settings.speed_mm_s == 123.0
-    tp = run(ls(["IF R[8]=0,JMP LBL[1]", "J P[1] 50% FINE", "LBL[1]", "J P[2] 50% FINE"], P), tmp_path)
-    assert len(tp.moves) == 1 and any("R[8] is not set" in w for w in tp.warnings)
+    tp = run(ls(["IF R[8]=0,JMP LBL[1]", "J P[1] 50% FINE", "LBL[1]", "J P[2] 50% FINE"], P), tmp_path,
+             variables={"R[8]": 0})
+    assert len(tp.moves) == 1
+    with pytest.raises(InputError, match=r"prog.ls:22: IF skipped: it depends on R\[8\]"):
+        run(ls(["IF R[8]=0,JMP LBL[1]", "J P[1] 50% FINE", "LBL[1]", "J P[2] 50% FINE"], P), tmp_path)
 
 
 def test_position_registers(tmp_path):
@@ -241,7 +244,7 @@ def test_remarks_carry_the_process_record_and_disabled_lines_are_skipped(tmp_pat
     (["JMP LBL[3]"], r"has no LBL\[3\]"),
     (["ENDIF"], "ENDIF without its IF"),
     (["R[1]=1/0"], "no finite value"),
-    (["L PR[3] 100mm/sec FINE"], r"PR\[3\] is not set by the program"),
+    (["L PR[3] 100mm/sec FINE"], r"it depends on PR\[3\], which the program never sets"),
 ])
 def test_defects_are_one_line_input_errors_naming_the_line(tmp_path, body, message):
     with pytest.raises(InputError, match=message) as info:

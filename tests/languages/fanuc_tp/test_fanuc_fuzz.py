@@ -3,13 +3,10 @@ what the twin cannot run), whatever the bytes."""
 
 from __future__ import annotations
 
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
-
-from coatsim.core.errors import ExecutionError, InputError
 from coatsim.languages.fanuc_tp.language import FANUC_TP
 from coatsim.path.language import ReadOptions
 
+from fuzzing import fuzz_tests, read_fuzzed
 from language_plans import planned
 
 GOLDEN = planned("fanuc-tp").text.encode()
@@ -21,34 +18,11 @@ WORDS = ["/PROG", "/ATTR", "/MN", "/POS", "/END", "/APPL", "MAIN", "1:", ":", ";
          "Offset,PR[1]", "INC", "ACC50", "TIMEOUT", "END", "ABORT", "OVERRIDE=50%", "GP1:", "UF : 1", "UT : 1",
          "X = 1 mm", "W = 1 deg", "J1= 1 deg", "{", "};", "'N U T, 0, 0, 0'", "\n", "\r\n", "\t", " ", "\x00",
          "\xe9", "1e999", "-0", ".5", "$X"]
-SETTINGS = settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 def read(data: bytes, folder) -> None:
-    path = folder / "fuzz.ls"
-    path.write_bytes(data)
-    try:
-        FANUC_TP.read([path], ReadOptions())
-    except (InputError, ExecutionError) as exc:
-        assert "\n" not in str(exc), str(exc)
-        assert str(exc).startswith(str(path)) or str(exc).startswith("program "), str(exc)
+    read_fuzzed(FANUC_TP, data, folder, ".ls", ReadOptions(), also_starts=("program ",))
 
 
-@SETTINGS
-@given(data=st.binary(max_size=400))
-def test_random_bytes(data, tmp_path_factory):
-    read(data, tmp_path_factory.mktemp("f"))
-
-
-@SETTINGS
-@given(words=st.lists(st.sampled_from(WORDS), max_size=60))
-def test_word_soup_inside_a_program(words, tmp_path_factory):
-    body = " ".join(words)
-    read(f"/PROG  MAIN\n/MN\n   1:  {body} ;\n   2:{body}\n/POS\n{body}\n/END\n".encode("utf-8", "replace"),
-         tmp_path_factory.mktemp("f"))
-
-
-@SETTINGS
-@given(cut=st.integers(0, len(GOLDEN)), words=st.lists(st.sampled_from(WORDS), max_size=12))
-def test_a_written_program_with_words_spliced_in(cut, words, tmp_path_factory):
-    read(GOLDEN[:cut] + " ".join(words).encode() + GOLDEN[cut:], tmp_path_factory.mktemp("f"))
+test_random_bytes, test_word_soup_inside_a_program, test_a_written_program_with_words_spliced_in = fuzz_tests(
+    read, WORDS, GOLDEN, lambda body: f"/PROG  MAIN\n/MN\n   1:  {body} ;\n   2:{body}\n/POS\n{body}\n/END\n", 60)

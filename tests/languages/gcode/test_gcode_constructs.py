@@ -226,7 +226,7 @@ def test_what_the_twin_cannot_follow_is_refused_with_exit_3(tmp_path, line, what
 
 @pytest.mark.parametrize("line, message", [
     ("o100 sub", "O-word subroutines"), ("G123", "G123 is not a G-code"), ("G1 X10 X20 F600", "word X twice"),
-    ("G1 X1..2 F600", "unexpected"), ("G1 X[1/0] F600", "no finite value"), ("G1 X#<nope> F600", "read before"),
+    ("G1 X1..2 F600", "unexpected"), ("G1 X[1/0] F600", "no finite value"), ("G1 X#<nope> F600", "depends on #<nope>, which the program never sets"),
 ])
 def test_malformed_blocks_are_one_line_input_errors(tmp_path, line, message):
     with pytest.raises(InputError, match=message) as info:

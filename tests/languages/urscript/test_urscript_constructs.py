@@ -171,7 +171,7 @@ def test_values_the_controller_keeps_come_as_variables(tmp_path):
 
 
 @pytest.mark.parametrize("body, message", [
-    ("movel(p[0.1, 0.2])", "a pose p"), ("x = y + 1", "variable 'y' is used before"),
+    ("movel(p[0.1, 0.2])", "a pose p"), ("movel(p[y, 0, 0, 0, 0, 0])", "movel\\(\\) skipped: it depends on y"),
     ("movel(p[0.1, 0, 0, 0, 0, 0], v=-1)", "v must be a number >= 0"), ("if True:\n  x = 1", "not closed"),
     ("movel(p[0.1, 0, 0, 0, 0, 0], speed=1)", "has no parameter 'speed'"), ("x = 1 / 0", "division by zero"),
     ("x = [1, 2]\nx[5] = 1", "index 5 is outside"), ("sleep(-1)", "sleep\\(\\) takes a time"),

@@ -1,0 +1,139 @@
+"""KRL motions: ``PTP``, ``LIN``, ``CIRC aux, end`` (``CA`` not simulated), ``LIN_REL``/``PTP_REL``,
+each in ``$BASE`` with ``$TOOL``, a target's missing components the current position's; speed
+``$VEL.CP`` (m/s); approximation ``C_DIS`` within ``$APO.CDIS`` (``C_VEL``, ``C_ORI``, ``C_PTP``
+modelled as ``C_DIS``, with a warning); ``BAS(#…)`` calls; ``TRIGGER WHEN DISTANCE`` switches.
+The interpreter's Motions part (see :mod:`.interpreter`)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from coatsim.languages.kuka_krl import values as v
+from coatsim.languages.kuka_krl.parser import Line, split_commas, statement_text
+from coatsim.languages.script import nodes as n
+from coatsim.languages.script.tokens import NAME
+from coatsim.path.reading import MoveSource
+from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings
+
+DEFAULT_VEL_CP_M_S = 2.0  # $VEL.CP after BAS(#INITMOV) (DEF_VEL_CP of a standard $config.dat) ⚠
+_APPROX = ("C_DIS", "C_VEL", "C_ORI", "C_PTP")
+
+
+class Motions:
+    """Motions and their settings; the interpreter provides ``system``, ``moves``, ``sources``,
+    ``move_frames``, ``tcp``, ``position``, ``tool``, ``spraying``, ``pending``, ``source``,
+    ``routine``, ``expr``, ``eval``, ``lookup``, ``assign``, ``switch``, ``warn``, ``error`` and
+    ``failure``."""
+
+    def trigger(self, ln: Line) -> None:
+        words = [t.text.upper() for t in ln.tokens]
+        if "DISTANCE" not in words or "DO" not in words:
+            self.warn("trigger", "TRIGGER WHEN PATH ...: a switch at a path distance is not simulated")
+            return
+        k = words.index("DISTANCE")
+        distance = ln.tokens[k + 2].text if k + 2 < len(ln.tokens) else "0"
+        if "DELAY" in words:
+            delay = ln.tokens[words.index("DELAY") + 2].text
+            if float(delay) != 0.0:
+                self.warn("delay", f"TRIGGER ... DELAY={delay}: the delay is not simulated")
+        action = list(ln.tokens[words.index("DO") + 1:])
+        if "PRIO" in [t.text.upper() for t in action]:
+            action = action[:[t.text.upper() for t in action].index("PRIO")]
+        eq = next((k for k, t in enumerate(action) if t.text == "="), None)
+        target = self.expr(action[:eq]) if eq else None
+        if isinstance(target, n.Index) and isinstance(target.base, n.Name) and target.base.name.upper() == "$OUT":
+            number = int(self._num(self.eval(target.index[0])))
+            on = bool(self.eval(self.expr(action[eq + 1:])))
+            self.switch(number, on, statement_text(ln.tokens), "next" if distance == "0" else "after")
+        else:
+            self.warn("trigger-action", "TRIGGER ... DO: only $OUT switches are simulated")
+
+    def bas(self, ln: Line) -> None:
+        call = self.expr(ln.tokens)
+        args = [a.value for a in call.args] if isinstance(call, n.Call) else []
+        what = args[0].name.upper() if args and isinstance(args[0], n.Name) else ""
+        value = self.eval(args[1]) if len(args) > 1 else None
+        if what == "#TOOL":
+            self.assign(n.Name("$TOOL", ln.line), self.lookup(f"TOOL_DATA[{int(value)}]"))
+        elif what == "#BASE":
+            self.assign(n.Name("$BASE", ln.line), self.lookup(f"BASE_DATA[{int(value)}]"))
+        elif what in ("#VEL_CP", "#CP_PARAMS") and value is not None:
+            self.system["$VEL"].fields["CP"] = float(value)
+        elif what == "#INITMOV":
+            self.system["$VEL"].fields["CP"] = DEFAULT_VEL_CP_M_S
+
+    def _stop_previous(self) -> None:
+        if self.moves and not self.moves[-1].settings.stop_at_end:
+            last = self.moves[-1]
+            self.moves[-1] = replace(last, settings=replace(last.settings, stop_at_end=True))
+
+    def _target(self, e: n.Expr) -> v.Struct:
+        value = self.eval(e)
+        if not isinstance(value, v.Struct):
+            raise self.error("a motion's target must be a position ({X .., Y .., ...} or a POS/E6POS/FRAME)")
+        if self.position is not None:  # missing components: the current position's
+            merged = self.position.copy()
+            merged.fields.update(value.fields)
+            merged.type = value.type or merged.type
+            return merged
+        return value
+
+    def motion(self, ln: Line) -> None:
+        toks = list(ln.tokens)
+        word = ln.word
+        approx = ""
+        if toks[-1].kind == NAME and toks[-1].text.upper() in _APPROX:
+            approx = toks.pop().text.upper()
+        parts = split_commas(toks[1:])
+        if word == "CIRC":
+            parts = [p for p in parts if not (p and p[0].text.upper() == "CA")]
+            if len(split_commas(toks[1:])) > len(parts):
+                self.warn("ca", "CIRC ... CA: the circular angle is not simulated; the arc ends at its end point")
+        if word in ("PTP", "PTP_REL") and any(p and p[0].text.upper() == "C_PTP" for p in parts):
+            approx = "C_PTP"
+        base = v.pose_of(self.system["$BASE"])
+        if word == "CIRC":
+            if len(parts) != 2:
+                raise self.error("CIRC takes an auxiliary point and an end point")
+            via_s, end_s = self._target(self.expr(parts[0])), self._target(self.expr(parts[1]))
+            via, end = base @ v.pose_of(via_s), base @ v.pose_of(end_s)
+        else:
+            if len(parts) != 1:
+                raise self.error(f"{word} takes one target")
+            end_s = self.eval(self.expr(parts[0])) if word.endswith("_REL") else self._target(self.expr(parts[0]))
+            if word.endswith("_REL"):
+                if self.tcp is None:
+                    raise self.failure(f"{word} before any motion: the position it is relative to is unknown")
+                end = self.tcp @ v.pose_of(end_s) if self.position is None else \
+                    base @ (v.pose_of(self.position) @ v.pose_of(end_s))
+                end_s = v.frame_of(base.inverse() @ end, "E6POS", self.position)
+            else:
+                end = base @ v.pose_of(end_s)
+            via = None
+        if approx in ("C_VEL", "C_ORI", "C_PTP"):
+            self.warn("approx", f"{approx} is modelled as C_DIS with $APO.CDIS")
+        cdis = float(self.system["$APO"].fields.get("CDIS", 0.0))
+        blended = bool(approx) and cdis > 0
+        speed = float(self.system["$VEL"].fields.get("CP", DEFAULT_VEL_CP_M_S)) * 1000.0
+        if not speed > 0:
+            raise self.error(f"$VEL.CP = {speed / 1000:g} m/s: must be > 0")
+        settings = MotionSettings(speed, cdis if blended else 0.0, blended, not blended, self.tool)
+        if word.startswith("PTP"):
+            move = JointMove(self.tcp, end, settings, self.spraying, ln.line)
+        elif self.tcp is None:
+            raise self.failure(f"{word} is the first motion: the robot's position before it is unknown; start with PTP")
+        elif via is not None:
+            move = CircularMove(self.tcp, via, end, settings, self.spraying, ln.line)
+        else:
+            move = LinearMove(self.tcp, end, settings, self.spraying, ln.line)
+        self.moves.append(move)
+        self.sources.append(MoveSource(self.source, self.routine, ln.line, ln.line))
+        self.move_frames.append(base)
+        self.tcp, self.position = end, end_s
+        still = []
+        for left, on in self.pending:
+            if left == 0:
+                self.spraying = on
+            else:
+                still.append((left - 1, on))
+        self.pending = still
