@@ -260,3 +260,11 @@ def test_every_shipped_scenario_gates_the_polysegment_against_both_polylines() -
         if spec.curve is not None and spec.motion.speed_mm_s >= 300.0 and load_input_curve(loaded).closed:
             closed_at_process_speed += 1
     assert closed_at_process_speed >= 1
+
+
+def test_a_builtin_variant_may_have_its_own_speed(tmp_path: Path) -> None:
+    text = BASE + "motion: {speed_mm_s: 250}\nvariants: [polysegment, {variant: polyline-stop, speed_mm_s: 120}]\n"
+    spec = load_scenario(write(tmp_path, text)).spec
+    assert spec.variant_names == ["polysegment", "polyline-stop"]
+    assert (spec.speed_of("polysegment"), spec.speed_of("polyline-stop")) == (250.0, 120.0)
+    assert "speed_mm_s" in load_error(tmp_path, text.replace("speed_mm_s: 120", "speed_mm_s: 0"))

@@ -143,7 +143,7 @@ def run_part_variant(name: str, variant: str, language_name: str, job: PartJob, 
     ``name.trajectory.csv``."""
     spec, out, paths = job.loaded.spec, job.outdir, job.loaded.spec.planned
     writer = language(language_name)
-    options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
+    options = ProgramOptions(variant=variant, speed_mm_s=spec.speed_of(name), accuracy_mm=spec.motion.accuracy_mm,
                              gun_signal=spec.gun.signal, tool=gun_tool(job.cell),
                              name=writer.program_name(name if writer.capabilities.named_by_file else spec.name))
     placing = SurfaceOptions(standoff_mm=job.passes.standoff_mm, pose=job.passes.pose,

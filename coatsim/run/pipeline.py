@@ -110,7 +110,7 @@ def run_variant(name: str, variant: str, language_name: str, job: Job, step: Ste
     polys = [c.polysegment for c in job.contours]
     writer = language(language_name)
     program_name = writer.program_name(name if writer.capabilities.named_by_file else spec.name)
-    options = ProgramOptions(variant=variant, speed_mm_s=spec.motion.speed_mm_s, accuracy_mm=spec.motion.accuracy_mm,
+    options = ProgramOptions(variant=variant, speed_mm_s=spec.speed_of(name), accuracy_mm=spec.motion.accuracy_mm,
                              gun_signal=spec.gun.signal, tool=gun_tool(job.cell), name=program_name)
     program = build_part_program(polys, job.placement, options, language=writer,
                                  tolerance_mm=spec.segmentation.tolerance_mm, source=f"scenario:{spec.name}",

@@ -437,6 +437,11 @@ class Scenario(_Strict):
         """The program variants, in order."""
         return [v for v in self.variants if isinstance(v, ProgramVariantSpec)]
 
+    def speed_of(self, name: str) -> float:
+        """The programmed speed (mm/s) of the variant ``name``: its own, else ``motion.speed_mm_s``."""
+        own = [v.speed_mm_s for v in self.variants if isinstance(v, BuiltinVariantSpec) and v.name == name]
+        return own[0] if own and own[0] is not None else self.motion.speed_mm_s
+
     def builtin(self, entry: Any) -> tuple[str, str] | None:
         """(variant, language) of a built-in variant entry; None for a user's program."""
         if isinstance(entry, str):

@@ -43,11 +43,15 @@ class ProgramSpec(Strict):
 class BuiltinVariantSpec(Strict):
     """A built-in variant written in its own ``language`` (the scenario's ``program.language``
     when not given), named ``name`` (default ``<variant>-<language>``, e.g.
-    ``polysegment-abb-rapid``; the name names its files and its gates)."""
+    ``polysegment-abb-rapid``; the name names its files and its gates), programmed at its own
+    ``speed_mm_s`` when given."""
 
     variant: VariantName
     language: Optional[LanguageName] = None
     name: Optional[VariantLabel] = None  # filled in on loading: always a name after validation
+    speed_mm_s: Optional[Annotated[float, Field(gt=0)]] = Field(
+        None, description="this variant's programmed speed instead of motion.speed_mm_s (a variant the arm "
+                          "cannot run at the scenario's speed, run at one it can)")
 
     @model_validator(mode="before")
     @classmethod

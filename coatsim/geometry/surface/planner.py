@@ -31,7 +31,7 @@ from coatsim.geometry.surface.boxes import SmallTriangles, TriangleBoxes
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.features import SHARP_EDGE_DEG, feature_split, sharp_length_mm
-from coatsim.geometry.surface.fill import filled
+from coatsim.geometry.surface.fill import MIN_LENGTH_FRACTION, filled
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.normals import (
@@ -282,10 +282,11 @@ def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
 
 def _filling(pieces: list[Piece], traces: list[Trace], band: float, spacing_mm: float, notes: list[str]) -> list[Trace]:
     """Passes where the levels leave a patch uncovered (fill.py), sprayed after each piece's
-    levels."""
+    levels; what the edge band leaves of one is dropped when shorter than fill.py drops a pass."""
     added = [Trace(part, len(p.levels), k) for k, p in enumerate(pieces)
              for curve in filled(p, [t.curve for t in traces if t.piece == k], spacing_mm)
-             for part in clip(curve, p.border_mm, band, p.vertices, p.faces)]
+             for part in clip(curve, p.border_mm, band, p.vertices, p.faces)
+             if part.length_mm >= MIN_LENGTH_FRACTION * spacing_mm]
     if added:
         notes.append(f"added {len(added)} pass(es) where the levels leave patches more than half a spacing from every "
                      "pass (strips narrower than a spacing, ridges short of the next level)")

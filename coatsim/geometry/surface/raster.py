@@ -10,11 +10,13 @@ it (false position on h). Points whose nearest point on the last pass is one of 
 count (beyond a shorter pass's end the gap is a coverage question, not a spacing one).
 
 The first plane lies half a spacing (along the surface) from the region's lowest point and the
-last half a spacing from its highest; in between the planes follow each other at the spacing,
-and the last gap is what is left: no plane is added within a tenth of a step of the last one
-(the end then lies a little more than half a spacing from a pass), and a last gap under half a
-step is shared with the one before (the plane between moves to their middle). A region
-narrower than a spacing gets one pass through its middle.
+last half a spacing from its highest. In between, the planes first follow each other at the
+spacing to count the gaps: n gaps reach the last plane, unless what is left after n - 1 is
+within a tenth of a step (no sliver of a pass: the end then lies a little more than half a
+spacing from a pass). The n gaps then share the width evenly: the planes are marched again at
+the gap g <= spacing whose n-th plane lands on the last one (false position on g), so every
+gap is at most the spacing and all are equal to within twice ``EVEN_FRACTION`` of it. A region narrower
+than a spacing gets one pass through its middle.
 """
 
 from __future__ import annotations
@@ -38,6 +40,8 @@ BISECTION_FRACTION = 1e-9
 MIN_STEP_FRACTION = 1e-3
 #: no last plane is added within this fraction of a full step of the one before (a sliver of a pass)
 END_SLIVER_FRACTION = 0.1
+#: the even gap is found to this fraction of the spacing (the last gap equals the others to it)
+EVEN_FRACTION = 1e-4
 
 
 def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, step_direction: np.ndarray,
@@ -54,21 +58,36 @@ def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, 
     last = _end_level(mesh, high, -1, spacing_mm, surface)
     if last <= first:
         return np.array([0.5 * (low + high)])
+    levels, beyond = _march(mesh, first, last, spacing_mm, surface, None)
+    if last - levels[-1] <= END_SLIVER_FRACTION * (beyond - levels[-1]):
+        return np.array(levels)
+    gaps, tolerance = len(levels), EVEN_FRACTION * spacing_mm
+    if gaps == 1 or beyond - last <= tolerance:
+        return np.array([*levels, last])
+    marches: dict[float, tuple[list[float], float]] = {}
+
+    def landing(minus_gap: float) -> float:
+        # rising in -g: how far the n-th plane marched at the gap g lies short of the last plane,
+        # less the tolerance (so that the gap found never lets the last one exceed the others)
+        marches[minus_gap] = _march(mesh, first, last, -minus_gap, surface, gaps)
+        return last - marches[minus_gap][1] + tolerance
+
+    found = _root(landing, -spacing_mm, -spacing_mm * (gaps - 1) / gaps, tolerance / gaps)
+    levels = (marches[found] if found in marches else _march(mesh, first, last, -found, surface, gaps))[0]
+    return np.array([*levels, last])
+
+
+def _march(mesh: _Mesh, first: float, last: float, spacing: float, surface: SmallTriangles,
+           count: int | None) -> tuple[list[float], float]:
+    """Planes from ``first`` at ``spacing`` along the surface: those short of ``last`` (at most
+    ``count`` of them, if given) and the plane after them."""
     levels = [first]
     while True:
         check_budget("raster passes", len(levels), "plan_passes", "use a larger spacing_mm", ("spacing_mm",))
-        step = _next_level(mesh, levels[-1], spacing_mm, surface)
-        if step < last:
-            levels.append(step)
-            continue
-        # the last plane: unless the one before already lies within a sliver of it; closer than
-        # half a step, the one before moves to the middle of its neighbour and the last plane
-        full = step - levels[-1]
-        if last - levels[-1] > END_SLIVER_FRACTION * full:
-            if last - levels[-1] < 0.5 * full and len(levels) > 1:
-                levels[-1] = 0.5 * (levels[-2] + last)
-            levels.append(last)
-        return np.array(levels)
+        step = _next_level(mesh, levels[-1], spacing, surface)
+        if step >= last or len(levels) == count:
+            return levels, step
+        levels.append(step)
 
 
 @dataclass(eq=False)

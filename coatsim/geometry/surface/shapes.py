@@ -89,12 +89,14 @@ def _outward(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return faces if volume > 0 else faces[:, ::-1].copy()
 
 
-def wear_plate(length_mm: float = 240.0, width_mm: float = 160.0, pitch_mm: float = 120.0, height_mm: float = 6.0,
+def wear_plate(length_mm: float = 300.0, width_mm: float = 160.0, pitch_mm: float = 150.0, height_mm: float = 6.0,
                per_pitch: int = 32, across: int = 21) -> Mesh:
     """The top of a corrugated plate: rounded ridges across x, ``height_mm`` from valley to
     crest every ``pitch_mm`` (a raised cosine). The defaults keep the valleys' radius of curvature
-    (pitch² / (2 pi² height) = 122 mm) above the 100 mm stand-off: over a tighter valley the tool
-    points, offset along the normals, cross over one another."""
+    (pitch² / (2 pi² height) = 190 mm) above the 100 mm stand-off and the 50 mm the tool departs
+    beyond it between passes: over a tighter valley the tool points, offset along the normals,
+    cross over one another (at a 120 mm pitch, 122 mm, the arm could not follow the departure
+    over the first valley at 300 mm/s)."""
     nx = int(round(length_mm / pitch_mm * per_pitch)) + 1
     x = np.linspace(-length_mm / 2, length_mm / 2, nx)
     y = np.linspace(-width_mm / 2, width_mm / 2, across)

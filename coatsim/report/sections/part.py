@@ -11,6 +11,7 @@ import numpy as np
 
 from coatsim.report.html import Figure, Section, esc, figure_html, fmt, key_value_table
 from coatsim.report.plots import bar_ticks, colour, figure, grid, png_bytes, title
+from coatsim.report.sections.tables import variant_list
 from coatsim.spray.efficiency import LOW_SPRAY_ANGLE_DEG
 
 HISTOGRAM_BINS = 60
@@ -29,9 +30,8 @@ def speed_figure(data: Any) -> bytes:
     runs = data.runs
     fig = figure(11.0, 1.0 + 1.6 * len(runs))
     axes = grid(fig, len(runs), 1, margins=(0.8, 0.25, 0.35, 0.5), gaps=(0.4, 0.45), sharex=True)[:, 0]
-    target = data.spec.motion.speed_mm_s
     for k, (ax, run) in enumerate(zip(axes, runs)):
-        log, offset = run.execution.log, 0.0
+        log, offset, target = run.execution.log, 0.0, data.spec.speed_of(run.name)
         for rows in _curve_rows(run.execution):
             if not len(rows):
                 continue
@@ -204,7 +204,7 @@ def summary_section(data: Any) -> Section:
         ("gun", f"{spec.gun.footprint}, Q {spec.gun.flow_mm3_s:g} mm³/s, stand-off {data.standoff_mm:g} mm, target "
                 f"{spec.gun.target_thickness_um:g} µm, efficiency {spec.gun.efficiency}"),
         ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm"),
-        ("variants", ", ".join(r.name for r in data.runs)),
+        ("variants", variant_list(spec, data.runs)),
         ("mode", f"{document['mode']} (coating mesh {spacing:g} mm, {data.surface.n_vertices} vertices)"),
     ]
     notes = "".join(f'<p class="muted">{esc(n)}</p>' for n in data.notes)

@@ -76,7 +76,7 @@ def summary_rows(data: Any) -> list[tuple[str, Any]]:
                 f"target {spec.gun.target_thickness_um:g} µm"),
         ("motion", f"{spec.motion.speed_mm_s:g} mm/s, accuracy {spec.motion.accuracy_mm:g} mm, run-in "
                    f"{spec.motion.lead_in_mm:g} mm, run-out {spec.motion.lead_out_mm:g} mm"),
-        ("variants", ", ".join(r.name for r in data.runs)),
+        ("variants", variant_list(spec, data.runs)),
         ("mode", f"{document['mode']} (coating mesh {spacing:g} mm)"),
     ]
     seg = document["variants"].get("polysegment", {}).get("segmentation")
@@ -99,3 +99,8 @@ def overall(passed: bool) -> str:
 def gates_section(gates: Sequence[Mapping[str, Any]], passed: bool) -> Section:
     return Section("gates", "Gates", gates_table(gates) + overall(passed))
 
+
+def variant_list(spec: Any, runs: Any) -> str:
+    """The variants' names, each with its own programmed speed where it has one."""
+    return ", ".join(r.name + ("" if spec.speed_of(r.name) == spec.motion.speed_mm_s else
+                               f" (programmed at {spec.speed_of(r.name):g} mm/s)") for r in runs)

@@ -66,8 +66,8 @@ def test_cylinder_along_its_axis_gives_straight_lines_at_arc_length_spacing():
                            np.column_stack([np.cos(phi), np.sin(phi)]), atol=3e-3)
         angles.append(float(phi.mean()))
     arcs = radius * np.diff(np.sort(angles))
-    assert arcs[1:-1] == pytest.approx(SPACING, rel=0.01)  # the last gap closes the region
-    assert arcs[-1] <= SPACING * 1.01
+    assert arcs == pytest.approx(arcs.mean(), rel=0.01)  # the region's width shared evenly
+    assert arcs.max() <= SPACING * 1.01
     # the first and last pass half a spacing in from the 80-degree rim (to a facet)
     rim = math.radians(80.0)
     assert radius * (min(angles) + rim) == pytest.approx(SPACING / 2, abs=0.05 * SPACING)
@@ -91,8 +91,9 @@ def test_cone_circles_step_by_the_spacing_along_the_slant():
     z = np.array([p.points[:, 2].mean() for p in paths.passes])
     assert all(p.closed and np.ptp(p.points[:, 2]) < 1e-6 for p in paths.passes)
     slant = math.hypot(base, height) / height  # surface length per unit of height
-    assert np.diff(z)[:-2] == pytest.approx(SPACING / slant, rel=0.005)
-    assert np.all(np.diff(z)[-2:] <= SPACING / slant * 1.005)  # the last two share what is left
+    # the slant is no whole number of spacings: every gap is the same, at most the spacing
+    assert np.diff(z) == pytest.approx(np.diff(z).mean(), rel=1e-3)
+    assert np.diff(z).mean() * slant <= SPACING * 1.005
 
 
 def test_sphere_from_a_pole_gives_latitude_circles_at_the_arc_distance():
@@ -205,11 +206,13 @@ def test_a_torus_splits_its_sections_in_two():
 def test_the_edge_band_keeps_passes_off_the_border():
     vertices, faces = grid(200.0, 100.0, 40, 20)
     paths = planned(vertices, faces, step_direction=(0, 1, 0), edge_band_mm=7.0)
-    # cut where the border distance (fast marching, interpolated along the pass) is the band: to 0.1 mm
+    # cut where the border distance (fast marching, interpolated along the pass) is the band: to 0.2 mm
+    # (the 75 mm between the end passes are 8 even gaps of 9.375 mm: most passes run between the
+    # rows of vertices, where the linear interpolation of the marched distance errs most)
     for p in paths.passes:
         x, y = p.points[:, 0], p.points[:, 1]
-        assert np.minimum.reduce([x, y, 200 - x, 100 - y]).min() >= 7.0 - 0.1
-        assert (x.min(), x.max()) == pytest.approx((7.0, 193.0), abs=0.1)
+        assert np.minimum.reduce([x, y, 200 - x, 100 - y]).min() >= 7.0 - 0.2
+        assert (x.min(), x.max()) == pytest.approx((7.0, 193.0), abs=0.2)
     # the end passes half a spacing in from the band's inner edge, which runs along vertices (2.5 mm)
     ys = [p.points[0, 1] for p in paths.passes]
     assert 12.0 <= ys[0] <= 12.0 + 2.5 and 88.0 - 2.5 <= ys[-1] <= 88.0

@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from coatsim.geometry.surface import Facing, FromBoundary, FromPoints, Pass, part_from_arrays, plan
 from coatsim.geometry.surface.spacing import ripple_pct, spacing_for_ripple
 from coatsim.geometry.surface.surfacepaths import MeshInfo, PlanStats, SurfacePaths, dumps, from_document
-from surface_helpers import SPACING, options, tube
+from coatsim.geometry.surface.shapes import grid_faces
+from surface_helpers import SPACING, grid, options, tube
 
 
 def _patch(radius: float, n_around: int, n_along: int) -> tuple[np.ndarray, np.ndarray]:
@@ -54,6 +55,45 @@ def test_a_rigid_motion_moves_the_passes_with_the_part(a, b, c, shift):
         assert np.abs(p.points @ rotation.T + shift - q.points).max() < 1e-4
         assert np.abs(p.normals @ rotation.T - q.normals).max() < 1e-6
         assert np.abs(p.lead_in @ rotation.T + shift - q.lead_in).max(initial=0) < 1e-4
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.floats(11.0, 140.0), st.booleans())
+def test_raster_gaps_share_the_region_evenly_and_never_exceed_the_spacing(width, curved):
+    """A region that is no whole number of spacings wide: every gap along the surface is at most
+    the spacing and all are equal (to twice EVEN_FRACTION), the fewest passes that do so, the
+    outer passes half a spacing in (a sliver of a step is left at the far end instead of a pass)."""
+    from coatsim.geometry.surface.raster import END_SLIVER_FRACTION, EVEN_FRACTION
+
+    if curved:  # a strip of a cylinder of radius 60 mm: the gaps are arcs
+        radius = 60.0
+        angle = width / radius
+        phi = np.linspace(-angle / 2, angle / 2, int(width) + 2)
+        z = np.linspace(0.0, 40.0, 5)
+        pp, zz = np.meshgrid(phi, z, indexing="ij")
+        vertices = np.column_stack([radius * np.cos(pp.ravel()), radius * np.sin(pp.ravel()), zz.ravel()])
+        faces = grid_faces(len(phi), len(z))
+        kw = dict(region=Facing((1.0, 0.0, 0.0)), step_direction=(0.0, 1.0, 0.0))
+    else:
+        vertices, faces = grid(40.0, width, 4, int(width) + 1)
+        kw = dict(step_direction=(0.0, 1.0, 0.0))
+    paths = plan(part_from_arrays(vertices, faces), options(**kw))
+    ys = np.sort([float(np.mean(p.points[:, 1])) for p in paths.passes])
+    along = radius * np.arcsin(ys / radius) + width / 2 if curved else ys
+    gaps = np.diff(along)
+    span = width - SPACING  # from the first pass to the last plane, half a spacing in from either end
+    facets = 0.02 if curved else 1e-6  # the strip's chords against the arc
+    assert along[0] == pytest.approx(SPACING / 2, abs=facets)
+    slack = 2 * EVEN_FRACTION * SPACING
+    if len(gaps):  # as the planner measures them along the surface
+        s = paths.stats
+        assert s.spacing_max_mm <= SPACING * (1 + 1e-9) and s.spacing_max_mm - s.spacing_min_mm <= slack
+        assert np.ptp(gaps) <= slack + facets
+    whole, left = divmod(span, SPACING)
+    if abs(left - END_SLIVER_FRACTION * SPACING) > 1e-3:  # not on the sliver rule's edge
+        sliver = left <= END_SLIVER_FRACTION * SPACING
+        assert len(gaps) == int(whole) + (0 if sliver else 1)
+        assert width - along[-1] == pytest.approx(SPACING / 2 + (left if sliver else 0.0), abs=slack + facets)
 
 
 def _deviation(coarse: SurfacePaths, fine: SurfacePaths) -> float:
