@@ -13,6 +13,7 @@ its fields is a number in any of these forms.
 
 from __future__ import annotations
 
+import codecs
 import math
 import re
 import unicodedata
@@ -139,6 +140,17 @@ def number(field: str, decimal_comma: bool) -> float | None:
     if _NUMBER.fullmatch(text) or text.lower() in _WORDS:
         return float(text)
     return None
+
+
+def table_text(data: bytes) -> str:
+    """The text of a table file: UTF-8 (a byte-order mark skipped), or UTF-16 or UTF-32 when a
+    byte-order mark says so (spreadsheets save "Unicode text" that way); UnicodeDecodeError
+    for anything else."""
+    for bom, codec in ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
+                       (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16")):
+        if data.startswith(bom):
+            return data.decode(codec)
+    return data.decode("utf-8-sig")
 
 
 def read_rows(text: str, source: str, expected: str) -> Rows:

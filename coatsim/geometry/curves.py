@@ -14,7 +14,7 @@ import numpy as np
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import read_input
-from coatsim.core.number_text import read_rows
+from coatsim.core.number_text import read_rows, table_text
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
@@ -104,9 +104,10 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
 def _read_text_points(path: Path) -> np.ndarray:
     data = read_input(path, "curve file", "curve_file_bytes")
     try:
-        text = data.decode("utf-8-sig")
+        text = table_text(data)
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not a UTF-8 text file (expected x,y or x,y,z columns; save it as UTF-8 text "
+        raise InputError(f"{path}: not UTF-8 text (nor UTF-16 or UTF-32 with a byte-order mark; expected x,y or x,y,z "
+                         "columns; save it as UTF-8 text "
                          "or an (n, 2) or (n, 3) .npy array)") from None
     rows = read_rows(text, str(path), "x,y or x,y,z columns")
     widths = rows.widths

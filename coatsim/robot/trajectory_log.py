@@ -17,7 +17,7 @@ import numpy as np
 
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import read_input, write_text
-from coatsim.core.number_text import read_rows
+from coatsim.core.number_text import read_rows, table_text
 
 COLUMNS = (
     "t_s", "x_mm", "y_mm", "z_mm", "ax", "ay", "az", "speed_mm_s", "spray",
@@ -75,9 +75,10 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
     path = Path(path)
     data = read_input(path, "trajectory", "trajectory_bytes")
     try:
-        text = data.decode("utf-8-sig")
+        text = table_text(data)
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not UTF-8 text; expected a trajectory CSV with header "
+        raise InputError(f"{path}: not UTF-8 text (nor UTF-16 or UTF-32 with a byte-order mark); expected a "
+                         "trajectory CSV with header "
                          f"{','.join(COLUMNS[:4])},...") from None
     if not text.strip():
         raise InputError(f"{path}: empty file, expected a trajectory CSV with header {','.join(COLUMNS[:4])},...")

@@ -157,3 +157,20 @@ def test_plain_tables_are_read_at_numpy_speed_and_agree(text, monkeypatch):
         got = _outcome(text)
     assert calls and all(calls)
     assert got == _line_by_line(text)
+
+
+@pytest.mark.parametrize("codec", ["utf-16", "utf-32", "utf-8-sig"])
+def test_a_table_with_a_byte_order_mark_is_read_in_its_encoding(tmp_path, codec):
+    """Spreadsheets save "Unicode text" as UTF-16 with a byte-order mark: read as written."""
+    path = tmp_path / "u.txt"
+    text = "x\ty\r\n" + "".join(f"{x:g}\t{y:g}\r\n" for x, y in RECT)
+    path.write_bytes(text.encode(codec))  # each of these codecs writes its byte-order mark first
+    assert np.array_equal(read_points_file(path), np.array(RECT))
+
+
+def test_utf16_without_a_byte_order_mark_is_refused(tmp_path):
+    """Without the mark its NUL bytes are read as UTF-8 characters: fields that are not numbers."""
+    path = tmp_path / "u.csv"
+    path.write_bytes("0,0\n1,1\n".encode("utf-16-le"))
+    with pytest.raises(InputError, match="is not a number"):
+        read_points_file(path)
