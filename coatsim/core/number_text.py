@@ -326,9 +326,10 @@ def _canonical(body: str, data: np.ndarray) -> tuple[str, bool, bool] | None:
 def _fields_joined(body: str, data: np.ndarray, sep: str, blanks: str) -> str | None:
     """The fields of lines that ``sep`` separates, joined by blanks; None when a line lacks the
     separator (it would be split on blanks) or a field is empty or holds a blank."""
-    blank_lines = ~_per_line(data, (data != 32) & (data != 9) & (data != 10), np.logical_or)
-    if not np.all(_lines_with(data, sep) | blank_lines):
-        return None
+    if blanks:  # (none only for commas in a chunk without blanks: a line without one is one field either way)
+        blank_lines = ~_per_line(data, (data != 32) & (data != 9) & (data != 10), np.logical_or)
+        if not np.all(_lines_with(data, sep) | blank_lines):
+            return None
     if any(ch in body for ch in blanks):  # blanks around a separator (line edges are stripped)
         body = re.sub(f"[{blanks}]+(?={sep})|(?<={sep})[{blanks}]+", "", body)
         if any(ch in body for ch in blanks):
