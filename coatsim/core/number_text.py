@@ -35,6 +35,7 @@ _WORDS = {"nan", "+nan", "-nan", "inf", "+inf", "-inf", "infinity", "+infinity",
 
 _BREAKS = re.compile("\r\n?|[\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029]")  # str.splitlines' line ends
 _COMMENT = re.compile(r"#[^\n]*")
+_CONTENT = re.compile(r"(?m)^[^\S\n]*[^#\s]")  # the first character of the first line with content
 _EDGES = re.compile(r"(?m)^[ \t]+|[ \t]+$")
 _OTHER_DIGIT = re.compile(r"(?![0-9])\d")
 _FAST_BYTES = np.zeros(256, bool)
@@ -183,20 +184,19 @@ def read_rows(text: str, source: str, expected: str) -> Rows:
 def _header(reading: _Reading, text: str) -> tuple[int, int]:
     """Take the first line with content as the header when none of its fields is a number;
     the offset and line number where the rows start."""
-    pos, number_ = 0, 1
-    while pos < len(text):
-        end = text.find("\n", pos)
-        end = len(text) if end < 0 else end
-        raw = text[pos:end]
-        line = _normalised(raw.split("#", 1)[0], {}, number_).strip()
-        if line:
-            fields, comma = _fields(line)
-            if any(fields) and all(number(f, comma) is None for f in fields):
-                _normalised(raw.split("#", 1)[0], reading.notes, number_)
-                reading.header = fields
-                return end + 1, number_ + 1
-            return pos, number_
-        pos, number_ = end + 1, number_ + 1
+    found = _CONTENT.search(text)  # blank and comment lines skipped at the speed of re
+    if found is None:
+        return len(text) + 1, text.count("\n") + 2
+    pos = text.rfind("\n", 0, found.start()) + 1
+    number_ = 1 + text.count("\n", 0, pos)
+    end = text.find("\n", pos)
+    end = len(text) if end < 0 else end
+    raw = text[pos:end].split("#", 1)[0]
+    fields, comma = _fields(_normalised(raw, {}, number_).strip())
+    if any(fields) and all(number(f, comma) is None for f in fields):
+        _normalised(raw, reading.notes, number_)
+        reading.header = fields
+        return end + 1, number_ + 1
     return pos, number_
 
 
