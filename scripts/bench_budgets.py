@@ -42,6 +42,44 @@ def measure(*args: str) -> tuple[int, float, float, str, float]:
     return int(code), float(wall), int(rss) / 1024, (lines[0] if len(lines) > 1 else ""), float(cpu)
 
 
+def _random_curve(d: Path, n: int) -> str:
+    import numpy as np
+
+    path = d / f"random{n}.csv"
+    np.savetxt(path, np.random.default_rng(1).uniform(0, 100, (n, 2)), delimiter=",")
+    return str(path)
+
+
+def number_reader() -> None:
+    """CPU seconds of coatsim.core.number_text.read_rows per million rows of a trajectory (17
+    columns) and of a curve (x;y with decimal commas), and the exponent against the row count."""
+    import time
+
+    import numpy as np
+
+    from coatsim.core.number_text import read_rows
+
+    def trajectory(rows: int) -> str:
+        i = np.arange(rows)
+        return "t_s,x_mm\n" + "".join(f"{k * 0.01:.4f},{k * 2.0:.4f},0,100,0,0,-1,200,1,{k * 2.0:.4f},0,0,0,0,0,0,0\n"
+                                       for k in i.tolist())
+
+    def curve(rows: int) -> str:
+        xy = np.random.default_rng(0).normal(size=(rows, 2)) * 100
+        return "".join(f"{x:.4f};{y:.4f}\n".replace(".", ",") for x, y in xy.tolist())
+
+    print("\nreading numeric tables (CPU s per million rows, exponent from 250 000 to 1 000 000 rows):")
+    for label, make in (("trajectory, 17 columns", trajectory), ("curve, x;y decimal commas", curve)):
+        seconds = []
+        for rows in (250_000, 1_000_000):
+            text = make(rows)
+            started = time.process_time()
+            read_rows(text, "bench", "numbers")
+            seconds.append(time.process_time() - started)
+        exponent = math.log(seconds[1] / seconds[0]) / math.log(4.0)
+        print(f"  {label}: {seconds[1]:.2f} s per 1M rows ({len(text) / 1e6:.0f} MB), exponent {exponent:.2f}")
+
+
 def main() -> None:
     d = Path(tempfile.mkdtemp(prefix="bench_budgets."))
     subprocess.run([sys.executable, "-m", "coatsim.cli", "program", "builtin:ellipse:a=40,b=20", "--tol", "0.2",
@@ -102,6 +140,12 @@ def main() -> None:
                         ("YAML alias bomb", ("run", str(bomb)))):
         code, wall, rss, message, _ = measure(*args)
         print(f"  {label}: exit {code}, {wall:.2f} s, {rss:.0f} MB  {message[:110]}")
+    for label, args in (("3 000 random points", ("segment", _random_curve(d, 3000), "--tol", "0.1")),
+                        ("sine, wavelength 1e-6", ("segment", "builtin:sine:wavelength=1e-6", "--tol", "0.1")),
+                        ("paper spiral, 1e6 turns", ("segment", "builtin:paper-spiral:turns=1e6", "--tol", "0.1"))):
+        code, wall, rss, message, cpu = measure(*args)
+        print(f"  {label}: exit {code}, {cpu:.2f} s CPU, {rss:.0f} MB  {message[:110]}")
+    number_reader()
     print(f"\n(children's total CPU {resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime:.0f} s; files in {d})")
 
 

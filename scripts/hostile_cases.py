@@ -1022,5 +1022,7 @@ def sweep_cases() -> list[Case]:
 
 
 def all_cases() -> list[Case]:
+    from hostile_more import more_cases  # the second set, in categories of its own
+
     return (curve_cases() + builtin_cases() + option_cases() + output_cases() + svg_cases() + dxf_cases() + program_cases()
-            + json_cases() + scenario_cases() + coat_cases() + sweep_cases())
+            + json_cases() + scenario_cases() + coat_cases() + sweep_cases() + more_cases())

@@ -103,6 +103,7 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     import warnings
     from dataclasses import replace
 
+    from coatsim.core.budgets import check_budget
     from coatsim.core.errors import CoatsimWarning
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
@@ -119,6 +120,9 @@ def run_program(spec: str, tol: Optional[float], options: ProgramOptions, *, fra
     check_distinct([("the input", None if spec.startswith("builtin:") else spec)], [("-o", p) for p in outputs])
     speed = options.speed_mm_s if tool_accel_mm_s2 is not None else None
     inp = load_part_input(spec, tol, layers, join_tol, speed_mm_s=speed, tool_accel_mm_s2=tool_accel_mm_s2)
+    moves = sum(len(c.segments) + 4 for c in inp.contours)  # and an approach, lead-in, lead-out, departure
+    check_budget(f"{spec}: program lines, at least one move for each of its {moves - 4 * len(inp.contours):,} "
+                 "segments", moves, "program_lines", "segment the part with a coarser tolerance")
     if inp.builtin if center is None else center:
         placement = replace(placement, offset_xy=part_centering_offset(inp.contours))
     built = build_part_program(inp.contours, placement, options, language=language, tolerance_mm=inp.tolerance_mm,

@@ -70,6 +70,10 @@ MAX_SWEEP_POINTS = 10_000
 #: distance kernels); a curve with structure puts a few features near each of the 16 points of a
 #: batch, one that crosses itself everywhere (random or aliased points) nearly all of them.
 MAX_DEVIATION_PAIRS = 5_000_000
+#: Points where an input curve doubles back (turns by more than 90° between consecutive chords):
+#: a drawn or sampled shape has few, random or aliased points have most of theirs so (the fit
+#: of 3 000 random points takes minutes).
+MAX_CURVE_REVERSALS = 1_000
 #: Triangles ``plan`` works on (a part mesh as read, and its region refined to the pass spacing);
 #: ~2 kB each through normals, the heat method's factorisation and fast marching.
 MAX_PLAN_TRIANGLES = 1_000_000
@@ -106,6 +110,8 @@ BUDGETS: dict[str, Budget] = {b.name: b for b in (
     Budget("program_lines", MAX_PROGRAM_LINES, "lines of one robot program file"),
     Budget("sweep_points", MAX_SWEEP_POINTS, "points of a sweep"),
     Budget("deviation_pairs", MAX_DEVIATION_PAIRS, "point-feature pairs the exact deviation check compares at once"),
+    Budget("curve_reversals", MAX_CURVE_REVERSALS, "points where an input curve doubles back (its sampling is "
+           "coarser than its features)"),
     Budget("plan_triangles", MAX_PLAN_TRIANGLES, "triangles of a part mesh plan works on"),
     Budget("plan_mesh_bytes", MAX_PLAN_MESH_BYTES, "bytes of a part mesh file plan reads"),
     Budget("plan_passes", MAX_PLAN_PASSES, "passes of one plan"),
@@ -144,7 +150,10 @@ def limit(name: str) -> float:
 
 def _amount(needed: float) -> str:
     try:
-        return f"{float(needed):.3g}" if math.isfinite(needed) else "an unbounded number"
+        value = float(needed)
+        if math.isfinite(value) and value.is_integer() and abs(value) < 1e15:
+            return f"{int(value):,}"
+        return f"{value:.3g}" if math.isfinite(value) else "an unbounded number"
     except OverflowError:  # an int beyond float range
         return "an unbounded number"
 

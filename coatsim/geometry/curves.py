@@ -14,7 +14,7 @@ import numpy as np
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import read_input
-from coatsim.core.number_text import read_rows
+from coatsim.core.number_text import read_rows, table_text
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
@@ -104,24 +104,27 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
 def _read_text_points(path: Path) -> np.ndarray:
     data = read_input(path, "curve file", "curve_file_bytes")
     try:
-        text = data.decode("utf-8-sig")
+        text = table_text(data)
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not a UTF-8 text file (expected x,y or x,y,z columns; save it as UTF-8 text "
+        raise InputError(f"{path}: not UTF-8 text (nor UTF-16 or UTF-32 with a byte-order mark; expected x,y or x,y,z "
+                         "columns; save it as UTF-8 text "
                          "or an (n, 2) or (n, 3) .npy array)") from None
     rows = read_rows(text, str(path), "x,y or x,y,z columns")
-    for k, values in enumerate(rows.values):
-        number = rows.lines[k]
-        if len(values) < 2:
-            raise InputError(f"{path}:{number}: expected two columns x,y (or three x,y,z), found {len(values)}")
-        if len(values) > 3:
-            raise InputError(f"{path}:{number}: {len(values)} numeric columns; a curve has x,y or x,y,z (mm)")
-        if len(values) != len(rows.values[0]):
-            raise InputError(f"{path}:{number}: {len(values)} columns where the rows above have {len(rows.values[0])}")
-    if not rows.values:
+    widths = rows.widths
+    wrong = (widths < 2) | (widths > 3) | (widths != widths[:1])
+    if wrong.any():
+        k = int(np.argmax(wrong))
+        number, count = int(rows.lines[k]), int(widths[k])
+        if count < 2:
+            raise InputError(f"{path}:{number}: expected two columns x,y (or three x,y,z), found {count}")
+        if count > 3:
+            raise InputError(f"{path}:{number}: {count} numeric columns; a curve has x,y or x,y,z (mm)")
+        raise InputError(f"{path}:{number}: {count} columns where the rows above have {int(widths[0])}")
+    if not len(widths):
         raise InputError(f"{path}: no points (empty file)")
     for note in rows.notes:
         warnings.warn(note, CoatsimWarning, stacklevel=2)
-    return np.asarray(rows.values, dtype=float)
+    return rows.flat.reshape(-1, int(widths[0]))
 
 
 def _read_npy_points(path: Path) -> np.ndarray:

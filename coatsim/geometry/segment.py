@@ -23,6 +23,7 @@ from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
+from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
@@ -195,6 +196,7 @@ def segment_curve(
         check_resolvable(pts, tol)
     except InputError as exc:
         raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
+    check_sampling(pts, curve.name)
     theta = theta_of_polyline(pts)
     if method == "paper":
         poly, approx, eps = _paper(curve, tol, theta_tolerance)

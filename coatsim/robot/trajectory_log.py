@@ -17,7 +17,7 @@ import numpy as np
 
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import read_input, write_text
-from coatsim.core.number_text import read_rows
+from coatsim.core.number_text import read_rows, table_text
 
 COLUMNS = (
     "t_s", "x_mm", "y_mm", "z_mm", "ax", "ay", "az", "speed_mm_s", "spray",
@@ -75,9 +75,10 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
     path = Path(path)
     data = read_input(path, "trajectory", "trajectory_bytes")
     try:
-        text = data.decode("utf-8-sig")
+        text = table_text(data)
     except UnicodeDecodeError:
-        raise InputError(f"{path}: not UTF-8 text; expected a trajectory CSV with header "
+        raise InputError(f"{path}: not UTF-8 text (nor UTF-16 or UTF-32 with a byte-order mark); expected a "
+                         "trajectory CSV with header "
                          f"{','.join(COLUMNS[:4])},...") from None
     if not text.strip():
         raise InputError(f"{path}: empty file, expected a trajectory CSV with header {','.join(COLUMNS[:4])},...")
@@ -86,18 +87,19 @@ def read_trajectory_csv(path: str | Path) -> TrajectoryLog:
     missing = [c for c in COLUMNS if c not in header and c not in OPTIONAL]
     if missing:
         raise InputError(f"{path}:1: trajectory CSV header lacks column(s) {', '.join(missing)}")
-    for values, line in zip(rows.values, rows.lines):
-        if len(values) < len(header):
-            raise InputError(f"{path}:{line}: expected {len(header)} values, found {len(values)}")
+    short = rows.widths < len(header)
+    if short.any():
+        k = int(np.argmax(short))
+        raise InputError(f"{path}:{int(rows.lines[k])}: expected {len(header)} values, found {int(rows.widths[k])}")
     for note in rows.notes:
         warnings.warn(note, CoatsimWarning, stacklevel=2)
     columns = [c for c in COLUMNS if c in header]
     index = [header.index(c) for c in columns]
-    table = np.array([[values[k] for k in index] for values in rows.values], dtype=float).reshape(-1, len(columns))
+    table = rows.columns(index)
     if len(table) < 2:
         raise InputError(f"{path}: a trajectory needs at least 2 rows, found {len(table)}")
     if np.any(np.diff(table[:, 0]) <= 0):
-        bad = rows.lines[int(np.argmax(np.diff(table[:, 0]) <= 0)) + 1]
+        bad = int(rows.lines[int(np.argmax(np.diff(table[:, 0]) <= 0)) + 1])
         raise InputError(f"{path}:{bad}: t_s must increase strictly")
     return TrajectoryLog(
         t=table[:, 0], position=table[:, 1:4], axis=table[:, 4:7], speed=table[:, 7],

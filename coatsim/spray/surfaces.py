@@ -20,6 +20,7 @@ from scipy.spatial import cKDTree
 from coatsim.core.numeric import ROUND_OFF, TINY, steps_over
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import InputError
+from coatsim.core.fileio import check_input
 
 MIN_PART_MM = 1e-3  # smallest plate or cylinder dimension (a micrometre)
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
@@ -151,8 +152,7 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
 
     _check_spacing(spacing)
     path = Path(path)
-    if not path.is_file():
-        raise InputError(f"{path}: surface mesh file not found")
+    check_input(path, "surface mesh file")  # a FIFO, device or folder named as such, not "not found"
     try:
         mesh = trimesh.load(str(path), force="mesh")
     except Exception as exc:  # trimesh raises many types for malformed files

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from coatsim.core.errors import CoatsimWarning, InputError
+from coatsim.core import number_text
 from coatsim.core.number_text import read_rows
 from coatsim.geometry.curves import read_points_file
 
@@ -99,3 +100,77 @@ def test_any_table_reads_back_exactly_or_is_refused(points, sep, comma, unicode_
         warnings.simplefilter("ignore")
         rows = read_rows(text, "t.csv", "x,y")
     assert rows.values == [list(map(float, row)) for row in points]
+
+
+def _line_by_line(text: str):
+    """What the line-by-line reader alone makes of a text: its rows or its error."""
+    fast = number_text._fast_chunk
+    number_text._fast_chunk = lambda *args: False
+    try:
+        return _outcome(text)
+    finally:
+        number_text._fast_chunk = fast
+
+
+def _outcome(text: str):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            rows = read_rows(text, "t.csv", "x,y")
+        except InputError as exc:
+            return str(exc)
+    return rows.values, rows.lines.tolist(), rows.header, sorted(rows.notes)
+
+
+TOKENS = ["1", "-2.5", "1,5", "+3e2", "2.", ".5", "1e", ".", "", "x", "nan", "1.2.3", "\u22124", "1\u00a0000",
+          "\u0663", "#c", '"7"', "1_0", "0", "1e400", "5,", "-", "12,25", "E5", "3E-2"]
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.lists(st.tuples(st.lists(st.sampled_from(TOKENS), min_size=0, max_size=4),
+                          st.sampled_from([",", ";", "\t", " ", "  ", " , ", ", ", " ;", "\t "]),
+                          st.sampled_from(["", ",", ";", "\t", " "]), st.sampled_from(["\n", "\r\n", "\r", "\n\n"])),
+                min_size=1, max_size=6), st.booleans(), st.sampled_from([4, 16, 1 << 20]))
+def test_the_numpy_reader_agrees_with_the_line_by_line_reader(lines, same, chunk):
+    """Every table, however odd, reads the same (numbers, line numbers, header, notes, error) by
+    chunks at numpy speed as line by line."""
+    if same:  # most real files repeat one separator on every line
+        lines = [(fields, lines[0][1], lines[0][2], end) for fields, _, _, end in lines]
+    text = "".join(sep.join(fields) + trail + end for fields, sep, trail, end in lines)
+    default, number_text.CHUNK_CHARS = number_text.CHUNK_CHARS, chunk  # chunks of a few lines too
+    try:
+        assert _outcome(text) == _line_by_line(text)
+    finally:
+        number_text.CHUNK_CHARS = default
+
+
+@pytest.mark.parametrize("text", [
+    "x,y\n" + "1.5,2.5\n" * 50, "1,5;2,5\n" * 50, "1,5\t2,5\r\n" * 50, "1.5, 2.5\n" * 50, "1,5 2,5\n" * 30,
+    "\u22121,5;2\n" * 40, "# c\n1 2\n\n3 4 # d\n" * 40, "1;2;\n" * 40, "1,2\n" * 40, "1 2\n" * 40,
+])
+def test_plain_tables_are_read_at_numpy_speed_and_agree(text, monkeypatch):
+    """These tables are read by the numpy reader (no chunk falls back) to the same result."""
+    calls = []
+    fast = number_text._fast_chunk
+    with monkeypatch.context() as patch:
+        patch.setattr(number_text, "_fast_chunk", lambda *args: calls.append(fast(*args)) or calls[-1])
+        got = _outcome(text)
+    assert calls and all(calls)
+    assert got == _line_by_line(text)
+
+
+@pytest.mark.parametrize("codec", ["utf-16", "utf-32", "utf-8-sig"])
+def test_a_table_with_a_byte_order_mark_is_read_in_its_encoding(tmp_path, codec):
+    """Spreadsheets save "Unicode text" as UTF-16 with a byte-order mark: read as written."""
+    path = tmp_path / "u.txt"
+    text = "x\ty\r\n" + "".join(f"{x:g}\t{y:g}\r\n" for x, y in RECT)
+    path.write_bytes(text.encode(codec))  # each of these codecs writes its byte-order mark first
+    assert np.array_equal(read_points_file(path), np.array(RECT))
+
+
+def test_utf16_without_a_byte_order_mark_is_refused(tmp_path):
+    """Without the mark its NUL bytes are read as UTF-8 characters: fields that are not numbers."""
+    path = tmp_path / "u.csv"
+    path.write_bytes("0,0\n1,1\n".encode("utf-16-le"))
+    with pytest.raises(InputError, match="is not a number"):
+        read_points_file(path)

@@ -105,7 +105,7 @@ def test_cli_on_a_cylinder_and_a_mesh_file(tmp_path, monkeypatch, capsys):
     (["--surface", "plate:100x100", "--rate", "0"], "rate must be positive"),
     (["--surface", "plate:100x100", "--rate", "-5"], "rate must be positive"),
     (["--surface", "plate:100x100", "--standoff", "0"], "stand-off must be positive"),
-    (["--surface", "missing_part.stl"], "missing_part.stl: surface mesh file not found"),
+    (["--surface", "missing_part.stl"], "missing_part.stl: no such file"),
     (["--surface", "EMPTY"], "no triangles"),
     (["--surface", "plate:100x100", "--footprint", "gaussian:sigma=-1"], "sigma must be positive"),
     (["--surface", "plate:100x100", "--roi", "all"], "ROI must be one of"),

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from coatsim.core import defaults
-from coatsim.core.budgets import check_budget
+from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import read_input
 
@@ -136,6 +136,10 @@ def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units
         raise InputError(f"{name}: every vertex is at one point (the mesh has no extent)")
     notes: list[str] = []
     unit = _unit(extent, units, file_units, notes)
+    far = float(np.abs(vertices[used]).max()) * UNITS_MM[unit]
+    if not far <= MAX_ABS_COORDINATE_MM:
+        raise InputError(f"{name}: a vertex {far:.3g} mm from the origin, beyond {MAX_ABS_COORDINATE_MM:g} mm; "
+                         "re-export the mesh")
     vertices, faces = _repaired(vertices * UNITS_MM[unit], faces, name, notes)
     return Part(name, digest, vertices, faces, unit, tuple(notes))
 
