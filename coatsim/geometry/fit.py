@@ -19,7 +19,7 @@ Per run of the curve between true corners (or the whole closed loop):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -28,7 +28,7 @@ from coatsim.core.progress import check_time
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
-from coatsim.geometry.limits import FitLimits, arc_excess, fit_limits
+from coatsim.geometry.limits import MIN_LENGTH_SIGMAS, FitLimits, arc_excess, fit_limits
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
@@ -316,6 +316,13 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
             found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
     if found is not None:
         return RunFit(*found)
+    if fillet and limits.min_length_mm > MIN_LENGTH_SIGMAS * tolerance:
+        # The default shortest segment of a long run (its share of the run) can be longer
+        # than a tight turn lets an arc be: segments down to the σ-based default, caps kept.
+        shorter = replace(limits, min_length_mm=MIN_LENGTH_SIGMAS * tolerance)
+        found = _constrained(pts, tolerance, closed_loop, shorter, [MAX_ATTEMPTS], *pins)
+        if found is not None:
+            return RunFit(*found, limits_kept=False)
     if is_sparse(pts, closed_loop, tolerance):
         return taught_lines(pts, closed_loop, tolerance)
     for factor in RELAX:
