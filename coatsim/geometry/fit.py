@@ -33,7 +33,7 @@ from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.geometry.recover import recover_exact
-from coatsim.geometry.refine import EARLY, ChainParams, close_exactly, refine_chain, split_segment, worst_segment
+from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
 from coatsim.geometry.sparse import guide as sparse_guide, is_sparse
 
 MAX_ATTEMPTS = 20
@@ -47,7 +47,6 @@ SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one 
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
 HOPELESS = 1.02  # a merged chain whose sampled deviation is above this share of σ is not checked exactly
-MERGE_EARLY = 7  # a merged chain still far above σ after this many refinement steps is given up
 BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
 
 
@@ -142,14 +141,13 @@ class _Target:
     end_heading: float | None
 
     def settle(self, params: ChainParams, target: float,
-               hopeless: float = math.inf, early: int = EARLY) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
+               hopeless: float = math.inf) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
         """Refine, close and build a chain: (parameters, sampled deviation, segments, whether
         it keeps the caps and pins, exact deviation (inf when it does not, or when the
-        sampled one is above ``hopeless``: the exact check is the costly part). ``early``:
-        the refinement's steps before it gives up a chain far above ``target``."""
+        sampled one is above ``hopeless``: the exact check is the costly part)."""
         params, sampled = refine_chain(self.start, params, self.measured, self.end, self.turn, self.limits, target,
                                        fixed_heading=self.start_heading is not None, closed_loop=self.closed_loop,
-                                       slide=self.slide, slide_mm=self.tolerance, early=early)
+                                       slide=self.slide, slide_mm=self.tolerance)
         origin = self.origin(params)
         end = origin if self.slide is not None else self.end
         params = close_exactly(origin, params, end, self.turn)
@@ -242,7 +240,7 @@ def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
             kappa = (params.kappa[j] * params.length[j] + params.kappa[j + 1] * params.length[j + 1]) / length
             merged = ChainParams(params.heading, np.concatenate((params.kappa[:j], [kappa], params.kappa[j + 2:])),
                                  np.concatenate((params.length[:j], [length], params.length[j + 2:])), params.shift)
-            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance, MERGE_EARLY)
+            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance)
             if honest and fewer_dev <= tgt.tolerance:
                 params, segs, dev = fewer, fewer_segs, fewer_dev
                 break

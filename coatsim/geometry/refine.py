@@ -21,7 +21,7 @@ from coatsim.geometry.lp import solve_lp
 MAX_SAMPLES = 400
 EXCHANGE = 60  # worst points added to the samples per exchange round
 EXCHANGE_ROUNDS = 6
-EARLY = 12  # LP steps after which a chain still far above its target is given up
+EARLY = 12
 
 
 @dataclass(frozen=True, eq=False)
@@ -240,7 +240,6 @@ def refine_chain(
     closed_loop: bool = False,
     slide: np.ndarray | None = None,
     slide_mm: float = 0.0,
-    early: int = EARLY,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -254,7 +253,7 @@ def refine_chain(
     ``slide`` (a unit vector, loops only): the start (and with it the end) may move along it
     by up to ``slide_mm``, from ``start`` plus the ``shift`` of ``params``.
     Stops early once the sampled deviation is below ``target``
-    with the end gap closed, or when it is still far above it after ``early`` steps.
+    with the end gap closed, or when it is still far above it after a few steps.
     Returns (parameters, sampled deviation).
     """
     prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading, closed_loop, slide, slide_mm)
@@ -270,7 +269,7 @@ def refine_chain(
     for _ in range(EXCHANGE_ROUNDS):
         while iteration < max_iter:
             iteration += 1
-            if f <= target or (iteration >= early and f > 1.5 * target):
+            if f <= target or (iteration >= EARLY and f > 1.5 * target):
                 break
             r, jr = jacobian(prob.residuals, z)
             c, jc = jacobian(prob.closure, z)
