@@ -169,7 +169,8 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents.
     A sparse run is band-fitted along its guide (coatsim.geometry.sparse), a sparse loop
     starts in the channel of its first vertex, and a sparse run's chain gives up every
-    junction it can (_fewer)."""
+    junction it can (_fewer); a sparse run whose chain needs more segments than it has
+    moves gets none (its own lines follow it with fewer)."""
     total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     turn = total_turn(pts) if closed_loop else None
     if start_heading is not None and end_heading is not None:
@@ -209,7 +210,10 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
             tried[key] = tgt.settle(params, target)
         params, sampled, segs, honest, dev = tried[key]
         if dev <= tolerance and honest:
-            return (segs, dev) if path is None else _fewer(tgt, params, segs, dev)
+            if path is None:
+                return segs, dev
+            fewer = _fewer(tgt, params, segs, dev)
+            return fewer if len(fewer[0]) < len(pts) else None  # more arcs than taught moves cut none
         if honest and sampled <= target:
             # The samples met the target but the exact check did not (chords of the input
             # cut inside the chain): aim lower with the same segments.
@@ -349,8 +353,8 @@ def taught_lines(pts: np.ndarray, closed_loop: bool, tolerance: float) -> RunFit
     lines = tuple(Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))) for a, b in zip(v[:-1], v[1:]))
     corners = tuple(range(len(lines) - (0 if closed_loop else 1)))
     note = (f"the {len(pts)} points from ({pts[0][0]:.6g}, {pts[0][1]:.6g}) to ({pts[-1][0]:.6g}, {pts[-1][1]:.6g}) are "
-            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning stays within "
-            f"tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
+            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning, with fewer segments "
+            f"than they have moves, stays within tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
     return RunFit(lines, hausdorff(pts, Polysegment(lines)).hausdorff, True, corners, (note,))
 
 
