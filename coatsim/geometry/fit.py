@@ -19,7 +19,7 @@ Per run of the curve between true corners (or the whole closed loop):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -28,7 +28,7 @@ from coatsim.core.progress import check_time
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
-from coatsim.geometry.limits import FitLimits, arc_excess, fit_limits
+from coatsim.geometry.limits import MIN_LENGTH_SIGMAS, FitLimits, arc_excess, fit_limits
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
@@ -46,6 +46,7 @@ QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its fir
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
+HOPELESS = 1.02  # a merged chain whose sampled deviation is above this share of σ is not checked exactly
 BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
 
 
@@ -139,9 +140,11 @@ class _Target:
     start_heading: float | None
     end_heading: float | None
 
-    def settle(self, params: ChainParams, target: float) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
+    def settle(self, params: ChainParams, target: float,
+               hopeless: float = math.inf) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
         """Refine, close and build a chain: (parameters, sampled deviation, segments, whether
-        it keeps the caps and pins, exact deviation (inf when it does not))."""
+        it keeps the caps and pins, exact deviation (inf when it does not, or when the
+        sampled one is above ``hopeless``: the exact check is the costly part)."""
         params, sampled = refine_chain(self.start, params, self.measured, self.end, self.turn, self.limits, target,
                                        fixed_heading=self.start_heading is not None, closed_loop=self.closed_loop,
                                        slide=self.slide, slide_mm=self.tolerance)
@@ -150,7 +153,7 @@ class _Target:
         params = close_exactly(origin, params, end, self.turn)
         segs = build_chain(origin, params, end)
         honest = _honest(params, self.limits, self.total) and _pins_kept(segs, self.start_heading, self.end_heading)
-        dev = hausdorff(self.pts, Polysegment(segs)).hausdorff if honest else math.inf
+        dev = hausdorff(self.pts, Polysegment(segs)).hausdorff if honest and sampled <= hopeless else math.inf
         return params, sampled, segs, honest, dev
 
     def origin(self, params: ChainParams) -> np.ndarray:
@@ -166,7 +169,8 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents.
     A sparse run is band-fitted along its guide (coatsim.geometry.sparse), a sparse loop
     starts in the channel of its first vertex, and a sparse run's chain gives up every
-    junction it can (_fewer)."""
+    junction it can (_fewer); a sparse run whose chain needs more segments than it has
+    moves gets none (its own lines follow it with fewer)."""
     total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     turn = total_turn(pts) if closed_loop else None
     if start_heading is not None and end_heading is not None:
@@ -206,7 +210,10 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
             tried[key] = tgt.settle(params, target)
         params, sampled, segs, honest, dev = tried[key]
         if dev <= tolerance and honest:
-            return (segs, dev) if path is None else _fewer(tgt, params, segs, dev)
+            if path is None:
+                return segs, dev
+            fewer = _fewer(tgt, params, segs, dev)
+            return fewer if len(fewer[0]) < len(pts) else None  # more arcs than taught moves cut none
         if honest and sampled <= target:
             # The samples met the target but the exact check did not (chords of the input
             # cut inside the chain): aim lower with the same segments.
@@ -237,7 +244,7 @@ def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
             kappa = (params.kappa[j] * params.length[j] + params.kappa[j + 1] * params.length[j + 1]) / length
             merged = ChainParams(params.heading, np.concatenate((params.kappa[:j], [kappa], params.kappa[j + 2:])),
                                  np.concatenate((params.length[:j], [length], params.length[j + 2:])), params.shift)
-            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance)
+            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance)
             if honest and fewer_dev <= tgt.tolerance:
                 params, segs, dev = fewer, fewer_segs, fewer_dev
                 break
@@ -311,6 +318,13 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
             found = _constrained(pts, share * tolerance, closed_loop, narrow, [RELAXED_ATTEMPTS], *pins)
     if found is not None:
         return RunFit(*found)
+    if fillet and limits.min_length_mm > MIN_LENGTH_SIGMAS * tolerance:
+        # The default shortest segment of a long run (its share of the run) can be longer
+        # than a tight turn lets an arc be: segments down to the σ-based default, caps kept.
+        shorter = replace(limits, min_length_mm=MIN_LENGTH_SIGMAS * tolerance)
+        found = _constrained(pts, tolerance, closed_loop, shorter, [MAX_ATTEMPTS], *pins)
+        if found is not None:
+            return RunFit(*found, limits_kept=False)
     if is_sparse(pts, closed_loop, tolerance):
         return taught_lines(pts, closed_loop, tolerance)
     for factor in RELAX:
@@ -339,8 +353,8 @@ def taught_lines(pts: np.ndarray, closed_loop: bool, tolerance: float) -> RunFit
     lines = tuple(Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))) for a, b in zip(v[:-1], v[1:]))
     corners = tuple(range(len(lines) - (0 if closed_loop else 1)))
     note = (f"the {len(pts)} points from ({pts[0][0]:.6g}, {pts[0][1]:.6g}) to ({pts[-1][0]:.6g}, {pts[-1][1]:.6g}) are "
-            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning stays within "
-            f"tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
+            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning, with fewer segments "
+            f"than they have moves, stays within tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
     return RunFit(lines, hausdorff(pts, Polysegment(lines)).hausdorff, True, corners, (note,))
 
 

@@ -44,7 +44,8 @@ class Guide:
     """A dense smooth curve (m, 2) along the channels of a sparse run (closed loop: last =
     first), the share of σ the band keeps at each of its points (m,), the unit normal
     across the channel at its start (2,), along which a loop's start may slide, and the
-    polyline itself with points along its edges (k, 2), where the refinement measures it."""
+    polyline itself with points along its edges (k, 2), where the refinement measures it
+    (a loop's from where the guide starts on its first edge)."""
 
     points: np.ndarray
     width: np.ndarray
@@ -196,7 +197,11 @@ def guide(points: np.ndarray, closed: bool, tolerance: float, limits: FitLimits)
     else:
         moved[-1] = pts[-1]
     width = np.clip(1.0 - _distance(moved, pts) / tolerance, MIN_WIDTH, 1.0)
-    return Guide(moved, width, normal[0], along_edges(pts, tolerance))
+    # A loop's guide starts on its first edge, where the arc of vertex 0 leaves it: so do
+    # the measured edges, or the refinement would pair the chain's arc length with the
+    # polyline's shifted by that much (by up to half an edge).
+    edges = np.vstack((dense[:1], pts[1:], dense[:1])) if closed else pts
+    return Guide(moved, width, normal[0], along_edges(edges, tolerance))
 
 
 def _room(pts: np.ndarray, closed: bool) -> np.ndarray:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import Phase, assume, given, settings
+from hypothesis import Phase, assume, example, given, settings
 from hypothesis import strategies as st
 
 from coatsim.geometry import Arc, make_curve, segment_curve
@@ -113,6 +113,28 @@ def test_a_taught_polygon_needs_no_more_segments_than_moves(name, n, share, jitt
             assert s.radius >= 0.5 * own, f"segment {k}: r {s.radius:.4g} mm, the polygon's own {own:.4g} mm"
 
 
+THIRD = ("ellipse", "superellipse", "limacon", "archimedes")  # families measured at ≤ ⅓ from 24 vertices
+
+
+@FEW
+@given(name=st.sampled_from(THIRD), n=st.integers(24, 80), share=st.floats(0.7, 1.5),
+       jitter=st.sampled_from([0.0, 0.2]), seed=st.integers(0, 2**16))
+def test_a_taught_polygon_of_a_smooth_curve_comes_back_with_a_third_of_its_moves(name, n, share, jitter, seed):
+    """24–80 vertices evenly along a smooth curve, σ a share of the chordal deviation, clean
+    or jittered by 0.2 σ: the chain passes between vertices and edges with at most a third
+    as many segments as the polygon has moves (sine and harmonics families: see bench_sparse)."""
+    pts, closed, sag = _along(name, n)
+    assume(0.05 <= sag <= 5.0)
+    tol = share * sag
+    body = slice(0, len(pts) - 1) if closed else slice(1, len(pts) - 1)
+    pts[body] += np.random.default_rng(seed).normal(0.0, jitter * tol, pts[body].shape)
+    if closed:
+        pts[-1] = pts[0]
+    seg = segment_curve(make_curve(pts, name, "yes" if closed else "no"), tol)
+    assert_contract(seg, tol)
+    assert 3 * seg.polysegment.n_segments <= len(pts) - 1, f"{seg.polysegment.n_segments} segments for {len(pts) - 1} moves"
+
+
 def _lissajous(a: float, b: float, phase: float, stop: float, count: int = 4000) -> tuple[np.ndarray, float]:
     """An open 3:2 Lissajous figure, ``count`` points evenly along its length, and its
     tightest radius from the formula."""
@@ -127,7 +149,8 @@ def _lissajous(a: float, b: float, phase: float, stop: float, count: int = 4000)
 
 
 @FEW
-@given(a=st.floats(120.0, 200.0), b=st.floats(100.0, 150.0), phase=st.sampled_from([0.1, 0.2, 1.47, 1.65]),
+@example(a=200.0, b=150.0, phase=0.3, stop=0.9, tol=0.1)  # a tight turn a segment of 1/500 of the run cannot follow
+@given(a=st.floats(120.0, 200.0), b=st.floats(100.0, 150.0), phase=st.sampled_from([0.1, 0.2, 0.3, 1.47, 1.65]),
        stop=st.floats(0.75, 0.95), tol=st.sampled_from([0.05, 0.1]))
 def test_an_open_lissajous_figure_gets_no_arc_tighter_than_itself(a, b, phase, stop, tol):
     """Tight turns where both coordinates turn at once, open ends near one: the envelope is
