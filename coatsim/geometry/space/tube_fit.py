@@ -51,7 +51,8 @@ MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain
 MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
 MIN_POINTS = 12  # shorter runs are left to the biarc fitter
 CAP_SLACK = 0.02  # curvature caps and the minimum length hold to this share, as in the plane
-DENSE_SIGMAS = 5.0  # the fit measures the input polyline at least this often (in σ, or its median edge if longer)
+DENSE_SIGMAS, DENSE_MEDIANS = 5.0, 2.0  # the fit measures the input along its edges at least this often (in σ,
+                                        # or in median edges if longer): a chain near sparse points can bulge off a long edge
 
 
 def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: float,
@@ -62,13 +63,10 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
     tangents; ``seam_tangent``: the run is a closed loop (its last point its first) with
     this tangent at the seam, where the chain meets its own start tangent (free)."""
     seam = seam_tangent is not None
-    dense = densified(points, max(DENSE_SIGMAS * tol, float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))))
-    if len(dense) < MIN_POINTS:
+    if len(points) < MIN_POINTS:
         return None
     ref = reference(points, arc_length(points), window, seam_tangent if seam else start_tangent,
                     seam_tangent if seam else end_tangent)
-    points = dense
-    s = arc_length(points)
     if seam:
         _, _, u0, v0 = ref.frame(np.array(0.0))
         _, _, u1, v1 = ref.frame(np.array(ref.length))
@@ -76,6 +74,15 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
         ends = Ends(False, False, turn)
     else:
         ends = Ends(start_tangent is not None, end_tangent is not None)
+    median = float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))
+    return _certified(ref, densified(points, max(DENSE_SIGMAS * tol, DENSE_MEDIANS * median)), tol, limits, ends)
+
+
+def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits, ends: Ends) -> RunChain | None:
+    """The fewest pieces the tube fit finds within the target at the input points, built and
+    certified by the exact check; aimed lower (the same chain first) while that misses."""
+    seam = ends.seam is not None
+    s = arc_length(points)
     problem = TubeProblem(ref, points, s, tol, limits, ends)
     target = TARGET * tol
     density = _GreedyDensity.of(points, s, tol)
@@ -185,7 +192,7 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
     missed: TubeChain | None = None
     misses: list[float] = []
     for n in counts:
-        if len(misses) >= PLATEAU_COUNTS and misses[-1] >= (1 - PLATEAU_GAIN) * misses[-PLATEAU_COUNTS]:
+        if len(misses) > PLATEAU_COUNTS and misses[-1] >= (1 - PLATEAU_GAIN) * misses[-1 - PLATEAU_COUNTS]:
             return None  # more pieces stopped bringing the chain closer: a limit holds it out, not the count
         starts = [_initial(problem.ref, density.spread(n)),
                   _initial(problem.ref, np.linspace(density.knots[0], density.knots[-1], n + 1))]
