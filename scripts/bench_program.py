@@ -7,9 +7,12 @@ LMOVEs to a pose array, and one that computes its poses in loops, CASEs and CALL
 scaling exponent of writing, parsing and interpreting (scripts/scaling.py, N and 10 N moves).
 Never asserts. The curves are the benchmark curves (coatsim.geometry.benchmark), or the CSV
 files of a folder given as the argument (exit non-zero when it has none); the polysegment comes
-from coatsim.geometry.segment_curve at TOL mm. Times are CPU seconds (``time.process_time``).
+from coatsim.geometry.segment_curve at TOL mm. Given a surface paths file
+(coatsim.surfacepaths/1, ``coatsim plan -o``) instead, it times the program of its passes
+(coatsim.path.surface_program) on the first 1/4, 1/2 and all of them: CPU seconds in all and
+per pass, and the share spent fitting and orienting. Times are CPU seconds (``time.process_time``).
 
-    python scripts/bench_program.py [DIR]
+    python scripts/bench_program.py [DIR | PATHS.json]
 """
 
 from __future__ import annotations
@@ -83,7 +86,46 @@ def bench_language() -> None:
               f"{steps / t_run:9.0f} {len(run.toolpath.moves):6d}")
 
 
+def bench_surface(spec: str) -> None:
+    """CPU of the polysegment program of the first 1/4, 1/2 and all passes of a surfacepaths file."""
+    from dataclasses import replace
+
+    import coatsim.path.surface_program as surface_program
+    from coatsim.core import defaults
+    from coatsim.path.surfacepaths import read_surfacepaths
+
+    paths = read_surfacepaths(spec)
+    spent = {"fit": 0.0, "orient": 0.0}
+
+    def timed(stage, fn):
+        def run(*args, **kwargs):
+            t0 = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                spent[stage] += time.process_time() - t0
+        return run
+
+    surface_program._fitted = timed("fit", surface_program._fitted)
+    surface_program.oriented_pieces = timed("orient", surface_program.oriented_pieces)
+    print(f"{spec}: {len(paths.passes)} passes, tolerance {defaults.TOLERANCE_MM} mm")
+    print(f"{'passes':>6} {'points':>7} {'moves':>6} {'CPU s':>8} {'s/pass':>7} {'fit %':>6} {'orient %':>8}")
+    for share in (4, 2, 1):
+        part = replace(paths, passes=paths.passes[: max(1, len(paths.passes) // share)])
+        spent.update(fit=0.0, orient=0.0)
+        t0 = time.process_time()
+        built = surface_program.build_surface_program(part, ProgramOptions(), surface_program.SurfaceOptions(),
+                                                      KAWASAKI_AS)
+        total = time.process_time() - t0
+        n = len(part.passes)
+        print(f"{n:6d} {sum(len(p.points) for p in part.passes):7d} {sum(a + b for a, b in built.counts):6d} "
+              f"{total:8.2f} {total / n:7.3f} {100 * spent['fit'] / total:6.1f} {100 * spent['orient'] / total:8.1f}")
+
+
 def main() -> None:
+    if len(sys.argv) > 1 and sys.argv[1].endswith(".json"):
+        bench_surface(sys.argv[1])
+        return
     if len(sys.argv) > 1:
         files = sorted(Path(sys.argv[1]).glob("*.csv"))
         if not files:

@@ -32,7 +32,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from coatsim.core.errors import InputError
-from coatsim.geometry.space.pose import log_rotation, slerp
+from coatsim.geometry.space.pose import exp_rotation
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
 from coatsim.geometry.space.rotations import rot_z
 
@@ -92,14 +92,19 @@ def _frame(z: np.ndarray, x_hint: np.ndarray) -> np.ndarray:
         x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
         n = float(np.linalg.norm(x))
     x = x / n
-    return np.column_stack((x, np.cross(z, x), z))
+    return np.column_stack((x, _cross(z, x), z))
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a × b of two 3-vectors (np.cross's general machinery costs more than the product here)."""
+    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
 
 
 def _carry(rotation: np.ndarray, z_to: np.ndarray) -> np.ndarray:
     """``rotation`` turned by the smallest rotation taking its z onto ``z_to`` (made orthonormal
     again, so that long chains of such turns do not drift)."""
     z = rotation[:, 2]
-    axis = np.cross(z, z_to)
+    axis = _cross(z, z_to)
     s, c = float(np.linalg.norm(axis)), float(z @ z_to)
     if s < 1e-15:
         return _frame(z_to, rotation[:, 0] if c > 0 else -rotation[:, 0])
@@ -139,38 +144,46 @@ def orient(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: n
     return out
 
 
-def _axes_along(o: Oriented, u: np.ndarray) -> np.ndarray:
-    """The slerped tool axis (n, 3) at fractions ``u`` of a piece (through its via on an arc)."""
-    if o.via is None:
-        return slerp(o.start, o.end, u)[:, :, 2]
-    first = u <= 0.5
-    out = np.empty((len(u), 3))
-    out[first] = slerp(o.start, o.via, 2 * u[first])[:, :, 2]
-    out[~first] = slerp(o.via, o.end, 2 * u[~first] - 1)[:, :, 2]
-    return out
+def _stops(out: list[Oriented]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Every stretch a controller slerps over, piece by piece (a line: start -> end; an arc:
+    start -> via, via -> end): the rotations at its ends (m, 3, 3) each, the piece it belongs
+    to (m,) and its length (m,) mm."""
+    a, b, piece, length = [], [], [], []
+    for k, o in enumerate(out):
+        half = o.geometry.length if o.via is None else o.geometry.length / 2
+        for r0, r1 in ((o.start, o.end),) if o.via is None else ((o.start, o.via), (o.via, o.end)):
+            a.append(r0), b.append(r1), piece.append(k), length.append(half)
+    return np.array(a), np.array(b), np.array(piece), np.array(length)
 
 
-def _axis_error(o: Oriented, wanted: Wanted) -> float:
-    """Largest angle (rad) between the slerped tool axis and the wanted one along a piece."""
+def _checked(out: list[Oriented], wanted: Wanted, angle_tol_rad: float, bound: float) -> set[int]:
+    """Pieces whose slerped axis strays more than ``angle_tol_rad`` from the wanted one, or at
+    whose via or either end the tool's turning rate (world frame, rad/mm) changes by more than
+    ``bound``: all pieces at once (one rotation log per stretch, one wanted-axis query)."""
+    from scipy.spatial.transform import Rotation
+
+    a, b, piece, length = _stops(out)
+    steps = Rotation.from_matrix(np.einsum("mji,mjk->mik", a, b)).as_rotvec()  # log(aᵀ b) per stretch
     u = np.linspace(0.0, 1.0, 2 * _SAMPLES - 1)
-    got, want = _axes_along(o, u), wanted(o.geometry.points(u * o.geometry.length))
-    return float(np.arctan2(np.linalg.norm(np.cross(got, want), axis=1), np.einsum("ij,ij->i", got, want)).max())
-
-
-def _rates(o: Oriented) -> list[np.ndarray]:
-    """The tool's turning rates (world frame, rad/mm) along a piece: one for a line, two for an arc."""
-    length = o.geometry.length
-    stops = [(o.start, o.end, length)] if o.via is None else [(o.start, o.via, length / 2), (o.via, o.end, length / 2)]
-    return [a @ log_rotation(a.T @ b) / step for a, b, step in stops]
-
-
-def _kinks(out: list[Oriented], bound: float) -> set[int]:
-    """Pieces at whose via, or at either end of which, the turning rate changes by more than ``bound``."""
-    rates = [_rates(o) for o in out]
-    bad = {k for k, r in enumerate(rates) if len(r) == 2 and np.linalg.norm(r[1] - r[0]) > bound}
-    for k in range(len(out) - 1):
-        if np.linalg.norm(rates[k + 1][0] - rates[k][-1]) > bound:
-            bad |= {k, k + 1}
+    first = u <= 0.5
+    stop_of, frac, where = [], [], []
+    starts = np.searchsorted(piece, np.arange(len(out)))
+    for k, o in enumerate(out):
+        if o.via is None:
+            stop_of.append(np.full(len(u), starts[k])), frac.append(u)
+        else:
+            stop_of.append(np.where(first, starts[k], starts[k] + 1)), frac.append(np.where(first, 2 * u, 2 * u - 1))
+        where.append(o.geometry.points(u * o.geometry.length))
+    stop, w = np.concatenate(stop_of), np.concatenate(frac)
+    turn = exp_rotation(w[:, None] * steps[stop])
+    got = np.einsum("nij,nj->ni", a[stop], turn[:, :, 2])
+    want = wanted(np.vstack(where))
+    error = np.arctan2(np.linalg.norm(np.cross(got, want), axis=1), np.einsum("ij,ij->i", got, want))
+    bad = {int(k) for k in np.flatnonzero(error.reshape(len(out), len(u)).max(axis=1) > angle_tol_rad)}
+    rate = np.einsum("mij,mj->mi", a, steps) / length[:, None]
+    jump = np.linalg.norm(np.diff(rate, axis=0), axis=1) > bound  # between consecutive stretches
+    for m in np.flatnonzero(jump):
+        bad |= {int(piece[m]), int(piece[m + 1])}
     return bad
 
 
@@ -198,7 +211,7 @@ def oriented_pieces(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, ref
     pieces = list(pieces)
     for _ in range(_MAX_ROUNDS):
         out = orient(pieces, rule, roll_deg, reference)
-        bad = {k for k, o in enumerate(out) if _axis_error(o, wanted) > angle_tol_rad} | _kinks(out, max_rate_jump)
+        bad = _checked(out, wanted, angle_tol_rad, max_rate_jump)
         bad = {k for k in bad if pieces[k].geometry.length / 2 >= _MIN_PIECE_MM}
         if not bad:
             return out

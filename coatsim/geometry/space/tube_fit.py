@@ -43,12 +43,16 @@ TARGET = 0.999  # the fit aims at this share of σ (the exact check decides)
 LOWER = 0.98  # a chain the exact check finds above σ is refitted this much lower, ...
 CERTIFY_TRIES = 3  # ... this many times at most
 EXTRA_PIECES = (0, 1, 2, 3)  # pieces beyond the greedy's count tried while no chain fits, ...
-MORE_PIECES = (1.25, 1.5, 2.0, 3.0)  # ... then these multiples of it
+MORE_PIECES = (1.25, 1.5, 2.0, 3.0)  # ... then these multiples of it, ...
+PLATEAU_COUNTS, PLATEAU_GAIN = 2, 0.02  # ... until the closest miss of a count is within this share of the one
+                                        # PLATEAU_COUNTS counts before (a curvature cap or the minimum length holds it)
 BALANCE_ROUNDS = 2  # refits of a count from knots spread to even out the pieces' misses
 MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain resampled)
 MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
 MIN_POINTS = 12  # shorter runs are left to the biarc fitter
 CAP_SLACK = 0.02  # curvature caps and the minimum length hold to this share, as in the plane
+DENSE_SIGMAS, DENSE_MEDIANS = 5.0, 2.0  # the fit measures the input along its edges at least this often (in σ,
+                                        # or in median edges if longer): a chain near sparse points can bulge off a long edge
 
 
 def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: float,
@@ -58,11 +62,11 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
     (see the module text), or None. ``start_tangent``/``end_tangent`` pin the run's end
     tangents; ``seam_tangent``: the run is a closed loop (its last point its first) with
     this tangent at the seam, where the chain meets its own start tangent (free)."""
+    seam = seam_tangent is not None
     if len(points) < MIN_POINTS:
         return None
-    s = arc_length(points)
-    seam = seam_tangent is not None
-    ref = reference(points, s, window, seam_tangent if seam else start_tangent, seam_tangent if seam else end_tangent)
+    ref = reference(points, arc_length(points), window, seam_tangent if seam else start_tangent,
+                    seam_tangent if seam else end_tangent)
     if seam:
         _, _, u0, v0 = ref.frame(np.array(0.0))
         _, _, u1, v1 = ref.frame(np.array(ref.length))
@@ -70,11 +74,20 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
         ends = Ends(False, False, turn)
     else:
         ends = Ends(start_tangent is not None, end_tangent is not None)
+    median = float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))
+    return _certified(ref, densified(points, max(DENSE_SIGMAS * tol, DENSE_MEDIANS * median)), tol, limits, ends)
+
+
+def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits, ends: Ends) -> RunChain | None:
+    """The fewest pieces the tube fit finds within the target at the input points, built and
+    certified by the exact check; aimed lower (the same chain first) while that misses."""
+    seam = ends.seam is not None
+    s = arc_length(points)
     problem = TubeProblem(ref, points, s, tol, limits, ends)
     target = TARGET * tol
     density = _GreedyDensity.of(points, s, tol)
+    chain, warm = _fewest(problem, density, target), False
     for _ in range(CERTIFY_TRIES):
-        chain = _fewest(problem, density, target)
         if chain is None:
             return None
         segments, caps = _build(ref, chain, points[-1], ends)
@@ -82,7 +95,26 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
         if dev <= tol:
             return RunChain(segments, _honest(segments, caps, limits), dev)
         target *= LOWER * tol / dev
+        if not warm:  # the same pieces pulled a little further in first, a fresh search if that misses too
+            lower, missed = problem.fit(chain, target)
+            if missed <= target:
+                chain, warm = lower, True
+                continue
+        chain, warm = _fewest(problem, density, target), False
     return None
+
+
+def densified(points: np.ndarray, step: float) -> np.ndarray:
+    """The polyline with points added on every edge longer than ``step`` (evenly, its
+    vertices kept): the same polyline, measured often enough that a chain close to every
+    point cannot bulge far from a long edge between them (the exact check measures both ways)."""
+    edges = np.diff(points, axis=0)
+    cuts = np.maximum(np.ceil(np.linalg.norm(edges, axis=1) / step).astype(int), 1)
+    if (cuts == 1).all():
+        return points
+    share = np.concatenate([np.arange(k) / k for k in cuts])
+    edge = np.repeat(np.arange(len(edges)), cuts)
+    return np.vstack((points[edge] + share[:, None] * edges[edge], points[-1:]))
 
 
 @dataclass(frozen=True)
@@ -158,7 +190,10 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
     count = density.count
     counts = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
     missed: TubeChain | None = None
+    misses: list[float] = []
     for n in counts:
+        if len(misses) > PLATEAU_COUNTS and misses[-1] >= (1 - PLATEAU_GAIN) * misses[-1 - PLATEAU_COUNTS]:
+            return None  # more pieces stopped bringing the chain closer: a limit holds it out, not the count
         starts = [_initial(problem.ref, density.spread(n)),
                   _initial(problem.ref, np.linspace(density.knots[0], density.knots[-1], n + 1))]
         if missed is not None and missed.n == n - 1:
@@ -175,6 +210,7 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
                 return chain
             best = (dev, chain) if dev < best[0] else best
         missed = best[1]
+        misses.append(best[0])
     return None
 
 
