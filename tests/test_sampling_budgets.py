@@ -50,6 +50,15 @@ def test_random_points_are_refused_by_segment_in_one_line(tmp_path):
     assert "doubles back" in err and "--budget curve_reversals=N" in err
 
 
+def test_random_points_in_space_are_refused_by_segment_in_one_line(tmp_path):
+    """The 3-D fit holds the same rule: x, y, z columns of random points are refused before it."""
+    path = tmp_path / "r3.csv"
+    np.savetxt(path, np.random.default_rng(2).uniform(0, 100, (3000, 3)), delimiter=",")
+    code, _, err = cli("segment", path, "--tol", "0.1")
+    assert code == 2 and err.count("\n") == 1, err
+    assert "doubles back" in err and "--budget curve_reversals=N" in err
+
+
 def test_a_polysegment_with_more_segments_than_program_lines_is_refused_before_the_program(tmp_path, monkeypatch):
     monkeypatch.setenv("COATSIM_BUDGET", "")  # the in-process command sets it: restored afterwards
     doc = {"format": "coatsim.polysegment/1", "units": "mm", "closed": False, "tolerance_mm": 0.1, "corners": [],

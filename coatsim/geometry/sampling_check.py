@@ -28,6 +28,7 @@ def reversals(points: np.ndarray) -> int:
     lengths = np.linalg.norm(chords, axis=1)
     return int(np.count_nonzero(dots < np.cos(np.radians(REVERSAL_DEG)) * lengths[:-1] * lengths[1:]))
 
+
 def check_sampling(points: np.ndarray, name: str) -> None:
     """BudgetExceeded when the curve doubles back at more points than the budget
     ``curve_reversals``: its sampling is coarser than its own features."""

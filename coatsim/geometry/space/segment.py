@@ -24,6 +24,7 @@ from coatsim.geometry.curves import make_curve
 from coatsim.geometry.limits import check_min_segment
 from coatsim.geometry.dynamics import curvature_limit, speed_limited
 from coatsim.geometry.limits import MIN_LENGTH_SHARE, MIN_LENGTH_SIGMAS, NEIGHBOURHOOD_WINDOWS, FitLimits
+from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.segment import segment_curve
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import SpaceCurve
@@ -132,6 +133,7 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
     if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
         raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither",
                          parameters=("speed_mm_s", "tool_accel_mm_s2"))
+    check_sampling(curve.points, curve.name)
     started = time.perf_counter()
     pose, height = best_plane(curve.points)
     if height <= PLANAR_SHARE * tolerance_mm:

@@ -1,0 +1,5 @@
+"""``python -m coatsim``: the command line, as the ``coatsim`` command."""
+
+from coatsim.cli import main
+
+main()
