@@ -115,18 +115,34 @@ def _drop_degenerate(pieces: Sequence[Piece], tol: float, notes: list[str]) -> l
         notes.append(f"dropped {len(pieces) - len(kept)} zero-length pieces (first: {first.source})")
     if len(kept) < 2:
         return kept
-    mids = np.array([p.midpoint() for p in kept])
-    duplicate = set()
-    for i, j in sorted(cKDTree(mids).query_pairs(tol)):
-        a, b = kept[i], kept[j]
-        same = math.dist(a.start, b.start) <= tol and math.dist(a.end, b.end) <= tol
-        flipped = math.dist(a.start, b.end) <= tol and math.dist(a.end, b.start) <= tol
-        if (same or flipped) and i not in duplicate and abs(a.length - b.length) <= 2 * tol:
-            duplicate.add(j)
+    duplicate = _duplicates(kept, tol)
     if duplicate:
         first = kept[min(duplicate)]
         notes.append(f"dropped {len(duplicate)} duplicate pieces (first: {first.source})")
     return [p for k, p in enumerate(kept) if k not in duplicate]
+
+
+def _duplicates(pieces: Sequence[Piece], tol: float) -> set[int]:
+    """Indices of pieces that repeat an earlier kept piece (same or swapped ends within ``tol``,
+    lengths within ``2 tol``). Each kept piece looks up its neighbours once, so many copies of
+    one piece cost one lookup each, not one per pair of copies."""
+    starts = np.array([p.start for p in pieces], dtype=float)
+    ends = np.array([p.end for p in pieces], dtype=float)
+    lengths = np.array([p.length for p in pieces], dtype=float)
+    tree = cKDTree(np.array([p.midpoint() for p in pieces]))
+    duplicate = np.zeros(len(pieces), dtype=bool)
+    for i in range(len(pieces)):
+        if duplicate[i]:
+            continue
+        near = np.array(tree.query_ball_point(tree.data[i], tol), dtype=int)
+        near = near[(near > i) & ~duplicate[near]]
+        if not len(near):
+            continue
+        same = (np.linalg.norm(starts[near] - starts[i], axis=1) <= tol) & (np.linalg.norm(ends[near] - ends[i], axis=1) <= tol)
+        flipped = ((np.linalg.norm(starts[near] - ends[i], axis=1) <= tol)
+                   & (np.linalg.norm(ends[near] - starts[i], axis=1) <= tol))
+        duplicate[near[(same | flipped) & (np.abs(lengths[near] - lengths[i]) <= 2 * tol)]] = True
+    return set(np.flatnonzero(duplicate).tolist())
 
 
 def _arrive(piece: Piece, side: int) -> float:

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from coatsim.geometry import Arc, Line
-from coatsim.geometry.cad.chaining import TANGENT_FREE_DEG, chain_pieces
+from coatsim.geometry.cad.chaining import TANGENT_FREE_DEG, _duplicates, chain_pieces
 from coatsim.geometry.cad.pieces import FreePiece, NativePiece
 
 JOIN = 1e-3
@@ -125,3 +125,39 @@ def test_arc_keeps_its_end_and_second_arc_its_radius_at_a_gap():
     for arc in (first, second):
         for p in (arc.start, arc.end):
             assert abs(math.dist(p, arc.center) - arc.radius) < 1e-12
+
+
+def _pairwise_duplicates(pieces, tol: float) -> set[int]:
+    """The definition, pair by pair: a later piece with the same or swapped ends (within tol) and
+    a length within 2 tol of an earlier piece that is itself kept."""
+    duplicate: set[int] = set()
+    for i, a in enumerate(pieces):
+        for j in range(i + 1, len(pieces)):
+            b = pieces[j]
+            same = math.dist(a.start, b.start) <= tol and math.dist(a.end, b.end) <= tol
+            flipped = math.dist(a.start, b.end) <= tol and math.dist(a.end, b.start) <= tol
+            if (same or flipped) and i not in duplicate and abs(a.length - b.length) <= 2 * tol:
+                duplicate.add(j)
+    return duplicate
+
+
+@settings(max_examples=80, deadline=None)
+@given(ends=st.lists(st.tuples(st.sampled_from([0.0, 1.0, 3.0]), st.sampled_from([0.0, 2.0]),
+                               st.sampled_from([0.0, 1.0, 3.0]), st.sampled_from([0.0, 2.0]),
+                               st.floats(-0.6 * JOIN, 0.6 * JOIN)), min_size=2, max_size=14))
+def test_duplicates_are_the_pairwise_definition(ends):
+    """Near-copies, flipped copies and copies of copies (within the join tolerance of one
+    another but not of the first) give the same set as the pairwise definition."""
+    pieces = [native(Line((x0 + e, y0), (x1, y1 + e))) for x0, y0, x1, y1, e in ends if (x0, y0) != (x1, y1)]
+    assume(len(pieces) >= 2)
+    assert _duplicates(pieces, JOIN) == _pairwise_duplicates(pieces, JOIN)
+
+
+def test_ten_thousand_copies_of_one_piece_become_one():
+    """A drawing that repeats one piece (an SVG <use> fanned out) keeps one copy; the lookup is
+    per kept piece, so the copies cost no pair list (was 50 million pairs)."""
+    pieces = [native(Line((0.0, 0.0), (1.0, 0.0)), f"copy {k}") for k in range(10_000)]
+    chaining = chain_pieces(pieces, JOIN)
+    (contour,) = chaining.contours
+    assert len(contour.pieces) == 1 and contour.pieces[0].source == "copy 0"
+    assert any("dropped 9999 duplicate pieces" in n for n in chaining.notes)
