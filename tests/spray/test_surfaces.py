@@ -109,7 +109,7 @@ def test_mesh_rotated_by_pose(tmp_path):
     ("plate:100", "expected plate"),
     ("plate:100x100@1,2", "x,y,z"),
     ("cylinder:10x100@0,0,0,w", "axis must be x, y or z"),
-    ("/nonexistent/part.stl", "not found"),
+    ("/nonexistent/part.stl", "no such file"),
 ])
 def test_bad_surface_specs(spec, words):
     with pytest.raises(InputError, match=words):
