@@ -12,7 +12,8 @@ from coatsim.core import defaults
 
 FLAGS = {"tolerance_mm": "--tol", "min_segment_mm": "--min-segment", "speed_mm_s": "--speed",
          "tool_accel_mm_s2": "--tool-accel", "corner_deg": "--corner-deg", "method": "--method",
-         "theta_tolerance": "--theta-tol", "join_tolerance_mm": "--join-tol", "layers": "--layer"}
+         "theta_tolerance": "--theta-tol", "join_tolerance_mm": "--join-tol", "layers": "--layer",
+         "arc_planes": "--arc-planes"}
 
 
 def segment(
@@ -30,12 +31,14 @@ def segment(
     tool_accel: Optional[float] = typer.Option(None, "--tool-accel", help="Tool acceleration limit with --speed, m/s² [default: the cell model's]."),
     layer: Optional[list[str]] = typer.Option(None, "--layer", help="Drawings: read only this layer (repeatable) [default: every visible layer]."),
     join_tol: Optional[float] = typer.Option(None, "--join-tol", help="Drawings: join piece ends this close, mm [default: tol/100]."),
+    arc_planes: str = typer.Option(defaults.ARC_PLANES, "--arc-planes", help="3-D curves: any (arcs in any plane) | principal (every arc in a plane normal to X, Y or Z, as G-code's G17/G18/G19 write them: corners where the chain changes plane, lines elsewhere). A 2-D curve or a drawing lies in XY: its arcs already are."),
 ) -> None:
     """Approximate a curve by tangent-continuous arcs and lines within a tolerance; a drawing
     gives one polysegment per contour (a part JSON when there are several)."""
     from coatsim.cli.common import tool_accel_mm_s2
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.geometry.cad.drawing import is_drawing
+    from coatsim.geometry.space.principal import check_arc_planes
 
     if closed not in ("auto", "yes", "no"):
         fail(f"--closed: expected auto, yes or no, got {closed!r}")
@@ -45,6 +48,7 @@ def segment(
         fail("--tool-accel: needs --speed")
     accel_mm_s2 = tool_accel_mm_s2(tool_accel) if speed is not None else None
     with speaking_flags(FLAGS):
+        check_arc_planes(arc_planes)
         if is_drawing(input):
             if min_segment is not None:
                 fail("--min-segment applies to point curves; a drawing keeps its lines and arcs as drawn")
@@ -60,16 +64,17 @@ def segment(
         if layer or join_tol is not None:
             fail("--layer and --join-tol apply to drawings (DXF, SVG)")
         seconds = _segment_curve(input, tol, method, corner_deg, closed, theta_tol, min_segment, speed, accel_mm_s2,
-                                 output, plot)
+                                 output, plot, arc_planes)
     if timings:
         typer.echo(f"timings: fitter {seconds:.3f} s", err=True)
 
 
 def _segment_curve(input: str, tol: float, method: str, corner_deg: float, closed: str, theta_tol: Optional[float],
                    min_segment: Optional[float], speed: Optional[float], accel_mm_s2: Optional[float],
-                   output: Optional[Path], plot: Optional[Path]) -> float:
+                   output: Optional[Path], plot: Optional[Path], arc_planes: str) -> float:
     """Fit one curve (a file of x,y,z columns: in space), write what was asked, print the
-    summary; the fitter's seconds."""
+    summary; the fitter's seconds. A planar curve lies in XY: its arcs are in a principal
+    plane whatever ``arc_planes`` asks."""
     from coatsim.geometry import load_curve, segment_curve, write_polysegment_json
     from coatsim.geometry.space.curve import SpaceCurve, read_any_curve
 
@@ -78,7 +83,7 @@ def _segment_curve(input: str, tol: float, method: str, corner_deg: float, close
         if method != "optimal" or theta_tol is not None or plot is not None:
             fail(f"{curve.name}: a 3-D curve is fitted by the default method only (no --method paper, --theta-tol "
                  "or --plot)")
-        return _segment_space(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, output)
+        return _segment_space(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, output, arc_planes)
     seg = segment_curve(curve, tol, method=method, corner_deg=corner_deg,
                         theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
                         tool_accel_mm_s2=accel_mm_s2)
@@ -96,12 +101,12 @@ def _segment_curve(input: str, tol: float, method: str, corner_deg: float, close
 
 
 def _segment_space(curve, tol: float, corner_deg: float, min_segment: Optional[float], speed: Optional[float],
-                   accel_mm_s2: Optional[float], output: Optional[Path]) -> float:
+                   accel_mm_s2: Optional[float], output: Optional[Path], arc_planes: str) -> float:
     """Fit a 3-D curve as a G1 chain of 3-D lines and arcs (polysegment/2); the fitter's seconds."""
     from coatsim.geometry.space.polysegment_json import write_chain_json
     from coatsim.geometry.space.segment import segment_space_curve
 
-    seg = segment_space_curve(curve, tol, corner_deg, min_segment, speed, accel_mm_s2)
+    seg = segment_space_curve(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, arc_planes)
     if output is not None:
         write_chain_json(output, seg.chain, seg.tolerance_mm, seg.stats())
     typer.echo(seg.summary())

@@ -9,6 +9,8 @@ TOLERANCE_MM = 0.1
 ANGLE_TOL_DEG = 2.0
 #: A turn within a short length sharper than this is a true corner (the tool stops there), deg.
 CORNER_DEG = 20.0
+#: Where a 3-D fit's arcs may lie: any plane, or only planes normal to X, Y or Z (G-code G17/G18/G19).
+ARC_PLANES = "any"
 #: Programmed tool speed, mm/s (plasma spraying runs at 300–1000 mm/s).
 SPEED_MM_S = 500.0
 #: Blend radius of the controller at a corner between blended moves (AS ACCURACY), mm.

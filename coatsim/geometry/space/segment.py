@@ -8,6 +8,8 @@ free inside the σ-tube (coatsim.geometry.space.tube_fit), or, where that finds 
 spatial biarcs through the input narrowed until within (coatsim.geometry.space.fit); a
 closed loop without corners keeps its tangent across the seam, which is tried at a few places
 (the one knot the fit cannot move). Every run is certified by the exact 3-D Hausdorff check.
+With ``arc_planes="principal"`` every arc lies in a plane normal to X, Y or Z
+(coatsim.geometry.space.principal) unless the curve's own plane already is one.
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.local import curvature_profile3, detect_corners3, tangent_at, arc_length, window_mm
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import Arc3, place
+from coatsim.geometry.space.principal import check_arc_planes, fit_principal, is_principal
 from coatsim.geometry.space.tube_fit import fit_tube_run
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
@@ -58,6 +61,7 @@ class SpaceSegmentation:
     speed_mm_s: float | None = None
     tool_accel_mm_s2: float | None = None
     limits_kept: bool | None = None
+    notes: tuple[str, ...] = ()
 
     def stats(self) -> dict:
         chain = self.chain
@@ -92,6 +96,7 @@ class SpaceSegmentation:
             f"tightest arc {radius}, shortest segment {st['min_segment_mm']:.3f} mm"
             + ("" if self.limits_kept is not False else "; WARNING: some arcs are tighter than the input allows or shorter than the minimum"),
         ]
+        lines += [f"note: {note}" for note in self.notes]
         if self.speed_mm_s is not None:
             limited = self.chain.speed_limited
             slowest = min((v for _, _, v in limited), default=None)
@@ -119,10 +124,11 @@ def best_plane(points: np.ndarray) -> tuple[Pose, float]:
 
 def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: float = defaults.CORNER_DEG,
                         min_segment_mm: float | None = None, speed_mm_s: float | None = None,
-                        tool_accel_mm_s2: float | None = None) -> SpaceSegmentation:
+                        tool_accel_mm_s2: float | None = None, arc_planes: str = defaults.ARC_PLANES) -> SpaceSegmentation:
     """Approximate a space curve by a G1 chain of lines and arcs within ``tolerance_mm``
-    (certified two-sided Hausdorff in 3-D); the other parameters as for the planar
-    ``segment_curve``."""
+    (certified two-sided Hausdorff in 3-D); ``arc_planes`` "principal" keeps every arc in a
+    plane normal to X, Y or Z (corners where the chain changes plane, lines elsewhere); the
+    other parameters as for the planar ``segment_curve``."""
     _check(tolerance_mm, "tolerance_mm", "mm")
     _check(min_segment_mm, "min_segment_mm", "mm")
     check_min_segment(min_segment_mm)
@@ -133,10 +139,17 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
     if (speed_mm_s is None) != (tool_accel_mm_s2 is None):
         raise InputError("speed_mm_s and tool_accel_mm_s2 go together: give both or neither",
                          parameters=("speed_mm_s", "tool_accel_mm_s2"))
+    check_arc_planes(arc_planes)
     check_sampling(curve.points, curve.name)
     started = time.perf_counter()
     pose, height = best_plane(curve.points)
-    if height <= PLANAR_SHARE * tolerance_mm:
+    notes: tuple[str, ...] = ()
+    planar = height <= PLANAR_SHARE * tolerance_mm
+    if arc_planes == "principal" and not (planar and is_principal(pose.rotation[:, 2])):
+        fit = fit_principal(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
+        chain, dev, radius, kept, pose, notes = (fit.chain, fit.deviation_mm, fit.input_min_radius_mm,
+                                                 fit.limits_kept, fit.plane_pose, (fit.note,))
+    elif planar:
         chain, radius, kept = _fit_planar(curve, pose, height, tolerance_mm, corner_deg, min_segment_mm,
                                           speed_mm_s, tool_accel_mm_s2)
         dev = hausdorff3(curve.points, chain, tolerance_mm).hausdorff
@@ -146,7 +159,7 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
     if speed_mm_s is not None and not chain.speed_limited:
         chain = replace(chain, speed_limited=speed_limited(chain, speed_mm_s, tool_accel_mm_s2))  # type: ignore[arg-type]
     return SpaceSegmentation(curve, chain, tolerance_mm, dev, time.perf_counter() - started, pose, radius,
-                             speed_mm_s, tool_accel_mm_s2, kept)
+                             speed_mm_s, tool_accel_mm_s2, kept, notes)
 
 
 def _fit_planar(curve: SpaceCurve, pose: Pose, height: float, tol: float, corner_deg: float,
