@@ -4,6 +4,7 @@ real break); curves in no principal plane come back as lines; curves already in 
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -167,3 +168,16 @@ def test_arc_planes_is_checked():
     with pytest.raises(InputError, match="arc_planes: expected any or principal") as info:
         segment_space_curve(curve, 0.1, arc_planes="xy")
     assert info.value.parameters == ("arc_planes",)
+
+
+def test_a_planar_curve_keeps_its_fit_and_a_bad_value_is_one_line(tmp_path, run_cli):
+    """A 2-column curve lies in XY: every arc already is G17, so the option changes nothing."""
+    outs = []
+    for extra in ([], ["--arc-planes", "principal"]):
+        out = tmp_path / f"ellipse{len(extra)}.json"
+        code, _, stderr = run_cli(["segment", "builtin:ellipse", "--tol", "0.1", "-o", str(out), *extra])
+        assert code == 0, stderr
+        outs.append(json.loads(out.read_text()))
+    assert outs[0]["format"] == "coatsim.polysegment/1" and outs[0]["segments"] == outs[1]["segments"]
+    code, _, stderr = run_cli(["segment", "builtin:ellipse", "--arc-planes", "xy"])
+    assert code == 2 and stderr.count("\n") == 1 and "--arc-planes: expected any or principal" in stderr
