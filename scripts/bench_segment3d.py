@@ -11,7 +11,14 @@ input point, the longest run of input points whose arc through its first, middle
 point keeps every point of the run within σ, then the next run starts where that one ends:
 kinks at every junction. Prints only; never asserts.
 
+``--arc-planes``: instead, the section on ``arc_planes="principal"`` (every arc in a plane normal to
+X, Y or Z): per curve (the families and three curves in principal planes: a pass around a cylinder
+whose axis is X, a contour at z = 30, a stepped curve from z = const to x = const) and σ, segments,
+arcs and corners with ``any`` and with ``principal``, the corners the option added, the certified
+deviation and CPU seconds of each; then the exponent of the principal fit's CPU time.
+
     python scripts/bench_segment3d.py [--sigmas 0.05,0.1,0.5] [--points 1500] [--only helix,trefoil] [--axes]
+    python scripts/bench_segment3d.py --arc-planes [--sigmas ...] [--points ...] [--only ...]
 """
 
 from __future__ import annotations
@@ -43,16 +50,77 @@ def surface_axes(points: np.ndarray) -> np.ndarray:
     return n / np.linalg.norm(n, axis=1)[:, None]
 
 
+def cylinder_pass(n: int) -> np.ndarray:
+    """Around a cylinder whose axis is X (radius 60 mm), three quarters of a turn at x = 20 (G19)."""
+    t = np.linspace(0.0, 1.5 * math.pi, n)
+    return np.column_stack((20 + 0 * t, 60 * np.cos(t), 60 * np.sin(t)))
+
+
+def contour_z30(n: int) -> np.ndarray:
+    """A closed lobed contour at z = 30 (G17)."""
+    t = np.linspace(0, 2 * math.pi, n)
+    r = 40 + 6 * np.cos(3 * t)
+    return np.column_stack((r * np.cos(t), 0.7 * r * np.sin(t), 30 + 0 * t))
+
+
+def stepped(n: int) -> np.ndarray:
+    """A quarter circle at z = 30 running on along +Y, then turning up in the plane x = 0."""
+    k = n // 3
+    a, y, b = np.linspace(-math.pi / 2, 0, k), np.linspace(0, 30, k)[1:], np.linspace(0, math.pi / 2, n - 2 * k + 2)[1:]
+    return np.vstack((np.column_stack((40 * np.cos(a) - 40, 40 * np.sin(a), 30 + 0 * a)),
+                      np.column_stack((0 * y, y, 30 + 0 * y)),
+                      np.column_stack((0 * b, 30 + 25 * np.sin(b), 55 - 25 * np.cos(b)))))
+
+
+PRINCIPAL_CURVES = {"cyl-x": cylinder_pass, "z30": contour_z30, "stepped": stepped}
+
+
+def arc_planes_section(families: dict, names: list[str], sigmas: list[float], n_points: int) -> None:
+    """Segments, arcs and corners with arc_planes any and principal, the corners added, the
+    certified deviation and CPU seconds of each."""
+    print(f"# arc_planes: {n_points} points per curve; any -> principal")
+    print(f"  {'curve':<10} {'σ mm':>6} {'segs':>9} {'arcs':>9} {'corners':>9} {'added':>5} {'dev mm':>17} "
+          f"{'CPU s':>13}")
+    total = [0, 0, 0, 0, 0.0, 0.0]
+    for name in names:
+        curve = make_space_curve(families[name](n_points), name)
+        for tol in sigmas:
+            t_any, fit_any = cpu(lambda: segment_space_curve(curve, tol))
+            t_pr, fit_pr = cpu(lambda: segment_space_curve(curve, tol, arc_planes="principal"))
+            a, p = fit_any.chain, fit_pr.chain
+            added = len(set(p.corners)) - len(set(a.corners))
+            print(f"  {name:<10} {tol:>6g} {a.n_segments:>4}>{p.n_segments:<4} {a.n_arcs:>4}>{p.n_arcs:<4} "
+                  f"{len(a.corners):>4}>{len(p.corners):<4} {added:>5} {fit_any.max_deviation_mm:>8.5f}>"
+                  f"{fit_pr.max_deviation_mm:<8.5f} {t_any:>6.2f}>{t_pr:<6.2f}")
+            total = [total[0] + a.n_segments, total[1] + p.n_segments, total[2] + len(a.corners),
+                     total[3] + len(p.corners), total[4] + t_any, total[5] + t_pr]
+    print(f"  {'total':<17} {total[0]:>4}>{total[1]:<4} {'':>9} {total[2]:>4}>{total[3]:<4} {'':>23} "
+          f"{total[4]:>6.2f}>{total[5]:<6.2f}")
+    rows = []
+    for name in ("helix", "stepped"):
+        make = families[name]
+        t1, _ = cpu(lambda: segment_space_curve(make_space_curve(make(2000), name), 0.1, arc_planes="principal"))
+        t2, _ = cpu(lambda: segment_space_curve(make_space_curve(make(20000), name), 0.1, arc_planes="principal"))
+        rows.append((f"segment_space_curve {name} σ 0.1 principal", 2000, t1, 20000, t2))
+    report("principal-plane fit against input points", rows)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sigmas", default=",".join(str(s) for s in TOLERANCES_MM))
     parser.add_argument("--points", type=int, default=1500)
     parser.add_argument("--only", default="", help="comma-separated family names (default: all)")
     parser.add_argument("--axes", action="store_true", help="also fit each curve with spray axes (orientation error)")
+    parser.add_argument("--arc-planes", action="store_true", help="only the section on arc_planes='principal'")
     args = parser.parse_args()
     sigmas = [float(s) for s in args.sigmas.split(",")]
     families = {**FAMILIES, **HELD_OUT}
+    if args.arc_planes:
+        families = {**PRINCIPAL_CURVES, **families}
     names = [n for n in families if not args.only or n in args.only.split(",")]
+    if args.arc_planes:
+        arc_planes_section(families, names, sigmas, args.points)
+        return
     print(f"# 3-D fit: {args.points} points per curve; segments ours / greedy (3-point arcs, no tangency); "
           f"held out: {', '.join(HELD_OUT)}")
     print(f"  {'curve':<10} {'σ mm':>6} {'ours':>5} {'arcs':>5} {'lines':>5} {'greedy':>6} {'ratio':>6} {'dev mm':>9} "
