@@ -401,7 +401,9 @@ def _surface_plan(paths: SurfacePaths, options: ProgramOptions, surface: Surface
                f"{fmt_short(surface.angle_tol_deg)} deg of the normal, roll {surface.roll}, speed on the {surface.speed_on}")
     notes = (() if not arcs_as_lines else
              (f"{arcs_as_lines} arcs written as lines within {fmt_short(surface.tolerance_mm)} mm: "
-              f"{language.title} has circular moves only in {language.capabilities.arc_planes} planes",))
+              f"{language.title} has circular moves only in {language.capabilities.arc_planes} planes"
+              + ("; a 3-D curve segmented with arc_planes 'principal' has every arc in them"
+                 if language.capabilities.arc_planes == "principal" else ""),))
     plan = ProgramPlan(name=name, paths=tuple(placed), speed_mm_s=options.speed_mm_s, accuracy_mm=options.accuracy_mm,
                        exact_stop=options.variant == "polyline-stop", approach_mm=options.approach_mm,
                        gun_signal=options.gun_signal, tool=options.tool, process=process, comments=(comment, *notes))

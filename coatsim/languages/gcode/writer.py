@@ -13,7 +13,8 @@ at most 8 digits a word: |x| < 10 000 mm). The gun must point along −Z of that
 no tool orientation, so a tilted gun is refused; the gun's turn about its own axis (a roll or a
 tool that follows the path) is not written, the reader gives it the work frame's. An arc in
 G17/G18/G19 is one ``G2``/``G3`` with ``I J K`` per half turn at most; an arc in any other plane
-becomes lines within ``CHORD_TOL_MM`` (a comment says so); an arc too flat for the resolution
+becomes lines within ``CHORD_TOL_MM`` (a comment says so, and that a curve segmented with
+``arc_planes="principal"`` has no such arc); an arc too flat for the resolution
 becomes its chord.
 
 Gun timing (the blocks run in order, :mod:`.interpreter`): a gun code written between two moves
@@ -140,7 +141,8 @@ class _Program:
         points[-1] = arc.end
         for k, point in enumerate(points):
             self.move("G1", point, comment=f"{label}: arc outside G17/G18/G19 as {n} lines within "
-                      f"{CHORD_TOL_MM:g} mm" if k == 0 else "")
+                      f"{CHORD_TOL_MM:g} mm; a 3-D curve segmented with arc_planes principal has none"
+                      if k == 0 else "")
 
 
 def _labels(path: PlacedPath) -> list[str]:

@@ -1,6 +1,7 @@
 """End to end: ``coatsim segment --arc-planes principal`` fits a 3-D curve whose every arc the
 G-code writer writes as one G2/G3 (G17, G18 or G19, no arc written as lines), and
-``coatsim check-program`` reads the program back onto the fitted path."""
+``coatsim check-program`` reads the program back onto the fitted path; where G-code writes an arc
+as lines, the program and the command's note name the option."""
 
 from __future__ import annotations
 
@@ -10,14 +11,18 @@ import re
 import numpy as np
 import pytest
 
+from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.polysegment_json import read_chain_json
 from coatsim.geometry.space.primitives import Arc3
 from coatsim.geometry.space.rotations import rot_y
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.gcode.language import GCODE
 from coatsim.path.placement import PlacedMove, PlacedPath
+from coatsim.path.build import ProgramOptions
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process import ProcessInfo
+from coatsim.path.surface_program import SurfaceOptions, build_surface_program
+from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 
 from language_plans import distance_to_plan, sprayed_points
 from test_gcode_writer import mini_read
@@ -86,3 +91,22 @@ def test_principal_arcs_are_written_as_g2_g3_and_read_back(tmp_path, run_cli, na
     assert f"{half_turns} arc" in stdout and "no problems found" in stdout
     sprayed_mm = float(re.search(r"sprayed: .* moves?, ([0-9.]+) mm", stdout).group(1))
     assert sprayed_mm == pytest.approx(sum(s.length for s in chain.segments), abs=2e-3)
+
+
+def test_the_notes_on_arcs_written_as_lines_name_the_option():
+    """A pass whose arcs leave the principal planes (a helix turn, the gun kept vertical): G-code
+    writes them as lines, and both the program's comment and the command's note say that a curve
+    segmented with arc_planes principal has none."""
+    t = np.linspace(0.0, 1.5 * math.pi, 300)
+    points = np.column_stack((40 * np.cos(t), 40 * np.sin(t), 10 * t))
+    up = np.tile([0.0, 0.0, 1.0], (len(t), 1))
+    paths = SurfacePaths("helix.json", (SurfacePass(points, up, False, np.empty((0, 3)), np.empty((0, 3))),),
+                         100.0, None, None)
+    program = build_surface_program(paths, ProgramOptions(), SurfaceOptions(), GCODE)
+    assert any("circular moves only in principal planes" in n and "arc_planes 'principal'" in n
+               for n in program.notes)
+    assert not re.search(r"\bG[23]\b", program.text)
+    slant = Arc3(points[0], points[100], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 40.0, 0.5 * math.pi)
+    slant = slant.transformed(Pose(rot_y(0.3), np.zeros(3)))
+    text = GCODE.write(gun_down_plan(SpaceChain((slant,)), "SLANT"))
+    assert "arc outside G17/G18/G19 as" in text and "arc_planes principal has none" in text
