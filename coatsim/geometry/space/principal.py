@@ -20,13 +20,14 @@ from __future__ import annotations
 import bisect
 import math
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from coatsim.core.errors import InputError
 from coatsim.geometry.curves import make_curve
 from coatsim.geometry.limits import MIN_LENGTH_SIGMAS
+from coatsim.geometry.pinned import fit_pinned
 from coatsim.geometry.rdp import rdp_indices
 from coatsim.geometry.segment import segment_curve
 from coatsim.geometry.space.chain import SpaceChain
@@ -46,6 +47,7 @@ WHOLE_SHARES = 5.0
 MIN_STRETCH_SIGMAS = 50.0  # a shorter stretch in a principal plane is left to lines (a tilted curve grazes one over a few σ)
 NORMAL_TOL = 1e-9  # an arc's normal is along an axis when its other two components are within this
 CORNER_BREAK_RAD = 1e-9  # a junction breaking its tangent by more is listed as a corner
+PIN_DEG = 10.0  # a change of plane where the input runs this close to the shared axis is tried tangent-continuous
 #: Per normal axis: (first, second, normal) axes of its plane, first × second = normal (G17, G18, G19).
 PLANE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
 
@@ -168,8 +170,7 @@ def _joinable(points: np.ndarray, taken: list[tuple[int, int, int]], closed: boo
             out.append(Stretch(a, a + 1))
             a += 1
         if b > a:
-            values = points[a : b + 1, axis]
-            out.append(Stretch(a, b, axis, float(values.max() + values.min()) / 2.0))
+            out.append(_levelled(points, Stretch(a, b, axis)))
         cursor = max(cursor, b, a)
     if cursor < last:
         out.append(Stretch(cursor, last))
@@ -190,6 +191,37 @@ def _merged(stretches: list[Stretch]) -> list[Stretch]:
     return out
 
 
+def _levelled(points: np.ndarray, st: Stretch) -> Stretch:
+    """The stretch with its plane in the middle of its points' spread along its axis."""
+    values = points[st.first : st.last + 1, st.axis]
+    return replace(st, level=float(values.max() + values.min()) / 2.0)
+
+
+def centred(points: np.ndarray, stretches: list[Stretch], band: float) -> tuple[list[Stretch], dict[int, np.ndarray]]:
+    """The stretches with every change between planes normal to different axes moved to the middle
+    of the input's stretch lying in both (within ``band`` mm: along the axis they share), and the
+    junctions (k: between stretch k and k + 1) where the input runs along that axis within PIN_DEG:
+    the direction a tangent-continuous chain passes them in."""
+    out, pins, s = list(stretches), {}, arc_length(points)
+    for k in range(len(out) - 1):
+        a, b = out[k], out[k + 1]
+        if a.axis is None or b.axis is None or a.axis == b.axis:
+            continue
+        lo = hi = a.last
+        while lo - 1 > a.first and abs(points[lo - 1, b.axis] - b.level) <= band:
+            lo -= 1
+        while hi + 1 < b.last and abs(points[hi + 1, a.axis] - a.level) <= band:
+            hi += 1
+        mid = lo + int(np.argmin(np.abs(s[lo : hi + 1] - (s[lo] + s[hi]) / 2.0)))
+        out[k], out[k + 1] = _levelled(points, replace(a, last=mid)), _levelled(points, replace(b, first=mid))
+        shared = 3 - a.axis - b.axis
+        chord = points[hi] - points[lo]
+        length = float(np.linalg.norm(chord))
+        if length > 0.0 and abs(chord[shared]) >= length * math.cos(math.radians(PIN_DEG)):
+            pins[k] = np.eye(3)[shared] * math.copysign(1.0, chord[shared])
+    return out, pins
+
+
 def junction_points(points: np.ndarray, stretches: list[Stretch], closed: bool) -> np.ndarray:
     """Where consecutive stretches meet (first point, each junction, last point): the input point
     moved into the plane of each plane stretch it bounds (by at most that stretch's share of σ)."""
@@ -205,15 +237,24 @@ def junction_points(points: np.ndarray, stretches: list[Stretch], closed: bool) 
     return out
 
 
-def _fit_plane(run: np.ndarray, st: Stretch, loop: bool, tol: float, name: str,
-               options: dict) -> tuple[tuple[Segment3, ...], tuple[int, ...], float | None, bool]:
+def _fit_plane(run: np.ndarray, st: Stretch, loop: bool, tol: float, name: str, options: dict,
+               pins: tuple[np.ndarray | None, np.ndarray | None]
+               ) -> tuple[tuple[Segment3, ...], tuple[int, ...], float | None, bool]:
     """A plane stretch by the planar fitter in its plane, placed back: the segments, the corners
-    of that fit, the input's tightest radius there and whether the fit kept its limits."""
+    of that fit, the input's tightest radius there and whether the fit kept its limits. With
+    ``pins`` (the unit directions the chain must leave and arrive in, or None) the pinned fit
+    (coatsim.geometry.pinned) is tried first."""
     first, second, normal = PLANE_AXES[st.axis]
     height = float(np.abs(run[:, normal] - st.level).max())
-    planar = make_curve(run[:, [first, second]], name, "yes" if loop else "no")
-    seg = segment_curve(planar, math.sqrt(tol * tol - height * height), **options)
+    flat, in_plane = run[:, [first, second]], math.sqrt(tol * tol - height * height)
     pose = plane_pose(st.axis, st.level)
+    if any(d is not None for d in pins):
+        headings = [None if d is None else math.atan2(d[second], d[first]) for d in pins]
+        pinned = fit_pinned(flat, in_plane, *headings, **options)
+        if pinned is not None:
+            return (tuple(place(s, pose) for s in pinned.segments), (), pinned.input_min_radius_mm,
+                    pinned.limits_kept)
+    seg = segment_curve(make_curve(flat, name, "yes" if loop else "no"), in_plane, **options)
     return (tuple(place(s, pose) for s in seg.polysegment.segments), seg.polysegment.corners,
             seg.input_min_radius_mm, bool(seg.limits_kept))
 
@@ -261,8 +302,9 @@ def _attempt(curve: SpaceCurve, tol: float, plane_share: float, line_share: floa
     if curve.closed and len(stretches) > 1:
         pts = _seam_first(pts, stretches)
         stretches = plane_stretches(pts, tol, plane_share, True)
+    stretches, pins = centred(pts, stretches, plane_share * tol)
     ends = junction_points(pts, stretches, curve.closed and not loop)
-    segments, own_corners, radii, kept, n_lines = _fit_stretches(pts, stretches, ends, loop, tol, line_share,
+    segments, own_corners, radii, kept, n_lines = _fit_stretches(pts, stretches, ends, pins, loop, tol, line_share,
                                                                  curve.name, options)
     chain = SpaceChain(segments, curve.closed)
     breaks = chain.junction_breaks()
@@ -277,12 +319,12 @@ def _attempt(curve: SpaceCurve, tol: float, plane_share: float, line_share: floa
                         _note(stretches, n_lines, len(added)))
 
 
-def _fit_stretches(pts: np.ndarray, stretches: list[Stretch], ends: np.ndarray, loop: bool, tol: float,
-                   line_share: float, name: str, options: dict
+def _fit_stretches(pts: np.ndarray, stretches: list[Stretch], ends: np.ndarray, pins: dict[int, np.ndarray],
+                   loop: bool, tol: float, line_share: float, name: str, options: dict
                    ) -> tuple[tuple[Segment3, ...], list[int], list[float], bool, int]:
-    """Every stretch fitted between its junction points: the segments, the corners the planar
-    fits found, their input's tightest radii, whether they kept their limits, the count of lines
-    in no plane."""
+    """Every stretch fitted between its junction points (tangent-continuous through the pinned
+    ones where the planar fitter finds a chain): the segments, the corners the planar fits found,
+    their input's tightest radii, whether they kept their limits, the count of lines in no plane."""
     segments: list[Segment3] = []
     own_corners: list[int] = []
     radii, kept, n_lines = [], True, 0
@@ -292,7 +334,7 @@ def _fit_stretches(pts: np.ndarray, stretches: list[Stretch], ends: np.ndarray, 
         fitted = None
         if st.axis is not None:
             try:
-                fitted = _fit_plane(run, st, loop, tol, name, options)
+                fitted = _fit_plane(run, st, loop, tol, name, options, (pins.get(k - 1), pins.get(k)))
             except InputError:  # the planar fitter cannot follow this stretch: lines can
                 fitted = None
         if fitted is None:
@@ -301,11 +343,25 @@ def _fit_stretches(pts: np.ndarray, stretches: list[Stretch], ends: np.ndarray, 
             segments.extend(lines)
             continue
         segs, corners, radius, fitted_kept = fitted
-        own_corners += [len(segments) + c for c in corners]
-        segments.extend(segs)
+        offset = _extend(segments, segs)
+        own_corners += [offset + c for c in corners]
         radii += [radius] if radius is not None else []
         kept = kept and fitted_kept
     return tuple(segments), own_corners, radii, kept, n_lines
+
+
+def _extend(segments: list[Segment3], more: tuple[Segment3, ...]) -> int:
+    """Append ``more`` to ``segments``, a first line running straight on from a last line joined
+    to it (a change of plane along the shared axis in the middle of a straight stretch); the index
+    in ``segments`` of ``more[0]`` (or of the line it was joined to)."""
+    last, first = (segments[-1], more[0]) if segments else (None, None)
+    if isinstance(last, Line3) and isinstance(first, Line3) and \
+            float(np.linalg.norm(last.direction - first.direction)) <= CORNER_BREAK_RAD:
+        segments[-1] = Line3(last.start, first.end)
+        segments.extend(more[1:])
+        return len(segments) - len(more)
+    segments.extend(more)
+    return len(segments) - len(more)
 
 
 def _note(stretches: list[Stretch], n_lines: int, n_added: int) -> str:
