@@ -9,8 +9,11 @@ in-plane tolerance √(σ² − h²) and placed back; the stretches between are 
 (Ramer–Douglas–Peucker within a share of σ). Two stretches in planes normal to different axes
 meet at a point of both (on the line the planes share); two in parallel planes are joined by one
 input edge as a line. A G1 chain can change principal plane only where its tangent runs along the
-axis both planes share, so every junction whose tangents differ — a change of plane, the start or
-end of a stretch in no principal plane, a vertex of its lines — is listed as a corner. The whole
+axis both planes share: where the input does, the junction moves to the middle of its stretch in
+both planes and the planar fits on either side are pinned to that axis (coatsim.geometry.pinned),
+so the change is tangent-continuous; every other junction whose tangents differ — a change of
+plane, the start or end of a stretch in no principal plane, a vertex of its lines — is listed as
+a corner. The whole
 chain is certified by the exact two-sided 3-D Hausdorff check (coatsim.geometry.space.deviation);
 the shares are narrowed until it holds.
 """
