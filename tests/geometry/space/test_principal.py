@@ -185,3 +185,20 @@ def test_a_planar_curve_keeps_its_fit_and_a_bad_value_is_one_line(tmp_path, run_
     assert outs[0]["format"] == "coatsim.polysegment/1" and outs[0]["segments"] == outs[1]["segments"]
     code, _, stderr = run_cli(["segment", "builtin:ellipse", "--arc-planes", "xy"])
     assert code == 2 and stderr.count("\n") == 1 and "--arc-planes: expected any or principal" in stderr
+
+
+@pytest.mark.parametrize("shift", [0, 50, 250, 330])
+def test_a_closed_curve_of_two_half_circles_in_two_planes_wherever_it_starts(shift):
+    """Half a circle in z = 0 and half a circle in x = 0 closing it: two arcs, the two 90° turns
+    corners, whatever point the loop starts at."""
+    a, b = np.linspace(-math.pi / 2, math.pi / 2, 200), np.linspace(0, math.pi, 200)[1:]
+    loop = np.vstack((np.column_stack((30 * np.cos(a), 30 * np.sin(a), 0 * a)),
+                      np.column_stack((0 * b, 30 * np.cos(b), 30 * np.sin(b)))))[:-1]
+    pts = np.roll(loop, shift, axis=0)
+    fit = segment_space_curve(make_space_curve(np.vstack((pts, pts[:1])), "D", "yes"), 0.1, arc_planes="principal")
+    chain = fit.chain
+    assert chain.closed and chain.n_arcs == 2 and chain.n_segments == 2 and chain.corners == (0, 1)
+    assert {tuple(np.abs(s.normal).round().astype(int)) for s in chain.segments} == {(0, 0, 1), (1, 0, 0)}
+    assert np.degrees(chain.junction_breaks()) == pytest.approx([90.0, 90.0], abs=0.5)
+    assert fit.max_deviation_mm <= 0.1 and np.array_equal(chain.segments[-1].end, chain.segments[0].start)
+    assert_principal(chain)
