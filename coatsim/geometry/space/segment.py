@@ -127,8 +127,9 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
                         tool_accel_mm_s2: float | None = None, arc_planes: str = defaults.ARC_PLANES) -> SpaceSegmentation:
     """Approximate a space curve by a G1 chain of lines and arcs within ``tolerance_mm``
     (certified two-sided Hausdorff in 3-D); ``arc_planes`` "principal" keeps every arc in a
-    plane normal to X, Y or Z (corners where the chain changes plane, lines elsewhere); the
-    other parameters as for the planar ``segment_curve``."""
+    plane normal to X, Y or Z (lines elsewhere; a change of plane is G1 along the axis both
+    planes share, a listed corner otherwise); the other parameters as for the planar
+    ``segment_curve``."""
     _check(tolerance_mm, "tolerance_mm", "mm")
     _check(min_segment_mm, "min_segment_mm", "mm")
     check_min_segment(min_segment_mm)
