@@ -22,6 +22,7 @@ as the one after starts, at its start point's approximation), without a stop. ``
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 from typing import Any, Optional, Sequence
@@ -32,7 +33,7 @@ from coatsim.geometry.space.pose import Pose
 from coatsim.languages.kuka_krl import values as v
 from coatsim.languages.kuka_krl.blocks import Block, build
 from coatsim.languages.kuka_krl.evaluate import Expressions, Unknown
-from coatsim.languages.kuka_krl.motion import DEFAULT_VEL_CP_M_S, Motions
+from coatsim.languages.kuka_krl.motion import DEFAULT_VEL_CP_M_S, MOTION_DATA, Motions
 from coatsim.languages.kuka_krl.names import MAX_NAME_LENGTH
 from coatsim.languages.kuka_krl.parser import Line, Routine, parse_krl, split_commas, statement_text
 from coatsim.languages.script import nodes as n
@@ -60,8 +61,10 @@ class Interpreter(Expressions, Motions):
         self.system: dict[str, Any] = {"$VEL": v.Struct("VEL", {"CP": DEFAULT_VEL_CP_M_S}),
                                        "$APO": v.Struct("APO", {"CDIS": 0.0, "CVEL": 0.0, "CORI": 0.0, "CPTP": 0.0}),
                                        "$BASE": v.default("FRAME"), "$NULLFRAME": v.default("FRAME"),
-                                       "$ADVANCE": 3.0}
+                                       "$ADVANCE": 3.0, "$ACC": v.Struct("ACC", {"CP": 0.0, "ORI1": 0.0, "ORI2": 0.0})}
         self.tool: Optional[ToolFrame] = None
+        self.int_names: set[str] = set()  # the names declared INT (any scope)
+        self.frames_unknown = ""  # the inline form's frame data no file gives, until one that is given
         self.frames: list[dict[str, Any]] = []
         self.moves: list = []
         self.sources: list[MoveSource] = []
@@ -119,6 +122,8 @@ class Interpreter(Expressions, Motions):
         items = split_commas(toks[i + 1:])
         for item in items:
             name = item[0].text.upper()
+            if type_ == "INT":
+                self.int_names.add(name)
             if len(name) > MAX_NAME_LENGTH:
                 self.warn(f"long{name}", f"name {item[0].text} is longer than {MAX_NAME_LENGTH} characters")
             rest = item[1:]
@@ -141,10 +146,13 @@ class Interpreter(Expressions, Motions):
         if isinstance(target, n.Name):
             key = target.name.upper()
             scope = self.frames[-1] if self.frames and key in self.frames[-1] else \
-                self.globals if key in self.globals else self.system if key.startswith("$") else None
+                self.globals if key in self.globals else \
+                self.system if key.startswith("$") or key in MOTION_DATA else None
             if scope is None:
                 raise Unknown(target.name)
             old = scope.get(key)
+            if key in self.int_names and isinstance(value, float) and math.isfinite(value):
+                value = float(math.copysign(math.floor(abs(value) + 0.5), value))  # a REAL set to an INT: rounded
             if isinstance(old, v.Struct) and isinstance(value, v.Struct):
                 merged = old.copy()
                 merged.fields.update(value.fields)
@@ -375,6 +383,8 @@ class Interpreter(Expressions, Motions):
             self.warn("interrupt", f"{toks[0].text} ...: interrupts are noted, not run")
         elif word == "BAS":
             self.bas(ln)
+        elif word == "INI" and len(toks) == 1:  # the INI line of older programs: BAS(#INITMOV,0)
+            self.system["$VEL"].fields["CP"] = DEFAULT_VEL_CP_M_S
         elif word == "PULSE":
             self.warn("pulse", "PULSE: a timed output is not simulated")
         elif self.declaration(ln, self.frames[-1] if self.frames else self.globals):
@@ -398,6 +408,9 @@ class Interpreter(Expressions, Motions):
                 return
             raise self.error(f"expected a statement, found {toks[0].text!r}")
         target = self.expr(toks[:eq])
+        if isinstance(target, n.Name) and target.name.upper() in MOTION_DATA:
+            self.motion_data_set(target.name.upper(), toks[eq + 1:])
+            return
         value = self.eval(self.expr(toks[eq + 1:]))
         if isinstance(target, n.Index) and isinstance(target.base, n.Name) and \
                 target.base.name.upper() in ("$OUT", "$OUT_C"):
@@ -414,6 +427,21 @@ class Interpreter(Expressions, Motions):
                 self.switch(number, bool(value), text, "now")
             return
         self.assign(target, value)
+
+    def motion_data_set(self, key: str, tokens) -> None:
+        """``FDAT_ACT = FP1``, ``LDAT_ACT = LCPDAT1``, ``PDAT_ACT = PDEFAULT``: an inline form's data,
+        used by the BAS call after it. A value the files do not give (``$config.dat``'s defaults)
+        is listed; an unknown LDAT/PDAT keeps the approximation distance in force (said in a
+        warning), an unknown FDAT skips the BAS call that needs its tool and base."""
+        try:
+            self.system[key] = self.eval(self.expr(tokens))
+        except Unknown as unknown:
+            self.unknown.read(unknown.name, self.where(), unknown.name.lower())
+            self.system[key] = None if key != "FDAT_ACT" else unknown.name
+            if key != "FDAT_ACT":
+                self.warn(f"motion-data-{key}", f"{key} = {unknown.name}: its approximation distance is not in the "
+                                                "files loaded; the one in force is kept")
+
 
 def _files(paths: Sequence[Path]) -> list[Path]:
     """The files given, with the ``.dat`` beside each ``.src`` that comes without it."""
