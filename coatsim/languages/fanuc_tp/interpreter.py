@@ -96,7 +96,7 @@ class FanucRun:
         self.ut: Optional[int] = None
         self.tool_number: Optional[int] = None
         self.override = 100.0
-        self.offsets: dict[str, Optional[Pose]] = {"OFFSET": None, "TOOL_OFFSET": None}
+        self.offsets: dict[str, Optional[tuple]] = {"OFFSET": None, "TOOL_OFFSET": None}  # OFFSET CONDITION PR[i]
         self.structures: dict[str, _Structure] = {}
         self.unsimulated: list[str] = []  # statements read but not simulated (running refuses them)
 
@@ -245,8 +245,8 @@ class FanucRun:
         target, value = st.target, st.value
         if target[0] == "name":
             name = target[1]
-            if name in self.offsets:
-                self.offsets[name] = self.position_value(value, args).pose()
+            if name in self.offsets:  # the register is read as each motion uses it, not now
+                self.offsets[name] = (value, args)
                 return
             number = self.data.evaluate(value, args)
             if name == "UFRAME_NUM":
@@ -370,10 +370,11 @@ class FanucRun:
                 here = frame.inverse() @ self.builder.here("an INC motion", st.line)
                 pose = pose_of(np.array(values_of(here)) + np.array(values_of(pose)))
             elif option in self.offsets:
-                offset = self.data.position(self.data.index(register, args)).pose() if register is not None \
-                    else self.offsets[option]
-                if offset is None:
+                condition = self.offsets[option]
+                if register is None and condition is None:
                     raise self.error(f"{option} without PR[i] needs an {option} CONDITION PR[i] before it")
+                offset = self.data.position(self.data.index(register, args)).pose() if register is not None \
+                    else self.position_value(*condition).pose()
                 pose = offset @ pose if option == "OFFSET" else pose @ offset
         return frame @ pose, None
 

@@ -145,6 +145,9 @@ def _split_comments(text: str, where: str) -> tuple[str, list[str]]:
     return "".join(code), comments
 
 
+_MACRO_FLOW = re.compile(r"(N\d+)?(WHILE\[|IF\[|GOTO|END\d|DO\d)")  # a Fanuc custom macro's statements
+
+
 def parse_block(text: str, line: int, where: str) -> Optional[Block]:
     """The block of one line (None for an empty line or a ``%``)."""
     if _CONTROL.search(text):
@@ -156,6 +159,9 @@ def parse_block(text: str, line: int, where: str) -> Optional[Block]:
     if code in ("", "%"):
         return Block(line, (), (), tuple(comments)) if comments else None
     reader = _Reader(code, where)
+    if _MACRO_FLOW.match(code):
+        raise reader.error("macro control flow (WHILE ... DO, IF ... GOTO/THEN, GOTO, END) is not simulated; write "
+                           "the moves out")
     if reader.peek("O"):
         return _program_number(reader, line, tuple(comments))
     words: list[tuple[str, Expr]] = []
