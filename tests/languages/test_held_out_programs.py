@@ -5,8 +5,7 @@ hand-written KRC2-style program, RoboDK's post and a program with interrupts and
 a Roboguide backup with a called macro, register stripes, position registers by hand and rings
 with an OFFSET CONDITION in Fanuc TP; a Polyscope export, helper functions, a thread and an
 offline post in URScript; Fusion 360, Mastercam (inches), LinuxCNC and SheetCAM/Mach3 posts and a
-Fanuc macro program in G-code. Each reads to the moves the program means (checked by hand), or is
-refused in one line naming what the twin does not simulate."""
+Fanuc macro program in G-code. Each reads to the moves the program means (checked by hand)."""
 
 from __future__ import annotations
 
@@ -183,11 +182,16 @@ def test_gcode_cam_posts(kinematics, name, sprayed_arcs, first):
     assert not r.skipped and paths[0] == first and sum(k == "arc" for k, _ in paths) == sprayed_arcs
 
 
-@pytest.mark.parametrize("name, words", [
-    ("linuxcnc_planes.ngc", "O-word subroutines and loops are not simulated"),
-    ("fanuc_macro.nc", "macro control flow (WHILE ... DO"),
-])
-def test_gcode_control_flow_is_refused_in_one_line(kinematics, name, words):
-    with pytest.raises(CoatsimError) as info:
-        read(kinematics, "gcode", name)
-    assert words in str(info.value) and "\n" not in str(info.value)
+def test_gcode_linuxcnc_sub_call_and_arcs_in_xz_and_yz(kinematics):
+    r = read(kinematics, "gcode", "linuxcnc_planes.ngc")
+    assert not r.skipped
+    arcs = [m for m in r.toolpath.moves if m.kind == "arc"]
+    assert [tuple(np.round(m.via.translation_mm, 3)) for m in arcs] == [(650.0, 0.0, 270.0), (680.0, 45.0, 285.0)]
+
+
+def test_gcode_fanuc_macro_loop_goto_and_a_subprogram_called_twice(kinematics):
+    r = read(kinematics, "gcode", "fanuc_macro.nc")
+    assert not r.skipped
+    assert [end for kind, end in sprayed(r) if kind == "arc"] == [(740.0, -15.0), (740.0, 10.0), (740.0, 35.0)]
+    assert ends(r)[-1][2] == (740.0, 35.0, 350.0)  # G4 X0.5 is a dwell, not a move to X 0.5
+    assert [d.seconds for d in r.toolpath.dwells][-2:] == [0.5, 0.5]
