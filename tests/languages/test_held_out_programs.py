@@ -20,6 +20,8 @@ from coatsim.path.language import ReadOptions
 from coatsim.robot.cell import load_cell
 from coatsim.robot.kinematics import CellKinematics
 
+from cli_helpers import cli
+
 HELD_OUT = Path(__file__).parent / "data" / "held_out"
 GUN_250 = "{X 0,Y 0,Z 250,A 0,B 0,C 0}"
 
@@ -195,3 +197,13 @@ def test_gcode_fanuc_macro_loop_goto_and_a_subprogram_called_twice(kinematics):
     assert [end for kind, end in sprayed(r) if kind == "arc"] == [(740.0, -15.0), (740.0, 10.0), (740.0, 35.0)]
     assert ends(r)[-1][2] == (740.0, 35.0, 350.0)  # G4 X0.5 is a dwell, not a move to X 0.5
     assert [d.seconds for d in r.toolpath.dwells][-2:] == [0.5, 0.5]
+
+
+def test_convert_to_another_language_needs_none_of_the_originals_values(tmp_path):
+    """The standalone program carries its own frames and tool: the values given for the original
+    (a Fanuc frame, a KRL tool) are not read back in the target language."""
+    out = tmp_path / "panel.as"
+    code, _, err = cli("convert", HELD_OUT / "F_PANEL.LS", HELD_OUT / "GUN_PURGE.LS", "--gun", "101", "--tol", "0.2",
+                       "--set", "UFRAME[2]=600,-20,200,0,0,0", "--set", "UTOOL[1]=0,0,250,0,0,0", "--to", "as", "-o", out)
+    assert code == 0, err
+    assert out.read_text().count("C2MOVE") >= 1
