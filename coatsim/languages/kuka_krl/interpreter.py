@@ -428,20 +428,6 @@ class Interpreter(Expressions, Motions):
             return
         self.assign(target, value)
 
-    def motion_data_set(self, key: str, tokens) -> None:
-        """``FDAT_ACT = FP1``, ``LDAT_ACT = LCPDAT1``, ``PDAT_ACT = PDEFAULT``: an inline form's data,
-        used by the BAS call after it. A value the files do not give (``$config.dat``'s defaults)
-        is listed; an unknown LDAT/PDAT keeps the approximation distance in force (said in a
-        warning), an unknown FDAT skips the BAS call that needs its tool and base."""
-        try:
-            self.system[key] = self.eval(self.expr(tokens))
-        except Unknown as unknown:
-            self.unknown.read(unknown.name, self.where(), unknown.name.lower())
-            self.system[key] = None if key != "FDAT_ACT" else unknown.name
-            if key != "FDAT_ACT":
-                self.warn(f"motion-data-{key}", f"{key} = {unknown.name}: its approximation distance is not in the "
-                                                "files loaded; the one in force is kept")
-
 
 def _files(paths: Sequence[Path]) -> list[Path]:
     """The files given, with the ``.dat`` beside each ``.src`` that comes without it."""

@@ -84,6 +84,20 @@ class Motions:
         if isinstance(data, v.Struct) and "APO_DIST" in data.fields:
             self.system["$APO"].fields[apo] = float(data.fields["APO_DIST"])
 
+    def motion_data_set(self, key: str, tokens) -> None:
+        """``FDAT_ACT = FP1``, ``LDAT_ACT = LCPDAT1``, ``PDAT_ACT = PDEFAULT``: an inline form's data,
+        used by the BAS call after it. A value the files do not give (``$config.dat``'s defaults)
+        is listed; an unknown LDAT/PDAT keeps the approximation distance in force (said in a
+        warning), an unknown FDAT skips the BAS call that needs its tool and base."""
+        try:
+            self.system[key] = self.eval(self.expr(tokens))
+        except Unknown as unknown:
+            self.unknown.read(unknown.name, self.where(), unknown.name.lower())
+            self.system[key] = None if key != "FDAT_ACT" else unknown.name
+            if key != "FDAT_ACT":
+                self.warn(f"motion-data-{key}", f"{key} = {unknown.name}: its approximation distance is not in the "
+                                                "files loaded; the one in force is kept")
+
     def inline_frames(self) -> None:
         """An inline form's FDAT: its tool and base numbers become $TOOL and $BASE (BAS #FRAMES)."""
         fdat = self.system.get("FDAT_ACT")
@@ -139,22 +153,9 @@ class Motions:
             return base @ (here @ step)
         return base @ Pose(step.rotation @ here.rotation, here.translation_mm + step.translation_mm)
 
-    def motion(self, ln: Line) -> None:
-        toks = list(ln.tokens)
-        word = ln.word
-        approx = ""
-        relative_to = toks.pop().text.upper() if toks[-1].kind == NAME and \
-            toks[-1].text.upper() in ("#BASE", "#TOOL") else "#BASE"
-        while toks[-1].kind == NAME and toks[-1].text.upper() in _APPROX:  # an inline form writes C_DIS C_DIS
-            approx = toks.pop().text.upper()
-        parts = split_commas(toks[1:])
-        if word == "CIRC":
-            parts = [p for p in parts if not (p and p[0].text.upper() == "CA")]
-            if len(split_commas(toks[1:])) > len(parts):
-                self.warn("ca", "CIRC ... CA: the circular angle is not simulated; the arc ends at its end point")
-        if word in ("PTP", "PTP_REL") and any(p and p[0].text.upper() == "C_PTP" for p in parts):
-            approx = "C_PTP"
-        base = v.pose_of(self.system["$BASE"])
+    def _targets(self, word: str, parts: list, base: Pose, relative_to: str) -> tuple:
+        """A motion's end (base frame), its position value, its auxiliary point (CIRC) and its
+        joints (PTP to axis values)."""
         raw = self.eval(self.expr(parts[0])) if word != "CIRC" and len(parts) == 1 else None
         joints = None
         if self.frames_unknown and not _is_axes(raw):
@@ -179,6 +180,25 @@ class Motions:
             else:
                 end = base @ v.pose_of(end_s)
             via = None
+        return end, end_s, via, joints
+
+    def motion(self, ln: Line) -> None:
+        toks = list(ln.tokens)
+        word = ln.word
+        approx = ""
+        relative_to = toks.pop().text.upper() if toks[-1].kind == NAME and \
+            toks[-1].text.upper() in ("#BASE", "#TOOL") else "#BASE"
+        while toks[-1].kind == NAME and toks[-1].text.upper() in _APPROX:  # an inline form writes C_DIS C_DIS
+            approx = toks.pop().text.upper()
+        parts = split_commas(toks[1:])
+        if word == "CIRC":
+            parts = [p for p in parts if not (p and p[0].text.upper() == "CA")]
+            if len(split_commas(toks[1:])) > len(parts):
+                self.warn("ca", "CIRC ... CA: the circular angle is not simulated; the arc ends at its end point")
+        if word in ("PTP", "PTP_REL") and any(p and p[0].text.upper() == "C_PTP" for p in parts):
+            approx = "C_PTP"
+        base = v.pose_of(self.system["$BASE"])
+        end, end_s, via, joints = self._targets(word, parts, base, relative_to)
         if approx in ("C_VEL", "C_ORI", "C_PTP"):
             self.warn("approx", f"{approx} is modelled as C_DIS with $APO.CDIS")
         cdis = float(self.system["$APO"].fields.get("CDIS", 0.0))
