@@ -1,14 +1,19 @@
-"""RAPID instructions other than motions: outputs, waits, data instructions (``Incr``,
+"""RAPID instructions other than motions: outputs (a signal numbered by the digits its name ends
+with, or by a ``variables`` entry), inputs, waits, data instructions (``Incr``,
 ``Decr``, ``Add``, ``Clear``), calls of the program's routines, late-bound calls ``%"name"%``
 (the routine named by the string's value), and the instructions noted or passed over."""
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
+from typing import Optional
 
 from coatsim.languages.abb_rapid import syntax as s
 from coatsim.languages.abb_rapid.motion import MOVES
+from coatsim.languages.script import nodes as n
 from coatsim.languages.script.flow import Halt
+from coatsim.path.reading import OutputSwitch
 from coatsim.path.toolpath import Dwell
 
 _IGNORED = {"confl", "confj", "singarea", "accset", "pathacclim", "tpwrite", "tperase", "tpshow", "errwrite",
@@ -26,7 +31,47 @@ _DATA = {"incr", "decr", "add", "clear"}
 
 
 class Instructions:
-    """The instructions of an Interpreter that are not motions."""
+    """The instructions of an Interpreter that are not motions, and its signals."""
+
+    def signal_number(self, name: str) -> Optional[int]:
+        for given, text in self.options.variables.items():
+            if given.lower() == name.lower():
+                try:
+                    return int(float(text))
+                except (TypeError, ValueError):
+                    return None
+        m = re.search(r"(\d+)$", name)
+        return int(m.group(1)) if m else None
+
+    def _signal_name(self, e: n.Expr) -> str:
+        if isinstance(e, n.Name):
+            return e.name
+        value = self.eval(e)
+        if isinstance(value, str):
+            return value
+        raise self.error("expected a signal")
+
+    def set_output(self, signal: n.Expr, on: bool, call, text: str) -> None:
+        name = self._signal_name(signal)
+        number = self.signal_number(name)
+        gun = number == self.options.gun_signal
+        if number is not None:
+            self.outputs.add(number)
+        if gun:
+            self.spraying = on
+        if not any(sw.line == call.line and sw.source == self.source for sw in self.switches):
+            self.switches.append(OutputSwitch(self.source, call.line, text + (f" (gun {'on' if on else 'off'})"
+                                                                              if gun else "")))
+
+    def signal_state(self, e: n.Expr, function: str) -> bool:
+        name = self._signal_name(e)
+        number = self.signal_number(name)
+        if function == "doutput":
+            return self.spraying if number == self.options.gun_signal else False
+        if number is not None and number in self.options.inputs:
+            return bool(self.options.inputs[number])
+        self.unknowns.setdefault(name.lower(), f"{self.where()}: input {name} (taken as off)")
+        return False
 
     def instruction(self, st: s.ProcCall) -> None:
         if st.late is not None:

@@ -175,47 +175,6 @@ class Interpreter(Instructions, Expressions, Motions):
             holder = holder[int(self._num(self.eval(i))) - 1]
         return holder
 
-    # --- signals --------------------------------------------------------------------------
-    def signal_number(self, name: str) -> Optional[int]:
-        for given, text in self.options.variables.items():
-            if given.lower() == name.lower():
-                try:
-                    return int(float(text))
-                except (TypeError, ValueError):
-                    return None
-        m = re.search(r"(\d+)$", name)
-        return int(m.group(1)) if m else None
-
-    def _signal_name(self, e: n.Expr) -> str:
-        if isinstance(e, n.Name):
-            return e.name
-        value = self.eval(e)
-        if isinstance(value, str):
-            return value
-        raise self.error("expected a signal")
-
-    def set_output(self, signal: n.Expr, on: bool, call, text: str) -> None:
-        name = self._signal_name(signal)
-        number = self.signal_number(name)
-        gun = number == self.options.gun_signal
-        if number is not None:
-            self.outputs.add(number)
-        if gun:
-            self.spraying = on
-        if not any(sw.line == call.line and sw.source == self.source for sw in self.switches):
-            self.switches.append(OutputSwitch(self.source, call.line, text + (f" (gun {'on' if on else 'off'})"
-                                                                              if gun else "")))
-
-    def signal_state(self, e: n.Expr, function: str) -> bool:
-        name = self._signal_name(e)
-        number = self.signal_number(name)
-        if function == "doutput":
-            return self.spraying if number == self.options.gun_signal else False
-        if number is not None and number in self.options.inputs:
-            return bool(self.options.inputs[number])
-        self.unknowns.setdefault(name.lower(), f"{self.where()}: input {name} (taken as off)")
-        return False
-
     # --- running --------------------------------------------------------------------------
     def run(self, entry: str) -> None:
         routine = self.routines.get(entry.lower())
