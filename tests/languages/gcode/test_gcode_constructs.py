@@ -11,6 +11,7 @@ import pytest
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.primitives import arc_through
 from coatsim.geometry.space.rotations import rot_y, rot_z
+from coatsim.languages.gcode import flow
 from coatsim.languages.gcode.gun import GunCodes
 from coatsim.languages.gcode.language import GCode
 from coatsim.path.arcs import move_length
@@ -276,8 +277,14 @@ def test_g4_x_is_a_dwell_in_seconds_not_a_motion(tmp_path):
     assert _xs(tp) == [610, 620] and tp.dwells[-1].seconds == 0.5
 
 
+def test_a_program_that_never_ends_stops_at_the_block_budget(tmp_path, monkeypatch):
+    monkeypatch.setattr(flow, "MAX_STEPS", 2_000)  # the budget's size is not the point: it stops, in one line
+    with pytest.raises(ExecutionError, match="more than 2000 blocks run: a loop that never ends") as info:
+        run(FLOW_HEAD + "#1=0\no10 while [1]\n#1=[#1+1]\no10 endwhile\n", tmp_path)
+    assert "\n" not in str(info.value)
+
+
 @pytest.mark.parametrize("body, words", [
-    ("#1=0\no10 while [1]\n#1=[#1+1]\no10 endwhile\n", "a loop that never ends"),
     ("o10 call\n", "no o10 sub"),
     ("GOTO 77\n", "no block N77"),
 ])
