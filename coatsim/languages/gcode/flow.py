@@ -103,6 +103,8 @@ class Runner:
         self.numbers = {_n_word(b): k for k, b in reversed(list(enumerate(blocks))) if _n_word(b) is not None}
         self.programs = {b.program_number: k for k, b in enumerate(blocks) if b.program_number is not None}
         self.subs = {b.flow.label: k for k, b in enumerate(blocks) if b.flow is not None and b.flow.kind == "sub"}
+        self.may_call = {k for k, b in enumerate(blocks)  # the blocks whose M words may be M98/M99
+                         if any(letter == "M" and (e[0] != "num" or e[1] in (98.0, 99.0)) for letter, e in b.words)}
         self.calls: list[tuple] = []  # (return index, saved locals or None, times left, program index)
         self.counts: dict[int, int] = {}  # repeat index -> repetitions left
         self.how = "M2/M30"  # what ended the program
@@ -118,7 +120,12 @@ class Runner:
             block = self.blocks[pc]
             self.run.step(block)
             try:
-                nxt = self.flow(pc, block) if block.flow is not None else self.calls_of(pc, block)
+                if block.flow is not None:
+                    nxt = self.flow(pc, block)
+                elif pc in self.may_call:
+                    nxt = self.calls_of(pc, block)
+                else:
+                    nxt = None if self.run.run_block(block) else pc + 1
             except DependsOn as unknown:  # a condition or count no file gives: the construct is skipped
                 self.run.params.unknown.skip(f"{self.run.source}:{block.line}", "the block", unknown.names)
                 nxt = self.past(pc)
