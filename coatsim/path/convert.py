@@ -268,7 +268,8 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
         text = data.decode("utf-8" if _is_utf8(data) else "latin-1")
     try:
         if standalone:
-            new = _read_written(target, written, replace(read_options, program=None))
+            given = read_options.variables if target is language else {}  # the original's values are of its language
+            new = _read_written(target, written, replace(read_options, program=None, variables=given))
         else:
             new = _read_edited(language, items, replaces, data, read_options)
     except CoatsimError as exc:

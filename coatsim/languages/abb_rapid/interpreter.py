@@ -23,7 +23,8 @@ from coatsim.geometry.space.pose import Pose
 from coatsim.languages.abb_rapid import data as d
 from coatsim.languages.abb_rapid import syntax as s
 from coatsim.languages.abb_rapid.evaluate import Expressions, Unknown
-from coatsim.languages.abb_rapid.motion import MOVES, Motions
+from coatsim.languages.abb_rapid.instructions import Instructions
+from coatsim.languages.abb_rapid.motion import Motions
 from coatsim.languages.abb_rapid.names import MAX_NAME_LENGTH
 from coatsim.languages.abb_rapid.parser import parse_rapid
 from coatsim.languages.script import nodes as n
@@ -37,21 +38,10 @@ from coatsim.path.toolpath import Dwell, ToolPath
 MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
 RECORD = re.compile(r"^\s*!\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
-_IGNORED = {"confl", "confj", "singarea", "accset", "pathacclim", "tpwrite", "tperase", "tpshow", "errwrite",
-            "corrclear", "corrcon", "corrdiscon", "waitrob", "idelete", "isleep", "iwatch", "ienable",
-            "idisable", "clkreset", "clkstart", "clkstop", "gripload", "worldaccim", "cornerpathwarn", "setsysdata",
-            "pathresol", "motionsup", "triggio", "triggequip", "triggint", "triggcheckio", "stoppmove",
-            "startmove", "clearpath", "storepath", "restopath", "softact", "softdeact", "tuneservo", "retry",
-            "trynext", "raise", "skipwarn", "load", "unload", "waitload", "eraseModule".lower(), "sectl", "conveyor"}
-_INTERRUPTS = {"isignaldi", "isignaldo", "itimer", "isignalai", "isignalao", "isignalgi", "isignalgo", "ipers",
-               "ierror", "connect"}
-_UNSIMULATED = {"searchl", "searchc", "searchj", "movelsync", "movejsync", "movecsync", "moveext", "csspdeact",
-                "indamove", "indcmove", "inddmove", "indrmove", "indreset", "pulsedo", "tpreadfk",
-                "tpreadnum", "tpreaddnum"}
 _POSITIONS = ("robtarget", "pose", "orient")  # the types whose declaration without a value is no value
 
 
-class Interpreter(Expressions, Motions):
+class Interpreter(Instructions, Expressions, Motions):
     """One run of a RAPID program."""
 
     def __init__(self, modules: Sequence[s.Module], options: ReadOptions) -> None:
@@ -185,47 +175,6 @@ class Interpreter(Expressions, Motions):
             holder = holder[int(self._num(self.eval(i))) - 1]
         return holder
 
-    # --- signals --------------------------------------------------------------------------
-    def signal_number(self, name: str) -> Optional[int]:
-        for given, text in self.options.variables.items():
-            if given.lower() == name.lower():
-                try:
-                    return int(float(text))
-                except (TypeError, ValueError):
-                    return None
-        m = re.search(r"(\d+)$", name)
-        return int(m.group(1)) if m else None
-
-    def _signal_name(self, e: n.Expr) -> str:
-        if isinstance(e, n.Name):
-            return e.name
-        value = self.eval(e)
-        if isinstance(value, str):
-            return value
-        raise self.error("expected a signal")
-
-    def set_output(self, signal: n.Expr, on: bool, call, text: str) -> None:
-        name = self._signal_name(signal)
-        number = self.signal_number(name)
-        gun = number == self.options.gun_signal
-        if number is not None:
-            self.outputs.add(number)
-        if gun:
-            self.spraying = on
-        if not any(sw.line == call.line and sw.source == self.source for sw in self.switches):
-            self.switches.append(OutputSwitch(self.source, call.line, text + (f" (gun {'on' if on else 'off'})"
-                                                                              if gun else "")))
-
-    def signal_state(self, e: n.Expr, function: str) -> bool:
-        name = self._signal_name(e)
-        number = self.signal_number(name)
-        if function == "doutput":
-            return self.spraying if number == self.options.gun_signal else False
-        if number is not None and number in self.options.inputs:
-            return bool(self.options.inputs[number])
-        self.unknowns.setdefault(name.lower(), f"{self.where()}: input {name} (taken as off)")
-        return False
-
     # --- running --------------------------------------------------------------------------
     def run(self, entry: str) -> None:
         routine = self.routines.get(entry.lower())
@@ -246,18 +195,29 @@ class Interpreter(Expressions, Motions):
         saved = (self.source, self.routine)
         self.frames.append(frame)
         self.source, self.routine = routine.source, routine.name
+        returned, value = False, None
         try:
             for decl in routine.data:
                 frame[decl.name.lower()] = self._declare(decl)
             self.block(routine.body)
         except Return as ret:
-            return ret.value
+            returned, value = True, ret.value
         finally:
             self.frames.pop()
             self.source, self.routine = saved
-        if routine.kind == "FUNC":
+        self._pass_back(routine, args, frame)
+        if routine.kind == "FUNC" and not returned:
             raise self.failure(f"FUNC {routine.name} ends without RETURN")
-        return None
+        return value
+
+    def _pass_back(self, routine: s.Routine, args: tuple[n.Arg, ...], frame: dict) -> None:
+        """A VAR, PERS or INOUT parameter is the caller's data itself: what the routine made of it
+        is the caller's."""
+        required = [p for p in routine.params if not p.optional]
+        positional = [a for a in args if a.name is None]
+        for p, a in zip(required, positional):
+            if p.mode != "IN" and isinstance(a.value, (n.Name, n.Field, n.Index)):
+                self._assign(a.value, frame[p.name.lower()][1])
 
     def _bind(self, routine: s.Routine, args: tuple[n.Arg, ...]) -> dict:
         required = [p for p in routine.params if not p.optional]
@@ -359,63 +319,6 @@ class Interpreter(Expressions, Motions):
         else:
             frame.pop(key, None)
 
-    def instruction(self, st: s.ProcCall) -> None:
-        if st.late is not None:
-            self.skipped.append(f"{self.where()}: late-bound call %...% skipped: its routine is named at run time")
-            return
-        name = st.name.lower()
-        positional = [a.value for a in st.args if a.name is None]
-        if name in MOVES:
-            self.motion(st, name)
-        elif name in ("setdo", "set", "reset"):
-            on = {"set": True, "reset": False}.get(name)
-            if on is None:
-                if len(positional) != 2:
-                    raise self.error("SetDO takes a signal and a value")
-                on = self._num(self.eval(positional[1])) != 0
-            if not positional:
-                raise self.error(f"{st.name} takes a signal")
-            self.set_output(positional[0], on, st, _text(st))
-        elif name == "waittime":
-            seconds = self._num(self.eval(positional[0])) if positional else 0.0
-            self.stop_previous()
-            self.dwells.append(Dwell(len(self.moves) - 1, seconds, self.spraying, st.line))
-        elif name in ("waitdi", "waituntil", "waitdo"):
-            self.stop_previous()
-            if name == "waitdi" and len(positional) == 2:
-                state = self.signal_state(positional[0], "dinput")
-                if state != (self._num(self.eval(positional[1])) != 0):
-                    self.warn(f"wait{st.line}", f"{st.name} waits for an input the cell does not set; coatsim goes on "
-                                                "as if it came")
-            elif name == "waituntil" and positional and not self._bool(self.eval(positional[0])):
-                self.warn(f"wait{st.line}", "WaitUntil waits for a condition that is false here; coatsim goes on as if "
-                                            "it came true")
-        elif name == "velset":
-            override, cap = (self._num(self.eval(a)) for a in positional[:2])
-            self.velset = (override, cap)
-        elif name in ("stop", "exit", "break", "systemstop"):
-            self.stop_previous()
-            raise Halt(f"{self.where()}: {st.name}")
-        elif name in ("setao", "setgo", "pulsedo") and positional:
-            self.set_output(positional[0], True, st, _text(st)) if name == "pulsedo" else None
-            if name == "pulsedo" and self.signal_number(self._signal_name(positional[0])) == self.options.gun_signal:
-                raise self.failure("PulseDO of the gun output: a pulse of the gun is not simulated")
-        elif name in _INTERRUPTS:
-            self.warn("interrupt", f"interrupts ({st.name}) are noted, not run: TRAP routines do not run in the twin")
-        elif name in _IGNORED:
-            pass
-        elif name in self.routines:
-            routine = self.routines[name]
-            if routine.kind == "TRAP":
-                raise self.error(f"{st.name} is a TRAP routine: it runs on an interrupt, not as a call")
-            self.call(routine, st.args)
-        elif name in _UNSIMULATED:
-            where = f"{self.where()}: {st.name} skipped: the twin does not simulate it"
-            self.skipped.append(where)
-            self.unsimulated.append(where)
-        else:
-            self.skipped.append(f"{self.where()}: {st.name} skipped: no routine of that name in the files loaded")
-
     def call_function(self, call: n.Call) -> Any:
         value = self.builtin_function(call)
         if value is not None:
@@ -432,12 +335,6 @@ class Interpreter(Expressions, Motions):
         self.moves.append(move)
         self.sources.append(MoveSource(self.source, self.routine, call.line, call.end_line))
         self.move_frames.append(frame)
-
-
-def _text(st: s.ProcCall) -> str:
-    from coatsim.languages.abb_rapid.printer import call_text
-
-    return call_text(st)
 
 
 def parse_files(paths: Sequence[Path]) -> tuple[tuple[s.Module, ...], dict[str, str]]:

@@ -203,8 +203,11 @@ class Registers:
                 joints: Callable[[], np.ndarray]) -> PositionValue:
         """The value of ``LPOS``, ``JPOS``, ``PR[i]``, ``UFRAME[i]``, ``UTOOL[i]`` summed element by element."""
         total: Optional[np.ndarray] = None
+        kept = _cancelled(items)
+        if not kept:  # PR[i]=PR[i]-PR[i], LPOS-LPOS: the idioms that clear a register, whatever it held
+            return PositionValue((0.0,) * 6, any(atom[0] == "JPOS" for _, atom in items))
         is_joints = False
-        for sign, atom in items:
+        for sign, atom in kept:
             if atom[0] == "LPOS":
                 value = PositionValue(values_of(here()))
             elif atom[0] == "JPOS":
@@ -222,3 +225,18 @@ class Registers:
             total = vector if total is None else total + vector
             is_joints = value.joints
         return PositionValue(tuple(float(v) for v in total), is_joints)
+
+
+def _cancelled(items: tuple) -> list:
+    """The terms of a position sum without the pairs that cancel (the same atom added and taken)."""
+    kept = list(items)
+    changed = True
+    while changed:
+        changed = False
+        for a in range(len(kept)):
+            b = next((b for b in range(len(kept)) if kept[b][1] == kept[a][1] and kept[b][0] != kept[a][0]), None)
+            if b is not None:
+                kept = [x for k, x in enumerate(kept) if k not in (a, b)]
+                changed = True
+                break
+    return kept

@@ -32,7 +32,7 @@ from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.fanuc_tp.blend import DECEL_MM_S2, cnt_for
-from coatsim.languages.fanuc_tp.interpreter import FULL_SPEED_MM_S
+from coatsim.languages.fanuc_tp.motion import FULL_SPEED_MM_S
 from coatsim.languages.fanuc_tp.names import REMARK_WIDTH, check_name, clean_remark
 from coatsim.languages.fanuc_tp.positions import DECIMALS, format_position, values_of
 from coatsim.path.placement import PlacedMove, PlacedPath

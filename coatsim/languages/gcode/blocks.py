@@ -5,18 +5,20 @@ and a value), parameter settings ``#n=value`` / ``#<name>=value``, and comments 
 ``;`` to the end of the line. Letters are case-insensitive, spaces and tabs between characters
 are ignored (``G1X10 y 2`` is ``G1 X10 Y2``). A value is a number (``10``, ``-.5``, ``3.``), a
 parameter ``#5221`` / ``#<name>`` or an expression in brackets with LinuxCNC's operators and
-functions. ``%`` lines delimit the program; an ``O`` number alone is the program number; O-word
-subroutines and loops are refused. Values are parsed here and evaluated when the block runs
+functions. ``%`` lines delimit the program; an ``O`` number alone is the program number (of a
+subprogram after the main one); O-word and macro flow statements are read as :mod:`.flow`
+says. Values are parsed here and evaluated when the block runs
 (parameters change as the program runs).
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional, Union
 
 from coatsim.core.errors import InputError
+from coatsim.languages.gcode.flow import Flow, parse_flow
 
 # An expression: ("num", v) | ("par", index_expr | name) | ("neg", e) | ("bin", op, a, b) | ("fn", name, a[, b])
 Expr = tuple
@@ -26,9 +28,6 @@ _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP
               "TAN")
 # binary operators by precedence, loosest first (RS274/NGC: logic < comparison < +- < */MOD < **)
 _LEVELS = (("AND", "OR", "XOR"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",))
-_OWORD_KEYWORDS = ("SUB", "ENDSUB", "CALL", "RETURN", "WHILE", "ENDWHILE", "DO", "IF", "ELSEIF", "ELSE",
-                   "ENDIF", "REPEAT", "ENDREPEAT", "BREAK", "CONTINUE")
-
 
 @dataclass(frozen=True)
 class Block:
@@ -40,6 +39,7 @@ class Block:
     settings: tuple[tuple[Union[Expr, str], Expr], ...]
     comments: tuple[str, ...]
     program_number: Optional[int] = None
+    flow: Optional[Flow] = None
 
 
 class _Reader:
@@ -155,9 +155,22 @@ def parse_block(text: str, line: int, where: str) -> Optional[Block]:
         code = code[1:]  # block delete: run (the switch is off, as a control starts)
     if code in ("", "%"):
         return Block(line, (), (), tuple(comments)) if comments else None
+    number = re.match(r"N[0-9]+", code)
+    flow_code = code[number.end():] if number else code
+    flow, rest = parse_flow(flow_code, _Reader(flow_code, where))
+    if flow is not None:
+        label = (("N", ("num", float(number.group()[1:]))),) if number else ()
+        block = _words(rest, line, where, comments) if rest else Block(line, (), (), tuple(comments))
+        return replace(block, words=label + block.words, flow=flow)
     reader = _Reader(code, where)
     if reader.peek("O"):
         return _program_number(reader, line, tuple(comments))
+    return _words(code, line, where, comments)
+
+
+def _words(code: str, line: int, where: str, comments: list[str]) -> Block:
+    """The block of a line's words and parameter settings."""
+    reader = _Reader(code, where)
     words: list[tuple[str, Expr]] = []
     settings: list[tuple[Union[Expr, str], Expr]] = []
     while reader.i < len(code):
@@ -165,7 +178,7 @@ def parse_block(text: str, line: int, where: str) -> Optional[Block]:
         if ch == "#":
             target = reader.parameter()[1]
             reader.expect("=")
-            settings.append((target, reader.value()))
+            settings.append((target, reader.expression()))  # a Fanuc macro writes #1=#2+1 unbracketed
         elif "A" <= ch <= "Z":
             reader.i += 1
             words.append((ch, reader.value()))
@@ -178,9 +191,9 @@ def _program_number(reader: _Reader, line: int, comments: tuple[str, ...]) -> Bl
     reader.expect("O")
     match = re.match(r"(<[^>]*>|[0-9]+)(.*)\Z", reader.s[reader.i:])
     rest = match.group(2) if match else ""
-    if match is None or any(rest.startswith(k) for k in _OWORD_KEYWORDS) or rest:
-        raise reader.error("O-word subroutines and loops are not simulated; write the moves out (an O number alone "
-                           "names the program)")
+    if match is None or rest:
+        raise reader.error("an O word is a program number (O1234) or an O-word statement (o100 sub, call, while, "
+                           "if, repeat ...)")
     if not match.group(1).isdigit():
         raise reader.error("an O number names the program: O followed by digits")
     return Block(line, (), (), comments, program_number=int(match.group(1)))

@@ -17,9 +17,10 @@ What the twin assumes (a G-code program says nothing of a robot):
   torch), or ``M62``-``M65 P n`` with n the gun output. A switch takes effect as the next motion
   starts (the blocks run in order); a control may stop to switch a spindle or coolant code, which
   the twin does not (write ``G4 P0`` before the code for a stop).
-- Cutter compensation, inverse-time feed, canned cycles, subprograms and other codes whose
-  motion the twin cannot follow are refused (ExecutionError) at their line; codes without motion
-  (S, T, tool length offsets) pass.
+- Program flow (O-words, a Fanuc macro's WHILE/IF/GOTO, M98/M99 subprograms) as :mod:`.flow`
+  says. Cutter compensation, inverse-time feed, canned cycles and other codes whose motion the
+  twin cannot follow are refused (ExecutionError) at their line; codes without motion (S, T,
+  tool length offsets) pass.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from coatsim.geometry.space.rotations import rot_y, rot_z
 from coatsim.languages.gcode.arcs import PLANES, ArcError, arc_pieces, centre_from_radius
 from coatsim.languages.gcode.blend import BLEND, EXACT_PATH, EXACT_STOP, PathControl, settle
 from coatsim.languages.gcode.blocks import Block
+from coatsim.languages.gcode.flow import Runner
 from coatsim.languages.gcode.gun import GunCodes
 from coatsim.languages.gcode.parameters import (G92_BASE, WORK_OFFSET_BASE, WORK_OFFSET_STEP, WORK_ROTATION,
                                                 Parameters)
@@ -61,7 +63,6 @@ _REFUSED_G = {41.0: "cutter radius compensation", 42.0: "cutter radius compensat
               15.0: "polar coordinates", 16.0: "polar coordinates", 73.0: "a canned cycle",
               **{float(g): "a canned cycle" for g in range(81, 90)}}
 _PASSED_G = {40.0, 43.0, 43.1, 49.0, 80.0, 94.0, 8.0, 96.0, 97.0, 98.0, 99.0, 69.0, 50.0, 21.1}
-_REFUSED_M = {98.0: "subprogram calls", 99.0: "subprogram returns"}
 
 
 def _code(value: float) -> float:
@@ -128,17 +129,20 @@ class Interpreter:
         if self.options.program is not None:
             self.builder.warn("program", f"{self.source}: a G-code file holds one program; the name "
                               f"{self.options.program!r} is not used")
-        for block in self.blocks:
-            self.line = block.line
-            self.builder.step(block.line)
-            if self.run_block(block):
-                self.ended = f"{self.source}:{block.line}: M2/M30 ends it"
-                break
+        runner = Runner(self.blocks, self)
+        last = runner.execute()
+        if last is not None:
+            self.ended = f"{self.source}:{last}: {runner.how} ends it"
         if self.inch is None:
             self.builder.warn("units", f"{self.source}: no G20/G21 in the program; millimetres assumed (G21)")
         settle(self.builder, self.controls + [None] * (len(self.builder.moves) - len(self.controls)))
         process = read_comment_lines((c for b in self.blocks for c in b.comments), self.source)
         return self.builder.toolpath(self.name, process)
+
+    def step(self, block: Block) -> None:
+        """The block about to run."""
+        self.line = block.line
+        self.builder.step(block.line)
 
     def words(self, block: Block) -> tuple[list[float], list[float], dict[str, float]]:
         """G codes, M codes and the other words of a block, evaluated; DependsOn when an unknown
@@ -211,8 +215,6 @@ class Interpreter:
 
     def m_codes(self, ms: list[float], w: dict[str, float]) -> None:
         for m in ms:
-            if m in _REFUSED_M:
-                raise self.refuse(f"M{m:g} ({_REFUSED_M[m]})")
             if m in (self.gun.on, self.gun.off):
                 self.builder.switch_gun(m == self.gun.on)
                 self.builder.switched(self.line, f"M{m:g}", None, m == self.gun.on)
@@ -312,8 +314,8 @@ class Interpreter:
         return point
 
     def motion_block(self, gs: list[float], w: dict[str, float]) -> None:
-        if {10.0, 92.0} & set(gs):
-            return  # their axis words set offsets
+        if {4.0, 10.0, 92.0} & set(gs):
+            return  # their axis words set offsets, or G4 X's dwell (a Fanuc control's seconds)
         home = next((g for g in gs if g in (28.0, 30.0)), None)
         moves = any(axis in w for axis in _AXES)
         machine = 53.0 in gs

@@ -5,6 +5,7 @@ gives; a name none of them has raises :class:`Unknown` (the statement is skipped
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -23,7 +24,7 @@ class Unknown(Exception):
 
 
 class Expressions:
-    """Evaluation; the interpreter provides ``frames``, ``globals``, ``system``, ``valueless``,
+    """Evaluation; the interpreter provides ``frames``, ``globals``, ``system``, ``valueless``, ``int_names``,
     ``options``, ``routines``, ``source``, ``position``, ``error``, ``signal``, ``call`` and
     ``_stop_previous``."""
 
@@ -77,6 +78,20 @@ class Expressions:
             raise self.error(f"a number where {x!r} is given")
         return x
 
+    def _is_int(self, e: n.Expr) -> bool:
+        """Whether ``e`` is of type INT: an INT divided by an INT is an INT, the quotient cut
+        toward zero (KUKA System Software 8, "Arithmetic operators")."""
+        if isinstance(e, n.Num):
+            return e.integer
+        if isinstance(e, (n.Name, n.Index)):
+            base = e.base if isinstance(e, n.Index) else e
+            return isinstance(base, n.Name) and base.name.upper() in self.int_names
+        if isinstance(e, n.Unary):
+            return e.op in ("+", "-") and self._is_int(e.operand)
+        if isinstance(e, n.Binary):
+            return e.op in ("+", "-", "*", "/") and self._is_int(e.left) and self._is_int(e.right)
+        return False
+
     def _binary(self, e: n.Binary) -> Any:
         a, b = self.eval(e.left), self.eval(e.right)
         op = e.op
@@ -94,7 +109,7 @@ class Expressions:
         if op == "/":
             if y == 0:
                 raise self.error("division by zero")
-            return x / y
+            return float(math.trunc(x / y)) if self._is_int(e.left) and self._is_int(e.right) else x / y
         if op.startswith("B_"):
             return float({"B_AND": int(x) & int(y), "B_OR": int(x) | int(y), "B_EXOR": int(x) ^ int(y)}[op])
         return {"+": x + y, "-": x - y, "*": x * y, "<": x < y, ">": x > y, "<=": x <= y, ">=": x >= y}[op]
@@ -117,7 +132,15 @@ class Expressions:
             if given.upper() == key:
                 return float(text) if is_number(text) else self.eval(self.expr(
                     [t for t in stream_tokens(str(text), self.source)]))
+        if key in ("HOME", "XHOME") and found is None and self.options.kinematics is not None:
+            return self.home_axes(name)
         raise Unknown(name, found is not None)
+
+    def home_axes(self, name: str) -> v.Struct:
+        """``HOME``/``XHOME`` of ``$config.dat``, which no file gives: the cell's home position."""
+        self.warn("home", f"{name} is the controller's ($config.dat); the cell's home position is taken")
+        joints = np.degrees(np.asarray(self.options.kinematics.home(1), dtype=float))
+        return v.Struct("E6AXIS", {f"A{k + 1}": float(a) for k, a in enumerate(joints[:6])})
 
     def _stored(self, name: n.Name) -> Any:
         """The value held under ``name`` to set a component of, declared with a value or not."""

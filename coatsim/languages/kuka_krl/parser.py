@@ -62,10 +62,15 @@ def aggregate(st: Stream) -> n.Expr:
     fields, items = [], []
     while not st.is_op("}"):
         name = st.expect_name("a component name").text.upper()
+        if st.accept_op("["):  # a CHAR array component: POINT2[] "P1"
+            st.expect_op("]", " after '[' of a text component")
         fields.append(name)
         items.append(st.expression(GRAMMAR.binary[":"] + 1))
         if not st.accept_op(","):
             break
+    if not st.is_op("}") and st.tok.kind == OP and st.tok.text in "+-*/":
+        raise st.error(f"an aggregate holds values, not expressions (KRL): set the component after, "
+                       f"e.g. p.{fields[-1] if fields else 'X'} = ...")
     st.expect_op("}", " to close the aggregate")
     return n.Aggregate(tuple(items), line, tuple(fields), type_)
 

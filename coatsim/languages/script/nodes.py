@@ -9,8 +9,11 @@ from typing import Optional, Union
 
 @dataclass(frozen=True)
 class Num:
+    """A number; ``integer`` when written without a point or exponent (KRL types it INT)."""
+
     value: float
     line: int
+    integer: bool = False
 
 
 @dataclass(frozen=True)

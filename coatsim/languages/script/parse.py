@@ -131,7 +131,7 @@ class Stream:
         t = self.tok
         if t.kind == NUM:
             self.next()
-            return n.Num(float(t.text), t.line)
+            return n.Num(float(t.text), t.line, t.text.isdigit())
         if t.kind == STR:
             self.next()
             return n.Str(t.text, t.line)

@@ -90,6 +90,8 @@ def _poses(statements: Sequence[Statement]) -> int:
     def walk(expr) -> int:
         if not isinstance(expr, tuple) or not expr:
             return 0
+        if not isinstance(expr[0], str):  # a tuple of expressions (a call's arguments, a list's items)
+            return sum(walk(item) for item in expr)
         return (expr[0] == "pose") + sum(walk(item) for item in expr[1:])
 
     return sum(walk(st.value) + walk(st.target) + sum(walk(a) for a in st.args)

@@ -183,12 +183,7 @@ class Parser:
                 self.end_of_statement()
                 return Statement(word if word in ("break", "continue", "halt") else "pass", line)
             if word in ("run", "join", "kill"):
-                self.i += 1
-                target = self.name().text
-                if self.take("("):
-                    self.expect(")")
-                self.end_of_statement()
-                return Statement("note", line, name=f"{word} {target}")
+                return self.thread_control(line)
             raise self.error(f"{word!r} cannot start a statement")
         if tok.kind == "name" and (self.peek(1).text == "=" or self._index_assignment()):
             return self.assignment("")
@@ -256,6 +251,16 @@ class Parser:
         self.expect("end")
         return Statement("for", line, name=var, args=tuple(call[2]), body=body)
 
+    def thread_control(self, line: int) -> Statement:
+        """``run name()``, ``join handle``, ``kill handle``: threads are noted, not run."""
+        word = self.peek().text
+        self.i += 1
+        target = self.name().text
+        if self.take("("):
+            self.expect(")")
+        self.end_of_statement()
+        return Statement("note", line, name=f"{word} {target}")
+
     def assignment(self, scope: str) -> Statement:
         line = self.peek().line
         name = self.name().text
@@ -264,6 +269,8 @@ class Parser:
             target = ("index", target, self.expression())
             self.expect("]")
         self.expect("=")
+        if self.peek().text == "run":  # handle = run thread(): the thread is noted, its handle unused
+            return self.thread_control(line)
         value = self.expression()
         self.end_of_statement()
         return Statement("assign", line, target=target, value=value, scope=scope)

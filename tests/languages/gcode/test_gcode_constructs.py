@@ -11,9 +11,11 @@ import pytest
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.primitives import arc_through
 from coatsim.geometry.space.rotations import rot_y, rot_z
+from coatsim.languages.gcode import flow
 from coatsim.languages.gcode.gun import GunCodes
 from coatsim.languages.gcode.language import GCode
 from coatsim.path.arcs import move_length
+from coatsim.languages.registry import language
 from coatsim.path.language import ReadOptions
 
 from language_plans import read_text
@@ -225,7 +227,7 @@ def test_what_the_twin_cannot_follow_is_refused_with_exit_3(tmp_path, line, what
 
 
 @pytest.mark.parametrize("line, message", [
-    ("o100 sub", "O-word subroutines"), ("G123", "G123 is not a G-code"), ("G1 X10 X20 F600", "word X twice"),
+    ("o100 sub", "o100 sub is never closed"), ("o100 endwhile", "closes no open block"), ("G123", "G123 is not a G-code"), ("G1 X10 X20 F600", "word X twice"),
     ("G1 X1..2 F600", "unexpected"), ("G1 X[1/0] F600", "no finite value"), ("G1 X#<nope> F600", "depends on #<nope>, which the program never sets"),
 ])
 def test_malformed_blocks_are_one_line_input_errors(tmp_path, line, message):
@@ -237,3 +239,56 @@ def test_malformed_blocks_are_one_line_input_errors(tmp_path, line, message):
 def test_end_of_program_stops_reading_and_closes_the_gun(tmp_path):
     tp = run(HEAD + "M3\nG1 X10 F600\nM30\nG1 X99\n", tmp_path)
     assert len(tp.moves) == 2 and tp.moves[-1].spray
+
+
+FLOW_HEAD = "G21 G90 G64 P0\nG0 X600 Y0 Z300\nG1 F600\n"
+
+
+def _xs(tp) -> list[float]:
+    return [round(float(m.end.translation_mm[0]), 6) for m in tp.moves[1:]]
+
+
+@pytest.mark.parametrize("body, xs", [
+    ("#1=0\no10 while [#1 LT 3]\n#1=[#1+1]\nG1 X[600+#1]\no10 endwhile\n", [601, 602, 603]),
+    ("#1=0\no11 do\n#1=[#1+1]\nG1 X[600+#1]\no11 while [#1 LT 2]\n", [601, 602]),
+    ("o12 repeat [3]\nG91 G1 X5\nG90\no12 endrepeat\n", [605, 610, 615]),
+    ("#1=2\no13 if [#1 EQ 1]\nG1 X601\no13 elseif [#1 EQ 2]\nG1 X602\no13 else\nG1 X603\no13 endif\n", [602]),
+    ("#1=0\no14 while [1]\n#1=[#1+1]\no15 if [#1 EQ 2]\no14 continue\no15 endif\no16 if [#1 GT 3]\no14 break\no16 endif\n"
+     "G1 X[600+#1]\no14 endwhile\n", [601, 603]),
+    ("#1=7\no20 sub\nG1 X[600+#1]\n#1=99\no20 endsub\no20 call [3]\no20 call [4]\nG1 X[600+#1]\n", [603, 604, 607]),
+    ("#1=0\nWHILE [#1 LT 2] DO1\n#1=#1+1\nG1 X[600+#1*10]\nEND1\n", [610, 620]),
+    ("#1=0\nN5 #1=#1+1\nG1 X[600+#1]\nIF [#1 LT 3] GOTO 5\nGOTO 9\nG1 X700\nN9 IF [#1 EQ 3] THEN #2=50\nG1 X[600+#2]\n",
+     [601, 602, 603, 650]),
+    ("M98 P100 L2\nG1 X650\nM30\nO100\nG91 G1 X10\nG90\nM99\n", [610, 620, 650]),
+])
+def test_program_flow_o_words_fanuc_macros_and_subprograms(tmp_path, body, xs):
+    assert _xs(run(FLOW_HEAD + body, tmp_path)) == xs
+
+
+def test_a_loop_whose_condition_is_unknown_is_skipped_and_listed(tmp_path):
+    path = tmp_path / "prog.ngc"
+    path.write_text(FLOW_HEAD + "o10 while [#<count> GT 0]\nG1 X700\no10 endwhile\nG1 X610\n")
+    r = language("gcode").reading([path], ReadOptions())
+    assert _xs(r.toolpath) == [610] and "#<count>" in r.unknowns[0] and r.skipped
+
+
+def test_g4_x_is_a_dwell_in_seconds_not_a_motion(tmp_path):
+    tp = run(FLOW_HEAD + "G1 X610\nG4 X0.5\nG1 X620\n", tmp_path)
+    assert _xs(tp) == [610, 620] and tp.dwells[-1].seconds == 0.5
+
+
+def test_a_program_that_never_ends_stops_at_the_block_budget(tmp_path, monkeypatch):
+    monkeypatch.setattr(flow, "MAX_STEPS", 2_000)  # the budget's size is not the point: it stops, in one line
+    with pytest.raises(ExecutionError, match="more than 2000 blocks run: a loop that never ends") as info:
+        run(FLOW_HEAD + "#1=0\no10 while [1]\n#1=[#1+1]\no10 endwhile\n", tmp_path)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("body, words", [
+    ("o10 call\n", "no o10 sub"),
+    ("GOTO 77\n", "no block N77"),
+])
+def test_program_flow_errors_are_one_line(tmp_path, body, words):
+    with pytest.raises((InputError, ExecutionError), match=words) as info:
+        run(FLOW_HEAD + body, tmp_path)
+    assert "\n" not in str(info.value)

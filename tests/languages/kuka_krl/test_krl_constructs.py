@@ -98,6 +98,7 @@ def test_name_must_match_file_and_unknowns_skip(tmp_path):
     ("DEF p( )\n  IF TRUE THEN\nEND\n", "ENDIF"),
     ("DEF p( )\n  LIN {X 1}\nEND\n", "first motion"),
     ("WHATEVER\n", "expected DEF"),
+    ("DEF p( )\n  PTP {X 500,Y 0,Z 300}\n  LIN {X 500 + 10}\nEND\n", "an aggregate holds values, not expressions"),
 ])
 def test_defects_name_the_line(tmp_path, src, words):
     with pytest.raises((InputError, ExecutionError)) as info:
