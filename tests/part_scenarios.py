@@ -9,7 +9,7 @@ from pathlib import Path
 import yaml
 
 SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
-PARTS = ("cylinder_3d", "blade_3d", "wear_plate_3d")
+PARTS = ("cylinder_3d", "blade_3d", "wear_plate_3d", "scan_patch_3d")
 
 
 def cheap_scenario(folder: Path, name: str, variants: list[str], spacing_mm: float | None = None,

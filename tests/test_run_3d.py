@@ -41,7 +41,7 @@ def check_run(result, variants: list[str]) -> None:
     assert paths["format"] == "coatsim.surfacepaths/1" and len(paths["passes"]) == plan["passes"]
 
 
-@pytest.mark.parametrize("name", ["blade_3d", "wear_plate_3d", "unfinished/scan_patch_3d"])
+@pytest.mark.parametrize("name", ["blade_3d", "wear_plate_3d", "scan_patch_3d"])
 def test_each_shipped_part_runs_end_to_end(tmp_path, name: str) -> None:
     # (with passes 40 mm apart the exact-stop polyline jerks the blade's wrist past its limit:
     # the tube's run has it)
