@@ -23,6 +23,7 @@ from coatsim.geometry.polysegment_json import (
     polysegment_from_document,
     read_json_document,
 )
+from coatsim.geometry.space.polysegment_json import FORMAT as SPACE_FORMAT
 
 FORMAT = "coatsim.part/1"
 
@@ -70,6 +71,10 @@ def part_from_document(doc: Any, source: str) -> PartFile:
     """Validate a parsed part or polysegment document; defects name the field at fault."""
     if isinstance(doc, dict) and doc.get("format") == POLYSEGMENT_FORMAT:
         return PartFile((polysegment_from_document(doc, source),), _tolerance(doc.get("tolerance_mm")), source)
+    if isinstance(doc, dict) and doc.get("format") == SPACE_FORMAT:
+        raise InputError(f"{source}: a 3-D polysegment (\"{SPACE_FORMAT}\") gives no spray axis along the curve; "
+                         "write the program from the surface paths it was fitted from (\"coatsim.surfacepaths/1\", "
+                         "which carry the normals), or from a planar curve's polysegment")
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
         raise InputError(f"{source}: not a part or polysegment file (expected \"format\": \"{FORMAT}\" "
                          f"or \"{POLYSEGMENT_FORMAT}\")")

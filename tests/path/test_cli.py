@@ -78,6 +78,21 @@ def test_program_from_polysegment_json(tmp_path, run_cli):
     assert code == 0 and text.startswith(".PROGRAM rr()") and "CP OFF" in text and "program rr" in err
 
 
+def test_program_refuses_a_3d_polysegment_and_says_what_to_program(tmp_path, run_cli):
+    """A polysegment/2 (a fitted space curve) has no spray axis: one line pointing at the surface paths."""
+    import numpy as np
+
+    t = np.linspace(0.0, 4 * np.pi, 400)
+    curve = tmp_path / "helix.csv"
+    np.savetxt(curve, np.c_[40 * np.cos(t), 40 * np.sin(t), 5 * t], delimiter=",")
+    fitted = tmp_path / "helix.json"
+    code, _, err = run_cli(["segment", str(curve), "--tol", "0.5", "-o", str(fitted)])
+    assert code == 0 and '"coatsim.polysegment/2"' in fitted.read_text(), err
+    code, _, err = run_cli(["program", str(fitted), "-o", str(tmp_path / "h.as")])
+    assert code == 2 and err.count("\n") == 1 and "no spray axis" in err and "coatsim.surfacepaths/1" in err
+    assert not (tmp_path / "h.as").exists()
+
+
 @pytest.mark.parametrize("args,words", [
     (["--variant", "zigzag"], "--variant 'zigzag'"),
     (["--frame", "1,2,3"], "--frame"),
