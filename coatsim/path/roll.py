@@ -18,7 +18,9 @@ the tool's x axis at every pose:
 
 Pieces are halved, the new pose on the wanted axis, until the slerped axis stays within the angle
 tolerance of the wanted one and the tool's turning rate changes little at every pose (a rate
-that jumps makes the joints change speed at once: the tool slows there).
+that jumps makes the joints change speed at once: the tool slows there) — where halving lowers
+the jump: on axes that wobble from point to point (a scan, a coarse mesh) more poses only give
+more jumps.
 
 ``roll_deg`` turns the tool about its axis by a constant angle on top of either rule.
 """
@@ -43,6 +45,7 @@ _SAMPLES = 17  # the slerped axis is compared with the wanted one this often per
 Wanted = Callable[[np.ndarray], np.ndarray]  # points (n, 3) -> the wanted unit axes there (n, 3)
 _MIN_PIECE_MM = 1e-3
 _MAX_ROUNDS = 12
+_HELPS = 0.75  # a halving for the turning rate is kept where it brings the jump down to this share (smooth axes: ~1/2)
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,10 +159,10 @@ def _stops(out: list[Oriented]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
     return np.array(a), np.array(b), np.array(piece), np.array(length)
 
 
-def _checked(out: list[Oriented], wanted: Wanted, angle_tol_rad: float, bound: float) -> set[int]:
-    """Pieces whose slerped axis strays more than ``angle_tol_rad`` from the wanted one, or at
-    whose via or either end the tool's turning rate (world frame, rad/mm) changes by more than
-    ``bound``: all pieces at once (one rotation log per stretch, one wanted-axis query)."""
+def _checked(out: list[Oriented], wanted: Wanted, angle_tol_rad: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per piece: whether its slerped axis strays more than ``angle_tol_rad`` from the wanted
+    one, and the largest change of the tool's turning rate (world frame, rad/mm) at its via or
+    either end: all pieces at once (one rotation log per stretch, one wanted-axis query)."""
     from scipy.spatial.transform import Rotation
 
     a, b, piece, length = _stops(out)
@@ -179,12 +182,12 @@ def _checked(out: list[Oriented], wanted: Wanted, angle_tol_rad: float, bound: f
     got = np.einsum("nij,nj->ni", a[stop], turn[:, :, 2])
     want = wanted(np.vstack(where))
     error = np.arctan2(np.linalg.norm(np.cross(got, want), axis=1), np.einsum("ij,ij->i", got, want))
-    bad = {int(k) for k in np.flatnonzero(error.reshape(len(out), len(u)).max(axis=1) > angle_tol_rad)}
     rate = np.einsum("mij,mj->mi", a, steps) / length[:, None]
-    jump = np.linalg.norm(np.diff(rate, axis=0), axis=1) > bound  # between consecutive stretches
-    for m in np.flatnonzero(jump):
-        bad |= {int(piece[m]), int(piece[m + 1])}
-    return bad
+    jump = np.linalg.norm(np.diff(rate, axis=0), axis=1)  # between consecutive stretches
+    worst = np.zeros(len(out))
+    np.maximum.at(worst, piece[:-1], jump)
+    np.maximum.at(worst, piece[1:], jump)
+    return error.reshape(len(out), len(u)).max(axis=1) > angle_tol_rad, worst
 
 
 def _halves(piece: AxisPiece, wanted: Wanted) -> tuple[AxisPiece, AxisPiece]:
@@ -199,6 +202,16 @@ def _halves(piece: AxisPiece, wanted: Wanted) -> tuple[AxisPiece, AxisPiece]:
     return AxisPiece(first, (a0, q0, mid)), AxisPiece(second, (mid, q1, a1))
 
 
+def _split(pieces: list[AxisPiece], which: np.ndarray, wanted: Wanted) -> tuple[list[AxisPiece], np.ndarray]:
+    """The pieces with those marked halved, and the index each new piece came from."""
+    out, origin = [], []
+    for k, p in enumerate(pieces):
+        parts = _halves(p, wanted) if which[k] else (p,)
+        out.extend(parts)
+        origin.extend([k] * len(parts))
+    return out, np.array(origin)
+
+
 def oriented_pieces(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: np.ndarray,
                     wanted: Wanted, angle_tol_rad: float,
                     max_rate_jump: float = MAX_RATE_JUMP_RAD_MM) -> list[Oriented]:
@@ -206,14 +219,25 @@ def oriented_pieces(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, ref
     slerped axis strays more than ``angle_tol_rad`` from the wanted one (the roll of ``follow``
     bends it off the great circle), or where the tool's turning rate changes by more than
     ``max_rate_jump`` rad/mm at a pose: the joints must change speed there, within the
-    controller's orientation zone, so a large jump slows the tool."""
+    controller's orientation zone, so a large jump slows the tool. A halving for the rate is
+    kept only where it clearly lowers the jump: on axes that are noisy at the scale of the piece (a
+    scanned or coarsely faceted part) more poses give more jumps, not fewer, and halving on
+    would end in micrometre moves."""
     check_rule(rule)
     pieces = list(pieces)
+    firm = np.zeros(len(pieces), dtype=bool)  # halving did not lower this piece's rate jump
     for _ in range(_MAX_ROUNDS):
         out = orient(pieces, rule, roll_deg, reference)
-        bad = _checked(out, wanted, angle_tol_rad, max_rate_jump)
-        bad = {k for k in bad if pieces[k].geometry.length / 2 >= _MIN_PIECE_MM}
-        if not bad:
+        stray, jump = _checked(out, wanted, angle_tol_rad)
+        long = np.array([p.geometry.length / 2 >= _MIN_PIECE_MM for p in pieces])
+        stray, rate = stray & long, (jump > max_rate_jump) & long & ~firm & ~stray
+        if not (stray | rate).any():
             return out
-        pieces = [h for k, p in enumerate(pieces) for h in (_halves(p, wanted) if k in bad else (p,))]
+        trial, origin = _split(pieces, stray | rate, wanted)
+        _, trial_jump = _checked(orient(trial, rule, roll_deg, reference), wanted, angle_tol_rad)
+        after = np.zeros(len(pieces))
+        np.maximum.at(after, origin, trial_jump)
+        futile = rate & (after > _HELPS * jump)
+        pieces, origin = _split(pieces, (stray | rate) & ~futile, wanted)
+        firm = (firm | futile)[origin] & ~((stray | rate) & ~futile)[origin]
     return orient(pieces, rule, roll_deg, reference)
