@@ -32,6 +32,15 @@ pre.listing span:target{outline:2px solid #c0392b}pre.listing .tag{color:#b3121f
 details{margin:.4em 0}summary{cursor:pointer}
 .viewer canvas{border:1px solid #ddd;max-width:100%;touch-action:none;cursor:grab}
 .viewer .controls label{margin-right:.8em}
+.bar-charts{display:flex;flex-wrap:wrap;gap:0 2.5em}table.bars{font-size:.85em}
+table.bars caption{font-weight:600;text-align:left}table.bars th,table.bars td{border:none;padding:.15em .4em;background:none}
+table.bars td.track{position:relative;width:16em;background:linear-gradient(90deg,#eee 1px,transparent 1px) 0 0/25% 100%;
+border-left:1px solid #eee;border-right:1px solid #eee}
+table.bars td.track::after{content:"";position:absolute;left:50%;top:0;bottom:0;border-left:1px solid #222}
+table.bars td.track span{position:absolute;top:.25em;bottom:.25em}
+table.bars td.scale{position:relative;height:1.1em;color:#777;font-size:.9em}
+table.bars td.scale span{position:absolute;top:0}table.bars td.scale span:nth-child(1){left:0}
+table.bars td.scale span:nth-child(2){left:50%;transform:translateX(-50%)}table.bars td.scale span:nth-child(3){right:0}
 """
 
 # First script of the page: records script errors on <html data-script-errors> (read by tests).
@@ -87,6 +96,11 @@ def figure_html(fig: Figure) -> str:
         f'<figure><img alt="{esc(fig.title)}" src="data:image/png;base64,{data}">'
         f"<figcaption><b>{esc(fig.title)}.</b> {esc(fig.caption)}</figcaption></figure>"
     )
+
+
+def chart_html(title: str, body: str, caption: str) -> str:
+    """A figure drawn in HTML (``body``, already escaped) with its caption, as figure_html's."""
+    return f"<figure>{body}<figcaption><b>{esc(title)}.</b> {esc(caption)}</figcaption></figure>"
 
 
 def key_value_table(rows: Sequence[tuple[str, Any]]) -> str:

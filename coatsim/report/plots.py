@@ -11,6 +11,7 @@ importing coatsim stays light. PNG bytes carry no timestamp: equal figures give 
 from __future__ import annotations
 
 import io
+from functools import cache
 from typing import Any, Sequence
 
 VARIANT_COLOURS = {"polysegment": "#1b6ca8", "polyline-stop": "#c0392b", "polyline-blend": "#e08e0b"}
@@ -39,23 +40,45 @@ def grid(fig: Any, rows: int, cols: int, margins: Sequence[float] = (0.7, 0.25, 
     axes = fig.subplots(rows, cols, squeeze=False, **shared)
     for ax in axes.ravel():
         lean(ax)
+    hide_inner_axes(axes, **shared)
     return axes
+
+
+def hide_inner_axes(axes: Any, sharex: Any = False, sharey: Any = False) -> None:
+    """Shared axes drawn once: the x axis of the bottom row only, the y axis of the left column
+    only (the inner panels' ticks would repeat the outer ones' and cost as much to draw)."""
+    for ax in axes[:-1, :].ravel() if sharex else ():
+        ax.xaxis.set_visible(False)
+    for ax in axes[:, 1:].ravel() if sharey else ():
+        ax.yaxis.set_visible(False)
 
 
 def lean(ax: Any, labelsize: float = 8) -> None:
     """Few ticks, small labels."""
-    from matplotlib.ticker import MaxNLocator
-
-    ax.xaxis.set_major_locator(MaxNLocator(TICKS))
-    ax.yaxis.set_major_locator(MaxNLocator(TICKS))
+    ax.xaxis.set_major_locator(bar_ticks())
+    ax.yaxis.set_major_locator(bar_ticks())
     ax.tick_params(labelsize=labelsize)
 
 
 def bar_ticks() -> Any:
-    """The locator of a colour bar's ticks: as few as on the axes."""
+    """The locator of an axis's or a colour bar's ticks: at most about TICKS, inside the view."""
+    return _in_view_locator()(TICKS)
+
+
+@cache
+def _in_view_locator() -> type:
+    """matplotlib's MaxNLocator without the ticks beyond the view it adds to round the range
+    (each tick is five artists made, and none of these is drawn)."""
     from matplotlib.ticker import MaxNLocator
 
-    return MaxNLocator(TICKS)
+    class InViewLocator(MaxNLocator):
+        def __call__(self) -> Any:
+            locs = super().__call__()
+            lo, hi = sorted(self.axis.get_view_interval())
+            slack = 1e-9 * max(hi - lo, abs(hi), abs(lo), 1e-300)
+            return locs[(locs >= lo - slack) & (locs <= hi + slack)]
+
+    return InViewLocator
 
 
 def title(ax: Any, text: str, **style: Any) -> None:

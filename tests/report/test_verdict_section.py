@@ -1,13 +1,14 @@
-"""The verdict section: its words follow the numbers (a loss is called a loss), its bar chart,
+"""The verdict section: its words follow the numbers (a loss is called a loss), its bar chart (HTML),
 the gates in one line."""
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.report.sections.verdict import bar_chart, gates_line, paragraph
-from coatsim.report.verdict import overall, verdict
+from coatsim.report.sections.verdict import OUTCOME_COLOURS, bar_chart, bar_rows, gates_line, paragraph
+from coatsim.report.verdict import CRITERIA, overall, verdict
 
 
 def variant(cycle=2.0, ratio=0.99, at_speed=0.98, cv=0.05, thick=0.0):
@@ -57,8 +58,25 @@ def test_the_words_follow_the_outcomes(mine, theirs):
         assert "no loss" in text
 
 
-def test_the_bar_chart_is_a_png_and_deterministic():
+def test_the_bar_chart_draws_each_measure_clipped_and_coloured_by_outcome():
     doc = {"variants": {"polysegment": variant(), "polyline-stop": variant(cycle=3.0, ratio=0.001, cv=0.6),
                         "user-program": variant(ratio=None)}}
-    first = bar_chart(verdict(doc))
-    assert first.startswith(b"\x89PNG") and bar_chart(verdict(doc)) == first
+    result = verdict(doc)
+    html = bar_chart(result)
+    assert html == bar_chart(result)  # deterministic
+    assert html.count("<caption>against ") == 2 and html.count('<td class="track">') == 2 * len(CRITERIA)
+    stop = dict((label, (width, outcome)) for label, width, outcome, _ in bar_rows(result.comparisons[0]))
+    assert stop["lowest speed"] == (100.0, "win")  # +98 900 %: clipped at the edge
+    assert stop["cycle time"] == (pytest.approx(100.0 / 3.0), "win")  # 2 s against 3 s: 33 % shorter
+    assert stop["fraction at speed"] == (0.0, "tie")
+    # the clipped bar runs from the zero line to the right edge, in the win colour, labelled with its value
+    assert f'left:50.00%;width:50.00%;background:{OUTCOME_COLOURS["win"]}"></span></td><td class="l">win 990x' in html
+    user = dict((label, outcome) for label, _, outcome, _ in bar_rows(result.comparisons[1]))
+    assert user["lowest speed"] == "undefined"
+
+
+def test_a_loss_is_drawn_left_of_the_zero_line():
+    doc = {"variants": {"polysegment": variant(cv=0.075), "polyline-blend": variant(cv=0.05)}}
+    html = bar_chart(verdict(doc))
+    # CV +50 %: the bar ends at the zero line (50 %) and is 25 % of the track long, in the loss colour
+    assert f'left:25.00%;width:25.00%;background:{OUTCOME_COLOURS["loss"]}"></span></td><td class="l">loss +50.0 %' in html

@@ -26,16 +26,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.geometry.cad.chaining import Contour, TANGENT_EXACT_RAD
+from coatsim.geometry.cad.fit_copies import Fitted, bucket, reuse
 from coatsim.geometry.cad.pieces import FreePiece
 from coatsim.geometry.corners import detect_corners
 from coatsim.geometry.fit import fit_run
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
-from coatsim.geometry.primitives import Arc, Line, Segment, snap_end
+from coatsim.geometry.primitives import Arc, Line, Segment
 
 MERGE_EPS = 1e-9
 DENSE_STEP_SIGMAS = 1.0  # the fitter gets free-form stretches with points at most this many σ apart
-CACHE_GRID_MM = 1e-9  # stretches equal to this after a translation share one fit
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,11 +94,13 @@ def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_hea
     """The fitter on one free-form stretch, its end tangents pinned where given (a stretch
     pinned at its end only is fitted backwards with its start pinned); ``speed_kappa`` = a / v²
     caps its arcs for the programmed speed. The fitter gets the stretch's polyline with extra
-    points on its chords (``densified``). A stretch that is a translated copy of one fitted
-    before (``cache``, one per drawing) gets that chain, moved."""
-    key = _cache_key(points, tolerance, closed_loop, start_heading, end_heading, speed_kappa) if cache is not None else None
-    if key is not None and key in cache:
-        return _moved(cache[key], points)
+    points on its chords (``densified``). A stretch that copies one fitted before (``cache``,
+    one per drawing) gets that chain moved into place (:mod:`coatsim.geometry.cad.fit_copies`)."""
+    originals = cache.setdefault(bucket(points, closed_loop, speed_kappa), []) if cache is not None else None
+    if originals:
+        reused = reuse(originals, points, tolerance, start_heading, end_heading)
+        if reused is not None:
+            return reused
     dense = densified(points, DENSE_STEP_SIGMAS * tolerance)
     if start_heading is None and end_heading is not None:
         back = dense[::-1]
@@ -109,8 +111,8 @@ def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_hea
         fit = fit_run(dense, tolerance, closed_loop, fit_limits(dense, closed_loop, tolerance, None, speed_kappa),
                       start_heading=start_heading, end_heading=end_heading)
         segments, dev = tuple(fit.segments), fit.deviation_mm
-    if key is not None:
-        cache[key] = (points.copy(), segments, dev)
+    if originals is not None:
+        originals.append(Fitted(points.copy(), start_heading, end_heading, segments, dev))
     return segments, dev
 
 
@@ -129,28 +131,6 @@ def densified(points: np.ndarray, step_mm: float) -> np.ndarray:
     dense = np.vstack((points[:1], points[edge] + frac[:, None] * (points[edge + 1] - points[edge])))
     dense[np.cumsum(parts)] = points[1:]  # the original vertices exactly
     return dense
-
-
-def _cache_key(points: np.ndarray, tolerance: float, closed_loop: bool, start_heading: float | None,
-               end_heading: float | None, speed_kappa: float | None) -> tuple:
-    """Equal for stretches that are translated copies of each other (to ``CACHE_GRID_MM``)
-    fitted the same way."""
-    rel = np.round((points - points[0]) / CACHE_GRID_MM).astype(np.int64)
-    pin = lambda h: None if h is None else round(math.remainder(h, 2 * math.pi), 12)  # noqa: E731
-    return (rel.tobytes(), len(points), tolerance, closed_loop, pin(start_heading), pin(end_heading), speed_kappa)
-
-
-def _moved(entry: tuple, points: np.ndarray) -> tuple[tuple[Segment, ...], float]:
-    """A cached chain moved onto ``points`` (a translated copy of the cached stretch), its
-    ends exactly on theirs; the deviation grows by how far the copy differs from the
-    moved original."""
-    original, segments, dev = entry
-    shift = points[0] - original[0]
-    moved = tuple(s.transformed(np.eye(2), shift, 1.0) for s in segments)
-    start = (float(points[0][0]), float(points[0][1]))
-    moved = tuple(s.reversed() for s in reversed(snap_end(tuple(s.reversed() for s in reversed(moved)), start)))
-    moved = snap_end(moved, (float(points[-1][0]), float(points[-1][1])))
-    return moved, dev + float(np.linalg.norm(points - original - shift, axis=1).max())
 
 
 def _corner_vertices(points: np.ndarray, tolerance: float, corner_deg: float, closed: bool = False) -> list[int]:
@@ -279,7 +259,7 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner
     upper bound of the distance to the drawn curve, at most ``tolerance_mm``. ``speed_kappa``
     = a / v² keeps fitted arcs no tighter than the programmed speed allows where the drawn
     curve allows it. ``cache`` (a dict kept over the contours of one drawing) lets
-    translated copies of a free-form stretch share one fit."""
+    translated copies of a free-form stretch share one fit (:mod:`coatsim.geometry.cad.fit_copies`)."""
     if not 0 < flatten_mm < tolerance_mm:
         raise ValueError("flatten_mm must be between 0 and the tolerance")
     fit_tol = tolerance_mm - flatten_mm

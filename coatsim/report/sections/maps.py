@@ -35,7 +35,7 @@ def _panels(data: Any, groups: Sequence[int]) -> tuple[Any, list, list]:
             ax = fig.add_axes(box(left, width), sharex=first, sharey=first)
             lean(ax)
             if first is not None:
-                ax.tick_params(labelleft=False)
+                ax.yaxis.set_visible(False)  # the first panel's axis serves the group
             first = first or ax
             axes.append(ax)
             left += width + GAP_IN
