@@ -114,7 +114,6 @@ def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, 
         notes.append(gun_never_on(reading.sources[0], gun_signal, reading.outputs))
     elif reading.gun_on_at_end:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
-    cartesian = [m for m in toolpath.moves if not isinstance(m, JointMove)]
     return ProgramCheck(
         source=reading.source,
         program=reading.program,
@@ -123,8 +122,8 @@ def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, 
         n_joint_moves=sum(isinstance(m, JointMove) for m in toolpath.moves),
         n_linear_moves=sum(isinstance(m, LinearMove) for m in toolpath.moves),
         n_arc_moves=sum(isinstance(m, CircularMove) for m in toolpath.moves),
-        path_length_mm=float(np.sum([move_length(m) for m in cartesian])) if cartesian else 0.0,
-        spray_length_mm=float(np.sum([move_length(m) for m in cartesian if m.spray])) if cartesian else 0.0,
+        path_length_mm=float(sum(move_length(m) for m in toolpath.moves)),
+        spray_length_mm=float(sum(move_length(m) for m in toolpath.moves if m.spray)),
         process=toolpath.process,
         problems=tuple(problems),
         signals=tuple(str(s) for s in reading.switches),

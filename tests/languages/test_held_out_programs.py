@@ -207,3 +207,16 @@ def test_convert_to_another_language_needs_none_of_the_originals_values(tmp_path
                        "--set", "UFRAME[2]=600,-20,200,0,0,0", "--set", "UTOOL[1]=0,0,250,0,0,0", "--to", "as", "-o", out)
     assert code == 0, err
     assert out.read_text().count("C2MOVE") >= 1
+
+
+def test_check_program_counts_every_sprayed_move_once_in_its_summary():
+    """A CAM post switches the gun on before a rapid: the summary's sprayed length is the sum of
+    the sprayed stretches it lists (joint and rapid moves as chords), never a different number."""
+    import re
+
+    code, out, err = cli("check-program", HELD_OUT / "fusion_panel.nc")
+    assert code == 0, err
+    summary = float(re.search(r"\(sprayed ([0-9.]+) mm\)", out).group(1))
+    runs = [float(x) for x in re.findall(r"^sprayed: .* ([0-9.]+) mm$", out, flags=re.M)]
+    assert runs and summary == pytest.approx(sum(runs), abs=2e-3)
+    assert float(re.search(r"path length ([0-9.]+) mm", out).group(1)) >= summary

@@ -66,7 +66,7 @@ READ = [
     ("n_handling_steps.as", {}, (14, 2, 0, 0.0), (9,)),
     ("u_instructions.as", {}, (5, 0, 0, 310.840), (1, 9)),
     ("u_pallet_arrays.as", {}, (2, 1, 0, 0.0), ()),
-    ("u_pallet_arrays.as", {"variables": {"layers": 2}, "gun_signal": 5}, (34, 0, 0, 700.0), (5,)),
+    ("u_pallet_arrays.as", {"variables": {"layers": 2}, "gun_signal": 5}, (34, 0, 0, 3371.629), (5,)),  # joint moves as chords
     ("u_string_arrays.as", {}, (4, 0, 0, 170.711), (1,)),
     ("u_trace_rel.as", {}, (6, 0, 0, 240.0), (1,)),
 ]
