@@ -242,8 +242,10 @@ def _pieces(rv: np.ndarray, rf: np.ndarray, normals: np.ndarray, s: _Settings,
         border = marching.distance(source_vertices=np.flatnonzero(on_border[parent]))
         pieces.append(Piece(v, f, normals[parent], border, marching=marching, surface=SmallTriangles(v, f)))
     if not pieces:
-        raise EmptyRegionOfInterest("every piece of the region is smaller than a spacing squared; "
-                                    "use a smaller spacing_mm or a larger region", parameters=("spacing_mm", "region"))
+        raise EmptyRegionOfInterest(f"every piece of the region is smaller than a spacing squared (the largest "
+                                    f"{float(area.max()):.4g} mm2, the spacing {s.spacing_mm:g} mm); use a smaller "
+                                    "spacing_mm or a larger region, or check the mesh's units",
+                                    parameters=("spacing_mm", "region"))
     return pieces, float(face_area.sum()), angle
 
 
