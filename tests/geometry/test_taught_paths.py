@@ -8,6 +8,7 @@ ends nearly meet is read or named."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 from hypothesis import Phase, assume, example, given, settings
@@ -192,3 +193,37 @@ def test_every_contour_of_a_near_miss_drawing_is_read_or_named(tmp_path_factory,
     apart = [g for g in gaps if tol / 2 + 1e-4 < g < tol - 1e-4]
     if apart:
         assert any("not joined" in n for n in part.notes), part.notes
+
+
+def _ellipse_taught_in_t(n: int, a: float, b: float) -> np.ndarray:
+    """An ellipse taught with ``n`` + 1 points evenly in its parameter (closer together at
+    the tight ends), the last repeating the first."""
+    t = np.linspace(0.0, TAU, n + 1)
+    pts = np.column_stack((a * np.cos(t), b * np.sin(t)))
+    pts[-1] = pts[0]
+    return pts
+
+
+@settings(max_examples=3, deadline=None, derandomize=True, database=None, phases=[Phase.explicit, Phase.generate])
+@example(n=30, a=100.0, b=50.0)  # the field's ellipse taught with 31 points
+@given(n=st.integers(20, 40), a=st.floats(80.0, 150.0), b=st.floats(30.0, 60.0))
+def test_the_tolerance_the_corner_note_gives_is_where_the_fit_starts_rounding(n, a, b):
+    """At σ 0.1 mm the taught ellipse's tight ends are corners, and the note gives the
+    tolerance that rounds them: a hair below it some vertices are still corners (the note
+    again), a hair above it none is, and the fit passes between vertices and edges with
+    fewer segments than moves (no run comes back as its lines)."""
+    pts = _ellipse_taught_in_t(n, a, b)
+    curve = make_curve(pts, "taught ellipse", "yes")
+    note = " ".join(segment_curve(curve, 0.1).notes)
+    found = re.search(r"a tolerance of ([0-9.]+) mm or more rounds them", note)
+    assume(found is not None)  # (a taught ellipse σ 0.1 mm already rounds has nothing to say)
+    need = float(found.group(1))
+    below = segment_curve(curve, need * (1 - 2e-3))
+    assert any(f"a tolerance of {need:g} mm or more rounds them" in n for n in below.notes), below.notes
+    ends = np.array([s.end for s in below.polysegment.segments])
+    corners = ends[list(below.polysegment.corners)]
+    assert len(corners) and np.all(np.min(np.linalg.norm(corners[:, None] - pts[None], axis=2), axis=1) < 1e-6)
+    above = segment_curve(curve, need * (1 + 1e-3))
+    assert_contract(above, need * (1 + 1e-3))
+    assert not above.notes and not above.polysegment.corners, above.notes
+    assert above.polysegment.n_segments < n
