@@ -47,7 +47,6 @@ SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one 
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
 HOPELESS = 1.02  # a merged chain whose sampled deviation is above this share of σ is not checked exactly
-MERGE_STALL = 0.01  # a merged chain's refinement stops once 4 steps gain less than this share
 BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
 
 
@@ -141,15 +140,15 @@ class _Target:
     start_heading: float | None
     end_heading: float | None
 
-    def settle(self, params: ChainParams, target: float, hopeless: float = math.inf,
-               stall: float = 0.0) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
+    def settle(self, params: ChainParams, target: float,
+               hopeless: float = math.inf) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
         """Refine, close and build a chain: (parameters, sampled deviation, segments, whether
         it keeps the caps and pins, exact deviation (inf when it does not, or when the
-        sampled one is above ``hopeless``: the exact check is the costly part). ``stall``:
-        see refine_chain."""
+        sampled one is above ``hopeless``: the exact check is the costly part; the
+        refinement stops where it stalls above it)."""
         params, sampled = refine_chain(self.start, params, self.measured, self.end, self.turn, self.limits, target,
                                        fixed_heading=self.start_heading is not None, closed_loop=self.closed_loop,
-                                       slide=self.slide, slide_mm=self.tolerance, stall=stall)
+                                       slide=self.slide, slide_mm=self.tolerance, stall_above=hopeless)
         origin = self.origin(params)
         end = origin if self.slide is not None else self.end
         params = close_exactly(origin, params, end, self.turn)
@@ -251,8 +250,7 @@ def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
             kappa = (params.kappa[j] * params.length[j] + params.kappa[j + 1] * params.length[j + 1]) / length
             merged = ChainParams(params.heading, np.concatenate((params.kappa[:j], [kappa], params.kappa[j + 2:])),
                                  np.concatenate((params.length[:j], [length], params.length[j + 2:])), params.shift)
-            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance,
-                                                                 MERGE_STALL)
+            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance)
             if honest and fewer_dev <= tgt.tolerance:
                 params, segs, dev = fewer, fewer_segs, fewer_dev
                 failed = {k - (k > j) for k in failed if abs(k - j) > 1}

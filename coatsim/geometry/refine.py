@@ -22,7 +22,8 @@ MAX_SAMPLES = 400
 EXCHANGE = 60  # worst points added to the samples per exchange round
 EXCHANGE_ROUNDS = 6
 EARLY = 12
-STALL_STEPS = 4  # a refinement asked to stop when it stalls compares its merit this many steps back
+STALL_STEPS = 4  # a refinement asked to stop when it stalls compares its merit this many steps back ...
+STALL_SHARE = 0.01  # ... and stops when it fell by less than this share
 
 
 @dataclass(frozen=True, eq=False)
@@ -241,7 +242,7 @@ def refine_chain(
     closed_loop: bool = False,
     slide: np.ndarray | None = None,
     slide_mm: float = 0.0,
-    stall: float = 0.0,
+    stall_above: float = math.inf,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -255,8 +256,8 @@ def refine_chain(
     ``slide`` (a unit vector, loops only): the start (and with it the end) may move along it
     by up to ``slide_mm``, from ``start`` plus the ``shift`` of ``params``.
     Stops early once the sampled deviation is below ``target``
-    with the end gap closed, or when it is still far above it after a few steps, or (with
-    ``stall`` > 0) when after those steps its merit fell by less than that share over the
+    with the end gap closed, or when it is still far above it after a few steps, or when
+    after those steps it is above ``stall_above`` and fell by less than STALL_SHARE over the
     last STALL_STEPS steps.
     Returns (parameters, sampled deviation).
     """
@@ -276,8 +277,9 @@ def refine_chain(
             iteration += 1
             if f <= target or (iteration >= EARLY and f > 1.5 * target):
                 break
-            stalled = iteration >= EARLY and len(history) > STALL_STEPS and f > (1.0 - stall) * history[-STALL_STEPS - 1]
-            if stall > 0 and stalled:
+            stalled = (iteration >= EARLY and f > stall_above and len(history) > STALL_STEPS
+                       and f > (1.0 - STALL_SHARE) * history[-STALL_STEPS - 1])
+            if stalled:
                 break
             r, jr = jacobian(prob.residuals, z)
             c, jc = jacobian(prob.closure, z)
@@ -298,7 +300,7 @@ def refine_chain(
             history.append(f)
             if radius < 1e-9:
                 break
-        if (stall > 0 and stalled) or not prob.add_missing(z):
+        if stalled or not prob.add_missing(z):
             break
         f = float(merit(z[None])[0])
         history = [f]  # (the merit of the samples added is not comparable with the one before)
