@@ -144,10 +144,11 @@ class _Target:
                hopeless: float = math.inf) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
         """Refine, close and build a chain: (parameters, sampled deviation, segments, whether
         it keeps the caps and pins, exact deviation (inf when it does not, or when the
-        sampled one is above ``hopeless``: the exact check is the costly part)."""
+        sampled one is above ``hopeless``: the exact check is the costly part; the
+        refinement stops where it stalls above it)."""
         params, sampled = refine_chain(self.start, params, self.measured, self.end, self.turn, self.limits, target,
                                        fixed_heading=self.start_heading is not None, closed_loop=self.closed_loop,
-                                       slide=self.slide, slide_mm=self.tolerance)
+                                       slide=self.slide, slide_mm=self.tolerance, stall_above=hopeless)
         origin = self.origin(params)
         end = origin if self.slide is not None else self.end
         params = close_exactly(origin, params, end, self.turn)
@@ -237,9 +238,14 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
 def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
            dev: float) -> tuple[tuple[Segment, ...], float]:
     """The chain with junctions given up, the calmest first (two segments become one of their
-    length and turn, refined again), while the chain stays within the tolerance and caps."""
+    length and turn, refined again), while the chain stays within the tolerance and caps.
+    A junction that could not be given up is not tried again until a neighbouring one is
+    (the segments next to it are then new)."""
+    failed: set[int] = set()  # junction k: between segments k and k + 1
     while len(params.kappa) > 1:
         for j in np.argsort(np.abs(np.diff(params.kappa)), kind="stable"):
+            if j in failed:
+                continue
             length = params.length[j] + params.length[j + 1]
             kappa = (params.kappa[j] * params.length[j] + params.kappa[j + 1] * params.length[j + 1]) / length
             merged = ChainParams(params.heading, np.concatenate((params.kappa[:j], [kappa], params.kappa[j + 2:])),
@@ -247,7 +253,9 @@ def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
             fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance)
             if honest and fewer_dev <= tgt.tolerance:
                 params, segs, dev = fewer, fewer_segs, fewer_dev
+                failed = {k - (k > j) for k in failed if abs(k - j) > 1}
                 break
+            failed.add(int(j))
         else:
             break
     return segs, dev

@@ -22,6 +22,8 @@ MAX_SAMPLES = 400
 EXCHANGE = 60  # worst points added to the samples per exchange round
 EXCHANGE_ROUNDS = 6
 EARLY = 12
+STALL_STEPS = 4  # a refinement asked to stop when it stalls compares its merit this many steps back ...
+STALL_SHARE = 0.01  # ... and stops when it fell by less than this share
 
 
 @dataclass(frozen=True, eq=False)
@@ -240,6 +242,7 @@ def refine_chain(
     closed_loop: bool = False,
     slide: np.ndarray | None = None,
     slide_mm: float = 0.0,
+    stall_above: float = math.inf,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -253,7 +256,9 @@ def refine_chain(
     ``slide`` (a unit vector, loops only): the start (and with it the end) may move along it
     by up to ``slide_mm``, from ``start`` plus the ``shift`` of ``params``.
     Stops early once the sampled deviation is below ``target``
-    with the end gap closed, or when it is still far above it after a few steps.
+    with the end gap closed, or when it is still far above it after a few steps, or when
+    after those steps it is above ``stall_above`` and fell by less than STALL_SHARE over the
+    last STALL_STEPS steps.
     Returns (parameters, sampled deviation).
     """
     prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading, closed_loop, slide, slide_mm)
@@ -266,10 +271,15 @@ def refine_chain(
     f = float(merit(z[None])[0])
     radius = 0.05
     iteration = 0  # LP steps, shared by all exchange rounds
+    history, stalled = [f], False
     for _ in range(EXCHANGE_ROUNDS):
         while iteration < max_iter:
             iteration += 1
             if f <= target or (iteration >= EARLY and f > 1.5 * target):
+                break
+            stalled = (iteration >= EARLY and f > stall_above and len(history) > STALL_STEPS
+                       and f > (1.0 - STALL_SHARE) * history[-STALL_STEPS - 1])
+            if stalled:
                 break
             r, jr = jacobian(prob.residuals, z)
             c, jc = jacobian(prob.closure, z)
@@ -287,11 +297,13 @@ def refine_chain(
             if ratio > 0:
                 z, f = z + step, f_new
             radius = radius * 2.0 if ratio > 0.75 else radius * 0.25 if ratio < 0.25 else radius
+            history.append(f)
             if radius < 1e-9:
                 break
-        if not prob.add_missing(z):
+        if stalled or not prob.add_missing(z):
             break
         f = float(merit(z[None])[0])
+        history = [f]  # (the merit of the samples added is not comparable with the one before)
     x = z * prob.unit
     return ChainParams.from_vector(x[: 2 * prob.n + 1], float(x[-1]) if slide is not None else params.shift), f
 

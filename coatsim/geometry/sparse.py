@@ -9,12 +9,12 @@ shifted vertices, tangent there to the circle through each three consecutive one
 band narrowed to the channels; the refinement and the exact check measure against the
 polyline itself.
 
-The channel's depth is set by the tightest arc the caps allow (FitLimits: about the circle
-through three consecutive vertices, the polyline's own turning): tangent to both edges it
-passes r (1/cos(α/2) − 1) inside the vertex (apex_mm); half way out, it strays half that from
-the vertex and from the edges. A vertex between two long edges is *roundable* when that half
-is within σ; where σ is below it, the vertex is a corner at this tolerance
-(coatsim.geometry.corners) and a note says so.
+A chain with fewer segments than moves cannot fillet every vertex (a line and an arc per
+move): it passes a vertex on an arc spanning the vertex and its edges, no tighter than the
+polyline turns there, so it strays at least about d/2 from the vertex or its edges
+(rounding_error). A vertex between two long edges is *roundable* when that is within
+ROUND_SHARE σ; where σ is below it, the vertex is a corner at this tolerance
+(coatsim.geometry.corners) and a note says from which tolerance on it is rounded.
 """
 
 from __future__ import annotations
@@ -25,13 +25,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.geometry.envelope import SPARSE_EDGE_SIGMAS
-from coatsim.geometry.limits import FitLimits, fit_limits
+from coatsim.geometry.limits import FitLimits
 from coatsim.geometry.nearest import PolylineIndex
 from coatsim.geometry.polysegment import chain
 from coatsim.geometry.refine import chord_insets
 
 SPARSE_INSET = 0.25  # a run is sparse where an edge dips this share of σ inside the curve through its vertices
-ROUND_SHARE = 0.9  # a vertex is roundable when the gentlest arc past it strays at most this share of σ
+ROUND_SHARE = 1.0  # a vertex is roundable when its rounding error (half its chord inset) is at most this share of σ
 MIN_WIDTH = 0.1  # the band keeps at least this share of σ where a channel is narrower
 KNOT_SIGMAS = 1.0  # the guide has a knot every σ along an edge ...
 KNOTS_PER_EDGE = (4, 64)  # ... but at least and at most this many
@@ -90,70 +90,46 @@ def is_sparse(points: np.ndarray, closed: bool, tolerance: float) -> bool:
     return bool(np.any(sparse_vertices(pts, closed, tolerance) & (left + right >= SPARSE_INSET * tolerance)))
 
 
-def apex_mm(points: np.ndarray, closed: bool, limits: FitLimits) -> np.ndarray:
-    """Per vertex (n,), how far (mm) inside it the tightest arc the caps allow passes when it
-    keeps tangent to both edges: r (1/cos(α/2) − 1) for r = 1 / the cap there, if its tangent
-    points stay within the vertex's share of the edges (_room); never more than the chord
-    inset (the circle through the vertices)."""
-    pts = np.asarray(points, dtype=float)
-    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))))
-    half = np.abs(_turns(pts, closed)) / 2
-    left, right = chord_insets(pts, closed)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        radius = 1.0 / limits.at_knots(s)
-        fillet = np.where(radius * np.tan(half) <= _room(pts, closed), radius * (1.0 / np.cos(half) - 1.0), np.inf)
-    return np.where(half > 0, np.minimum(fillet, left + right), 0.0)
-
-
-def rounding_error(points: np.ndarray, closed: bool, tolerance: float) -> np.ndarray:
-    """Per vertex (n,), the least deviation (mm) of a chain that rounds it with arcs as tight
-    as the polyline's caps allow: half its apex distance (apex_mm), the chain half way
-    between the vertex and its edges."""
-    pts = np.asarray(points, dtype=float)
-    return apex_mm(pts, closed, fit_limits(pts, closed, tolerance, None, None)) / 2
+def rounding_error(points: np.ndarray, closed: bool) -> np.ndarray:
+    """Per vertex (n,), the least deviation (mm) of a chain with fewer segments than the
+    polyline has moves where it passes the vertex: half the vertex's chord inset (the
+    sagitta of its longer edge on the circle through it and its neighbours). Such a chain
+    cannot fillet each vertex (two segments a move): it passes a vertex on an arc that
+    spans it and its edges, no tighter than the polyline turns there (the caps), and such
+    an arc half way between the vertex and the edges strays half the inset from both."""
+    left, right = chord_insets(np.asarray(points, dtype=float), closed)
+    return (left + right) / 2
 
 
 def unroundable(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
-    """Sparse vertices σ cannot round with arcs as tight as the polyline's own turning: their
-    indices (interior vertices; for a closed polyline 0 .. n - 2) and the deviation each would
-    need (mm, inf where no arc fits between its edges). A vertex next to one of them is
-    measured again in its run between them (a corner lends no curvature to its neighbours),
-    until no more are found."""
+    """Sparse vertices σ cannot round with fewer segments than moves: their indices
+    (interior vertices; for a closed polyline 0 .. n - 2) and the deviation each needs (mm,
+    rounding_error). A vertex's need depends on it and its neighbours alone, so one that
+    becomes a corner changes nothing for the others."""
     pts = np.asarray(points, dtype=float)
     long = sparse_vertices(pts, closed, tolerance)
-    long[-1] &= closed
+    long[-1] = False  # the seam of a loop is vertex 0; an open polyline's ends are never corners
     long[0] &= closed
-    loop = len(pts) - 1  # vertices of a closed polyline: 0 .. loop - 1
-    error = rounding_error(pts, closed, tolerance)
-    found = {int(i): float(error[i]) for i in np.flatnonzero(long & (error > ROUND_SHARE * tolerance)) if i < loop or not closed}
-    while found:
-        cuts = sorted(found)
-        cuts = cuts + [cuts[0] + loop] if closed else [0, *cuts, len(pts) - 1]
-        added = {}
-        for a, b in zip(cuts[:-1], cuts[1:]):
-            if b - a < 2:
-                continue
-            index = np.arange(a, b + 1) % loop if closed else np.arange(a, b + 1)
-            run_error = rounding_error(pts[index], False, tolerance)
-            for k in range(1, b - a):
-                if long[index[k]] and run_error[k] > ROUND_SHARE * tolerance:
-                    added[int(index[k])] = float(run_error[k])
-        if not added:
-            break
-        found.update(added)
-    index = np.array(sorted(found), dtype=int)
-    return index, np.array([found[i] for i in index])
+    error = rounding_error(pts, closed)
+    index = np.flatnonzero(long & (error > ROUND_SHARE * tolerance))
+    return index, error[index]
+
+
+def rounding_tolerance(error: np.ndarray) -> float:
+    """The tolerance (mm) from which vertices of these rounding errors are rounded, rounded
+    up to four significant digits (as the note prints it)."""
+    need = float(np.max(error)) / ROUND_SHARE
+    unit = 10.0 ** (math.floor(math.log10(need)) - 3)
+    return math.ceil(need / unit) * unit
 
 
 def corner_note(points: np.ndarray, index: np.ndarray, error: np.ndarray, tolerance: float) -> str:
     """The note for vertices kept as corners because σ is below what the polyline allows."""
     first = points[int(index[0])]
-    finite = error[np.isfinite(error)]
-    need = (f"rounding them needs a tolerance of {float(finite.max()) / ROUND_SHARE:.3g} mm at least"
-            if len(finite) == len(error) else "no tolerance rounds some of them (their edges are too short)")
     return (f"{len(index)} vertices kept as corners (first at ({first[0]:.6g}, {first[1]:.6g})): tolerance_mm "
-            f"{tolerance:g} is below what the polyline allows there (no arc as gentle as its own turning passes "
-            f"within it of the vertex and its edges); {need}")
+            f"{tolerance:g} is below what the polyline allows there (no chain of arcs as gentle as its own turning, "
+            f"with fewer segments than moves, passes within it of the vertices and their edges); a tolerance of "
+            f"{rounding_tolerance(error):.4g} mm or more rounds them")
 
 
 def guide(points: np.ndarray, closed: bool, tolerance: float, limits: FitLimits) -> Guide | None:
