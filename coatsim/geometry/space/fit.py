@@ -7,6 +7,10 @@ of the input points it spans, keeps every arc within the curvature cap of the st
 covers (coatsim.geometry.limits: the input's own curvature near it, the speed's) and no
 shorter than the minimum segment length. Every knot carries the curve's point and tangent,
 so the chain is G1 at every knot and every biarc junction, and errors do not accumulate.
+Where no such biarc leaves a knot (sparse or noisy input turning faster than its own curvature
+envelope allows an arc to, a stretch that doubles back), the longest line within the
+tolerance does: a line never breaks a limit, and its ends are corners where the tangents
+differ (the next biarc leaves along the line if it can), never an arc tighter than allowed.
 Afterwards collinear lines and co-circular arcs are merged.
 """
 
@@ -14,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -56,17 +61,17 @@ class _Run:
             self.tangents[i] = tangent_at(self.p, self.s, i, self.window)
         return self.tangents[i]
 
-    def best_biarc(self, i: int, j: int, strict: bool) -> tuple[float, tuple[Segment3, ...]] | None:
-        """The biarc from knot i to knot j with the smallest deviation within tolerance
-        (and, when ``strict``, within the caps and minimum length), with that deviation."""
+    def best_biarc(self, i: int, j: int, start: np.ndarray | None = None) -> tuple[float, tuple[Segment3, ...]] | None:
+        """The biarc from knot i (leaving along ``start``, the curve's tangent by default) to
+        knot j with the smallest deviation within tolerance, the caps and the minimum length,
+        with that deviation."""
         best = None
+        t0 = self.tangent(i) if start is None else start
         for ratio in RATIOS:
-            pair = biarc(self.p[i], self.tangent(i), self.p[j], self.tangent(j), ratio)
-            if pair is None:
+            pair = biarc(self.p[i], t0, self.p[j], self.tangent(j), ratio)
+            if pair is None or not self._within_limits(pair, i, j):
                 continue
-            if strict and not self._within_limits(pair, i, j):
-                continue
-            dev = self._deviation(pair, i, j)
+            dev = self.deviation(pair, i, j)
             if dev <= self.tol and (best is None or dev < best[0]):
                 best = (dev, pair)
         return best
@@ -81,7 +86,7 @@ class _Run:
         short = (lengths < self.limits.min_length_mm) & (lengths < lengths.sum())
         return bool(np.all(kappa <= caps * (1 + 1e-9)) and not (short & (kappa > 0)).any())
 
-    def _deviation(self, pair: tuple[Segment3, ...], i: int, j: int) -> float:
+    def deviation(self, pair: tuple[Segment3, ...], i: int, j: int) -> float:
         """Largest distance of the input points i..j to the biarc and of probe points of the
         biarc to the input edges i..j (the exact check of the whole chain comes later)."""
         pts = self.p[i : j + 1]
@@ -95,56 +100,76 @@ class _Run:
         return float(max(to_chain, d.max()))
 
 
-def _farthest(run: _Run, i: int, strict: bool) -> tuple[int, tuple[Segment3, ...]] | None:
-    """The farthest knot j > i reachable by one biarc from knot i: doubling the span from the
-    first knot at least two minimum lengths away (shorter biarcs cannot keep it), then bisection."""
+def _farthest(run: _Run, i: int, fits: Callable[[int], tuple[Segment3, ...] | None],
+              first: int) -> tuple[int, tuple[Segment3, ...]] | None:
+    """The farthest knot j >= ``first`` that ``fits`` reaches from knot i: doubling the span,
+    then bisection."""
     n = len(run.p)
-    first = int(np.searchsorted(run.s, run.s[i] + 2 * run.limits.min_length_mm)) if strict else i + 1
     first = min(max(first, i + 1), n - 1)
     good: tuple[int, tuple[Segment3, ...]] | None = None
     step, bad = 1, None
     while True:
         j = min(n - 1, first + step - 1)
-        found = run.best_biarc(i, j, strict)
+        found = fits(j)
         if found is None:
             bad = j
             break
-        good = (j, found[1])
+        good = (j, found)
         if j == n - 1:
             return good
         step *= 2
     lo = good[0] if good else i
     while bad - lo > 1:
         mid = (lo + bad) // 2
-        found = run.best_biarc(i, mid, strict)
+        found = fits(mid)
         if found is None:
             bad = mid
         else:
-            lo, good = mid, (mid, found[1])
+            lo, good = mid, (mid, found)
     return good
+
+
+def _biarc_to(run: _Run, i: int, start: np.ndarray | None) -> tuple[int, tuple[Segment3, ...]] | None:
+    """The farthest knot one honest biarc reaches from knot i, from the first at least two
+    minimum lengths away (shorter biarcs cannot keep it)."""
+    first = int(np.searchsorted(run.s, run.s[i] + 2 * run.limits.min_length_mm))
+
+    def fits(j: int) -> tuple[Segment3, ...] | None:
+        found = run.best_biarc(i, j, start)
+        return None if found is None else found[1]
+    return _farthest(run, i, fits, first)
+
+
+def _line_to(run: _Run, i: int) -> tuple[int, tuple[Segment3, ...]]:
+    """The farthest knot a line from knot i reaches within tolerance (the next one at least:
+    the chord to a neighbour is the input's own edge)."""
+    def fits(j: int) -> tuple[Segment3, ...] | None:
+        line = (Line3(run.p[i], run.p[j]),)
+        return line if j == i + 1 or run.deviation(line, i, j) <= run.tol else None
+    return _farthest(run, i, fits, i + 1)  # type: ignore[return-value]
 
 
 def fit_run3(points: np.ndarray, tol: float, limits: FitLimits, window: float,
              start_tangent: np.ndarray | None = None, end_tangent: np.ndarray | None = None) -> RunChain:
-    """A G1 chain of lines and arcs through a run of input points (n, 3) within about ``tol``
-    (the caller certifies it exactly); ``start_tangent``/``end_tangent`` pin the tangents at
-    the run's ends (a closed loop's seam)."""
+    """A chain of lines and arcs through a run of input points (n, 3) within about ``tol``
+    (the caller certifies it exactly) whose every arc keeps the limits; where no such biarc
+    leaves a knot, the longest line within ``tol`` does, with a corner at each of its ends
+    unless the tangents agree (a line is always honest). ``start_tangent``/``end_tangent``
+    pin the tangents at the run's ends (a closed loop's seam)."""
     run = _Run(points, tol, limits, window, start_tangent, end_tangent)
     segments: list[Segment3] = []
-    kept = True
-    i = 0
+    i, arriving = 0, None  # arriving: the direction of a line that ended at knot i
     while i < len(points) - 1:
-        found = _farthest(run, i, strict=True)
+        found = _biarc_to(run, i, arriving) if arriving is not None else None
+        found = found or _biarc_to(run, i, None)
+        arriving = None
         if found is None:
-            kept = False
-            found = _farthest(run, i, strict=False)
-        if found is None:  # not even between neighbours: the tolerance is below the input's resolution there
-            found = (i + 1, (Line3(points[i], points[i + 1]),))
-            kept = False
+            found = _line_to(run, i)
+            arriving = found[1][0].direction
         j, pair = found
         segments.extend(seg for seg in pair if seg.length > 0)
         i = j
-    return RunChain(merge_segments(tuple(segments)), kept)
+    return RunChain(merge_segments(tuple(segments)), True)
 
 
 def merge_segments(segments: tuple[Segment3, ...]) -> tuple[Segment3, ...]:

@@ -62,6 +62,7 @@ class SpaceSegmentation:
     tool_accel_mm_s2: float | None = None
     limits_kept: bool | None = None
     notes: tuple[str, ...] = ()
+    added_corners: int = 0
 
     def stats(self) -> dict:
         chain = self.chain
@@ -90,7 +91,9 @@ class SpaceSegmentation:
             f"{self.curve.name}: {st['input_points']} points in space, length {self.curve.length:.3f} mm, "
             f"{'closed' if self.curve.closed else 'open'}, {'planar (fitted in its plane)' if st['planar'] else 'not planar'}",
             f"tolerance {self.tolerance_mm:g} mm",
-            f"segments {st['n_segments']} ({st['n_arcs']} arcs, {st['n_lines']} lines), corners {len(self.chain.corners)}",
+            f"segments {st['n_segments']} ({st['n_arcs']} arcs, {st['n_lines']} lines), corners {len(self.chain.corners)}"
+            + (f" ({self.added_corners} where no arc within the limits follows the input: lines meet there)"
+               if self.added_corners else ""),
             f"max deviation {st['max_deviation_mm']:.6f} mm (certified two-sided Hausdorff in 3-D), "
             f"max tangent break {st['max_tangent_break_deg']:.3g} deg",
             f"tightest arc {radius}, shortest segment {st['min_segment_mm']:.3f} mm"
@@ -145,6 +148,7 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
     started = time.perf_counter()
     pose, height = best_plane(curve.points)
     notes: tuple[str, ...] = ()
+    added = 0
     planar = height <= PLANAR_SHARE * tolerance_mm
     if arc_planes == "principal" and not (planar and is_principal(pose.rotation[:, 2])):
         fit = fit_principal(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
@@ -156,11 +160,12 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
         dev = hausdorff3(curve.points, chain, tolerance_mm).hausdorff
     else:
         pose = None
-        chain, dev, radius, kept = _fit_space(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
+        chain, dev, radius, kept, added = _fit_space(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s,
+                                                     tool_accel_mm_s2)
     if speed_mm_s is not None and not chain.speed_limited:
         chain = replace(chain, speed_limited=speed_limited(chain, speed_mm_s, tool_accel_mm_s2))  # type: ignore[arg-type]
     return SpaceSegmentation(curve, chain, tolerance_mm, dev, time.perf_counter() - started, pose, radius,
-                             speed_mm_s, tool_accel_mm_s2, kept, notes)
+                             speed_mm_s, tool_accel_mm_s2, kept, notes, added)
 
 
 def _fit_planar(curve: SpaceCurve, pose: Pose, height: float, tol: float, corner_deg: float,
@@ -177,8 +182,9 @@ def _fit_planar(curve: SpaceCurve, pose: Pose, height: float, tol: float, corner
 
 
 def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm: float | None,
-               speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> tuple[SpaceChain, float, float | None, bool]:
-    """G1 chains over the runs between corners, each certified within ``tol``."""
+               speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> tuple[SpaceChain, float, float | None, bool, int]:
+    """G1 chains over the runs between corners, each certified within ``tol``, and the corners
+    added where lines stand in for arcs the limits forbid."""
     pts = curve.points
     corners = detect_corners3(pts, curve.closed, corner_deg, tol)
     if curve.closed and len(corners):
@@ -204,12 +210,12 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
         radii.append(limits.profile.tightest_radius_mm)
         devs.append(dev)
     corner_junctions = tuple(junctions[:-1]) + ((junctions[-1],) if curve.closed and len(corners) else ())
-    chain, kinked = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
+    chain, added = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
     # one run: its certified deviation is the chain's; several: the whole is certified again
     # (an input point may lie nearer another run's segments than its own)
     dev = devs[0] if len(devs) == 1 else hausdorff3(pts, chain, tol).hausdorff
     tightest = min(radii)
-    return chain, dev, tightest if math.isfinite(tightest) else None, kept and not kinked
+    return chain, dev, tightest if math.isfinite(tightest) else None, kept, added
 
 
 def _fit_run(name: str, run: np.ndarray, tol: float, limits: FitLimits, window: float,
@@ -250,15 +256,15 @@ def _fit_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | N
     return best
 
 
-def _with_kinks(chain: SpaceChain) -> tuple[SpaceChain, bool]:
-    """The chain with every junction whose tangent breaks (a run the biarcs could not follow
-    between two input points, joined by a line) listed as a corner, and whether there was one:
-    a break is never left unlisted."""
+def _with_kinks(chain: SpaceChain) -> tuple[SpaceChain, int]:
+    """The chain with every junction whose tangent breaks (where no honest biarc follows the
+    input, a line does: coatsim.geometry.space.fit) listed as a corner, and how many were
+    added: a break is never left unlisted."""
     breaks = chain.junction_breaks()
     kinks = {int(k) for k in np.flatnonzero(breaks > KINK_RAD)} - set(chain.corners)
     if not kinks:
-        return chain, False
-    return replace(chain, corners=tuple(sorted(set(chain.corners) | kinks))), True
+        return chain, 0
+    return replace(chain, corners=tuple(sorted(set(chain.corners) | kinks))), len(kinks)
 
 
 def _seam_view(points: np.ndarray, window: float) -> tuple[np.ndarray, np.ndarray, int]:

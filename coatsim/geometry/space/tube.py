@@ -28,10 +28,12 @@ start state turned into the end frame).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
+from typing import Callable
 
 import numpy as np
 from scipy.sparse import coo_matrix, csr_matrix, diags
-from scipy.sparse.linalg import spsolve
+from scipy.sparse.linalg import factorized
 
 from coatsim.geometry.limits import FitLimits
 from coatsim.geometry.space.cone_program import ConeProgram
@@ -130,6 +132,15 @@ class _Linear:
     scale: np.ndarray
     weight: np.ndarray
     end_rate: np.ndarray
+
+    @cached_property
+    def gap_solver(self) -> Callable[[np.ndarray], np.ndarray] | None:
+        """Solves G D Gᵀ y = r (D the squared trust-region units), factorised once for every
+        correction along this linearisation (None if singular)."""
+        try:
+            return factorized((self.gaps @ diags(self.unit**2) @ self.gaps.T).tocsc())
+        except RuntimeError:
+            return None
 
 
 def _moved(chain: TubeChain, lay: _Layout, dx: np.ndarray) -> TubeChain | None:
@@ -389,16 +400,13 @@ class TubeProblem:
         the trust region's units) along the linearisation: min |d / unit| with G d = −g(trial)
         (a second-order correction: the gaps of a step grow with its square)."""
         _, gaps = self._measure(trial.params(), trial, samples=False)
-        g = (gaps * lin.weight).ravel()
-        d2 = lin.unit**2
-        normal = (lin.gaps @ diags(d2) @ lin.gaps.T).tocsc()
-        try:
-            y = spsolve(normal, -g)
-        except RuntimeError:
+        solve = lin.gap_solver
+        if solve is None:
             return None
+        y = solve(-(gaps * lin.weight).ravel())
         if not np.all(np.isfinite(y)):
             return None
-        return _moved(trial, lin.layout, d2 * (lin.gaps.T @ y))
+        return _moved(trial, lin.layout, lin.unit**2 * (lin.gaps.T @ y))
 
     def _limit_rows(self, prog: ConeProgram, chain: TubeChain, lay: _Layout, reach: float) -> None:
         """Minimum lengths ds_j − ds_j+1 <= h_j − min_length (never shorter than a piece is

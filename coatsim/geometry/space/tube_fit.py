@@ -30,10 +30,11 @@ import numpy as np
 from coatsim.geometry.limits import FitLimits
 from coatsim.geometry.space.biarc import biarc, tangent_segment
 from coatsim.geometry.space.chain import SpaceChain
-from coatsim.geometry.space.deviation import hausdorff3
+from coatsim.geometry.space.deviation import distance_to_chain, hausdorff3
 from coatsim.geometry.space.fit import RunChain
 from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.local import arc_length
+from coatsim.geometry.space.nearest import polyline_index
 from coatsim.geometry.space.pieces import curvature_vector, end_states, land, segment, state_point
 from coatsim.geometry.space.primitives import Arc3, Segment3
 from coatsim.geometry.space.reference import Reference, reference
@@ -42,10 +43,12 @@ from coatsim.geometry.space.tube import Ends, TubeChain, TubeProblem
 TARGET = 0.999  # the fit aims at this share of σ (the exact check decides)
 LOWER = 0.98  # a chain the exact check finds above σ is refitted this much lower, ...
 CERTIFY_TRIES = 3  # ... this many times at most
+REFINE = 8  # places per input edge measured where the exact check finds a chain that bulged between them
 EXTRA_PIECES = (0, 1, 2, 3)  # pieces beyond the greedy's count tried while no chain fits, ...
 MORE_PIECES = (1.25, 1.5, 2.0, 3.0)  # ... then these multiples of it, ...
 PLATEAU_COUNTS, PLATEAU_GAIN = 2, 0.02  # ... until the closest miss of a count is within this share of the one
                                         # PLATEAU_COUNTS counts before (a curvature cap or the minimum length holds it)
+STUCK_GAIN = 0.005  # ... or within this share of the one just before
 BALANCE_ROUNDS = 2  # refits of a count from knots spread to even out the pieces' misses
 MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain resampled)
 MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
@@ -80,7 +83,9 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
 
 def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits, ends: Ends) -> RunChain | None:
     """The fewest pieces the tube fit finds within the target at the input points, built and
-    certified by the exact check; aimed lower (the same chain first) while that misses."""
+    certified by the exact check. While that misses: the places of the input it missed at
+    (between the measured points) are measured too and the same chain refitted, else it is
+    aimed lower (the same chain first)."""
     seam = ends.seam is not None
     s = arc_length(points)
     problem = TubeProblem(ref, points, s, tol, limits, ends)
@@ -94,14 +99,50 @@ def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits
         dev = hausdorff3(points, SpaceChain(segments, seam), tol).hausdorff
         if dev <= tol:
             return RunChain(segments, _honest(segments, caps, limits), dev)
-        target *= LOWER * tol / dev
-        if not warm:  # the same pieces pulled a little further in first, a fresh search if that misses too
-            lower, missed = problem.fit(chain, target)
-            if missed <= target:
-                chain, warm = lower, True
+        missed = _missed(points, SpaceChain(segments, seam), target)
+        if len(missed):  # the chain bulged between measured points: measure there too, refit it
+            points, s = _inserted(points, s, missed)
+            problem = TubeProblem(ref, points, s, tol, limits, ends)
+        else:
+            target *= LOWER * tol / dev
+        if not warm:  # the same pieces pulled in first, a fresh search if that misses too
+            closer, miss = problem.fit(chain, target)
+            if miss <= target:
+                chain, warm = closer, True
                 continue
         chain, warm = _fewest(problem, density, target), False
     return None
+
+
+def _missed(points: np.ndarray, chain: SpaceChain, target: float) -> np.ndarray:
+    """Arc lengths along the polyline ``points`` (k,) of the places farther than ``target`` from
+    the chain that its vertices miss: REFINE places on every edge, and the feet on the
+    polyline of the chain's points farther than that from it (both directions of the check)."""
+    s = arc_length(points)
+    u = np.arange(1, REFINE) / REFINE
+    at = (s[:-1, None] + u[None, :] * np.diff(s)[:, None]).ravel()
+    on_edges = _along(points, s, at)
+    far = at[distance_to_chain(on_edges, chain, target) > target]
+    index, _ = polyline_index(points)
+    probes = np.vstack([seg.points(np.linspace(0.0, seg.length, max(2, int(seg.length / target) + 1)))
+                        for seg in chain.segments])
+    dist, edge = index.distance(probes)
+    out = dist > target
+    ab = points[edge[out] + 1] - points[edge[out]]
+    foot = np.einsum("ij,ij->i", probes[out] - points[edge[out]], ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300)
+    feet = s[edge[out]] + np.clip(foot, 0.0, 1.0) * np.diff(s)[edge[out]]
+    return np.setdiff1d(np.unique(np.concatenate((far, feet))), s)
+
+
+def _along(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> np.ndarray:
+    return np.column_stack([np.interp(at, s, points[:, k]) for k in range(3)])
+
+
+def _inserted(points: np.ndarray, s: np.ndarray, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The polyline with vertices added at arc lengths ``at`` (the same polyline), and its arc lengths."""
+    s_all = np.concatenate((s, at))
+    order = np.argsort(s_all, kind="stable")
+    return np.vstack((points, _along(points, s, at)))[order], s_all[order]
 
 
 def densified(points: np.ndarray, step: float) -> np.ndarray:
@@ -194,6 +235,8 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
     for n in counts:
         if len(misses) > PLATEAU_COUNTS and misses[-1] >= (1 - PLATEAU_GAIN) * misses[-1 - PLATEAU_COUNTS]:
             return None  # more pieces stopped bringing the chain closer: a limit holds it out, not the count
+        if len(misses) > 1 and misses[-1] >= (1 - STUCK_GAIN) * misses[-2]:
+            return None  # one more piece gained nothing at all: the same, sooner
         starts = [_initial(problem.ref, density.spread(n)),
                   _initial(problem.ref, np.linspace(density.knots[0], density.knots[-1], n + 1))]
         if missed is not None and missed.n == n - 1:
