@@ -129,9 +129,9 @@ class Interpreter(Statements, Expressions, Motions):
             if rest and rest[0].kind == OP and rest[0].text == "[":
                 close = next(k for k, t in enumerate(rest) if t.text == "]")
                 dims = [int(float(t.text)) for t in rest[1:close] if t.kind == "num"]
-                scope[name] = [v.default(type_) for _ in range(dims[0] if dims else 0)]
+                scope[name] = [v.declared(type_) for _ in range(dims[0] if dims else 0)]
                 continue
-            value = v.default(type_)
+            value = v.declared(type_)
             if type_ in v.TYPES and not (rest and rest[0].kind == OP and rest[0].text == "="):
                 self.valueless.add(id(value))  # a position declared without one: reading it is an unknown
             if rest and rest[0].kind == OP and rest[0].text == "=":

@@ -132,8 +132,19 @@ class Motions:
             last = self.moves[-1]
             self.moves[-1] = replace(last, settings=replace(last.settings, stop_at_end=True))
 
-    def _target(self, e: n.Expr) -> v.Struct:
-        return self._merged(self.eval(e))
+    def _target(self, tokens: list) -> v.Struct:
+        return self._merged(self._complete(tokens, self.eval(self.expr(tokens))))
+
+    def _complete(self, tokens: list, value):
+        """``value`` once sure a position variable used as a target has X to C: the controller stops
+        on one declared without a value and only partly assigned since, where an aggregate written
+        in the motion takes its missing components from the current position."""
+        if isinstance(value, v.Struct) and not _is_axes(value) and not isinstance(self.expr(tokens), n.Aggregate):
+            missing = [f for f in v.FRAME_FIELDS if f not in value.fields]
+            if missing:
+                raise self.error(f"the target {statement_text(tokens)} has no {', '.join(missing)}: a position "
+                                 "declared without a value has only the components assigned to it since")
+        return value
 
     def _merged(self, value) -> v.Struct:
         if not isinstance(value, v.Struct):
@@ -157,6 +168,8 @@ class Motions:
         """A motion's end (base frame), its position value, its auxiliary point (CIRC) and its
         joints (PTP to axis values)."""
         raw = self.eval(self.expr(parts[0])) if word != "CIRC" and len(parts) == 1 else None
+        if raw is not None and not word.endswith("_REL"):
+            self._complete(parts[0], raw)
         joints = None
         if self.frames_unknown and not _is_axes(raw):
             raise Unknown(self.frames_unknown)
@@ -166,7 +179,7 @@ class Motions:
         elif word == "CIRC":
             if len(parts) != 2:
                 raise self.error("CIRC takes an auxiliary point and an end point")
-            via_s, end_s = self._target(self.expr(parts[0])), self._target(self.expr(parts[1]))
+            via_s, end_s = self._target(parts[0]), self._target(parts[1])
             via, end = base @ v.pose_of(via_s), base @ v.pose_of(end_s)
         else:
             if len(parts) != 1:

@@ -42,6 +42,12 @@ def default(type_: str) -> Any:
     return Struct(type_)
 
 
+def declared(type_: str) -> Any:
+    """The value of a declaration without one: a position or axis set has no component until one is
+    assigned (the controller holds them invalid); other types their default."""
+    return Struct(type_.upper()) if type_.upper() in TYPES else default(type_)
+
+
 def pose_of(value: Struct) -> Pose:
     """The Pose of a frame-like structure (missing components 0)."""
     f = value.fields

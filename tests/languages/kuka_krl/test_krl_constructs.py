@@ -104,3 +104,22 @@ def test_defects_name_the_line(tmp_path, src, words):
     with pytest.raises((InputError, ExecutionError)) as info:
         read(tmp_path, src)
     assert words in str(info.value) and "prog.src:" in str(info.value) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("body", [
+    "  DECL E6POS p\n  p.X = 600\n  p.Y = 50\n  LIN p",  # partly set: Z, A, B, C have no value
+    "  DECL POS pts[3]\n  pts[2] = {X 600, Y 50, Z 300}\n  LIN pts[2]",
+    "  DECL FRAME aux\n  aux.X = 650\n  CIRC aux, {X 600,Y 100,Z 300,A 0,B 90,C 0}",
+])
+def test_a_position_declared_without_a_value_and_partly_set_is_refused_not_zeroed(tmp_path, body):
+    with pytest.raises((InputError, ExecutionError)) as info:  # the controller stops; 0 would move elsewhere
+        read(tmp_path, prog(body))
+    assert "has no" in str(info.value) and "declared without a value" in str(info.value)
+    assert "prog.src:" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_a_position_set_component_by_component_is_used_once_complete(tmp_path):
+    body = "".join(f"  p.{k} = {x}\n" for k, x in zip("XYZABC", (600, 50, 280, 0, 90, 0)))
+    r = read(tmp_path, prog(f"  DECL E6POS p\n{body}  LIN p\n  p.X = 620\n  LIN p"))
+    assert np.allclose(r.toolpath.moves[1].end.translation_mm, [600, 50, 280])
+    assert np.allclose(r.toolpath.moves[2].end.translation_mm, [620, 50, 280])
