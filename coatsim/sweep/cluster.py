@@ -60,6 +60,7 @@ class DaskSession:
                                          "and pass --scheduler") from None
             self._client = Client(self._cluster)
             return self._client
+        _check_address(self.scheduler)
         try:
             self._client = Client(self.scheduler)  # waits distributed.comm.timeouts.connect (30 s)
         except (OSError, TimeoutError, ValueError) as exc:
@@ -85,6 +86,25 @@ class DaskSession:
     def wait_closed(self) -> None:
         if self._closing is not None:
             self._closing.join()
+
+
+def _check_address(scheduler: str) -> None:
+    """Refuse an address Dask cannot connect to at once (no port, a port out of range, a protocol no
+    comm backend serves), rather than after its connect timeout."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+    from distributed.comm.registry import backends
+
+    try:
+        protocol, location = parse_address(scheduler)
+        if protocol not in backends:
+            raise ValueError(f"no Dask comm speaks {protocol}:// (it knows {', '.join(sorted(backends))})")
+        if protocol in ("tcp", "tls"):
+            port = parse_host_port(location)[1]
+            if not 1 <= port <= 65535:
+                raise ValueError(f"port {port} is not 1 .. 65535")
+    except ValueError as exc:
+        raise InputError(f"--scheduler {scheduler}: not a scheduler address ({one_line(str(exc))}); give it as "
+                         "`dask scheduler` prints it, e.g. tcp://HOST:8786") from None
 
 
 def _check_workers(client, scheduler: str) -> None:

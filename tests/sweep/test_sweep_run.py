@@ -305,6 +305,9 @@ def test_cli_metric_choice_and_option_errors(swept, run_cli, tmp_path):
         (["--workers", "0"], "--workers 0: give at least 1"),
         (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "--workers sizes the local cluster only"),
         (["--scheduler", "tcp://127.0.0.1:1"], "--scheduler tcp://127.0.0.1:1: cannot connect"),
+        (["--scheduler", "garbage"], "--scheduler garbage: not a scheduler address (missing port number"),
+        (["--scheduler", "tcp://127.0.0.1:99999"], "port 99999 is not 1 .. 65535"),
+        (["--scheduler", "http://127.0.0.1:8786"], "no Dask comm speaks http://"),
     ):
         with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
             code, _, err = run_cli(["sweep", str(path), "-o", str(tmp_path / "other"), *argv])
