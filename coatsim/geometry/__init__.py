@@ -39,11 +39,10 @@ def __getattr__(name: str) -> Any:
 def load_curve(spec: str, closed: ClosedMode = "auto") -> Curve:
     """A curve from a file path (CSV/TXT/NPY) or ``builtin:NAME[:key=value,...]``."""
     from coatsim.geometry.builtin_curves import parse_builtin_spec
-    from coatsim.geometry.curves import make_curve, read_curve_file
+    from coatsim.geometry.curves import read_curve_file
 
     if spec.startswith("builtin:"):
-        curve = parse_builtin_spec(spec)
-        return curve if closed == "auto" else make_curve(curve.points, curve.name, closed)
+        return parse_builtin_spec(spec, closed)
     return read_curve_file(spec, closed)
 
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
-from coatsim.geometry.curves import Curve, make_curve
+from coatsim.geometry.curves import ClosedMode, Curve, make_curve
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line
 
@@ -204,11 +204,12 @@ BUILTINS: dict[str, Callable[..., np.ndarray]] = {
 }
 
 
-def builtin_curve(name: str, **params: float | int | str) -> Curve:
+def builtin_curve(name: str, closed: ClosedMode = "auto", **params: float | int | str) -> Curve:
     """Sample the named built-in curve.
 
     Args:
         name: a built-in curve (ellipse, paper-spiral, sine, ...; the InputError lists them).
+        closed: as make_curve's (``"auto"``: closed when its ends meet within a tiny share of its length).
         **params: its parameters (e.g. ``a``, ``b``, ``turns``, ``points``).
 
     Returns:
@@ -235,15 +236,15 @@ def builtin_curve(name: str, **params: float | int | str) -> Curve:
             xy = func(**params)
     except (TypeError, ValueError, ZeroDivisionError, OverflowError) as exc:
         raise InputError(f"builtin:{name}: bad parameter ({exc})") from None
-    return make_curve(xy, f"builtin:{name}")
+    return make_curve(xy, f"builtin:{name}", closed)
 
 
 TEXT_PARAMETERS = {"code"}
 INTEGER_PARAMETERS = {"points", "sides", "passes"}
 
 
-def parse_builtin_spec(spec: str) -> Curve:
-    """``builtin:NAME`` or ``builtin:NAME:key=value,key=value``."""
+def parse_builtin_spec(spec: str, closed: ClosedMode = "auto") -> Curve:
+    """``builtin:NAME`` or ``builtin:NAME:key=value,key=value``, closed as ``closed`` says."""
     body = spec[len("builtin:"):]
     name, _, arg_text = body.partition(":")
     params: dict[str, float | int | str] = {}
@@ -265,4 +266,4 @@ def parse_builtin_spec(spec: str) -> Curve:
             params[key] = int(number)
         else:
             params[key] = number
-    return builtin_curve(name.strip(), **params)
+    return builtin_curve(name.strip(), closed, **params)

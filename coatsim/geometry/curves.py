@@ -18,6 +18,7 @@ from coatsim.core.number_text import read_rows, table_text
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
+SNAP_NOTE_MM = 0.01  # an automatic closure that moves the last point further than this says so
 MIN_LENGTH_MM = 1e-6  # a shorter curve is no curve to spray (and leaves no room for float round-off)
 
 
@@ -93,6 +94,10 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
         is_closed = closed == "yes"
     if is_closed:
         if gap <= CLOSE_FRACTION * length:
+            if closed == "auto" and gap > SNAP_NOTE_MM:
+                warnings.warn(f"{name}: read as closed, its ends {gap:.4g} mm apart ({gap / length:.2g} of its length): "
+                              "the last point is moved onto the first (closed='no' keeps it open)",
+                              CoatsimWarning, stacklevel=3)
             pts = np.vstack((pts[:-1], pts[:1]))  # snap the closing point onto the first
         else:
             pts = np.vstack((pts, pts[:1]))

@@ -67,9 +67,7 @@ def load_input_curve(loaded: ScenarioFile) -> Curve:
     closed = "auto" if spec.closed == "auto" else ("yes" if spec.closed else "no")
     try:
         if spec.builtin is not None:
-            curve = builtin_curve(spec.builtin, **spec.params)
-            if closed != "auto":
-                curve = make_curve(curve.points, curve.name, closed)
+            curve = builtin_curve(spec.builtin, closed, **spec.params)
         else:
             curve = read_curve_file(loaded.resolve(spec.file), closed)
     except InputError as exc:

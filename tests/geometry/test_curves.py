@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coatsim.core.errors import InputError
+from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.geometry import BUILTINS, builtin_curve, load_curve, make_curve, read_curve_file
 
 # Six points of a parabola, written with repr() so every reader must give them back exactly.
@@ -104,10 +104,21 @@ def test_nearly_closed_within_tiny_fraction_snaps_onto_the_first_point(tmp_path)
     pts = np.vstack((circle(), circle()[:1]))
     length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     pts[-1] += [0.5e-4 * length, 0.2e-4 * length]  # gap ~5e-5 of the length
-    c = read_curve_file(write_rows(tmp_path / "c.csv", pts))
+    with pytest.warns(CoatsimWarning, match=r"read as closed, its ends 0.0\d+ mm apart .* moved onto the first"):
+        c = read_curve_file(write_rows(tmp_path / "c.csv", pts))  # it moves more than 0.01 mm: said
     assert c.closed is True and len(c.points) == len(pts)
     assert tuple(c.points[-1]) == tuple(c.points[0])
     np.testing.assert_array_equal(c.points[:-1], pts[:-1])
+
+
+def test_a_long_curve_closed_by_its_length_says_how_far_its_last_point_moved():
+    with pytest.warns(CoatsimWarning, match="its ends 200 mm apart"):  # 2 waves of 1 km amplitude: 8 km long
+        c = load_curve("builtin:sine:amplitude=1e6", "auto")
+    assert c.closed
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        kept_open = load_curve("builtin:sine:amplitude=1e6", "no")
+    assert not kept_open.closed and kept_open.points[-1][0] == pytest.approx(200.0)  # its own last point
 
 
 def test_a_visible_gap_is_open(tmp_path):
