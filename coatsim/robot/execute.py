@@ -130,7 +130,7 @@ def execute(toolpath: ToolPath, cell: Cell | None = None, step_mm: float = defau
     with watch.phase("collisions_s"):
         check_collisions(cell, path.q, label)
     with watch.phase("playback_s"):
-        run = play(cell, path.q, path.qd, path.qdd)
+        run = play(cell, path.q, path.qd)
     with watch.phase("checks_s"):
         events = list(path.events) + check_playback(cell, run.t, run.q, run.tcp, path.q, label)
     with watch.phase("metrics_s"):

@@ -53,13 +53,12 @@ class TimedSegment:
 @dataclass(frozen=True, eq=False)
 class JointPath:
     """The commanded joint path on the simulation grid (consecutive pieces share their rest
-    point): configurations, velocities and accelerations (n, 6), the commanded progress hint,
+    point): configurations and velocities (n, 6), the commanded progress hint,
     spray flag and move per row; the reference path in pieces with their moves, the events met,
     the largest IK residual and the widest blend."""
 
     q: np.ndarray
     qd: np.ndarray
-    qdd: np.ndarray
     hint: np.ndarray
     spray: np.ndarray
     row_move: np.ndarray
@@ -277,7 +276,7 @@ def _concatenated(segments: list[TimedSegment], chunks: tuple, events: tuple[str
     keep = [slice(None)] + [slice(1, None)] * (len(segments) - 1)
     cat: Callable[[Callable[[TimedSegment], np.ndarray]], np.ndarray] = \
         lambda get: np.concatenate([get(s)[k] for s, k in zip(segments, keep)])  # noqa: E731
-    return JointPath(q=cat(lambda s: s.timed.q), qd=cat(lambda s: s.timed.qd), qdd=cat(lambda s: s.timed.qdd),
+    return JointPath(q=cat(lambda s: s.timed.q), qd=cat(lambda s: s.timed.qd),
                      hint=np.maximum.accumulate(cat(lambda s: s.progress)), spray=cat(lambda s: s.spray),
                      row_move=cat(lambda s: s.move), chunks=chunks, events=events, residual=residual,
                      max_blend_mm=max_blend)

@@ -32,10 +32,9 @@ from coatsim.robot.cell import MM, Cell
 
 if TYPE_CHECKING:  # toppra (and the matplotlib it imports) loads when a piece is timed
     from coatsim.robot.timing_toppra import Spline
-# The planner commands at most this fraction of each joint's speed and acceleration limit: the
-# servo's transients at an acceleration step overshoot the commanded acceleration by 1.5 % to 5 %
-# (more on some wrist configurations), and the simulated arm must stay within the limits, not
-# only its command.
+# The planner commands at most this fraction of each joint's speed and acceleration limit: a
+# margin for what the servo must correct beyond the model (a part touched, a payload not in it),
+# so that the simulated arm stays within the limits, not only its command.
 PLANNING_FRACTION = 0.95
 # toppra bounds the joint accelerations at the gridpoints; between them q'(s) sdd + q''(s) sd^2
 # can exceed the bound where q''(s) changes fast (a tool that turns with a path whose curvature
