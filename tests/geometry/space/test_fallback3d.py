@@ -4,15 +4,14 @@ uses lines meeting at listed corners where no honest arc fits, within σ, certif
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
-from scipy.spatial import cKDTree
 
 from coatsim.geometry.space.curve import make_space_curve
 from coatsim.geometry.space.primitives import Arc3
 from coatsim.geometry.space.segment import segment_space_curve
+
+from test_segment3d import brute_hausdorff
 
 RADIUS_MM = 60.0  # the pass follows a circle of this radius (rising slowly)
 SPEED_MM_S, ACCEL_MM_S2 = 500.0, 5000.0  # v² / a = 50 mm
@@ -32,17 +31,6 @@ def sparse_noisy_pass(seed: int = 3) -> np.ndarray:
     return points + np.random.default_rng(seed).normal(0.0, 0.02, points.shape)
 
 
-def dense_hausdorff(points: np.ndarray, chain, step: float) -> float:
-    """Both directions between dense samples of the polyline and of the chain (KD-trees)."""
-    dense = [points[:1]]
-    for a, b in zip(points[:-1], points[1:]):
-        n = max(1, int(math.ceil(np.linalg.norm(b - a) / step)))
-        dense.append(a + np.linspace(0, 1, n + 1)[1:, None] * (b - a))
-    poly = np.vstack(dense)
-    ours = chain.sample(step)[0]
-    return max(cKDTree(ours).query(poly)[0].max(), cKDTree(poly).query(ours)[0].max())
-
-
 @pytest.mark.parametrize("tol", [0.05, 0.1])
 @pytest.mark.parametrize("speed", [None, SPEED_MM_S])
 def test_sparse_noisy_pass_gets_no_arc_tighter_than_allowed(tol, speed):
@@ -55,7 +43,7 @@ def test_sparse_noisy_pass_gets_no_arc_tighter_than_allowed(tol, speed):
     # about 13 mm radius at the tightest (the curvature envelope the limits follow), never 10
     assert min(radii) >= 10.0
     assert seg.max_deviation_mm <= tol
-    assert dense_hausdorff(points, seg.chain, tol / 20) <= tol * (1 + 1e-3) + tol / 20
+    assert brute_hausdorff(points, seg.chain, tol / 20) <= tol * (1 + 1e-3) + tol / 20
     breaks = seg.chain.junction_breaks()
     smooth = [k for k in range(len(breaks)) if k not in seg.chain.corners]
     assert np.all(breaks[smooth] < 1e-9)
