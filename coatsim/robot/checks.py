@@ -8,9 +8,9 @@ Two checks, each naming the program step where it fails:
   logged joint positions, as the motion metrics compute them) against the cell's limits.
 Above the failure thresholds the run cannot be trusted: ExecutionError (exit 3). Smaller
 excesses are warnings (the run's events). The acceleration that fails a run is the mean over
-``SUSTAINED_S`` (a velocity change over that time): a single step may exceed the limit by a
-little where the command is sampled at a piece's short last step, which is reported as a warning
-but is no failure; an arm that hits something or cannot follow exceeds the limits for far longer.
+``SUSTAINED_S`` (a velocity change over that time): a step or two of excess while the servo
+corrects a disturbance is a warning, no failure; an arm that hits something or cannot follow
+exceeds the limits for far longer.
 """
 
 from __future__ import annotations

@@ -4,8 +4,9 @@ Each joint's ``pid`` actuator gets, at every step, the reference position, the v
 which the integrator arrives there, and a feed-forward torque: discrete-time inverse dynamics
 (``mj_inverse`` with ``invdiscrete``, so the implicit damping of the servo is accounted for) of
 the acceleration held over the step. The arm then lands on every reference position, and the
-servo only corrects what the model cannot foresee. The stepping itself is MuJoCo's ``mj_step`` loop run in C by ``mujoco.rollout``;
-the TCP position, spray axis and velocity come from the model's site sensors.
+servo only corrects what the model cannot foresee. The stepping itself is MuJoCo's ``mj_step``
+loop run in C by ``mujoco.rollout``; the TCP position, spray axis and velocity come from the
+model's site sensors.
 """
 
 from __future__ import annotations
