@@ -133,13 +133,14 @@ class Motions:
             self.moves[-1] = replace(last, settings=replace(last.settings, stop_at_end=True))
 
     def _target(self, tokens: list) -> v.Struct:
-        return self._merged(self._complete(tokens, self.eval(self.expr(tokens))))
+        e = self.expr(tokens)
+        return self._merged(self._complete(tokens, e, self.eval(e)))
 
-    def _complete(self, tokens: list, value):
+    def _complete(self, tokens: list, e: n.Expr, value):
         """``value`` once sure a position variable used as a target has X to C: the controller stops
         on one declared without a value and only partly assigned since, where an aggregate written
         in the motion takes its missing components from the current position."""
-        if isinstance(value, v.Struct) and not _is_axes(value) and not isinstance(self.expr(tokens), n.Aggregate):
+        if isinstance(value, v.Struct) and not _is_axes(value) and not isinstance(e, n.Aggregate):
             missing = [f for f in v.FRAME_FIELDS if f not in value.fields]
             if missing:
                 raise self.error(f"the target {statement_text(tokens)} has no {', '.join(missing)}: a position "
@@ -167,9 +168,10 @@ class Motions:
     def _targets(self, word: str, parts: list, base: Pose, relative_to: str) -> tuple:
         """A motion's end (base frame), its position value, its auxiliary point (CIRC) and its
         joints (PTP to axis values)."""
-        raw = self.eval(self.expr(parts[0])) if word != "CIRC" and len(parts) == 1 else None
-        if raw is not None and not word.endswith("_REL"):
-            self._complete(parts[0], raw)
+        first = self.expr(parts[0]) if word != "CIRC" and len(parts) == 1 else None
+        raw = self.eval(first) if first is not None else None
+        if first is not None and not word.endswith("_REL"):
+            self._complete(parts[0], first, raw)
         joints = None
         if self.frames_unknown and not _is_axes(raw):
             raise Unknown(self.frames_unknown)
