@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -29,11 +30,13 @@ from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
 from coatsim.geometry.limits import MIN_LENGTH_SIGMAS, FitLimits, arc_excess, fit_limits
+from coatsim.geometry.merge import bent_merge, plain_merge
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.geometry.recover import recover_exact
-from coatsim.geometry.refine import ChainParams, close_exactly, refine_chain, split_segment, worst_segment
+from coatsim.geometry.refine import (ChainParams, close_exactly, lateral_residuals, refine_chain, split_segment,
+                                     worst_segment)
 from coatsim.geometry.sparse import guide as sparse_guide, is_sparse
 
 MAX_ATTEMPTS = 20
@@ -48,6 +51,7 @@ MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
 HOPELESS = 1.02  # a merged chain whose sampled deviation is above this share of σ is not checked exactly
 BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
+SCREEN = 5.0  # a merge bent back onto the rest that strays this many σ is not refined (see _fewer)
 
 
 @dataclass(frozen=True)
@@ -157,6 +161,17 @@ class _Target:
         dev = hausdorff(self.pts, Polysegment(segs)).hausdorff if honest and sampled <= hopeless else math.inf
         return params, sampled, segs, honest, dev
 
+    def sampled(self, params: ChainParams) -> float:
+        """The largest lateral distance (mm) of the measured samples from the chain of
+        ``params`` as it is (refine's measure, without refining)."""
+        return float(np.abs(lateral_residuals(self.origin(params), params, self.measured, self._fractions)).max())
+
+    @cached_property
+    def _fractions(self) -> np.ndarray:
+        """Each measured sample's share of the measured polyline's length (refine's pairing)."""
+        seg = np.linalg.norm(np.diff(self.measured, axis=0), axis=1)
+        return np.concatenate(([0.0], np.cumsum(seg))) / seg.sum()
+
     def origin(self, params: ChainParams) -> np.ndarray:
         """Where the chain of ``params`` starts."""
         return self.start if self.slide is None else self.start + params.shift * self.slide
@@ -238,7 +253,9 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
 def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
            dev: float) -> tuple[tuple[Segment, ...], float]:
     """The chain with junctions given up, the calmest first (two segments become one of their
-    length and turn, refined again), while the chain stays within the tolerance and caps.
+    length and turn, refined again), while the chain stays within the tolerance and caps; a
+    junction whose merge, bent back onto the rest of the chain (coatsim.geometry.merge), still
+    strays SCREEN σ from the input is not refined.
     A junction that could not be given up is not tried again until a neighbouring one is
     (the segments next to it are then new)."""
     failed: set[int] = set()  # junction k: between segments k and k + 1
@@ -246,11 +263,12 @@ def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
         for j in np.argsort(np.abs(np.diff(params.kappa)), kind="stable"):
             if j in failed:
                 continue
-            length = params.length[j] + params.length[j + 1]
-            kappa = (params.kappa[j] * params.length[j] + params.kappa[j + 1] * params.length[j + 1]) / length
-            merged = ChainParams(params.heading, np.concatenate((params.kappa[:j], [kappa], params.kappa[j + 2:])),
-                                 np.concatenate((params.length[:j], [length], params.length[j + 2:])), params.shift)
-            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(merged, TARGET * tgt.tolerance, HOPELESS * tgt.tolerance)
+            bent = bent_merge(params, int(j))
+            if bent is not None and tgt.sampled(bent) > SCREEN * tgt.tolerance:
+                failed.add(int(j))  # (bent back onto the rest, the merge still strays far: not refined)
+                continue
+            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(plain_merge(params, int(j)), TARGET * tgt.tolerance,
+                                                                 HOPELESS * tgt.tolerance)
             if honest and fewer_dev <= tgt.tolerance:
                 params, segs, dev = fewer, fewer_segs, fewer_dev
                 failed = {k - (k > j) for k in failed if abs(k - j) > 1}

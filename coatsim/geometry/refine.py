@@ -23,7 +23,10 @@ EXCHANGE = 60  # worst points added to the samples per exchange round
 EXCHANGE_ROUNDS = 6
 EARLY = 12
 STALL_STEPS = 4  # a refinement asked to stop when it stalls compares its merit this many steps back ...
-STALL_SHARE = 0.01  # ... and stops when it fell by less than this share
+STALL_SHARE = 0.01  # ... and stops when it fell by less than this share; it also stops ...
+HOPELESS_STEP = 6  # ... after this many steps when its merit is still ...
+HOPELESS_SHARE = 6.0  # ... this many times the merit it stops above (taught chains with a junction
+# given up that ended within σ were at most 5 times it by then on the taught polygons measured)
 
 
 @dataclass(frozen=True, eq=False)
@@ -258,7 +261,7 @@ def refine_chain(
     Stops early once the sampled deviation is below ``target``
     with the end gap closed, or when it is still far above it after a few steps, or when
     after those steps it is above ``stall_above`` and fell by less than STALL_SHARE over the
-    last STALL_STEPS steps.
+    last STALL_STEPS steps, or after HOPELESS_STEP steps is still HOPELESS_SHARE times above it.
     Returns (parameters, sampled deviation).
     """
     prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading, closed_loop, slide, slide_mm)
@@ -277,8 +280,9 @@ def refine_chain(
             iteration += 1
             if f <= target or (iteration >= EARLY and f > 1.5 * target):
                 break
-            stalled = (iteration >= EARLY and f > stall_above and len(history) > STALL_STEPS
-                       and f > (1.0 - STALL_SHARE) * history[-STALL_STEPS - 1])
+            stalled = ((iteration >= EARLY and f > stall_above and len(history) > STALL_STEPS
+                        and f > (1.0 - STALL_SHARE) * history[-STALL_STEPS - 1])
+                       or (iteration > HOPELESS_STEP and f > HOPELESS_SHARE * stall_above))
             if stalled:
                 break
             r, jr = jacobian(prob.residuals, z)
