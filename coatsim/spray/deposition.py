@@ -308,12 +308,15 @@ def _rates(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: Sp
     out.r2[at] = np.where(seen, u * u + v * v, np.inf)
 
 
-def _pair_terms(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel) -> _PairTerms:
+def _pair_terms(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
+                totals: _Totals) -> _PairTerms:
     """The terms of the pairs (s, i), evaluated ``_PAIRS_PER_PASS`` at a time (each pair's terms
     depend on that pair alone, so the passes change no value; short passes keep the
     intermediate arrays in cache)."""
     n = len(s)
-    out = _PairTerms(*(np.empty(n) for _ in range(5)))
+    if totals.terms.shape[1] < n:  # one buffer for every batch: its pages are mapped once
+        totals.terms = np.empty((5, n))
+    out = _PairTerms(*totals.terms[:, :n])
     for lo in range(0, n, _PAIRS_PER_PASS):
         at = slice(lo, lo + _PAIRS_PER_PASS)
         _rates(mesh, steps, s[at], i[at], model, out, at)
@@ -330,6 +333,7 @@ class _Totals:
         self.thickness, self.exposure, self.shadowed, self.lost, self.angle, self.standoff = (np.zeros(n) for _ in range(6))
         self.r2_min = np.full(n, np.inf)
         self.evaluations = self.rays = 0
+        self.terms = np.empty((5, 0))  # the batches' pair terms (_PairTerms), reused
 
 
 def _batch(surface: Surface, mesh: _Mesh, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
@@ -338,7 +342,7 @@ def _batch(surface: Surface, mesh: _Mesh, steps: SubSteps, pairs: Pairs, sel: sl
     efficiency only for the pairs that receive spray (``on``)."""
     s, i, slot, touched = pairs.step[sel], pairs.vertex[sel], pairs.slot[sel], pairs.touched
     add = lambda where, w: np.bincount(slot[where], weights=w, minlength=len(touched))  # noqa: E731
-    terms = _pair_terms(mesh, steps, s, i, model)
+    terms = _pair_terms(mesh, steps, s, i, model, totals)
     rate, r2 = terms.rate, terms.r2
     totals.evaluations += len(s)
     dt = steps.dt[s]
