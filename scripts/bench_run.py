@@ -28,14 +28,15 @@ import math  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from coatsim.core.runtime import single_threaded_numerics  # noqa: E402
+from coatsim.core.runtime import long_lived_imports, single_threaded_numerics  # noqa: E402
 
 single_threaded_numerics()  # as `coatsim` does, before the numerical libraries load
 
-import coatsim.report.document as document  # noqa: E402
-import coatsim.run.pipeline as pipeline  # noqa: E402
-from coatsim.core.errors import CoatsimError  # noqa: E402
-from coatsim.report.summary import summary_text  # noqa: E402
+with long_lived_imports():  # as `coatsim run` does: frozen out of the collector's passes
+    import coatsim.report.document as document
+    import coatsim.run.pipeline as pipeline
+    from coatsim.core.errors import CoatsimError
+    from coatsim.report.summary import summary_text
 
 ROOT = Path(__file__).resolve().parents[1]
 STARTUP_S = time.process_time() - STARTED

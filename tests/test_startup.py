@@ -36,3 +36,11 @@ def test_the_program_stage_and_the_cli_load_no_scipy_and_no_simulator():
 
 def test_a_sweep_client_loads_no_simulator_until_it_runs_points():
     assert loaded(["coatsim.sweep.run", "coatsim.sweep.points"], ("mujoco", "mink", "toppra", "trimesh", "dask")) == []
+
+
+INTERPRETERS = tuple(f"coatsim.languages.{name}.interpreter"
+                     for name in ("abb_rapid", "kuka_krl", "fanuc_tp", "urscript", "gcode"))
+
+
+def test_a_run_loads_the_interpreter_of_a_language_only_when_it_reads_a_program_in_it():
+    assert loaded(["coatsim.languages.registry", "coatsim.run.pipeline"], INTERPRETERS) == []

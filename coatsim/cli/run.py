@@ -22,17 +22,21 @@ def run(
     variant; exit 1 if a gate fails, 3 if the simulated arm diverges."""
     import time
 
-    from coatsim.core.errors import CoatsimError, GateFailure
-    from coatsim.core.fileio import write_text
-    from coatsim.core.outputs_guard import check_distinct
-    from coatsim.report.junit import error_junit, gates_junit
-    from coatsim.report.summary import summary_text
-    from coatsim.run.pipeline import run_scenario
+    from coatsim.core.runtime import keep_frozen, long_lived_imports
+
+    with long_lived_imports():
+        from coatsim.core.errors import CoatsimError, GateFailure
+        from coatsim.core.fileio import write_text
+        from coatsim.core.outputs_guard import check_distinct
+        from coatsim.report.junit import error_junit, gates_junit
+        from coatsim.report.summary import summary_text
+        from coatsim.run.pipeline import run_scenario
 
     check_distinct([("the scenario", scenario)], [("--junit", junit)])
     started = time.perf_counter()
     try:
-        result = run_scenario(scenario, outdir, fast=fast, model=model, force=force, video=video)
+        with keep_frozen():
+            result = run_scenario(scenario, outdir, fast=fast, model=model, force=force, video=video)
     except CoatsimError as exc:
         if junit is not None:  # the CI report shows why the run stopped
             write_text(junit, error_junit(scenario.stem, str(exc), type(exc).__name__))

@@ -31,6 +31,7 @@ import math
 import warnings
 import weakref
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Callable
 
 import numpy as np
@@ -40,7 +41,7 @@ from coatsim.core import defaults
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
-from coatsim.spray.culling import Pairs, cone_pairs, vertex_tree
+from coatsim.spray.culling import Pairs, VertexTree, cone_pairs, vertex_tree
 from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.surfaces import Surface
@@ -50,6 +51,7 @@ MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far 
 _LEAF_TESTS_PER_BATCH = 400_000
 _MIN_STEPS_PER_SEARCH = 64
 _PAIRS_PER_BATCH = 1_000_000
+_PAIRS_PER_PASS = 8192  # pairs whose terms are computed at once (their arrays stay in cache)
 
 
 @dataclass(frozen=True)
@@ -103,6 +105,11 @@ class SubSteps:
     @property
     def spray_time_s(self) -> float:
         return float(self.dt.sum())
+
+    @cached_property
+    def rows(self) -> np.ndarray:
+        """Position, axis, e1 and e2 side by side (m, 12), gathered in one take per pair."""
+        return np.hstack([self.position, self.axis, self.e1, self.e2])
 
     def __len__(self) -> int:
         return len(self.dt)
@@ -207,6 +214,27 @@ class _Shadows:
 _VISIBILITY: weakref.WeakKeyDictionary[Surface, Visibility] = weakref.WeakKeyDictionary()
 
 
+@dataclass(frozen=True, eq=False)
+class _Mesh:
+    """What the deposition reads of a surface, built once per surface: its vertices' KD-tree and
+    each vertex's position and unit normal side by side (n, 6), gathered in one take per pair."""
+
+    tree: VertexTree
+    rows: np.ndarray
+
+
+#: Each surface's _Mesh, kept while the surface lives (the variants of a run coat one surface).
+_MESHES: weakref.WeakKeyDictionary[Surface, _Mesh] = weakref.WeakKeyDictionary()
+
+
+def _mesh(surface: Surface) -> _Mesh:
+    mesh = _MESHES.get(surface)
+    if mesh is None:
+        mesh = _Mesh(vertex_tree(surface.vertices), np.hstack([surface.vertices, surface.normals]).astype(float))
+        _MESHES[surface] = mesh
+    return mesh
+
+
 def _shadows(surface: Surface, model: SprayModel, steps: SubSteps) -> _Shadows | None:
     """What visibility needs, or None when no vertex can be hidden or shadows are off."""
     if model.shadows == "off":
@@ -237,25 +265,62 @@ def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d
     return shadows.caster.blocked(steps.position[s], d, dist), len(s)
 
 
-def _rates(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray,
-           model: SprayModel) -> tuple[np.ndarray, ...]:
-    """For the pairs (s, i): offsets d = x − p (mm), axial distance d·a (mm), −d·n (mm, 0 where
-    unseen), thickness rate before deposition efficiency (mm/s) and squared reference-plane
-    radius (mm², inf where unseen)."""
+@dataclass(frozen=True, eq=False)
+class _PairTerms:
+    """Per pair (s, i), all (n,): axial distance d·a (mm), −d·n (mm, 0 where unseen), |d| (mm),
+    thickness rate before deposition efficiency (mm/s) and squared reference-plane radius (mm²,
+    inf where unseen), d = x − p the offset from the nozzle to the vertex."""
+
+    da: np.ndarray
+    facing: np.ndarray
+    dist: np.ndarray
+    rate: np.ndarray
+    r2: np.ndarray
+
+
+def _rows(array: np.ndarray, index: np.ndarray) -> np.ndarray:
+    return np.take(array, index, axis=0)  # a gather; several times faster than array[index]
+
+
+def _offsets(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray) -> np.ndarray:
+    """d = x − p (mm) for the pairs (s, i)."""
+    return _rows(surface.vertices, i) - _rows(steps.position, s)
+
+
+def _rates(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
+           out: _PairTerms, at: slice) -> None:
+    """The terms of the pairs (s, i), written to ``out`` at ``at``."""
     h0 = model.standoff_mm
-    rows = lambda array, index: np.take(array, index, axis=0)  # noqa: E731 (a gather; several times faster than array[index])
-    d = rows(surface.vertices, i) - rows(steps.position, s)
-    da = np.einsum("ij,ij->i", d, rows(steps.axis, s))
-    dn = -np.einsum("ij,ij->i", d, rows(surface.normals, i))
+    step, vertex = _rows(steps.rows, s), _rows(mesh.rows, i)
+    d = vertex[:, :3] - step[:, :3]
+    da = np.einsum("ij,ij->i", d, step[:, 3:6])
+    dn = -np.einsum("ij,ij->i", d, vertex[:, 3:])
     seen = (da > TINY) & (dn > 0)
     scale = np.where(seen, h0 / np.where(seen, da, 1.0), 0.0)
-    u = np.einsum("ij,ij->i", d, rows(steps.e1, s)) * scale
-    v = np.einsum("ij,ij->i", d, rows(steps.e2, s)) * scale
+    u = np.einsum("ij,ij->i", d, step[:, 6:9]) * scale
+    v = np.einsum("ij,ij->i", d, step[:, 9:]) * scale
     g = model.footprint.density(u, v)
     facing = np.where(seen, dn, 0.0)
-    rate = model.rate_mm3_s * g * scale**3 * facing / h0
-    r2 = np.where(seen, u * u + v * v, np.inf)
-    return d, da, facing, rate, r2
+    out.da[at] = da
+    out.facing[at] = facing
+    out.dist[at] = np.sqrt(np.einsum("ij,ij->i", d, d))
+    out.rate[at] = model.rate_mm3_s * g * scale**3 * facing / h0
+    out.r2[at] = np.where(seen, u * u + v * v, np.inf)
+
+
+def _pair_terms(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
+                totals: _Totals) -> _PairTerms:
+    """The terms of the pairs (s, i), evaluated ``_PAIRS_PER_PASS`` at a time (each pair's terms
+    depend on that pair alone, so the passes change no value; short passes keep the
+    intermediate arrays in cache)."""
+    n = len(s)
+    if totals.terms.shape[1] < n:  # one buffer for every batch: its pages are mapped once
+        totals.terms = np.empty((5, n))
+    out = _PairTerms(*totals.terms[:, :n])
+    for lo in range(0, n, _PAIRS_PER_PASS):
+        at = slice(lo, lo + _PAIRS_PER_PASS)
+        _rates(mesh, steps, s[at], i[at], model, out, at)
+    return out
 
 
 class _Totals:
@@ -268,29 +333,32 @@ class _Totals:
         self.thickness, self.exposure, self.shadowed, self.lost, self.angle, self.standoff = (np.zeros(n) for _ in range(6))
         self.r2_min = np.full(n, np.inf)
         self.evaluations = self.rays = 0
+        self.terms = np.empty((5, 0))  # the batches' pair terms (_PairTerms), reused
 
 
-def _batch(surface: Surface, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
+def _batch(surface: Surface, mesh: _Mesh, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
            shadows: _Shadows | None, totals: _Totals) -> None:
-    """Evaluate the pairs ``sel`` and add them to ``totals``; distances, incidence, rays and
-    deposition efficiency only for the pairs that receive spray (``on``)."""
+    """Evaluate the pairs ``sel`` and add them to ``totals``; incidence, rays and deposition
+    efficiency only for the pairs that receive spray (``on``)."""
     s, i, slot, touched = pairs.step[sel], pairs.vertex[sel], pairs.slot[sel], pairs.touched
     add = lambda where, w: np.bincount(slot[where], weights=w, minlength=len(touched))  # noqa: E731
-    d, da, facing, rate, r2 = _rates(surface, steps, s, i, model)
+    terms = _pair_terms(mesh, steps, s, i, model, totals)
+    rate, r2 = terms.rate, terms.r2
     totals.evaluations += len(s)
     dt = steps.dt[s]
     on = np.flatnonzero(rate > 0)
-    d_on = np.take(d, on, axis=0)
-    dist = np.sqrt(np.einsum("ij,ij->i", d_on, d_on))
+    dist = terms.dist[on]
     if shadows is not None:
         aim = np.flatnonzero(~shadows.exposed[i[on]])
-        hidden, rays = _blocked(shadows, steps, s[on[aim]], i[on[aim]], d_on[aim], dist[aim], len(totals.thickness))
+        s_aim, i_aim = s[on[aim]], i[on[aim]]
+        hidden, rays = _blocked(shadows, steps, s_aim, i_aim, _offsets(surface, steps, s_aim, i_aim), dist[aim],
+                                len(totals.thickness))
         totals.rays += rays
         blocked = on[aim[hidden]]
         totals.shadowed[touched] += add(blocked, rate[blocked] * dt[blocked])
         rate[blocked] = 0.0
         r2[blocked] = np.inf
-    cos_gamma = facing[on] / dist
+    cos_gamma = terms.facing[on] / dist
     stuck = rate
     if model.efficiency is not None:
         stuck = rate.copy()
@@ -303,7 +371,7 @@ def _batch(surface: Surface, steps: SubSteps, pairs: Pairs, sel: slice, model: S
     np.minimum.at(totals.r2_min, i, r2)
     angle = np.degrees(np.arcsin(np.minimum(cos_gamma, 1.0)))
     totals.angle[touched] += add(on, weight[on] * angle)
-    totals.standoff[touched] += add(on, weight[on] * da[on])
+    totals.standoff[touched] += add(on, weight[on] * terms.da[on])
 
 
 def _deposit(totals: _Totals, steps: SubSteps, shadows: bool) -> Deposit:
@@ -320,7 +388,8 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
     totals = _Totals(surface.n_vertices)
     if len(steps) == 0 or surface.n_vertices == 0:
         return _deposit(totals, steps, False)
-    tree = vertex_tree(surface.vertices)
+    mesh = _mesh(surface)
+    tree = mesh.tree
     shadows = _shadows(surface, model, steps)
     slope = model.footprint.cutoff_mm / model.standoff_mm
     # sub-steps per search (the batches' sums are grouped by it, so it stays what it was for meshes
@@ -329,7 +398,7 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
     for lo in range(0, len(steps), chunk):
         pairs = cone_pairs(tree, steps.position, steps.axis, slope, np.arange(lo, min(lo + chunk, len(steps))))
         for b in range(0, len(pairs.step), _PAIRS_PER_BATCH):
-            _batch(surface, steps, pairs, slice(b, b + _PAIRS_PER_BATCH), model, shadows, totals)
+            _batch(surface, mesh, steps, pairs, slice(b, b + _PAIRS_PER_BATCH), model, shadows, totals)
         if progress is not None:
             progress(min(lo + chunk, len(steps)) / len(steps))
     return _deposit(totals, steps, shadows is not None)

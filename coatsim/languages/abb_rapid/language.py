@@ -6,7 +6,6 @@ import re
 from pathlib import Path
 from typing import Sequence
 
-from coatsim.languages.abb_rapid.interpreter import read_rapid
 from coatsim.languages.abb_rapid.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.abb_rapid.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_rapid
 from coatsim.path.language import Capabilities, ReadOptions
@@ -46,6 +45,8 @@ class AbbRapid:
         return self.reading(files, options).toolpath_to_run(options.gun_signal, options.needs_spray, str(files[0]))
 
     def reading(self, files: Sequence[Path], options: ReadOptions) -> Reading:
+        from coatsim.languages.abb_rapid.interpreter import read_rapid  # the interpreter loads when a program is read
+
         return read_rapid(files, options)
 
     def check_name(self, name: str, what: str) -> str:

@@ -9,7 +9,6 @@ from typing import Sequence
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.languages.fanuc_tp.blend import DECEL_MM_S2
-from coatsim.languages.fanuc_tp.interpreter import FanucRun
 from coatsim.languages.fanuc_tp.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.fanuc_tp.program import LsProgram, parse_ls
 from coatsim.languages.fanuc_tp.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_ls
@@ -68,6 +67,8 @@ class FanucTp:
         if main not in programs:
             raise InputError(f"program {options.program!r} is not among the files read ({', '.join(programs)})",
                              parameters=("program",))
+        from coatsim.languages.fanuc_tp.interpreter import FanucRun  # the interpreter loads when a program is read
+
         run = FanucRun(programs, options, self.decel_mm_s2)
         toolpath = run.run(main)
         program = programs[main]

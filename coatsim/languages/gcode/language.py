@@ -4,19 +4,21 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.languages.gcode.blocks import parse_blocks
 from coatsim.languages.gcode.gun import GunCodes
-from coatsim.languages.gcode.interpreter import Interpreter
 from coatsim.languages.gcode.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.gcode.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_gcode
 from coatsim.path.language import Capabilities, ReadOptions
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.reading import Reading
 from coatsim.path.toolpath import ToolPath
+
+if TYPE_CHECKING:
+    from coatsim.languages.gcode.interpreter import Interpreter
 
 # A block of G or M words (an optional N number first), or a program's opening '%' line then one.
 _OPENING = re.compile(r"^\s*(N\d+\s*)?[GM]\d", re.IGNORECASE | re.MULTILINE)
@@ -64,6 +66,8 @@ class GCode:
             raise InputError(f"G-code reads one program file at a time, got {len(files)}")
         path = Path(files[0])
         blocks = parse_blocks(decode_text(read_program_file(path)), str(path))
+        from coatsim.languages.gcode.interpreter import Interpreter  # the interpreter loads when a program is read
+
         interpreter = Interpreter(blocks, str(path), options, self.gun, path.stem)
         toolpath = interpreter.run()
         n_poses = sum(any(letter in "XYZ" for letter, _ in b.words) for b in blocks)

@@ -6,7 +6,6 @@ import re
 from pathlib import Path
 from typing import Sequence
 
-from coatsim.languages.kuka_krl.interpreter import read_krl
 from coatsim.languages.kuka_krl.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.kuka_krl.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, split_files, write_krl
 from coatsim.path.language import Capabilities, ReadOptions
@@ -47,6 +46,8 @@ class KukaKrl:
         return self.reading(files, options).toolpath_to_run(options.gun_signal, options.needs_spray, str(files[0]))
 
     def reading(self, files: Sequence[Path], options: ReadOptions) -> Reading:
+        from coatsim.languages.kuka_krl.interpreter import read_krl  # the interpreter loads when a program is read
+
         return read_krl(files, options)
 
     def check_name(self, name: str, what: str) -> str:

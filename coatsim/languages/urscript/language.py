@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import decode_text, read_program_file
-from coatsim.languages.urscript.interpreter import UrRun
 from coatsim.languages.urscript.names import MAX_NAME_LENGTH, check_name, program_name
 from coatsim.languages.urscript.parser import Statement, parse_script
 from coatsim.languages.urscript.writer import MAX_ARC_SWEEP_DEG, MAX_COORDINATE_MM, write_urscript
@@ -16,6 +15,9 @@ from coatsim.path.language import Capabilities, ReadOptions
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.reading import Reading
 from coatsim.path.toolpath import ToolPath
+
+if TYPE_CHECKING:
+    from coatsim.languages.urscript.interpreter import UrRun
 
 # A function definition ending in ':' (KRL's DEF has none) or a motion call on a pose literal.
 _OPENING = re.compile(r"^\s*(def\s+\w+\s*\([^)]*\)\s*:|(movel|movej|movep)\s*\(\s*p\s*\[)", re.MULTILINE)
@@ -61,6 +63,8 @@ class UrScript:
             raise InputError(f"URScript reads one script file at a time (the controller runs one), got {len(files)}")
         path = Path(files[0])
         statements, comments = parse_script(decode_text(read_program_file(path)), str(path))
+        from coatsim.languages.urscript.interpreter import UrRun  # the interpreter loads when a program is read
+
         run = UrRun(statements, comments, str(path), options, path.stem)
         toolpath = run.run()
         functions = tuple(st.name for st in statements if st.kind == "def")
