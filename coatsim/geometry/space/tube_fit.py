@@ -263,11 +263,16 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
     return None
 
 
+def _worst_piece(problem: TubeProblem, chain: TubeChain) -> int:
+    """The piece of the chain farthest from the input."""
+    worst = problem.s[int(np.argmax(problem.offsets(chain)))]
+    return int(np.clip(np.searchsorted(chain.knots, worst, side="right") - 1, 0, chain.n - 1))
+
+
 def _held(problem: TubeProblem, chain: TubeChain) -> bool:
     """Whether a limit holds the chain where it misses most: the piece there or a neighbour
     at its curvature cap or at the minimum length (to CAP_SLACK)."""
-    offsets = problem.offsets(chain)
-    j = int(np.clip(np.searchsorted(chain.knots, problem.s[int(np.argmax(offsets))], side="right") - 1, 0, chain.n - 1))
+    j = _worst_piece(problem, chain)
     near = slice(max(j - 1, 0), min(j + 2, chain.n))
     caps = problem.limits.over(chain.knots[:-1], chain.knots[1:])[near]
     kappa = np.linalg.norm(chain.kappa[near], axis=1)
@@ -301,8 +306,7 @@ def _merge_order(chain: TubeChain) -> np.ndarray:
 def _split_worst(problem: TubeProblem, chain: TubeChain) -> TubeChain:
     """The chain with its piece farthest from the input cut in two, the new knot in the
     state the piece has at its middle."""
-    offsets = problem.offsets(chain)
-    j = int(np.clip(np.searchsorted(chain.knots, problem.s[int(np.argmax(offsets))], side="right") - 1, 0, chain.n - 1))
+    j = _worst_piece(problem, chain)
     params = chain.params()[j : j + 1].copy()
     params[0, 1] = (chain.knots[j] + chain.knots[j + 1]) / 2
     return chain.split(j, end_states(problem.ref, params)[0])
