@@ -25,9 +25,12 @@ from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
+from coatsim.geometry.sparse import is_sparse
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
 Method = Literal["optimal", "paper"]
+TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
+TAUGHT_AIMS = (0.9,)  # ... it is fitted again within these shares of σ (the fewest segments kept)
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 METHODS = ("optimal", "paper")
 
@@ -228,6 +231,31 @@ def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: f
 
 def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
          speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
+    """The default fitter (_fit_within); a taught (sparse) curve whose chain keeps more than
+    TAUGHT_SHARE of its moves is fitted again within the TAUGHT_AIMS shares of the tolerance:
+    the band fit is a heuristic, and on a few vertices a tighter aim often lands on a chain of
+    fewer pieces, within this tolerance too. A chain with fewer segments replaces it (the
+    first such); the search ends at an aim that keeps a corner or has a note."""
+    found = _fit_within(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+    moves = len(curve.points) - 1
+    if found[0].n_segments <= TAUGHT_SHARE * moves or not is_sparse(curve.points, curve.closed, tol):
+        return found
+    for share in TAUGHT_AIMS:
+        try:
+            other = _fit_within(curve, share * tol, corner_deg, min_segment_mm, speed_kappa)
+        except InputError:
+            continue
+        if other[0].corners or other[4]:
+            break  # σ is below what the polygon allows there: tighter aims keep corners too
+        if other[0].n_segments < found[0].n_segments:
+            found = other
+            if found[0].n_segments <= TAUGHT_SHARE * moves:
+                break
+    return found
+
+
+def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
+                speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
     """The default fitter over the curve's runs between corners (or its whole closed loop).
     Returns (polysegment, verified deviation, the input's tightest radius (robust, mm),
     whether every run kept its curvature caps and minimum length, notes)."""

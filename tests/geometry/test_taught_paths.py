@@ -137,6 +137,19 @@ def test_a_taught_polygon_of_a_smooth_curve_comes_back_with_a_third_of_its_moves
     assert 3 * seg.polysegment.n_segments <= len(pts) - 1, f"{seg.polysegment.n_segments} segments for {len(pts) - 1} moves"
 
 
+@pytest.mark.parametrize("name, n, share", [("ellipse", 15, 1.5), ("ellipse", 18, 1.0), ("limacon", 15, 0.7)])
+def test_a_taught_polygon_missing_a_third_is_searched_again_at_tighter_aims(name, n, share):
+    """Polygons whose first chain keeps more than a third of their moves (6, 7 and 6 segments)
+    where a fit aimed at 0.7–0.9 σ lands on fewer pieces: that chain, within σ too, comes
+    back, smooth (no corner, no note)."""
+    pts, closed, sag = _along(name, n)
+    tol = share * sag
+    seg = segment_curve(make_curve(pts, name, "yes" if closed else "no"), tol)
+    assert_contract(seg, tol)
+    assert not seg.polysegment.corners and not seg.notes
+    assert 3 * seg.polysegment.n_segments <= n, f"{seg.polysegment.n_segments} segments for {n} moves"
+
+
 def _lissajous(a: float, b: float, phase: float, stop: float, count: int = 4000) -> tuple[np.ndarray, float]:
     """An open 3:2 Lissajous figure, ``count`` points evenly along its length, and its
     tightest radius from the formula."""
