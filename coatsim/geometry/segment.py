@@ -231,14 +231,17 @@ def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: f
 
 def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
          speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
-    """The default fitter (_fit_within); a taught (sparse) curve whose chain keeps more than
-    TAUGHT_SHARE of its moves is fitted again within the TAUGHT_AIMS shares of the tolerance:
-    the band fit is a heuristic, and on a few vertices a tighter aim often lands on a chain of
-    fewer pieces, within this tolerance too. A chain with fewer segments replaces it (the
-    first such); the search ends at an aim that keeps a corner or has a note."""
+    """The default fitter (_fit_within); a taught (sparse) loop whose smooth chain keeps more
+    than TAUGHT_SHARE of its moves is fitted again within the TAUGHT_AIMS shares of the
+    tolerance: the band fit is a heuristic, and where a loop's chain starts and closes on a few
+    vertices a tighter aim often lands on fewer pieces, within this tolerance too. A chain with
+    fewer segments replaces it (the first such); the search ends at an aim that keeps a corner
+    or has a note. (Open taught paths, whose ends are pinned, gained nothing from it in
+    scripts/bench_sparse.py and are not fitted again.)"""
     found = _fit_within(curve, tol, corner_deg, min_segment_mm, speed_kappa)
     moves = len(curve.points) - 1
-    if found[0].n_segments <= TAUGHT_SHARE * moves or not is_sparse(curve.points, curve.closed, tol):
+    if (not curve.closed or found[0].n_segments <= TAUGHT_SHARE * moves or found[0].corners or found[4]
+            or not is_sparse(curve.points, curve.closed, tol)):
         return found
     for share in TAUGHT_AIMS:
         try:
