@@ -3,7 +3,8 @@
 A report draws about ten figures per run, so every one is laid out by hand (a layout engine
 measures every artist, which costs more than drawing them), titles sit at a fixed height (the
 automatic placement measures every tick label), axes carry few ticks, many marks go in one
-collection, and rasters are drawn at screen resolution. Figures are plain
+collection, ticks are drawn as plain artists (:mod:`coatsim.report.ticks`), and rasters are drawn at
+screen resolution. Figures are plain
 ``matplotlib.figure.Figure`` objects (no pyplot state); matplotlib is imported on first use, so
 importing coatsim stays light. PNG bytes carry no timestamp: equal figures give equal bytes.
 """
@@ -13,6 +14,8 @@ from __future__ import annotations
 import io
 from functools import cache
 from typing import Any, Sequence
+
+from coatsim.report.ticks import flatten
 
 VARIANT_COLOURS = {"polysegment": "#1b6ca8", "polyline-stop": "#c0392b", "polyline-blend": "#e08e0b"}
 _OTHER_COLOURS = ("#6a3d9a", "#33a02c", "#b15928", "#e7298a", "#1f78b4", "#666666")
@@ -92,6 +95,8 @@ def png_bytes(fig: Any, dpi: int = DPI) -> bytes:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
+    for ax in fig.axes:
+        flatten(ax)
     fig.set_dpi(dpi)
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
