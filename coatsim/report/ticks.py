@@ -4,7 +4,7 @@ tick machinery.
 matplotlib makes each tick of an axis from five artists (two marks, two labels, a grid line)
 and measures every label to place the axis label; across a report's axes that costs more than
 the data drawn. Here the same ticks (the axis's locator and formatter, the view as drawn) become
-one line of marks and a text per label, the axis label sits at a distance estimated from the
+one line of marks and one artist for the labels (:mod:`coatsim.report.labels`), the axis label sits at a distance estimated from the
 labels' length, and the axis itself is hidden. Call :func:`flatten` once the axes are final,
 just before drawing.
 """
@@ -14,6 +14,8 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+
+from coatsim.report.labels import labels
 
 WIDTH_EM = {"−": 0.84, "-": 0.36, ".": 0.32, ",": 0.32, " ": 0.32}  # of the default font (DejaVu Sans), in ems
 DIGIT_EM = 0.64   # a digit's width, and any other character's: the y labels' extent
@@ -51,11 +53,12 @@ def _flatten_axis(ax: Any, axis: Any) -> None:
     locs = locs[(locs >= lo - slack) & (locs <= hi + slack)]
     formatter = axis.get_major_formatter()
     formatter.set_locs(locs)
-    texts = formatter.format_ticks(locs) if kw.get("label1On", True) else []
+    near = side in ("bottom", "left")  # matplotlib's first side; its second is top or right
+    texts = formatter.format_ticks(locs) if kw.get("label1On" if near else "label2On", near) else []
     size = FontProperties(size=kw.get("labelsize", rc[f"{name}tick.labelsize"])).get_size_in_points()
     length, pad = rc[f"{name}tick.major.size"], rc[f"{name}tick.major.pad"]
-    outward = -1.0 if side in ("bottom", "left") else 1.0
-    edge = 0.0 if side in ("bottom", "left") else 1.0
+    outward = -1.0 if near else 1.0
+    edge = 0.0 if near else 1.0
     inches = ax.figure.dpi_scale_trans
     shift = (lambda pt: ScaledTranslation(0.0, outward * pt / 72, inches)) if name == "x" else \
         (lambda pt: ScaledTranslation(outward * pt / 72, 0.0, inches))
@@ -71,13 +74,11 @@ def _flatten_axis(ax: Any, axis: Any) -> None:
         xy = (np.full(len(locs), edge), locs)
         align = {"ha": "right" if outward < 0 else "left", "va": "center_baseline"}
         extent = size * max((sum(WIDTH_EM.get(c, DIGIT_EM) for c in t) for t in texts), default=0.0)
-    if kw.get("tick1On", True) and len(locs):
+    if kw.get("tick1On" if near else "tick2On", near) and len(locs):
         ax.add_line(lines.Line2D(*xy, transform=along, marker=marker, linestyle="none", markersize=length,
                                  markeredgewidth=rc[f"{name}tick.major.width"], color=rc[f"{name}tick.color"],
                                  clip_on=False))
-    placed = along + shift(length + pad)
-    for x, y, text in zip(*xy, texts):
-        ax.text(x, y, text, transform=placed, fontsize=size, clip_on=False, **align)
+    labels(ax, np.column_stack(xy), texts, along + shift(length + pad), fontsize=size, **align)
     offset = formatter.get_offset()  # a common offset or power of ten, at the axis's far end
     if offset and texts:
         at = (1.0, edge) if name == "x" else (edge, 1.0)
