@@ -2,11 +2,11 @@
 
 A report draws about ten figures per run, so every one is laid out by hand (a layout engine
 measures every artist, which costs more than drawing them), titles sit at a fixed height (the
-automatic placement measures every tick label), axes carry few ticks, many marks go in one
-collection, ticks are drawn as plain artists (:mod:`coatsim.report.ticks`), and rasters are drawn at
-screen resolution. Figures are plain
-``matplotlib.figure.Figure`` objects (no pyplot state); matplotlib is imported on first use, so
-importing coatsim stays light. PNG bytes carry no timestamp: equal figures give equal bytes.
+automatic placement measures every tick label), axes carry few ticks drawn as plain artists
+(:mod:`coatsim.report.ticks`), many marks go in one collection, and rasters are drawn at screen
+resolution. Figures are plain ``matplotlib.figure.Figure`` objects (no pyplot state);
+matplotlib is imported on first use, so importing coatsim stays light. PNG bytes carry no
+timestamp: equal figures give equal bytes.
 """
 
 from __future__ import annotations

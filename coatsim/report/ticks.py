@@ -3,10 +3,11 @@ tick machinery.
 
 matplotlib makes each tick of an axis from five artists (two marks, two labels, a grid line)
 and measures every label to place the axis label; across a report's axes that costs more than
-the data drawn. Here the same ticks (the axis's locator and formatter, the view as drawn) become
-one line of marks and one artist for the labels (:mod:`coatsim.report.labels`), the axis label sits at a distance estimated from the
-labels' length, and the axis itself is hidden. Call :func:`flatten` once the axes are final,
-just before drawing.
+the data drawn. Here the same ticks (the axis's locator and formatter, the view as drawn, the
+side matplotlib would draw them on) become one line of marks and one artist for the labels
+(:mod:`coatsim.report.labels`), the axis label sits at a distance estimated from the labels'
+length, and the axis itself is hidden. Call :func:`flatten` once the axes are final, just
+before drawing.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ def _side(axis: Any) -> str:
 
 
 def _flatten_axis(ax: Any, axis: Any) -> None:
+    """Draw ``axis``'s ticks, labels, offset text and axis label as plain artists on ``ax``."""
     import matplotlib as mpl
     from matplotlib import lines
     from matplotlib.font_manager import FontProperties
