@@ -79,9 +79,9 @@ def centre_samples(run: VariantRun, standoff_mm: float, lead_in_mm: float, lead_
 
 
 def track_samples(run: VariantRun, standoff_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """About TRACK_POINTS of ``run``'s aim points (k, 3) mm, with whether the gun is open there (k,)."""
+    """At most TRACK_POINTS of ``run``'s aim points (k, 3) mm, with whether the gun is open there (k,)."""
     log = run.execution.log
-    rows = np.arange(0, len(log.t), max(1, len(log.t) // TRACK_POINTS))
+    rows = np.arange(0, len(log.t), max(1, -(-len(log.t) // TRACK_POINTS)))  # at most TRACK_POINTS
     return log.position[rows] + standoff_mm * log.axis[rows], np.asarray(log.spray[rows], bool)
 
 
