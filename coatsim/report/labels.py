@@ -15,20 +15,19 @@ from typing import Any, Sequence
 import numpy as np
 
 H_SHIFT = {"left": 0.0, "center": 0.5, "right": 1.0}  # share of the width left of the point
+TEXT_ZORDER = 3.0  # drawn in the order of matplotlib's texts
 
 
 def labels(ax: Any, xy: np.ndarray, texts: Sequence[str], transform: Any, *, fontsize: float, color: Any = "black",
-           ha: str = "center", va: str = "center_baseline", clip: bool = False, zorder: float = 3.0) -> Any:
+           ha: str = "center", va: str = "center_baseline") -> Any:
     """Add to ``ax`` the strings ``texts`` at the points ``xy`` (k, 2) of ``transform``, aligned
-    as a Text's ``ha`` and ``va`` (top, bottom, center or center_baseline), clipped to the axes
-    when ``clip``; the artist."""
+    as a Text's ``ha`` and ``va`` (top, bottom, center or center_baseline), unclipped as an
+    axes' texts are; the artist."""
     artist = _labels_class()(np.asarray(xy, float).reshape(-1, 2), list(texts), fontsize, color, ha, va)
     artist.set_transform(transform)
-    artist.set_zorder(zorder)
+    artist.set_zorder(TEXT_ZORDER)
     ax.add_artist(artist)
-    artist.set_clip_on(clip)
-    if clip:
-        artist.set_clip_path(ax.patch)
+    artist.set_clip_on(False)
     return artist
 
 
