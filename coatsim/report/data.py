@@ -24,7 +24,8 @@ from coatsim.spray.outputs import view_faces
 from coatsim.spray.surfaces import Surface
 
 SCALE_PERCENTILE = 99.5  # the colour scale's top: the largest of the variants' 99.5th percentiles
-CENTRE_STEP_MM = 0.5     # sampling of the centre line
+CENTRE_STEP_MM = 0.5     # sampling of the centre line, at most CENTRE_POINTS samples over all
+CENTRE_POINTS = 4000     # (about 4 per pixel across the track figure; a part's many passes are longer)
 TRACK_POINTS = 1500      # aim points per variant drawn on the heat maps (about: 4 per pixel across)
 VIEW_FACES = 12_000      # the coarse mesh of the 3-D view and the video (about this many triangles)
 HEAT_COLUMNS = 320       # pixels across a heat map's view
@@ -64,8 +65,8 @@ class CentreLine:
 
 def centre_samples(run: VariantRun, standoff_mm: float, lead_in_mm: float, lead_out_mm: float) -> tuple[np.ndarray, np.ndarray]:
     """The reference run's aim points (TCP + stand-off along the spray axis) from the run-in
-    start to the run-out end, every CENTRE_STEP_MM along the curve: (s (k,) mm from the start of
-    the curve proper, points (k, 3) mm)."""
+    start to the run-out end, every CENTRE_STEP_MM along the curve (coarser past CENTRE_POINTS):
+    (s (k,) mm from the start of the curve proper, points (k, 3) mm)."""
     log, (a, b) = run.execution.log, run.execution.curve
     reach = np.maximum.accumulate(log.progress)
     i0 = int(np.searchsorted(reach, a - lead_in_mm, side="left"))
@@ -74,14 +75,14 @@ def centre_samples(run: VariantRun, standoff_mm: float, lead_in_mm: float, lead_
     rows = rows[np.concatenate(([True], np.diff(reach[rows]) > 1e-9))]
     aim = log.position[rows] + standoff_mm * log.axis[rows]
     s = reach[rows] - a
-    grid = np.arange(s[0], s[-1] + 1e-9, CENTRE_STEP_MM)
+    grid = np.arange(s[0], s[-1] + 1e-9, max(CENTRE_STEP_MM, (s[-1] - s[0]) / CENTRE_POINTS))
     return grid, np.column_stack([np.interp(grid, s, aim[:, k]) for k in range(3)])
 
 
 def track_samples(run: VariantRun, standoff_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """About TRACK_POINTS of ``run``'s aim points (k, 3) mm, with whether the gun is open there (k,)."""
+    """At most TRACK_POINTS of ``run``'s aim points (k, 3) mm, with whether the gun is open there (k,)."""
     log = run.execution.log
-    rows = np.arange(0, len(log.t), max(1, len(log.t) // TRACK_POINTS))
+    rows = np.arange(0, len(log.t), max(1, -(-len(log.t) // TRACK_POINTS)))  # at most TRACK_POINTS
     return log.position[rows] + standoff_mm * log.axis[rows], np.asarray(log.spray[rows], bool)
 
 

@@ -2,10 +2,11 @@
 
 A report draws about ten figures per run, so every one is laid out by hand (a layout engine
 measures every artist, which costs more than drawing them), titles sit at a fixed height (the
-automatic placement measures every tick label), axes carry few ticks, many marks go in one
-collection, and rasters are drawn at screen resolution. Figures are plain
-``matplotlib.figure.Figure`` objects (no pyplot state); matplotlib is imported on first use, so
-importing coatsim stays light. PNG bytes carry no timestamp: equal figures give equal bytes.
+automatic placement measures every tick label), axes carry few ticks drawn as plain artists
+(:mod:`coatsim.report.ticks`), many marks go in one collection, and rasters are drawn at screen
+resolution. Figures are plain ``matplotlib.figure.Figure`` objects (no pyplot state);
+matplotlib is imported on first use, so importing coatsim stays light. PNG bytes carry no
+timestamp: equal figures give equal bytes.
 """
 
 from __future__ import annotations
@@ -14,11 +15,14 @@ import io
 from functools import cache
 from typing import Any, Sequence
 
+from coatsim.report.ticks import flatten
+
 VARIANT_COLOURS = {"polysegment": "#1b6ca8", "polyline-stop": "#c0392b", "polyline-blend": "#e08e0b"}
 _OTHER_COLOURS = ("#6a3d9a", "#33a02c", "#b15928", "#e7298a", "#1f78b4", "#666666")
 DPI = 80    # the report's figures: about 900 pixels across for an 11-inch figure
 TICKS = 3   # at most about this many ticks per axis (each tick is two lines and two labels to make)
 COLOURS = 256  # PNGs are stored with a palette of at most this many colours (a third of the bytes)
+HINTING = "no_hinting"  # glyphs drawn as designed: FreeType's auto-hinter, run on every glyph drawn, costs a fifth
 
 
 def figure(width_in: float, height_in: float) -> Any:
@@ -89,12 +93,16 @@ def title(ax: Any, text: str, **style: Any) -> None:
 def png_bytes(fig: Any, dpi: int = DPI) -> bytes:
     """The figure as an opaque palette PNG without a timestamp (equal figures give equal bytes)."""
     import numpy as np
+    from matplotlib import rc_context
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
+    for ax in fig.axes:
+        flatten(ax)
     fig.set_dpi(dpi)
     canvas = FigureCanvasAgg(fig)
-    canvas.draw()
+    with rc_context({"text.hinting": HINTING}):
+        canvas.draw()
     rgb = np.asarray(canvas.buffer_rgba())[..., :3]
     image = Image.fromarray(np.ascontiguousarray(rgb)).quantize(COLOURS, method=Image.Quantize.FASTOCTREE)
     buf = io.BytesIO()

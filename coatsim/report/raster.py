@@ -40,13 +40,13 @@ def view_raster(view: np.ndarray, faces: np.ndarray, columns: int) -> ViewRaster
     pixels wide (square pixels). Every triangle is tested against the pixel centres inside
     its bounding box only, so the cost is that of the mesh plus that of the image."""
     view = np.asarray(view, float)
-    lo, hi = view[faces].reshape(-1, 2).min(axis=0), view[faces].reshape(-1, 2).max(axis=0)
+    a, b, c = (view[faces[:, k]] for k in range(3))
+    box_lo, box_hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)  # (reductions over an
+    lo, hi = box_lo.min(axis=0), box_hi.max(axis=0)                                    # axis of 3 cost more)
     size = max(float(hi[0] - lo[0]), 1e-9) / columns
     shape = (max(1, int(np.ceil((hi[1] - lo[1]) / size))), columns)
-    a, b, c = (view[faces[:, k]] for k in range(3))
-    tri = np.stack((a, b, c), axis=1)
-    first = np.ceil((tri.min(axis=1) - lo) / size - 0.5).astype(np.int64)  # first pixel centre inside the box
-    last = np.floor((tri.max(axis=1) - lo) / size - 0.5).astype(np.int64)
+    first = np.ceil((box_lo - lo) / size - 0.5).astype(np.int64)  # first pixel centre inside the box
+    last = np.floor((box_hi - lo) / size - 0.5).astype(np.int64)
     first = np.maximum(first, 0)
     last = np.minimum(last, [shape[1] - 1, shape[0] - 1])
     span = np.maximum(last - first + 1, 0)
@@ -61,10 +61,10 @@ def view_raster(view: np.ndarray, faces: np.ndarray, columns: int) -> ViewRaster
     det = np.where(det == 0.0, np.inf, det)  # a degenerate triangle covers no pixel
     v = (ap[:, 0] * ac[:, 1] - ap[:, 1] * ac[:, 0]) / det
     w = (ab[:, 0] * ap[:, 1] - ab[:, 1] * ap[:, 0]) / det
-    weights = np.column_stack((1.0 - v - w, v, w))
-    inside = np.flatnonzero((weights >= -EDGE).all(axis=1))
+    u = 1.0 - v - w
+    inside = np.flatnonzero((u >= -EDGE) & (v >= -EDGE) & (w >= -EDGE))
     pixel = row[inside] * shape[1] + col[inside]
     pixel, keep = np.unique(pixel, return_index=True)  # a pixel on an edge: its first triangle
     inside = inside[keep]
     extent = (float(lo[0]), float(lo[0] + shape[1] * size), float(lo[1]), float(lo[1] + shape[0] * size))
-    return ViewRaster(extent, shape, pixel, faces[face[inside]], weights[inside])
+    return ViewRaster(extent, shape, pixel, faces[face[inside]], np.column_stack((u[inside], v[inside], w[inside])))

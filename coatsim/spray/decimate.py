@@ -31,6 +31,12 @@ class Coarse:
         return np.bincount(self.cluster, weights=self.weight * np.asarray(values, float), minlength=k) / total
 
 
+def _row_keys(rows: np.ndarray) -> np.ndarray:
+    """One int64 per row of non-negative integers (k, 3), in the rows' lexicographic order (as
+    ``np.unique(rows, axis=0)`` sorts them, at the cost of a 1-D sort)."""
+    return np.ravel_multi_index(rows.T, tuple(rows.max(axis=0, initial=0) + 1))
+
+
 def decimate(surface: Surface, max_faces: int) -> Coarse:
     """Cluster ``surface`` until it has at most about ``max_faces`` triangles (the mesh itself,
     re-indexed, when it already has fewer)."""
@@ -40,11 +46,13 @@ def decimate(surface: Surface, max_faces: int) -> Coarse:
     cell = math.sqrt(2.0 * surface.area_mm2 / max_faces)
     for _ in range(8):
         keys = np.floor((surface.vertices - surface.vertices.min(axis=0)) / cell).astype(np.int64)
-        _, cluster = np.unique(keys, axis=0, return_inverse=True)
+        _, cluster = np.unique(_row_keys(keys), return_inverse=True)
         cluster = cluster.ravel()
         faces = cluster[surface.faces]
         keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
-        faces = np.unique(faces[keep], axis=0)
+        faces = faces[keep]
+        _, first = np.unique(_row_keys(faces), return_index=True)
+        faces = faces[first]
         if len(faces) <= max_faces * 1.15:
             break
         cell *= 1.15

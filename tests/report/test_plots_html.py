@@ -91,3 +91,31 @@ def test_document_is_self_contained_and_escaped() -> None:
     assert base64.b64decode(sources[0].split(",", 1)[1]) == png
     assert not re.search(r'(href|src)="(https?:)?//', doc)
 
+
+
+def test_ticks_drawn_as_plain_artists_keep_every_label_on_its_side() -> None:
+    """coatsim.report.ticks replaces matplotlib's tick machinery: the labels the axes would show
+    stay, the axis's on the left and below, a colour bar's on its right."""
+    import numpy as np
+
+    fig = plots.figure(6.0, 3.0)
+    ax, bar_ax = plots.grid(fig, 1, 2)[0]
+    ax.plot([0.0, 10.0], [0.0, 5.0])
+    ax.set_xlabel("x (mm)")
+    bar = fig.colorbar(bar_ax.imshow(np.linspace(0.0, 40.0, 100).reshape(10, 10)), ax=bar_ax, ticks=plots.bar_ticks())
+    plots.png_bytes(fig)
+
+    def shown(axes) -> list[tuple[float, str]]:
+        """(x in display pixels, text) of every tick label drawn on ``axes``."""
+        return [(float(x), text) for a in axes.get_children() if hasattr(a, "texts")
+                for (x, _), text in zip(a.get_transform().transform(a.xy), a.texts)]
+
+    assert not ax.xaxis.get_visible() and not bar.ax.yaxis.get_visible()  # drawn by the plain artists instead
+    expected = []
+    for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        locs = [t for t in axis.get_majorticklocs() if lo <= t <= hi]
+        expected += axis.get_major_formatter().format_ticks(locs)
+    assert sorted(text for _, text in shown(ax)) == sorted(expected) and len(expected) >= 4
+    right = bar.ax.get_window_extent().x1
+    assert len(shown(bar.ax)) >= 2 and all(x > right for x, _ in shown(bar.ax))
+    assert "x (mm)" in [t.get_text() for t in ax.texts]

@@ -32,14 +32,19 @@ def speed_figure(data: Any) -> bytes:
     axes = grid(fig, len(runs), 1, margins=(0.8, 0.25, 0.35, 0.5), gaps=(0.4, 0.45), sharex=True)[:, 0]
     for k, (ax, run) in enumerate(zip(axes, runs)):
         log, offset, target = run.execution.log, 0.0, data.spec.speed_of(run.name)
+        along, speed, borders = [], [], []  # the passes in one line, broken (NaN) between them
         for rows in _curve_rows(run.execution):
             if not len(rows):
                 continue
             rows = rows[:: max(1, len(rows) * len(run.execution.curves) // SPEED_POINTS)]
             s = log.progress[rows] - log.progress[rows[0]] + offset
-            ax.plot(s, log.spot_speed[rows], color=colour(run.name, k), lw=0.8)
+            along += [s, [np.nan]]
+            speed += [log.spot_speed[rows], [np.nan]]
             offset = float(s[-1])
-            ax.axvline(offset, color="#999999", lw=0.5, ls=":")
+            borders.append(offset)
+        if along:
+            ax.plot(np.concatenate(along), np.concatenate(speed), color=colour(run.name, k), lw=0.8)
+        ax.vlines(borders, 0.0, 1.0, transform=ax.get_xaxis_transform(), colors="#999999", lw=0.5, linestyles=":")
         ax.axhline(target, color="#333333", lw=0.6, ls="--")
         ax.set_ylim(0.0, 1.25 * target)
         ax.set_ylabel("mm/s", fontsize=8)

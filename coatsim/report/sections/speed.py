@@ -10,6 +10,7 @@ import numpy as np
 
 from coatsim.report.events import AT_SPEED, Event, curve_spans
 from coatsim.report.html import Figure, Section, figure_html
+from coatsim.report.labels import labels
 from coatsim.report.plots import colour, figure, grid, png_bytes, title
 
 MAX_LABELS = 8  # dips labelled with their line per panel (the deepest); the rest get a dot only
@@ -46,16 +47,15 @@ def speed_figure(runs: Sequence[Any], events: Sequence[Event], numbers: Mapping[
         if dips:
             lows = np.array([np.interp(e.s_mm, s, v) for e in dips])
             ax.plot([e.s_mm for e in dips], lows, "o", color="#c0392b", ms=3.2, zorder=5)
-            for i in np.argsort(lows)[:MAX_LABELS]:
-                if dips[i].line is not None:
-                    ax.text(dips[i].s_mm, lows[i] - 0.03 * top, f"L{dips[i].line}", ha="center", va="top", fontsize=6.5,
-                            color="#c0392b")
+            shown = [i for i in np.argsort(lows)[:MAX_LABELS] if dips[i].line is not None]
+            labels(ax, [(dips[i].s_mm, lows[i] - 0.03 * top) for i in shown], [f"L{dips[i].line}" for i in shown],
+                   ax.transData, fontsize=6.5, color="#c0392b", ha="center", va="top")
         warned = [e for e in events if e.variant == run.name and e.severity == "warning" and e.kind != "speed dip"
                   and e.s_mm is not None]
         if warned:
             ax.plot([e.s_mm for e in warned], [1.08 * top] * len(warned), "v", color="#b3121f", ms=5)
-            for e in warned:
-                ax.text(e.s_mm, 1.08 * top, f"  #{numbers[e]}", va="center", fontsize=6.5, color="#b3121f")
+            labels(ax, [(e.s_mm, 1.08 * top) for e in warned], [f"  #{numbers[e]}" for e in warned], ax.transData,
+                   fontsize=6.5, color="#b3121f", ha="left", va="center")
         title(ax, run.name, loc="left", color=colour(run.name, k))
         ax.set_ylabel("mm/s", fontsize=8)
     axes[0].set_ylim(0.0, 1.15 * top)

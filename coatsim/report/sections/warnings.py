@@ -11,6 +11,7 @@ import numpy as np
 
 from coatsim.report.events import Event
 from coatsim.report.html import Figure, Section, esc, figure_html
+from coatsim.report.labels import labels
 from coatsim.report.plots import colour, figure, grid, png_bytes
 
 
@@ -65,8 +66,9 @@ def curve_figure(data: Any) -> bytes:
     warning = np.array([e.severity == "warning" for e in placed], bool)
     ax.plot(xy[warning, 0], xy[warning, 1], "o", color="#c0392b", ms=4.5)
     ax.plot(xy[~warning, 0], xy[~warning, 1], "s", color="#6a3d9a", ms=4.5, mfc="none")
-    for e, (x, y), warned in zip(placed, xy, warning):
-        ax.text(x, y, f" {data.numbers[e]}", fontsize=6.5, va="bottom", color="#c0392b" if warned else "#6a3d9a")
+    numbers = np.array([f" {data.numbers[e]}" for e in placed], dtype=object)
+    for kind, tint in ((warning, "#c0392b"), (~warning, "#6a3d9a")):
+        labels(ax, xy[kind], numbers[kind], ax.transData, fontsize=6.5, color=tint, ha="left", va="bottom")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(data.surface.view_labels[0], fontsize=8)
     ax.set_ylabel(data.surface.view_labels[1], fontsize=8)
