@@ -48,7 +48,7 @@ def _flatten_axis(ax: Any, axis: Any) -> None:
     from matplotlib.transforms import ScaledTranslation, blended_transform_factory
 
     name, side = axis.axis_name, _side(axis)
-    kw, rc = axis._major_tick_kw, mpl.rcParams  # the labelsize that tick_params set
+    kw, rc = axis.get_tick_params(which="major"), mpl.rcParams  # what tick_params set (sides, labelsize)
     lo, hi = sorted(axis.get_view_interval())
     slack = 1e-9 * max(hi - lo, 1e-300)
     locs = np.asarray(axis.get_major_locator()(), float)
@@ -56,7 +56,7 @@ def _flatten_axis(ax: Any, axis: Any) -> None:
     formatter = axis.get_major_formatter()
     formatter.set_locs(locs)
     near = side in ("bottom", "left")  # matplotlib's first side; its second is top or right
-    texts = formatter.format_ticks(locs) if kw.get("label1On" if near else "label2On", near) else []
+    texts = formatter.format_ticks(locs) if kw.get(f"label{side}", near) else []
     size = FontProperties(size=kw.get("labelsize", rc[f"{name}tick.labelsize"])).get_size_in_points()
     length, pad = rc[f"{name}tick.major.size"], rc[f"{name}tick.major.pad"]
     outward = -1.0 if near else 1.0
@@ -76,7 +76,7 @@ def _flatten_axis(ax: Any, axis: Any) -> None:
         xy = (np.full(len(locs), edge), locs)
         align = {"ha": "right" if outward < 0 else "left", "va": "center_baseline"}
         extent = size * max((sum(WIDTH_EM.get(c, DIGIT_EM) for c in t) for t in texts), default=0.0)
-    if kw.get("tick1On" if near else "tick2On", near) and len(locs):
+    if kw.get(side, near) and len(locs):
         ax.add_line(lines.Line2D(*xy, transform=along, marker=marker, linestyle="none", markersize=length,
                                  markeredgewidth=rc[f"{name}tick.major.width"], color=rc[f"{name}tick.color"],
                                  clip_on=False))
