@@ -342,6 +342,7 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
     shadows = _shadows(surface, model, steps)
     slope = model.footprint.cutoff_mm / model.standoff_mm
     hideable = None if shadows is None else ~shadows.exposed
+    gun = (model.footprint, model.rate_mm3_s, model.standoff_mm)
     # sub-steps per search (the batches' sums are grouped by it, so it stays what it was for meshes
     # of up to 6250 leaves: the same thickness to the last bit)
     chunk = max(_MIN_STEPS_PER_SEARCH, _LEAF_TESTS_PER_BATCH // tree.n_leaves)
@@ -351,7 +352,7 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
         # batches of the pairs as they are numbered, far ones included: the sums are grouped as they were
         for start in range(0, pairs.size, _PAIRS_PER_BATCH):
             span = (start, min(start + _PAIRS_PER_BATCH, pairs.size))
-            near = near_pairs(mesh.blocks, steps.columns, pairs, span, model, hideable, totals.r2_min, totals.buffer)
+            near = near_pairs(mesh.blocks, steps.columns, pairs, span, gun, hideable, totals.r2_min, totals.buffer)
             _batch(surface, steps, near, pairs.touched, model, shadows, totals)
         if progress is not None:
             progress(min(lo + chunk, len(steps)) / len(steps))

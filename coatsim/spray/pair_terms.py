@@ -13,15 +13,12 @@ products summed in one fixed order, so a pair's terms do not depend on its pass 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.spray.culling import LeafPairs, VertexTree
-
-if TYPE_CHECKING:
-    from coatsim.spray.deposition import SprayModel
+from coatsim.spray.footprints import Footprint
 
 _PAIRS_PER_PASS = 8192  # pairs whose terms are computed at once (their arrays stay in cache)
 _BLOCK_SLOTS = 8  # the fixed work of a block (a take of its rows), in pair slots: an estimate
@@ -109,13 +106,15 @@ def _dot(d: np.ndarray, c: np.ndarray, out: np.ndarray) -> np.ndarray:
 
 
 def near_pairs(leaves: LeafBlocks, step_columns: np.ndarray, pairs: LeafPairs, span: tuple[int, int],
-               model: SprayModel, hideable: np.ndarray | None, r2_min: np.ndarray, buffer: PairBuffer) -> NearPairs:
+               gun: tuple[Footprint, float, float], hideable: np.ndarray | None, r2_min: np.ndarray,
+               buffer: PairBuffer) -> NearPairs:
     """The near pairs among the pairs numbered ``span`` = [start, end) of ``pairs``, in ``buffer``;
-    ``step_columns`` (12, m) holds each sub-step's position, unit axis and footprint axes e1, e2.
+    ``step_columns`` (12, m) holds each sub-step's position, unit axis and footprint axes e1, e2;
+    ``gun`` is the footprint, deposited rate Q (mm³/s) and reference stand-off h0 (mm).
     The squared radii go into ``r2_min`` (per vertex, in place; inf where unseen), but for the
     near pairs of the vertices a shadow may hide (``hideable``; None: no shadows), whose rays
     are yet to be cast."""
-    footprint, h0, width = model.footprint, model.standoff_mm, leaves.width
+    (footprint, rate, h0), width = gun, leaves.width
     start, end = span
     first, last = np.searchsorted(pairs.first, start, "right") - 1, np.searchsorted(pairs.first, end)
     leaf = pairs.leaf[first:last]
@@ -164,7 +163,7 @@ def near_pairs(leaves: LeafBlocks, step_columns: np.ndarray, pairs: LeafPairs, s
         indices[0, into], indices[1, into] = step.take(pair), base.take(pair) + place
         values[0, into], values[1, into] = da.take(k), facing
         values[2, into] = np.sqrt(_dot(near_d, near_d, near_d))
-        values[3, into] = model.rate_mm3_s * g * scale**3 * facing / h0
+        values[3, into] = rate * g * scale**3 * facing / h0
         if hideable is not None:
             indices[2, into], values[4, into] = vertex.take(k), r2.take(k)
         filled += len(k)

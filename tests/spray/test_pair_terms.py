@@ -75,7 +75,8 @@ def test_near_pairs_hold_the_model_terms_of_every_pair_that_gets_spray(seed):
     tree = vertex_tree(points)
     pairs = cone_pairs(tree, steps.position, steps.axis, model.footprint.cutoff_mm / H0, np.arange(len(steps)))
     r2_min = np.full(len(points), np.inf)
-    near = near_pairs(leaf_blocks(tree, points, normals), steps.columns, pairs, (0, pairs.size), model,
+    near = near_pairs(leaf_blocks(tree, points, normals), steps.columns, pairs, (0, pairs.size),
+                      (model.footprint, model.rate_mm3_s, H0),
                       np.ones(len(points), bool), r2_min, PairBuffer())
     vertex = pairs.touched[near.slot]
     np.testing.assert_array_equal(vertex, near.vertex)
