@@ -116,39 +116,42 @@ def cone_leaves(tree: VertexTree, position: np.ndarray, axis: np.ndarray, slope:
     step = np.asarray(steps, dtype=np.int64)
     found_step, found_leaf = [], []
     while len(step):
-        keep = meets_cone(tree.centre[node], tree.radius[node], position[step], axis[step], slope)
+        keep = meets_cone(tree.centre.take(node, axis=0), tree.radius.take(node), position.take(step, axis=0),
+                          axis.take(step, axis=0), slope)
         step, node = step[keep], node[keep]
         leaf = node < tree.n_leaves
         found_step.append(step[leaf])
         found_leaf.append(node[leaf])
-        step, node = np.repeat(step[~leaf], 2), tree.children[node[~leaf]].ravel()
-    step, leaf = np.concatenate(found_step), np.concatenate(found_leaf)
-    first = np.lexsort((leaf, step))
-    return step[first], leaf[first]
+        step, node = np.repeat(step[~leaf], 2), tree.children.take(node[~leaf], axis=0).ravel()
+    key = np.sort(np.concatenate(found_step) * tree.n_leaves + np.concatenate(found_leaf))  # by sub-step, then leaf
+    return key // tree.n_leaves, key % tree.n_leaves
 
 
 @dataclass(frozen=True, eq=False)
-class Pairs:
-    """(sub-step, vertex) pairs of every vertex in a leaf that may meet a sub-step's cone; the
-    vertices they touch, each once (``touched``), and each pair's index into it (``slot``), so
-    sums per vertex take work in proportion to the pairs, not to the mesh."""
+class LeafPairs:
+    """(sub-step, leaf) pairs whose leaf sphere may meet the sub-step's cone, ordered by sub-step,
+    then leaf; each stands for the pairs of its sub-step with its leaf's vertices, ``size`` in
+    all, the first of them numbered ``first``. The vertices of the leaves met, each once
+    (``touched``), and where each pair's leaf starts in it (``base``; a vertex's slot is its
+    leaf's base plus its place in the leaf), so sums per vertex take work in proportion to the
+    pairs, not to the mesh."""
 
     step: np.ndarray
-    vertex: np.ndarray
-    slot: np.ndarray
+    leaf: np.ndarray
+    first: np.ndarray
+    base: np.ndarray
     touched: np.ndarray
+    size: int
 
 
-def cone_pairs(tree: VertexTree, position: np.ndarray, axis: np.ndarray, slope: float, steps: np.ndarray) -> Pairs:
+def cone_pairs(tree: VertexTree, position: np.ndarray, axis: np.ndarray, slope: float, steps: np.ndarray) -> LeafPairs:
     """The pairs of ``steps`` (indices into ``position`` and ``axis``), ordered by sub-step, then
     leaf, then the vertex's place in its leaf."""
     step, leaf = cone_leaves(tree, position, axis, slope, steps)
     counts = tree.count[leaf]
-    offset = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
-    vertex = tree.order[np.repeat(tree.start[leaf], counts) + offset]
     hit = np.unique(leaf)
     size = tree.count[hit]
     base = np.zeros(tree.n_leaves, dtype=np.int64)
     base[hit] = np.cumsum(size) - size
     touched = tree.order[np.repeat(tree.start[hit] - base[hit], size) + np.arange(int(size.sum()))]
-    return Pairs(np.repeat(step, counts), vertex, np.repeat(base[leaf], counts) + offset, touched)
+    return LeafPairs(step, leaf, np.cumsum(counts) - counts, base[leaf], touched, int(counts.sum()))

@@ -20,7 +20,8 @@ each sprayed interval is split into equal sub-steps so that the footprint centre
 midpoint and weighted by its duration, so slowdowns and dwells weigh exactly by time.
 
 Culling (coatsim.spray.culling): per sub-step only the KD-tree leaves whose bounding sphere
-meets the footprint's cut-off cone are evaluated, in vectorised batches, and contributions are
+meets the footprint's cut-off cone are evaluated, leaf block by leaf block, and only the pairs
+within the cut-off radius get the full terms (coatsim.spray.pair_terms); contributions are
 summed per vertex with ``np.bincount`` (deterministic order). Shadows cost one ray per
 (sub-step, vertex) pair that receives spray, and none for vertices nothing can hide.
 """
@@ -36,14 +37,15 @@ from typing import Callable
 
 import numpy as np
 
-from coatsim.core.numeric import ROUND_OFF, TINY
+from coatsim.core.numeric import ROUND_OFF
 from coatsim.core import defaults
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.robot.trajectory_log import TrajectoryLog
-from coatsim.spray.culling import Pairs, VertexTree, cone_pairs, vertex_tree
+from coatsim.spray.culling import VertexTree, cone_pairs, vertex_tree
 from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
+from coatsim.spray.pair_terms import LeafBlocks, NearPairs, PairBuffer, leaf_blocks, near_pairs
 from coatsim.spray.surfaces import Surface
 from coatsim.spray.visibility import RayCaster, Visibility, check_shadow_mode, visibility
 
@@ -51,7 +53,6 @@ MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far 
 _LEAF_TESTS_PER_BATCH = 400_000
 _MIN_STEPS_PER_SEARCH = 64
 _PAIRS_PER_BATCH = 1_000_000
-_PAIRS_PER_PASS = 8192  # pairs whose terms are computed at once (their arrays stay in cache)
 
 
 @dataclass(frozen=True)
@@ -107,9 +108,9 @@ class SubSteps:
         return float(self.dt.sum())
 
     @cached_property
-    def rows(self) -> np.ndarray:
-        """Position, axis, e1 and e2 side by side (m, 12), gathered in one take per pair."""
-        return np.hstack([self.position, self.axis, self.e1, self.e2])
+    def columns(self) -> np.ndarray:
+        """Position, axis, e1 and e2 one above the other (12, m), gathered in one take per leaf."""
+        return np.ascontiguousarray(np.hstack([self.position, self.axis, self.e1, self.e2]).T)
 
     def __len__(self) -> int:
         return len(self.dt)
@@ -217,10 +218,10 @@ _VISIBILITY: weakref.WeakKeyDictionary[Surface, Visibility] = weakref.WeakKeyDic
 @dataclass(frozen=True, eq=False)
 class _Mesh:
     """What the deposition reads of a surface, built once per surface: its vertices' KD-tree and
-    each vertex's position and unit normal side by side (n, 6), gathered in one take per pair."""
+    its leaves' blocks of vertex positions and unit normals."""
 
     tree: VertexTree
-    rows: np.ndarray
+    blocks: LeafBlocks
 
 
 #: Each surface's _Mesh, kept while the surface lives (the variants of a run coat one surface).
@@ -230,7 +231,8 @@ _MESHES: weakref.WeakKeyDictionary[Surface, _Mesh] = weakref.WeakKeyDictionary()
 def _mesh(surface: Surface) -> _Mesh:
     mesh = _MESHES.get(surface)
     if mesh is None:
-        mesh = _Mesh(vertex_tree(surface.vertices), np.hstack([surface.vertices, surface.normals]).astype(float))
+        tree = vertex_tree(surface.vertices)
+        mesh = _Mesh(tree, leaf_blocks(tree, surface.vertices, surface.normals))
         _MESHES[surface] = mesh
     return mesh
 
@@ -265,62 +267,9 @@ def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d
     return shadows.caster.blocked(steps.position[s], d, dist), len(s)
 
 
-@dataclass(frozen=True, eq=False)
-class _PairTerms:
-    """Per pair (s, i), all (n,): axial distance d·a (mm), −d·n (mm, 0 where unseen), |d| (mm),
-    thickness rate before deposition efficiency (mm/s) and squared reference-plane radius (mm²,
-    inf where unseen), d = x − p the offset from the nozzle to the vertex."""
-
-    da: np.ndarray
-    facing: np.ndarray
-    dist: np.ndarray
-    rate: np.ndarray
-    r2: np.ndarray
-
-
-def _rows(array: np.ndarray, index: np.ndarray) -> np.ndarray:
-    return np.take(array, index, axis=0)  # a gather; several times faster than array[index]
-
-
 def _offsets(surface: Surface, steps: SubSteps, s: np.ndarray, i: np.ndarray) -> np.ndarray:
     """d = x − p (mm) for the pairs (s, i)."""
-    return _rows(surface.vertices, i) - _rows(steps.position, s)
-
-
-def _rates(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
-           out: _PairTerms, at: slice) -> None:
-    """The terms of the pairs (s, i), written to ``out`` at ``at``."""
-    h0 = model.standoff_mm
-    step, vertex = _rows(steps.rows, s), _rows(mesh.rows, i)
-    d = vertex[:, :3] - step[:, :3]
-    da = np.einsum("ij,ij->i", d, step[:, 3:6])
-    dn = -np.einsum("ij,ij->i", d, vertex[:, 3:])
-    seen = (da > TINY) & (dn > 0)
-    scale = np.where(seen, h0 / np.where(seen, da, 1.0), 0.0)
-    u = np.einsum("ij,ij->i", d, step[:, 6:9]) * scale
-    v = np.einsum("ij,ij->i", d, step[:, 9:]) * scale
-    g = model.footprint.density(u, v)
-    facing = np.where(seen, dn, 0.0)
-    out.da[at] = da
-    out.facing[at] = facing
-    out.dist[at] = np.sqrt(np.einsum("ij,ij->i", d, d))
-    out.rate[at] = model.rate_mm3_s * g * scale**3 * facing / h0
-    out.r2[at] = np.where(seen, u * u + v * v, np.inf)
-
-
-def _pair_terms(mesh: _Mesh, steps: SubSteps, s: np.ndarray, i: np.ndarray, model: SprayModel,
-                totals: _Totals) -> _PairTerms:
-    """The terms of the pairs (s, i), evaluated ``_PAIRS_PER_PASS`` at a time (each pair's terms
-    depend on that pair alone, so the passes change no value; short passes keep the
-    intermediate arrays in cache)."""
-    n = len(s)
-    if totals.terms.shape[1] < n:  # one buffer for every batch: its pages are mapped once
-        totals.terms = np.empty((5, n))
-    out = _PairTerms(*totals.terms[:, :n])
-    for lo in range(0, n, _PAIRS_PER_PASS):
-        at = slice(lo, lo + _PAIRS_PER_PASS)
-        _rates(mesh, steps, s[at], i[at], model, out, at)
-    return out
+    return np.take(surface.vertices, i, axis=0) - np.take(steps.position, s, axis=0)
 
 
 class _Totals:
@@ -333,45 +282,45 @@ class _Totals:
         self.thickness, self.exposure, self.shadowed, self.lost, self.angle, self.standoff = (np.zeros(n) for _ in range(6))
         self.r2_min = np.full(n, np.inf)
         self.evaluations = self.rays = 0
-        self.terms = np.empty((5, 0))  # the batches' pair terms (_PairTerms), reused
+        self.buffer = PairBuffer()
 
 
-def _batch(surface: Surface, mesh: _Mesh, steps: SubSteps, pairs: Pairs, sel: slice, model: SprayModel,
+def _batch(surface: Surface, steps: SubSteps, near: NearPairs, touched: np.ndarray, model: SprayModel,
            shadows: _Shadows | None, totals: _Totals) -> None:
-    """Evaluate the pairs ``sel`` and add them to ``totals``; incidence, rays and deposition
-    efficiency only for the pairs that receive spray (``on``)."""
-    s, i, slot, touched = pairs.step[sel], pairs.vertex[sel], pairs.slot[sel], pairs.touched
+    """Add the near pairs of one batch to ``totals`` (sums over the vertices ``touched``);
+    incidence, rays and deposition efficiency only for the pairs that receive spray (``on``)."""
+    s, i, slot, rate = near.step, near.vertex, near.slot, near.rate
     add = lambda where, w: np.bincount(slot[where], weights=w, minlength=len(touched))  # noqa: E731
-    terms = _pair_terms(mesh, steps, s, i, model, totals)
-    rate, r2 = terms.rate, terms.r2
-    totals.evaluations += len(s)
     dt = steps.dt[s]
+    every = slice(None)
     on = np.flatnonzero(rate > 0)
-    dist = terms.dist[on]
+    on = every if len(on) == len(rate) else on  # usually all of them: views, not copies
+    dist = near.dist[on]
     if shadows is not None:
+        hideable = np.flatnonzero(~shadows.exposed[i])
         aim = np.flatnonzero(~shadows.exposed[i[on]])
-        s_aim, i_aim = s[on[aim]], i[on[aim]]
+        on_aim = np.arange(len(rate))[on][aim]
+        s_aim, i_aim = s[on_aim], i[on_aim]
         hidden, rays = _blocked(shadows, steps, s_aim, i_aim, _offsets(surface, steps, s_aim, i_aim), dist[aim],
                                 len(totals.thickness))
         totals.rays += rays
-        blocked = on[aim[hidden]]
+        blocked = on_aim[hidden]
         totals.shadowed[touched] += add(blocked, rate[blocked] * dt[blocked])
         rate[blocked] = 0.0
-        r2[blocked] = np.inf
-    cos_gamma = terms.facing[on] / dist
+        near.r2[blocked] = np.inf
+        np.minimum.at(totals.r2_min, i[hideable], near.r2[hideable])  # near_pairs left them out
+    cos_gamma = near.facing[on] / dist
     stuck = rate
     if model.efficiency is not None:
         stuck = rate.copy()
         stuck[on] = rate[on] * model.efficiency.factor(cos_gamma)
         totals.lost[touched] += add(on, (rate[on] - stuck[on]) * dt[on])
     weight = stuck * dt
-    every = slice(None)
     totals.thickness[touched] += add(every, weight)
     totals.exposure[touched] += add(every, np.where(stuck > 0, dt, 0.0))
-    np.minimum.at(totals.r2_min, i, r2)
     angle = np.degrees(np.arcsin(np.minimum(cos_gamma, 1.0)))
     totals.angle[touched] += add(on, weight[on] * angle)
-    totals.standoff[touched] += add(on, weight[on] * terms.da[on])
+    totals.standoff[touched] += add(on, weight[on] * near.da[on])
 
 
 def _deposit(totals: _Totals, steps: SubSteps, shadows: bool) -> Deposit:
@@ -392,13 +341,19 @@ def deposit(surface: Surface, log: TrajectoryLog, model: SprayModel,
     tree = mesh.tree
     shadows = _shadows(surface, model, steps)
     slope = model.footprint.cutoff_mm / model.standoff_mm
+    hideable = None if shadows is None else ~shadows.exposed
+    gun = (model.footprint, model.rate_mm3_s, model.standoff_mm)
     # sub-steps per search (the batches' sums are grouped by it, so it stays what it was for meshes
     # of up to 6250 leaves: the same thickness to the last bit)
     chunk = max(_MIN_STEPS_PER_SEARCH, _LEAF_TESTS_PER_BATCH // tree.n_leaves)
     for lo in range(0, len(steps), chunk):
         pairs = cone_pairs(tree, steps.position, steps.axis, slope, np.arange(lo, min(lo + chunk, len(steps))))
-        for b in range(0, len(pairs.step), _PAIRS_PER_BATCH):
-            _batch(surface, mesh, steps, pairs, slice(b, b + _PAIRS_PER_BATCH), model, shadows, totals)
+        totals.evaluations += pairs.size
+        # batches of the pairs as they are numbered, far ones included: the sums are grouped as they were
+        for start in range(0, pairs.size, _PAIRS_PER_BATCH):
+            span = (start, min(start + _PAIRS_PER_BATCH, pairs.size))
+            near = near_pairs(mesh.blocks, steps.columns, pairs, span, gun, hideable, totals.r2_min, totals.buffer)
+            _batch(surface, steps, near, pairs.touched, model, shadows, totals)
         if progress is not None:
             progress(min(lo + chunk, len(steps)) / len(steps))
     return _deposit(totals, steps, shadows is not None)

@@ -33,8 +33,15 @@ def test_the_search_finds_exactly_the_leaves_that_meet_the_cone(seed, n, slope):
     np.testing.assert_array_equal(found[0], expected[0])
     np.testing.assert_array_equal(found[1], expected[1])
     pairs = cone_pairs(tree, position, axis, slope, np.arange(30))
-    step, vertex = pairs.step, pairs.vertex
-    np.testing.assert_array_equal(pairs.touched[pairs.slot], vertex)  # every touched vertex once
+    np.testing.assert_array_equal(pairs.step, found[0])
+    np.testing.assert_array_equal(pairs.leaf, found[1])
+    counts = tree.count[pairs.leaf]
+    assert pairs.size == counts.sum() and np.array_equal(pairs.first, np.cumsum(counts) - counts)
+    place = np.arange(pairs.size) - np.repeat(pairs.first, counts)
+    step = np.repeat(pairs.step, counts)
+    vertex = tree.order[np.repeat(tree.start[pairs.leaf], counts) + place]
+    slot = np.repeat(pairs.base, counts) + place
+    np.testing.assert_array_equal(pairs.touched[slot], vertex)  # every touched vertex once
     assert len(np.unique(pairs.touched)) == len(pairs.touched) and set(pairs.touched) == set(vertex)
     for s in range(30):  # every vertex strictly inside a cone is among its pairs
         d_all = points - position[s]
