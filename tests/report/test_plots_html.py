@@ -119,3 +119,23 @@ def test_ticks_drawn_as_plain_artists_keep_every_label_on_its_side() -> None:
     right = bar.ax.get_window_extent().x1
     assert len(shown(bar.ax)) >= 2 and all(x > right for x, _ in shown(bar.ax))
     assert "x (mm)" in [t.get_text() for t in ax.texts]
+
+
+def test_nothing_drawn_on_a_part_reports_figures_is_cut_off_at_their_edges(tube_run) -> None:
+    """Every figure of a 3-D part's report keeps its drawing inside its margins: the outermost row
+    and column of pixels on each side are the background (a legend or label placed past the
+    figure's edge, as the histogram's legend once was, is cut off there)."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    result, _ = tube_run
+    html = (result.outdir / "report.html").read_text(encoding="utf-8")
+    images = re.findall(r"data:image/png;base64,([A-Za-z0-9+/=]+)", html)
+    assert images
+    for k, data in enumerate(images):
+        rgb = np.asarray(Image.open(io.BytesIO(base64.b64decode(data))).convert("RGB")).astype(int)
+        edges = {"left": rgb[:, 0], "right": rgb[:, -1], "top": rgb[0], "bottom": rgb[-1]}
+        cut = [side for side, pixels in edges.items() if np.abs(pixels - rgb[0, 0]).max() > 0]
+        assert not cut, f"figure {k}: something drawn reaches its {', '.join(cut)} edge"

@@ -87,7 +87,7 @@ def histogram_figure(data: Any) -> bytes:
     target, tol = spec["target_um"], spec["tolerance_pct"]
     top = data.scale_um[1]
     fig = figure(9.0, 3.4)
-    ax = grid(fig, 1, 1, margins=(0.8, 2.0, 0.35, 0.55))[0, 0]
+    ax = grid(fig, 1, 1, margins=(0.8, 2.6, 0.35, 0.55))[0, 0]  # the legend right of the axes
     ax.axvspan(target * (1 - tol / 100), target * (1 + tol / 100), color="#2ca02c", alpha=0.15, lw=0)
     ax.axvline(target, color="#2ca02c", lw=0.8)
     bins = np.linspace(0.0, max(top, target * (1 + tol / 100)) * 1.05, HISTOGRAM_BINS + 1)
