@@ -30,7 +30,7 @@ from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_po
 
 Method = Literal["optimal", "paper"]
 TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
-TAUGHT_AIMS = (0.9,)  # ... it is fitted again within these shares of σ (the fewest segments kept)
+TAUGHT_AIM = 0.9  # ... it is fitted again within this share of σ (the fewer segments kept)
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 METHODS = ("optimal", "paper")
 
@@ -232,29 +232,21 @@ def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: f
 def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
          speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
     """The default fitter (_fit_within); a taught (sparse) loop whose smooth chain keeps more
-    than TAUGHT_SHARE of its moves is fitted again within the TAUGHT_AIMS shares of the
-    tolerance: the band fit is a heuristic, and where a loop's chain starts and closes on a few
-    vertices a tighter aim often lands on fewer pieces, within this tolerance too. A chain with
-    fewer segments replaces it (the first such); the search ends at an aim that keeps a corner
-    or has a note. (Open taught paths, whose ends are pinned, gained nothing from it in
-    scripts/bench_sparse.py and are not fitted again.)"""
+    than TAUGHT_SHARE of its moves is fitted again within TAUGHT_AIM of the tolerance: the band
+    fit is a heuristic, and where a loop's chain starts and closes on a few vertices a tighter
+    aim often lands on fewer pieces, within this tolerance too. That chain replaces it when it
+    has fewer segments and no corner or note. (Open taught paths, whose ends are pinned, gained
+    nothing from it in scripts/bench_sparse.py and are not fitted again.)"""
     found = _fit_within(curve, tol, corner_deg, min_segment_mm, speed_kappa)
-    moves = len(curve.points) - 1
-    if (not curve.closed or found[0].n_segments <= TAUGHT_SHARE * moves or found[0].corners or found[4]
-            or not is_sparse(curve.points, curve.closed, tol)):
+    if (not curve.closed or found[0].n_segments <= TAUGHT_SHARE * (len(curve.points) - 1) or found[0].corners
+            or found[4] or not is_sparse(curve.points, curve.closed, tol)):
         return found
-    for share in TAUGHT_AIMS:
-        try:
-            other = _fit_within(curve, share * tol, corner_deg, min_segment_mm, speed_kappa)
-        except InputError:
-            continue
-        if other[0].corners or other[4]:
-            break  # σ is below what the polygon allows there: tighter aims keep corners too
-        if other[0].n_segments < found[0].n_segments:
-            found = other
-            if found[0].n_segments <= TAUGHT_SHARE * moves:
-                break
-    return found
+    try:
+        other = _fit_within(curve, TAUGHT_AIM * tol, corner_deg, min_segment_mm, speed_kappa)
+    except InputError:
+        return found
+    smooth = not other[0].corners and not other[4]
+    return other if smooth and other[0].n_segments < found[0].n_segments else found
 
 
 def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
