@@ -57,23 +57,26 @@ def land(start: np.ndarray, t: np.ndarray, c: np.ndarray, origin: np.ndarray, no
     return ell
 
 
-def state_point(ref: Reference, s: np.ndarray, y: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(point, unit tangent) of states (y, a) at arc lengths s."""
-    p, tg, u, v = ref.frame(s)
+Frame = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # (point, tangent, u, v): Reference.frame's
+
+
+def state_point(frame: Frame, y: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(point, unit tangent) of states (y, a) in ``frame`` (at their arc lengths)."""
+    p, tg, u, v = frame
     t = tg + a[..., :1] * u + a[..., 1:] * v
     return p + y[..., :1] * u + y[..., 1:] * v, t / np.linalg.norm(t, axis=-1, keepdims=True)
 
 
-def curvature_vector(ref: Reference, s: np.ndarray, c: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """The curvature vector c_u u + c_v v of the frame at s, made normal to the tangent t."""
-    _, _, u, v = ref.frame(s)
+def curvature_vector(frame: Frame, c: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The curvature vector c_u u + c_v v of ``frame``, made normal to the tangent t."""
+    _, _, u, v = frame
     vec = c[..., :1] * u + c[..., 1:] * v
     return vec - _dot(vec, t)[..., None] * t
 
 
-def state_of(ref: Reference, s: np.ndarray, point: np.ndarray, tangent: np.ndarray) -> np.ndarray:
-    """The state (y_u, y_v, a_u, a_v) of a point on the normal plane at s with a tangent."""
-    p, tg, u, v = ref.frame(s)
+def state_of(frame: Frame, point: np.ndarray, tangent: np.ndarray) -> np.ndarray:
+    """The state (y_u, y_v, a_u, a_v) of a point on the normal plane of ``frame`` with a tangent."""
+    p, tg, u, v = frame
     rel = point - p
     along = _dot(tangent, tg)[..., None]
     return np.concatenate((np.stack((_dot(rel, u), _dot(rel, v)), axis=-1),
@@ -112,11 +115,12 @@ def evaluate(ref: Reference, params: np.ndarray, samples: Samples | None,
     of the chain from the ``samples`` in their normal planes, each measured on its piece
     ``piece`` (m,) (extended beyond its ends if the point lies outside)."""
     s0, s1 = params[..., 0], params[..., 1]
-    start, t = state_point(ref, s0, params[..., 2:4], params[..., 4:6])
-    c = curvature_vector(ref, s0, params[..., 6:8], t)
-    origin, normal, _, _ = ref.frame(s1)
+    here, there = ref.frame(s0), ref.frame(s1)
+    start, t = state_point(here, params[..., 2:4], params[..., 4:6])
+    c = curvature_vector(here, params[..., 6:8], t)
+    origin, normal, _, _ = there
     ell = land(start, t, c, origin, normal, s1 - s0)
-    ends = state_of(ref, s1, arc_point(start, t, c, ell), arc_tangent(t, c, ell))
+    ends = state_of(there, arc_point(start, t, c, ell), arc_tangent(t, c, ell))
     if samples is None:
         return ends, np.zeros(ends.shape[:-2] + (0, 2))
     j = piece

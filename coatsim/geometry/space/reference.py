@@ -24,11 +24,19 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def _interp(s: np.ndarray, values: np.ndarray, at: np.ndarray) -> np.ndarray:
+def _locate(s: np.ndarray, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The edge of every arc length ``at`` in ``s`` and the share of the way along it."""
     i = np.clip(np.searchsorted(s, at, side="right") - 1, 0, len(s) - 2)
     width = s[i + 1] - s[i]
-    u = np.clip((at - s[i]) / np.where(width > 0, width, 1.0), 0.0, 1.0)
+    return i, np.clip((at - s[i]) / np.where(width > 0, width, 1.0), 0.0, 1.0)
+
+
+def _lerp(values: np.ndarray, i: np.ndarray, u: np.ndarray) -> np.ndarray:
     return values[i] + u[..., None] * (values[i + 1] - values[i])
+
+
+def _interp(s: np.ndarray, values: np.ndarray, at: np.ndarray) -> np.ndarray:
+    return _lerp(values, *_locate(s, at))
 
 
 def _carried(tangent: np.ndarray) -> np.ndarray:
@@ -66,11 +74,11 @@ class Reference:
 
     def frame(self, at: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(point, tangent, u, v) at arc lengths ``at`` (any shape; vectors get a last axis of 3)."""
-        at = np.asarray(at, dtype=float)
-        t = _unit(_interp(self.s, self.tangent, at))
-        u = _interp(self.s, self.u, at)
+        i, w = _locate(self.s, np.asarray(at, dtype=float))
+        t = _unit(_lerp(self.tangent, i, w))
+        u = _lerp(self.u, i, w)
         u = _unit(u - np.einsum("...i,...i->...", u, t)[..., None] * t)
-        return _interp(self.s, self.points, at), t, u, np.cross(t, u)
+        return _lerp(self.points, i, w), t, u, np.cross(t, u)
 
 
 def _smoothed(points: np.ndarray, s: np.ndarray, at: np.ndarray, window_mm: float) -> np.ndarray:

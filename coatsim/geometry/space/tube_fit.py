@@ -17,7 +17,8 @@ pieces as it can keep within σ.
    and certified by the exact two-sided Hausdorff check; if that misses σ, the fit aims
    lower and repeats.
 
-A run it cannot fit within a few rounds is left to the biarc fitter (None).
+A run it cannot fit within a few rounds, or from no more pieces than the caller already has
+(``at_most``: the biarc chain's count), is left to the biarc fitter (None).
 """
 
 from __future__ import annotations
@@ -60,11 +61,12 @@ DENSE_SIGMAS, DENSE_MEDIANS = 5.0, 2.0  # the fit measures the input along its e
 
 def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: float,
                  start_tangent: np.ndarray | None = None, end_tangent: np.ndarray | None = None,
-                 seam_tangent: np.ndarray | None = None) -> RunChain | None:
+                 seam_tangent: np.ndarray | None = None, at_most: int | None = None) -> RunChain | None:
     """A certified G1 chain within ``tol`` of a run of input points (n, 3) under ``limits``
     (see the module text), or None. ``start_tangent``/``end_tangent`` pin the run's end
     tangents; ``seam_tangent``: the run is a closed loop (its last point its first) with
-    this tangent at the seam, where the chain meets its own start tangent (free)."""
+    this tangent at the seam, where the chain meets its own start tangent (free); ``at_most``:
+    no count of pieces above it is tried (the caller has a chain of that many)."""
     seam = seam_tangent is not None
     if len(points) < MIN_POINTS:
         return None
@@ -78,10 +80,12 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
     else:
         ends = Ends(start_tangent is not None, end_tangent is not None)
     median = float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))
-    return _certified(ref, densified(points, max(DENSE_SIGMAS * tol, DENSE_MEDIANS * median)), tol, limits, ends)
+    return _certified(ref, densified(points, max(DENSE_SIGMAS * tol, DENSE_MEDIANS * median)), tol, limits, ends,
+                      at_most)
 
 
-def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits, ends: Ends) -> RunChain | None:
+def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits, ends: Ends,
+               at_most: int | None) -> RunChain | None:
     """The fewest pieces the tube fit finds within the target at the input points, built and
     certified by the exact check. While that misses: the places of the input it missed at
     (between the measured points) are measured too and the same chain refitted, else it is
@@ -91,7 +95,7 @@ def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits
     problem = TubeProblem(ref, points, s, tol, limits, ends)
     target = TARGET * tol
     density = _GreedyDensity.of(points, s, tol)
-    chain, warm = _fewest(problem, density, target), False
+    chain, warm = _fewest(problem, density, target, at_most), False
     for _ in range(CERTIFY_TRIES):
         if chain is None:
             return None
@@ -110,7 +114,7 @@ def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits
             if miss <= target:
                 chain, warm = closer, True
                 continue
-        chain, warm = _fewest(problem, density, target), False
+        chain, warm = _fewest(problem, density, target, at_most), False
     return None
 
 
@@ -201,12 +205,12 @@ def _initial(ref: Reference, knots: np.ndarray) -> TubeChain:
     return TubeChain(knots.astype(float), np.zeros((len(knots), 4)), kappa)
 
 
-def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
+def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float, at_most: int | None) -> TubeChain | None:
     """A chain within ``target`` (``_first_within``), then one piece fewer at a time while it
     stays within, each count tried from the chain before with two neighbours merged (those
     whose curvatures differ least over their span first), resampled, and from knots spread
-    as the greedy's; None if it never gets within."""
-    chain = _first_within(problem, density, target)
+    as the greedy's; None if no count up to ``at_most`` gets within."""
+    chain = _first_within(problem, density, target, at_most)
     if chain is None:
         return None
     while chain.n > 1:
@@ -222,7 +226,8 @@ def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float) -> Tub
     return chain
 
 
-def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) -> TubeChain | None:
+def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float,
+                  at_most: int | None) -> TubeChain | None:
     """The first chain within ``target`` of as many pieces as the greedy has arcs, then a few
     more, then growing shares more (MORE_PIECES): each count started from knots spread as
     the greedy's, spread evenly, and (one piece more than a chain that missed) from that
@@ -230,9 +235,10 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float) 
     caught in a local optimum no split gets it out of. Where more pieces stop bringing the
     chain closer and no limit holds it, the chain is caught in a local optimum: the
     search goes on at the growing shares (on the trefoil at σ 0.5 mm 12 to 14 pieces all
-    miss by 0.69 mm, 15 fit)."""
+    miss by 0.69 mm, 15 fit). Counts above ``at_most`` are not tried."""
     count = density.count
     counts = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
+    counts = [n for n in counts if at_most is None or n <= at_most]
     missed: TubeChain | None = None
     misses: list[float] = []
     for n in counts:
@@ -316,7 +322,7 @@ def _build(ref: Reference, chain: TubeChain, end: np.ndarray, ends: Ends) -> tup
     """The chain's segments, each leaving from the end of the one before, closed exactly
     onto ``end`` (a loop onto its own start; see the module text), and the knot span of every
     segment (k, 2) mm."""
-    start, t = state_point(ref, chain.knots[0], chain.states[0, :2], chain.states[0, 2:])
+    start, t = state_point(ref.frame(chain.knots[0]), chain.states[0, :2], chain.states[0, 2:])
     if ends.seam is None:
         start = ref.points[0].copy()  # the state there is pinned on the curve: exactly its first point
     else:
@@ -326,7 +332,7 @@ def _build(ref: Reference, chain: TubeChain, end: np.ndarray, ends: Ends) -> tup
     segments: list[Segment3] = []
     spans: list[tuple[float, float]] = []
     for j in range(last):
-        c = curvature_vector(ref, chain.knots[j], chain.kappa[j], t)
+        c = curvature_vector(ref.frame(chain.knots[j]), chain.kappa[j], t)
         origin, normal, _, _ = ref.frame(chain.knots[j + 1])
         ell = float(land(start, t, c, origin, normal, np.float64(chain.knots[j + 1] - chain.knots[j])))
         seg = segment(start, t, c, ell)
@@ -352,7 +358,7 @@ def _build(ref: Reference, chain: TubeChain, end: np.ndarray, ends: Ends) -> tup
 
 
 def _end_tangent(ref: Reference, chain: TubeChain, ends: Ends) -> np.ndarray:
-    _, t = state_point(ref, chain.knots[-1], chain.states[-1, :2], chain.states[-1, 2:])
+    _, t = state_point(ref.frame(chain.knots[-1]), chain.states[-1, :2], chain.states[-1, 2:])
     return t
 
 
