@@ -94,8 +94,8 @@ class SurfaceOptions:
 @dataclass(frozen=True, eq=False)
 class SurfaceProgram:
     """A written program of 3-D passes: its text, plan, per pass the number of lines and arcs,
-    the largest angle (rad) between the fitted axis and the wanted one, and what the language
-    could not say as asked (arcs written as lines)."""
+    the largest angle (rad) between the fitted axis and the wanted one, and the notes: what the
+    language could not say as asked (arcs written as lines), where the axis strays further than asked."""
 
     text: str
     plan: ProgramPlan
@@ -338,7 +338,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
     tcps = [pass_tcp(p, standoff, pose) for p in paths.passes]
     start_x = reference_direction(np.vstack([a for _, a in tcps]))
     trace_speed = options.speed_mm_s if surface.speed_on == "trace" else None
-    placed, contours, counts, worst, arcs_as_lines = [], [], [], 0.0, 0
+    placed, contours, counts, errors, arcs_as_lines = [], [], [], [], 0
     for k, ((tcp, axes), surface_pass) in enumerate(zip(tcps, paths.passes)):
         name = f"{paths.source}: passes[{k}]"
         step = np.linalg.norm(np.diff(tcp, axis=0), axis=1)
@@ -362,7 +362,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         arcs_as_lines += lined
         length = float(sum(m.length for m in moves if m.part == "curve"))
         limits = tuple(lim.scaled(length / curve_length) for lim in limits)
-        worst = max(worst, error)
+        errors.append(error)
         n_arcs = sum(m.is_arc for m in moves if m.part == "curve")
         counts.append((sum(m.part == "curve" for m in moves) - n_arcs, n_arcs))
         placed.append(PlacedPath(tuple(moves), -axes[0], standoff, lead_in, lead_out, length))
@@ -374,16 +374,31 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
               for p, c in zip(placed, clearance)]
     _check_range(placed, language, paths.source)
     plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
-                                arcs_as_lines, (lead_in, lead_out), standoff, pose)
-    return SurfaceProgram(language.write(plan), plan, tuple(counts), worst, notes)
+                                arcs_as_lines, _axis_notes(errors, surface), (lead_in, lead_out), standoff, pose)
+    return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes)
+
+
+def _axis_notes(errors: list[float], surface: SurfaceOptions) -> tuple[str, ...]:
+    """What the user is told where the fitted axis strays further than ``angle_tol_deg`` (radians
+    per pass in): the fit splits a segment until the axis follows, so what is left is where the
+    axis it should follow jumps, the pass coming back close to itself (the normal nearest a
+    point of the chain switches from one side of the fold to the other)."""
+    over = [(k, math.degrees(e)) for k, e in enumerate(errors) if math.degrees(e) > surface.angle_tol_deg * (1 + 1e-6)]
+    if not over:
+        return ()
+    k, worst = max(over, key=lambda item: item[1])
+    return (f"the tool axis strays up to {worst:.1f} deg from the normal (passes[{k}]; {len(over)} of {len(errors)} "
+            f"passes above the {fmt_short(surface.angle_tol_deg)} deg asked) where a pass's TCP path comes back "
+            f"within {fmt_short(2 * surface.tolerance_mm)} mm of itself (e.g. a fold where the surface is concave "
+            "tighter than the stand-off) and the fit cuts across: the normals on the two sides differ by that much",)
 
 
 def _surface_plan(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions, language: Language,
                   placed: list[PlacedPath], contours: tuple[SprayedContour, ...], counts: list[tuple[int, int]],
-                  arcs_as_lines: int, leads_mm: tuple[float, float], standoff: float,
+                  arcs_as_lines: int, axis_notes: tuple[str, ...], leads_mm: tuple[float, float], standoff: float,
                   pose: Pose) -> tuple[ProgramPlan, tuple[str, ...]]:
     """The program plan of the placed passes, with its process record and comments, and the notes
-    for the user (arcs written as lines)."""
+    for the user (arcs written as lines, ``axis_notes``)."""
     lead_in, lead_out = leads_mm
     n_lines, n_arcs = sum(c[0] for c in counts), sum(c[1] for c in counts)
     process = ProcessInfo(
@@ -403,7 +418,7 @@ def _surface_plan(paths: SurfacePaths, options: ProgramOptions, surface: Surface
              (f"{arcs_as_lines} arcs written as lines within {fmt_short(surface.tolerance_mm)} mm: "
               f"{language.title} has circular moves only in {language.capabilities.arc_planes} planes"
               + ("; a 3-D curve segmented with arc_planes 'principal' has every arc in them"
-                 if language.capabilities.arc_planes == "principal" else ""),))
+                 if language.capabilities.arc_planes == "principal" else ""),)) + axis_notes
     plan = ProgramPlan(name=name, paths=tuple(placed), speed_mm_s=options.speed_mm_s, accuracy_mm=options.accuracy_mm,
                        exact_stop=options.variant == "polyline-stop", approach_mm=options.approach_mm,
                        gun_signal=options.gun_signal, tool=options.tool, process=process, comments=(comment, *notes))

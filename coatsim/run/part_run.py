@@ -215,7 +215,7 @@ def _document(loaded: ScenarioFile, job: PartJob, runs: list[VariantRun], failur
     variants = {r.name: r.groups for r in runs}
     gates = evaluate_gates([g for g in spec.gates if {g.variant, *g.compared} <= set(variants)], variants)
     warnings = [{"variant": r.name, "message": event} for r in runs
-                for event in (*r.execution.warnings, *r.execution.events)]
+                for event in (*r.program.notes, *r.execution.warnings, *r.execution.events)]
     document = assemble(as_dict(spec), variants, gates, mode="fast" if fast else "full", warnings=warnings)
     document["plan"] = plan_summary(job.plan)
     document["passes"] = passes_section([p.length_mm for p in job.plan.passes], {r.name: r.execution for r in runs})

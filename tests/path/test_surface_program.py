@@ -225,3 +225,34 @@ def test_the_program_command_writes_surface_passes_in_the_language_asked(torus, 
 def test_gcode_refuses_surface_passes_that_tilt_the_gun(torus, tmp_path, run_cli):
     code, _, err = run_cli(["program", str(torus), "--language", "gcode", "-o", str(tmp_path / "p.ngc")])
     assert code == 2 and "no tool orientation" in err and err.count("\n") == 1
+
+
+def _trough_pass(folder: Path, radius_mm: float) -> Path:
+    """One pass across the trough of z = 20 cos(kx) whose radius there is ``radius_mm``: at a
+    stand-off of 100 mm beyond it the TCP path folds back on itself (a swallowtail)."""
+    k = math.sqrt(1.0 / (radius_mm * 20.0))
+    x = np.linspace(math.pi / k - 40.0, math.pi / k + 40.0, 400)
+    normals = np.column_stack((20.0 * k * np.sin(k * x), 0.0 * x, np.ones_like(x)))
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    doc = {"format": "coatsim.surfacepaths/1", "units": "mm",
+           "mesh": {"file": "trough.stl", "sha256": "", "vertices": 3, "faces": 1, "pose": [700, 0, 0, 0, 0, 0]},
+           "pattern": "raster", "spacing_mm": 10.0, "standoff_mm": 100.0, "ripple_pct": 0.0,
+           "passes": [{"points": np.column_stack((x, 0.0 * x, 20.0 * np.cos(k * x))).tolist(),
+                       "normals": normals.tolist(), "closed": False, "lead_in": [], "lead_out": []}],
+           "stats": {"passes": 1}}
+    path = folder / f"trough{radius_mm:g}.json"
+    path.write_text(json.dumps(doc), encoding="utf-8")
+    return path
+
+
+def test_an_axis_that_strays_further_than_asked_is_said(tmp_path):
+    """Where the TCP path folds (a trough of radius 95 mm under a 100 mm stand-off) the fit cuts
+    across the fold and the normals on its two sides differ: the program says how far the axis
+    strays, in its notes and in its comments; over a trough of 110 mm nothing folds, nothing is said."""
+    folded = build(_trough_pass(tmp_path, 95.0))
+    assert math.degrees(folded.max_axis_error_rad) > 2.0
+    (note,) = folded.notes
+    assert f"strays up to {math.degrees(folded.max_axis_error_rad):.1f} deg" in note and "passes[0]" in note
+    assert "the 2 deg asked" in note and note[:60] in folded.text
+    smooth = build(_trough_pass(tmp_path, 110.0))
+    assert math.degrees(smooth.max_axis_error_rad) <= 2.0 and smooth.notes == ()
