@@ -17,7 +17,8 @@ continue its first and last line or arc, the tool turning on at the same rate (t
 the file's leads unless given), the gun open
 along the whole pass and its leads (an open pass) or exactly once around (a closed one); the
 tool approaches and departs along the axis and travels between passes with the gun off, at a
-clearance raised where the straight travel would pass closer to the part than the stand-off.
+clearance raised where the straight travel would pass closer to the part than the stand-off
+(coatsim.path.travel).
 With ``speed_on="trace"`` every move gets the speed that moves the spray spot on the surface
 (TCP + standoff · axis, as the controller interpolates the poses) at ``speed_mm_s``; the
 stretches where a move's own speed exceeds what its arc allows (v² / r above the tool
@@ -40,6 +41,7 @@ from coatsim.geometry.space.pose import Pose, exp_rotation, log_rotation, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3, rotate_about
 from coatsim.geometry.space.rotations import rot_z
 from coatsim.path.build import ProgramOptions
+from coatsim.path.expressible import expressible
 from coatsim.path.frames import DEFAULT_FRAME
 from coatsim.path.language import Language
 from coatsim.path.placement import PlacedMove, PlacedPath
@@ -48,9 +50,9 @@ from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
 from coatsim.path.roll import AxisPiece, Oriented, check_rule, oriented_pieces, reference_direction
 from coatsim.path.speed_limits import SpeedLimit
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
+from coatsim.path.travel import travel_clearances
 
 _TRACE_SAMPLES = 33      # samples per move when its trace length is measured
-_CLEARANCE_STEPS = 6     # the travel clearance is doubled at most this many times
 _KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
 _MAX_LEAD_TURN_RAD = math.radians(120.0)  # a lead continuing a tighter circle is a tangent line
 
@@ -270,60 +272,6 @@ def _lead(o: Oriented, length: float, part: str, speed_mm_s: Optional[float]) ->
     return PlacedMove(Line3(ends[0].translation_mm, ends[1].translation_mm), *ends, part, speed_mm_s=speed_mm_s)
 
 
-def _principal(normal: np.ndarray) -> bool:
-    return bool(np.isclose(np.abs(normal).max(), 1.0, rtol=0.0, atol=1e-9))
-
-
-def expressible(moves: list[PlacedMove], arc_planes: str, tolerance_mm: float) -> tuple[list[PlacedMove], int]:
-    """The moves as a language with native arcs in ``arc_planes`` ("any", "principal" or "none")
-    can write them: every other arc as the lines through poses on it whose chords stay within
-    ``tolerance_mm`` of it; and how many arcs became lines."""
-    if arc_planes == "any":
-        return moves, 0
-    out: list[PlacedMove] = []
-    changed = 0
-    for m in moves:
-        arc = m.geometry
-        if not m.is_arc or (arc_planes == "principal" and _principal(arc.normal)):
-            out.append(m)
-            continue
-        changed += 1
-        step = 2.0 * math.acos(max(-1.0, 1.0 - tolerance_mm / arc.radius))
-        n = max(1, math.ceil(arc.sweep / step))
-        poses = [m.pose_at(k / n) for k in range(n + 1)]
-        out += [PlacedMove(Line3(a.translation_mm, b.translation_mm), a, b, m.part, speed_mm_s=m.speed_mm_s)
-                for a, b in zip(poses[:-1], poses[1:])]
-    return out, changed
-
-
-def _clear(a: np.ndarray, b: np.ndarray, points: np.ndarray) -> float:
-    """Smallest distance from the segment a-b to the points (n, 3)."""
-    ab = b - a
-    den = float(ab @ ab)
-    u = np.clip((points - a) @ ab / den, 0.0, 1.0) if den > 0 else np.zeros(len(points))
-    return float(np.linalg.norm(points - a - u[:, None] * ab, axis=1).min())
-
-
-def _clearances(paths: list[PlacedPath], approach: float, surface: np.ndarray, standoff: float, source: str) -> list[float]:
-    """Per path the approach/depart distance: ``approach``, doubled for both ends of a travel
-    until the straight travel keeps at least the stand-off from every surface point."""
-    out = [approach] * len(paths)
-    for k in range(len(paths) - 1):
-        a, b = paths[k].end, paths[k + 1].start
-        for _ in range(_CLEARANCE_STEPS + 1):
-            c = max(out[k], out[k + 1])
-            p, q = a.translation_mm - c * a.rotation[:, 2], b.translation_mm - c * b.rotation[:, 2]
-            if _clear(p, q, surface) >= standoff:
-                out[k] = out[k + 1] = c
-                break
-            out[k] = out[k + 1] = 2 * c
-        else:
-            raise InputError(f"{source}: the travel from pass {k + 1} to pass {k + 2} passes closer to the part than "
-                             f"the stand-off even {fmt_short(c)} mm off it; spray them in another order or split the program",
-                             parameters=("approach_mm",))
-    return out
-
-
 def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions,
                           language: Language) -> SurfaceProgram:
     """The ``options.variant`` program of every pass of ``paths`` in ``language`` (module text)."""
@@ -369,7 +317,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         contours.append(SprayedContour(closed=surface_pass.closed, leads_sprayed=not surface_pass.closed,
                                        speed_limits=limits))
     surface_points = np.vstack([pose.apply(p.points) for p in paths.passes])
-    clearance = _clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
+    clearance = travel_clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
     placed = [PlacedPath(p.segments, p.normal, p.standoff_mm, p.lead_in_mm, p.lead_out_mm, p.curve_length_mm, c)
               for p, c in zip(placed, clearance)]
     _check_range(placed, language, paths.source)

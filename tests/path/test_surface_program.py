@@ -18,7 +18,8 @@ from coatsim.geometry.space.rotations import oat_to_matrix
 from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
-from coatsim.path.surface_program import SurfaceOptions, build_surface_program, expressible, oriented_polyline
+from coatsim.path.expressible import expressible
+from coatsim.path.surface_program import SurfaceOptions, build_surface_program, oriented_polyline
 from coatsim.path.surfacepaths import read_surfacepaths
 from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
 

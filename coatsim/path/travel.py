@@ -1,0 +1,42 @@
+"""The clearance of the gun-off travel between the passes of a 3-D program: each pass is left
+and entered along its tool axis, far enough that the straight travel between them keeps at least
+the stand-off from every point of the part's surface."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from coatsim.core.errors import InputError
+from coatsim.core.numbers import fmt_short
+from coatsim.path.placement import PlacedPath
+
+CLEARANCE_STEPS = 6  # the travel clearance is doubled at most this many times
+
+
+def _clear(a: np.ndarray, b: np.ndarray, points: np.ndarray) -> float:
+    """Smallest distance from the segment a-b to the points (n, 3)."""
+    ab = b - a
+    den = float(ab @ ab)
+    u = np.clip((points - a) @ ab / den, 0.0, 1.0) if den > 0 else np.zeros(len(points))
+    return float(np.linalg.norm(points - a - u[:, None] * ab, axis=1).min())
+
+
+def travel_clearances(paths: list[PlacedPath], approach: float, surface: np.ndarray, standoff: float,
+                      source: str) -> list[float]:
+    """Per path the approach/depart distance: ``approach``, doubled for both ends of a travel
+    until the straight travel keeps at least the stand-off from every surface point."""
+    out = [approach] * len(paths)
+    for k in range(len(paths) - 1):
+        a, b = paths[k].end, paths[k + 1].start
+        for _ in range(CLEARANCE_STEPS + 1):
+            c = max(out[k], out[k + 1])
+            p, q = a.translation_mm - c * a.rotation[:, 2], b.translation_mm - c * b.rotation[:, 2]
+            if _clear(p, q, surface) >= standoff:
+                out[k] = out[k + 1] = c
+                break
+            out[k] = out[k + 1] = 2 * c
+        else:
+            raise InputError(f"{source}: the travel from pass {k + 1} to pass {k + 2} passes closer to the part than "
+                             f"the stand-off even {fmt_short(c)} mm off it; spray them in another order or split the program",
+                             parameters=("approach_mm",))
+    return out
