@@ -4,7 +4,8 @@ When the inverse kinematics cannot put the gun on a programmed pose the user nee
 the order a robot programmer checks them: the wrist centre beyond the arm's reach (or inside its
 dead zone near the base), a joint that would have to leave its range (the pose is reached by the
 unbounded solution), or a wrist singularity (JT5 near 0: the axes of JT4 and JT6 line up, the
-controller cannot turn the tool about them in a straight move). ``reachable_fraction`` classifies
+controller cannot turn the tool about them in a straight move; near it JT4 and JT6 race, so one of
+them driven out of its range there is named as the singularity, the range with it). ``reachable_fraction`` classifies
 every programmed pose of a tool path on its own (each solved from the previous one), for figures.
 """
 
@@ -23,6 +24,7 @@ from coatsim.robot.ik import POS_TOL_MM, ROT_TOL_DEG, Tracker, UnreachablePose, 
 from coatsim.robot.tooling import mount, to_gun
 
 WRIST_SINGULAR_DEG = 5.0  # |JT5| below this at the last reached sample: the wrist singularity is why
+WRIST_RACE_DEG = 10.0     # ... and below this when JT4 or JT6 is driven out of its range (they race there)
 REACH_MARGIN = 1.0        # the wrist centre beyond this share of the shoulder-to-wrist reach: out of reach
 
 
@@ -64,8 +66,12 @@ def diagnose(tracker: Tracker, q_near: np.ndarray, p_gun_mm: np.ndarray, r_gun: 
         outside = np.flatnonzero((q < cell.q_min) | (q > cell.q_max))
         if len(outside):
             j = int(outside[0])
-            return (f"joint limit: JT{j + 1} would have to be at {math.degrees(q[j]):.1f} deg, outside its range "
-                    f"[{math.degrees(cell.q_min[j]):.0f}, {math.degrees(cell.q_max[j]):.0f}] deg")
+            limit = (f"JT{j + 1} would have to be at {math.degrees(q[j]):.1f} deg, outside its range "
+                     f"[{math.degrees(cell.q_min[j]):.0f}, {math.degrees(cell.q_max[j]):.0f}] deg")
+            if j in (3, 5) and abs(math.sin(q_near[4])) < math.sin(math.radians(WRIST_RACE_DEG)):
+                return (f"near a wrist singularity (JT5 at {math.degrees(q_near[4]):.1f} deg: JT4 and JT6 line up and "
+                        f"turn fast to hold the tool's orientation): {limit}")
+            return f"joint limit: {limit}"
     for config in (q_near, q):
         if abs(math.sin(config[4])) < math.sin(math.radians(WRIST_SINGULAR_DEG)):
             return f"near a wrist singularity (JT5 at {math.degrees(config[4]):.1f} deg: JT4 and JT6 line up)"
@@ -116,5 +122,12 @@ def explained(error: UnreachablePose, tracker: Tracker) -> UnreachablePose:
     p, z = error.position_mm, error.rotation[:, 2]
     return UnreachablePose(
         f"{error.step}: cannot reach pose x={p[0]:.1f} y={p[1]:.1f} z={p[2]:.1f} mm, spray axis "
-        f"({z[0]:.3f}, {z[1]:.3f}, {z[2]:.3f}): {reason}; move the path within the arm's reach or re-orient it",
+        f"({z[0]:.3f}, {z[1]:.3f}, {z[2]:.3f}): {reason}; {_advice(reason)}",
         step=error.step, position_mm=p, rotation=error.rotation, q_near=error.q_near, reason=reason)
+
+
+def _advice(reason: str) -> str:
+    """What the user can change for a pose the arm cannot reach for ``reason``."""
+    if reason.startswith("near a wrist singularity"):
+        return "move the part or the path so the spray axis does not line up with the forearm (JT4's axis) there"
+    return "move the path within the arm's reach or re-orient it"

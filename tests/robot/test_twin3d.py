@@ -4,6 +4,7 @@ closed form, IK with orientation, reachability reasons, configuration flips and 
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -23,7 +24,7 @@ from coatsim.robot.configuration import ConfigurationFlip, branch_values, check_
 from coatsim.robot.execute import execute
 from coatsim.robot.ik import Tracker
 from coatsim.robot.motion_metrics import spot_speed
-from coatsim.robot.reachability import reachable_fraction
+from coatsim.robot.reachability import diagnose, reachable_fraction
 from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
 
 AS = language("kawasaki-as")
@@ -115,6 +116,21 @@ def test_unreachable_poses_are_counted_with_their_reason(cell, tmp_path):
     with pytest.raises(ExecutionError, match=r"line \d+ \(joint move\): cannot reach pose .*: out of reach"):
         execute(toolpath, cell)
     assert reachable_fraction(read_toolpath(program(tmp_path, saddle())), cell).fraction == 1.0
+
+
+def test_a_wrist_joint_driven_out_of_range_near_the_wrist_singularity_is_named_as_the_singularity(cell):
+    """Near JT5 = 0 the IK turns JT4 and JT6 fast to hold the orientation (seen on a scanned part
+    where JT5 fell to 3.7 deg and JT4 raced from 46 to 200 deg): the reason names the singularity,
+    then the range; the same range reached with the wrist well bent stays a joint limit."""
+    tracker = Tracker(cell)
+    for jt5_deg, expected in ((3.0, r"^near a wrist singularity \(JT5 at 3\.0 deg.*\): JT4 would have to be at 21\d\.\d deg"),
+                              (40.0, r"^joint limit: JT4 would have to be at 21\d\.\d deg")):
+        target = cell.home.copy()
+        target[3], target[4] = math.radians(212.0), math.radians(jt5_deg)
+        p, r = cell.forward(tracker._single, target)
+        near = target.copy()
+        near[3] = math.radians(195.0)  # inside the range, short of the pose
+        assert re.match(expected, diagnose(tracker, near, p, r))
 
 
 def test_a_flip_inside_a_pass_is_reported(cell, tmp_path):
