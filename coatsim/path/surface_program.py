@@ -36,7 +36,8 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
-from coatsim.geometry.space.orient import ANGLE_TOL_DEG, fit_surface_pass, slerp_axes
+from coatsim.geometry.space.along import AlongPass
+from coatsim.geometry.space.orient import ANGLE_TOL_DEG, MIN_SPLIT_MM, fit_surface_pass, slerp_axes
 from coatsim.geometry.space.pose import Pose, exp_rotation, log_rotation, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3, rotate_about
 from coatsim.geometry.space.rotations import rot_z
@@ -51,6 +52,7 @@ from coatsim.path.roll import AxisPiece, Oriented, check_rule, oriented_pieces, 
 from coatsim.path.speed_limits import SpeedLimit
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 from coatsim.path.travel import travel_clearances
+from coatsim.path.unfold import MIN_ADVANCE, unfolded_axes
 
 _TRACE_SAMPLES = 33      # samples per move when its trace length is measured
 _KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
@@ -106,13 +108,26 @@ class SurfaceProgram:
     notes: tuple[str, ...] = ()
 
 
-def pass_tcp(surface_pass: SurfacePass, standoff_mm: float, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
-    """TCP points (n, 3) and spray axes (n, 3) of a pass in the base frame; a closed pass ends
-    where it starts."""
+@dataclass(frozen=True, eq=False)
+class PassTcp:
+    """A pass's tool centre points (n, 3) mm and spray axes (n, 3) in the base frame, and the
+    largest angle (rad) by which an axis leaves the surface normal (coatsim.path.unfold)."""
+
+    tcp_mm: np.ndarray
+    axes: np.ndarray
+    max_tilt_rad: float
+
+
+def pass_tcp(surface_pass: SurfacePass, standoff_mm: float, pose: Pose) -> PassTcp:
+    """The pass's tool centre points and spray axes: the axis along minus the normal (turning no
+    faster than keeps the tool centre point advancing, coatsim.path.unfold), the tool centre
+    point ``standoff_mm`` back along it; a closed pass ends where it starts."""
     points, normals = surface_pass.points, surface_pass.normals
     if surface_pass.closed and not np.array_equal(points[0], points[-1]):
         points, normals = np.vstack((points, points[:1])), np.vstack((normals, normals[:1]))
-    return pose.apply(points + standoff_mm * normals), -pose.apply_vectors(normals)
+    axes = unfolded_axes(points, -normals, standoff_mm)
+    tilt = float(np.max(np.arccos(np.clip(-np.einsum("ij,ij->i", axes, normals), -1.0, 1.0))))
+    return PassTcp(pose.apply(points - standoff_mm * axes), pose.apply_vectors(axes), tilt)
 
 
 def oriented_polyline(points: np.ndarray, axes: np.ndarray, tolerance_mm: float, angle_tol_rad: float) -> np.ndarray:
@@ -143,30 +158,6 @@ def oriented_polyline(points: np.ndarray, axes: np.ndarray, tolerance_mm: float,
             keep[m] = True
             stack += [(i, m), (m, j)]
     return np.flatnonzero(keep)
-
-
-class WantedAxes:
-    """The wanted spray axis at points near a pass: the input axes interpolated along the input
-    polyline at the nearest point of the edges around the nearest input point."""
-
-    def __init__(self, points: np.ndarray, axes: np.ndarray) -> None:
-        from scipy.spatial import cKDTree
-
-        self.points, self.axes, self.tree = points, axes, cKDTree(points)
-
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        _, i = self.tree.query(x)
-        last = len(self.points) - 1
-        best_d, best_v = np.full(len(x), np.inf), np.zeros((len(x), 3))
-        for a in (np.clip(i - 1, 0, last - 1), np.clip(i, 0, last - 1)):
-            p, q = self.points[a], self.points[a + 1]
-            pq = q - p
-            u = np.clip(np.einsum("ij,ij->i", x - p, pq) / np.maximum(np.einsum("ij,ij->i", pq, pq), 1e-300), 0, 1)
-            d = np.linalg.norm(x - p - u[:, None] * pq, axis=1)
-            v = (1 - u)[:, None] * self.axes[a] + u[:, None] * self.axes[a + 1]
-            closer = d < best_d
-            best_d[closer], best_v[closer] = d[closer], v[closer]
-        return best_v / np.linalg.norm(best_v, axis=1)[:, None]
 
 
 def _fitted(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions, speed_mm_s: Optional[float],
@@ -284,16 +275,17 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         raise InputError(f"approach_mm {options.approach_mm:g}: passes are joined by travel at this clearance; "
                          "it must be > 0 mm", parameters=("approach_mm",))
     tcps = [pass_tcp(p, standoff, pose) for p in paths.passes]
-    start_x = reference_direction(np.vstack([a for _, a in tcps]))
+    start_x = reference_direction(np.vstack([t.axes for t in tcps]))
     trace_speed = options.speed_mm_s if surface.speed_on == "trace" else None
     placed, contours, counts, errors, arcs_as_lines = [], [], [], [], 0
-    for k, ((tcp, axes), surface_pass) in enumerate(zip(tcps, paths.passes)):
+    for k, (tcp_path, surface_pass) in enumerate(zip(tcps, paths.passes)):
+        tcp, axes = tcp_path.tcp_mm, tcp_path.axes
         name = f"{paths.source}: passes[{k}]"
         step = np.linalg.norm(np.diff(tcp, axis=0), axis=1)
         trace_step = np.linalg.norm(np.diff(tcp + standoff * axes, axis=0), axis=1)
         peak = options.speed_mm_s * (float(np.max(step / np.maximum(trace_step, 1e-12))) if trace_speed else 1.0)
         pieces, error, _ = _fitted(tcp, axes, surface, peak, name)
-        wanted = WantedAxes(tcp, axes)
+        wanted = AlongPass([p.geometry for p in pieces], tcp, axes, surface.tolerance_mm)
         angle_tol = math.radians(surface.angle_tol_deg)
         oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, start_x, wanted, angle_tol)
         fit_moves = _placed(oriented, (0.0, 0.0), standoff, trace_speed)
@@ -301,8 +293,10 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         limits = _limits(fit_moves, options.speed_mm_s, surface.tool_accel_mm_s2,
                          _corners([AxisPiece(o.geometry, (np.zeros(3),) * 3) for o in oriented]))
         if options.variant != "polysegment":
-            oriented = oriented_pieces(_polyline(tcp, axes, surface), surface.roll, surface.roll_deg, start_x,
-                                       wanted, angle_tol, max_rate_jump=math.inf)
+            lines = _polyline(tcp, axes, surface)
+            oriented = oriented_pieces(lines, surface.roll, surface.roll_deg, start_x,
+                                       AlongPass([p.geometry for p in lines], tcp, axes, surface.tolerance_mm),
+                                       angle_tol, max_rate_jump=math.inf)
         if surface.roll == "follow":  # the next pass starts nearest to where this one ends
             start_x = (oriented[-1].end @ rot_z(-math.radians(surface.roll_deg)))[:, 0]
         moves, lined = expressible(_placed(oriented, (lead_in, lead_out), standoff, trace_speed),
@@ -322,23 +316,37 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
               for p, c in zip(placed, clearance)]
     _check_range(placed, language, paths.source)
     plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
-                                arcs_as_lines, _axis_notes(errors, surface), (lead_in, lead_out), standoff, pose)
+                                arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface), (lead_in, lead_out),
+                                standoff, pose)
     return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes)
 
 
+def _tilt_notes(tcps: list[PassTcp], surface: SurfaceOptions) -> tuple[str, ...]:
+    """What the user is told where the axis leaves the normal further than ``angle_tol_deg`` to
+    keep the tool centre point advancing (coatsim.path.unfold)."""
+    over = [(k, math.degrees(t.max_tilt_rad)) for k, t in enumerate(tcps)
+            if math.degrees(t.max_tilt_rad) > surface.angle_tol_deg * (1 + 1e-6)]
+    if not over:
+        return ()
+    k, worst = max(over, key=lambda item: item[1])
+    return (f"the tool axis leaves the normal by up to {worst:.1f} deg (passes[{k}]; {len(over)} of {len(tcps)} passes "
+            f"above the {fmt_short(surface.angle_tol_deg)} deg asked) where the surface is concave tighter than the "
+            "stand-off: on the normal the tool centre point would stall or run backwards there, so the axis turns "
+            f"only as fast as keeps it advancing (at least {fmt_short(100 * MIN_ADVANCE)} % of the spot's way)",)
+
+
 def _axis_notes(errors: list[float], surface: SurfaceOptions) -> tuple[str, ...]:
-    """What the user is told where the fitted axis strays further than ``angle_tol_deg`` (radians
-    per pass in): the fit splits a segment until the axis follows, so what is left is where the
-    axis it should follow jumps, the pass coming back close to itself (the normal nearest a
-    point of the chain switches from one side of the fold to the other)."""
+    """What the user is told where the fitted axis strays further than ``angle_tol_deg`` from the
+    axes it follows (radians per pass in): the fit splits a move until the axis follows, down
+    to moves of 2 MIN_SPLIT_MM; the axes (coatsim.path.unfold) turn no faster than keeps the tool
+    advancing, so this is a guard, not an expected outcome."""
     over = [(k, math.degrees(e)) for k, e in enumerate(errors) if math.degrees(e) > surface.angle_tol_deg * (1 + 1e-6)]
     if not over:
         return ()
     k, worst = max(over, key=lambda item: item[1])
-    return (f"the tool axis strays up to {worst:.1f} deg from the normal (passes[{k}]; {len(over)} of {len(errors)} "
-            f"passes above the {fmt_short(surface.angle_tol_deg)} deg asked) where a pass's TCP path comes back "
-            f"within {fmt_short(2 * surface.tolerance_mm)} mm of itself (e.g. a fold where the surface is concave "
-            "tighter than the stand-off) and the fit cuts across: the normals on the two sides differ by that much",)
+    return (f"the tool axis strays up to {worst:.1f} deg from the axis planned (passes[{k}]; {len(over)} of "
+            f"{len(errors)} passes above the {fmt_short(surface.angle_tol_deg)} deg asked): the axes planned turn "
+            f"that far within {fmt_short(2 * MIN_SPLIT_MM)} mm, finer than the fit splits its moves",)
 
 
 def _surface_plan(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions, language: Language,

@@ -78,7 +78,7 @@ class PartJob:
     @property
     def tcp_mm(self) -> list[np.ndarray]:
         """The planned tool centre points of every pass in the base frame."""
-        return [pass_tcp(p, self.passes.standoff_mm, self.passes.pose)[0] for p in self.passes.passes]
+        return [pass_tcp(p, self.passes.standoff_mm, self.passes.pose).tcp_mm for p in self.passes.passes]
 
 
 def region_of(spec: RegionSpec) -> Facing | Box | Everything:

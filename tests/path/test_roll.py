@@ -8,9 +8,9 @@ import math
 import numpy as np
 from hypothesis import given, settings, strategies as st
 
+from coatsim.geometry.space.along import AlongPass
 from coatsim.geometry.space.primitives import Line3
 from coatsim.path.roll import MAX_RATE_JUMP_RAD_MM, AxisPiece, _checked, orient, oriented_pieces
-from coatsim.path.surface_program import WantedAxes
 
 REFERENCE = np.array([-1.0, 0.0, 0.0])
 
@@ -20,12 +20,12 @@ def _axes(s: np.ndarray, tilt_rad: np.ndarray) -> np.ndarray:
     return np.column_stack((np.zeros_like(s), np.sin(tilt_rad), -np.cos(tilt_rad)))
 
 
-def _pass(tilt: np.ndarray, length_mm: float = 100.0) -> tuple[list[AxisPiece], WantedAxes]:
+def _pass(tilt: np.ndarray, length_mm: float = 100.0) -> tuple[list[AxisPiece], AlongPass]:
     s = np.linspace(0.0, length_mm, len(tilt))
     points = np.column_stack((s, np.zeros_like(s), np.zeros_like(s)))
     axes = _axes(s, tilt)
-    wanted = WantedAxes(points, axes)
     line = Line3(points[0], points[-1])
+    wanted = AlongPass([line], points, axes, 0.1)
     mid = wanted(np.array([line.via]))[0]
     return [AxisPiece(line, (axes[0], mid, axes[-1]))], wanted
 

@@ -3,8 +3,9 @@ given at every segment end and arc via point, so that the axis a controller inte
 between those poses stays within ``angle_tol_deg`` of the wanted axis along the whole path.
 
 The wanted axis at a point of the chain is the given spray axis (unit, from the gun toward
-the surface: minus the smoothed surface normal) at its nearest point of the input polyline,
-interpolated along that edge. The controller model: between two given poses the axis turns
+the surface: minus the smoothed surface normal) interpolated at the place along the input that
+matches the point's place along the chain (coatsim.geometry.space.along: not at its nearest
+input point, which on a path coming back close to itself may lie on another stretch). The controller model: between two given poses the axis turns
 at a constant rate along the great circle joining them (slerp, linear in the fraction of the
 move's length); an arc is two such stretches, start -> via and via -> end. Where the
 interpolated axis strays further than the tolerance, the segment is split at its middle (a
@@ -22,9 +23,9 @@ import numpy as np
 
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
+from coatsim.geometry.space.along import AlongPass
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import make_space_curve
-from coatsim.geometry.space.nearest import polyline_index
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
 from coatsim.geometry.space.segment import SpaceSegmentation, segment_space_curve
 
@@ -59,22 +60,6 @@ def slerp_axes(a: np.ndarray, b: np.ndarray, u: np.ndarray) -> np.ndarray:
     return v / np.linalg.norm(v, axis=1)[:, None]
 
 
-class _Wanted:
-    """The wanted axis at any point: the input axes interpolated at its nearest input point."""
-
-    def __init__(self, points: np.ndarray, axes: np.ndarray):
-        self.points, self.axes = points, axes
-        self.index, _ = polyline_index(points)
-
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        _, edge = self.index.distance(x)
-        a, b = self.points[edge], self.points[edge + 1]
-        ab = b - a
-        u = np.clip(np.einsum("ij,ij->i", x - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
-        v = (1 - u)[:, None] * self.axes[edge] + u[:, None] * self.axes[edge + 1]
-        return v / np.linalg.norm(v, axis=1)[:, None]
-
-
 def _interpolated(seg: Segment3, ends: tuple[np.ndarray, np.ndarray, np.ndarray], s: np.ndarray) -> np.ndarray:
     """The controller's axis at arc lengths ``s`` of a segment given its start, via and end axes."""
     start, via, end = ends
@@ -88,7 +73,7 @@ def _interpolated(seg: Segment3, ends: tuple[np.ndarray, np.ndarray, np.ndarray]
     return out
 
 
-def _segment_error(seg: Segment3, wanted: _Wanted) -> tuple[float, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+def _segment_error(seg: Segment3, wanted: AlongPass) -> tuple[float, tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """(largest axis error along the segment, its (start, via, end) axes)."""
     ends = tuple(wanted(np.array([p]))[0] for p in (seg.start, seg.via, seg.end))
     s = np.linspace(0.0, seg.length, max(16, int(math.ceil(seg.length * SAMPLES_PER_MM)) + 1))
@@ -136,7 +121,7 @@ def fit_surface_pass(points: np.ndarray, spray_axes: np.ndarray, tolerance_mm: f
     keep = np.ones(len(points), dtype=bool)  # make_space_curve dropped repeated points: so do the axes
     keep[1:] = np.any(np.diff(np.asarray(points, dtype=float), axis=0) != 0.0, axis=1)
     seg = segment_space_curve(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
-    wanted = _Wanted(curve.points, axes[keep])
+    wanted = AlongPass(seg.chain.segments, curve.points, axes[keep], tolerance_mm)
     limit = math.radians(angle_tol_deg)
     pieces: list[list[Segment3]] = [[s] for s in seg.chain.segments]
     out_axes: list[list[tuple]] = [[] for _ in pieces]
