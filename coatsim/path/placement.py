@@ -147,9 +147,10 @@ def placed_arc(start: Pose, end: Pose, center: np.ndarray, normal: np.ndarray, s
 class PlacedPath:
     """The sprayed tool path in the base frame: lead-in, curve, lead-out, end to end.
 
-    ``clearance_mm`` is how far the tool approaches and departs along its axis before and after
-    this path (None: the plan's ``approach_mm``): a 3-D part may need more room to travel
-    between passes than a flat one."""
+    ``approach_clearance_mm`` and ``depart_clearance_mm`` are how far back along its axis the
+    tool comes in to this path's start and leaves after its end (None: the plan's
+    ``approach_mm``): the straight gun-off travel between two passes of a 3-D part may need more
+    room than on a flat one."""
 
     segments: tuple[PlacedMove, ...]
     normal: np.ndarray
@@ -157,7 +158,8 @@ class PlacedPath:
     lead_in_mm: float
     lead_out_mm: float
     curve_length_mm: float
-    clearance_mm: float | None = None
+    approach_clearance_mm: float | None = None
+    depart_clearance_mm: float | None = None
 
     @property
     def start(self) -> Pose:

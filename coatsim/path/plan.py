@@ -15,7 +15,8 @@ class ProgramPlan:
 
     ``paths`` are sprayed in order; the program approaches the start of the first from
     ``approach_mm`` back along the tool axis, reaches each next one with the gun off by a
-    straight travel at that clearance, and departs the same distance after each. The gun is open
+    straight travel at that clearance, and departs the same distance after each (a path may
+    ask for more: ``approach_of``, ``depart_of``). The gun is open
     along a whole path (lead-in, curve, lead-out: an open contour) when its contour in
     ``process`` has ``leads_sprayed``, otherwise exactly along its curve part (one lap of a
     closed contour: no double coat at the seam). ``exact_stop`` asks for a stop at every
@@ -43,6 +44,14 @@ class ProgramPlan:
         """The frame poses are written relative to by a language that names one (see above)."""
         frame = self.work_frame if self.work_frame is not None else self.process.frame
         return frame if frame is not None else Pose.identity()
+
+    def approach_of(self, path: PlacedPath) -> float:
+        """How far back along the tool axis the tool comes in to the start of ``path`` (mm)."""
+        return self.approach_mm if path.approach_clearance_mm is None else path.approach_clearance_mm
+
+    def depart_of(self, path: PlacedPath) -> float:
+        """How far back along the tool axis the tool leaves the end of ``path`` (mm)."""
+        return self.approach_mm if path.depart_clearance_mm is None else path.depart_clearance_mm
 
     @property
     def legs(self) -> tuple[tuple[PlacedPath, bool], ...]:

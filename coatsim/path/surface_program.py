@@ -311,9 +311,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         contours.append(SprayedContour(closed=surface_pass.closed, leads_sprayed=not surface_pass.closed,
                                        speed_limits=limits))
     surface_points = np.vstack([pose.apply(p.points) for p in paths.passes])
-    clearance = travel_clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
-    placed = [PlacedPath(p.segments, p.normal, p.standoff_mm, p.lead_in_mm, p.lead_out_mm, p.curve_length_mm, c)
-              for p, c in zip(placed, clearance)]
+    placed = travel_clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
     _check_range(placed, language, paths.source)
     plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
                                 arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface), (lead_in, lead_out),

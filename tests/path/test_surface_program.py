@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -13,15 +14,18 @@ import pytest
 
 from coatsim.core.errors import InputError
 from coatsim.geometry.space.orient import slerp_axes
-from coatsim.geometry.space.pose import slerp
+from coatsim.geometry.space.pose import Pose, slerp
+from coatsim.geometry.space.primitives import Line3
 from coatsim.geometry.space.rotations import oat_to_matrix
 from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
 from coatsim.path.expressible import expressible
+from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.surface_program import (SurfaceOptions, _axis_notes, build_surface_program, oriented_polyline,
                                           pass_tcp)
 from coatsim.path.surfacepaths import read_surfacepaths
+from coatsim.path.travel import travel_clearances
 from coatsim.path.unfold import MIN_ADVANCE
 from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
 
@@ -154,7 +158,8 @@ def test_travel_between_passes_keeps_clear_of_the_part(tmp_path):
     surface = np.vstack([np.array(p["points"]) for p in json.loads(path.read_text())["passes"]]) + [900.0, 0.0, 300.0]
     paths = prog.plan.paths
     for a, b in zip(paths[:-1], paths[1:]):
-        c = a.clearance_mm
+        c = a.depart_clearance_mm
+        assert b.approach_clearance_mm == c
         p, q = a.end.translation_mm - c * a.end.rotation[:, 2], b.start.translation_mm - c * b.start.rotation[:, 2]
         u = np.linspace(0, 1, 400)[:, None]
         line = p + u * (q - p)
@@ -280,3 +285,47 @@ def test_an_axis_that_strays_further_than_asked_is_said():
     assert note.startswith("the tool axis strays up to 6.7 deg from the axis planned (passes[1]; 2 of 3 passes "
                            "above the 2 deg asked)")
     assert _axis_notes([math.radians(2.0), 0.0], SurfaceOptions()) == ()
+
+
+def test_each_travel_is_raised_on_its_own_as_little_as_keeps_it_clear():
+    """Three passes along x at the stand-off over a plate, a pillar of surface points between the
+    end of the first and the start of the second: that travel is raised (doubling from the
+    approach) until it keeps the stand-off from the pillar, the next one is not (a travel that
+    needed room once raised every later one: the engine bracket's passes left at 3.2 m)."""
+    down = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]])  # spray axis -z
+    def flat(y: float, backwards: bool) -> PlacedPath:
+        a, b = np.array([0.0, y, 100.0]), np.array([100.0, y, 100.0])
+        a, b = (b, a) if backwards else (a, b)
+        return PlacedPath((PlacedMove(Line3(a, b), Pose(down, a), Pose(down, b)),), np.array([0.0, 0.0, 1.0]),
+                          100.0, 0.0, 0.0, 100.0)
+    paths = [flat(0.0, False), flat(20.0, True), flat(40.0, False)]
+    plate = np.array([(x, y, 0.0) for x in np.linspace(0, 100, 11) for y in np.linspace(0, 40, 5)])
+    pillar = np.array([(100.0, 10.0, z) for z in np.linspace(0.0, 150.0, 31)])
+    placed = travel_clearances(paths, 5.0, np.vstack((plate, pillar)), 100.0, "pillar")
+    assert [(p.approach_clearance_mm, p.depart_clearance_mm) for p in placed] == [(5.0, 160.0), (160.0, 5.0), (5.0, 5.0)]
+    with pytest.raises(InputError, match=r"pillar: the travel from pass 1 to pass 2 passes closer to the part than "
+                                         r"the stand-off even 320 mm off it"):
+        travel_clearances(paths, 5.0, np.vstack((plate, pillar * [1, 1, 10])), 100.0, "pillar")
+
+
+@pytest.mark.parametrize("name", ["kawasaki-as", "abb-rapid", "kuka-krl", "fanuc-tp", "urscript"])
+def test_every_language_leaves_and_enters_each_pass_at_its_own_clearances(tmp_path, name):
+    """Each pass of the saddle given its own approach and depart clearances (all different):
+    every language's program, read back, travels from the point its depart clearance above the
+    end of one pass to the point its approach clearance above the start of the next (the
+    languages other than AS wrote the plan's approach everywhere)."""
+    path = write_surfacepaths(tmp_path, saddle(), points_per_pass=200)[0]
+    target = language(name)
+    prog = build_surface_program(read_surfacepaths(path), ProgramOptions(), SurfaceOptions(), target)
+    paths = tuple(replace(p, approach_clearance_mm=20.0 + 10 * k, depart_clearance_mm=25.0 + 10 * k)
+                  for k, p in enumerate(prog.plan.paths))
+    files = []
+    for suffix, text in target.files(target.write(replace(prog.plan, paths=paths))):
+        files.append(tmp_path / f"saddle{suffix}")
+        files[-1].write_text(text, encoding="ascii")
+    travel = [(m.start.translation_mm, m.end.translation_mm) for m in target.read(files, ReadOptions()).moves
+              if m.kind == "line" and not m.spray]
+    for a, b in zip(paths[:-1], paths[1:]):
+        left = a.end.translation_mm - a.depart_clearance_mm * a.end.rotation[:, 2]
+        came = b.start.translation_mm - b.approach_clearance_mm * b.start.rotation[:, 2]
+        assert min(np.linalg.norm(p - left) + np.linalg.norm(q - came) for p, q in travel) < 2e-3

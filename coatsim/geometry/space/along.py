@@ -23,7 +23,8 @@ from scipy.spatial import cKDTree
 from coatsim.geometry.space.primitives import Segment3
 
 STEP_SHARE = 0.25  # the path is sampled every this share of the tolerance ...
-MAX_STEP_MM = 0.1  # ... and at least this densely
+MAX_STEP_MM = 0.1  # ... and at least this densely, ...
+MAX_SAMPLES = 2_000_000  # ... in at most this many samples (the spacing grows past it)
 _REACH = 4.0       # an input point is looked for this many tolerances before and after its expected place
 
 
@@ -32,14 +33,15 @@ class AlongPass:
     input ``points``, in the same order), from the input ``axes`` (unit, one per point)."""
 
     def __init__(self, segments: Sequence[Segment3], points: np.ndarray, axes: np.ndarray, tolerance_mm: float):
-        step = min(MAX_STEP_MM, STEP_SHARE * tolerance_mm)
-        pieces, offsets, total = [], [], 0.0
+        total = float(sum(seg.length for seg in segments))
+        step = max(min(MAX_STEP_MM, STEP_SHARE * tolerance_mm), total / MAX_SAMPLES)
+        pieces, offsets, start = [], [], 0.0
         for seg in segments:
             count = max(2, math.ceil(seg.length / step) + 1)
             local = np.linspace(0.0, seg.length, count)
             pieces.append(seg.points(local))
-            offsets.append(total + local)
-            total += seg.length
+            offsets.append(start + local)
+            start += seg.length
         self.samples = np.vstack(pieces)
         self.arc = np.concatenate(offsets)
         self.tree = cKDTree(self.samples)

@@ -135,17 +135,17 @@ def write_rapid(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG)
     blend = ZONE if plan.accuracy_mm > 0 else "z0"
     body = _Body(frame, "fine" if plan.exact_stop else blend)
     gun = f"do{plan.gun_signal}"
-    back = _num(-plan.approach_mm)
     body.add("ConfL\\Off;", "no configuration check on the linear moves")
     for index, (path, spray_leads) in enumerate(plan.legs):
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
         start = body.name(path.start)
         kind = "MoveJ" if index == 0 else "MoveL"
-        body.move(kind, f"RelTool({start},0,0,{back})", False, f"above the start{which}" +
+        body.move(kind, f"RelTool({start},0,0,{_num(-plan.approach_of(path))})", False, f"above the start{which}" +
                   ("" if index == 0 else ", gun off"))
         body.move("MoveL", start, True, "down to the stand-off")
         _path(body, path, spray_leads, gun, plan.exact_stop, max_arc_sweep_deg)
-        body.move("MoveL", f"RelTool({body.name(path.segments[-1].end)},0,0,{back})", index == len(plan.paths) - 1,
+        body.move("MoveL", f"RelTool({body.name(path.segments[-1].end)},0,0,{_num(-plan.depart_of(path))})",
+                  index == len(plan.paths) - 1,
                   "back along the tool axis")
     lines = [f"MODULE {plan.name}"]
     lines += header_comments(plan, f"{INDENT}! ")

@@ -150,7 +150,8 @@ def write_ls(plan: ProgramPlan, decel_mm_s2: float = DECEL_MM_S2) -> str:
     percent = min(100, max(1, round(100.0 * plan.speed_mm_s / FULL_SPEED_MM_S)))
     term = "FINE" if plan.exact_stop else f"CNT{cnt_for(plan.accuracy_mm, plan.speed_mm_s, decel_mm_s2)}"
     for index, (path, spray_leads) in enumerate(plan.legs):
-        above = [Pose(p.rotation, p.translation_mm - plan.approach_mm * p.rotation[:, 2]) for p in (path.start, path.end)]
+        above = [Pose(p.rotation, p.translation_mm - mm * p.rotation[:, 2])
+                 for p, mm in ((path.start, plan.approach_of(path)), (path.end, plan.depart_of(path)))]
         out.remark(f"contour {index + 1}" if len(plan.paths) > 1 else "approach")
         if index == 0:
             out.add(f"{out.point(above[0])} {percent}% FINE", "J")

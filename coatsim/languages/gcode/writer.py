@@ -26,7 +26,7 @@ lead-in; it closes on the fly as the lead-out starts, or at rest after the path.
 from __future__ import annotations
 
 import math
-from typing import Callable, Optional
+from typing import Optional
 
 import numpy as np
 
@@ -154,8 +154,8 @@ def _labels(path: PlacedPath) -> list[str]:
     return out
 
 
-def _path(out: _Program, path: PlacedPath, spray_leads: bool, gun: GunCodes, above: Callable) -> None:
-    """The moves of one sprayed path and the gun codes along it."""
+def _path(out: _Program, path: PlacedPath, spray_leads: bool, gun: GunCodes, depart: np.ndarray) -> None:
+    """The moves of one sprayed path and the gun codes along it, then up to ``depart``."""
     out.move("G1", path.start.translation_mm, comment="down to the stand-off")
     gun_on = False
     for index, (seg, label) in enumerate(zip(path.segments, _labels(path))):
@@ -172,7 +172,7 @@ def _path(out: _Program, path: PlacedPath, spray_leads: bool, gun: GunCodes, abo
     out.add("G4 P0", "at rest before the gun closes" if gun_on else "at rest at the end of the path")
     if gun_on:
         out.add(f"M{gun.off}", "gun off")
-    out.move("G1", above(path.end), comment="back along the tool axis")
+    out.move("G1", depart, comment="back along the tool axis")
 
 
 def write_gcode(plan: ProgramPlan, gun: GunCodes) -> str:
@@ -182,7 +182,7 @@ def write_gcode(plan: ProgramPlan, gun: GunCodes) -> str:
     frame = program_frame(plan)
     _check_axis(plan, frame)
     up = frame.rotation @ np.array([0.0, 0.0, 1.0])
-    above = lambda pose: pose.translation_mm + plan.approach_mm * up  # noqa: E731
+    above = lambda pose, mm: pose.translation_mm + mm * up  # noqa: E731
     out = _Program(frame, fmt_short(plan.speed_mm_s * 60.0, 3))
     out.add("%")
     out.add(f"({plan.name})")
@@ -202,8 +202,8 @@ def write_gcode(plan: ProgramPlan, gun: GunCodes) -> str:
     out.add(f"M{gun.off}", "gun off")
     for index, (path, spray_leads) in enumerate(plan.legs):
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
-        out.move("G0", above(path.start), comment=f"above the start{which}")
-        _path(out, path, spray_leads, gun, above)
+        out.move("G0", above(path.start, plan.approach_of(path)), comment=f"above the start{which}")
+        _path(out, path, spray_leads, gun, above(path.end, plan.depart_of(path)))
     out.add("M2")
     out.add("%")
     _check_range(out.lines, plan.name)

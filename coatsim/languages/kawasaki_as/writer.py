@@ -182,7 +182,7 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
     for index, (path, spray_leads) in enumerate(plan.legs):
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
         start = name(path.start)
-        clearance = fmt_short(plan.approach_mm if path.clearance_mm is None else path.clearance_mm)
+        clearance = fmt_short(plan.approach_of(path))
         if speed[0] != plan.speed_mm_s:  # approach and travel at the plan's speed
             speed[0] = plan.speed_mm_s
             out.add(f"SPEED {fmt_short(speed[0])} MM/S ALWAYS")
@@ -192,7 +192,7 @@ def write_as(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) ->
             out.add(f"LAPPRO {start}, {clearance}", f"gun off: travel above the start{which}")
         out.add(f"LMOVE {start}", "down to the stand-off")
         _path_lines(out, path, spray_leads, plan.gun_signal, name, max_arc_sweep_deg, speed)
-        out.add(f"LDEPART {clearance}", "back along the tool axis")
+        out.add(f"LDEPART {fmt_short(plan.depart_of(path))}", "back along the tool axis")
 
     lines = [f".PROGRAM {plan.name}()", *out.lines, ".END", ".TRANS"]
     for k, pose in enumerate(poses):

@@ -114,18 +114,18 @@ def write_krl(plan: ProgramPlan, max_arc_sweep_deg: float = MAX_ARC_SWEEP_DEG) -
     check_name(plan.name)
     frame = plan.user_frame
     body = _Body(frame, not plan.exact_stop and plan.accuracy_mm > 0)
-    back = f"{{X 0,Y 0,Z {_n(-plan.approach_mm)},A 0,B 0,C 0}}"
+    back = lambda mm: f"{{X 0,Y 0,Z {_n(-mm)},A 0,B 0,C 0}}"  # noqa: E731
     for index, (path, spray_leads) in enumerate(plan.legs):
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
         start = body.name(path.start)
         if index == 0:
-            body.move(f"PTP {start}:{back}", False, f"above the start{which}")
+            body.move(f"PTP {start}:{back(plan.approach_of(path))}", False, f"above the start{which}")
         else:
-            body.move(f"LIN {start}:{back}", False, f"gun off: travel above the start{which}")
+            body.move(f"LIN {start}:{back(plan.approach_of(path))}", False, f"gun off: travel above the start{which}")
         body.move(f"LIN {start}", True, "down to the stand-off")
         _path(body, path, spray_leads, plan.gun_signal, max_arc_sweep_deg)
         end = body.name(path.segments[-1].end)
-        body.move(f"LIN {end}:{back}", index == len(plan.paths) - 1, "back along the tool axis")
+        body.move(f"LIN {end}:{back(plan.depart_of(path))}", index == len(plan.paths) - 1, "back along the tool axis")
     src = ["&ACCESS RVP", "&REL 1"]
     src += header_comments(plan, ";")
     src += [f"DEF {plan.name}( )", ";FOLD INI", "  BAS(#INITMOV,0)", ";ENDFOLD (INI)",

@@ -124,7 +124,8 @@ def write_urscript(plan: ProgramPlan) -> str:
             f"frame = {_literal(frame)}  # workpiece frame in the base",
             f"set_standard_digital_out({plan.gun_signal}, False)  # gun off"]
     for index, (path, spray_leads) in enumerate(plan.legs):
-        above = [Pose(p.rotation, p.translation_mm - plan.approach_mm * p.rotation[:, 2]) for p in (path.start, path.end)]
+        above = [Pose(p.rotation, p.translation_mm - mm * p.rotation[:, 2])
+                 for p, mm in ((path.start, plan.approach_of(path)), (path.end, plan.depart_of(path)))]
         which = f" of contour {index + 1}" if len(plan.paths) > 1 else ""
         if index == 0:
             body.append(f"movej({_pose_text(frame_inv, above[0])}, a={fmt_short(JOINT_ACCEL_RAD_S2)}, v={speed})"
