@@ -314,8 +314,8 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
     placed = travel_clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
     _check_range(placed, language, paths.source)
     plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
-                                arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface), (lead_in, lead_out),
-                                standoff, pose)
+                                arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface),
+                                (lead_in, lead_out), standoff, pose)
     return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes)
 
 

@@ -39,8 +39,8 @@ def travel_clearances(paths: list[PlacedPath], approach: float, surface: np.ndar
                 break
             c *= 2
         else:
-            raise InputError(f"{source}: the travel from pass {k + 1} to pass {k + 2} passes closer to the part than "
-                             f"the stand-off even {fmt_short(c / 2)} mm off it; spray them in another order or split the "
-                             "program", parameters=("approach_mm",))
+            raise InputError(f"{source}: the travel from pass {k + 1} to pass {k + 2} passes closer to the part "
+                             f"than the stand-off even {fmt_short(c / 2)} mm off it; spray them in another order or "
+                             "split the program", parameters=("approach_mm",))
     return [replace(path, approach_clearance_mm=came, depart_clearance_mm=left)
             for path, (came, left) in zip(paths, clearance)]

@@ -2,14 +2,14 @@
 
 On the normal at stand-off h over a section concave with radius R the tool centre point advances
 (R − h) / R of the spot's advance on the surface: tighter than the stand-off it stalls (R = h) or
-runs backwards (R < h), and where it turns from forwards to backwards the programmed path gets
-cusps that no arc, line or pose rate can follow (seen on a scanned part: arcs of microns
-converging on the cusp, a 5° turn in place and a programmed speed of 0.06 mm/s on the trace). There the axis turns only as fast as lets the tool
-centre point advance at least ``MIN_ADVANCE`` of the spot's way on every step, lagging behind
-the normal; run once forwards (the axis lags after the fold) and once backwards (it leads before
-it), the two are averaged, so the axis leaves the normal by about half the lag, on both sides.
-A pass wholly inside such a trough (the tool runs backwards all along it: a fan) has no cusp and
-stays on the normal.
+runs backwards (R < h), and where it turns from forwards to backwards the programmed path gets cusps
+that no arc, line or pose rate can follow (seen on a scanned part: arcs of microns converging on the
+cusp, a 5° turn in place and a programmed speed of 0.06 mm/s on the trace). There the axis turns
+only as fast as lets the tool centre point advance at least ``MIN_ADVANCE`` of the spot's way on
+every step, lagging behind the normal; run once forwards (the axis lags after the fold) and once
+backwards (it leads before it), the two are averaged, so the axis leaves the normal by about half
+the lag, on both sides. A pass wholly inside such a trough (the tool runs backwards all along it: a
+fan) has no cusp and stays on the normal.
 """
 
 from __future__ import annotations

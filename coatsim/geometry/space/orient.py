@@ -2,16 +2,16 @@
 given at every segment end and arc via point, so that the axis a controller interpolates
 between those poses stays within ``angle_tol_deg`` of the wanted axis along the whole path.
 
-The wanted axis at a point of the chain is the given spray axis (unit, from the gun toward
-the surface: minus the smoothed surface normal) interpolated at the place along the input that
-matches the point's place along the chain (coatsim.geometry.space.along: not at its nearest
-input point, which on a path coming back close to itself may lie on another stretch). The controller model: between two given poses the axis turns
-at a constant rate along the great circle joining them (slerp, linear in the fraction of the
-move's length); an arc is two such stretches, start -> via and via -> end. Where the
-interpolated axis strays further than the tolerance, the segment is split at its middle (a
-line into two lines, an arc into two arcs of its circle: the path and its tangents do not
-change), which gives the controller one more pose there. The roll about the axis is not
-chosen here (the language writer fixes it or follows the travel direction).
+The wanted axis at a point of the chain is the given spray axis (unit, from the gun toward the
+surface: minus the smoothed surface normal) interpolated at the place along the input that matches
+the point's place along the chain (coatsim.geometry.space.along: not at its nearest input point,
+which on a path coming back close to itself may lie on another stretch). The controller model:
+between two given poses the axis turns at a constant rate along the great circle joining them
+(slerp, linear in the fraction of the move's length); an arc is two such stretches, start -> via and
+via -> end. Where the interpolated axis strays further than the tolerance, the segment is split at
+its middle (a line into two lines, an arc into two arcs of its circle: the path and its tangents do
+not change), which gives the controller one more pose there. The roll about the axis is not chosen
+here (the language writer fixes it or follows the travel direction).
 """
 
 from __future__ import annotations
