@@ -23,6 +23,7 @@ from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import JOINTS, M_TO_MM, MM, Cell
 from coatsim.robot.chain import cell_chain
 from coatsim.robot.ik_batch import DAMPING_M2, continuity_ok, first_order, refine, rotation_vectors
+from coatsim.robot.turns import within_turns
 
 POS_TOL_MM = 0.05
 ROT_TOL_DEG = 0.05
@@ -105,16 +106,23 @@ class Tracker:
         return dp, dr, it
 
     def solve_pose(self, q_start: np.ndarray, p_mm: np.ndarray, r: np.ndarray, label: str) -> np.ndarray:
-        """Joint configuration reaching one pose, starting the search at ``q_start``."""
-        self.configuration.update(np.asarray(q_start, float))
-        self._target(_quat(r[None])[0], p_mm)
-        dp, dr, _ = self._iterate(p_mm, r, 0.05, [self.config_limit], _MAX_POSE_ITERS)
+        """Joint configuration reaching one pose (the goal of a joint move), starting the search
+        at ``q_start``. Where the search inside the joint ranges stalls at a limit, the pose
+        reached without them counts with each joint a whole turn off if that brings it inside its
+        range (the same arm pose: a joint move turns the joint the other way round)."""
+        q_start = np.asarray(q_start, float)
+        q, dp, dr = self.solve_bounded(q_start, p_mm, r)
+        if dp > POS_TOL_MM or dr > ROT_TOL_DEG:
+            free, dp_free, dr_free = self.solve_unbounded(q_start, p_mm, r)
+            inside = within_turns(free, q_start, self.cell.q_min, self.cell.q_max)
+            if dp_free <= POS_TOL_MM and dr_free <= ROT_TOL_DEG and inside is not None:
+                q, dp, dr = self.solve_bounded(inside, p_mm, r)
         if dp > POS_TOL_MM or dr > ROT_TOL_DEG:
             raise UnreachablePose(
                 f"{label}: cannot reach {_describe(p_mm, r)}: IK residual {dp:.3f} mm / {dr:.3f} deg "
                 f"exceeds {POS_TOL_MM} mm / {ROT_TOL_DEG} deg; move the path within the arm's reach",
-                step=label, position_mm=p_mm, rotation=r, q_near=np.asarray(q_start, float))
-        return self.configuration.q.copy()
+                step=label, position_mm=p_mm, rotation=r, q_near=q_start)
+        return q
 
     def solve_bounded(self, q_start: np.ndarray, p_mm: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, float, float]:
         """The configuration the IK reaches for one pose inside the joint ranges from ``q_start``,

@@ -21,6 +21,7 @@ import numpy as np
 from coatsim.path.toolpath import CircularMove, ToolPath
 from coatsim.robot.cell import M_TO_MM, Cell
 from coatsim.robot.ik import POS_TOL_MM, ROT_TOL_DEG, Tracker, UnreachablePose, arm_dimensions
+from coatsim.robot.turns import turns_near
 from coatsim.robot.tooling import mount, to_gun
 
 WRIST_SINGULAR_DEG = 5.0  # |JT5| below this at the last reached sample: the wrist singularity is why
@@ -62,6 +63,7 @@ def diagnose(tracker: Tracker, q_near: np.ndarray, p_gun_mm: np.ndarray, r_gun: 
     if reason is not None:
         return reason
     q, dp, dr = tracker.solve_unbounded(q_near, p_gun_mm, r_gun)
+    q = turns_near(q, q_near)  # where the joints would go on the way from q_near (not whole turns beyond)
     if dp <= POS_TOL_MM and dr <= ROT_TOL_DEG:
         outside = np.flatnonzero((q < cell.q_min) | (q > cell.q_max))
         if len(outside):

@@ -25,6 +25,7 @@ from coatsim.robot.execute import execute
 from coatsim.robot.ik import Tracker
 from coatsim.robot.motion_metrics import spot_speed
 from coatsim.robot.reachability import diagnose, reachable_fraction
+from coatsim.robot.turns import turns_near, within_turns
 from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
 
 AS = language("kawasaki-as")
@@ -116,6 +117,37 @@ def test_unreachable_poses_are_counted_with_their_reason(cell, tmp_path):
     with pytest.raises(ExecutionError, match=r"line \d+ \(joint move\): cannot reach pose .*: out of reach"):
         execute(toolpath, cell)
     assert reachable_fraction(read_toolpath(program(tmp_path, saddle())), cell).fraction == 1.0
+
+
+def test_a_joint_move_turns_a_joint_the_other_way_round_where_the_pose_needs_it(cell):
+    """From JT1 at 175 deg to a pose the arm reaches with JT1 at 185 deg, outside its range of
+    ±180: the search inside the range stalls at the limit; the same arm pose with JT1 at -175 deg
+    is inside it, and a joint move goes there the other way round. No such turn for JT2, whose
+    range is narrower than a turn: that pose stays unreachable."""
+    tracker = Tracker(cell)
+    goal = cell.home.copy()
+    goal[0] = math.radians(185.0)
+    p, r = cell.forward(tracker._single, goal)
+    start = cell.home.copy()
+    start[0] = math.radians(175.0)
+    q = tracker.solve_pose(start, p, r, "joint move")
+    assert math.degrees(q[0]) == pytest.approx(-175.0, abs=1e-3) and np.allclose(q[1:], goal[1:], atol=1e-5)
+    assert np.all(q >= cell.q_min) and np.all(q <= cell.q_max)
+    goal = cell.home.copy()
+    goal[1] = cell.q_max[1] + math.radians(5.0)
+    p, r = cell.forward(tracker._single, goal)
+    with pytest.raises(ExecutionError, match="joint move: cannot reach"):
+        tracker.solve_pose(cell.home, p, r, "joint move")
+
+
+def test_whole_turns_of_a_joint():
+    q_min, q_max = np.radians([-180.0, -200.0]), np.radians([180.0, 200.0])
+    q = np.radians([1261.6, -205.0])
+    assert np.degrees(turns_near(q, np.radians([170.0, 0.0]))) == pytest.approx([181.6, 155.0])
+    assert np.degrees(within_turns(q, np.zeros(2), q_min, q_max)) == pytest.approx([-178.4, 155.0])
+    assert np.degrees(within_turns(np.radians([10.0, 170.0]), np.radians([0.0, -170.0]), q_min, q_max)) \
+        == pytest.approx([10.0, -190.0])  # two equivalents inside: the one nearest the reference
+    assert within_turns(np.radians([0.0, 10.0]), np.zeros(2), q_min, np.radians([180.0, -170.0])) is None
 
 
 def test_a_wrist_joint_driven_out_of_range_near_the_wrist_singularity_is_named_as_the_singularity(cell):
