@@ -26,7 +26,8 @@ from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell
 from coatsim.robot.chain import tcp_positions_mm
 from coatsim.robot.configuration import check_no_flip
-from coatsim.robot.ik import Residual, Tracker, UnreachablePose, joint_path_events
+from coatsim.robot.ik import Residual, Tracker, UnreachablePose
+from coatsim.robot.joint_events import joint_path_events
 from coatsim.robot.reachability import explained
 from coatsim.robot.reachable import accuracy_event, speed_event
 from coatsim.robot.sampling import CartesianPiece, JointPiece, step_label

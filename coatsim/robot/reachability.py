@@ -20,7 +20,8 @@ import numpy as np
 
 from coatsim.path.toolpath import CircularMove, ToolPath
 from coatsim.robot.cell import M_TO_MM, Cell
-from coatsim.robot.ik import POS_TOL_MM, ROT_TOL_DEG, Tracker, UnreachablePose, arm_dimensions
+from coatsim.robot.ik import POS_TOL_MM, ROT_TOL_DEG, Tracker, UnreachablePose
+from coatsim.robot.joint_events import arm_dimensions
 from coatsim.robot.turns import turns_near
 from coatsim.robot.tooling import mount, to_gun
 
