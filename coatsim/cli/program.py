@@ -172,7 +172,8 @@ def surface_summary(built: SurfaceProgram) -> str:
              f"{len(plan.paths)} passes, {built.text.count(chr(10))} lines of text",
              f"passes {process.curve_length_mm:.3f} mm + lead-in {process.lead_in_mm:g} + lead-out {process.lead_out_mm:g} mm "
              f"each at stand-off {process.standoff_mm:g} mm, {plan.speed_mm_s:g} mm/s on the {process.speed_on}; tool "
-             f"axis within {math.degrees(built.max_axis_error_rad):.3f} deg of the normal (fit)"]
+             f"axis within {math.degrees(built.max_axis_error_rad):.3f} deg of the axis planned (fit; the normal, but "
+             "where a note says it leaves it)"]
     lines += [f"  pass {k + 1}: {n_lines} lines + {n_arcs} arcs, {p.curve_length_mm:.3f} mm"
               for k, ((n_lines, n_arcs), p) in enumerate(zip(built.counts, plan.paths))]
     return "\n".join(lines + [f"note: {n}" for n in built.notes])
