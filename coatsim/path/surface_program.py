@@ -98,14 +98,17 @@ class SurfaceOptions:
 @dataclass(frozen=True, eq=False)
 class SurfaceProgram:
     """A written program of 3-D passes: its text, plan, per pass the number of lines and arcs,
-    the largest angle (rad) between the fitted axis and the wanted one, and the notes: what the
-    language could not say as asked (arcs written as lines), where the axis strays further than asked."""
+    the largest angle (rad) between the fitted axis and the wanted one, the notes (what the
+    language could not say as asked, where the axis leaves the normal or strays further than
+    asked) and per pass the planned tool centre points (n, 3) mm in the base frame, which the
+    moves are within ``tolerance_mm`` of."""
 
     text: str
     plan: ProgramPlan
     counts: tuple[tuple[int, int], ...]
     max_axis_error_rad: float
     notes: tuple[str, ...] = ()
+    tcp_mm: tuple[np.ndarray, ...] = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -316,7 +319,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
     plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
                                 arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface),
                                 (lead_in, lead_out), standoff, pose)
-    return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes)
+    return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes, tuple(t.tcp_mm for t in tcps))
 
 
 def _tilt_notes(tcps: list[PassTcp], surface: SurfaceOptions) -> tuple[str, ...]:

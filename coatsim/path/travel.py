@@ -10,17 +10,10 @@ import numpy as np
 
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
+from coatsim.geometry.space.nearest import edge_distance
 from coatsim.path.placement import PlacedPath
 
 CLEARANCE_STEPS = 6  # the travel clearance is doubled at most this many times
-
-
-def _clear(a: np.ndarray, b: np.ndarray, points: np.ndarray) -> float:
-    """Smallest distance from the segment a-b to the points (n, 3)."""
-    ab = b - a
-    den = float(ab @ ab)
-    u = np.clip((points - a) @ ab / den, 0.0, 1.0) if den > 0 else np.zeros(len(points))
-    return float(np.linalg.norm(points - a - u[:, None] * ab, axis=1).min())
 
 
 def travel_clearances(paths: list[PlacedPath], approach: float, surface: np.ndarray, standoff: float,
@@ -34,7 +27,7 @@ def travel_clearances(paths: list[PlacedPath], approach: float, surface: np.ndar
         c = approach
         for _ in range(CLEARANCE_STEPS + 1):
             p, q = a.translation_mm - c * a.rotation[:, 2], b.translation_mm - c * b.rotation[:, 2]
-            if _clear(p, q, surface) >= standoff:
+            if edge_distance(surface, np.array([p, q]), np.zeros(len(surface), dtype=int)).min() >= standoff:
                 clearance[k][1] = clearance[k + 1][0] = c
                 break
             c *= 2

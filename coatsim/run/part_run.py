@@ -31,7 +31,7 @@ from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
 from coatsim.path.program_files import write_program
-from coatsim.path.surface_program import SurfaceOptions, build_surface_program, pass_tcp
+from coatsim.path.surface_program import SurfaceOptions, build_surface_program
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, to_json
@@ -74,11 +74,6 @@ class PartJob:
     sample_step_mm: float
     spacing_mm: float
     away_mm: np.ndarray  # coating-mesh vertices clear of the part's border by the edge band
-
-    @property
-    def tcp_mm(self) -> list[np.ndarray]:
-        """The planned tool centre points of every pass in the base frame."""
-        return [pass_tcp(p, self.passes.standoff_mm, self.passes.pose).tcp_mm for p in self.passes.passes]
 
 
 def region_of(spec: RegionSpec) -> Facing | Box | Everything:
@@ -166,7 +161,7 @@ def run_part_variant(name: str, variant: str, language_name: str, job: PartJob, 
         raise EmptyRegionOfInterest(f"{job.loaded.where('part')}: {exc}; check part.pose and coating.edge_band_mm") \
             from None
     groups = {
-        "segmentation": surface_segmentation_group(program.plan.paths, job.tcp_mm, spec.segmentation.tolerance_mm,
+        "segmentation": surface_segmentation_group(program.plan.paths, program.tcp_mm, spec.segmentation.tolerance_mm,
                                                    spec.segmentation.corner_deg),
         "motion": execution.metrics.as_dict(),
         "coating": coating_group(result.metrics),
