@@ -7,6 +7,10 @@ from the shoulder to the wrist centre) and wrist (JT5 positive or negative). Alo
 path the branch can only change through the matching singularity, where joints race or the
 controller stops: inside a sprayed pass that ruins the coat, so it is refused (exit 3) naming the
 program step and which branch flipped.
+
+A controller's joint move to a pose keeps the arm's configuration (AS: until LEFTY, RIGHTY, ABOVE,
+BELOW, UWRIST or DWRIST asks for another) and turns each joint the shortest way: ``kept_goal``
+gives the twin's joint moves the same goal.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ import numpy as np
 from coatsim.core.errors import ExecutionError
 from coatsim.robot.cell import Cell
 from coatsim.robot.chain import cell_chain
+from coatsim.robot.turns import within_turns
 
 BRANCHES = ("shoulder", "elbow", "wrist")
 _ZERO = 1e-9  # a branch value this close to 0 is on the singularity itself (no side)
@@ -81,3 +86,25 @@ def check_no_flip(cell: Cell, q: np.ndarray, sprayed: np.ndarray, label: Callabl
             f"{step}: the arm flips its {name} configuration inside a sprayed pass (through the {name} "
             "singularity); re-orient the pass (roll or tool axis) or move the part so one configuration reaches it",
             step=step, branch=name)
+
+
+def wrist_over(q: np.ndarray) -> np.ndarray:
+    """The same arm pose with the wrist turned over: JT4 + 180°, −JT5, JT6 + 180° (the axes of JT4
+    and JT6 meet JT5's at the wrist centre)."""
+    out = np.array(q, float)
+    out[3] += np.pi
+    out[4] = -out[4]
+    out[5] += np.pi
+    return out
+
+
+def kept_goal(cell: Cell, q_from: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """The goal a controller's joint move from ``q_from`` takes for the arm pose that ``q``
+    reaches: on ``q_from``'s wrist side (JT5's sign; either side from JT5 = 0), each joint the
+    whole number of turns off nearest its value in ``q_from`` inside its range. ``q`` itself where
+    no such configuration is inside the ranges."""
+    q = np.asarray(q, float)
+    side = np.sign(q_from[4]) * np.sign(q[4])
+    candidate = wrist_over(q) if side < 0 and abs(np.sin(q_from[4])) > _ZERO else q
+    inside = within_turns(candidate, q_from, cell.q_min, cell.q_max)
+    return q if inside is None else inside

@@ -25,7 +25,7 @@ from coatsim.geometry.space.primitives import Line3, Segment3
 from coatsim.path.toolpath import Dwell, ToolPath
 from coatsim.robot.cell import Cell
 from coatsim.robot.chain import tcp_positions_mm
-from coatsim.robot.configuration import check_no_flip
+from coatsim.robot.configuration import check_no_flip, kept_goal
 from coatsim.robot.ik import Residual, Tracker, UnreachablePose
 from coatsim.robot.joint_events import joint_path_events
 from coatsim.robot.reachability import explained
@@ -174,7 +174,7 @@ class _Timeline:
         if piece.joints_rad is not None:
             q_goal = _joint_target(self.cell, piece.joints_rad, label)
         else:
-            q_goal = self.tracker.solve_pose(self.q_now, p_gun, r_gun, label)
+            q_goal = kept_goal(self.cell, self.q_now, self.tracker.solve_pose(self.q_now, p_gun, r_gun, label))
         self.q_now = q_goal
         return q_goal
 

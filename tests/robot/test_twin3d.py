@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from coatsim.core.errors import ExecutionError
 from coatsim.geometry.space.pose import Pose
@@ -20,9 +21,10 @@ from coatsim.path.surface_program import SurfaceOptions, build_surface_program
 from coatsim.path.surfacepaths import read_surfacepaths
 from coatsim.robot.cell import load_cell
 from coatsim.robot.collisions import Collision, convex_pieces, load_part, with_part
-from coatsim.robot.configuration import ConfigurationFlip, branch_values, check_no_flip
+from coatsim.robot.configuration import ConfigurationFlip, branch_values, check_no_flip, kept_goal, wrist_over
 from coatsim.robot.execute import execute
 from coatsim.robot.ik import Tracker
+from coatsim.path.toolpath import JointMove, LinearMove, MotionSettings, ToolPath
 from coatsim.robot.motion_metrics import spot_speed
 from coatsim.robot.reachability import diagnose, reachable_fraction
 from coatsim.robot.turns import turns_near, within_turns
@@ -138,6 +140,39 @@ def test_a_joint_move_turns_a_joint_the_other_way_round_where_the_pose_needs_it(
     p, r = cell.forward(tracker._single, goal)
     with pytest.raises(ExecutionError, match="joint move: cannot reach"):
         tracker.solve_pose(cell.home, p, r, "joint move")
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(0.0, 1.0), min_size=6, max_size=6))
+def test_the_wrist_turned_over_is_the_same_arm_pose(cell, share):
+    q = cell.q_min + np.array(share) * (cell.q_max - cell.q_min)
+    data = Tracker(cell)._single
+    p0, r0 = cell.forward(data, q)
+    p1, r1 = cell.forward(data, wrist_over(q))
+    assert np.allclose(p0, p1, atol=1e-9) and np.allclose(r0, r1, atol=1e-12)
+
+
+def test_a_joint_move_keeps_the_configuration_and_turns_each_joint_the_shortest_way(cell):
+    """From home (JT4 0, JT5 +55, JT6 0 deg) to a pose that the IK, searching from home, reaches with
+    JT4 at -195.7 and JT6 at 274.7 deg (5 deg from JT4's limit: on a bracket the first pass then ran
+    JT4 out of range at once): a controller's joint move keeps the wrist side and turns each joint
+    the shortest way, to JT4 164.3 and JT6 -85.3 deg. The goal the other wrist side gives comes
+    back on home's side too; the twin's joint move goes there."""
+    tracker = Tracker(cell)
+    wanted = np.radians([-13.8, -13.0, 86.1, 164.3, 56.2, -85.3])
+    p, r = cell.forward(tracker._single, wanted)
+    searched = tracker.solve_pose(cell.home, p, r, "joint move")
+    assert math.degrees(searched[3]) == pytest.approx(-195.7, abs=0.1)  # what the search alone gives
+    assert np.allclose(kept_goal(cell, cell.home, searched), wanted, atol=1e-4)
+    assert np.allclose(kept_goal(cell, cell.home, wrist_over(wanted) - [0, 0, 0, 2 * math.pi, 0, 0]), wanted, atol=1e-4)
+    below = cell.home.copy()
+    below[4] = -below[4]  # from the other wrist side, the goal stays on that side
+    assert math.degrees(kept_goal(cell, below, searched)[4]) == pytest.approx(-56.2, abs=1e-3)
+    move = MotionSettings(200.0, 1.0, True, True)
+    start, end = Pose(r, p), Pose(r, p - 30.0 * r[:, 2])
+    run = execute(ToolPath("turns", (JointMove(None, start, move, False, 1), LinearMove(start, end, move, False, 2))), cell)
+    jt4, jt5, jt6 = np.degrees(run.log.q[-1, 3:])  # 30 mm on from the goal: near it on the same turn and side
+    assert 150.0 < jt4 < 180.0 and jt5 > 0.0 and -100.0 < jt6 < -70.0
 
 
 def test_whole_turns_of_a_joint():
