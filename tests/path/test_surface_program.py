@@ -14,15 +14,16 @@ import pytest
 
 from coatsim.core.errors import InputError
 from coatsim.geometry.space.orient import slerp_axes
-from coatsim.geometry.space.pose import Pose, slerp
-from coatsim.geometry.space.primitives import Line3
-from coatsim.geometry.space.rotations import oat_to_matrix
+from coatsim.geometry.space.pose import Pose, log_rotation, slerp
+from coatsim.geometry.space.primitives import Arc3, Line3
+from coatsim.geometry.space.rotations import oat_to_matrix, rot_y, rot_z
 from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
 from coatsim.path.expressible import expressible
 from coatsim.path.placement import PlacedMove, PlacedPath
-from coatsim.path.surface_program import (SurfaceOptions, _axis_notes, build_surface_program, oriented_polyline,
+from coatsim.path.roll import Oriented
+from coatsim.path.surface_program import (SurfaceOptions, _axis_notes, _lead, build_surface_program, oriented_polyline,
                                           pass_tcp)
 from coatsim.path.surfacepaths import read_surfacepaths
 from coatsim.path.travel import travel_clearances
@@ -329,3 +330,28 @@ def test_every_language_leaves_and_enters_each_pass_at_its_own_clearances(tmp_pa
         left = a.end.translation_mm - a.depart_clearance_mm * a.end.rotation[:, 2]
         came = b.start.translation_mm - b.approach_clearance_mm * b.start.rotation[:, 2]
         assert min(np.linalg.norm(p - left) + np.linalg.norm(q - came) for p, q in travel) < 2e-3
+
+
+def _lead_turn_deg(move: PlacedMove) -> float:
+    return math.degrees(float(np.linalg.norm(log_rotation(move.start.rotation.T @ move.end.rotation))))
+
+
+def test_a_lead_turns_the_tool_on_at_the_pass_end_rate_but_not_round():
+    """A lead turns the tool on at the rate the end piece turns it (its rotation axis kept), by 10°
+    at most: at the end of a pass inside a trough a 0.16 mm end piece turning 1.1° made a scanned
+    part's 15 mm lead-in turn the tool by 102° (the arm could not reach it). A gentle rate is kept
+    as it is, on a line and on a lead continuing a circle."""
+    down = np.diag([1.0, -1.0, -1.0])
+    tiny = Oriented(Line3(np.zeros(3), np.array([0.16, 0.0, 0.0])), down, None, down @ rot_y(math.radians(1.1)))
+    lead = _lead(tiny, 15.0, "lead_in", None)
+    assert _lead_turn_deg(lead) == pytest.approx(10.0, abs=1e-9)
+    turned = log_rotation(lead.start.rotation.T @ lead.end.rotation)
+    assert abs(turned[1]) == pytest.approx(np.linalg.norm(turned))  # about the piece's own axis
+    gentle = Oriented(Line3(np.zeros(3), np.array([20.0, 0.0, 0.0])), down, None, down @ rot_y(math.radians(2.0)))
+    assert _lead_turn_deg(_lead(gentle, 15.0, "lead_out", None)) == pytest.approx(1.5, abs=1e-9)
+    sweep, radius = 0.3, 250.0
+    arc = Arc3(np.array([radius, 0.0, 0.0]), radius * np.array([math.cos(sweep), math.sin(sweep), 0.0]), np.zeros(3),
+               np.array([0.0, 0.0, 1.0]), radius, sweep)
+    circle = Oriented(arc, down, down @ rot_z(sweep / 2), down @ rot_z(sweep))
+    lead = _lead(circle, 30.0, "lead_out", None)
+    assert isinstance(lead.geometry, Arc3) and _lead_turn_deg(lead) == pytest.approx(math.degrees(30.0 / radius), abs=1e-6)
