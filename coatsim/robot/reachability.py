@@ -132,5 +132,6 @@ def explained(error: UnreachablePose, tracker: Tracker) -> UnreachablePose:
 def _advice(reason: str) -> str:
     """What the user can change for a pose the arm cannot reach for ``reason``."""
     if reason.startswith("near a wrist singularity"):
-        return "move the part or the path so the spray axis does not line up with the forearm (JT4's axis) there"
+        return ("raise or move the part, or turn the passes, so the spray axis does not line up with the forearm "
+                "(JT4's axis) there: a gun tilted away from the robot comes closest to it")
     return "move the path within the arm's reach or re-orient it"
