@@ -12,9 +12,8 @@ minus the normal (both placed in the robot base frame by the part's pose). Varia
   waypoint planner emits them (no pose added for a smooth turning rate); exact stop at every
   vertex, or blended.
 
-The roll about the axis follows coatsim.path.roll. Each pass gets a lead-in and a lead-out that
-continue its first and last line or arc, the tool turning on at the same rate (the lengths of
-the file's leads unless given), the gun open
+The roll about the axis follows coatsim.path.roll. Each pass gets a lead-in and a lead-out
+(coatsim.path.leads; the lengths of the file's leads unless given), the gun open
 along the whole pass and its leads (an open pass) or exactly once around (a closed one); the
 tool approaches and departs along the axis and travels between passes with the gun off, at a
 clearance raised where the straight travel would pass closer to the part than the stand-off
@@ -38,13 +37,14 @@ from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.along import AlongPass
 from coatsim.geometry.space.orient import ANGLE_TOL_DEG, MIN_SPLIT_MM, fit_surface_pass, slerp_axes
-from coatsim.geometry.space.pose import Pose, exp_rotation, log_rotation, slerp
-from coatsim.geometry.space.primitives import Arc3, Line3, rotate_about
+from coatsim.geometry.space.pose import Pose, slerp
+from coatsim.geometry.space.primitives import Arc3, Line3
 from coatsim.geometry.space.rotations import rot_z
 from coatsim.path.build import ProgramOptions
 from coatsim.path.expressible import expressible
 from coatsim.path.frames import DEFAULT_FRAME
 from coatsim.path.language import Language
+from coatsim.path.leads import lead_move
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
@@ -56,11 +56,6 @@ from coatsim.path.unfold import MIN_ADVANCE, unfolded_axes
 
 _TRACE_SAMPLES = 33      # samples per move when its trace length is measured
 _KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
-_MAX_LEAD_TURN_RAD = math.radians(120.0)  # a lead continuing a tighter circle is a tangent line
-# What lies beyond a pass is not known: a lead turns the tool by no more than this. At the end of a
-# pass inside a trough the tool centre point moves a few % of the spot's way while the axis turns
-# with the surface: a 0.16 mm end piece turning 1.1° made a 15 mm lead-in turn the tool by 102°.
-_MAX_LEAD_TOOL_TURN_RAD = math.radians(10.0)
 
 
 @dataclass(frozen=True)
@@ -232,48 +227,10 @@ def _placed(oriented: list[Oriented], leads: tuple[float, float], standoff: floa
         via = None if o.via is None else Pose(o.via, seg.via)
         moves.append(PlacedMove(seg, Pose(o.start, seg.start), Pose(o.end, seg.end), "curve", False, via, v))
     if leads[0] > 0:
-        moves.insert(0, _lead(oriented[0], leads[0], "lead_in", moves[0].speed_mm_s))
+        moves.insert(0, lead_move(oriented[0], leads[0], "lead_in", moves[0].speed_mm_s))
     if leads[1] > 0:
-        moves.append(_lead(oriented[-1], leads[1], "lead_out", moves[-1].speed_mm_s))
+        moves.append(lead_move(oriented[-1], leads[1], "lead_out", moves[-1].speed_mm_s))
     return moves
-
-
-def _lead(o: Oriented, length: float, part: str, speed_mm_s: Optional[float]) -> PlacedMove:
-    """A lead-in before the first piece or a lead-out after the last: the piece's own line or
-    circle continued by ``length`` (a line along its tangent where the circle would turn more
-    than ``_MAX_LEAD_TURN_RAD``), the tool turning on at the rate it turns at that end, so that
-    neither the path's tangent nor the tool's turning rate changes where the pass begins or ends,
-    by ``_MAX_LEAD_TOOL_TURN_RAD`` at most (slower where that rate would turn it more)."""
-    seg = o.geometry
-    before = part == "lead_in"
-    anchor = Pose(o.start, seg.start) if before else Pose(o.end, seg.end)
-    if o.via is None:
-        rate = log_rotation(o.start.T @ o.end) / seg.length
-    else:
-        rate = log_rotation(o.start.T @ o.via if before else o.via.T @ o.end) / (seg.length / 2)
-    turn = float(np.linalg.norm(rate)) * length
-    if turn > _MAX_LEAD_TOOL_TURN_RAD:
-        rate = rate * (_MAX_LEAD_TOOL_TURN_RAD / turn)
-    def turned(ds: float) -> np.ndarray:  # the rotation ds mm along the lead from the anchor, outward
-        return anchor.rotation @ exp_rotation((-ds if before else ds) * rate)
-    far = turned(length)
-    circle = seg if isinstance(seg, Arc3) and length / seg.radius <= _MAX_LEAD_TURN_RAD else None
-    if circle is not None:
-        sweep = length / circle.radius
-        normal = circle.normal
-        if before:  # the circle run backwards from the start: the arc from its far end to the start
-            tip = circle.start + rotate_about(circle.start - circle.center, normal, np.array([-sweep]))[0]
-            arc = Arc3(tip, circle.start, circle.center, normal, circle.radius, sweep)
-        else:
-            arc = Arc3(circle.end, circle.at_angles(np.array([circle.sweep + sweep]))[0], circle.center, normal,
-                       circle.radius, sweep)
-        mid = Pose(turned(length / 2), arc.via)
-        ends = (Pose(far, arc.start), anchor) if before else (anchor, Pose(far, arc.end))
-        return PlacedMove(arc, *ends, part, False, mid, speed_mm_s)
-    t = seg.start_tangent if before else seg.end_tangent
-    tip = anchor.translation_mm + (-length if before else length) * t
-    ends = (Pose(far, tip), anchor) if before else (anchor, Pose(far, tip))
-    return PlacedMove(Line3(ends[0].translation_mm, ends[1].translation_mm), *ends, part, speed_mm_s=speed_mm_s)
 
 
 def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions,

@@ -20,10 +20,11 @@ from coatsim.geometry.space.rotations import oat_to_matrix, rot_y, rot_z
 from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
+from coatsim.path.leads import lead_move
 from coatsim.path.expressible import expressible
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.roll import Oriented
-from coatsim.path.surface_program import (SurfaceOptions, _axis_notes, _lead, build_surface_program, oriented_polyline,
+from coatsim.path.surface_program import (SurfaceOptions, _axis_notes, build_surface_program, oriented_polyline,
                                           pass_tcp)
 from coatsim.path.surfacepaths import read_surfacepaths
 from coatsim.path.travel import travel_clearances
@@ -343,15 +344,15 @@ def test_a_lead_turns_the_tool_on_at_the_pass_end_rate_but_not_round():
     as it is, on a line and on a lead continuing a circle."""
     down = np.diag([1.0, -1.0, -1.0])
     tiny = Oriented(Line3(np.zeros(3), np.array([0.16, 0.0, 0.0])), down, None, down @ rot_y(math.radians(1.1)))
-    lead = _lead(tiny, 15.0, "lead_in", None)
+    lead = lead_move(tiny, 15.0, "lead_in", None)
     assert _lead_turn_deg(lead) == pytest.approx(10.0, abs=1e-9)
     turned = log_rotation(lead.start.rotation.T @ lead.end.rotation)
     assert abs(turned[1]) == pytest.approx(np.linalg.norm(turned))  # about the piece's own axis
     gentle = Oriented(Line3(np.zeros(3), np.array([20.0, 0.0, 0.0])), down, None, down @ rot_y(math.radians(2.0)))
-    assert _lead_turn_deg(_lead(gentle, 15.0, "lead_out", None)) == pytest.approx(1.5, abs=1e-9)
+    assert _lead_turn_deg(lead_move(gentle, 15.0, "lead_out", None)) == pytest.approx(1.5, abs=1e-9)
     sweep, radius = 0.3, 250.0
     arc = Arc3(np.array([radius, 0.0, 0.0]), radius * np.array([math.cos(sweep), math.sin(sweep), 0.0]), np.zeros(3),
                np.array([0.0, 0.0, 1.0]), radius, sweep)
     circle = Oriented(arc, down, down @ rot_z(sweep / 2), down @ rot_z(sweep))
-    lead = _lead(circle, 30.0, "lead_out", None)
+    lead = lead_move(circle, 30.0, "lead_out", None)
     assert isinstance(lead.geometry, Arc3) and _lead_turn_deg(lead) == pytest.approx(math.degrees(30.0 / radius), abs=1e-6)
