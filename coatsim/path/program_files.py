@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from coatsim.core.errors import InputError
 from coatsim.core.fileio import write_text
 from coatsim.path.language import Language
 
@@ -15,9 +16,15 @@ def program_suffixes(language: Language) -> tuple[str, ...]:
 
 def program_paths(language: Language, main: Path) -> tuple[Path, ...]:
     """The files a program saved as ``main`` occupies: ``main`` and its companions beside it
-    (the same stem, the language's other suffixes)."""
+    (the same stem, the language's other suffixes). A program of several files must be saved
+    under its main suffix (InputError otherwise): the controller pairs them by name, and a KRL
+    program saved as ``cap`` and ``cap.dat`` is neither loaded nor read back."""
     main = Path(main)
-    return (main, *(main.with_suffix(suffix) for suffix in program_suffixes(language)[1:]))
+    suffixes = program_suffixes(language)
+    if len(suffixes) > 1 and main.suffix.lower() != suffixes[0]:
+        raise InputError(f"{main}: a {language.title} program is saved as {' and '.join('NAME' + s for s in suffixes)}; "
+                         f"name the output {main.with_suffix(suffixes[0]).name}", parameters=("output",))
+    return (main, *(main.with_suffix(suffix) for suffix in suffixes[1:]))
 
 
 def write_program(language: Language, text: str, main: Path) -> tuple[Path, ...]:

@@ -24,6 +24,16 @@ def test_program_writes_each_language_with_its_suffix(tmp_path, run_cli):
     assert code == 0 and "moves:" in text and "arc" in text, err
 
 
+@pytest.mark.parametrize("name", ["coat", "coat.txt", "coat.dat"])
+def test_a_program_of_two_files_must_be_saved_under_its_main_suffix(tmp_path, run_cli, name):
+    """A KRL program is its .src and .dat, paired by name: saved as ``coat`` and ``coat.dat`` it
+    is neither loaded by a controller nor read back (the .dat is not found); nothing is written."""
+    code, _, err = run_cli(["program", "builtin:ellipse", "--tol", "0.1", "--language", "kuka-krl",
+                            "-o", str(tmp_path / name)])
+    assert code == 2 and "a KUKA KRL program is saved as NAME.src and NAME.dat; name the output coat.src" in err
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_files_are_told_apart_by_their_opening(tmp_path):
     (tmp_path / "a.txt").write_text("MODULE x\nENDMODULE\n")
     (tmp_path / "b.txt").write_text("&ACCESS RVP\nDEF b( )\nEND\n")
