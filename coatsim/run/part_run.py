@@ -43,7 +43,8 @@ from coatsim.robot.execute import execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.core.progress import Step, labelled, progress as progress_bar
-from coatsim.run.scenario import RegionSpec, ScenarioFile, as_dict
+from coatsim.run.part_spec import RegionSpec
+from coatsim.run.scenario import ScenarioFile, as_dict
 from coatsim.run.scenario_inputs import spray_model
 from coatsim.run.variants import on_common_roi, program_files, write_thickness_files
 from coatsim.spray.coat import coat

@@ -52,7 +52,6 @@ from coatsim.robot.execute import execute
 from coatsim.robot.kinematics import CellKinematics
 from coatsim.robot.tooling import gun_tool
 from coatsim.run.scenario import (
-    ProgramVariantSpec,
     ScenarioFile,
     as_dict,
     check_gate_metrics,
@@ -68,6 +67,7 @@ from coatsim.run.scenario_inputs import (
     user_program_suffix,
     spray_model,
 )
+from coatsim.run.variant_spec import ProgramVariantSpec
 from coatsim.spray.coat import coat
 from coatsim.spray.coating_metrics import away_from_border, edge_band_width
 from coatsim.spray.deposition import SprayModel

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping, Optional, Union
 
-from pydantic import Discriminator, Field, Tag, ValidationError, field_validator, model_validator
+from pydantic import Field, ValidationError, field_validator, model_validator
 
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
@@ -28,22 +28,17 @@ from coatsim.report.catalogue import METRICS
 from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec
 from coatsim.core.yamlsource import Loc, format_validation_error, load_yaml_with_lines, where_in
-from coatsim.run.variant_spec import BuiltinVariantSpec, LanguageName, ProgramSpec, Strict, VariantLabel, \
-    VariantName
+from coatsim.run.part_spec import PartSpec, PathsSpec, WorkpieceSpec
+from coatsim.run.spec_fields import NonNegative, Positive, Strict, Vec2
+from coatsim.run.variant_spec import BuiltinVariantSpec, ProgramSpec, ProgramVariantSpec, VariantEntry, VariantLabel
 
 BuiltinName = Literal[tuple(sorted(BUILTINS))]  # type: ignore[valid-type]
-Vec2 = Annotated[list[float], Field(min_length=2, max_length=2)]
-Vec3 = Annotated[list[float], Field(min_length=3, max_length=3)]
-Positive = Annotated[float, Field(gt=0)]
 # A scenario name names the run folder (runs/NAME) and its programs: never '.', '..', '-x'.
 SCENARIO_NAME = r"^[A-Za-z][A-Za-z0-9_.-]{0,63}$"
-NonNegative = Annotated[float, Field(ge=0)]
 
 
-_Strict = Strict
 
-
-class CurveSpec(_Strict):
+class CurveSpec(Strict):
     """Where the curve comes from (exactly one of ``builtin`` or ``file``) and how it is
     placed in the workpiece XY plane: scaled, rotated, then its bounding-box centre moved
     to ``offset_mm`` (when ``center``). A drawing (DXF, SVG) is a part: every contour on its
@@ -83,7 +78,7 @@ class CurveSpec(_Strict):
         return self
 
 
-class SegmentationSpec(_Strict):
+class SegmentationSpec(Strict):
     """Fitter options: tolerance in mm (guaranteed), fitting method, corner threshold."""
 
     tolerance_mm: Positive = defaults.TOLERANCE_MM
@@ -91,119 +86,15 @@ class SegmentationSpec(_Strict):
     corner_deg: Annotated[float, Field(gt=0, lt=180)] = defaults.CORNER_DEG
 
 
-class PoseSpec(_Strict):
-    """Workpiece frame in the robot base frame, as AS writes a pose: origin x, y, z (mm) and
-    O-A-T Euler angles (deg, z-y'-z''). The curve lies in the frame's XY plane and the
-    sprayed side faces the frame's +z axis."""
-
-    position_mm: Vec3 = Field(default_factory=lambda: list(defaults.WORKPIECE_FRAME[:3]))
-    oat_deg: Vec3 = Field(default_factory=lambda: list(defaults.WORKPIECE_FRAME[3:]))
 
 
-class PlateSpec(_Strict):
-    """A flat rectangular plate centred on the workpiece origin, sprayed side +z."""
-
-    kind: Literal["plate"]
-    size_mm: Annotated[list[Positive], Field(min_length=2, max_length=2)]
-    pose: PoseSpec = Field(default_factory=PoseSpec)
-
-
-class CylinderSpec(_Strict):
-    """The outside of a cylinder centred on the workpiece origin, its axis along the frame's
-    ``axis``; the curve lies in the plane tangent to the cylinder at its top (frame +z)."""
-
-    kind: Literal["cylinder"]
-    radius_mm: Positive
-    length_mm: Positive
-    axis: Literal["x", "y"] = "x"
-    pose: PoseSpec = Field(default_factory=PoseSpec)
-
-
-class MeshSpec(_Strict):
-    """A mesh file (STL/PLY/OBJ, mm), relative to the scenario."""
-
-    kind: Literal["mesh"]
-    file: str
-    pose: PoseSpec = Field(default_factory=PoseSpec)
-
-
-WorkpieceSpec = Annotated[Union[PlateSpec, CylinderSpec, MeshSpec], Field(discriminator="kind")]
-
-
-# --- 3-D parts: a mesh, its pose and region, and the passes planned on it -------------------
-Vec6 = Annotated[list[float], Field(min_length=6, max_length=6)]
-
-
-class RegionSpec(_Strict):
-    """Which faces of the part are coated, in the part's own frame: those whose outward normal
-    lies within ``max_angle_deg`` of ``facing`` (default: the part's thinnest axis on the side
-    its normals face), those whose centre is inside ``box`` [xmin, ymin, zmin, xmax, ymax, zmax]
-    (mm), or ``all``; facing and box keep only the faces the gun sees."""
-
-    facing: Optional[Vec3] = Field(None, description="the gun's side, a direction in the part's frame")
-    max_angle_deg: Annotated[float, Field(gt=0, lt=180)] = defaults.PLAN_FACING_DEG
-    box: Optional[Vec6] = Field(None, description="xmin, ymin, zmin, xmax, ymax, zmax (mm, part frame)")
-    all: bool = False
-
-    @model_validator(mode="after")
-    def _one_kind(self) -> RegionSpec:
-        if (self.facing is not None) + (self.box is not None) + self.all > 1:
-            raise ValueError("give at most one of 'facing', 'box' or 'all: true'")
-        if "max_angle_deg" in self.model_fields_set and (self.box is not None or self.all):
-            raise ValueError("'max_angle_deg' applies to a facing region")
-        if self.box is not None and not all(lo < hi for lo, hi in zip(self.box[:3], self.box[3:])):
-            raise ValueError("'box' is xmin, ymin, zmin, xmax, ymax, zmax with each min below its max")
-        return self
-
-
-class PartSpec(_Strict):
-    """A 3-D part: its mesh file (STL, PLY, OBJ, OFF, GLB; relative to the scenario), the unit
-    the file is in, its pose in the robot base frame [x, y, z (mm), O, A, T (deg)] and the
-    region of it that is coated."""
-
-    mesh: str
-    units: Literal["mm", "cm", "m", "in", "auto"] = defaults.PLAN_UNITS
-    pose: Vec6 = Field(default_factory=lambda: list(defaults.WORKPIECE_FRAME))
-    region: RegionSpec = Field(default_factory=RegionSpec)
-
-
-class PathsSpec(_Strict):
-    """The passes planned on the part (``coatsim plan``): the pattern, the spacing along the
-    surface (``spacing_mm``, or the largest that keeps the overlap ``ripple_pct``; default two
-    standard deviations of the footprint), the stand-off (default the gun's), the raster's step
-    ``direction`` (part frame), the lead past the region's edge, the band kept free along its
-    border, the spraying order; then how each pass becomes a program: the spray axis within
-    ``angle_tol_deg`` of the normal, and where the programmed speed holds (``trace``: the spray
-    spot on the surface, so the coat does not thin where the tool swings round a bend)."""
-
-    pattern: Literal["raster", "geodesic", "boundary"] = defaults.PLAN_PATTERN
-    spacing_mm: Optional[Positive] = None
-    ripple_pct: Optional[Annotated[float, Field(gt=0, lt=100)]] = None
-    standoff_mm: Optional[Positive] = Field(None, description="default: gun.standoff_mm")
-    direction: Optional[Vec3] = Field(None, description="raster: the planes' normal, from one pass to the next")
-    margin_mm: Optional[NonNegative] = Field(None, description="lead past the region's edge (default 3 sigma)")
-    edge_band_mm: NonNegative = defaults.PLAN_EDGE_BAND_MM
-    order: Literal["serpentine", "oneway"] = defaults.PLAN_ORDER
-    angle_tol_deg: Annotated[float, Field(gt=0, lt=90)] = defaults.ANGLE_TOL_DEG
-    speed_on: Literal["tcp", "trace"] = defaults.SCENARIO_SPEED_ON
-
-    @model_validator(mode="after")
-    def _one_spacing(self) -> PathsSpec:
-        if self.spacing_mm is not None and self.ripple_pct is not None:
-            raise ValueError("give at most one of 'spacing_mm' or 'ripple_pct'")
-        if self.direction is not None and self.pattern != "raster":
-            raise ValueError("'direction' applies to the raster pattern")
-        return self
-# --- end 3-D parts ------------------------------------------------------------------------
-
-
-class RobotSpec(_Strict):
+class RobotSpec(Strict):
     """The arm: ``default`` (the project's MJCF arm) or an MJCF file relative to the scenario."""
 
     model: str = "default"
 
 
-class GunSpec(_Strict):
+class GunSpec(Strict):
     """Spray gun: stand-off along the surface normal, footprint, deposited volume rate Q,
     the thickness the job aims for, the output signal that opens the gun, and the tool roll
     about the spray axis (fixed, or turning with the path when ``follow_tangent``)."""
@@ -240,7 +131,7 @@ class GunSpec(_Strict):
         return spec
 
 
-class MotionSpec(_Strict):
+class MotionSpec(Strict):
     """Programmed tool speed, blending accuracy, straight run-in/run-out lengths, and the
     order in which the contours of a part are sprayed."""
 
@@ -252,7 +143,7 @@ class MotionSpec(_Strict):
                                                           "or each next one whose start is nearest the last end")
 
 
-class CoatingSpec(_Strict):
+class CoatingSpec(Strict):
     """Coating mesh spacing and the region of interest the thickness metrics cover: the
     sprayed track, ``band_halfwidth_mm`` to each side of it (default 2 sigma of the
     footprint), without ``edge_band_mm`` along the part border (default 3 sigma)."""
@@ -262,73 +153,14 @@ class CoatingSpec(_Strict):
     edge_band_mm: Optional[NonNegative] = None
 
 
-class FastSpec(_Strict):
+class FastSpec(Strict):
     """What ``--fast`` changes (for CI): coarser coating mesh and coarser path sampling."""
 
     coating_spacing_mm: Positive = 3.0
     sample_step_mm: Positive = 1.0
 
 
-class ProgramVariantSpec(_Strict):
-    """A program of the user's own run as a variant beside coatsim's: its file(s) relative
-    to the scenario (in ``language``, default by their suffix or opening) (data files such as poses after the program), the main program (default:
-    the first), the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off), and
-    the variables no file gives (the controller keeps them): ``{direction: 8, $mode: auto,
-    pick: "TRANS(600,0,300,0,180,0)"}`` (a number, a string's text, or an AS expression)."""
-
-    name: VariantLabel
-    program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
-    main: Optional[str] = None
-    inputs: list[Annotated[int, Field(ge=-defaults.MAX_SIGNAL, le=defaults.MAX_SIGNAL)]] = Field(
-        default_factory=list, description="input signals the cell sets: n on, -n off")
-    variables: dict[str, Union[float, str]] = Field(
-        default_factory=dict, description="variables the files do not give: NAME: number, text or AS expression")
-    language: Optional[LanguageName] = Field(None, description="the language of the files [default: by their "
-                                             "suffix, else by their opening]")
-
-    @field_validator("program", mode="before")
-    @classmethod
-    def _one_file(cls, value: Any) -> Any:
-        return [value] if isinstance(value, str) else value
-
-    @field_validator("name")
-    @classmethod
-    def _own_name(cls, name: str) -> str:
-        if name in VARIANTS:
-            raise ValueError(f"{name!r} is the name of a built-in variant; give the program another name")
-        return name
-
-    @field_validator("inputs")
-    @classmethod
-    def _signals(cls, inputs: list[int]) -> list[int]:
-        if 0 in inputs:
-            raise ValueError("signal 0 does not exist; give n (on) or -n (off)")
-        return inputs
-
-    @property
-    def files(self) -> list[str]:
-        return list(self.program)
-
-    @property
-    def input_states(self) -> dict[int, bool]:
-        return {abs(n): n > 0 for n in self.inputs}
-
-
-def _variant_kind(value: Any) -> str:
-    """The kind of a variant entry, as read (a string, a mapping) or as a model being written out."""
-    if isinstance(value, str):
-        return "builtin"
-    built_in = isinstance(value, BuiltinVariantSpec) or (isinstance(value, dict) and "variant" in value)
-    return "language" if built_in else "program"
-
-
-# A built-in variant by name, one in its own language, or a user's program (a mapping): errors
-# speak of the one meant.
-VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated[ProgramVariantSpec, Tag("program")],
-                               Annotated[BuiltinVariantSpec, Tag("language")]], Discriminator(_variant_kind)]
-
-
-class GateSpec(_Strict):
+class GateSpec(Strict):
     """A pass/fail check on one metric of one variant: against a ``threshold``, or against
     ``factor`` times the same metric of the ``compare_to`` variant — or of each of a list of
     variants, i.e. of the best of them (``compare_to: [polyline-stop, polyline-blend]``)."""
@@ -367,7 +199,7 @@ class GateSpec(_Strict):
         return self
 
 
-class Scenario(_Strict):
+class Scenario(Strict):
     """One coating job, as written in a scenario YAML file."""
 
     name: Annotated[str, Field(pattern=SCENARIO_NAME, description="a file stem: names the run folder and its programs")]

@@ -28,7 +28,8 @@ from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath import ToolPath
 from coatsim.robot.cell import Cell, load_cell
 from coatsim.robot.kinematics import CellKinematics
-from coatsim.run.scenario import ProgramVariantSpec, Scenario, ScenarioFile
+from coatsim.run.scenario import Scenario, ScenarioFile
+from coatsim.run.variant_spec import ProgramVariantSpec
 from coatsim.spray.deposition import SprayModel
 from coatsim.spray.efficiency import parse_efficiency_spec
 from coatsim.spray.footprints import parse_footprint_spec

@@ -1,22 +1,19 @@
-"""Scenario keys of the languages programs are written in: a built-in variant in another
-language than the scenario's (``{variant: polysegment, language: abb-rapid}``), and the
-scenario's own language (``program: {language: kuka-krl}``)."""
+"""Scenario keys of the program variants a job compares: a built-in variant by name, one in
+another language than the scenario's (``{variant: polysegment, language: abb-rapid}``), a
+user's own program run beside them, and the scenario's own language (``program: {language:
+kuka-krl}``)."""
 
 from __future__ import annotations
 
-from typing import Annotated, Any, Literal, Optional
+from typing import Annotated, Any, Literal, Optional, Union
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
+from pydantic import AfterValidator, Discriminator, Field, Tag, field_validator, model_validator
 
+from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.languages.registry import DEFAULT_LANGUAGE, language
 from coatsim.path.build import VARIANTS
-
-
-class Strict(BaseModel):
-    """A scenario mapping: unknown keys, wrong types and infinities refused; immutable."""
-
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+from coatsim.run.spec_fields import Strict
 
 
 def _language_name(name: str) -> str:
@@ -71,3 +68,62 @@ def variant_label(entry: Any) -> str:
         return entry["name"]
     spec = BuiltinVariantSpec.model_validate(entry)
     return spec.name
+
+
+class ProgramVariantSpec(Strict):
+    """A program of the user's own run as a variant beside coatsim's: its file(s) relative
+    to the scenario (in ``language``, default by their suffix or opening) (data files such as poses after the program), the main program (default:
+    the first), the input signals the cell sets (``[1001, -1002]``: 1001 on, 1002 off), and
+    the variables no file gives (the controller keeps them): ``{direction: 8, $mode: auto,
+    pick: "TRANS(600,0,300,0,180,0)"}`` (a number, a string's text, or an AS expression)."""
+
+    name: VariantLabel
+    program: Annotated[list[str], Field(min_length=1, description="AS file, or files loaded together")]
+    main: Optional[str] = None
+    inputs: list[Annotated[int, Field(ge=-defaults.MAX_SIGNAL, le=defaults.MAX_SIGNAL)]] = Field(
+        default_factory=list, description="input signals the cell sets: n on, -n off")
+    variables: dict[str, Union[float, str]] = Field(
+        default_factory=dict, description="variables the files do not give: NAME: number, text or AS expression")
+    language: Optional[LanguageName] = Field(None, description="the language of the files [default: by their "
+                                             "suffix, else by their opening]")
+
+    @field_validator("program", mode="before")
+    @classmethod
+    def _one_file(cls, value: Any) -> Any:
+        return [value] if isinstance(value, str) else value
+
+    @field_validator("name")
+    @classmethod
+    def _own_name(cls, name: str) -> str:
+        if name in VARIANTS:
+            raise ValueError(f"{name!r} is the name of a built-in variant; give the program another name")
+        return name
+
+    @field_validator("inputs")
+    @classmethod
+    def _signals(cls, inputs: list[int]) -> list[int]:
+        if 0 in inputs:
+            raise ValueError("signal 0 does not exist; give n (on) or -n (off)")
+        return inputs
+
+    @property
+    def files(self) -> list[str]:
+        return list(self.program)
+
+    @property
+    def input_states(self) -> dict[int, bool]:
+        return {abs(n): n > 0 for n in self.inputs}
+
+
+def _variant_kind(value: Any) -> str:
+    """The kind of a variant entry, as read (a string, a mapping) or as a model being written out."""
+    if isinstance(value, str):
+        return "builtin"
+    built_in = isinstance(value, BuiltinVariantSpec) or (isinstance(value, dict) and "variant" in value)
+    return "language" if built_in else "program"
+
+
+# A built-in variant by name, one in its own language, or a user's program (a mapping): errors
+# speak of the one meant.
+VariantEntry = Annotated[Union[Annotated[VariantName, Tag("builtin")], Annotated[ProgramVariantSpec, Tag("program")],
+                               Annotated[BuiltinVariantSpec, Tag("language")]], Discriminator(_variant_kind)]

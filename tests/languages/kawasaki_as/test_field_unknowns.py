@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from coatsim.core.errors import InputError
-from coatsim.run.scenario import ProgramVariantSpec
+from coatsim.run.variant_spec import ProgramVariantSpec
 
 from styles import STYLES, ends, notes, run_text, styled, ys
 
