@@ -33,11 +33,11 @@ from coatsim.geometry.limits import MIN_LENGTH_SIGMAS, FitLimits, arc_excess, fi
 from coatsim.geometry.merge import bent_merge, plain_merge
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
-from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import (ChainParams, close_exactly, lateral_residuals, refine_chain, split_segment,
                                      worst_segment)
-from coatsim.geometry.sparse import guide as sparse_guide, is_sparse
+from coatsim.geometry.run_fit import RunFit
+from coatsim.geometry.sparse import guide as sparse_guide, is_sparse, simplified, taught_lines
 
 MAX_ATTEMPTS = 20
 PIN_RAD = 1e-9  # a pinned end tangent is kept to this (rad)
@@ -52,20 +52,6 @@ TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
 HOPELESS = 1.02  # a merged chain whose sampled deviation is above this share of σ is not checked exactly
 BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
 SCREEN = 5.0  # a merge bent back onto the rest that strays this many σ is not refined (see _fewer)
-
-
-@dataclass(frozen=True)
-class RunFit:
-    """A run's chain, its verified deviation (mm), whether it keeps the run's curvature
-    caps and minimum length (False: loosened caps or the fillet fallback), the junctions
-    of the chain that are corners (k: end of segment k; a sparse run σ cannot follow with
-    arcs as gentle as its own turning comes back as its lines) and what the user should know."""
-
-    segments: tuple[Segment, ...]
-    deviation_mm: float
-    limits_kept: bool = True
-    corners: tuple[int, ...] = ()
-    notes: tuple[str, ...] = ()
 
 
 def total_turn(points: np.ndarray) -> float:
@@ -363,25 +349,12 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
                          parameters=("min_segment_mm",))
     # Sparse or kinked input the band fit cannot follow: round the vertices instead, first
     # those of the input simplified within half the tolerance (rounded within the other half).
-    for keep, share in ((_simplified(pts, closed_loop, tolerance / 2), 0.5), (np.arange(len(pts)), 1.0)):
+    for keep, share in ((simplified(pts, closed_loop, tolerance / 2), 0.5), (np.arange(len(pts)), 1.0)):
         segs = fillet_chain(pts[keep], share * tolerance, closed_loop)
         dev = hausdorff(pts, Polysegment(segs)).hausdorff
         if dev <= tolerance:
             return RunFit(segs, dev, limits_kept=False)
     raise InputError(f"the fitter could not reach {tolerance:g} mm on a run of {len(pts)} points")
-
-
-def taught_lines(pts: np.ndarray, closed_loop: bool, tolerance: float) -> RunFit:
-    """A sparse run as its own lines (those of its vertices RDP keeps within half the
-    tolerance), a corner at every vertex, with a note: looser caps or fillets would turn
-    tighter than the taught points do."""
-    v = pts[_simplified(pts, closed_loop, tolerance / 2)]
-    lines = tuple(Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))) for a, b in zip(v[:-1], v[1:]))
-    corners = tuple(range(len(lines) - (0 if closed_loop else 1)))
-    note = (f"the {len(pts)} points from ({pts[0][0]:.6g}, {pts[0][1]:.6g}) to ({pts[-1][0]:.6g}, {pts[-1][1]:.6g}) are "
-            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning, with fewer segments "
-            f"than they have moves, stays within tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
-    return RunFit(lines, hausdorff(pts, Polysegment(lines)).hausdorff, True, corners, (note,))
 
 
 def _single_kink(pts: np.ndarray, closed_loop: bool, tolerance: float, pins: tuple) -> bool:
@@ -395,12 +368,6 @@ def _single_kink(pts: np.ndarray, closed_loop: bool, tolerance: float, pins: tup
     length = float(np.hypot(*chord))
     off = abs(float(chord[0] * (pts[1][1] - pts[0][1]) - chord[1] * (pts[1][0] - pts[0][0])))
     return length > 0 and off / length > tolerance
-
-
-def _simplified(pts: np.ndarray, closed_loop: bool, tolerance: float) -> np.ndarray:
-    """Indices of the vertices RDP keeps within ``tolerance`` (at least a triangle of a loop)."""
-    keep = simplify_closed(pts, tolerance) if closed_loop else rdp_indices(pts, tolerance)
-    return keep if not closed_loop or len(keep) >= 4 else np.arange(len(pts))
 
 
 def fit_run(points: np.ndarray, tolerance: float, closed_loop: bool, limits: FitLimits,

@@ -18,14 +18,15 @@ from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.limits import check_min_segment
 from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed_limited
-from coatsim.geometry.fit import RunFit, fit_free, fit_run, taught_lines
+from coatsim.geometry.fit import fit_free, fit_run
+from coatsim.geometry.run_fit import RunFit
 from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
-from coatsim.geometry.sparse import is_sparse
+from coatsim.geometry.sparse import is_sparse, taught_lines
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
 
 Method = Literal["optimal", "paper"]

@@ -14,7 +14,8 @@ move): it passes a vertex on an arc spanning the vertex and its edges, no tighte
 polyline turns there, so it strays at least about d/2 from the vertex or its edges
 (rounding_error). A vertex between two long edges is *roundable* when that is within
 ROUND_SHARE σ; where σ is below it, the vertex is a corner at this tolerance
-(coatsim.geometry.corners) and a note says from which tolerance on it is rounded.
+(coatsim.geometry.corners) and a note says from which tolerance on it is rounded. A sparse run
+that no chain with fewer segments than moves follows is kept as its own lines (taught_lines).
 """
 
 from __future__ import annotations
@@ -24,11 +25,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.envelope import SPARSE_EDGE_SIGMAS
 from coatsim.geometry.limits import FitLimits
 from coatsim.geometry.nearest import PolylineIndex
-from coatsim.geometry.polysegment import chain
+from coatsim.geometry.polysegment import Polysegment, chain
+from coatsim.geometry.primitives import Line
+from coatsim.geometry.rdp import rdp_indices, simplify_closed
 from coatsim.geometry.refine import chord_insets
+from coatsim.geometry.run_fit import RunFit
 
 SPARSE_INSET = 0.25  # a run is sparse where an edge dips this share of σ inside the curve through its vertices
 ROUND_SHARE = 1.0  # a vertex is roundable when its rounding error (half its chord inset) is at most this share of σ
@@ -261,3 +266,22 @@ def along_edges(points: np.ndarray, tolerance: float) -> np.ndarray:
         part[-1] = b
         out.append(part)
     return np.vstack(out)
+
+
+def simplified(pts: np.ndarray, closed_loop: bool, tolerance: float) -> np.ndarray:
+    """Indices of the vertices RDP keeps within ``tolerance`` (at least a triangle of a loop)."""
+    keep = simplify_closed(pts, tolerance) if closed_loop else rdp_indices(pts, tolerance)
+    return keep if not closed_loop or len(keep) >= 4 else np.arange(len(pts))
+
+
+def taught_lines(pts: np.ndarray, closed_loop: bool, tolerance: float) -> RunFit:
+    """A sparse run as its own lines (those of its vertices RDP keeps within half the
+    tolerance), a corner at every vertex, with a note: looser caps or fillets would turn
+    tighter than the taught points do."""
+    v = pts[simplified(pts, closed_loop, tolerance / 2)]
+    lines = tuple(Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))) for a, b in zip(v[:-1], v[1:]))
+    corners = tuple(range(len(lines) - (0 if closed_loop else 1)))
+    note = (f"the {len(pts)} points from ({pts[0][0]:.6g}, {pts[0][1]:.6g}) to ({pts[-1][0]:.6g}, {pts[-1][1]:.6g}) are "
+            f"kept as {len(lines)} lines: no chain of arcs as gentle as their own turning, with fewer segments "
+            f"than they have moves, stays within tolerance_mm {tolerance:g} of them; a larger tolerance rounds them")
+    return RunFit(lines, hausdorff(pts, Polysegment(lines)).hausdorff, True, corners, (note,))
