@@ -1,4 +1,4 @@
-"""RAPID modules -> the ToolPath the robot executes, with the Reading check-program needs.
+"""RAPID modules run: the moves, rests and output switches of the entry routine's run.
 
 Runs the entry routine (``main``, or the one named) with the routines it calls, its data
 (``CONST``, ``PERS``, ``VAR``; routine data local to each call), ``IF``/``FOR``/``WHILE``/``TEST``,
@@ -13,31 +13,24 @@ the statement and is listed; a step budget stops a program that never ends.
 
 from __future__ import annotations
 
-import re
-from pathlib import Path
 from typing import Any, Optional, Sequence
 
 from coatsim.core.errors import ExecutionError, InputError
-from coatsim.core.fileio import decode_text, read_program_file
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.abb_rapid import data as d
 from coatsim.languages.abb_rapid import syntax as s
 from coatsim.languages.abb_rapid.evaluate import Expressions, Unknown
 from coatsim.languages.abb_rapid.instructions import Instructions
 from coatsim.languages.abb_rapid.motion import Motions
-from coatsim.languages.abb_rapid.names import MAX_NAME_LENGTH
-from coatsim.languages.abb_rapid.parser import parse_rapid
 from coatsim.languages.script import nodes as n
 from coatsim.languages.script.flow import Halt, Jump, Return
 from coatsim.languages.script.unknowns import UnknownLog
 from coatsim.path.language import ReadOptions
-from coatsim.path.process_record import decode as decode_record
-from coatsim.path.reading import MoveSource, OutputSwitch, Reading
-from coatsim.path.toolpath import Dwell, ToolPath
+from coatsim.path.reading import MoveSource, OutputSwitch
+from coatsim.path.toolpath import Dwell
 
 MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
-RECORD = re.compile(r"^\s*!\s*coatsim:\s*([^=]+?)\s*=(.*)$", re.MULTILINE)
 _POSITIONS = ("robtarget", "pose", "orient")  # the types whose declaration without a value is no value
 
 
@@ -335,73 +328,3 @@ class Interpreter(Instructions, Expressions, Motions):
         self.moves.append(move)
         self.sources.append(MoveSource(self.source, self.routine, call.line, call.end_line))
         self.move_frames.append(frame)
-
-
-def parse_files(paths: Sequence[Path]) -> tuple[tuple[s.Module, ...], dict[str, str]]:
-    """The modules of every file and each file's text."""
-    if not paths:
-        raise InputError("no program file given")
-    modules, texts = [], {}
-    for p in paths:
-        text = decode_text(read_program_file(p))
-        texts[str(p)] = text
-        modules += parse_rapid(text, str(p))
-    return tuple(modules), texts
-
-
-def read_rapid(paths: Sequence[Path], options: ReadOptions) -> Reading:
-    """Parse and run RAPID files loaded together; the Reading of the entry routine's run."""
-    modules, texts = parse_files(paths)
-    run = Interpreter(modules, options)
-    run.stopped = ""
-    run.run(options.program or "main")
-    main = run.main
-    record = decode_record([(k.strip(), v.strip()) for k, v in RECORD.findall(texts[main.source])], main.source)
-    toolpath = ToolPath(main.name, tuple(run.moves), record, tuple(run.dwells), tuple(run.warnings.values()),
-                        run.moves[-1].settings.tool if run.moves else None)
-    return Reading(
-        toolpath=toolpath, sources=tuple(str(p) for p in paths), program=main.name, program_source=main.source,
-        program_line=main.line, programs=tuple(r.name for r in run.routines.values()),
-        ended=f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}",
-        move_sources=tuple(run.sources), move_frames=tuple(run.move_frames),
-        n_steps=_count(main.body), n_poses=sum(1 for m in modules for x in m.data if x.type in ("robtarget", "jointtarget")),
-        switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(_problems(modules)),
-        unknowns=tuple(run.unknowns.values()) + run.unknown.unknowns(), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
-        gun_on_at_end=run.spraying,
-        external_axes=any(_has_axes(v) for v in run.globals.values()),
-    )
-
-
-def _count(body: tuple) -> int:
-    total = 0
-    for st in body:
-        if isinstance(st, s.Label):
-            continue
-        total += 1
-        if isinstance(st, s.If):
-            total += sum(_count(b) for _, b in st.branches) + _count(st.orelse)
-        elif isinstance(st, (s.For, s.While)):
-            total += _count(st.body)
-        elif isinstance(st, s.Test):
-            total += sum(_count(b) for _, b in st.cases) + _count(st.default or ())
-    return total
-
-
-def _has_axes(entry: tuple[str, Any]) -> bool:
-    type_, value = entry
-    if type_ != "robtarget" or not isinstance(value, d.Record):
-        return False
-    return any(abs(v) < d.UNSET_AXIS * 0.999 for v in value.fields["extax"].fields.values())
-
-
-def _problems(modules: Sequence[s.Module]) -> list[str]:
-    """Names longer than RAPID allows; TRAP routines (noted, not run)."""
-    out = []
-    for m in modules:
-        named = [(m.name, m.line, "module")] + [(x.name, x.line, "data") for x in m.data] + \
-            [(r.name, r.line, r.kind) for r in m.routines]
-        out += [f"{m.source}:{line}: {what} name '{name}' is longer than {MAX_NAME_LENGTH} characters"
-                for name, line, what in named if len(name) > MAX_NAME_LENGTH]
-        out += [f"{m.source}:{r.line}: TRAP {r.name} runs on an interrupt; the twin does not run it"
-                for r in m.routines if r.kind == "TRAP"]
-    return out

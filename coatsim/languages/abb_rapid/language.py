@@ -45,7 +45,7 @@ class AbbRapid:
         return self.reading(files, options).toolpath_to_run(options.gun_signal, options.needs_spray, str(files[0]))
 
     def reading(self, files: Sequence[Path], options: ReadOptions) -> Reading:
-        from coatsim.languages.abb_rapid.interpreter import read_rapid  # the interpreter loads when a program is read
+        from coatsim.languages.abb_rapid.reading import read_rapid  # the interpreter loads when a program is read
 
         return read_rapid(files, options)
 
