@@ -39,7 +39,8 @@ from coatsim.geometry.space.nearest import polyline_index
 from coatsim.geometry.space.pieces import curvature_vector, end_states, land, segment, state_point
 from coatsim.geometry.space.primitives import Arc3, Segment3
 from coatsim.geometry.space.reference import Reference, reference
-from coatsim.geometry.space.tube import Ends, TubeChain, TubeProblem
+from coatsim.geometry.space.tube import TubeProblem
+from coatsim.geometry.space.tube_chain import Ends, TubeChain
 
 TARGET = 0.999  # the fit aims at this share of σ (the exact check decides)
 LOWER = 0.98  # a chain the exact check finds above σ is refitted this much lower, ...
