@@ -267,7 +267,7 @@ def solve_and_time(toolpath: ToolPath, cell: Cell, pieces: tuple, watch: Stopwat
     events = list(line.events)
     if line.too_fast:
         more = len(line.too_fast) - 1
-        events.append(line.too_fast[0] + (f" (and on {more} more stretches)" if more else ""))
+        events.append(line.too_fast[0] + (f" (and on {more} more stretch{'es' if more > 1 else ''})" if more else ""))
     return _concatenated(line.segments, tuple(line.chunks), tuple(events), Residual(*line.worst), line.max_blend)
 
 
