@@ -42,8 +42,9 @@ def check_program(
         options = ReadOptions(gun_signal=gun, program=main, inputs=input_states(inputs), kinematics=CellKinematics(cell),
                               variables=variables(settings))
         result = check(paths, language_of(paths, language), options, gun_tcp=(cell.gun_rotation, cell.gun_offset_mm))
-        plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
-    never = not result.toolpath.spray_moves
+        if result.toolpath.moves:
+            plan_pieces(result.toolpath)  # what the robot stage would reject before any simulation
+    never = bool(result.toolpath.moves) and not result.toolpath.spray_moves
     typer.echo(check_summary(result) + ("\nnote: --gun N picks the process signal" if never else ""))
 
 

@@ -98,19 +98,19 @@ def check_program(paths: Sequence[str | Path] | str | Path, language: Language, 
 def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, np.ndarray] | None = None) -> ProgramCheck:
     """The report of a program read (see :func:`check_program`)."""
     toolpath = reading.toolpath
-    if not toolpath.moves:
+    where = f"{reading.program_source}:{reading.program_line}: program {reading.program}"
+    if not toolpath.moves and not reading.skipped:
         others = [p for p in reading.programs if p != reading.program]
         hint = f"; choose another main program (loaded: {', '.join(others)})" if others else ""
-        if reading.skipped:
-            more = f" (and {len(reading.skipped) - 1} more)" if len(reading.skipped) > 1 else ""
-            hint = f"; {reading.skipped[0]}{more}: give missing values as NAME=VALUE"
-        raise ExecutionError(f"{reading.program_source}:{reading.program_line}: program {reading.program} has no "
-                             f"motion ({reading.ended} before any motion){hint}")
+        raise ExecutionError(f"{where} has no motion ({reading.ended} before any motion){hint}")
     problems = list(reading.problems)
     if gun_tcp is not None:
         problems += [f"{reading.program_source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]
     notes = list(reading.notes)
-    if not toolpath.spray_moves:
+    if not toolpath.moves:  # read all the same: what it needs is listed, and NAME=VALUE gives it
+        notes.append(f"{where} makes no motion here: every motion of its run is skipped for want of a value (the "
+                     "statements skipped are listed); give the values as NAME=VALUE")
+    elif not toolpath.spray_moves:
         notes.append(gun_never_on(reading.sources[0], gun_signal, reading.outputs))
     elif reading.gun_on_at_end:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")

@@ -114,8 +114,9 @@ class Kinematics(Protocol):
     def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
         ...
 
-    def home(self, number: int) -> np.ndarray:
-        """HOME n (1 = the start configuration of every program); InputError if the cell has none."""
+    def home(self, number: int) -> Optional[np.ndarray]:
+        """HOME n (1 = the start configuration of every program); None where the cell has no
+        keyframe ``home<n>`` (a home pose taught on the pendant)."""
         ...
 
 

@@ -9,7 +9,7 @@ from typing import Optional
 import numpy as np
 
 from coatsim.core.numeric import ROUND_OFF
-from coatsim.core.errors import ExecutionError, InputError
+from coatsim.core.errors import ExecutionError
 from coatsim.path.tool_frames import gun_in_tcp
 from coatsim.geometry.space.pose import Pose
 from coatsim.path.toolpath import ToolFrame
@@ -41,16 +41,13 @@ class CellKinematics:
         tcp_rotation = rotation @ m_rotation.T
         return Pose(tcp_rotation, position - tcp_rotation @ m_offset)
 
-    def home(self, number: int) -> np.ndarray:
+    def home(self, number: int) -> Optional[np.ndarray]:
         import mujoco
 
         if number == 1:
             return self.cell.home.copy()
-        name = f"home{number}"
-        key = mujoco.mj_name2id(self.cell.model, mujoco.mjtObj.mjOBJ_KEY, name)
-        if key < 0:
-            raise InputError(f"HOME {number}: the cell model {self.cell.path.name} has no keyframe '{name}'")
-        return self.cell.model.key_qpos[key][:6].copy()
+        key = mujoco.mj_name2id(self.cell.model, mujoco.mjtObj.mjOBJ_KEY, f"home{number}")
+        return None if key < 0 else self.cell.model.key_qpos[key][:6].copy()
 
 
 class LazyKinematics:
@@ -70,5 +67,5 @@ class LazyKinematics:
     def forward(self, joints_rad: np.ndarray, tool: Optional[ToolFrame] = None) -> Pose:
         return self._get().forward(joints_rad, tool)
 
-    def home(self, number: int) -> np.ndarray:
+    def home(self, number: int) -> Optional[np.ndarray]:
         return self._get().home(number)

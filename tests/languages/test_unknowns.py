@@ -321,3 +321,20 @@ def test_krl_base_of_the_controllers_table_is_an_unknown(tmp_path):
     given = _reading("krl", paths, **{"TOOL_DATA[1]": "{X 0,Y 0,Z 250,A 0,B 0,C 0}",
                                       "BASE_DATA[3]": "{X 500,Y 100,Z 300,A 0,B 0,C 0}"})
     assert not given.skipped and _ends(given)[-1] == (600, 100, 300)
+
+
+@pytest.mark.parametrize("suffix,text", [
+    (".script", "def spray():\n  set_digital_out(0, True)\n  movel(pose_trans(Plane_Part, p[0, 0, 0, 3.14, 0, 0]))\n"
+                "  movel(pose_trans(Plane_Part, p[0.1, 0, 0, 3.14, 0, 0]))\n  set_digital_out(0, False)\nend\n"),
+    (".as", ".PROGRAM sprayv()\n  SPEED bead_speed MM/S ALWAYS\n  JAPPRO start_p, 50\n  LMOVE start_p\n  SIGNAL 1\n"
+            "  LMOVE SHIFT(start_p BY len, 0, 0)\n  SIGNAL -1\n.END\n"),
+])
+def test_a_program_whose_every_motion_waits_for_a_value_is_read_not_refused(tmp_path, run_cli, suffix, text):
+    """Reading is not running: with every motion skipped for want of a value, check-program
+    still reads the program (exit 0), lists what it needs and says it makes no motion."""
+    path = tmp_path / f"p{suffix}"
+    path.write_text(text)
+    code, out, err = run_cli(["check-program", str(path)])
+    assert code == 0, err
+    assert "moves: 0 joint, 0 linear, 0 arc" in out and "makes no motion here: every motion of its run is skipped" in out
+    assert out.count("skipped") >= 2 and "give values as --set NAME=VALUE" in out

@@ -357,6 +357,8 @@ class Interpreter:
         if kin is None:
             raise self.error(f"G{28 if number == 1 else 30} goes home; reading it needs the cell (its home pose)")
         joints = kin.home(number)
+        if joints is None:
+            raise self.error(f"G30 goes to the second reference point: the cell model has no keyframe 'home{number}'")
         self.builder.joint(kin.forward(joints), MotionSettings(RAPID_MM_S, 0.0, False, True), self.line, joints)
         self.controls.append(None)
 

@@ -46,6 +46,8 @@ from coatsim.path.toolpath import Kinematics, ToolPath
 
 MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
+# Statements that place the arm or a pose: an unknown number in them skips them (no made-up place).
+_MOTIONS = (ast.Move, ast.Appro, ast.Depart, ast.Draw, ast.Home, ast.PointAssign)
 
 
 @dataclass(frozen=True, eq=False)
@@ -113,6 +115,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.executions: Counter = Counter()
         self.unknowns = Unknowns()
         self.skipped_via: Optional[int] = None  # line of a C1MOVE skipped: its C2MOVE goes too
+        self.placing = False  # a motion statement runs: an unknown number is Absent, not 0 (no move to a made-up place)
         self.outputs: set[int] = set()  # outputs the program switches (SIGNAL, PULSE, DLYSIG, BITS)
         self.controller = Controller(full_speed_mm_s, self.where, self.home_pose if kinematics is not None else None)
 
@@ -271,6 +274,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
     def statement(self, st: ast.Statement) -> None:
         """Run one statement; one that cannot run for want of a value is skipped with a note."""
         before = self.unknowns.reads
+        self.placing = isinstance(st, _MOTIONS)
         try:
             execute_statement(self, st)
         except InvalidPose as exc:
@@ -283,15 +287,21 @@ class Interpreter(Memory, SignalIO, RobotQueries):
                 raise
             self.absent(st, f"it reads {self.unknowns.last}, which has no value here, and then "
                             f"{str(exc).split(': ', 1)[-1]}")
+        finally:
+            self.placing = False
 
     def absent(self, st: ast.Statement, reason: str, unsimulated: bool = False) -> None:
-        """Skip ``st``: its POINT / HERE target has no value after it, an arc whose C1MOVE is
-        skipped loses its C2MOVE too."""
-        if isinstance(st, (ast.PointAssign, ast.Here)) and st.target.kind != "string":
-            try:
+        """Skip ``st``: its POINT / HERE target (the reals of a DECOMPOSE) has no value after it,
+        an arc whose C1MOVE is skipped loses its C2MOVE too."""
+        try:
+            if isinstance(st, (ast.PointAssign, ast.Here)) and st.target.kind != "string":
                 self.set("joint" if st.target.kind == "joint" else "pose", st.target, ABSENT)
-            except (CoatsimError, Absent):
-                pass  # (an index that cannot be computed: nothing to mark)
+            elif isinstance(st, ast.Decompose) and len(st.target.index) == 1:  # the six reals it would have set
+                first = self.eval.integer(st.target.index[0], "the DECOMPOSE index")
+                for i in range(6):
+                    self.set("real", ast.Name(st.target.name, (ast.Num(float(first + i)),)), ABSENT)
+        except (CoatsimError, Absent):
+            pass  # (an index that cannot be computed: nothing to mark)
         if isinstance(st, ast.Move) and st.op in ("C1MOVE", "C2MOVE"):
             self.controller.c1 = None
             self.skipped_via = st.line if st.op == "C1MOVE" else None

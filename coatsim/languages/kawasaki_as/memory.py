@@ -3,7 +3,7 @@ kind; what no file gives (an *unknown*, see :mod:`~coatsim.languages.kawasaki_as
 values given from outside the files (``NAME=VALUE``).
 
 A part of the interpreter (``Interpreter`` derives from it), which provides ``stack``,
-``globals``, ``eval``, ``controller``, ``base``, ``programs``, ``unknowns`` and its
+``globals``, ``eval``, ``controller``, ``base``, ``programs``, ``unknowns``, ``placing`` and its
 ``where``/``error``/``warn``.
 """
 
@@ -67,8 +67,10 @@ class Memory:
         base = norm(name.name)
         if self.unknowns.read(base, kind, self.where(), self.shown(name, k)):
             self.warnings.add(f"unknown:{base}", self.unknowns.first[base].note())
-        if kind in _DEFAULTS:
+        if kind in _DEFAULTS and not self.placing:
             return _DEFAULTS[kind]
+        if kind in _DEFAULTS:
+            raise Absent(f"{self.shown(name, k)} has no value, and a motion goes to no place the files do not give")
         raise Absent(f"{'pose' if kind == 'pose' else 'joint value'} {self.shown(name, k)} has no value")
 
     @staticmethod

@@ -80,7 +80,8 @@ def _switch(st: ast.Statement, gun: int, source: str, reals: Mapping[str, float]
 
 
 def _problems(files, run: Run, used: set[str]) -> list[str]:
-    """Long names, poses never used, sections not read, arc pairs of 180 deg or more."""
+    """Long names, poses never used, external axes that move, sections not read, arc pairs of
+    180 deg or more."""
     problems: list[str] = []
     unused = []
     for f in files:
@@ -93,6 +94,17 @@ def _problems(files, run: Run, used: set[str]) -> list[str]:
     problems += unused[:_LISTED]
     if len(unused) > _LISTED:
         problems.append(f"... and {len(unused) - _LISTED} more poses defined but never used")
+    extra = {}  # the external axis values (rails, positioners) of the poses the program names
+    for f in files:
+        for name, trans in f.trans.items():
+            if trans.extra and name.split("[")[0] in used:
+                extra.setdefault(tuple(trans.extra), f"{f.source}:{trans.line}: {trans.name}")
+    if len(extra) > 1:
+        shown = "; ".join(f"{where} {', '.join(f'{v:g}' for v in values)}"
+                          for (values, where) in list(extra.items())[:2])
+        problems.append(f"the poses hold different external axis values ({shown}): an external axis (a rail, a "
+                        "positioner) moves during the program; coatsim does not move external axes, so the path read "
+                        "is the arm's alone, not the tool's over the part")
     sections = [f".{s.name} (line {s.line})" for f in files for s in f.sections]
     if sections:
         problems.append(f"sections not read (controller data): {', '.join(sections)}")

@@ -8,6 +8,7 @@ import numpy as np
 
 from coatsim.core.errors import CoatsimError
 from coatsim.geometry.space.pose import Pose
+from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.values import PoseJoints
 from coatsim.path.toolpath import Kinematics
 
@@ -30,11 +31,12 @@ class RobotQueries:
             raise exc.prefixed(self.where()) from None
 
     def home_joints(self, number: int) -> np.ndarray:
-        kin = self.need_kinematics("HOME")
-        try:
-            return np.asarray(kin.home(number), dtype=float)
-        except CoatsimError as exc:
-            raise exc.prefixed(self.where()) from None
+        """HOME n's joints (rad): the cell's keyframe, else the joint value ``#home<n>`` given from
+        outside (a home pose taught on the pendant is kept by the controller: an unknown)."""
+        q = self.need_kinematics("HOME").home(number)
+        if q is None:
+            return self.joints_rad(self.eval.joints(ast.Name(f"#home{number}")))
+        return np.asarray(q, dtype=float)
 
     def home_pose(self):
         """The pose and joints every program starts from: the cell's home."""

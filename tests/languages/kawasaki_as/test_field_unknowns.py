@@ -202,3 +202,57 @@ def test_a_signal_another_task_sets_is_unknown_until_the_program_sets_it():
     assert "f.as:4: output 9 is not given; taken as OFF" in text
     given = run_text(".PROGRAM t()\n  IF SIG(2010) THEN\n    JMOVE b1\n  END\n.END\n" + POSES, inputs={2010: True})
     assert ys(given) == [-150] and notes(given) == ""
+
+
+def test_a_motion_to_a_place_made_of_unknown_numbers_is_skipped_not_made_up():
+    """A real no file gives reads as 0 in a condition, but a motion or a pose built from one goes
+    nowhere: LMOVE TRANS(x, ...) with x unknown would drive the arm to x = 0."""
+    run = run_text(".PROGRAM t()\n  JMOVE b1\n  LMOVE TRANS(x.start, 0, 300, 0, 180, 0)\n"
+                   "  POINT .p = SHIFT(b1 BY gap, 0, 0)\n  LMOVE .p\n  LAPPRO b2, depth\n  DRAW dx\n"
+                   "  IF x.start > 5 THEN\n    LMOVE b3\n  END\n.END\n" + POSES)
+    assert len(run.toolpath.moves) == 1
+    assert [s.split(": ", 1)[1].split(" skipped")[0] for s in run.skipped] == ["LMOVE", "POINT", "LMOVE", "LAPPRO",
+                                                                               "DRAW"]
+    assert "x.start has no value, and a motion goes to no place the files do not give" in run.skipped[0]
+    assert [u.name for u in run.unknowns] == ["x.start", "gap", "depth", "dx"]
+    given = run_text(".PROGRAM t()\n  JMOVE b1\n  LMOVE TRANS(x.start, 0, 300, 0, 180, 0)\n.END\n" + POSES,
+                     variables={"x.start": 650.0})
+    assert np.allclose(ends(given)[1].translation_mm, [650, 0, 300]) and given.skipped == ()
+
+
+def test_the_reals_of_a_decompose_skipped_have_no_value_after_it():
+    run = run_text(".PROGRAM t()\n  v[1] = 600\n  v[2] = 0\n  v[3] = 300\n  DECOMPOSE v[1] = wp\n"
+                   "  JMOVE TRANS(v[1], v[2], v[3], 0, 180, 0)\n.END\n")
+    assert run.toolpath.moves == ()
+    assert "JMOVE skipped: v[1] has no value (its assignment was skipped)" in run.skipped[1]
+
+
+def test_a_home_the_cell_has_no_keyframe_for_is_an_unknown_joint_value():
+    from coatsim.robot.cell import load_cell
+    from coatsim.robot.kinematics import CellKinematics
+
+    text = ".PROGRAM t()\n  HOME 2\n  JMOVE b1\n.END\n" + POSES
+    kin = CellKinematics(load_cell())
+    run = run_text(text, kinematics=kin)
+    assert len(run.toolpath.moves) == 1 and "HOME skipped: joint value #home2 has no value" in run.skipped[0]
+    assert [u.name for u in run.unknowns] == ["#home2"]
+    given = run_text(text, kinematics=kin, variables={"#home2": "#[10, 20, -30, 0, 40, 0]"})
+    assert len(given.toolpath.moves) == 2 and given.skipped == ()
+    assert np.allclose(np.degrees(given.toolpath.moves[0].joints_rad), [10, 20, -30, 0, 40, 0])
+
+
+def test_poses_whose_external_axes_differ_are_a_problem_not_a_silent_path(tmp_path):
+    """A rail or positioner moving between poses changes the tool's path over the part; the twin
+    does not move external axes, so check-program says so (poses without external values, tools
+    and frames, do not count)."""
+    from coatsim.languages.registry import language
+    from coatsim.path.check import check_program
+    from coatsim.path.language import ReadOptions
+
+    path = tmp_path / "trk.as"
+    path.write_text(".PROGRAM trk()\n  TOOL gun\n  JMOVE a\n  SIGNAL 1\n  LMOVE b\n  SIGNAL -1\n.END\n.TRANS\n"
+                    "gun 0 0 250 0 0 0\na 600 0 300 0 180 0 0\nb 700 0 300 0 180 0 500\n.END\n")
+    problems = check_program(path, language("kawasaki-as"), ReadOptions()).problems
+    assert any("different external axis values" in p and "a 0" in p and "b 500" in p for p in problems), problems
+    path.write_text(path.read_text().replace("0 180 0 500", "0 180 0 0"))
+    assert not any("external" in p for p in check_program(path, language("kawasaki-as"), ReadOptions()).problems)

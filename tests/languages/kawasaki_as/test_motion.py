@@ -244,7 +244,6 @@ def test_start_pose_is_home_with_the_cell(kin):
 
 
 @pytest.mark.parametrize("body,kind,words", [
-    ("  HOME 2\n", InputError, "no keyframe 'home2'"),
     ("  JMOVE #[0, 0, 35, 0, 55, 400]\n", ExecutionError, "outside the cell's range"),
     ("  JMOVE #[0, 0, 35]\n", InputError, "needs 6 values"),
 ])
