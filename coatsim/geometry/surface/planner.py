@@ -176,7 +176,11 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     if oriented.flipped:
         notes.append(f"turned {oriented.flipped} of {len(part.faces)} triangles to a consistent outward winding")
     coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
-    v, f, _ = refined(part.vertices_mm, oriented.faces, coarse, part.file, "use a wider footprint or decimate the part")
+    # a part read at a guessed unit too large for its budget was most likely guessed wrong: say so
+    guessed = next((f", or give the units ({n.split(': ', 1)[1].split('; ')[0]})" for n in part.notes
+                    if n.startswith("units auto: largest extent")), "")
+    v, f, _ = refined(part.vertices_mm, oriented.faces, coarse, part.file,
+                      f"use a wider footprint or decimate the part{guessed}", parameters=("units",) if guessed else ())
     mask = select_faces(v, f, face_normals(v, f)[0], o.region, toward, s.smoothing_mm)
     if not mask.any():
         raise EmptyRegionOfInterest(f"no face of the part that the gun sees lies in the region "
@@ -185,7 +189,8 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     both = mask | smoothing_ring(v, f, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
     sv, sf, _ = submesh(v, f, both)
     sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
-                             "smaller region", labels=mask[both], parameters=("spacing_mm", "max_edge_mm"))
+                             f"smaller region{guessed}", labels=mask[both],
+                             parameters=("spacing_mm", "max_edge_mm") + (("units",) if guessed else ()))
     inside = inside.astype(bool)
     # from here on the surface is manifold: a bow-tie vertex or a non-manifold edge is split
     split, copies = manifold_split(sf)

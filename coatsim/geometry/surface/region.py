@@ -145,7 +145,9 @@ def check_region(spec: RegionSpec) -> None:
             raise InputError("region box must be six finite numbers xmin,ymin,zmin,xmax,ymax,zmax (mm)",
                              parameters=("region",))
         if not np.all(high > low):
-            raise InputError(f"region box must have max > min on every axis, found {tuple(low)} .. {tuple(high)}",
+            shown = ", ".join(f"{v:g}" for v in (*low, *high))
+            raise InputError(f"region box must have max > min on every axis (xmin,ymin,zmin,xmax,ymax,zmax), "
+                             f"found {shown}",
                              parameters=("region",))
 
 

@@ -121,3 +121,16 @@ def test_ripple_sets_the_largest_spacing_that_keeps_it(box_file, tmp_path, run_c
     assert paths.spacing_mm == pytest.approx(math.pi * 4 * math.sqrt(2 / math.log(400)), rel=1e-6)
     assert np.diff([p.points[:, 1].mean() for p in paths.passes]) == pytest.approx(
         paths.spacing_mm * np.sign(paths.passes[1].points[0, 1] - paths.passes[0].points[0, 1]), rel=1e-6)
+
+
+def test_a_part_over_the_budget_at_a_guessed_unit_names_the_guess(tmp_path, run_cli):
+    """An 8-inch plate without units is read as 8 m (extent below the metres threshold): the
+    budget error then names the guess and --units, the fix that is right, besides the budget."""
+    path = tmp_path / "plate_in.stl"
+    trimesh.creation.box((8.0, 6.0, 0.5)).export(path)
+    code, stdout, stderr = run_cli(["plan", str(path), "-o", str(tmp_path / "p.json"), "--region", "facing:0,0,1"])
+    assert code == 2 and len(stderr.splitlines()) == 1, stderr
+    assert "or give the --units (largest extent 8 read as metres (8000 mm))" in stderr
+    code, _, stderr = run_cli(["plan", str(path), "-o", str(tmp_path / "q.json"), "--region", "facing:0,0,1",
+                               "--units", "in"])
+    assert code == 0, stderr
