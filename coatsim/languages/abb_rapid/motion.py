@@ -101,13 +101,10 @@ class Motions:
             self.tool_record, self.wobj_record = tool_rec, wobj_rec
             if name in ("movej", "movejdo", "triggj"):
                 move = JointMove(self.tcp, end, settings, self.spraying, call.line)
-            elif self.tcp is None:
-                raise self.failure(f"{call.name} is the first motion: the robot's position before it is unknown; start "
-                                   "with MoveJ or MoveAbsJ")
-            elif via is not None:
-                move = CircularMove(self.tcp, via, end, settings, self.spraying, call.line)
             else:
-                move = LinearMove(self.tcp, end, settings, self.spraying, call.line)
+                start = self.tcp if self.tcp is not None else self._home_start(call.name, tool)
+                move = (CircularMove(start, via, end, settings, self.spraying, call.line) if via is not None
+                        else LinearMove(start, end, settings, self.spraying, call.line))
             self.add_move(move, call, frame)
             self.tcp = end
         if name.endswith("do"):  # the output switches in the middle of the corner path
@@ -130,6 +127,18 @@ class Motions:
             raise self.error("a position written as * (stored in the instruction) has no coordinates in the file: "
                              "give it a robtarget")
         return d.pose_of(d.coerce("robtarget", self.eval(e), self.error), self.error)
+
+    def _home_start(self, word: str, tool: ToolFrame) -> Pose:
+        """Where a linear or circular first motion starts: the cell's home, where the twin's arm
+        stands when the program starts (a robot's is wherever it stands; without the cell it is
+        unknown)."""
+        kin = self.options.kinematics
+        if kin is None:
+            raise self.failure(f"{word} is the first motion: the robot's position before it is unknown; start with "
+                               "MoveJ or MoveAbsJ")
+        self.warn("first-motion", f"{word} is the first motion: it starts from the cell's home, where the twin's arm "
+                  "stands when the program starts")
+        return kin.forward(kin.home(1), tool)
 
     def _joint_target(self, e: n.Expr, tool: ToolFrame) -> tuple[Pose, np.ndarray]:
         target = d.coerce("jointtarget", self.eval(e), self.error)

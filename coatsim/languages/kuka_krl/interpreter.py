@@ -64,6 +64,7 @@ class Interpreter(Statements, Expressions, Motions):
         self.tool: Optional[ToolFrame] = None
         self.int_names: set[str] = set()  # the names declared INT (any scope)
         self.frames_unknown = ""  # the inline form's frame data no file gives, until one that is given
+        self.frames_given: set[str] = set()  # $TOOL, $BASE set by the program since (both: the frames are known)
         self.frames: list[dict[str, Any]] = []
         self.moves: list = []
         self.sources: list[MoveSource] = []
@@ -160,6 +161,10 @@ class Interpreter(Statements, Expressions, Motions):
             if key == "$TOOL":
                 pose = v.pose_of(value)
                 self.tool = ToolFrame(pose.rotation, pose.translation_mm, self.line)
+            if key in ("$TOOL", "$BASE") and self.frames_unknown:  # the program gives the frames itself
+                self.frames_given.add(key)
+                if len(self.frames_given) == 2:
+                    self.frames_unknown = ""
             return
         if isinstance(target, n.Field):
             holder = self._stored(target.base) if isinstance(target.base, n.Name) else self.eval(target.base)

@@ -105,6 +105,7 @@ class Motions:
             return
         if not isinstance(fdat, v.Struct):  # $config.dat's FHOME, say: a motion in its frames is skipped
             self.frames_unknown = fdat if isinstance(fdat, str) else "FDAT_ACT"
+            self.frames_given = set()
             return
         for kind in ("TOOL", "BASE"):
             if f"{kind}_NO" in fdat.fields:
@@ -126,6 +127,17 @@ class Motions:
         joints = np.radians([float(axes.fields[a]) for a in names])
         end = self.options.kinematics.forward(joints, self.tool)
         return end, v.frame_of(base.inverse() @ end, "E6POS", self.position), joints
+
+    def _home_start(self, word: str) -> Pose:
+        """Where a LIN or CIRC first motion starts: the cell's home, where the twin's arm stands
+        when the program starts (a controller runs its first motion as the BCO run to a full
+        position, normally a PTP; without the cell the start is unknown)."""
+        kin = self.options.kinematics
+        if kin is None:
+            raise self.failure(f"{word} is the first motion: the robot's position before it is unknown; start with PTP")
+        self.warn("first-motion", f"{word} is the first motion: it starts from the cell's home, where the twin's arm "
+                  "stands when the program starts (a controller's BCO run is normally a PTP)")
+        return kin.forward(kin.home(1), self.tool)
 
     def _stop_previous(self) -> None:
         if self.moves and not self.moves[-1].settings.stop_at_end:
@@ -224,12 +236,10 @@ class Motions:
         settings = MotionSettings(speed, cdis if blended else 0.0, blended, not blended, self.tool)
         if word.startswith("PTP"):
             move = JointMove(self.tcp, end, settings, self.spraying, ln.line, joints_rad=joints)
-        elif self.tcp is None:
-            raise self.failure(f"{word} is the first motion: the robot's position before it is unknown; start with PTP")
-        elif via is not None:
-            move = CircularMove(self.tcp, via, end, settings, self.spraying, ln.line)
         else:
-            move = LinearMove(self.tcp, end, settings, self.spraying, ln.line)
+            start = self.tcp if self.tcp is not None else self._home_start(word)
+            move = (CircularMove(start, via, end, settings, self.spraying, ln.line) if via is not None
+                    else LinearMove(start, end, settings, self.spraying, ln.line))
         self.moves.append(move)
         self.sources.append(MoveSource(self.source, self.routine, ln.line, ln.line))
         self.move_frames.append(base)

@@ -123,3 +123,20 @@ def test_a_position_set_component_by_component_is_used_once_complete(tmp_path):
     r = read(tmp_path, prog(f"  DECL E6POS p\n{body}  LIN p\n  p.X = 620\n  LIN p"))
     assert np.allclose(r.toolpath.moves[1].end.translation_mm, [600, 50, 280])
     assert np.allclose(r.toolpath.moves[2].end.translation_mm, [620, 50, 280])
+
+
+def test_frames_set_by_the_program_after_an_unknown_fdat_bring_the_motions_back(tmp_path):
+    """``FDAT_ACT = FHOME`` ($config.dat's, not loaded) leaves the frames unknown and skips the
+    Cartesian motions, until the program sets both $TOOL and $BASE itself."""
+    body = ("  FDAT_ACT=FHOME\n  BAS(#PTP_PARAMS,100)\n  PTP {A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\n"
+            "  $TOOL = {X 0,Y 0,Z 250,A 0,B 0,C 0}\n{base}  LIN {X 0,Y 0,Z 100,A 0,B 180,C 0}\n"
+            "  LIN {X 100,Y 0,Z 100,A 0,B 180,C 0}\n")
+    from coatsim.robot.cell import load_cell
+    from coatsim.robot.kinematics import CellKinematics
+
+    kin = CellKinematics(load_cell())
+    only_tool = read(tmp_path, prog(body.replace("{base}", "")), kinematics=kin)
+    assert len(only_tool.skipped) == 2 and "FHOME" in only_tool.skipped[0]
+    both = read(tmp_path, prog(body.replace("{base}", "  $BASE = {X 700,Y 0,Z 200,A 0,B 0,C 0}\n")), kinematics=kin)
+    assert both.skipped == () and len(both.toolpath.moves) == 4
+    assert np.allclose(both.toolpath.moves[-1].end.translation_mm, [800, 0, 300])
