@@ -29,6 +29,7 @@ from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.fanuc_tp.motion import FULL_SPEED_MM_S, Motions
 from coatsim.languages.fanuc_tp.program import LsProgram
+from coatsim.languages.fanuc_tp.positions import values_of
 from coatsim.languages.fanuc_tp.registers import PositionValue, Registers
 from coatsim.languages.fanuc_tp.statements import (Assign, Block, Call, If, Jump, Label, Motion, Note, Pulse, Remark,
                                                    Select, Statement, Stop, Wait)
@@ -288,8 +289,17 @@ class FanucRun(Motions):
 
     def position_value(self, value, args: tuple) -> PositionValue:
         if value[0] != "pos":
-            raise self.error("a position register takes a position (PR[i], LPOS, JPOS, UFRAME[i], UTOOL[i])")
-        return self.data.combine(value[1], args, self.lpos, self.jpos)
+            raise self.error("a position register takes a position (PR[i], P[i], LPOS, JPOS, UFRAME[i], UTOOL[i])")
+        return self.data.combine(value[1], args, self.lpos, self.jpos, self.point)
+
+    def point(self, number: int) -> PositionValue:
+        """``P[i]`` of the program's /POS as a register's value (``PR[i] = P[i]``: its numbers as taught)."""
+        position = self.program.positions.get(number)
+        if position is None:
+            raise self.error(f"P[{number}] is not in the program's /POS section")
+        if position.pose is None:
+            return PositionValue(tuple(float(v) for v in position.joints_deg[:6]), True)
+        return PositionValue(values_of(position.pose))
 
     def lpos(self) -> Pose:
         frame = self.data.frame("UFRAME", self.uf or 0)

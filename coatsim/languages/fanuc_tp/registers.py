@@ -199,9 +199,10 @@ class Registers:
         current[element - 1] = value
         self.pr[number] = PositionValue(tuple(current), self.pr[number].joints if number in self.pr else False)
 
-    def combine(self, items: tuple, args: tuple, here: Callable[[], Pose],
-                joints: Callable[[], np.ndarray]) -> PositionValue:
-        """The value of ``LPOS``, ``JPOS``, ``PR[i]``, ``UFRAME[i]``, ``UTOOL[i]`` summed element by element."""
+    def combine(self, items: tuple, args: tuple, here: Callable[[], Pose], joints: Callable[[], np.ndarray],
+                point: Callable[[int], PositionValue]) -> PositionValue:
+        """The value of ``LPOS``, ``JPOS``, ``PR[i]``, ``P[i]`` (its values as taught, in its own
+        frames), ``UFRAME[i]``, ``UTOOL[i]`` summed element by element."""
         total: Optional[np.ndarray] = None
         kept = _cancelled(items)
         if not kept:  # PR[i]=PR[i]-PR[i], LPOS-LPOS: the idioms that clear a register, whatever it held
@@ -215,7 +216,7 @@ class Registers:
             elif atom[0] == "PR":
                 value = self.position(self.index(atom[1], args))
             elif atom[0] == "P":
-                raise self.error("a position register takes a P[i] only through a motion; use PR[i] or LPOS")
+                value = point(self.index(atom[1], args))
             else:
                 frame = self.frame(atom[0], self.index(atom[1], args))
                 if frame is None:

@@ -152,6 +152,15 @@ def test_position_registers(tmp_path):
     assert np.allclose(tp.moves[0].target.rotation, rot_x(math.pi))
 
 
+def test_a_position_register_takes_a_taught_position_and_its_elements_change_it(tmp_path):
+    """``PR[i] = P[j]`` copies the position's numbers (the palletising idiom: a taught base,
+    then an element raised per layer)."""
+    body = ["J P[1] 50% FINE", "PR[10]=P[3]", "PR[10,3]=PR[10,3]+25", "L PR[10] 100mm/sec FINE"]
+    tp = run(ls(body, P), tmp_path)
+    assert [list(at(m)) for m in tp.moves] == [[500, 0, 300], [650, 50, 325]]
+    assert np.allclose(tp.moves[1].end.rotation, rot_x(math.pi))
+
+
 def test_offset_tool_offset_and_incremental_motions(tmp_path):
     body = ["PR[5,1]=0", "PR[5,2]=10", "PR[5,3]=0", "PR[6,1]=0", "PR[6,3]=-50", "J P[1] 50% FINE",
             "L P[2] 100mm/sec FINE Offset,PR[5]", "L P[2] 100mm/sec FINE Tool_Offset,PR[6]",
