@@ -35,6 +35,8 @@ def check_sampling(points: np.ndarray, name: str) -> None:
     count = reversals(points)
     share = count / max(len(points) - 2, 1)
     check_budget(f"{name}: points where the curve doubles back (turns by more than {REVERSAL_DEG:g}°: {share:.0%} of "
-                 "its points; its sampling is coarser than its own features, such as random points, a wave sampled "
-                 "more coarsely than its wavelength or more turns than points)", count, "curve_reversals",
-                 "sample the curve with several points per bend, or give fewer, larger features")
+                 "its points; its sampling is coarser than its own features, such as random points, measurement "
+                 "noise larger than the point spacing, a wave sampled more coarsely than its wavelength or more turns "
+                 "than points)", count, "curve_reversals",
+                 "smooth or thin out a noisy measured curve, sample the curve with several points per bend, or give "
+                 "fewer, larger features")

@@ -33,6 +33,7 @@ Method = Literal["optimal", "paper"]
 TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
 TAUGHT_AIM = 0.9  # ... it is fitted again within this share of σ (the fewer segments kept)
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
+SMALL_SIGMAS = 10.0  # a curve spanning fewer tolerances than this is most likely in another unit than mm
 METHODS = ("optimal", "paper")
 
 
@@ -218,7 +219,11 @@ def segment_curve(
             poly, dev, input_radius, kept, notes = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
         except InputError as exc:
             raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
-    check_chain(poly, extent_mm(pts))
+    extent = extent_mm(pts)
+    check_chain(poly, extent)
+    if extent < SMALL_SIGMAS * tol:
+        notes += (f"the curve spans {extent:.3g} mm, {extent / tol:.2g} times tolerance_mm {tol:g}: its coordinates "
+                  "are read as mm (a curve in metres or inches is scaled to mm first)",)
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
                         speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept, notes=notes)

@@ -452,3 +452,14 @@ def test_rows_with_more_than_two_columns_are_rejected_or_read_consistently(tmp_p
         assert str(path) in str(exc)
         return
     np.testing.assert_array_equal(c.points, [[0, 0], [1, 1], [2, 4]])
+
+
+def test_a_curve_a_few_tolerances_across_gets_a_note_on_its_unit():
+    """An ellipse given in metres (0.3 x 0.12) is fitted as a 0.3 mm curve: the result says so."""
+    from coatsim.geometry import make_curve, segment_curve
+
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    small = np.column_stack((0.15 * np.cos(t), 0.06 * np.sin(t)))
+    notes = segment_curve(make_curve(small, "metres", "yes"), 0.1).notes
+    assert any("the curve spans 0.323 mm" in n and "read as mm" in n for n in notes), notes
+    assert not any("read as mm" in n for n in segment_curve(make_curve(small * 1000, "mm", "yes"), 0.1).notes)
