@@ -32,8 +32,9 @@ _TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimet
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".off", ".glb", ".gltf")
 #: vertices closer than this fraction of the part's extent are one vertex
 MERGE_FRACTION = 1e-9
-#: triangles with an area below this fraction of the extent squared are degenerate
-DEGENERATE_FRACTION = 1e-14
+#: triangles thinner than this fraction of the extent (height over their longest edge) are degenerate:
+#: a zero-area triangle, or a sliver along an edge rounded off its line (both left by exporters)
+SLIVER_FRACTION = 1e-7
 
 
 @dataclass(frozen=True, eq=False)
@@ -172,12 +173,14 @@ def _repaired(vertices: np.ndarray, faces: np.ndarray, name: str, notes: list[st
     vertices = vertices[first]
     a, b, c = (vertices[faces[:, k]] for k in range(3))
     area2 = np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    longest = np.linalg.norm(np.stack((b - a, c - b, a - c)), axis=2).max(axis=0)
     good = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])
-    good &= area2 > 2 * DEGENERATE_FRACTION * extent**2
+    good &= area2 > SLIVER_FRACTION * extent * longest  # height = area2 / longest
     if not good.any():
         raise InputError(f"{name}: every triangle is degenerate (zero area); re-export the surface")
     if (~good).sum():
-        notes.append(f"dropped {int((~good).sum())} degenerate triangle(s) (zero area)")
+        notes.append(f"dropped {int((~good).sum())} degenerate triangle(s) (zero area, or thinner than "
+                     f"{SLIVER_FRACTION * extent:.2g} mm)")
     faces = faces[good]
     _, unique = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
     if len(unique) < len(faces):

@@ -112,6 +112,25 @@ def test_duplicates_degenerate_and_duplicate_triangles_are_repaired():
     assert "merged" in notes and "degenerate" in notes and "duplicate triangle" in notes
 
 
+def test_slivers_along_an_edge_rounded_off_its_line_are_dropped_and_the_plan_is_the_clean_ones():
+    """A triangle (a, midpoint of ab written to 6 decimals, b) is a sliver a micrometre thin lying on
+    the edge ab: a third face on that edge, with a meaningless normal. It is degenerate at the
+    part's resolution and dropped, so the plan is that of the part without it."""
+    vertices, faces = grid(120.0, 60.0, 12, 6)
+    vertices[:, 2] = 8.0 * np.sin(vertices[:, 0] / 40.0)
+    rng = np.random.default_rng(3)
+    extra_v, extra_f = [], []
+    for k, f in enumerate(faces[rng.choice(len(faces), 20, replace=False)]):
+        a, b = vertices[f[0]], vertices[f[1]]
+        extra_v.append(np.round((a + b) / 2 + [1e-6, -1e-6, 1e-6], 6))
+        extra_f.append([f[0], len(vertices) + k, f[1]])
+    part = part_from_arrays(np.vstack([vertices, extra_v]), np.vstack([faces, extra_f]))
+    assert len(part.faces) == len(faces) and "dropped 20 degenerate triangle(s)" in " ".join(part.notes)
+    clean = plan(part_from_arrays(vertices, faces), options(region=Facing((0.0, 0.0, 1.0), 60.0)))
+    dirty = plan(part, options(region=Facing((0.0, 0.0, 1.0), 60.0)))
+    assert len(dirty.passes) == len(clean.passes)
+
+
 def test_flipped_triangles_are_turned_and_the_passes_do_not_change():
     vertices, faces = grid(120.0, 80.0, 24, 16)
     rng = np.random.default_rng(3)
