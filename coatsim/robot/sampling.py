@@ -126,7 +126,7 @@ def step_label(toolpath: ToolPath, index: int | None) -> str:
     if index is None:
         return f"{toolpath.name}: start (joint move from home)"
     move = toolpath.moves[index]
-    kind = {"joint": "joint move", "line": "LMOVE", "arc": "C1MOVE/C2MOVE"}[move.kind]
+    kind = {"joint": "joint move", "line": "linear move", "arc": "circular move"}[move.kind]  # any language's
     return f"{toolpath.name}: line {move.line} ({kind})"
 
 
@@ -140,7 +140,7 @@ def _span(toolpath: ToolPath, index: int) -> _Span:
         except DegenerateArc:
             raise ExecutionError(
                 f"{step_label(toolpath, index)}: start, via and end points are collinear or coincide, "
-                "so they define no circle; split a full circle into two C1MOVE/C2MOVE pairs"
+                "so they define no circle; split a full circle into two circular moves"
             ) from None
         via_s = float(prim.nearest(np.asarray(move.via.translation_mm, float)[None])[1][0])
         rv, fv = np.asarray(move.via.rotation, float), min(max(via_s / prim.length, 1e-9), 1.0 - 1e-9)

@@ -62,7 +62,7 @@ def test_unreachable_pose_names_the_step(cell):
     with pytest.raises(ExecutionError) as info:
         execute(far, cell)
     assert info.value.exit_code == 3
-    assert "line 42 (LMOVE)" in str(info.value) and "out of reach: the wrist centre would be" in str(info.value)
+    assert "line 42 (linear move)" in str(info.value) and "out of reach: the wrist centre would be" in str(info.value)
     assert "\n" not in str(info.value)
 
 
