@@ -97,7 +97,7 @@ def plan(
     region: Optional[str] = typer.Option(None, "--region", help="facing:X,Y,Z[,DEG] | box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX | all [default: faces within 80 deg of the part's thinnest axis, on the side its normals face]."),
     edge_band: float = typer.Option(defaults.PLAN_EDGE_BAND_MM, "--edge-band", help="Keep passes this far from the region's border, mm."),
     units: str = typer.Option(defaults.PLAN_UNITS, "--units", help="mm | cm | m | in | auto (from the file, else from the extent, with a note)."),
-    pose: str = typer.Option("0,0,0,0,0,0", "--pose", help="The part in the cell, X,Y,Z,O,A,T (mm, deg O-A-T); recorded in the file, paths stay in the part's frame."),
+    pose: str = typer.Option(",".join(f"{v:g}" for v in defaults.WORKPIECE_FRAME), "--pose", help="The part in the cell, X,Y,Z,O,A,T (mm, deg O-A-T; in front of the robot by default, as a scenario's part); recorded in the file, paths stay in the part's frame."),
     max_edge: Optional[float] = typer.Option(None, "--max-edge", help="Refine the region to edges of at most this, mm [default: a quarter of the spacing]."),
     force: bool = typer.Option(False, "--force", help="Replace an output file that coatsim did not write."),
     timings: bool = typer.Option(False, "--timings", help="Print CPU times per stage and the wall time on stderr."),

@@ -48,9 +48,11 @@ from coatsim.geometry.surface.piece import Piece
 from coatsim.geometry.surface.raster import raster_levels
 from coatsim.geometry.surface.refine import refined
 from coatsim.geometry.surface.region import (
+    Box,
     Everything,
     Facing,
     RegionSpec,
+    box_toward,
     check_region,
     default_toward,
     principal_axes,
@@ -85,7 +87,8 @@ class PlanOptions:
     """What to plan. The footprint's standard deviation sets the defaults: spacing 2 sigma
     (ripple 2.9 %) unless ``spacing_mm`` or ``ripple_pct`` is given, normals smoothed over sigma,
     lead-in/out of 3 sigma. ``step_direction`` (raster) is the planes' normal (default: the
-    region's middle principal axis); ``start`` (geodesic) defaults to the region's border."""
+    region's middle principal axis); ``start`` (geodesic) defaults to the region's border;
+    ``pose`` (the part in the robot base frame, x, y, z mm, O, A, T deg) is only recorded."""
 
     footprint_sigma_mm: float
     standoff_mm: float
@@ -99,7 +102,7 @@ class PlanOptions:
     edge_band_mm: float = defaults.PLAN_EDGE_BAND_MM
     order: Order = defaults.PLAN_ORDER
     max_edge_mm: float | None = None
-    pose: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    pose: tuple[float, float, float, float, float, float] = defaults.WORKPIECE_FRAME
 
 
 @dataclass(frozen=True)
@@ -170,7 +173,9 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     region, over the region and the surface running on past it); and the part's own faces
     wound outward."""
     oriented = orient(part.vertices_mm, part.faces, None)
-    toward = _toward(o.region, part.vertices_mm, oriented)
+    toward, why = _toward(o.region, part.vertices_mm, oriented)
+    if isinstance(o.region, Box):
+        notes.append(f"box region: the gun comes from ({', '.join(f'{round(x, 6) + 0.0:.3g}' for x in toward)}), {why}")
     oriented = orient(part.vertices_mm, part.faces, toward)
     notes.extend(oriented.notes)
     if oriented.flipped:
@@ -210,11 +215,15 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     return rv, rf, normals[parent], oriented.faces
 
 
-def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> np.ndarray:
-    """The gun's side: the facing direction, or the part's default (see region.default_toward)."""
+def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> tuple[np.ndarray, str]:
+    """The gun's side and what it is: the facing direction, the way a box's faces face, or the
+    part's default (see region.default_toward and box_toward)."""
     if isinstance(region, Facing) and region.direction is not None:
-        return unit_vector(region.direction, "region facing direction", "region")
-    return default_toward(vertices, oriented.faces, closed_faces(oriented.faces))
+        return unit_vector(region.direction, "region facing direction", "region"), "the facing direction"
+    if isinstance(region, Box) and (side := box_toward(vertices, oriented.faces, region)) is not None:
+        return side, "the mean normal of the faces in the box"
+    return default_toward(vertices, oriented.faces, closed_faces(oriented.faces)), \
+        "the part's default side" + (" (the faces in the box face every way)" if isinstance(region, Box) else "")
 
 
 def describe_region(region: RegionSpec, toward: np.ndarray) -> str:

@@ -7,7 +7,8 @@ with its largest coordinate positive (a closed part: +Z for a part lying in the 
 - ``Facing(direction, max_angle_deg)``: faces whose outward normal lies within the angle of the
   direction (which is then the gun's side); face normals, not smoothed ones, so that a CAD
   part's sharp edge bounds the region exactly;
-- ``Box(low_mm, high_mm)``: faces whose centre lies in the box;
+- ``Box(low_mm, high_mm)``: faces whose centre lies in the box; the gun's side is then the mean
+  normal of those faces where they mostly face one way (a box round a side face: that side);
 - ``Everything()``: every face; on a closed part, passes then run round it.
 
 Facing and box regions keep only faces the gun sees: a ray from the face toward the gun's side
@@ -28,6 +29,7 @@ from coatsim.core.errors import InputError
 from coatsim.geometry.surface.features import smooth_pairs
 from coatsim.geometry.surface.normals import face_normals
 
+BOX_FACING = 0.5  # a box's faces face one way when their mean normal is this long against their area
 
 @dataclass(frozen=True)
 class Facing:
@@ -96,6 +98,22 @@ def default_toward(vertices: np.ndarray, faces: np.ndarray, closed: np.ndarray) 
     if abs(lean) > 1e-3 * float(area[~closed].sum()) * 2:
         return axis if lean > 0 else -axis
     return axis
+
+
+def box_toward(vertices: np.ndarray, faces: np.ndarray, box: Box) -> np.ndarray | None:
+    """The gun's side for a box region: the area-weighted mean outward normal of the faces whose
+    centre lies in the box, where they mostly face one way (its length at least BOX_FACING of
+    their area: a box round one side of a part); None where they face every way (a box round
+    the whole part), and the part's default side holds."""
+    centres = vertices[faces].mean(axis=1)
+    inside = np.all((centres >= np.asarray(box.low_mm)) & (centres <= np.asarray(box.high_mm)), axis=1)
+    a, b, c = (vertices[faces[inside, k]] for k in range(3))
+    cross = np.cross(b - a, c - a)
+    total = cross.sum(axis=0)
+    length = float(np.linalg.norm(total))
+    if not inside.any() or length < BOX_FACING * float(np.linalg.norm(cross, axis=1).sum()):
+        return None
+    return total / length
 
 
 def select_faces(vertices: np.ndarray, faces: np.ndarray, selection_normals: np.ndarray, spec: RegionSpec,

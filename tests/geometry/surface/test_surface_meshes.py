@@ -178,3 +178,19 @@ def test_islands_smaller_than_a_spacing_squared_are_left_out():
     assert any("island" in n for n in paths.notes)
     assert max(p.points[:, 0].max() for p in paths.passes) <= 100.0 + 1e-9
     assert paths.stats.coverage < 1.0  # the speck is part of the region's area and is not covered
+
+
+def test_a_box_round_one_side_of_a_closed_part_is_sprayed_from_that_side():
+    """A box region round the +x side face of a closed box: the gun comes from +x (the mean normal
+    of the faces in the box), so the whole side face is planned, not only what a ray to the part's
+    default side (+z) leaves."""
+    from coatsim.geometry.surface import Box
+
+    box = trimesh.creation.box((100.0, 80.0, 60.0))
+    box = box.subdivide().subdivide()
+    part = part_from_arrays(np.asarray(box.vertices), np.asarray(box.faces), "box")
+    side = plan(part, options(region=Box((45.0, -50.0, -40.0), (55.0, 50.0, 40.0))))
+    points = np.vstack([p.points for p in side.passes])
+    assert np.allclose(points[:, 0], 50.0, atol=1e-6)  # on the +x face
+    assert np.ptp(points[:, 2]) > 40.0  # across its height, not a strip along its top edge
+    assert any("box region: the gun comes from (1, 0, 0)" in n for n in side.notes), side.notes
