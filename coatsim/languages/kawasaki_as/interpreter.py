@@ -307,27 +307,6 @@ class Interpreter(Memory, SignalIO, RobotQueries):
             self.skipped_via = st.line if st.op == "C1MOVE" else None
         self.skip(st, reason, unsimulated)
 
-    def guarded(self, evaluate, e: ast.Expr, default):
-        """``evaluate(e)``; what depends on an unknown is reported, and taken as ``default``
-        where it cannot be computed."""
-        before = self.unknowns.reads
-        try:
-            value = evaluate(e)
-        except Absent as exc:
-            value, why = default, exc.reason
-        except CoatsimError as exc:
-            if self.unknowns.reads == before:
-                raise
-            value, why = default, str(exc).split(": ", 1)[-1]
-        else:
-            if self.unknowns.reads == before:
-                return value
-            why = f"it reads {self.unknowns.last}, which has no value here"
-        shown = ("true" if value else "false") if isinstance(value, bool) else f"{value!r}"
-        self.warn(f"default:{self.where()}", f"this condition depends on what the run does not know ({why}); "
-                  f"it is taken with the default: {shown}")
-        return value
-
     def test(self, e: ast.Expr) -> bool:
         return self.guarded(self.eval.truth, e, False)
 

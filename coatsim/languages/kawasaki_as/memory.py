@@ -1,6 +1,7 @@
 """The variables a running program reads and writes: globals and the locals of each CALL, by
-kind; what no file gives (an *unknown*, see :mod:`~coatsim.languages.kawasaki_as.unknowns`); and
-values given from outside the files (``NAME=VALUE``).
+kind; what no file gives (an *unknown*, see :mod:`~coatsim.languages.kawasaki_as.unknowns`) and
+a condition that depends on one (taken with its default, reported); and values given from
+outside the files (``NAME=VALUE``).
 
 A part of the interpreter (``Interpreter`` derives from it), which provides ``stack``,
 ``globals``, ``eval``, ``controller``, ``base``, ``programs``, ``unknowns``, ``placing`` and its
@@ -67,11 +68,32 @@ class Memory:
         base = norm(name.name)
         if self.unknowns.read(base, kind, self.where(), self.shown(name, k)):
             self.warnings.add(f"unknown:{base}", self.unknowns.first[base].note())
-        if kind in _DEFAULTS and not self.placing:
-            return _DEFAULTS[kind]
         if kind in _DEFAULTS:
-            raise Absent(f"{self.shown(name, k)} has no value, and a motion goes to no place the files do not give")
+            if self.placing:
+                raise Absent(f"{self.shown(name, k)} has no value, and a motion goes to no place the files do not give")
+            return _DEFAULTS[kind]
         raise Absent(f"{'pose' if kind == 'pose' else 'joint value'} {self.shown(name, k)} has no value")
+
+    def guarded(self, evaluate, e: ast.Expr, default):
+        """``evaluate(e)``; what depends on an unknown is reported, and taken as ``default``
+        where it cannot be computed."""
+        before = self.unknowns.reads
+        try:
+            value = evaluate(e)
+        except Absent as exc:
+            value, why = default, exc.reason
+        except CoatsimError as exc:
+            if self.unknowns.reads == before:
+                raise
+            value, why = default, str(exc).split(": ", 1)[-1]
+        else:
+            if self.unknowns.reads == before:
+                return value
+            why = f"it reads {self.unknowns.last}, which has no value here"
+        shown = ("true" if value else "false") if isinstance(value, bool) else f"{value!r}"
+        self.warn(f"default:{self.where()}", f"this condition depends on what the run does not know ({why}); "
+                  f"it is taken with the default: {shown}")
+        return value
 
     @staticmethod
     def shown(name: ast.Name, k: str) -> str:

@@ -45,7 +45,8 @@ class UnknownRead:
     shown: str
 
     def note(self) -> str:
-        taken = {"real": "taken as 0", "string": 'taken as ""'}.get(self.kind, "what needs it is skipped")
+        taken = {"real": "taken as 0 (a motion built from it is skipped)", "string": 'taken as ""'}.get(
+            self.kind, "what needs it is skipped")
         if self.name.startswith("."):
             return f"{self.where}: the local {self.shown} ({self.kind}) is read before any value is given; {taken}"
         return (f"{self.where}: {self.shown} ({self.kind}) is read but no file gives it a value (a variable of "

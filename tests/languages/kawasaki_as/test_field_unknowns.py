@@ -121,7 +121,8 @@ def test_unknown_bounds_and_case_subjects_take_their_defaults():
 
 def test_a_local_read_before_its_value_is_zero_and_named_as_a_local():
     run = run_text(".PROGRAM t()\n  .cnt = .cnt + 1\n  TYPE .cnt\n.END\n")
-    assert notes(run) == "f.as:2: the local .cnt (real) is read before any value is given; taken as 0"
+    assert notes(run) == ("f.as:2: the local .cnt (real) is read before any value is given; taken as 0 (a motion "
+                          "built from it is skipped)")
 
 
 def test_a_call_of_a_program_not_loaded_is_skipped_with_a_note():
