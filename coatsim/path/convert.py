@@ -26,6 +26,7 @@ from coatsim.core.errors import CoatsimError, InputError
 from coatsim.core.fileio import read_input
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.pose import Pose
+from coatsim.geometry.space.primitives import Line3
 from coatsim.path.edit import EditsInPlace, FittedPath
 from coatsim.path.frames import DEFAULT_TOOL
 from coatsim.path.language import Language, ReadOptions
@@ -40,6 +41,7 @@ from coatsim.path.toolpath import Kinematics, ToolPath
 Paths = Union[str, Path, Sequence[Union[str, Path]]]
 
 PLANE_SHARE = 0.5  # the part of the tolerance a path may leave its plane by
+MIN_CIRCLE_SWEEP_DEG = 1.0  # a fitted arc turning less is written as its chord where the tolerance allows
 
 
 @dataclass(frozen=True)
@@ -156,16 +158,24 @@ def fit_path(reading: Reading, moves: tuple[int, ...], options: ConvertOptions) 
     space = plane.to_space(ends)
     rotations = rotation_along(path, space)
     poses = [Pose(r, p) for p, r in zip(space, rotations)]
-    segments = []
+    segments, straightened = [], 0.0
     for k, s in enumerate(poly.segments):
-        if isinstance(s, Line):
+        sagitta = 0.0 if isinstance(s, Line) else s.radius * (1.0 - math.cos(s.sweep / 2.0))
+        if isinstance(s, Line) or (abs(s.sweep) < math.radians(MIN_CIRCLE_SWEEP_DEG)
+                                   and seg.max_deviation_mm + max(straightened, sagitta) <= fit_tol):
             segments.append(placed_line(poses[k], poses[k + 1]))
+            straightened = max(straightened, sagitta)
         else:
             normal = plane.normal if s.sweep > 0 else -plane.normal
             arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
             segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
-    return FittedPath(path, plane, tuple(segments), poly.n_arcs, poly.n_lines, seg.max_deviation_mm,
-                      _line_span(reading, moves), tuple(notes))
+    n_lines = sum(isinstance(m.geometry, Line3) for m in segments)
+    if straightened:
+        notes.append(f"lines {'-'.join(map(str, _line_span(reading, moves)))}: "
+                     f"{n_lines - poly.n_lines} nearly straight arc(s) (turning less than {MIN_CIRCLE_SWEEP_DEG:g} deg) "
+                     "written as lines: a controller cannot place a circle through three nearly collinear points")
+    return FittedPath(path, plane, tuple(segments), len(segments) - n_lines, n_lines,
+                      seg.max_deviation_mm + straightened, _line_span(reading, moves), tuple(notes))
 
 
 def _settings(toolpath: ToolPath, f: FittedPath) -> tuple[float, float, bool]:

@@ -102,3 +102,39 @@ def test_a_converted_raster_keeps_its_corners_in_the_base_within_a_micrometre(tm
     # the same moves as converted from base coordinates, which Fanuc's /POS holds to 3 decimals
     rounding = 0.5e-3 * math.sqrt(3) if to == "fanuc-tp" else 1e-6
     assert np.abs(_ends(converted) - _ends(from_base)).max() < rounding
+
+
+RAPID_LAL = ("MODULE LAL\n  PERS tooldata tGun:=[TRUE,[[0,0,250],[1,0,0,0]],[1,[0,0,1],[1,0,0,0],0,0,0]];\n"
+             + "".join(f"  CONST robtarget {n}:=[[{x},{y},300],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n"
+                       for n, x, y in (("a", 600, -50), ("b", 800, -50), ("c", 850, 0), ("d", 800, 50), ("e", 600, 50)))
+             + "  PROC main()\n    MoveJ Offs(a,0,0,50),v300,fine,tGun;\n    MoveL a,v300,fine,tGun;\n"
+             "    SetDO do1,1;\n    MoveL b,v300,z1,tGun;\n    MoveC c,d,v300,z1,tGun;\n    MoveL e,v300,fine,tGun;\n"
+             "    SetDO do1,0;\n  ENDPROC\nENDMODULE\n")
+
+
+@pytest.mark.parametrize("to", ["abb-rapid", "kawasaki-as"])
+def test_an_exact_line_beside_an_arc_is_written_as_a_line_not_a_flat_circle(tmp_path, to):
+    """A line, a half circle and a line: the taught lines come back as lines (a fitted arc turning
+    less than a degree is written as its chord where the tolerance allows), never as circles
+    through three nearly collinear points, which a controller refuses."""
+    source = tmp_path / "lal.mod"
+    source.write_text(RAPID_LAL)
+    conversion = convert_program([source], ConvertOptions(tolerance_mm=0.1, standalone=True),
+                                 language=language("abb-rapid"), target=language(to))
+    folder = tmp_path / to
+    folder.mkdir()
+    files = []
+    for suffix, text in language(to).files(conversion.text):
+        files.append(folder / f"coat{suffix}")
+        files[-1].write_text(text)
+    moves = [m for m in language(to).reading(files, ReadOptions()).toolpath.moves if m.spray]
+    for m in moves:
+        if m.kind == "arc":
+            a, v, b = (np.asarray(p.translation_mm) for p in (m.start, m.via, m.end))
+            chord = b - a
+            off = np.linalg.norm(np.cross(chord, v - a)) / np.linalg.norm(chord)
+            assert off > 1.0, f"a circle through nearly collinear points (via {off:.4f} mm off the chord)"
+    lines = [m for m in moves if m.kind == "line"]
+    assert len(lines) == 2 and all(abs(np.linalg.norm(m.end.translation_mm - m.start.translation_mm) - 200) < 0.2
+                                   for m in lines)
+    assert any("nearly straight arc(s)" in n for n in conversion.notes)
