@@ -23,7 +23,7 @@ def test_messages_give_back_the_line_of_step_label():
     toolpath = _toolpath([12, 14, 20])
     for index, line in ((0, 12), (2, 20)):
         line_back, kind, text = parse_step(f"{step_label(toolpath, index)}: JT5 within 2 deg of its limit")
-        assert (line_back, kind, text) == (line, "LMOVE", "JT5 within 2 deg of its limit")
+        assert (line_back, kind, text) == (line, "linear move", "JT5 within 2 deg of its limit")
     assert parse_step(f"{step_label(toolpath, None)}: near wrist singularity")[0] is None
     assert parse_step("something else") == (None, "", "something else")
 

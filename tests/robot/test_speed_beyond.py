@@ -35,7 +35,7 @@ def test_a_part_of_the_stretch_beyond_the_joints_is_warned_with_its_length(cell)
     piece = _piece(300.0)
     allowed_slow = 120.0  # mm/s the joints allow on the middle 100 mm
     rate = np.where((piece.s > 100) & (piece.s < 200), cell.v_max[0] / allowed_slow, cell.v_max[0] / 3000.0)
-    event = speed_event(cell, piece, _joints(cell, rate, piece.s), "p: line 3 (LMOVE)")
+    event = speed_event(cell, piece, _joints(cell, rate, piece.s), "p: line 3 (linear move)")
     assert event is not None and "SPEED 300 mm/s is beyond the arm on" in event, event
     beyond_mm = float(event.split("beyond the arm on ")[1].split(" mm")[0])
     assert 95 <= beyond_mm <= 105, event
