@@ -40,7 +40,8 @@ SLIVER_FRACTION = 1e-7
 @dataclass(frozen=True, eq=False)
 class Part:
     """A part mesh in millimetres in its own frame: vertices (n, 3), triangles (m, 3) int64,
-    the file it came from with its SHA-256, the unit it was read in, and what reading found."""
+    the file it came from with its SHA-256, the unit it was read in, and what reading found;
+    ``units_guess`` says how the unit was guessed from the extent ("" when given or in the file)."""
 
     file: str
     sha256: str
@@ -48,6 +49,7 @@ class Part:
     faces: np.ndarray
     units: str
     notes: tuple[str, ...]
+    units_guess: str = ""
 
     @property
     def extent_mm(self) -> float:
@@ -135,30 +137,27 @@ def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units
     extent = float(np.ptp(vertices[used], axis=0).max())
     if not extent > 0:
         raise InputError(f"{name}: every vertex is at one point (the mesh has no extent)")
-    notes: list[str] = []
-    unit = _unit(extent, units, file_units, notes)
+    unit, guess = _unit(extent, units, file_units)
+    notes = [f"units auto: {guess}; give the units if the file is in "
+             f"{'mm, cm or inches' if unit == 'm' else 'm, cm or inches'}"] if guess else []
+    notes += [f"units auto: the file says {file_units}"] if units == "auto" and file_units is not None else []
     far = float(np.abs(vertices[used]).max()) * UNITS_MM[unit]
     if not far <= MAX_ABS_COORDINATE_MM:
         raise InputError(f"{name}: a vertex {far:.3g} mm from the origin, beyond {MAX_ABS_COORDINATE_MM:g} mm; "
                          "re-export the mesh")
     vertices, faces = _repaired(vertices * UNITS_MM[unit], faces, name, notes)
-    return Part(name, digest, vertices, faces, unit, tuple(notes))
+    return Part(name, digest, vertices, faces, unit, tuple(notes), guess)
 
 
-def _unit(extent: float, units: str, file_units: str | None, notes: list[str]) -> str:
-    """The unit the file is read in; with ``auto`` a note says which and why."""
+def _unit(extent: float, units: str, file_units: str | None) -> tuple[str, str]:
+    """The unit the file is read in, and how it was guessed from the extent ("" when given or in the file)."""
     if units != "auto":
-        return units
+        return units, ""
     if file_units is not None:
-        notes.append(f"units auto: the file says {file_units}")
-        return file_units
+        return file_units, ""
     if extent < AUTO_METRES_BELOW:
-        notes.append(f"units auto: largest extent {extent:.4g} read as metres ({extent * 1000:.4g} mm); "
-                     "give the units if the file is in mm, cm or inches")
-        return "m"
-    notes.append(f"units auto: largest extent {extent:.4g} read as millimetres; give the units if the file is in "
-                 "m, cm or inches")
-    return "mm"
+        return "m", f"largest extent {extent:.4g} read as metres ({extent * 1000:.4g} mm)"
+    return "mm", f"largest extent {extent:.4g} read as millimetres"
 
 
 def _repaired(vertices: np.ndarray, faces: np.ndarray, name: str, notes: list[str]) -> tuple[np.ndarray, np.ndarray]:

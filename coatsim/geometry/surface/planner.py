@@ -182,8 +182,7 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
         notes.append(f"turned {oriented.flipped} of {len(part.faces)} triangles to a consistent outward winding")
     coarse = max(s.smoothing_mm, part.extent_mm / SELECTION_CELLS)
     # a part read at a guessed unit too large for its budget was most likely guessed wrong: say so
-    guessed = next((f", or give the units ({n.split(': ', 1)[1].split('; ')[0]})" for n in part.notes
-                    if n.startswith("units auto: largest extent")), "")
+    guessed = f", or give the units ({part.units_guess})" if part.units_guess else ""
     v, f, _ = refined(part.vertices_mm, oriented.faces, coarse, part.file,
                       f"use a wider footprint or decimate the part{guessed}", parameters=("units",) if guessed else ())
     mask = select_faces(v, f, face_normals(v, f)[0], o.region, toward, s.smoothing_mm)

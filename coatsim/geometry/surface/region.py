@@ -47,6 +47,12 @@ class Box:
     low_mm: tuple[float, float, float]
     high_mm: tuple[float, float, float]
 
+    def holds(self, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+        """The faces (m,) bool whose centre lies in the box."""
+        centres = vertices[faces].mean(axis=1)
+        low, high = np.asarray(self.low_mm, dtype=float), np.asarray(self.high_mm, dtype=float)
+        return np.all((centres >= low) & (centres <= high), axis=1)
+
 
 @dataclass(frozen=True)
 class Everything:
@@ -105,8 +111,7 @@ def box_toward(vertices: np.ndarray, faces: np.ndarray, box: Box) -> np.ndarray 
     centre lies in the box, where they mostly face one way (its length at least BOX_FACING of
     their area: a box round one side of a part); None where they face every way (a box round
     the whole part), and the part's default side holds."""
-    centres = vertices[faces].mean(axis=1)
-    inside = np.all((centres >= np.asarray(box.low_mm)) & (centres <= np.asarray(box.high_mm)), axis=1)
+    inside = box.holds(vertices, faces)
     a, b, c = (vertices[faces[inside, k]] for k in range(3))
     cross = np.cross(b - a, c - a)
     total = cross.sum(axis=0)
@@ -120,14 +125,12 @@ def select_faces(vertices: np.ndarray, faces: np.ndarray, selection_normals: np.
                  toward: np.ndarray, clearance_mm: float) -> np.ndarray:
     """The coated faces (m,) bool; ``selection_normals`` are unit outward face normals; what
     hides a face must stand more than ``clearance_mm`` above it (noise on a scan does not)."""
-    centres = vertices[faces].mean(axis=1)
     if isinstance(spec, Everything):
         return np.ones(len(faces), dtype=bool)
     if isinstance(spec, Facing):
         mask = selection_normals @ toward >= math.cos(math.radians(spec.max_angle_deg)) - 1e-12
     else:
-        low, high = np.asarray(spec.low_mm, dtype=float), np.asarray(spec.high_mm, dtype=float)
-        mask = np.all((centres >= low) & (centres <= high), axis=1)
+        mask = spec.holds(vertices, faces)
     return mask & _seen(vertices, faces, selection_normals, mask, toward, clearance_mm)
 
 
