@@ -21,6 +21,7 @@ from coatsim.geometry.surface.contours import crossing_edges, edge_points, level
 from coatsim.geometry.surface.distance import NearestOnCurves, arc_length, distance_levels, heat_distance
 from coatsim.geometry.surface.passes import barycentric
 from coatsim.geometry.surface.piece import Piece
+from coatsim.geometry.vectors import unit_rows
 
 
 @dataclass(frozen=True)
@@ -67,7 +68,8 @@ def geodesic_piece(piece: Piece, start: Start, spacing_mm: float, band_mm: float
         t = edge_points(piece.vertices, side, 0.0, edges)[1]
         heat = np.bincount(edges.ravel(), weights=np.column_stack([1 - t, t]).ravel(), minlength=len(side))
         sources = np.flatnonzero(heat > 0)
-        nearest = NearestOnCurves([(c.points, _unit(c.sample(piece.faces, piece.normals)), c.closed) for c in section])
+        nearest = NearestOnCurves([(c.points, unit_rows(c.sample(piece.faces, piece.normals)), c.closed)
+                                   for c in section])
         held = nearest.arc(piece.vertices[sources], piece.normals[sources])
         distance = heat_distance(piece.vertices, piece.faces, sources, held, heat[sources])
         return _levelled(piece, np.where(side < 0, -distance, distance), 0.0, spacing_mm, band_mm)
@@ -85,7 +87,7 @@ def _around_points(piece: Piece, points: dict[int, np.ndarray]) -> tuple[np.ndar
     bary = np.concatenate(list(points.values()))
     corners = piece.faces[faces]
     at = np.einsum("ij,ijk->ik", bary, piece.vertices[corners])
-    normal = _unit(np.einsum("ij,ijk->ik", bary, piece.normals[corners]))
+    normal = unit_rows(np.einsum("ij,ijk->ik", bary, piece.normals[corners]))
     sources, where = np.unique(corners, return_inverse=True)
     heat = np.bincount(where.ravel(), weights=bary.ravel(), minlength=len(sources))
     held = np.full(len(sources), np.inf)
@@ -93,10 +95,6 @@ def _around_points(piece: Piece, points: dict[int, np.ndarray]) -> tuple[np.ndar
         chord = piece.vertices[sources] - p
         held = np.minimum(held, arc_length(chord, piece.normals[sources], np.tile(n, (len(sources), 1))))
     return sources, held, heat
-
-
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    return vectors / np.linalg.norm(vectors, axis=1)[:, None]
 
 
 def _levelled(piece: Piece, field: np.ndarray, first: float, spacing_mm: float, band_mm: float) -> Piece:

@@ -72,6 +72,7 @@ from coatsim.geometry.surface.topology import (
     submesh,
 )
 from coatsim.geometry.surface.verify import verify
+from coatsim.geometry.vectors import unit_rows
 
 Pattern = Literal["raster", "geodesic", "boundary"]
 #: the whole part is refined to at most max(smoothing length, extent / this) before selection
@@ -318,8 +319,8 @@ def _passes(pieces: list[Piece], traces: list[Trace], part: Part, outward_faces:
     for curve, index in spraying_order(traces, o.order):
         piece = pieces[index]
         normals = curve.sample(piece.faces, piece.normals)
-        normals, changed = kept_outward(curve.points, normals / np.linalg.norm(normals, axis=1)[:, None], boxes,
-                                        face_n, TOUCH_FRACTION * part.extent_mm)
+        normals, changed = kept_outward(curve.points, unit_rows(normals), boxes, face_n,
+                                        TOUCH_FRACTION * part.extent_mm)
         turned += changed
         if curve.closed:
             lead_in = lead_out = np.zeros((0, 3))

@@ -33,6 +33,7 @@ from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
 from coatsim.geometry.surface.distance import Marching, NearestOnCurves
 from coatsim.geometry.surface.topology import submesh
+from coatsim.geometry.vectors import unit_rows
 
 #: the search stops when the plane (or the gap) is known to this fraction of the spacing
 BISECTION_FRACTION = 1e-9
@@ -121,7 +122,7 @@ class _Mesh:
             return np.zeros((0, 3)), np.zeros((0, 3)), lambda values: np.zeros(0)
         points, t = edge_points(self.vertices, self.h, level, edges)
         n = self.normals[edges[:, 0]] * (1 - t)[:, None] + self.normals[edges[:, 1]] * t[:, None]
-        return points, _unit(n), lambda values: values[edges[:, 0]] * (1 - t) + values[edges[:, 1]] * t
+        return points, unit_rows(n), lambda values: values[edges[:, 0]] * (1 - t) + values[edges[:, 1]] * t
 
 
 class _Lazy:
@@ -187,7 +188,7 @@ def _next_level(mesh: _Mesh, level: float, spacing: float, surface: SmallTriangl
     if not passes:
         return level + spacing
     marching = _Lazy(band, curves=passes)
-    nearest = NearestOnCurves([(c.points, _unit(c.sample(band.faces, band.normals)), c.closed) for c in passes])
+    nearest = NearestOnCurves([(c.points, unit_rows(c.sample(band.faces, band.normals)), c.closed) for c in passes])
 
     def excess(height: float) -> float:
         points, normals, lerp = band.section(height)
@@ -201,6 +202,3 @@ def _next_level(mesh: _Mesh, level: float, spacing: float, surface: SmallTriangl
     found = _root(excess, level, level + spacing, BISECTION_FRACTION * spacing)
     return max(found, level + MIN_STEP_FRACTION * spacing)
 
-
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    return vectors / np.linalg.norm(vectors, axis=1)[:, None]

@@ -28,6 +28,7 @@ from coatsim.core.errors import InputError
 from coatsim.geometry.surface.distance import NearestOnCurves
 from coatsim.geometry.surface.passes import Trace
 from coatsim.geometry.surface.piece import Piece
+from coatsim.geometry.vectors import unit_rows
 
 #: a vertex counts as covered up to this fraction beyond half a spacing (rounding, not method error)
 COVERAGE_SLACK = 1e-6
@@ -77,15 +78,15 @@ def measure(piece: Piece, traces: list[Trace], spacing_mm: float, toward_start: 
         if not measured or not neighbours:
             continue
         reach = _Reach(piece, neighbours)
-        nearest = NearestOnCurves([(c.points, _unit(c.sample(faces, normals)), c.closed) for c in neighbours])
+        nearest = NearestOnCurves([(c.points, unit_rows(c.sample(faces, normals)), c.closed) for c in neighbours])
         for trace in measured:
             curve = trace.curve
-            d, on_end = nearest.distance(curve.points, _unit(curve.sample(faces, normals)), piece.surface,
+            d, on_end = nearest.distance(curve.points, unit_rows(curve.sample(faces, normals)), piece.surface,
                                          lambda curve=curve, reach=reach: curve.sample(faces, reach()))
             gaps.append(d[np.isfinite(d) & ~on_end])
             ends.append(np.full(len(gaps[-1]), trace.rank in (0, 1, last - 1, last)))
     half = 0.5 * spacing_mm * (1 + COVERAGE_SLACK)
-    nearest_pass = NearestOnCurves([(c.points, _unit(c.sample(faces, normals)), c.closed) for c in every]).distance(
+    nearest_pass = NearestOnCurves([(c.points, unit_rows(c.sample(faces, normals)), c.closed) for c in every]).distance(
         piece.vertices, normals, piece.surface, _Reach(piece, every), within=half)[0]
     covered = nearest_pass <= half
     return Measured(np.concatenate(gaps), np.concatenate(ends), float(piece.vertex_areas_mm2()[covered].sum()))
@@ -127,6 +128,3 @@ class _Reach:
             self.values = self.piece.marching.distance(curves=self.curves)
         return self.values
 
-
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    return vectors / np.linalg.norm(vectors, axis=1)[:, None]
