@@ -201,4 +201,3 @@ def _next_level(mesh: _Mesh, level: float, spacing: float, surface: SmallTriangl
 
     found = _root(excess, level, level + spacing, BISECTION_FRACTION * spacing)
     return max(found, level + MIN_STEP_FRACTION * spacing)
-

@@ -127,4 +127,3 @@ class _Reach:
         if self.values is None:
             self.values = self.piece.marching.distance(curves=self.curves)
         return self.values
-
