@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from coatsim.geometry.envelope import SPARSE_EDGE_SIGMAS
 from coatsim.geometry.sparse import corner_note, sparse_vertices, unroundable
 
 SPARSE = 10.0  # a polyline whose median edge is this many σ long has only its vertices to go by
@@ -40,8 +41,9 @@ def corners_and_notes(points: np.ndarray, closed: bool, corner_deg: float,
     Between long edges (coatsim.geometry.sparse, a taught path): where σ is below what the
     polyline allows (no arc as gentle as its own turning rounds the vertex within σ), or
     where it turns more than ``corner_deg`` and more than STANDS_OUT times either
-    neighbour (a polygon's corner, not a step of a taught curve). End points of an open
-    curve are never corners.
+    neighbour (a polygon's corner, not a step of a taught curve); so does a knot of
+    vertices within σ of each other (_sharp_knots: a cusp taught with two close points).
+    End points of an open curve are never corners.
     """
     pts = np.asarray(points, dtype=float)
     dense = _dense_corners(pts, closed, corner_deg, tolerance)
@@ -58,8 +60,55 @@ def corners_and_notes(points: np.ndarray, closed: bool, corner_deg: float,
         sharp[0] = False
     kept = [int(c) for c in dense if not long[c]]
     tight, needs = unroundable(pts, closed, tolerance)
-    corners = np.array(sorted(set(kept) | set(np.flatnonzero(sharp).tolist()) | set(tight.tolist())), dtype=int)
+    knots = _sharp_knots(pts, closed, corner_deg, tolerance)
+    corners = np.array(sorted(set(kept) | set(np.flatnonzero(sharp).tolist()) | set(tight.tolist()) | set(knots)),
+                       dtype=int)
     return corners, ((corner_note(pts, tight, needs, tolerance),) if len(tight) else ())
+
+
+def _sharp_knots(pts: np.ndarray, closed: bool, corner_deg: float, tolerance: float) -> list[int]:
+    """Vertices of the knots that turn like a corner. A knot is two or more vertices joined
+    by edges shorter than SPARSE_EDGE_SIGMAS σ, between longer ones, all within that of
+    their mean (no farther apart than a sparse edge is long): a chain within σ passes them
+    as one vertex, it turns as much as they do together. A knot that turns more than
+    ``corner_deg`` and more than STANDS_OUT times the vertices on either side of it (a cusp
+    taught with two close points, a star's tip as σ grows past half its edges) gives its
+    vertices turning more than ``corner_deg`` (or its sharpest) as corners. A loop is
+    looked at from a vertex between two longer edges (none: no knot)."""
+    if closed:
+        ell = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+        long = ell >= SPARSE_EDGE_SIGMAS * tolerance
+        start = np.flatnonzero(long & np.roll(long, 1))
+        if not len(start):
+            return []
+        order = (np.arange(len(pts)) + int(start[0])) % (len(pts) - 1)
+        return sorted(int(order[k]) for k in _sharp_knots(pts[order], False, corner_deg, tolerance))
+    d = np.diff(pts, axis=0)
+    ell = np.linalg.norm(d, axis=1)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.zeros(len(pts))
+    turn[1:-1] = np.remainder(np.diff(heading) + math.pi, 2 * math.pi) - math.pi
+    short = ell < SPARSE_EDGE_SIGMAS * tolerance
+    found: list[int] = []
+    first = 1
+    while first < len(ell):
+        if not short[first] or short[first - 1]:
+            first += 1
+            continue
+        last = first  # vertices first .. last + 1, joined by the short edges first .. last
+        while last + 1 < len(ell) and short[last + 1]:
+            last += 1
+        members = np.arange(first, last + 2)
+        first = last + 1
+        spread = np.linalg.norm(pts[members] - pts[members].mean(axis=0), axis=1).max()
+        if last + 1 >= len(ell) or spread > SPARSE_EDGE_SIGMAS * tolerance:
+            continue  # (up to an open run's end, or a dense stretch)
+        together = abs(float(turn[members].sum()))
+        beside = max(abs(float(turn[members[0] - 1])), abs(float(turn[members[-1] + 1])))
+        if together > math.radians(corner_deg) and together > STANDS_OUT * beside:
+            sharp = members[np.abs(turn[members]) > math.radians(corner_deg)]
+            found += sharp.tolist() if len(sharp) else [int(members[np.argmax(np.abs(turn[members]))])]
+    return found
 
 
 def _dense_corners(pts: np.ndarray, closed: bool, corner_deg: float, tolerance: float) -> np.ndarray:

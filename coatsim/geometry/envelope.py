@@ -146,6 +146,28 @@ def kink_demand(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.
     return at[kink], np.minimum(16 * (h - tolerance), 8 * h) / c**2
 
 
+def end_turning(points: np.ndarray, closed: bool, tolerance: float, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """Arc lengths (mm) of the vertices within 1.5 windows of an open run's ends and the
+    curvature (1/mm) of the circle through each and its neighbours, where both its edges
+    are at least 2 σ (sparse there; dense noisy input has no say). The windowed estimate
+    cannot see there (its windows stop at the run's end), and a taught polygon that turns
+    ever tighter into its end (a cusp taught with a few points) would get caps gentler than
+    its own turning, which no chain within σ of its last edges keeps."""
+    pts = np.asarray(points, dtype=float)
+    if closed or len(pts) < 3:
+        return np.empty(0), np.empty(0)
+    ell = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate(([0.0], np.cumsum(ell)))
+    a, b, c = pts[:-2], pts[1:-1], pts[2:]
+    u, v = b - a, c - a
+    cross = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+    sides = ell[:-1] * ell[1:] * np.linalg.norm(v, axis=1)
+    at = s[1:-1]
+    near_end = (at < 1.5 * window) | (at > s[-1] - 1.5 * window)
+    keep = near_end & (np.minimum(ell[:-1], ell[1:]) >= SPARSE_EDGE_SIGMAS * tolerance) & (sides > 0)
+    return at[keep], 2 * cross[keep] / sides[keep]
+
+
 def _offset_spread(points: np.ndarray) -> float:
     """Median |second difference| of the vertices' signed offsets from their neighbours' chord."""
     a, m, b = points[:-2], points[1:-1], points[2:]

@@ -18,7 +18,7 @@ import numpy as np
 
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM
 from coatsim.core.errors import InputError
-from coatsim.geometry.envelope import CurvatureProfile, curvature_profile, kink_demand
+from coatsim.geometry.envelope import CurvatureProfile, curvature_profile, end_turning, kink_demand
 
 TIGHTER = 1.22  # an arc may be this much tighter than the input near it (1.25 with the fit's 2 % slack)
 MIN_LENGTH_SIGMAS = 5.0  # the default shortest segment, in σ ...
@@ -78,6 +78,9 @@ def fit_limits(points: np.ndarray, closed_loop: bool, tolerance: float, min_leng
     min_length = max(MIN_LENGTH_SIGMAS * tolerance, MIN_LENGTH_SHARE * profile.length) if min_length_mm is None else min_length_mm
     neighbourhood = max(NEIGHBOURHOOD_WINDOWS * profile.window_mm, min_length)
     near = np.maximum(profile.envelope(neighbourhood), profile.spread(*kink_demand(points, closed_loop, tolerance), neighbourhood))
+    # (a taught polygon's own turning where the estimate cannot see: arcs as tight as it, not TIGHTER)
+    at, turning = end_turning(points, closed_loop, tolerance, profile.window_mm)
+    near = np.maximum(near, profile.spread(at, turning / TIGHTER, neighbourhood))
     # An arc that bulges σ/8 from its chord over the whole run is as good as a line: the
     # floor keeps straight stretches (envelope ~ 0) from forbidding every curvature.
     floor = tolerance / max(profile.length, tolerance) ** 2

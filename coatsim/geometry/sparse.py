@@ -97,13 +97,44 @@ def is_sparse(points: np.ndarray, closed: bool, tolerance: float) -> bool:
 
 def rounding_error(points: np.ndarray, closed: bool) -> np.ndarray:
     """Per vertex (n,), the least deviation (mm) of a chain with fewer segments than the
-    polyline has moves where it passes the vertex: half the vertex's chord inset (the
-    sagitta of its longer edge on the circle through it and its neighbours). Such a chain
-    cannot fillet each vertex (two segments a move): it passes a vertex on an arc that
-    spans it and its edges, no tighter than the polyline turns there (the caps), and such
-    an arc half way between the vertex and the edges strays half the inset from both."""
-    left, right = chord_insets(np.asarray(points, dtype=float), closed)
-    return (left + right) / 2
+    polyline has moves where it passes the vertex. Such a chain cannot fillet each vertex
+    (two segments a move): it passes a vertex on an arc no tighter than the polyline turns
+    there (the circle through three consecutive vertices, the vertex's or a neighbour's),
+    half way between the vertex and its edges. Where that arc, tangent to both edges, fits
+    in the vertex's share of them (_room), it strays half its apex from both (a line meets
+    a taught fillet so: the long edge's own circle through three vertices is far too
+    gentle to matter there); else it spans the edges and strays half the vertex's chord
+    inset (the sagitta of its longer edge on the circle through it and its neighbours)."""
+    pts = np.asarray(points, dtype=float)
+    left, right = chord_insets(pts, closed)
+    spanning = (left + right) / 2
+    half = np.abs(_turns(pts, closed)) / 2
+    radius = _near_radius(pts, closed)
+    with np.errstate(invalid="ignore", over="ignore"):
+        fits = (half > 0) & (radius * np.tan(half) <= _room(pts, closed))
+        filleted = np.where(fits, radius * (1.0 / np.cos(half) - 1.0) / 2, np.inf)
+    return np.minimum(spanning, filleted)
+
+
+def _near_radius(pts: np.ndarray, closed: bool) -> np.ndarray:
+    """Per vertex (n,), the tightest circle (mm) through three consecutive vertices centred
+    on it or on a neighbour (inf where they are collinear, and beyond an open run's ends)."""
+    body = pts[:-1] if closed else pts
+    radius = np.full(len(body), np.inf)
+    a, b, c = (np.roll(body, 1, axis=0), body, np.roll(body, -1, axis=0)) if closed else (body[:-2], body[1:-1], body[2:])
+    u, v = b - a, c - a
+    cross = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+    sides = np.linalg.norm(u, axis=1) * np.linalg.norm(c - b, axis=1) * np.linalg.norm(v, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        own = np.where(cross > 0, sides / (2 * cross), np.inf)
+    if closed:
+        radius = np.minimum(np.minimum(own, np.roll(own, 1)), np.roll(own, -1))
+        return np.append(radius, radius[:1])
+    radius[1:-1] = own
+    near = radius.copy()
+    near[1:] = np.minimum(near[1:], radius[:-1])
+    near[:-1] = np.minimum(near[:-1], radius[1:])
+    return near
 
 
 def unroundable(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
