@@ -2,7 +2,8 @@
 
 An arc may be at most ``TIGHTER`` times as tight as the input's robust curvature envelope
 over the stretch it covers and a neighbourhood around it (coatsim.geometry.envelope), or
-than the kinks of sparse input there force (kink_demand). Given a
+than the kinks of sparse input there force (kink_demand), or, near an open run's ends, than
+the sparse polygon's own three-vertex circles (end_turning). Given a
 programmed speed v and a tool acceleration limit a, where the input allows v (its envelope at
 most a / v²) no arc may need more than a either (|κ| <= a / v²), and where the input needs a
 tighter turn, no arc may be tighter than the input there. Every fitted segment but the only
