@@ -22,6 +22,7 @@ from coatsim.path.reading import MoveSource
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Move, ToolPath
 
 _ARC_SAMPLES_PER_MM = 2.0
+_NEAREST_VERTICES = 8  # vertices whose pieces path_distance measures each point against
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,18 +172,24 @@ def rotation_along(path: ProcessPath, queries: np.ndarray) -> np.ndarray:
 
 
 def path_distance(a: np.ndarray, b: np.ndarray) -> float:
-    """Largest distance from the points ``a`` (n, 3) to the polyline through ``b`` (m, 3)."""
+    """Largest distance from the points ``a`` (n, 3) to the polyline through ``b`` (m, 3): to
+    the pieces at the _NEAREST_VERTICES vertices nearest each point (where the polyline passes
+    a point twice, as a circle closing on the line that led to it, the nearest vertex alone
+    may lie on the wrong pass)."""
     from scipy.spatial import cKDTree
 
     b = np.asarray(b, dtype=float)
-    _, nearest = cKDTree(b).query(a)
-    best = np.linalg.norm(a - b[nearest], axis=1)
-    for shift in (-1, 0):
-        i = np.clip(nearest + shift, 0, len(b) - 2)
-        p0, p1 = b[i], b[i + 1]
-        d = p1 - p0
-        t = np.clip(np.einsum("ij,ij->i", a - p0, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
-        best = np.minimum(best, np.linalg.norm(a - (p0 + t[:, None] * d), axis=1))
+    a = np.asarray(a, dtype=float)
+    _, nearest = cKDTree(b).query(a, k=min(_NEAREST_VERTICES, len(b)))
+    nearest = nearest.reshape(len(a), -1)
+    best = np.linalg.norm(a - b[nearest[:, 0]], axis=1)
+    for column in nearest.T:
+        for shift in (-1, 0):
+            i = np.clip(column + shift, 0, len(b) - 2)
+            p0, p1 = b[i], b[i + 1]
+            d = p1 - p0
+            t = np.clip(np.einsum("ij,ij->i", a - p0, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+            best = np.minimum(best, np.linalg.norm(a - (p0 + t[:, None] * d), axis=1))
     return float(best.max())
 
 
