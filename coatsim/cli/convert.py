@@ -57,6 +57,9 @@ def convert(
                                  standalone=standalone, corner_deg=corner_deg, name=name)
         result = convert_program(paths, options, language=source, target=target, inputs=input_states(inputs) or None,
                                  kinematics=LazyKinematics(model), variables=variables(settings))
+    if not result.written:  # nothing gained: no file written, nothing on stdout, the input untouched
+        typer.echo(conversion_summary(result), err=output is None)
+        return
     if output is not None and result.replaces is None:
         write_program(target, result.text, output)
     elif output is not None:

@@ -26,7 +26,7 @@ from coatsim.core.errors import CoatsimError, InputError
 from coatsim.core.fileio import read_input
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.pose import Pose
-from coatsim.geometry.space.primitives import Line3
+from coatsim.geometry.space.primitives import Line3, arc_through
 from coatsim.path.edit import EditsInPlace, FittedPath
 from coatsim.path.frames import DEFAULT_TOOL
 from coatsim.path.language import Language, ReadOptions
@@ -36,7 +36,7 @@ from coatsim.path.process import ProcessInfo
 from coatsim.path.process_path import PlaneFrame, ProcessPath, dense_points, moves_in_lines, path_distance, \
     path_of, planar_frame, rotation_along, spray_runs
 from coatsim.path.reading import Reading
-from coatsim.path.toolpath import Kinematics, ToolPath
+from coatsim.path.toolpath import CircularMove, Kinematics, LinearMove, ToolPath
 
 Paths = Union[str, Path, Sequence[Union[str, Path]]]
 
@@ -68,7 +68,8 @@ class ConvertOptions:
 @dataclass(frozen=True)
 class PathReport:
     """Figures of one converted path: the source lines replaced (in place) or the path came
-    from (standalone); ``deviation_mm`` measured on the program written."""
+    from (standalone); ``deviation_mm`` measured on the program written; ``kept``: the arcs
+    gained no move, the path is as it was."""
 
     first_line: int
     last_line: int
@@ -79,12 +80,14 @@ class PathReport:
     plane_deviation_mm: float
     deviation_mm: float
     length_mm: float
+    kept: bool = False
 
 
 @dataclass(frozen=True, eq=False)
 class Conversion:
     """The written program text, the input file it replaces (None: standalone), the figures;
-    ``data`` the bytes to write (the original's encoding and line ends kept)."""
+    ``data`` the bytes to write (the original's encoding and line ends kept); ``written`` False
+    when no path gains a move in the original's language: there is nothing to write."""
 
     text: str
     replaces: Optional[str]
@@ -92,6 +95,7 @@ class Conversion:
     notes: tuple[str, ...]
     tolerance_mm: float
     data: bytes
+    written: bool = True
 
 
 def _candidates(reading: Reading, options: ConvertOptions, motions: str) -> list[tuple[int, ...]]:
@@ -143,39 +147,99 @@ def _planar(reading: Reading, moves: tuple[int, ...], tol: float) -> tuple[tuple
                      "paths only")
 
 
-def fit_path(reading: Reading, moves: tuple[int, ...], options: ConvertOptions) -> FittedPath:
-    """Fit one process path with the default fitter in its plane."""
+@dataclass(frozen=True, eq=False)
+class TaughtArc(PlacedMove):
+    """An arc the original program turns in one circular move, written as one move again
+    whatever the language's limit for new arcs: its controller runs the original's."""
+
+    def split(self, max_sweep: float) -> tuple[PlacedMove, ...]:
+        return (self,)
+
+
+def moves_written(segments: Sequence[PlacedMove], max_arc_sweep_deg: float) -> int:
+    """How many moves a language splitting arcs above ``max_arc_sweep_deg`` writes ``segments`` as."""
+    return sum(len(s.split(math.radians(max_arc_sweep_deg))) if s.is_arc else 1 for s in segments)
+
+
+def _fit_points(path: ProcessPath, plane: PlaneFrame, points: np.ndarray, fit_tol: float, corner_deg: float,
+                ends: Optional[tuple[Pose, Pose]]) -> tuple[list[PlacedMove], float, int]:
+    """The lines and arcs of the default fitter through ``points`` (n, 3) in ``plane``: the
+    segments (``ends`` the first and last pose exactly, if given), their deviation, how many are
+    lines written for arcs turning less than MIN_CIRCLE_SWEEP_DEG."""
     from coatsim.geometry import make_curve, segment_curve
     from coatsim.geometry.primitives import Line
 
-    tol = options.tolerance_mm
-    moves, path, plane, notes = _planar(reading, moves, tol)
-    fit_tol = math.sqrt(tol * tol - plane.deviation_mm ** 2)
-    curve = make_curve(plane.to_plane(path.points), "process path", "no")
-    seg = segment_curve(curve, fit_tol, corner_deg=options.corner_deg)
+    seg = segment_curve(make_curve(plane.to_plane(points), "process path", "no"), fit_tol, corner_deg=corner_deg)
     poly = seg.polysegment
-    ends = np.array([s.start for s in poly.segments] + [poly.end], dtype=float)
-    space = plane.to_space(ends)
-    rotations = rotation_along(path, space)
-    poses = [Pose(r, p) for p, r in zip(space, rotations)]
-    segments, straightened = [], 0.0
+    space = plane.to_space(np.array([s.start for s in poly.segments] + [poly.end], dtype=float))
+    poses = [Pose(r, p) for p, r in zip(space, rotation_along(path, space))]
+    if ends is not None:
+        poses[0], poses[-1] = ends
+    segments, straightened, n_flat = [], 0.0, 0
     for k, s in enumerate(poly.segments):
         sagitta = 0.0 if isinstance(s, Line) else s.radius * (1.0 - math.cos(s.sweep / 2.0))
         if isinstance(s, Line) or (abs(s.sweep) < math.radians(MIN_CIRCLE_SWEEP_DEG)
                                    and seg.max_deviation_mm + max(straightened, sagitta) <= fit_tol):
             segments.append(placed_line(poses[k], poses[k + 1]))
             straightened = max(straightened, sagitta)
+            n_flat += not isinstance(s, Line)
         else:
             normal = plane.normal if s.sweep > 0 else -plane.normal
             arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
             segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
+    return segments, seg.max_deviation_mm + straightened, n_flat
+
+
+def _taught_arcs(reading: Reading, path: ProcessPath, plane: PlaneFrame, fit_tol: float, corner_deg: float,
+                 taught: bool) -> tuple[list[PlacedMove], float, int]:
+    """The path with each circular move of the original kept as its exact arc (a TaughtArc if
+    ``taught``) and each stretch of linear moves between them fitted; the deviation, the number
+    of nearly straight arcs written as lines."""
+    moves = [reading.toolpath.moves[i] for i in path.moves]
+    segments: list[PlacedMove] = []
+    deviation, n_flat, k = 0.0, 0, 0
+    while k < len(moves):
+        m = moves[k]
+        if isinstance(m, CircularMove):
+            segments.append(_taught_move(m, taught))
+            k += 1
+            continue
+        j = k
+        while j < len(moves) and not isinstance(moves[j], CircularMove):
+            j += 1
+        if j - k == 1:
+            segments.append(placed_line(m.start, m.end))
+        else:
+            points = np.array([m.start.translation_mm] + [n.end.translation_mm for n in moves[k:j]], dtype=float)
+            fitted, dev, flat = _fit_points(path, plane, points, fit_tol, corner_deg, (m.start, moves[j - 1].end))
+            segments += fitted
+            deviation, n_flat = max(deviation, dev), n_flat + flat
+        k = j
+    return segments, deviation, n_flat
+
+
+def fit_path(reading: Reading, moves: tuple[int, ...], options: ConvertOptions, max_arc_sweep_deg: float,
+             taught: bool) -> FittedPath:
+    """Fit one process path with the default fitter in its plane. Where the original has
+    circular moves, their exact arcs are kept (stretches of linear moves between them fitted)
+    unless fitting the whole path takes fewer moves (arcs split above ``max_arc_sweep_deg``):
+    sampling an arc and fitting it again can only lose it. ``taught``: the arcs kept are written
+    as one move each, as the original's (TaughtArc)."""
+    tol = options.tolerance_mm
+    moves, path, plane, notes = _planar(reading, moves, tol)
+    fit_tol = math.sqrt(tol * tol - plane.deviation_mm ** 2)
+    segments, deviation, n_flat = _fit_points(path, plane, path.points, fit_tol, options.corner_deg, None)
+    if any(isinstance(reading.toolpath.moves[i], CircularMove) for i in moves):
+        kept = _taught_arcs(reading, path, plane, fit_tol, options.corner_deg, taught)
+        if moves_written(kept[0], max_arc_sweep_deg) <= moves_written(segments, max_arc_sweep_deg):
+            segments, deviation, n_flat = kept
     n_lines = sum(isinstance(m.geometry, Line3) for m in segments)
-    if straightened:
+    if n_flat:
         notes.append(f"lines {'-'.join(map(str, _line_span(reading, moves)))}: "
-                     f"{n_lines - poly.n_lines} nearly straight arc(s) (turning less than {MIN_CIRCLE_SWEEP_DEG:g} deg) "
+                     f"{n_flat} nearly straight arc(s) (turning less than {MIN_CIRCLE_SWEEP_DEG:g} deg) "
                      "written as lines: a controller cannot place a circle through three nearly collinear points")
-    return FittedPath(path, plane, tuple(segments), len(segments) - n_lines, n_lines,
-                      seg.max_deviation_mm + straightened, _line_span(reading, moves), tuple(notes))
+    return FittedPath(path, plane, tuple(segments), len(segments) - n_lines, n_lines, deviation,
+                      _line_span(reading, moves), tuple(notes))
 
 
 def _settings(toolpath: ToolPath, f: FittedPath) -> tuple[float, float, bool]:
@@ -262,9 +326,19 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     reading = language.reading(items, read_options)
     reading.require_complete()
     motions = language.capabilities.motions
-    fitted = [fit_path(reading, c, options) for c in _candidates(reading, options, motions)]
+    limit, taught = target.capabilities.max_arc_sweep_deg, target is language
+    fitted = [fit_path(reading, c, options, limit, taught) for c in _candidates(reading, options, motions)]
     notes = [n for f in fitted for n in f.notes]
+    gains = [moves_written(f.segments, limit) < len(f.path.moves) for f in fitted]
+    notes += [f"lines {f.lines[0]}-{f.lines[1]}: the arc program has no fewer moves "
+              f"({moves_written(f.segments, limit)} against {len(f.path.moves)}: {f.n_lines} lines and {f.n_arcs} "
+              f"arcs): the path is {'kept as it was' if taught else 'written move for move as the original'}"
+              for f, gained in zip(fitted, gains) if not gained]
+    kept = [_kept_report(reading, f) for f, gained in zip(fitted, gains) if not gained]
+    if taught and not any(gains):
+        return Conversion("", None, tuple(kept), tuple(notes), options.tolerance_mm, b"", written=False)
     if standalone:
+        fitted = [f if gained else _as_taught(reading, f, taught) for f, gained in zip(fitted, gains)]
         text, replaces, counts, ranges = _standalone(reading, fitted, options, target), None, None, [f.lines for f in fitted]
         data = text.encode("ascii")
         written = [(f"converted{suffix}", body.encode("ascii")) for suffix, body in target.files(text)]
@@ -273,6 +347,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
             notes.append("the original's poses hold external axis values (a rail, a positioner); the standalone "
                          "program's poses have none: add them before loading it on such a cell")
     else:
+        fitted = [f for f, gained in zip(fitted, gains) if gained]
         edit = language.edit_in_place(items, read_options, fitted, options.tolerance_mm)
         replaces, data, counts, ranges = edit.source, edit.data, list(edit.counts), list(edit.ranges)
         text = data.decode("utf-8" if _is_utf8(data) else "latin-1")
@@ -286,11 +361,38 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
     reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm / 20.0,
                       replaces or "the standalone program")
+    fitted_reports = reports if not standalone else [r for r, gained in zip(reports, gains) if gained]
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
-              f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over "
-              f"{target.capabilities.max_arc_sweep_deg:g} deg takes several {target.capabilities.motions} moves)"
-              for r in reports if r.moves_after >= r.moves_before]
+              f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over {limit:g} deg takes several "
+              f"{target.capabilities.motions} moves)" for r in fitted_reports if r.moves_after >= r.moves_before]
+    if standalone:
+        reports = [replace(r, kept=taught and not gained) for r, gained in zip(reports, gains)]
+    else:
+        reports = sorted(reports + kept, key=lambda r: r.first_line)
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
+
+
+def _taught_move(move: Union[LinearMove, CircularMove], taught: bool) -> PlacedMove:
+    """A move of the original as a line or its exact arc (a TaughtArc if ``taught``)."""
+    if isinstance(move, CircularMove):
+        arc = arc_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm)
+        return (TaughtArc if taught else PlacedMove)(arc, move.start, move.end)
+    return placed_line(move.start, move.end)
+
+
+def _as_taught(reading: Reading, f: FittedPath, taught: bool) -> FittedPath:
+    """The path ``f`` as the original moves it, move for move."""
+    segments = tuple(_taught_move(reading.toolpath.moves[i], taught) for i in f.path.moves)
+    n_arcs = sum(s.is_arc for s in segments)
+    return replace(f, segments=segments, n_arcs=n_arcs, n_lines=len(segments) - n_arcs, fit_deviation_mm=0.0)
+
+
+def _kept_report(reading: Reading, f: FittedPath) -> PathReport:
+    """The figures of a path kept as it was: its own moves, no deviation."""
+    n = len(f.path.moves)
+    n_arcs = sum(isinstance(reading.toolpath.moves[i], CircularMove) for i in f.path.moves)
+    return PathReport(f.lines[0], f.lines[1], n, n, n_arcs, n - n_arcs, f.plane.deviation_mm, 0.0, f.path.length_mm,
+                      kept=True)
 
 
 def _read_edited(language: Language, items: Sequence[Path], replaces: str, data: bytes, options: ReadOptions) -> Reading:
@@ -377,12 +479,17 @@ def conversion_summary(c: Conversion) -> str:
     """The report of ``coatsim convert``: one line per path, then the notes."""
     out = []
     for r in c.paths:
+        if r.kept:
+            out.append(f"lines {r.first_line}-{r.last_line}: {r.moves_before} moves ({r.n_lines} lines + {r.n_arcs} arcs) "
+                       "kept as they were")
+            continue
         out.append(f"lines {r.first_line}-{r.last_line}: {r.moves_before} moves -> {r.moves_after} "
                    f"({r.n_lines} lines + {r.n_arcs} arcs), path {r.length_mm:.3f} mm, deviation {r.deviation_mm:.4f} mm "
                    f"(tolerance {c.tolerance_mm:g} mm; out of plane {r.plane_deviation_mm:.4f} mm)")
     before, after = sum(r.moves_before for r in c.paths), sum(r.moves_after for r in c.paths)
-    out.append(f"moves on the process path: {before} -> {after}; "
-               + (f"path replaced in a copy of {c.replaces} (every other line as it was)" if c.replaces
-                  else "standalone program"))
+    done = ("nothing gained: no program written (the original stays as it is)" if not c.written
+            else f"path replaced in a copy of {c.replaces} (every other line as it was)" if c.replaces
+            else "standalone program")
+    out.append(f"moves on the process path: {before} -> {after}; {done}")
     out += [f"note: {n}" for n in c.notes]
     return "\n".join(out)

@@ -121,6 +121,9 @@ def test_an_exact_line_beside_an_arc_is_written_as_a_line_not_a_flat_circle(tmp_
     source.write_text(RAPID_LAL)
     conversion = convert_program([source], ConvertOptions(tolerance_mm=0.1, standalone=True),
                                  language=language("abb-rapid"), target=language(to))
+    if to == "abb-rapid":  # three moves, no fewer as arcs: nothing gained in its own language, nothing written
+        assert not conversion.written and conversion.paths[0].kept
+        return
     folder = tmp_path / to
     folder.mkdir()
     files = []
@@ -137,4 +140,5 @@ def test_an_exact_line_beside_an_arc_is_written_as_a_line_not_a_flat_circle(tmp_
     lines = [m for m in moves if m.kind == "line"]
     assert len(lines) == 2 and all(abs(np.linalg.norm(m.end.translation_mm - m.start.translation_mm) - 200) < 0.2
                                    for m in lines)
-    assert any("nearly straight arc(s)" in n for n in conversion.notes)
+    # its own three moves are the fewest: written move for move, the taught half circle kept exact
+    assert any("written move for move" in n for n in conversion.notes)

@@ -250,14 +250,15 @@ def test_a_drawing_robot_s_draw_steps_become_arcs(tmp_path, kin):
     assert report.moves_after <= 6 and report.n_arcs >= 1 and report.deviation_mm <= TOL
 
 
-def test_a_program_already_in_arcs_is_not_made_longer_silently(tmp_path, kin):
+def test_a_program_already_in_arcs_is_kept_as_it_is(tmp_path, kin):
     text = (".PROGRAM ring()\n  TOOL TRANS(0, 0, 250)\n  SPEED 100 MM/S ALWAYS\n  JMOVE a + TRANS(, , -30)\n  LMOVE a\n"
             "  BREAK\n  SIGNAL 1\n  C1MOVE b\n  C2MOVE c\n  C1MOVE d\n  C2MOVE a\n  BREAK\n  SIGNAL -1\n.END\n.TRANS\n"
             "a 700 -40 300 0 180 0\nb 740 0 300 0 180 0\nc 700 40 300 0 180 0\nd 660 0 300 0 180 0\n.END\n")
     result = convert_program(write(tmp_path, text.encode()), ConvertOptions(TOL), kinematics=kin)
     (report,) = result.paths
-    assert report.moves_before == 2 and report.moves_after > 2 and report.deviation_mm < 0.01
-    assert any(f"no fewer moves ({report.moves_after} against 2" in n for n in result.notes)
+    assert not result.written and result.data == b"" and report.kept
+    assert report.moves_before == report.moves_after == 2 and report.deviation_mm == 0.0
+    assert any("no fewer moves (2 against 2" in n and "kept as it was" in n for n in result.notes)
 
 
 def test_standalone_sprays_every_pass_of_a_loop(tmp_path, kin):
