@@ -270,8 +270,14 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
     a closed one is left out."""
     band = o.edge_band_mm
     if o.pattern == "raster":
-        return [p.with_field(p.vertices @ step, raster_levels(p.vertices, p.faces, p.normals, step, p.inside(band),
-                                                             s.spacing_mm, p.surface)) for p in pieces]
+        steps = [_piece_step(p, step, s.spacing_mm, band) for p in pieces]
+        own = [k for k, st in enumerate(steps) if st is not step]
+        if own:
+            notes.append(f"{len(own)} piece(s) of the region that the raster planes cross edge-on (facing the step "
+                         f"direction; {sum(pieces[k].area_mm2 for k in own):.4g} mm2) are rastered along their own "
+                         "longest axis")
+        return [p.with_field(p.vertices @ st, raster_levels(p.vertices, p.faces, p.normals, st, p.inside(band),
+                                                           s.spacing_mm, p.surface)) for p, st in zip(pieces, steps)]
     if o.pattern == "boundary":
         return [boundary_piece(p, s.spacing_mm, band) for p in pieces]
     points = (assign_points(pieces, o.start, s.spacing_mm) if isinstance(o.start, FromPoints)
@@ -287,6 +293,20 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
         notes.append(f"{len(missed)} piece(s) of the region that the start does not reach (beyond a sharp edge, "
                      f"islands; {sum(pieces[k].area_mm2 for k in missed):.4g} mm2) take passes from their own border")
     return [p for p in done if p is not None]
+
+
+def _piece_step(piece: Piece, step: np.ndarray, spacing_mm: float, band_mm: float) -> np.ndarray:
+    """The raster step for one piece: ``step``, unless its planes would cut the piece at most once
+    (it spans less than a spacing along the step) while the piece is wider than a spacing across
+    its own longest axis (a cap facing the step: one section or none would leave it bare); then
+    the piece's own step, across its longest axis."""
+    inside = piece.inside(band_mm)
+    if not inside.any():
+        return step
+    if np.ptp(piece.vertices[inside] @ step) >= spacing_mm:
+        return step
+    own = sign_fixed(principal_axes(piece.vertices, piece.faces)[1])
+    return own if np.ptp(piece.vertices[inside] @ own) > spacing_mm else step
 
 
 def _traces(piece: Piece, index: int, band: float) -> list[Trace]:

@@ -125,13 +125,17 @@ def test_closed_box_is_cut_on_the_side_the_gun_sees():
     points = np.concatenate([p.points for p in boxed.passes])
     assert points[:, 2].min() == pytest.approx(10.0)
     # all of it: the planes would run round the part, but a gun cannot follow a normal round a
-    # right-angled edge: each side faced by the planes gets its own 10 passes, each on one face
-    # with that face's normal, and the plan says why
+    # right-angled edge: each side the planes cross gets its own 10 passes, each on one face
+    # with that face's normal, and the plan says why; the two 80 x 20 ends facing the step, which
+    # the planes cross edge-on, get 2 passes each across their own longest axis
     around = plan(box_part((100.0, 80.0, 20.0)), options(region=Everything(), step_direction=(1, 0, 0)))
-    assert len(around.passes) == 40 and not any(p.closed for p in around.passes)
+    assert len(around.passes) == 44 and not any(p.closed for p in around.passes)
     for p in around.passes:
         assert np.allclose(p.normals, p.normals[0], atol=1e-9) and np.isclose(np.abs(p.normals[0]).max(), 1.0)
+    ends = [p for p in around.passes if abs(p.normals[0][0]) > 0.5]
+    assert len(ends) == 4 and all(np.ptp(p.points[:, 1]) > 60.0 for p in ends)
     assert any("sharp edges" in note for note in around.notes)
+    assert any("2 piece(s) of the region that the raster planes cross edge-on" in n for n in around.notes)
 
 
 def test_plate_with_hole_geodesic_passes_bend_around_it():
