@@ -45,7 +45,7 @@ from coatsim.geometry.surface.normals import (
 )
 from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
 from coatsim.geometry.surface.piece import Piece
-from coatsim.geometry.surface.raster import raster_levels
+from coatsim.geometry.surface.raster import raster_levels, raster_step
 from coatsim.geometry.surface.refine import refined
 from coatsim.geometry.surface.region import (
     Box,
@@ -270,7 +270,7 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
     a closed one is left out."""
     band = o.edge_band_mm
     if o.pattern == "raster":
-        steps = [_piece_step(p, step, s.spacing_mm, band) for p in pieces]
+        steps = [raster_step(p.vertices, p.faces, p.inside(band), step, s.spacing_mm) for p in pieces]
         own = [k for k, st in enumerate(steps) if st is not step]
         if own:
             notes.append(f"{len(own)} piece(s) of the region that the raster planes cross edge-on (facing the step "
@@ -293,20 +293,6 @@ def _patterned(pieces: list[Piece], o: PlanOptions, s: _Settings, step: np.ndarr
         notes.append(f"{len(missed)} piece(s) of the region that the start does not reach (beyond a sharp edge, "
                      f"islands; {sum(pieces[k].area_mm2 for k in missed):.4g} mm2) take passes from their own border")
     return [p for p in done if p is not None]
-
-
-def _piece_step(piece: Piece, step: np.ndarray, spacing_mm: float, band_mm: float) -> np.ndarray:
-    """The raster step for one piece: ``step``, unless its planes would cut the piece at most once
-    (it spans less than a spacing along the step) while the piece is wider than a spacing across
-    its own longest axis (a cap facing the step: one section or none would leave it bare); then
-    the piece's own step, across its longest axis."""
-    inside = piece.inside(band_mm)
-    if not inside.any():
-        return step
-    if np.ptp(piece.vertices[inside] @ step) >= spacing_mm:
-        return step
-    own = sign_fixed(principal_axes(piece.vertices, piece.faces)[1])
-    return own if np.ptp(piece.vertices[inside] @ own) > spacing_mm else step
 
 
 def _traces(piece: Piece, index: int, band: float) -> list[Trace]:

@@ -32,6 +32,7 @@ from coatsim.core.budgets import check_budget
 from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import crossing_edges, edge_points, level_curves
 from coatsim.geometry.surface.distance import Marching, NearestOnCurves
+from coatsim.geometry.surface.region import principal_axes, sign_fixed
 from coatsim.geometry.surface.topology import submesh
 from coatsim.geometry.vectors import unit_rows
 
@@ -43,6 +44,18 @@ MIN_STEP_FRACTION = 1e-3
 END_SLIVER_FRACTION = 0.1
 #: the even gap is found to this fraction of the spacing (the last gap equals the others to it)
 EVEN_FRACTION = 1e-4
+
+
+def raster_step(vertices: np.ndarray, faces: np.ndarray, inside: np.ndarray, step: np.ndarray,
+                spacing_mm: float) -> np.ndarray:
+    """The step direction for one region piece: ``step``, unless its planes would cut the piece at
+    most once (its ``inside`` vertices span less than a spacing along it) while the piece is wider
+    than a spacing across its own longest axis (a cap facing the step: one section or none would
+    leave it bare); then the piece's own step, across its longest axis."""
+    if not inside.any() or np.ptp(vertices[inside] @ step) >= spacing_mm:
+        return step
+    own = sign_fixed(principal_axes(vertices, faces)[1])
+    return own if np.ptp(vertices[inside] @ own) > spacing_mm else step
 
 
 def raster_levels(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray, step_direction: np.ndarray,
