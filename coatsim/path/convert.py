@@ -2,13 +2,12 @@
 
 The program is read in its language (:class:`~coatsim.path.reading.Reading`). The process path
 is every stretch of Cartesian moves the gun sprays (or the moves of a range of lines). Each is
-fitted in its plane with the default fitter within the tolerance (minus what the path leaves its
-plane by) and written as linear and circular moves: in place of the statements that made it, by
-a language that edits its programs in place (:mod:`coatsim.path.edit`; same poses, tool, speed
-and signals around it, every other line kept byte for byte), or as a clean standalone program in
-any language (the same frame, tool, speed and gun output). The result is read back and
-interpreted: the deviation reported is measured on the program as written, against the original
-path.
+fitted in its plane (:mod:`coatsim.path.path_fit`) and written as linear and circular moves: in
+place of the statements that made it, by a language that edits its programs in place
+(:mod:`coatsim.path.edit`; same poses, tool, speed and signals around it, every other line kept
+byte for byte), or as a clean standalone program in any language (the same frame, tool, speed and
+gun output). The result is read back and interpreted: the deviation reported is measured on the
+program as written, against the original path.
 """
 
 from __future__ import annotations
@@ -26,23 +25,18 @@ from coatsim.core.errors import CoatsimError, InputError
 from coatsim.core.fileio import read_input
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.pose import Pose
-from coatsim.geometry.space.primitives import Line3, arc_through
 from coatsim.path.edit import EditsInPlace, FittedPath
 from coatsim.path.frames import DEFAULT_TOOL
 from coatsim.path.language import Language, ReadOptions
-from coatsim.path.placement import PlacedMove, PlacedPath, placed_arc, placed_line
+from coatsim.path.path_fit import fit_path, moves_written, taught_move
+from coatsim.path.placement import PlacedPath
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process import ProcessInfo
-from coatsim.path.process_path import PlaneFrame, ProcessPath, dense_points, moves_in_lines, path_distance, \
-    path_of, planar_frame, rotation_along, spray_runs
+from coatsim.path.process_path import dense_points, moves_in_lines, path_distance, spray_runs
 from coatsim.path.reading import Reading
-from coatsim.path.toolpath import CircularMove, Kinematics, LinearMove, ToolPath
+from coatsim.path.toolpath import CircularMove, Kinematics, ToolPath
 
 Paths = Union[str, Path, Sequence[Union[str, Path]]]
-
-PLANE_SHARE = 0.5  # the part of the tolerance a path may leave its plane by
-MIN_CIRCLE_SWEEP_DEG = 1.0  # a fitted arc turning less is written as its chord where the tolerance allows
-
 
 @dataclass(frozen=True)
 class ConvertOptions:
@@ -60,9 +54,11 @@ class ConvertOptions:
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.tolerance_mm) and self.tolerance_mm > 0.0):
-            raise InputError(f"--tol {self.tolerance_mm}: must be a finite number > 0 (mm)")
+            raise InputError(f"tolerance_mm {self.tolerance_mm}: must be a finite number > 0 (mm)",
+                             parameters=("tolerance_mm",))
         if not (math.isfinite(self.approach_mm) and self.approach_mm >= 0.0):
-            raise InputError(f"--approach {self.approach_mm}: must be a finite number >= 0 (mm)")
+            raise InputError(f"approach_mm {self.approach_mm}: must be a finite number >= 0 (mm)",
+                             parameters=("approach_mm",))
 
 
 @dataclass(frozen=True)
@@ -105,8 +101,9 @@ def _candidates(reading: Reading, options: ConvertOptions, motions: str) -> list
         sprayed = {toolpath.moves[i].spray for i in moves}
         if len(sprayed) > 1:
             off = next(toolpath.moves[i].line for i in moves if not toolpath.moves[i].spray)
-            raise InputError(f"--lines {options.lines[0]}-{options.lines[1]}: the gun sprays some of these moves and "
-                             f"not others (line {off}); choose lines the gun sprays throughout, or none of")
+            raise InputError(f"lines {options.lines[0]}-{options.lines[1]}: the gun sprays some of these moves and "
+                             f"not others (line {off}); choose lines the gun sprays throughout, or none of",
+                             parameters=("lines",))
         return [moves]
     runs = [r for r in spray_runs(toolpath) if len(r) >= 2]
     if not runs:
@@ -115,131 +112,8 @@ def _candidates(reading: Reading, options: ConvertOptions, motions: str) -> list
             if outputs else "it switches no output"
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
                          f"consecutive {motions} moves ({switched}: is the process signal one of "
-                         "them?); name the moves with --lines FIRST-LAST")
+                         "them?); name the moves with lines FIRST-LAST", parameters=("lines",))
     return runs
-
-
-def _line_span(reading: Reading, moves: Sequence[int]) -> tuple[int, int]:
-    sources = reading.move_sources
-    return min(sources[i].first_line for i in moves), max(sources[i].last_line for i in moves)
-
-
-def _planar(reading: Reading, moves: tuple[int, ...], tol: float) -> tuple[tuple[int, ...], ProcessPath, PlaneFrame, list[str]]:
-    """The moves (a sprayed approach or depart leaving the plane dropped) and their plane."""
-    tries = [(moves, [])]
-    if len(moves) > 2:
-        tries += [(moves[1:], ["first"]), (moves[:-1], ["last"])]
-    if len(moves) > 3:
-        tries.append((moves[1:-1], ["first", "last"]))
-    first = None
-    for subset, dropped in tries:
-        path = path_of(reading.toolpath, subset, tol)
-        tool_z = np.mean(path.rotations[:, :, 2], axis=0)
-        plane = planar_frame(path.points, tool_z)
-        first = first or (path, plane)
-        if plane.deviation_mm <= PLANE_SHARE * tol:
-            notes = [f"line {reading.toolpath.moves[moves[0] if d == 'first' else moves[-1]].line}: the {d} sprayed "
-                     "move leaves the plane of the path and is kept as it is" for d in dropped]
-            return subset, path, plane, notes
-    a, b = _line_span(reading, moves)
-    raise InputError(f"the process path of lines {a}-{b} is not planar: it leaves its best plane by "
-                     f"{first[1].deviation_mm:.3f} mm, more than {PLANE_SHARE:g} x the tolerance; coatsim fits planar "
-                     "paths only")
-
-
-@dataclass(frozen=True, eq=False)
-class TaughtArc(PlacedMove):
-    """An arc the original program turns in one circular move, written as one move again
-    whatever the language's limit for new arcs: its controller runs the original's."""
-
-    def split(self, max_sweep: float) -> tuple[PlacedMove, ...]:
-        return (self,)
-
-
-def moves_written(segments: Sequence[PlacedMove], max_arc_sweep_deg: float) -> int:
-    """How many moves a language splitting arcs above ``max_arc_sweep_deg`` writes ``segments`` as."""
-    return sum(len(s.split(math.radians(max_arc_sweep_deg))) if s.is_arc else 1 for s in segments)
-
-
-def _fit_points(path: ProcessPath, plane: PlaneFrame, points: np.ndarray, fit_tol: float, corner_deg: float,
-                ends: Optional[tuple[Pose, Pose]]) -> tuple[list[PlacedMove], float, int]:
-    """The lines and arcs of the default fitter through ``points`` (n, 3) in ``plane``: the
-    segments (``ends`` the first and last pose exactly, if given), their deviation, how many are
-    lines written for arcs turning less than MIN_CIRCLE_SWEEP_DEG."""
-    from coatsim.geometry import make_curve, segment_curve
-    from coatsim.geometry.primitives import Line
-
-    seg = segment_curve(make_curve(plane.to_plane(points), "process path", "no"), fit_tol, corner_deg=corner_deg)
-    poly = seg.polysegment
-    space = plane.to_space(np.array([s.start for s in poly.segments] + [poly.end], dtype=float))
-    poses = [Pose(r, p) for p, r in zip(space, rotation_along(path, space))]
-    if ends is not None:
-        poses[0], poses[-1] = ends
-    segments, straightened, n_flat = [], 0.0, 0
-    for k, s in enumerate(poly.segments):
-        sagitta = 0.0 if isinstance(s, Line) else s.radius * (1.0 - math.cos(s.sweep / 2.0))
-        if isinstance(s, Line) or (abs(s.sweep) < math.radians(MIN_CIRCLE_SWEEP_DEG)
-                                   and seg.max_deviation_mm + max(straightened, sagitta) <= fit_tol):
-            segments.append(placed_line(poses[k], poses[k + 1]))
-            straightened = max(straightened, sagitta)
-            n_flat += not isinstance(s, Line)
-        else:
-            normal = plane.normal if s.sweep > 0 else -plane.normal
-            arc = placed_arc(poses[k], poses[k + 1], plane.to_space(np.asarray(s.center))[0], normal, abs(s.sweep))
-            segments.append(PlacedMove(arc, poses[k], poses[k + 1]))
-    return segments, seg.max_deviation_mm + straightened, n_flat
-
-
-def _taught_arcs(reading: Reading, path: ProcessPath, plane: PlaneFrame, fit_tol: float, corner_deg: float,
-                 taught: bool) -> tuple[list[PlacedMove], float, int]:
-    """The path with each circular move of the original kept as its exact arc (a TaughtArc if
-    ``taught``) and each stretch of linear moves between them fitted; the deviation, the number
-    of nearly straight arcs written as lines."""
-    moves = [reading.toolpath.moves[i] for i in path.moves]
-    segments: list[PlacedMove] = []
-    deviation, n_flat, k = 0.0, 0, 0
-    while k < len(moves):
-        m = moves[k]
-        if isinstance(m, CircularMove):
-            segments.append(_taught_move(m, taught))
-            k += 1
-            continue
-        j = k
-        while j < len(moves) and not isinstance(moves[j], CircularMove):
-            j += 1
-        if j - k == 1:
-            segments.append(placed_line(m.start, m.end))
-        else:
-            points = np.array([m.start.translation_mm] + [n.end.translation_mm for n in moves[k:j]], dtype=float)
-            fitted, dev, flat = _fit_points(path, plane, points, fit_tol, corner_deg, (m.start, moves[j - 1].end))
-            segments += fitted
-            deviation, n_flat = max(deviation, dev), n_flat + flat
-        k = j
-    return segments, deviation, n_flat
-
-
-def fit_path(reading: Reading, moves: tuple[int, ...], options: ConvertOptions, max_arc_sweep_deg: float,
-             taught: bool) -> FittedPath:
-    """Fit one process path with the default fitter in its plane. Where the original has
-    circular moves, their exact arcs are kept (stretches of linear moves between them fitted)
-    unless fitting the whole path takes fewer moves (arcs split above ``max_arc_sweep_deg``):
-    sampling an arc and fitting it again can only lose it. ``taught``: the arcs kept are written
-    as one move each, as the original's (TaughtArc)."""
-    tol = options.tolerance_mm
-    moves, path, plane, notes = _planar(reading, moves, tol)
-    fit_tol = math.sqrt(tol * tol - plane.deviation_mm ** 2)
-    segments, deviation, n_flat = _fit_points(path, plane, path.points, fit_tol, options.corner_deg, None)
-    if any(isinstance(reading.toolpath.moves[i], CircularMove) for i in moves):
-        kept = _taught_arcs(reading, path, plane, fit_tol, options.corner_deg, taught)
-        if moves_written(kept[0], max_arc_sweep_deg) <= moves_written(segments, max_arc_sweep_deg):
-            segments, deviation, n_flat = kept
-    n_lines = sum(isinstance(m.geometry, Line3) for m in segments)
-    if n_flat:
-        notes.append(f"lines {'-'.join(map(str, _line_span(reading, moves)))}: "
-                     f"{n_flat} nearly straight arc(s) (turning less than {MIN_CIRCLE_SWEEP_DEG:g} deg) "
-                     "written as lines: a controller cannot place a circle through three nearly collinear points")
-    return FittedPath(path, plane, tuple(segments), len(segments) - n_lines, n_lines, deviation,
-                      _line_span(reading, moves), tuple(notes))
 
 
 def _settings(toolpath: ToolPath, f: FittedPath) -> tuple[float, float, bool]:
@@ -269,8 +143,9 @@ def _standalone(reading: Reading, fitted: list[FittedPath], options: ConvertOpti
     spans = ", ".join(f"{f.lines[0]}-{f.lines[1]}" for f in fitted)
     settings = {_settings(toolpath, f) for f in fitted}
     if len(settings) != 1:
-        raise InputError(f"{len(fitted)} process paths (lines {spans}) sprayed with different speeds or accuracies; "
-                         "--standalone writes them with one: choose a path with --lines FIRST-LAST")
+        raise InputError(f"choose one path with lines FIRST-LAST: the {len(fitted)} process paths (at {spans}) are "
+                         "sprayed with different speeds or accuracies and a standalone program writes them with one",
+                         parameters=("lines",))
     speed, accuracy, cp = settings.pop()
     tool = toolpath.tool
     tool_frame = Pose(tool.rotation, tool.offset_mm) if tool is not None else DEFAULT_TOOL
@@ -327,7 +202,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     reading.require_complete()
     motions = language.capabilities.motions
     limit, taught = target.capabilities.max_arc_sweep_deg, target is language
-    fitted = [fit_path(reading, c, options, limit, taught) for c in _candidates(reading, options, motions)]
+    fitted = [fit_path(reading, c, options.tolerance_mm, options.corner_deg, limit, taught) for c in _candidates(reading, options, motions)]
     notes = [n for f in fitted for n in f.notes]
     gains = [moves_written(f.segments, limit) < len(f.path.moves) for f in fitted]
     notes += [f"lines {f.lines[0]}-{f.lines[1]}: the arc program has no fewer moves "
@@ -372,17 +247,9 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
 
 
-def _taught_move(move: Union[LinearMove, CircularMove], taught: bool) -> PlacedMove:
-    """A move of the original as a line or its exact arc (a TaughtArc if ``taught``)."""
-    if isinstance(move, CircularMove):
-        arc = arc_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm)
-        return (TaughtArc if taught else PlacedMove)(arc, move.start, move.end)
-    return placed_line(move.start, move.end)
-
-
 def _as_taught(reading: Reading, f: FittedPath, taught: bool) -> FittedPath:
     """The path ``f`` as the original moves it, move for move."""
-    segments = tuple(_taught_move(reading.toolpath.moves[i], taught) for i in f.path.moves)
+    segments = tuple(taught_move(reading.toolpath.moves[i], taught) for i in f.path.moves)
     n_arcs = sum(s.is_arc for s in segments)
     return replace(f, segments=segments, n_arcs=n_arcs, n_lines=len(segments) - n_arcs, fit_deviation_mm=0.0)
 

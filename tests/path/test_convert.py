@@ -161,7 +161,7 @@ def test_named_lines_and_errors(tmp_path):
     # lines taking in moves the gun sprays and moves it does not: a standalone would spray them all
     body = body.replace("  LMOVE c[10]\n", "  LMOVE c[10]\n  BREAK\n  SIGNAL 1\n")
     src = write(tmp_path, (".PROGRAM x()\n  JMOVE c[0]\n" + body + f"\n.END\n.TRANS\n{trans}\n.END\n").encode())
-    with pytest.raises(InputError, match=r"--lines 3-40: the gun sprays some of these moves and not others \(line 3\)"):
+    with pytest.raises(InputError, match=r"lines 3-40: the gun sprays some of these moves and not others \(line 3\)"):
         convert_program(src, ConvertOptions(TOL, lines=(3, 40), standalone=True))
 
 
