@@ -25,6 +25,7 @@ from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
+from coatsim.geometry.scatter import scatter_mm
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
@@ -34,6 +35,7 @@ TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of
 TAUGHT_AIM = 0.9  # ... it is fitted again within this share of σ (the fewer segments kept)
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 SMALL_SIGMAS = 10.0  # a curve spanning fewer tolerances than this is most likely in another unit than mm
+NOISE_SHARE = 0.1  # points scattering by more than this share of the tolerance leave a fit little room
 METHODS = ("optimal", "paper")
 
 
@@ -224,6 +226,11 @@ def segment_curve(
     if extent < SMALL_SIGMAS * tol:
         notes += (f"the curve spans {extent:.3g} mm, {extent / tol:.2g} times tolerance_mm {tol:g}: its coordinates "
                   "are read as mm (a curve in metres or inches is scaled to mm first)",)
+    noise = 0.0 if kept or is_sparse(pts, curve.closed, tol) else scatter_mm(pts, curve.closed)
+    if noise > NOISE_SHARE * tol:
+        notes += (f"the points scatter about {noise:.2g} mm (rms) across the curve: measurement noise that the arcs "
+                  f"follow within tolerance_mm {tol:g} (their caps loosened); a tolerance many times the scatter, or "
+                  "smoothed points, fits the curve itself",)
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
                         speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept, notes=notes)

@@ -1,0 +1,36 @@
+"""How far a dense curve's points scatter across it: the measurement noise a fit meets.
+
+Each point's signed distance from the chord of its two neighbours is the curve's own bend over
+two spacings (smooth, slowly varying along a densely sampled curve) plus the noise, whose part
+there has the variance 1.5 sigma^2 for independent noise of deviation sigma. Less its running
+median over ``WINDOW`` points, the median absolute value (scaled to a Gaussian's deviation)
+estimates sigma, robust to the few points where the bend changes fast (a corner, a tight turn).
+Meaningful on dense curves only: on a taught polygon the distances are its vertices' turns.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
+
+WINDOW = 9  # points in the running median that takes the curve's own bend out
+MAD_TO_SIGMA = 1.4826  # a Gaussian's deviation over its median absolute deviation
+
+
+def scatter_mm(points: np.ndarray, closed: bool) -> float:
+    """The deviation (mm) of the points' scatter across the curve (0 on fewer than WINDOW + 2)."""
+    p = np.asarray(points, dtype=float)[:, :2]
+    if closed:
+        p = np.vstack([p[-1:], p, p[:1]])
+    a, b, c = p[:-2], p[1:-1], p[2:]
+    chord = c - a
+    length = np.linalg.norm(chord, axis=1)
+    ok = length > 0
+    offset = (chord[ok, 0] * (b - a)[ok, 1] - chord[ok, 1] * (b - a)[ok, 0]) / length[ok]
+    if len(offset) < WINDOW:
+        return 0.0
+    padded = np.pad(offset, WINDOW // 2, mode="edge")
+    residual = offset - np.median(sliding_window_view(padded, WINDOW), axis=1)
+    return float(MAD_TO_SIGMA * np.median(np.abs(residual)) / math.sqrt(1.5))

@@ -1,0 +1,45 @@
+"""The scatter of a dense curve's points (measurement noise) and the note it gives a fit."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from coatsim.geometry import make_curve, segment_curve
+from coatsim.geometry.scatter import scatter_mm
+
+
+def _curve(kind: str, n: int) -> tuple[np.ndarray, bool]:
+    t = np.linspace(0.0, 1.0, n, endpoint=kind != "ellipse")
+    if kind == "ellipse":
+        return np.column_stack([80 * np.cos(2 * math.pi * t), 45 * np.sin(2 * math.pi * t)]), True
+    if kind == "damped":
+        x = 300 * t
+        return np.column_stack([x, 15 * np.exp(-x / 200) * np.sin(x / 12)]), False
+    return np.column_stack([200 * t, 40 * t * t]), False  # parabola
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from(["ellipse", "damped", "parabola"]), st.integers(800, 5000),
+       st.floats(0.005, 0.2), st.integers(0, 2**31 - 1))
+def test_the_scatter_of_noisy_points_is_their_noise(kind, n, sigma, seed):
+    points, closed = _curve(kind, n)
+    clean = scatter_mm(points, closed)
+    noisy = points + np.random.default_rng(seed).normal(0.0, sigma, points.shape)
+    assert clean < 1e-3 * sigma + 1e-6
+    assert 0.75 * sigma < scatter_mm(noisy, closed) < 1.3 * sigma
+
+
+def test_a_fit_that_follows_noise_says_so():
+    points, _ = _curve("damped", 2000)
+    noisy = points + np.random.default_rng(7).normal(0.0, 0.05, points.shape)
+    seg = segment_curve(make_curve(noisy, "noisy", "no"), 0.2)
+    assert not seg.limits_kept
+    note = next(n for n in seg.notes if "scatter" in n)
+    found = float(note.split("scatter about ")[1].split(" mm")[0])
+    assert 0.04 < found < 0.06
+    # the clean curve at the same tolerance has no such note
+    assert not any("scatter" in n for n in segment_curve(make_curve(points, "clean", "no"), 0.2).notes)
