@@ -23,13 +23,18 @@ import numpy as np
 
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
 from coatsim.geometry.space.reference import Reference
+from coatsim.geometry.space.vectors import norm3
 
 NEWTON_STEPS = 4  # steps to land an arc on a normal plane (quadratic convergence from ~1 % off)
 LINE_TURN = 1e-12  # a piece turning less than this (rad) is a line
+_EPS = float(np.finfo(float).eps)  # np.sinc's stand-in for 0
 
 
 def _sinc(x: np.ndarray) -> np.ndarray:
-    return np.sinc(x / math.pi)
+    """sin(x) / x: ``np.sinc(x / π)`` written out (the same floats, without its overhead)."""
+    y = np.pi * (x / math.pi)
+    y = np.where(y, y, _EPS)
+    return np.sin(y) / y
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -37,12 +42,12 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def arc_point(start: np.ndarray, t: np.ndarray, c: np.ndarray, ell: np.ndarray) -> np.ndarray:
-    theta = np.linalg.norm(c, axis=-1) * ell
+    theta = norm3(c) * ell
     return start + (ell * _sinc(theta))[..., None] * t + (ell * ell / 2 * _sinc(theta / 2) ** 2)[..., None] * c
 
 
 def arc_tangent(t: np.ndarray, c: np.ndarray, ell: np.ndarray) -> np.ndarray:
-    theta = np.linalg.norm(c, axis=-1) * ell
+    theta = norm3(c) * ell
     return np.cos(theta)[..., None] * t + (ell * _sinc(theta))[..., None] * c
 
 
@@ -64,7 +69,7 @@ def state_point(frame: Frame, y: np.ndarray, a: np.ndarray) -> tuple[np.ndarray,
     """(point, unit tangent) of states (y, a) in ``frame`` (at their arc lengths)."""
     p, tg, u, v = frame
     t = tg + a[..., :1] * u + a[..., 1:] * v
-    return p + y[..., :1] * u + y[..., 1:] * v, t / np.linalg.norm(t, axis=-1, keepdims=True)
+    return p + y[..., :1] * u + y[..., 1:] * v, t / norm3(t, keepdims=True)
 
 
 def curvature_vector(frame: Frame, c: np.ndarray, t: np.ndarray) -> np.ndarray:

@@ -17,11 +17,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.geometry.space.vectors import cross3, norm3
+
 MAX_VERTICES = 4000  # the frame field keeps at most about this many vertices of a run
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / norm3(v, keepdims=True)
 
 
 def _locate(s: np.ndarray, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -78,7 +80,7 @@ class Reference:
         t = _unit(_lerp(self.tangent, i, w))
         u = _lerp(self.u, i, w)
         u = _unit(u - np.einsum("...i,...i->...", u, t)[..., None] * t)
-        return _lerp(self.points, i, w), t, u, np.cross(t, u)
+        return _lerp(self.points, i, w), t, u, cross3(t, u)
 
 
 def _smoothed(points: np.ndarray, s: np.ndarray, at: np.ndarray, window_mm: float) -> np.ndarray:
