@@ -6,6 +6,10 @@ there has the variance 1.5 sigma^2 for independent noise of deviation sigma. Les
 median over ``WINDOW`` points, the median absolute value (scaled to a Gaussian's deviation)
 estimates sigma, robust to the few points where the bend changes fast (a corner, a tight turn).
 Meaningful on dense curves only: on a taught polygon the distances are its vertices' turns.
+
+Points that scatter by more than a quarter of their spacing turn chords back at random: the fit
+runs on every k-th point instead, a few scatters or a tolerance apart (whichever is more), and
+is checked against them all.
 """
 
 from __future__ import annotations
@@ -15,8 +19,14 @@ import math
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
+from coatsim.geometry.curves import Curve
+
 WINDOW = 9  # points in the running median that takes the curve's own bend out
 MAD_TO_SIGMA = 1.4826  # a Gaussian's deviation over its median absolute deviation
+THIN_SPACINGS = 6.0  # thinned points lie this many scatters apart: their chords seldom turn back
+THIN_ROOM = 4.0  # scatters of the tolerance kept for the points between the thinned ones
+MIN_THINNED = 20  # fewer thinned points than this are no curve to fit
+NOISY_SPACING = 0.25  # points scattering by more than this share of their spacing turn chords back at random
 
 
 def scatter_mm(points: np.ndarray, closed: bool) -> float:
@@ -34,3 +44,20 @@ def scatter_mm(points: np.ndarray, closed: bool) -> float:
     padded = np.pad(offset, WINDOW // 2, mode="edge")
     residual = offset - np.median(sliding_window_view(padded, WINDOW), axis=1)
     return float(MAD_TO_SIGMA * np.median(np.abs(residual)) / math.sqrt(1.5))
+
+
+def thinned(curve: Curve, tolerance_mm: float) -> tuple[Curve, float] | None:
+    """Every k-th point of a curve whose points scatter across it by more than NOISY_SPACING of
+    their spacing (noise that turns chords back: no shape between the points to fit), k such
+    that they lie THIN_SPACINGS scatters or the tolerance apart, with the scatter; None where the
+    points do not scatter so, or the tolerance leaves less than half itself beyond THIN_ROOM
+    scatters."""
+    pts = curve.points
+    spacing = float(np.median(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
+    noise = scatter_mm(pts, curve.closed)
+    if not (noise > NOISY_SPACING * spacing and THIN_ROOM * noise < 0.5 * tolerance_mm):
+        return None
+    index = np.arange(0, len(pts) - 1, math.ceil(max(THIN_SPACINGS * noise, tolerance_mm) / spacing))
+    if len(index) < MIN_THINNED:
+        return None
+    return Curve(pts[np.append(index, len(pts) - 1)], curve.closed, curve.name), noise

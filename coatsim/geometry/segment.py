@@ -11,7 +11,7 @@ import numpy as np
 
 from coatsim.core import defaults
 from coatsim.core.progress import progress
-from coatsim.core.errors import InputError
+from coatsim.core.errors import CoatsimError, InputError
 from coatsim.geometry.corners import corners_and_notes
 from coatsim.geometry.curves import Curve
 from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs
@@ -25,7 +25,7 @@ from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
-from coatsim.geometry.scatter import scatter_mm
+from coatsim.geometry.scatter import THIN_ROOM, scatter_mm, thinned
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
 from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
@@ -203,7 +203,10 @@ def segment_curve(
         check_resolvable(pts, tol)
     except InputError as exc:
         raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
-    check_sampling(pts, curve.name)
+    speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
+    thin = None if method == "paper" else _thinned_fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
+    if thin is None:
+        check_sampling(pts, curve.name)
     theta = theta_of_polyline(pts)
     if method == "paper":
         poly, approx, eps = _paper(curve, tol, theta_tolerance)
@@ -211,10 +214,11 @@ def segment_curve(
         return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                             time.perf_counter() - started, theta, approx, eps,
                             speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2)
-    speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
-    poly = obvious_answer(pts, curve.closed, tol)
+    poly = None if thin is not None else obvious_answer(pts, curve.closed, tol)
     input_radius, kept, notes = None, True, ()
-    if poly is not None:
+    if thin is not None:
+        poly, dev, input_radius, kept, notes = thin
+    elif poly is not None:
         dev = hausdorff(pts, poly).hausdorff
     else:
         try:
@@ -226,7 +230,7 @@ def segment_curve(
     if extent < SMALL_SIGMAS * tol:
         notes += (f"the curve spans {extent:.3g} mm, {extent / tol:.2g} times tolerance_mm {tol:g}: its coordinates "
                   "are read as mm (a curve in metres or inches is scaled to mm first)",)
-    noise = 0.0 if kept or is_sparse(pts, curve.closed, tol) else scatter_mm(pts, curve.closed)
+    noise = 0.0 if kept or thin or is_sparse(pts, curve.closed, tol) else scatter_mm(pts, curve.closed)
     if noise > NOISE_SHARE * tol:
         notes += (f"the points scatter about {noise:.2g} mm (rms) across the curve: measurement noise that the arcs "
                   f"follow within tolerance_mm {tol:g} (their caps loosened); a tolerance many times the scatter, or "
@@ -234,6 +238,29 @@ def segment_curve(
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
                         speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept, notes=notes)
+
+
+def _thinned_fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
+                 speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]] | None:
+    """The fit of every k-th point of a curve whose points scatter by a good share of their
+    spacing (scatter.thinned), within the tolerance less THIN_ROOM scatters, where it holds
+    within the tolerance of all the points; else None (the curve is fitted as it is)."""
+    found = thinned(curve, tol)
+    if found is None:
+        return None
+    thin, noise = found
+    try:
+        check_sampling(thin.points, curve.name)
+        poly, _, radius, kept, notes = _fit(thin, tol - THIN_ROOM * noise, corner_deg, min_segment_mm, speed_kappa)
+    except CoatsimError:
+        return None
+    dev = hausdorff(curve.points, poly).hausdorff
+    if not dev <= tol:
+        return None
+    return poly, dev, radius, kept, notes + (
+        f"the points scatter about {noise:.2g} mm (rms) across the curve, a good share of their spacing (measurement "
+        f"noise that turns chords back): fitted through {len(thin.points)} of its {len(curve.points)} points, "
+        "checked against all",)
 
 
 def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: float | None) -> Polysegment:

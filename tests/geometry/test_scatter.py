@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -43,3 +44,33 @@ def test_a_fit_that_follows_noise_says_so():
     assert 0.04 < found < 0.06
     # the clean curve at the same tolerance has no such note
     assert not any("scatter" in n for n in segment_curve(make_curve(points, "clean", "no"), 0.2).notes)
+
+
+@settings(max_examples=6, deadline=None)
+@given(st.sampled_from(["ellipse", "lemniscate"]), st.floats(0.4, 0.7), st.integers(0, 2**31 - 1))
+def test_points_whose_noise_turns_their_chords_back_are_fitted_through_every_kth_and_checked_against_all(
+        kind, noise_per_spacing, seed):
+    """A measured curve sampled finer than its noise doubles back at a quarter of its points
+    (refused by the curve_reversals budget as it is): thinned to a few scatters apart, it is
+    fitted like the smooth curve it is, within the tolerance of every point."""
+    from coatsim.core.budgets import BudgetExceeded
+    from coatsim.geometry.deviation import hausdorff
+    from coatsim.geometry.sampling_check import check_sampling
+
+    n = 10_000
+    t = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    if kind == "lemniscate":
+        clean = 80 * np.column_stack([np.cos(t), np.sin(t) * np.cos(t)]) / (1 + np.sin(t) ** 2)[:, None]
+    else:
+        clean = np.column_stack([80 * np.cos(t), 45 * np.sin(t)])
+    spacing = float(np.median(np.linalg.norm(np.diff(clean, axis=0), axis=1)))
+    sigma = noise_per_spacing * spacing
+    noisy = clean + np.random.default_rng(seed).normal(0.0, sigma, clean.shape)
+    noisy = np.vstack([noisy, noisy[:1]])
+    with pytest.raises(BudgetExceeded):
+        check_sampling(noisy, "noisy")
+    tol = 16 * sigma
+    seg = segment_curve(make_curve(noisy, "noisy", "yes"), tol)
+    assert seg.polysegment.n_segments <= 20 and seg.limits_kept
+    assert hausdorff(noisy, seg.polysegment).hausdorff <= tol * (1 + 1e-9)
+    assert any("fitted through" in n and "checked against all" in n for n in seg.notes), seg.notes
