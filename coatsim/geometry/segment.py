@@ -28,7 +28,7 @@ from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.scatter import THIN_ROOM, scatter_mm, thinned
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
-from coatsim.geometry.theta import ThetaFunction, paper_polysegment, theta_of_polyline
+from coatsim.geometry.theta import ThetaFunction, paper_within, theta_of_polyline
 
 Method = Literal["optimal", "paper"]
 TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
@@ -209,7 +209,7 @@ def segment_curve(
         check_sampling(pts, curve.name)
     theta = theta_of_polyline(pts)
     if method == "paper":
-        poly, approx, eps = _paper(curve, tol, theta_tolerance)
+        poly, approx, eps = paper_within(curve.points, curve.closed, curve.name, tol, theta_tolerance)
         dev = hausdorff(pts, poly).hausdorff
         return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                             time.perf_counter() - started, theta, approx, eps,
@@ -367,38 +367,3 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
     segments, corners = _split_arcs(found)
     poly = Polysegment(segments, closed=True, corners=tuple(corners))
     return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept, found.notes
-
-
-def _paper(curve: Curve, tol: float, theta_tolerance: float | None) -> tuple[Polysegment, ThetaFunction, float]:
-    pts = curve.points
-    if theta_tolerance is not None:
-        if not theta_tolerance > 0:
-            raise InputError(f"theta_tolerance: must be positive, got {theta_tolerance}", parameters=("theta_tolerance",))
-        poly, _, approx = paper_polysegment(pts, theta_tolerance, curve.closed)
-        return poly, approx, theta_tolerance
-
-    def attempt(eps: float):
-        poly, _, approx = paper_polysegment(pts, eps, curve.closed)
-        return hausdorff(pts, poly).hausdorff <= tol, poly, approx
-
-    # Shrink the θ tolerance until the deviation holds, then bisect between the last
-    # failing and the first passing value (the deviation is not monotone in it).
-    eps, fail = 1.0, None
-    ok, poly, approx = attempt(eps)
-    while not ok and eps > 1e-9:
-        fail, eps = eps, eps / 2
-        ok, poly, approx = attempt(eps)
-    if not ok:
-        raise InputError(f"{curve.name}: the paper method cannot reach {tol} mm")
-    best = (poly, approx, eps)
-    lo, hi = eps, fail
-    for _ in range(12 if hi is not None else 0):
-        mid = math.sqrt(lo * hi)
-        ok, poly, approx = attempt(mid)
-        if ok:
-            lo = mid
-            if poly.n_segments <= best[0].n_segments:
-                best = (poly, approx, mid)
-        else:
-            hi = mid
-    return best

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coatsim.core.errors import InputError
+from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.rdp import rdp_indices
 
@@ -143,3 +145,40 @@ def theta_of_polysegment(poly: Polysegment) -> ThetaFunction:
         t.append(s / total)
         theta.append(angle)
     return ThetaFunction(np.array(t), np.array(theta), total, poly.segments[0].start_heading)
+
+
+def paper_within(pts: np.ndarray, closed: bool, name: str, tol: float,
+                 theta_tolerance: float | None) -> tuple[Polysegment, ThetaFunction, float]:
+    """The paper's method within ``tol`` (mm) of the points: its θ tolerance shrunk until the
+    deviation holds, then bisected towards the fewest segments (or ``theta_tolerance`` as given)."""
+    if theta_tolerance is not None:
+        if not theta_tolerance > 0:
+            raise InputError(f"theta_tolerance: must be positive, got {theta_tolerance}", parameters=("theta_tolerance",))
+        poly, _, approx = paper_polysegment(pts, theta_tolerance, closed)
+        return poly, approx, theta_tolerance
+
+    def attempt(eps: float):
+        poly, _, approx = paper_polysegment(pts, eps, closed)
+        return hausdorff(pts, poly).hausdorff <= tol, poly, approx
+
+    # Shrink the θ tolerance until the deviation holds, then bisect between the last
+    # failing and the first passing value (the deviation is not monotone in it).
+    eps, fail = 1.0, None
+    ok, poly, approx = attempt(eps)
+    while not ok and eps > 1e-9:
+        fail, eps = eps, eps / 2
+        ok, poly, approx = attempt(eps)
+    if not ok:
+        raise InputError(f"{name}: the paper method cannot reach {tol} mm")
+    best = (poly, approx, eps)
+    lo, hi = eps, fail
+    for _ in range(12 if hi is not None else 0):
+        mid = math.sqrt(lo * hi)
+        ok, poly, approx = attempt(mid)
+        if ok:
+            lo = mid
+            if poly.n_segments <= best[0].n_segments:
+                best = (poly, approx, mid)
+        else:
+            hi = mid
+    return best
