@@ -10,9 +10,11 @@ teeth is within it).
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
-from coatsim.core.budgets import check_budget
+from coatsim.core.budgets import check_budget, limit
 
 REVERSAL_DEG = 90.0  # a turn of more than this between consecutive chords doubles back
 
@@ -29,9 +31,10 @@ def reversals(points: np.ndarray) -> int:
     return int(np.count_nonzero(dots < np.cos(np.radians(REVERSAL_DEG)) * lengths[:-1] * lengths[1:]))
 
 
-def check_sampling(points: np.ndarray, name: str) -> None:
+def check_sampling(points: np.ndarray, name: str, hint: Callable[[], str] = lambda: "") -> None:
     """BudgetExceeded when the curve doubles back at more points than the budget
-    ``curve_reversals``: its sampling is coarser than its own features."""
+    ``curve_reversals``: its sampling is coarser than its own features (``hint``: more to say
+    then, such as the noise found)."""
     count = reversals(points)
     share = count / max(len(points) - 2, 1)
     check_budget(f"{name}: points where the curve doubles back (turns by more than {REVERSAL_DEG:g}°: {share:.0%} of "
@@ -39,4 +42,4 @@ def check_sampling(points: np.ndarray, name: str) -> None:
                  "noise larger than the point spacing, a wave sampled more coarsely than its wavelength or more turns "
                  "than points)", count, "curve_reversals",
                  "smooth or thin out a noisy measured curve, sample the curve with several points per bend, or give "
-                 "fewer, larger features")
+                 f"fewer, larger features{hint() if not count <= limit('curve_reversals') else ''}")

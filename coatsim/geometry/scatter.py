@@ -8,8 +8,8 @@ estimates sigma, robust to the few points where the bend changes fast (a corner,
 Meaningful on dense curves only: on a taught polygon the distances are its vertices' turns.
 
 Points that scatter by more than a quarter of their spacing turn chords back at random: the fit
-runs on every k-th point instead, a few scatters or a tolerance apart (whichever is more), and
-is checked against them all.
+runs on every k-th point instead, a tolerance apart, within the tolerance less THIN_ROOM
+scatters, and is checked against them all.
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ from coatsim.geometry.curves import Curve
 
 WINDOW = 9  # points in the running median that takes the curve's own bend out
 MAD_TO_SIGMA = 1.4826  # a Gaussian's deviation over its median absolute deviation
-THIN_SPACINGS = 6.0  # thinned points lie this many scatters apart: their chords seldom turn back
 THIN_ROOM = 4.0  # scatters of the tolerance kept for the points between the thinned ones
+THIN_SCATTERS = 12.0  # points are thinned from a tolerance of this many scatters (the fit keeps 8 of them)
 MIN_THINNED = 20  # fewer thinned points than this are no curve to fit
 NOISY_SPACING = 0.25  # points scattering by more than this share of their spacing turn chords back at random
 
@@ -46,18 +46,32 @@ def scatter_mm(points: np.ndarray, closed: bool) -> float:
     return float(MAD_TO_SIGMA * np.median(np.abs(residual)) / math.sqrt(1.5))
 
 
+def noise_hint(curve: Curve) -> str:
+    """What a refusal of a curve that doubles back can add: its scatter, where it is noise that
+    turns chords back, and the tolerance from which such points are thinned and fitted."""
+    noise = scatter_mm(curve.points, curve.closed)
+    if not noise > NOISY_SPACING * _spacing(curve.points):
+        return ""
+    need = THIN_SCATTERS * noise
+    step = 10.0 ** (math.floor(math.log10(need)) - 1)  # rounded up to two digits: that tolerance is enough
+    return (f"; its points scatter about {noise:.2g} mm across it: from a tolerance of "
+            f"{math.ceil(need / step) * step:.2g} mm they are fitted through every k-th point")
+
+
+def _spacing(points: np.ndarray) -> float:
+    return float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))
+
+
 def thinned(curve: Curve, tolerance_mm: float) -> tuple[Curve, float] | None:
     """Every k-th point of a curve whose points scatter across it by more than NOISY_SPACING of
     their spacing (noise that turns chords back: no shape between the points to fit), k such
-    that they lie THIN_SPACINGS scatters or the tolerance apart, with the scatter; None where the
-    points do not scatter so, or the tolerance leaves less than half itself beyond THIN_ROOM
-    scatters."""
+    that they lie a tolerance apart, with the scatter; None where the points do not scatter so,
+    or the tolerance is under THIN_SCATTERS scatters."""
     pts = curve.points
-    spacing = float(np.median(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
-    noise = scatter_mm(pts, curve.closed)
-    if not (noise > NOISY_SPACING * spacing and THIN_ROOM * noise < 0.5 * tolerance_mm):
+    spacing, noise = _spacing(pts), scatter_mm(pts, curve.closed)
+    if not (noise > NOISY_SPACING * spacing and THIN_SCATTERS * noise < tolerance_mm):
         return None
-    index = np.arange(0, len(pts) - 1, math.ceil(max(THIN_SPACINGS * noise, tolerance_mm) / spacing))
+    index = np.arange(0, len(pts) - 1, math.ceil(tolerance_mm / spacing))
     if len(index) < MIN_THINNED:
         return None
     return Curve(pts[np.append(index, len(pts) - 1)], curve.closed, curve.name), noise

@@ -25,7 +25,7 @@ from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
-from coatsim.geometry.scatter import THIN_ROOM, scatter_mm, thinned
+from coatsim.geometry.scatter import THIN_ROOM, noise_hint, scatter_mm, thinned
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
 from coatsim.geometry.theta import ThetaFunction, paper_within, theta_of_polyline
@@ -206,7 +206,7 @@ def segment_curve(
     speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
     thin = None if method == "paper" else _thinned_fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
     if thin is None:
-        check_sampling(pts, curve.name)
+        check_sampling(pts, curve.name, lambda: noise_hint(curve))
     theta = theta_of_polyline(pts)
     if method == "paper":
         poly, approx, eps = paper_within(curve.points, curve.closed, curve.name, tol, theta_tolerance)

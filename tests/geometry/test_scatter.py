@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -74,3 +75,18 @@ def test_points_whose_noise_turns_their_chords_back_are_fitted_through_every_kth
     assert seg.polysegment.n_segments <= 20 and seg.limits_kept
     assert hausdorff(noisy, seg.polysegment).hausdorff <= tol * (1 + 1e-9)
     assert any("fitted through" in n and "checked against all" in n for n in seg.notes), seg.notes
+
+
+def test_a_refusal_of_noisy_points_names_their_scatter_and_the_tolerance_that_fits_them():
+    from coatsim.core.budgets import BudgetExceeded
+
+    t = np.linspace(0.0, 2 * math.pi, 10_000, endpoint=False)
+    clean = np.column_stack([80 * np.cos(t), 45 * np.sin(t)])
+    noisy = clean + np.random.default_rng(3).normal(0.0, 0.02, clean.shape)
+    curve = make_curve(np.vstack([noisy, noisy[:1]]), "noisy", "yes")
+    with pytest.raises(BudgetExceeded) as refused:
+        segment_curve(curve, 0.1)
+    m = re.search(r"its points scatter about ([0-9.]+) mm across it: from a tolerance of ([0-9.]+) mm they are "
+                  r"fitted through every k-th point", str(refused.value))
+    assert m and 0.015 < float(m.group(1)) < 0.025, str(refused.value)
+    assert segment_curve(curve, 1.01 * float(m.group(2))).polysegment.n_segments <= 20
