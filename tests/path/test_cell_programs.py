@@ -69,16 +69,24 @@ def test_check_program_reads_and_runs_each(name, options, counts, sprayed, words
     assert done.skipped == ()
 
 
-@pytest.mark.parametrize("name,options,lines", [
-    ("laser_polish.as", {}, (16, 25)), ("draw_frame.as", {}, (10, 13)),
-    ("spray_sjis_goto.as", {"gun_signal": 3}, (11, 14)),
+@pytest.mark.parametrize("name,options,lines,gains", [
+    ("laser_polish.as", {}, (16, 25), False), ("draw_frame.as", {}, (10, 13), False),
+    ("spray_sjis_goto.as", {"gun_signal": 3}, (11, 14), True),
 ])
-def test_the_spraying_ones_convert_in_place(name, options, lines, cell):
+def test_the_spraying_ones_convert_in_place(name, options, lines, gains, cell):
+    """A path the arcs shorten is rewritten in place, the bytes before it kept; one they cannot
+    shorten (a square of 4 LMOVEs, a circle already in C1MOVE/C2MOVE) is kept as it was, and
+    with no path gaining, nothing is written."""
     result = convert_program(DATA / name, ConvertOptions(0.1, **options), kinematics=cell[0])
     (report,) = result.paths
     assert (report.first_line, report.last_line) == lines and report.deviation_mm <= 0.1
-    original = (DATA / name).read_bytes()
-    assert result.data.split(b"\n")[:lines[0] - 1] == original.split(b"\n")[:lines[0] - 1]  # bytes kept before
+    assert result.written == gains and report.kept == (not gains)
+    if gains:
+        original = (DATA / name).read_bytes()
+        assert result.data.split(b"\n")[:lines[0] - 1] == original.split(b"\n")[:lines[0] - 1]  # bytes kept before
+        assert report.moves_after < report.moves_before
+    else:
+        assert result.data == b"" and report.moves_after == report.moves_before
 
 
 def test_expressions_evaluate_as_written():
