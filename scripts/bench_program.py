@@ -106,7 +106,7 @@ def bench_surface(spec: str) -> None:
                 spent[stage] += time.process_time() - t0
         return run
 
-    surface_program._fitted = timed("fit", surface_program._fitted)
+    surface_program.fit_passes = timed("fit", surface_program.fit_passes)
     surface_program.oriented_pieces = timed("orient", surface_program.oriented_pieces)
     print(f"{spec}: {len(paths.passes)} passes, tolerance {defaults.TOLERANCE_MM} mm")
     print(f"{'passes':>6} {'points':>7} {'moves':>6} {'CPU s':>8} {'s/pass':>7} {'fit %':>6} {'orient %':>8}")

@@ -30,8 +30,8 @@ import coatsim.run.part_run as part_run  # noqa: E402
 from coatsim.run.pipeline import run_scenario  # noqa: E402
 
 SCENARIOS = ("cylinder_3d", "blade_3d", "wear_plate_3d", "scan_patch_3d")
-STAGES = {"plan_part": "plan", "build_surface_program": "programs", "execute": "execution", "coat": "coating",
-          "write_part_report": "report", "write_thickness_files": "report"}
+STAGES = {"plan_part": "plan", "fit_passes": "programs", "build_surface_program": "programs", "execute": "execution",
+          "coat": "coating", "write_part_report": "report", "write_thickness_files": "report"}
 
 
 def timed(spent: dict, stage: str, fn):

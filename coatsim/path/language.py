@@ -17,6 +17,8 @@ from coatsim.path.plan import ProgramPlan
 from coatsim.path.reading import Reading
 from coatsim.path.toolpath import Kinematics, ToolPath
 
+UNTILTED_TOL_RAD = 1e-6  # a gun axis this far from -Z is a tilt a language without tool orientation cannot write
+
 #: Where a language's native circular move may lie: in any plane, only in the principal planes
 #: of its frame (G-code G17/G18/G19), or nowhere (arcs are written as lines).
 ArcPlanes = Literal["any", "principal", "none"]
@@ -34,7 +36,8 @@ class Capabilities:
     circular moves, as messages name them (``LMOVE/C1MOVE/C2MOVE``); ``named_by_file``: the
     controller requires a program's name to be its file's name (KRL ``DEF``, Fanuc ``/PROG``);
     ``program_files`` the suffixes of the files one written program is saved as, the main first
-    (empty: the one file of the language's first suffix).
+    (empty: the one file of the language's first suffix); ``tool_orientation``: its poses turn
+    the gun (False: the gun points along -Z, within ``UNTILTED_TOL_RAD``, everywhere).
     """
 
     arc_planes: ArcPlanes
@@ -46,6 +49,7 @@ class Capabilities:
     motions: str = "linear and circular"
     named_by_file: bool = False
     program_files: tuple[str, ...] = ()
+    tool_orientation: bool = True
 
 
 @dataclass(frozen=True)

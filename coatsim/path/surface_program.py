@@ -36,23 +36,23 @@ from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
 from coatsim.geometry.space.along import AlongPass
-from coatsim.geometry.space.orient import ANGLE_TOL_DEG, MIN_SPLIT_MM, fit_surface_pass, slerp_axes
+from coatsim.geometry.space.orient import ANGLE_TOL_DEG, MIN_SPLIT_MM, slerp_axes
 from coatsim.geometry.space.pose import Pose, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3
 from coatsim.geometry.space.rotations import rot_z
 from coatsim.path.build import ProgramOptions
 from coatsim.path.expressible import expressible
-from coatsim.path.frames import DEFAULT_FRAME
-from coatsim.path.language import Language
+from coatsim.path.language import UNTILTED_TOL_RAD, Language
+from coatsim.path.pass_fits import FitSettings, PassFits, PassTcp, fit_passes, fit_settings, place_passes
 from coatsim.path.leads import lead_move
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process import SPEED_ON, ProcessInfo, SprayedContour
 from coatsim.path.roll import AxisPiece, Oriented, check_rule, oriented_pieces, reference_direction
 from coatsim.path.speed_limits import SpeedLimit
-from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
+from coatsim.path.surfacepaths import SurfacePaths
 from coatsim.path.travel import travel_clearances
-from coatsim.path.unfold import MIN_ADVANCE, unfolded_axes
+from coatsim.path.unfold import MIN_ADVANCE
 
 _TRACE_SAMPLES = 33      # samples per move when its trace length is measured
 _KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
@@ -110,28 +110,6 @@ class SurfaceProgram:
     tcp_mm: tuple[np.ndarray, ...] = ()
 
 
-@dataclass(frozen=True, eq=False)
-class PassTcp:
-    """A pass's tool centre points (n, 3) mm and spray axes (n, 3) in the base frame, and the
-    largest angle (rad) by which an axis leaves the surface normal (coatsim.path.unfold)."""
-
-    tcp_mm: np.ndarray
-    axes: np.ndarray
-    max_tilt_rad: float
-
-
-def pass_tcp(surface_pass: SurfacePass, standoff_mm: float, pose: Pose) -> PassTcp:
-    """The pass's tool centre points and spray axes: the axis along minus the normal (turning no
-    faster than keeps the tool centre point advancing, coatsim.path.unfold), the tool centre
-    point ``standoff_mm`` back along it; a closed pass ends where it starts."""
-    points, normals = surface_pass.points, surface_pass.normals
-    if surface_pass.closed and not np.array_equal(points[0], points[-1]):
-        points, normals = np.vstack((points, points[:1])), np.vstack((normals, normals[:1]))
-    axes = unfolded_axes(points, -normals, standoff_mm)
-    tilt = float(np.max(np.arccos(np.clip(-np.einsum("ij,ij->i", axes, normals), -1.0, 1.0))))
-    return PassTcp(pose.apply(points - standoff_mm * axes), pose.apply_vectors(axes), tilt)
-
-
 def oriented_polyline(points: np.ndarray, axes: np.ndarray, tolerance_mm: float, angle_tol_rad: float) -> np.ndarray:
     """Indices of the vertices Douglas–Peucker keeps when a point must lie within
     ``tolerance_mm`` of its line and its axis within ``angle_tol_rad`` of the axis slerped along
@@ -160,17 +138,6 @@ def oriented_polyline(points: np.ndarray, axes: np.ndarray, tolerance_mm: float,
             keep[m] = True
             stack += [(i, m), (m, j)]
     return np.flatnonzero(keep)
-
-
-def _fitted(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions, speed_mm_s: Optional[float],
-            name: str) -> tuple[list[AxisPiece], float, tuple[int, ...]]:
-    """The pass fitted in 3-D: its pieces with axes, the largest axis error (rad) and the corners."""
-    accel = options.tool_accel_mm_s2 if speed_mm_s is not None else None
-    fit = fit_surface_pass(tcp, axes, options.tolerance_mm, options.angle_tol_deg,
-                           speed_mm_s=speed_mm_s if accel is not None else None, tool_accel_mm_s2=accel, name=name)
-    chain = fit.chain
-    pieces = [AxisPiece(seg, tuple(np.array(a) for a in trio)) for seg, trio in zip(chain.segments, chain.axes)]
-    return pieces, fit.max_axis_error_rad, chain.corners
 
 
 def _polyline(tcp: np.ndarray, axes: np.ndarray, options: SurfaceOptions) -> list[AxisPiece]:
@@ -234,29 +201,31 @@ def _placed(oriented: list[Oriented], leads: tuple[float, float], standoff: floa
 
 
 def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface: SurfaceOptions,
-                          language: Language) -> SurfaceProgram:
-    """The ``options.variant`` program of every pass of ``paths`` in ``language`` (module text)."""
-    standoff = surface.standoff_mm or paths.standoff_mm or defaults.STANDOFF_MM
-    pose = surface.pose or paths.pose or DEFAULT_FRAME
+                          language: Language, fitted: Optional[PassFits] = None) -> SurfaceProgram:
+    """The ``options.variant`` program of every pass of ``paths`` in ``language`` (module text).
+    ``fitted``: the passes already fitted (:func:`fit_passes`) for another variant; used when
+    made with the settings of this program, else the passes are fitted here."""
+    settings = surface_fit_settings(paths, surface, options.speed_mm_s)
+    pose, standoff = settings.pose, settings.standoff_mm
     leads = [p.lead_lengths_mm() for p in paths.passes]
     lead_in = surface.lead_in_mm if surface.lead_in_mm is not None else max(a for a, _ in leads)
     lead_out = surface.lead_out_mm if surface.lead_out_mm is not None else max(b for _, b in leads)
     if len(paths.passes) > 1 and not options.approach_mm > 0:
         raise InputError(f"approach_mm {options.approach_mm:g}: passes are joined by travel at this clearance; "
                          "it must be > 0 mm", parameters=("approach_mm",))
-    tcps = [pass_tcp(p, standoff, pose) for p in paths.passes]
+    if not language.capabilities.tool_orientation:
+        _check_untilted(place_passes(paths, settings), language, paths.source)
+    if fitted is None or not fitted.settings.same_as(settings):
+        fitted = fit_passes(paths, settings)
+    tcps = fitted.tcps
     start_x = reference_direction(np.vstack([t.axes for t in tcps]))
     trace_speed = options.speed_mm_s if surface.speed_on == "trace" else None
+    angle_tol = math.radians(surface.angle_tol_deg)
     placed, contours, counts, errors, arcs_as_lines = [], [], [], [], 0
-    for k, (tcp_path, surface_pass) in enumerate(zip(tcps, paths.passes)):
+    for tcp_path, surface_pass, fit in zip(tcps, paths.passes, fitted.fits):
         tcp, axes = tcp_path.tcp_mm, tcp_path.axes
-        name = f"{paths.source}: passes[{k}]"
-        step = np.linalg.norm(np.diff(tcp, axis=0), axis=1)
-        trace_step = np.linalg.norm(np.diff(tcp + standoff * axes, axis=0), axis=1)
-        peak = options.speed_mm_s * (float(np.max(step / np.maximum(trace_step, 1e-12))) if trace_speed else 1.0)
-        pieces, error, _ = _fitted(tcp, axes, surface, peak, name)
+        pieces = list(fit.pieces)
         wanted = AlongPass([p.geometry for p in pieces], tcp, axes, surface.tolerance_mm)
-        angle_tol = math.radians(surface.angle_tol_deg)
         oriented = oriented_pieces(pieces, surface.roll, surface.roll_deg, start_x, wanted, angle_tol)
         fit_moves = _placed(oriented, (0.0, 0.0), standoff, trace_speed)
         curve_length = float(sum(m.length for m in fit_moves))
@@ -274,7 +243,7 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
         arcs_as_lines += lined
         length = float(sum(m.length for m in moves if m.part == "curve"))
         limits = tuple(lim.scaled(length / curve_length) for lim in limits)
-        errors.append(error)
+        errors.append(fit.max_axis_error_rad)
         n_arcs = sum(m.is_arc for m in moves if m.part == "curve")
         counts.append((sum(m.part == "curve" for m in moves) - n_arcs, n_arcs))
         placed.append(PlacedPath(tuple(moves), -axes[0], standoff, lead_in, lead_out, length))
@@ -287,6 +256,25 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
                                 arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface),
                                 (lead_in, lead_out), standoff, pose)
     return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes, tuple(t.tcp_mm for t in tcps))
+
+
+def surface_fit_settings(paths: SurfacePaths, surface: SurfaceOptions, speed_mm_s: float) -> FitSettings:
+    """The settings the passes of a program placed with ``surface`` at ``speed_mm_s`` are fitted with."""
+    return fit_settings(paths, surface.standoff_mm, surface.pose, surface.tolerance_mm, surface.angle_tol_deg,
+                        speed_mm_s, surface.speed_on, surface.tool_accel_mm_s2)
+
+
+def _check_untilted(tcps: tuple[PassTcp, ...], language: Language, source: str) -> None:
+    """Refuse, before the fit, passes whose spray axis leaves the base's -Z for a language
+    without tool orientation."""
+    down = np.array([0.0, 0.0, -1.0])
+    for k, placed in enumerate(tcps):
+        tilt = np.arccos(np.clip(placed.axes @ down, -1.0, 1.0))
+        i = int(np.argmax(tilt))
+        if tilt[i] > UNTILTED_TOL_RAD:
+            raise InputError(f"{source}: passes[{k}] point {i} tilts the gun {math.degrees(tilt[i]):.3g} deg from -Z: "
+                             f"{language.title} has no tool orientation, the gun points along -Z; write these "
+                             "passes in a language with tool orientation")
 
 
 def _tilt_notes(tcps: list[PassTcp], surface: SurfaceOptions) -> tuple[str, ...]:

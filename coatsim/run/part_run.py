@@ -31,7 +31,8 @@ from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
 from coatsim.path.program_files import write_program
-from coatsim.path.surface_program import SurfaceOptions, build_surface_program
+from coatsim.path.pass_fits import PassFits, fit_passes
+from coatsim.path.surface_program import SurfaceOptions, build_surface_program, surface_fit_settings
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 from coatsim.report.gates import evaluate_gates
 from coatsim.report.metrics import assemble, coating_group, to_json
@@ -134,19 +135,26 @@ def part_job(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, part: Part
                    spacing, away)
 
 
-def run_part_variant(name: str, variant: str, language_name: str, job: PartJob, step: Step) -> VariantRun:
+def placing(job: PartJob) -> SurfaceOptions:
+    """How the scenario places and fits the passes of every variant."""
+    spec = job.loaded.spec
+    return SurfaceOptions(standoff_mm=job.passes.standoff_mm, pose=job.passes.pose,
+                          tolerance_mm=spec.segmentation.tolerance_mm, angle_tol_deg=spec.planned.angle_tol_deg,
+                          roll="follow" if spec.gun.follow_tangent else "fixed", roll_deg=spec.gun.roll_deg,
+                          speed_on=spec.planned.speed_on, tool_accel_mm_s2=job.cell.tool_accel_mm_s2)
+
+
+def run_part_variant(name: str, variant: str, language_name: str, job: PartJob, step: Step,
+                     fitted: Optional[PassFits] = None) -> VariantRun:
     """Program, execute and coat one built-in variant; writes its program file(s) and
-    ``name.trajectory.csv``."""
-    spec, out, paths = job.loaded.spec, job.outdir, job.loaded.spec.planned
+    ``name.trajectory.csv``. ``fitted``: the passes fitted for another variant at the same speed
+    (coatsim.path.pass_fits), else they are fitted here."""
+    spec, out = job.loaded.spec, job.outdir
     writer = language(language_name)
     options = ProgramOptions(variant=variant, speed_mm_s=spec.speed_of(name), accuracy_mm=spec.motion.accuracy_mm,
                              gun_signal=spec.gun.signal, tool=gun_tool(job.cell),
                              name=writer.program_name(name if writer.capabilities.named_by_file else spec.name))
-    placing = SurfaceOptions(standoff_mm=job.passes.standoff_mm, pose=job.passes.pose,
-                             tolerance_mm=spec.segmentation.tolerance_mm, angle_tol_deg=paths.angle_tol_deg,
-                             roll="follow" if spec.gun.follow_tangent else "fixed", roll_deg=spec.gun.roll_deg,
-                             speed_on=paths.speed_on, tool_accel_mm_s2=job.cell.tool_accel_mm_s2)
-    program = build_surface_program(job.passes, options, placing, writer)
+    program = build_surface_program(job.passes, options, placing(job), writer, fitted)
     files = program_files(name, writer)
     written = write_program(writer, program.text, out / files[0])
     toolpath = writer.read(list(written), ReadOptions(gun_signal=spec.gun.signal, kinematics=CellKinematics(job.cell)))
@@ -193,12 +201,16 @@ def plan_summary(planned: Plan) -> dict:
 
 
 def _variants(job: PartJob, step: Step, keep_going: bool) -> tuple[list[VariantRun], dict[str, str]]:
-    runs, failures = [], {}
+    """Every variant run; the passes fitted once per programmed speed, as all variants need them."""
+    runs, failures, fits = [], {}, {}
     for entry in job.loaded.spec.variants:
         name = entry if isinstance(entry, str) else entry.name
+        speed = job.loaded.spec.speed_of(name)
         step(f"{name}: writing and reading the program")
         try:
-            runs.append(run_part_variant(name, *job.loaded.spec.builtin(entry), job, step))
+            if speed not in fits:
+                fits[speed] = fit_passes(job.passes, surface_fit_settings(job.passes, placing(job), speed))
+            runs.append(run_part_variant(name, *job.loaded.spec.builtin(entry), job, step, fits[speed]))
         except CoatsimError as exc:
             if not keep_going:
                 raise exc.prefixed(name) from None

@@ -24,9 +24,12 @@ from coatsim.path.leads import lead_move
 from coatsim.path.expressible import expressible
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.roll import Oriented
+from coatsim.path import surface_program
+from coatsim.path.build import VARIANTS
+from coatsim.path.pass_fits import fit_passes, pass_tcp
 from coatsim.path.surface_program import (SurfaceOptions, _axis_notes, build_surface_program, oriented_polyline,
-                                          pass_tcp)
-from coatsim.path.surfacepaths import read_surfacepaths
+                                          surface_fit_settings)
+from coatsim.path.surfacepaths import SurfacePass, SurfacePaths, read_surfacepaths
 from coatsim.path.travel import travel_clearances
 from coatsim.path.unfold import MIN_ADVANCE
 from surface_parts import cylinder, saddle, torus_section, write_surfacepaths
@@ -356,3 +359,45 @@ def test_a_lead_turns_the_tool_on_at_the_pass_end_rate_but_not_round():
     circle = Oriented(arc, down, down @ rot_z(sweep / 2), down @ rot_z(sweep))
     lead = lead_move(circle, 30.0, "lead_out", None)
     assert isinstance(lead.geometry, Arc3) and _lead_turn_deg(lead) == pytest.approx(math.degrees(30.0 / radius), abs=1e-6)
+
+
+def _flat_passes() -> SurfacePaths:
+    """Two straight passes over a flat plate facing +Z, 20 mm apart."""
+    x = np.linspace(0.0, 120.0, 61)
+    passes = tuple(SurfacePass(np.column_stack((x, np.full_like(x, y), np.zeros_like(x))),
+                               np.tile([0.0, 0.0, 1.0], (len(x), 1)), False, np.zeros((0, 3)), np.zeros((0, 3)))
+                   for y in (0.0, 20.0))
+    return SurfacePaths("plate.json", passes, 100.0, Pose.from_translation(np.array([600.0, 0.0, 200.0])), None)
+
+
+def test_a_language_without_tool_orientation_refuses_tilted_passes_before_any_fit(torus, monkeypatch):
+    def no_fit(*_args):
+        raise AssertionError("fitted before the tilt was checked")
+
+    monkeypatch.setattr(surface_program, "fit_passes", no_fit)
+    with pytest.raises(InputError, match=r"passes\[0\] point \d+ tilts the gun .* deg from -Z: G-code .*has no tool "):
+        build_surface_program(read_surfacepaths(torus), ProgramOptions(), SurfaceOptions(), language("gcode"))
+    with pytest.raises(AssertionError, match="fitted before"):  # an untilted plate goes on to its fit
+        build_surface_program(_flat_passes(), ProgramOptions(), SurfaceOptions(), language("gcode"))
+
+
+def test_untilted_passes_are_written_in_gcode():
+    prog = build_surface_program(_flat_passes(), ProgramOptions(), SurfaceOptions(), language("gcode"))
+    assert prog.counts == ((1, 0), (1, 0)) and "G1 " in prog.text
+
+
+def test_the_variants_share_one_fit_made_with_their_settings(torus, monkeypatch):
+    """Passes fitted once give every variant the program it gets when fitting them itself; a fit
+    made with other settings (another speed, tolerance or stand-off) is not used."""
+    paths, surface = read_surfacepaths(torus), SurfaceOptions()
+    fitted = fit_passes(paths, surface_fit_settings(paths, surface, ProgramOptions().speed_mm_s))
+    own = {v: build_surface_program(paths, ProgramOptions(variant=v), surface, AS).text for v in VARIANTS}
+    calls = []
+    monkeypatch.setattr(surface_program, "fit_passes", lambda *args: calls.append(args) or fit_passes(*args))
+    for v in VARIANTS:
+        assert build_surface_program(paths, ProgramOptions(variant=v), surface, AS, fitted).text == own[v]
+    assert calls == []
+    for options, other in ((ProgramOptions(speed_mm_s=300.0), surface), (ProgramOptions(), SurfaceOptions(tolerance_mm=0.5)),
+                           (ProgramOptions(), SurfaceOptions(standoff_mm=80.0))):
+        build_surface_program(paths, options, other, AS, fitted)
+    assert len(calls) == 3

@@ -38,7 +38,8 @@ class GCode:
         self.capabilities = Capabilities(arc_planes="principal", max_arc_sweep_deg=MAX_ARC_SWEEP_DEG,
                                          blend="G64 P tolerance (mm); G61 exact stop",
                                          max_name_length=MAX_NAME_LENGTH, max_coordinate_mm=MAX_COORDINATE_MM,
-                                         rotation="none: the gun points along -Z of the work frame", motions="G1/G2/G3")
+                                         rotation="none: the gun points along -Z of the work frame", motions="G1/G2/G3",
+                                         tool_orientation=False)
 
     def write(self, plan: ProgramPlan) -> str:
         return write_gcode(plan, self.gun)

@@ -37,6 +37,7 @@ from coatsim.geometry.space.rotations import rot_z
 from coatsim.languages.gcode.arcs import arc_words
 from coatsim.languages.gcode.gun import GunCodes
 from coatsim.languages.gcode.names import check_name, clean_comment
+from coatsim.path.language import UNTILTED_TOL_RAD
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process_record import comment_lines
@@ -70,7 +71,7 @@ def _check_axis(plan: ProgramPlan, frame: Pose) -> None:
         for s_index, seg in enumerate(path.segments):
             for pose in (seg.start, seg.end):
                 tilt = math.acos(float(np.clip(pose.rotation[:, 2] @ down, -1.0, 1.0)))
-                if tilt > _AXIS_TOL_RAD:
+                if tilt > UNTILTED_TOL_RAD:
                     raise InputError(
                         f"{plan.name}: G-code has no tool orientation, the gun points along -Z of the work frame; "
                         f"path {p_index + 1}, segment {s_index + 1} tilts it by {math.degrees(tilt):.3g} deg: write "
