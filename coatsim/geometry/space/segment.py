@@ -245,8 +245,9 @@ def _fit_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | N
               speed_kappa: float | None) -> tuple[RunChain, float, FitLimits]:
     """A closed loop without corners, its seam (where the chain's knots start) tried at a few
     shares of a greedy arc past the input's first point (SEAM_SHIFTS) until the chain has no
-    more pieces than the greedy fitter; the fewest kept (the chain, its certified deviation
-    and the limits it was fitted under). The seam is the one knot the fit cannot move."""
+    more pieces than the greedy fitter, each seam after the first searched only from one
+    piece fewer than the best so far; the fewest kept (the chain, its certified deviation and the
+    limits it was fitted under). The seam is the one knot the fit cannot move."""
     body, s = loop[:-1], arc_length(loop)
     greedy = max(len(greedy_knots(loop, tol)) - 1, 1)
     arc = s[-1] / greedy
@@ -255,10 +256,18 @@ def _fit_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | N
         k = int(np.searchsorted(s, share * arc)) % len(body)
         pts = np.vstack((body[k:], body[:k], body[k : k + 1]))
         limits, window = _limits(pts, True, tol, min_segment_mm, speed_kappa)
-        fitted, dev = _fit_run(name, pts, tol, limits, window, tangent_at(*_seam_view(pts, window), window))
+        tangent = tangent_at(*_seam_view(pts, window), window)
+        if best is None:
+            fitted, dev = _fit_run(name, pts, tol, limits, window, tangent)
+        else:  # another seam is worth a chain of fewer pieces only: the tube fit alone, from one piece fewer
+            fewer = len(best[0].segments) - 1
+            tube = fit_tube_run(pts, tol, limits, window, seam_tangent=tangent, at_most=fewer, at_least=fewer)
+            if tube is None:
+                continue
+            fitted, dev = tube, tube.deviation_mm
         if best is None or len(fitted.segments) < len(best[0].segments):
             best = (fitted, dev, limits)
-        if len(fitted.segments) <= greedy:
+        if len(best[0].segments) <= greedy:
             break
     return best
 

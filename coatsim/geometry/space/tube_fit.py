@@ -56,22 +56,26 @@ MERGE_TRIES = 1  # neighbour pairs merged to try one piece fewer (then the chain
 MERGE_STEPS = 60  # steps granted to a chain of one piece fewer
 MIN_POINTS = 12  # shorter runs are left to the biarc fitter
 CAP_SLACK = 0.02  # curvature caps and the minimum length hold to this share, as in the plane
+FRAME_WINDOWS = 6.0  # the frames the chain is measured in are smoothed over this many tangent windows: on noisy
+                     # input, frames that jitter from vertex to vertex make the knots' derivatives noise
 DENSE_SIGMAS, DENSE_MEDIANS = 5.0, 2.0  # the fit measures the input along its edges at least this often (in σ,
                                         # or in median edges if longer): a chain near sparse points can bulge off a long edge
 
 
 def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: float,
                  start_tangent: np.ndarray | None = None, end_tangent: np.ndarray | None = None,
-                 seam_tangent: np.ndarray | None = None, at_most: int | None = None) -> RunChain | None:
+                 seam_tangent: np.ndarray | None = None, at_most: int | None = None,
+                 at_least: int = 1) -> RunChain | None:
     """A certified G1 chain within ``tol`` of a run of input points (n, 3) under ``limits``
     (see the module text), or None. ``start_tangent``/``end_tangent`` pin the run's end
     tangents; ``seam_tangent``: the run is a closed loop (its last point its first) with
     this tangent at the seam, where the chain meets its own start tangent (free); ``at_most``:
-    no count of pieces above it is tried (the caller has a chain of that many)."""
+    no count of pieces above it is tried (the caller has a chain of that many); ``at_least``:
+    the search starts at no fewer pieces (the caller knows fewer miss)."""
     seam = seam_tangent is not None
     if len(points) < MIN_POINTS:
         return None
-    ref = reference(points, arc_length(points), window, seam_tangent if seam else start_tangent,
+    ref = reference(points, arc_length(points), FRAME_WINDOWS * window, seam_tangent if seam else start_tangent,
                     seam_tangent if seam else end_tangent)
     if seam:
         _, _, u0, v0 = ref.frame(np.array(0.0))
@@ -82,21 +86,21 @@ def fit_tube_run(points: np.ndarray, tol: float, limits: FitLimits, window: floa
         ends = Ends(start_tangent is not None, end_tangent is not None)
     median = float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))
     return _certified(ref, densified(points, max(DENSE_SIGMAS * tol, DENSE_MEDIANS * median)), tol, limits, ends,
-                      at_most)
+                      (at_least, at_most))
 
 
 def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits, ends: Ends,
-               at_most: int | None) -> RunChain | None:
+               counts: tuple[int, int | None]) -> RunChain | None:
     """The fewest pieces the tube fit finds within the target at the input points, built and
     certified by the exact check. While that misses: the places of the input it missed at
-    (between the measured points) are measured too and the same chain refitted, else it is
-    aimed lower (the same chain first)."""
+    (between the measured points) are measured too, else it is aimed lower; the same chain
+    is refitted first, searched afresh only if that misses."""
     seam = ends.seam is not None
     s = arc_length(points)
     problem = TubeProblem(ref, points, s, tol, limits, ends)
     target = TARGET * tol
     density = _GreedyDensity.of(points, s, tol)
-    chain, warm = _fewest(problem, density, target, at_most), False
+    chain = _fewest(problem, density, target, counts)
     for _ in range(CERTIFY_TRIES):
         if chain is None:
             return None
@@ -110,12 +114,8 @@ def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits
             problem = TubeProblem(ref, points, s, tol, limits, ends)
         else:
             target *= LOWER * tol / dev
-        if not warm:  # the same pieces pulled in first, a fresh search if that misses too
-            closer, miss = problem.fit(chain, target)
-            if miss <= target:
-                chain, warm = closer, True
-                continue
-        chain, warm = _fewest(problem, density, target, at_most), False
+        closer, miss = problem.fit(chain, target)  # the same pieces pulled in, a fresh search if that misses
+        chain = closer if miss <= target else _fewest(problem, density, target, counts)
     return None
 
 
@@ -206,12 +206,13 @@ def _initial(ref: Reference, knots: np.ndarray) -> TubeChain:
     return TubeChain(knots.astype(float), np.zeros((len(knots), 4)), kappa)
 
 
-def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float, at_most: int | None) -> TubeChain | None:
+def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float,
+            counts: tuple[int, int | None]) -> TubeChain | None:
     """A chain within ``target`` (``_first_within``), then one piece fewer at a time while it
     stays within, each count tried from the chain before with two neighbours merged (those
     whose curvatures differ least over their span first), resampled, and from knots spread
-    as the greedy's; None if no count up to ``at_most`` gets within."""
-    chain = _first_within(problem, density, target, at_most)
+    as the greedy's; None if no count within ``counts`` (fewest, most) gets within."""
+    chain = _first_within(problem, density, target, counts)
     if chain is None:
         return None
     while chain.n > 1:
@@ -228,21 +229,22 @@ def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float, at_mos
 
 
 def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float,
-                  at_most: int | None) -> TubeChain | None:
-    """The first chain within ``target`` of as many pieces as the greedy has arcs, then a few
-    more, then growing shares more (MORE_PIECES): each count started from knots spread as
+                  counts: tuple[int, int | None]) -> TubeChain | None:
+    """The first chain within ``target`` of as many pieces as the greedy has arcs (or the
+    fewest of ``counts`` (fewest, most), if more), then a few more, then growing shares more (MORE_PIECES): each count started from knots spread as
     the greedy's, spread evenly, and (one piece more than a chain that missed) from that
     chain with its worst piece split. Fresh starts, because a chain that missed is often
     caught in a local optimum no split gets it out of. Where more pieces stop bringing the
     chain closer and no limit holds it, the chain is caught in a local optimum: the
     search goes on at the growing shares (on the trefoil at σ 0.5 mm 12 to 14 pieces all
-    miss by 0.69 mm, 15 fit). Counts above ``at_most`` are not tried."""
-    count = density.count
-    counts = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
-    counts = [n for n in counts if at_most is None or n <= at_most]
+    miss by 0.69 mm, 15 fit). No count above ``counts``' most is tried."""
+    fewest, most = counts
+    count = max(density.count, fewest)
+    tried = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
+    tried = [n for n in tried if most is None or n <= most]
     missed: TubeChain | None = None
     misses: list[float] = []
-    for n in counts:
+    for n in tried:
         plateau = len(misses) > PLATEAU_COUNTS and misses[-1] >= (1 - PLATEAU_GAIN) * misses[-1 - PLATEAU_COUNTS]
         stuck = len(misses) > 1 and misses[-1] >= (1 - STUCK_GAIN) * misses[-2]
         if plateau or stuck:
