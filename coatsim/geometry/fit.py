@@ -30,13 +30,13 @@ from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
 from coatsim.geometry.limits import MIN_LENGTH_SIGMAS, FitLimits, arc_excess, fit_limits
-from coatsim.geometry.merge import bent_merge, plain_merge
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.refine import (ChainParams, close_exactly, lateral_residuals, refine_chain, split_segment,
                                      worst_segment)
 from coatsim.geometry.run_fit import RunFit
+from coatsim.geometry.simpler import fewer, straightened
 from coatsim.geometry.sparse import guide as sparse_guide, is_sparse, simplified, taught_lines
 
 MAX_ATTEMPTS = 20
@@ -49,9 +49,7 @@ QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its fir
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
 MAX_SPLITS = 2  # up to this many times before the band narrows instead
 TARGET = 0.98  # refine until the sampled deviation is this fraction of σ
-HOPELESS = 1.02  # a merged chain whose sampled deviation is above this share of σ is not checked exactly
 BAND_KNOTS = 100_000  # the band fit sees at most about this many points of a run
-SCREEN = 5.0  # a merge bent back onto the rest that strays this many σ is not refined (see _fewer)
 
 
 def total_turn(points: np.ndarray) -> float:
@@ -130,18 +128,18 @@ class _Target:
     start_heading: float | None
     end_heading: float | None
 
-    def settle(self, params: ChainParams, target: float,
-               hopeless: float = math.inf) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
-        """Refine, close and build a chain: (parameters, sampled deviation, segments, whether
-        it keeps the caps and pins, exact deviation (inf when it does not, or when the
-        sampled one is above ``hopeless``: the exact check is the costly part; the
-        refinement stops where it stalls above it)."""
+    def settle(self, params: ChainParams, target: float, hopeless: float = math.inf,
+               lines: np.ndarray | None = None) -> tuple[ChainParams, float, tuple[Segment, ...], bool, float]:
+        """Refine, close and build a chain (the segments of ``lines`` kept straight):
+        (parameters, sampled deviation, segments, whether it keeps the caps and pins, exact
+        deviation (inf when it does not, or when the sampled one is above ``hopeless``: the
+        exact check is the costly part; the refinement stops where it stalls above it)."""
         params, sampled = refine_chain(self.start, params, self.measured, self.end, self.turn, self.limits, target,
                                        fixed_heading=self.start_heading is not None, closed_loop=self.closed_loop,
-                                       slide=self.slide, slide_mm=self.tolerance, stall_above=hopeless)
+                                       slide=self.slide, slide_mm=self.tolerance, stall_above=hopeless, lines=lines)
         origin = self.origin(params)
         end = origin if self.slide is not None else self.end
-        params = close_exactly(origin, params, end, self.turn)
+        params = close_exactly(origin, params, end, self.turn, lines)
         segs = build_chain(origin, params, end)
         honest = _honest(params, self.limits, self.total) and _pins_kept(segs, self.start_heading, self.end_heading)
         dev = hausdorff(self.pts, Polysegment(segs)).hausdorff if honest and sampled <= hopeless else math.inf
@@ -171,8 +169,9 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
     ``start_heading`` (and then optionally ``end_heading``) pin the chain's end tangents.
     A sparse run is band-fitted along its guide (coatsim.geometry.sparse), a sparse loop
     starts in the channel of its first vertex, and a sparse run's chain gives up every
-    junction it can (_fewer); a sparse run whose chain needs more segments than it has
-    moves gets none (its own lines follow it with fewer)."""
+    junction it can and runs straight where its points do (coatsim.geometry.simpler); a
+    sparse run whose chain needs more segments than it has moves gets none (its own lines
+    follow it with fewer)."""
     total = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
     turn = total_turn(pts) if closed_loop else None
     if start_heading is not None and end_heading is not None:
@@ -214,8 +213,8 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
         if dev <= tolerance and honest:
             if path is None:
                 return segs, dev
-            fewer = _fewer(tgt, params, segs, dev)
-            return fewer if len(fewer[0]) < len(pts) else None  # more arcs than taught moves cut none
+            simple = straightened(tgt, fewer(tgt, params, segs, dev, TARGET * tolerance), TARGET * tolerance)
+            return simple[1:] if len(simple[1]) < len(pts) else None  # more arcs than taught moves cut none
         if honest and sampled <= target:
             # The samples met the target but the exact check did not (chords of the input
             # cut inside the chain): aim lower with the same segments.
@@ -234,35 +233,6 @@ def _constrained(pts: np.ndarray, tolerance: float, closed_loop: bool, limits: F
                 band *= shrink
             splits, params, landed = 0, None, not landed and not single
     return None
-
-
-def _fewer(tgt: _Target, params: ChainParams, segs: tuple[Segment, ...],
-           dev: float) -> tuple[tuple[Segment, ...], float]:
-    """The chain with junctions given up, the calmest first (two segments become one of their
-    length and turn, refined again), while the chain stays within the tolerance and caps; a
-    junction whose merge, bent back onto the rest of the chain (coatsim.geometry.merge), still
-    strays SCREEN σ from the input is not refined.
-    A junction that could not be given up is not tried again until a neighbouring one is
-    (the segments next to it are then new)."""
-    failed: set[int] = set()  # junction k: between segments k and k + 1
-    while len(params.kappa) > 1:
-        for j in np.argsort(np.abs(np.diff(params.kappa)), kind="stable"):
-            if j in failed:
-                continue
-            bent = bent_merge(params, int(j))
-            if bent is not None and tgt.sampled(bent) > SCREEN * tgt.tolerance:
-                failed.add(int(j))  # (bent back onto the rest, the merge still strays far: not refined)
-                continue
-            fewer, _, fewer_segs, honest, fewer_dev = tgt.settle(plain_merge(params, int(j)), TARGET * tgt.tolerance,
-                                                                 HOPELESS * tgt.tolerance)
-            if honest and fewer_dev <= tgt.tolerance:
-                params, segs, dev = fewer, fewer_segs, fewer_dev
-                failed = {k - (k > j) for k in failed if abs(k - j) > 1}
-                break
-            failed.add(int(j))
-        else:
-            break
-    return segs, dev
 
 
 def _band_knots(pts: np.ndarray) -> np.ndarray:

@@ -149,7 +149,7 @@ class ChainProblem:
 
     def __init__(self, start: np.ndarray, points: np.ndarray, end: np.ndarray, turn: float | None,
                  limits: FitLimits, n: int, fixed_heading: bool = False, closed_loop: bool = False,
-                 slide: np.ndarray | None = None, slide_mm: float = 0.0) -> None:
+                 slide: np.ndarray | None = None, slide_mm: float = 0.0, lines: np.ndarray | None = None) -> None:
         seg = np.linalg.norm(np.diff(points, axis=0), axis=1)
         s = np.concatenate(([0.0], np.cumsum(seg)))
         self.total = float(s[-1])
@@ -161,6 +161,7 @@ class ChainProblem:
         self.limits = limits
         self.n = n
         self.fixed_heading = fixed_heading
+        self.lines = np.zeros(n, dtype=bool) if lines is None else lines
         self.inset_left, self.inset_right = chord_insets(points, closed_loop)
         grid = np.linspace(0, self.total, min(MAX_SAMPLES, len(points)))
         self.pick = np.unique(np.searchsorted(s, grid).clip(0, len(points) - 1))
@@ -213,6 +214,7 @@ class ChainProblem:
         lower[1 : n + 1] = np.clip(np.minimum(-cap_z - kappa, 0.0), -radius, radius)
         upper[1 : n + 1] = np.clip(np.maximum(cap_z - kappa, 0.0), -radius, radius)
         lower[n + 1 : 2 * n + 1] = np.clip(np.minimum(self.min_len_z - z[n + 1 : 2 * n + 1], 0.0), -radius, radius)
+        lower[1 : n + 1][self.lines] = upper[1 : n + 1][self.lines] = 0.0  # lines stay lines
         if self.fixed_heading:  # a start tangent pinned by the caller
             lower[0] = upper[0] = 0.0
         if self.slide is not None:  # the start stays within slide_mm of where it was given
@@ -246,6 +248,7 @@ def refine_chain(
     slide: np.ndarray | None = None,
     slide_mm: float = 0.0,
     stall_above: float = math.inf,
+    lines: np.ndarray | None = None,
 ) -> tuple[ChainParams, float]:
     """Minimise the largest lateral deviation of ``points`` from the chain.
 
@@ -257,14 +260,16 @@ def refine_chain(
     lengths above its minimum; ``fixed_heading`` keeps the start heading as it is;
     ``closed_loop``: ``points`` close on themselves (their seam is a vertex with chord insets);
     ``slide`` (a unit vector, loops only): the start (and with it the end) may move along it
-    by up to ``slide_mm``, from ``start`` plus the ``shift`` of ``params``.
+    by up to ``slide_mm``, from ``start`` plus the ``shift`` of ``params``; ``lines`` (n,):
+    the segments kept straight (their curvature 0 in ``params``).
     Stops early once the sampled deviation is below ``target``
     with the end gap closed, or when it is still far above it after a few steps, or when
     after those steps it is above ``stall_above`` and fell by less than STALL_SHARE over the
     last STALL_STEPS steps, or after HOPELESS_STEP steps is still HOPELESS_SHARE times above it.
     Returns (parameters, sampled deviation).
     """
-    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading, closed_loop, slide, slide_mm)
+    prob = ChainProblem(start, points, end, turn, limits, len(params.kappa), fixed_heading, closed_loop, slide, slide_mm,
+                        lines)
     weight = 100.0  # the end gap costs this many times a lateral deviation
 
     def merit(zb: np.ndarray) -> np.ndarray:
@@ -354,12 +359,15 @@ def split_segment(params: ChainParams, j: int) -> ChainParams:
     )
 
 
-def close_exactly(start: np.ndarray, params: ChainParams, end: np.ndarray, turn: float | None) -> ChainParams:
+def close_exactly(start: np.ndarray, params: ChainParams, end: np.ndarray, turn: float | None,
+                  lines: np.ndarray | None = None) -> ChainParams:
     """Newton steps on the last segments' curvatures and lengths until the chain ends exactly
-    at ``end`` (and turns exactly ``turn``); least-norm steps keep the change small."""
+    at ``end`` (and turns exactly ``turn``); least-norm steps keep the change small. The
+    segments of ``lines`` (n,) stay straight."""
     x = params.vector()
     n = len(params.kappa)
-    free = [i for i in range(max(1, n - 2), n + 1)] + [n + i for i in range(max(1, n - 2), n + 1)]
+    last = range(max(1, n - 2), n + 1)
+    free = [i for i in last if lines is None or not lines[i - 1]] + [n + i for i in last]
     scale = np.array([params.length.sum() if i <= n else 1.0 for i in free])
     start = np.asarray(start, float)
     for _ in range(8):
