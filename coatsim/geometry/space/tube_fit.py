@@ -266,7 +266,9 @@ def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float,
             chain, dev = problem.fit(_initial(problem.ref, _balanced(problem, best[1])), target)
             if dev <= target:
                 return chain
-            best = (dev, chain) if dev < best[0] else best
+            if dev >= best[0]:
+                break  # no closer: the next round would start from the same chain
+            best = (dev, chain)
         missed = best[1]
         misses.append(best[0])
     return None
