@@ -128,7 +128,7 @@ def test_no_more_segments_than_the_greedy_fitter(name):
 
 @pytest.mark.slow
 def test_a_local_optimum_does_not_end_the_search_for_a_chain():
-    """The trefoil at σ 0.5 mm: chains of 11 to 14 pieces all stall 0.69 mm off, no curvature
+    """The trefoil at σ 0.5 mm: chains of 11 to 14 pieces stall 0.69 to 0.50 mm off, no curvature
     cap or minimum length holding them; the search goes on to larger counts and merges down
     (it fell back to 18 biarcs when a plateau ended it, at 400 points 20)."""
     fit = segment_space_curve(make_space_curve(HELD_OUT["trefoil"](400), "trefoil"), 0.5)
