@@ -230,14 +230,15 @@ def _fewest(problem: TubeProblem, density: _GreedyDensity, target: float,
 
 def _first_within(problem: TubeProblem, density: _GreedyDensity, target: float,
                   counts: tuple[int, int | None]) -> TubeChain | None:
-    """The first chain within ``target`` of as many pieces as the greedy has arcs (or the
-    fewest of ``counts`` (fewest, most), if more), then a few more, then growing shares more
-    (MORE_PIECES): each count started from knots spread as the greedy's, spread evenly, and
-    (one piece more than a chain that missed) from that chain with its worst piece split. Fresh starts, because a chain that missed is often
-    caught in a local optimum no split gets it out of. Where more pieces stop bringing the
-    chain closer and no limit holds it, the chain is caught in a local optimum: the
-    search goes on at the growing shares (on the trefoil at σ 0.5 mm 12 to 14 pieces miss
-    by 0.69 to 0.50 mm, 15 fit). No count above ``counts``' most is tried."""
+    """The first chain within ``target`` of as many pieces as the greedy has arcs (or the fewest of
+    ``counts`` (fewest, most), if more), then a few more, then growing shares more
+    (MORE_PIECES): each count started from knots spread as the greedy's, spread evenly, and (one
+    piece more than a chain that missed) from that chain with its worst piece split. Fresh
+    starts, because a chain that missed is often caught in a local optimum no split gets it out
+    of. Where more pieces stop bringing the chain closer and no limit holds it, the chain is
+    caught in a local optimum: the search goes on at the growing shares (on the trefoil at σ 0.5
+    mm 12 to 14 pieces miss by 0.69 to 0.50 mm, 15 fit). No count above ``counts``' most is
+    tried."""
     fewest, most = counts
     count = max(density.count, fewest)
     tried = sorted({count + k for k in EXTRA_PIECES} | {math.ceil(count * f) for f in MORE_PIECES})
