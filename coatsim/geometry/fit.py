@@ -37,13 +37,14 @@ from coatsim.geometry.refine import (ChainParams, close_exactly, lateral_residua
                                      worst_segment)
 from coatsim.geometry.run_fit import RunFit
 from coatsim.geometry.simpler import fewer, straightened
-from coatsim.geometry.sparse import guide as sparse_guide, is_sparse, simplified, taught_lines
+from coatsim.geometry.sparse import guide as sparse_guide, is_sparse, own_radius, simplified, taught_lines
 
 MAX_ATTEMPTS = 20
 PIN_RAD = 1e-9  # a pinned end tangent is kept to this (rad)
 SLACK = 0.02  # caps and minimum length hold to this share (the stretch a segment covers is mapped by length)
 NARROWER = (0.5, 0.25)  # then fits within these shares of the tolerance, under their own caps
 RELAX = (1.5, 3.0)  # then caps loosened by these factors
+SPARSE_RELAX = 1.25  # taught points get caps loosened by this factor (with arcs no tighter than they turn)
 RELAXED_ATTEMPTS = 8  # attempts granted to each of those tries
 QUICK_ATTEMPTS = 4  # attempts of a quick try (a closed loop fitted from its first point)
 SPLIT_BELOW = 1.0  # a run whose refined deviation is this close to σ gets one more joint,
@@ -308,7 +309,11 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
         if found is not None:
             return RunFit(*found, limits_kept=False)
     if is_sparse(pts, closed_loop, tolerance):
-        return taught_lines(pts, closed_loop, tolerance)
+        # Caps are estimates: a chain under caps a little looser whose arcs are no tighter
+        # than the taught points turn anywhere (the circle through three of them) is honest.
+        found = _constrained(pts, tolerance, closed_loop, limits.relaxed(SPARSE_RELAX), [RELAXED_ATTEMPTS], *pins)
+        gentle = found is not None and max(abs(s.curvature) for s in found[0]) <= (1 + SLACK) / own_radius(pts, closed_loop)
+        return RunFit(*found) if gentle else taught_lines(pts, closed_loop, tolerance)
     for factor in RELAX:
         found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
         if found is not None:

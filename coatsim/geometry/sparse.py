@@ -137,6 +137,11 @@ def _near_radius(pts: np.ndarray, closed: bool) -> np.ndarray:
     return near
 
 
+def own_radius(points: np.ndarray, closed: bool) -> float:
+    """The tightest circle (mm) through three consecutive vertices (inf if none turns)."""
+    return float(np.min(_near_radius(np.asarray(points, dtype=float), closed)))
+
+
 def unroundable(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
     """Sparse vertices σ cannot round with fewer segments than moves: their indices
     (interior vertices; for a closed polyline 0 .. n - 2) and the deviation each needs (mm,

@@ -274,3 +274,22 @@ def test_a_taught_path_with_inflections_comes_back_with_a_third_of_its_moves(cas
     seg = segment_curve(make_curve(pts, case, closed), tol)
     assert_contract(seg, tol)
     assert 3 * seg.polysegment.n_segments <= len(pts) - 1, f"{seg.polysegment.n_segments} segments for {len(pts) - 1} moves"
+
+
+def test_a_taught_polygon_just_past_its_caps_is_fitted_with_arcs_no_tighter_than_it_turns():
+    """An epitrochoid taught with 20 points, σ 0.7 of its chordal deviation: no chain keeps
+    the estimated caps, one a quarter looser keeps the polygon's own turning (the circle
+    through three vertices), and comes back instead of the 20 taught lines."""
+    t = np.linspace(0.0, TAU, 40_001)
+    dense = np.column_stack((40 * np.cos(t) - 5 * np.cos(4 * t), 40 * np.sin(t) - 5 * np.sin(4 * t)))
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))))
+    knots = np.linspace(0.0, s[-1], 21)
+    pts = np.column_stack((np.interp(knots, s, dense[:, 0]), np.interp(knots, s, dense[:, 1])))
+    pts[-1] = pts[0]
+    tol = 0.757
+    seg = segment_curve(make_curve(pts, "epitrochoid", "yes"), tol)
+    assert_contract(seg, tol)
+    poly = seg.polysegment
+    assert poly.n_segments <= 10 and not poly.corners and not seg.notes, seg.summary()
+    own = _own_radius(pts, True)
+    assert min(s.radius for s in poly.segments if isinstance(s, Arc)) >= own / 1.02
