@@ -4,16 +4,11 @@ Orientation: triangles are flipped so that every pair sharing a manifold edge is
 (the file's majority winding wins in each connected piece); then a closed piece is turned
 outward (positive volume) and an open piece (a scan) toward the side the gun comes from.
 
-Smoothing: the area-weighted vertex normals diffuse over the surface for a time t = L^2/2 in
-SMOOTHING_STEPS implicit steps of the heat equation, (M + t/k L) N' = M N with the cotangent
-Laplacian L and the lumped mass M, which averages them over about a length L along the surface
-(not through the part, so the two skins of a thin part stay apart), and are normalised. One
-step damps a ripple of wavenumber w only by 1 / (1 + t w^2); k steps come near the Gaussian's
-exp(-t w^2): the facets of a coarse CAD export (an icosphere of radius 100 mm, 7 mm facets,
-at L = 5 mm) left the normals rippling by 0.1-0.2 deg after one step, which the stand-off
-turns into a tool path rippling by 0.2-0.3 mm (a dome's 32 passes: 888 moves at 0.1 mm and 344
-CPU s to fit; with 4 steps 342 moves, 93 s). On a cylinder or a sphere the normal field is an
-eigenfunction of the Laplacian, so smoothing leaves it exact.
+Smoothing: the area-weighted vertex normals diffuse over the surface for a time t = L^2/2 (one
+implicit step of the heat equation, (M + t L) N = M N0 with the cotangent Laplacian L and the
+lumped mass M), which averages them over about a length L along the surface (not through the
+part, so the two skins of a thin part stay apart), and are normalised. On a cylinder or a
+sphere the normal field is an eigenfunction of the Laplacian, so smoothing leaves it exact.
 """
 
 from __future__ import annotations
@@ -27,8 +22,6 @@ from coatsim.geometry.surface.topology import Edges, face_components, face_pairs
 
 #: relative residual at which the smoothing solve stops (normals to about 1e-8)
 SMOOTHING_RTOL = 1e-9
-#: implicit steps the smoothing's diffusion time is split into (see the module's docstring)
-SMOOTHING_STEPS = 4
 #: a probe counts as behind a face when more than this fraction of its step behind it (kept_outward)
 BEHIND_FRACTION = 1e-3
 
@@ -145,13 +138,11 @@ def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float) ->
         return raw
     laplacian = pp3d.cotan_laplacian(vertices, faces, denom_eps=1e-12)
     mass = pp3d.vertex_areas(vertices, faces)
-    system = (diags(mass) + 0.5 * length_mm**2 / SMOOTHING_STEPS * laplacian).tocsr()
+    system = (diags(mass) + 0.5 * length_mm**2 * laplacian).tocsr()
     diagonal = system.diagonal()
     jacobi = LinearOperator(system.shape, matvec=lambda x: x / diagonal, dtype=float)
-    smoothed = raw
-    for _ in range(SMOOTHING_STEPS):
-        smoothed = np.column_stack([cg(system, mass * smoothed[:, k], x0=smoothed[:, k], rtol=SMOOTHING_RTOL,
-                                       maxiter=10_000, M=jacobi)[0] for k in range(3)])
+    smoothed = np.column_stack([cg(system, mass * raw[:, k], x0=raw[:, k], rtol=SMOOTHING_RTOL, maxiter=10_000,
+                                   M=jacobi)[0] for k in range(3)])
     norm = np.linalg.norm(smoothed, axis=1)
     bad = ~(norm > 1e-9)
     smoothed[bad], norm[bad] = raw[bad], 1.0

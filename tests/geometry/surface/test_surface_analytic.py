@@ -221,18 +221,3 @@ def test_the_edge_band_keeps_passes_off_the_border():
     ys = [p.points[0, 1] for p in paths.passes]
     assert 12.0 <= ys[0] <= 12.0 + 2.5 and 88.0 - 2.5 <= ys[-1] <= 88.0
     assert paths.stats.coverage < 0.9  # the band is part of the region and is not covered
-
-
-def test_smoothed_normals_of_a_faceted_sphere_lose_the_facets_ripple() -> None:
-    """A sphere exported with 7 mm facets, its faces split to 2.5 mm edges (points on the flat
-    facets, as the planner refines them): the normals smoothed over 5 mm stay within 0.1 deg of
-    the sphere's (one implicit diffusion step left 0.21 deg of the facets' ripple)."""
-    import trimesh
-
-    from coatsim.geometry.surface.normals import smooth_normals
-
-    sphere = trimesh.creation.icosphere(subdivisions=4, radius=100.0)
-    vertices, faces = trimesh.remesh.subdivide_to_size(sphere.vertices, sphere.faces, max_edge=2.5)
-    normals = smooth_normals(vertices, faces, 5.0)
-    true = vertices / np.linalg.norm(vertices, axis=1)[:, None]
-    assert np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", normals, true), -1.0, 1.0))).max() < 0.1
