@@ -14,10 +14,8 @@ from typing import Optional
 
 import numpy as np
 
-from coatsim.core import defaults
 from coatsim.geometry.space.orient import fit_surface_pass
 from coatsim.geometry.space.pose import Pose
-from coatsim.path.frames import DEFAULT_FRAME
 from coatsim.path.roll import AxisPiece
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 from coatsim.path.unfold import unfolded_axes
@@ -85,15 +83,6 @@ class PassFits:
     settings: FitSettings
     tcps: tuple[PassTcp, ...]
     fits: tuple[PassFit, ...]
-
-
-def fit_settings(paths: SurfacePaths, standoff_mm: Optional[float], pose: Optional[Pose], tolerance_mm: float,
-                 angle_tol_deg: float, speed_mm_s: float, speed_on: str,
-                 tool_accel_mm_s2: Optional[float]) -> FitSettings:
-    """The settings of a fit of ``paths``: the stand-off and pose given, else the file's, else the
-    defaults."""
-    return FitSettings(standoff_mm or paths.standoff_mm or defaults.STANDOFF_MM, pose or paths.pose or DEFAULT_FRAME,
-                       tolerance_mm, angle_tol_deg, speed_mm_s, speed_on, tool_accel_mm_s2)
 
 
 def place_passes(paths: SurfacePaths, settings: FitSettings) -> tuple[PassTcp, ...]:

@@ -42,8 +42,9 @@ from coatsim.geometry.space.primitives import Arc3, Line3
 from coatsim.geometry.space.rotations import rot_z
 from coatsim.path.build import ProgramOptions
 from coatsim.path.expressible import expressible
+from coatsim.path.frames import DEFAULT_FRAME
 from coatsim.path.language import UNTILTED_TOL_RAD, Language
-from coatsim.path.pass_fits import FitSettings, PassFits, PassTcp, fit_passes, fit_settings, place_passes
+from coatsim.path.pass_fits import FitSettings, PassFits, PassTcp, fit_passes, place_passes
 from coatsim.path.leads import lead_move
 from coatsim.path.placement import PlacedMove, PlacedPath
 from coatsim.path.plan import ProgramPlan
@@ -259,9 +260,11 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
 
 
 def surface_fit_settings(paths: SurfacePaths, surface: SurfaceOptions, speed_mm_s: float) -> FitSettings:
-    """The settings the passes of a program placed with ``surface`` at ``speed_mm_s`` are fitted with."""
-    return fit_settings(paths, surface.standoff_mm, surface.pose, surface.tolerance_mm, surface.angle_tol_deg,
-                        speed_mm_s, surface.speed_on, surface.tool_accel_mm_s2)
+    """The settings the passes of a program placed with ``surface`` at ``speed_mm_s`` are fitted
+    with: the stand-off and pose given, else the file's, else the defaults."""
+    return FitSettings(surface.standoff_mm or paths.standoff_mm or defaults.STANDOFF_MM,
+                       surface.pose or paths.pose or DEFAULT_FRAME, surface.tolerance_mm, surface.angle_tol_deg,
+                       speed_mm_s, surface.speed_on, surface.tool_accel_mm_s2)
 
 
 def _check_untilted(tcps: tuple[PassTcp, ...], language: Language, source: str) -> None:
