@@ -4,7 +4,17 @@ Orientation: triangles are flipped so that every pair sharing a manifold edge is
 (the file's majority winding wins in each connected piece); then a closed piece is turned
 outward (positive volume) and an open piece (a scan) toward the side the gun comes from.
 
-Smoothing: the area-weighted vertex normals diffuse over the surface for a time t = L^2/2 (one
+Facets: a part exported from CAD is a sphere or a cylinder in flat facets; the mesh refined to
+plan on puts its new vertices on those facets, whose normals step from facet to facet (a dome of
+radius 100 mm in 7 mm facets: 0.2-0.3 deg, half a millimetre at a 100 mm stand-off). So the raw
+normal at a vertex of the refined mesh is interpolated linearly across the file's own facet that
+holds it, from that facet's corner normals; a corner normal is Max's weighting of the faces of its
+fan between sharp edges (exact at the vertices of a sphere; N. Max, "Weights for computing vertex
+normals from facet normals", 1999). A flat face of the part (a patch of coplanar triangles wider
+than the smoothing reaches across, a box's side next to its fillet) keeps its own normal: a
+corner shared with a fillet would tilt it across the whole of a long triangle.
+
+Smoothing: the raw vertex normals diffuse over the surface for a time t = L^2/2 (one
 implicit step of the heat equation, (M + t L) N = M N0 with the cotangent Laplacian L and the
 lumped mass M), which averages them over about a length L along the surface (not through the
 part, so the two skins of a thin part stay apart), and are normalised. On a cylinder or a
@@ -18,10 +28,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from coatsim.geometry.surface.boxes import TriangleBoxes
+from coatsim.geometry.surface.features import feature_split
 from coatsim.geometry.surface.topology import Edges, face_components, face_pairs, mesh_edges
 
 #: relative residual at which the smoothing solve stops (normals to about 1e-8)
 SMOOTHING_RTOL = 1e-9
+#: an edge shorter than this share of the median edge weighs as that long in Max's corner weights
+#: (a sliver's corner would otherwise outweigh its whole fan)
+SHORT_EDGE_SHARE = 1e-2
+#: a point lies in a facet when nearer than this share of the part's extent (rounding of the refinement)
+ON_FACET_SHARE = 1e-9
+#: triangles whose normals differ by less than this are one flat patch (flat_faces)
+FLAT_PATCH_DEG = 0.05
 #: a probe counts as behind a face when more than this fraction of its step behind it (kept_outward)
 BEHIND_FRACTION = 1e-3
 
@@ -123,8 +141,76 @@ def vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return summed / np.maximum(np.linalg.norm(summed, axis=1), 1e-300)[:, None]
 
 
-def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float) -> np.ndarray:
-    """Unit vertex normals (n, 3) averaged over about ``length_mm`` along the surface.
+def corner_normals(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit normals at the corners of ``faces``, one per fan of a vertex's faces between sharp
+    edges, weighted after Max (exact at the vertices of a sphere): (faces on the split vertices,
+    the split vertices' normals)."""
+    split, copies = feature_split(faces, face_normals(vertices, faces)[0])
+    at = vertices[copies]
+    lengths = np.linalg.norm(at[split] - at[np.roll(split, -1, axis=1)], axis=2)
+    floor = SHORT_EDGE_SHARE * float(np.median(lengths)) if lengths.size else 0.0
+    summed = np.zeros_like(at)
+    for k in range(3):
+        e1, e2 = at[split[:, (k + 1) % 3]] - at[split[:, k]], at[split[:, (k + 2) % 3]] - at[split[:, k]]
+        square1 = np.maximum(np.einsum("ij,ij->i", e1, e1), floor**2)
+        square2 = np.maximum(np.einsum("ij,ij->i", e2, e2), floor**2)
+        np.add.at(summed, split[:, k], np.cross(e1, e2) / np.maximum(square1 * square2, 1e-300)[:, None])
+    return split, summed / np.maximum(np.linalg.norm(summed, axis=1), 1e-300)[:, None]
+
+
+def flat_faces(vertices: np.ndarray, faces: np.ndarray, width_mm: float) -> np.ndarray:
+    """Which faces (m,) bool lie in a flat patch (triangles joined by edges across which the
+    normal turns by less than ``FLAT_PATCH_DEG``) wider than ``width_mm`` (twice its area over
+    its perimeter): a face of the part rather than a facet of a curved surface."""
+    face_n, area = face_normals(vertices, faces)
+    edges = mesh_edges(faces)
+    pairs, consistent, slot, _ = face_pairs(faces, edges, slots=True)
+    cos = np.einsum("ij,ij->i", face_n[pairs[:, 0]], face_n[pairs[:, 1]])
+    joined = consistent & (cos >= np.cos(np.radians(FLAT_PATCH_DEG)))
+    count, patch = face_components(len(faces), pairs[joined])
+    lengths = np.linalg.norm(vertices[faces] - vertices[np.roll(faces, -1, axis=1)], axis=2)
+    # each inner edge of a patch is counted once from either face: take both off the perimeter
+    perimeter = np.bincount(patch, weights=lengths.sum(axis=1), minlength=count) - 2.0 * np.bincount(
+        patch[pairs[joined, 0]], weights=lengths[pairs[joined, 0], slot[joined]], minlength=count)
+    width = 2.0 * np.bincount(patch, weights=area, minlength=count) / np.maximum(perimeter, 1e-300)
+    return width[patch] > width_mm
+
+
+def facet_normals(vertices: np.ndarray, faces: np.ndarray, points: np.ndarray, side: np.ndarray,
+                  flat_width_mm: float) -> np.ndarray:
+    """Unit normals (p, 3) at ``points`` lying on the mesh (``vertices``, ``faces``): interpolated
+    linearly across the face holding each point from its corner normals (``corner_normals``),
+    or the face's own normal on a flat patch wider than ``flat_width_mm`` (``flat_faces``).
+    A point on an edge or a vertex is held by the face whose normal is nearest its ``side`` (unit
+    normals from the faces on the point's side of a sharp edge); a point on no face keeps its side."""
+    import trimesh
+
+    split, corner = corner_normals(vertices, faces)
+    face_n = face_normals(vertices, faces)[0]
+    corners = np.where(flat_faces(vertices, faces, flat_width_mm)[:, None, None], face_n[:, None, :], corner[split])
+    extent = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    owner, face, distance = TriangleBoxes(vertices, faces).touching(points, ON_FACET_SHARE * extent)
+    on = distance <= ON_FACET_SHARE * extent
+    owner, face = owner[on], face[on]
+    # per point the face best facing its side: sort by point, then by agreement, keep the last
+    agreement = np.einsum("ij,ij->i", face_n[face], side[owner])
+    order = np.lexsort((agreement, owner))
+    last = np.r_[owner[order][1:] != owner[order][:-1], True]
+    held, by = owner[order][last], face[order][last]
+    weights = trimesh.triangles.points_to_barycentric(vertices[faces[by]], points[held])
+    weights = np.clip(weights, 0.0, None)
+    interpolated = np.einsum("ij,ijk->ik", weights, corners[by])
+    norm = np.linalg.norm(interpolated, axis=1)
+    good = norm > 1e-9  # false also where a sliver's weights are not numbers
+    out = side.copy()
+    out[held[good]] = interpolated[good] / norm[good, None]
+    return out
+
+
+def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float,
+                   raw: np.ndarray | None = None) -> np.ndarray:
+    """Unit vertex normals (n, 3) averaged over about ``length_mm`` along the surface, from
+    ``raw`` normals (n, 3) (default: area-weighted).
 
     The system is symmetric positive definite; conjugate gradients with a diagonal
     preconditioner solve it in time about linear in the mesh size (a direct factorisation's
@@ -133,7 +219,7 @@ def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float) ->
     from scipy.sparse import diags
     from scipy.sparse.linalg import LinearOperator, cg
 
-    raw = vertex_normals(vertices, faces)
+    raw = vertex_normals(vertices, faces) if raw is None else raw
     if length_mm <= 0:
         return raw
     laplacian = pp3d.cotan_laplacian(vertices, faces, denom_eps=1e-12)
