@@ -38,10 +38,12 @@ from coatsim.geometry.surface.normals import (
     Orientation,
     closed_faces,
     face_normals,
+    facet_normals,
     kept_outward,
     largest_angle_deg,
     orient,
     smooth_normals,
+    vertex_normals,
 )
 from coatsim.geometry.surface.passes import ORDERS, Order, Trace, clip, leads, spraying_order
 from coatsim.geometry.surface.piece import Piece
@@ -79,6 +81,8 @@ Pattern = Literal["raster", "geodesic", "boundary"]
 SELECTION_CELLS = 200.0
 #: normals are smoothed over the surface running on past the region this many smoothing lengths
 RING_SMOOTHING_LENGTHS = 2.0
+#: a flat patch wider than this many smoothing lengths is a face of the part, not a facet (normals.flat_faces)
+FLAT_FACE_SMOOTHING_LENGTHS = 2.0
 #: a face touches a pass point within this fraction of the part's extent
 TOUCH_FRACTION = 1e-7
 
@@ -210,7 +214,9 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
                      "deg): normals are smoothed on either side, never across, and passes stop at them")
     sf, copies = feature_split(sf, face_normals(sv, sf)[0])
     sv = sv[copies]
-    normals = smooth_normals(sv, sf, s.smoothing_mm)
+    raw = facet_normals(part.vertices_mm, oriented.faces, sv, vertex_normals(sv, sf),
+                        FLAT_FACE_SMOOTHING_LENGTHS * s.smoothing_mm)
+    normals = smooth_normals(sv, sf, s.smoothing_mm, raw)
     rv, rf, parent = submesh(sv, sf, inside)
     return rv, rf, normals[parent], oriented.faces
 
