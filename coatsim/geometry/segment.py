@@ -33,6 +33,7 @@ from coatsim.geometry.theta import ThetaFunction, paper_within, theta_of_polylin
 Method = Literal["optimal", "paper"]
 TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
 TAUGHT_AIM = 0.9  # ... it is fitted again within this share of σ (the fewer segments kept)
+SEAM_TRIES = 4  # a taught loop no chain follows from its calmest point gets quick fits from this many other vertices
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 SMALL_SIGMAS = 10.0  # a curve spanning fewer tolerances than this is most likely in another unit than mm
 NOISE_SHARE = 0.1  # points scattering by more than this share of the tolerance leave a fit little room
@@ -351,15 +352,20 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
               speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
     """A free-form closed loop without corners: a quick fit from the first point, unless it
     closes with a hook (see _hooked) and a fit from the loop's calmest point, started again at
-    the first point, needs at most one segment more (or the quick fit fails). Taught points
-    no chain of honest arcs follows come back as their lines from the first point."""
+    the first point, needs at most one segment more (or the quick fit fails). Where the quick
+    fit fails and no chain of honest arcs follows taught points from the calmest point, quick
+    fits from other vertices are tried (_other_seams); if none follows them either, they come
+    back as their lines from the first point."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     quick = fit_free(pts, tol, True, limits, quick=True)
     found = quick
     if quick is None or _hooked(quick.segments):
-        run = rotated_loop(pts, calm_start(pts))
+        first = calm_start(pts)
+        run = rotated_loop(pts, first)
         calm = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa),
                         fillet=min_segment_mm is None)
+        if quick is None and calm.corners and is_sparse(pts, True, tol):
+            calm = _other_seams(pts, first, tol, min_segment_mm, speed_kappa) or calm
         calm = taught_lines(pts, True, tol) if calm.corners else \
             replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
         if quick is None or len(calm.segments) <= len(quick.segments) + 1:
@@ -367,3 +373,21 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
     segments, corners = _split_arcs(found)
     poly = Polysegment(segments, closed=True, corners=tuple(corners))
     return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept, found.notes
+
+
+def _other_seams(pts: np.ndarray, first: int, tol: float, min_segment_mm: float | None,
+                 speed_kappa: float | None) -> RunFit | None:
+    """Of quick fits (under the caps as they are) of a taught loop from SEAM_TRIES vertices
+    spread evenly round it from vertex ``first``, the one with the fewest segments (fitted
+    from its vertex); None if none fits. The band fit starts and closes a loop on a few
+    vertices, and one seam can defeat it where others do not: the calmest point misleads on
+    a taught loop whose turning changes sign there (its windowed curvature is about zero)."""
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))))
+    best: RunFit | None = None
+    for k in range(1, SEAM_TRIES + 1):
+        gap = (s[:-1] - s[first] - k * s[-1] / (SEAM_TRIES + 1)) % s[-1]
+        run = rotated_loop(pts, int(np.argmin(np.minimum(gap, s[-1] - gap))))
+        fit = fit_free(run, tol, True, fit_limits(run, True, tol, min_segment_mm, speed_kappa), quick=True)
+        if fit is not None and (best is None or len(fit.segments) < len(best.segments)):
+            best = fit
+    return best
