@@ -34,8 +34,10 @@ def check_run(result, variants: list[str]) -> None:
         assert cycle == pytest.approx(motion["cycle_time_s"], rel=0.02)
         for suffix in ("trajectory.csv", "thickness.ply", "thickness.glb"):
             assert (result.outdir / f"{name}.{suffix}").stat().st_size > 0
-    if "polyline-stop" in variants:  # an exact stop at every vertex, none on the arcs
-        assert doc["variants"]["polyline-stop"]["motion"]["stops"] > 0
+    if "polyline-stop" in variants:  # an exact stop at the vertices inside passes, none on the arcs
+        stop = doc["variants"]["polyline-stop"]
+        inner_vertices = stop["segmentation"]["n_segments"] - plan["passes"]
+        assert (stop["motion"]["stops"] > 0) == (inner_vertices > 0)
         assert doc["variants"]["polysegment"]["motion"]["stops"] == 0
     paths = json.loads((result.outdir / "paths.json").read_text(encoding="utf-8"))
     assert paths["format"] == "coatsim.surfacepaths/1" and len(paths["passes"]) == plan["passes"]
