@@ -30,7 +30,7 @@ from coatsim.geometry.surface.boundary import boundary_piece
 from coatsim.geometry.surface.boxes import SmallTriangles, TriangleBoxes
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
-from coatsim.geometry.surface.features import SHARP_EDGE_DEG, feature_split, sharp_length_mm
+from coatsim.geometry.surface.features import SHARP_EDGE_DEG, edge_length_mm, selection_normals, sharp_at_scale
 from coatsim.geometry.surface.fill import MIN_LENGTH_FRACTION, filled
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
 from coatsim.geometry.surface.mesh import Part
@@ -190,12 +190,12 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     guessed = f", or give the units ({part.units_guess})" if part.units_guess else ""
     v, f, _ = refined(part.vertices_mm, oriented.faces, coarse, part.file,
                       f"use a wider footprint or decimate the part{guessed}", parameters=("units",) if guessed else ())
-    mask = select_faces(v, f, face_normals(v, f)[0], o.region, toward, s.smoothing_mm)
+    mask = select_faces(v, f, selection_normals(v, f, s.smoothing_mm), o.region, toward, s.smoothing_mm)
     if not mask.any():
         raise EmptyRegionOfInterest(f"no face of the part that the gun sees lies in the region "
                                     f"{describe_region(o.region, toward)}; choose another region",
                                     parameters=("region",))
-    both = mask | smoothing_ring(v, f, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm)
+    both = mask | smoothing_ring(v, f, mask, RING_SMOOTHING_LENGTHS * s.smoothing_mm, s.smoothing_mm)
     sv, sf, _ = submesh(v, f, both)
     sv, sf, inside = refined(sv, sf, s.max_edge_mm, "the region", "use a larger spacing_mm or max_edge_mm, or a "
                              f"smaller region{guessed}", labels=mask[both],
@@ -208,11 +208,11 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
         notes.append(f"split {added} vertices where the region is not manifold (bow-tie vertices, edges with more "
                      "than two triangles); the region's border runs along them")
     sv, sf = sv[copies], split
-    sharp_mm = sharp_length_mm(sv, sf[inside], face_normals(sv, sf[inside])[0])
-    if sharp_mm > 0:
+    pairs, sharp = sharp_at_scale(sv, sf, s.smoothing_mm)
+    if (sharp_mm := edge_length_mm(sv, sf, pairs[sharp & inside[pairs].all(axis=1)])) > 0:
         notes.append(f"the region has {sharp_mm:.4g} mm of sharp edges (faces meeting at more than {SHARP_EDGE_DEG:g} "
                      "deg): normals are smoothed on either side, never across, and passes stop at them")
-    sf, copies = feature_split(sf, face_normals(sv, sf)[0])
+    sf, copies = manifold_split(sf, pairs[~sharp])
     sv = sv[copies]
     raw = facet_normals(part.vertices_mm, oriented.faces, sv, vertex_normals(sv, sf),
                         FLAT_FACE_SMOOTHING_LENGTHS * s.smoothing_mm)

@@ -26,8 +26,7 @@ import numpy as np
 
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
-from coatsim.geometry.surface.features import smooth_pairs
-from coatsim.geometry.surface.normals import face_normals
+from coatsim.geometry.surface.features import sharp_at_scale
 
 BOX_FACING = 0.5  # a box's faces face one way when their mean normal is this long against their area
 
@@ -172,13 +171,16 @@ def check_region(spec: RegionSpec) -> None:
                              parameters=("region",))
 
 
-def smoothing_ring(vertices: np.ndarray, faces: np.ndarray, mask: np.ndarray, reach_mm: float) -> np.ndarray:
-    """Faces outside the region within ``reach_mm`` of it, reached without crossing a sharp edge:
-    normals are smoothed over them too, so that where the surface runs on past the region's
-    border the normals at the border are not biased inward."""
+def smoothing_ring(vertices: np.ndarray, faces: np.ndarray, mask: np.ndarray, reach_mm: float,
+                   scale_mm: float) -> np.ndarray:
+    """Faces outside the region within ``reach_mm`` of it, reached without crossing an edge
+    sharp at the smoothing length ``scale_mm`` (features.sharp_at_scale): normals are smoothed
+    over them too, so that where the surface runs on past the region's border the normals at the
+    border are not biased inward."""
     from scipy.spatial import cKDTree
 
-    pairs = smooth_pairs(faces, face_normals(vertices, faces)[0])
+    pairs, sharp = sharp_at_scale(vertices, faces, scale_mm)
+    pairs = pairs[~sharp]
     centres = vertices[faces].mean(axis=1)
     near = cKDTree(centres[mask]).query(centres, distance_upper_bound=reach_mm)[0] <= reach_mm
     grown = mask.copy()

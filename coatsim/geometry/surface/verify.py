@@ -4,10 +4,12 @@ It uses only the part as read (not the refined and cut meshes the planner worked
 plan's passes: every point must lie on the part's surface, every normal must be a unit vector
 within a few degrees of the cone of the part's face normals near it, and on a closed part every
 normal must point out of it. The faces near a point are those of its own feature region (the
-faces joined to the ones it lies on by edges that are not sharp, features.py; a point on a
-sharp edge may take either side) whose bounding boxes reach within two smoothing lengths per
-axis, where the smoothing draws nearly all its weight: facets of a curved surface widen the
-cone, a flat face narrows it to its normal, and a normal averaged across a sharp edge fails.
+faces joined to the ones it lies on by edges that are not sharp at the smoothing length, as the
+planner judges them: features.sharp_at_scale, so a scan's slivers cut no island out of its
+sheet; a point on a sharp edge may take either side) whose bounding boxes reach within two
+smoothing lengths per axis, where the smoothing draws nearly all its weight: facets of a curved
+surface widen the cone, a flat face narrows it to its normal, and a normal averaged across a
+sharp edge fails.
 """
 
 from __future__ import annotations
@@ -76,7 +78,7 @@ def verify(part: Part, paths: SurfacePaths) -> float:
         _fail(paths, int(off[0]), "lies off the part's surface")
     radius = CONE_SMOOTHING_LENGTHS * paths.stats.normal_smoothing_mm
     face_n, area = face_normals(part.vertices_mm, part.faces)
-    label = feature_labels(part.faces, face_n, consistent_only=False)
+    label = feature_labels(part.vertices_mm, part.faces, paths.stats.normal_smoothing_mm)
     chosen = _representatives(part, face_n, label, radius / CONE_CELLS)
     group_area = np.bincount(chosen, weights=area, minlength=len(part.faces))
     weight = np.where(group_area > 0, group_area, area)  # a representative stands for its group's area
