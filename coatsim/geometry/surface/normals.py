@@ -40,6 +40,10 @@ SHORT_EDGE_SHARE = 1e-2
 ON_FACET_SHARE = 1e-9
 #: triangles whose normals differ by less than this are one flat patch (flat_faces)
 FLAT_PATCH_DEG = 0.05
+#: a flat patch wider than this many smoothing lengths is a face of the part, not a facet (flat_faces)
+FLAT_FACE_SMOOTHING_LENGTHS = 2.0
+#: the share of the way a point is lifted toward its corners' tangent planes (Facets.lifted)
+PHONG_SHAPE = 0.5
 #: a probe counts as behind a face when more than this fraction of its step behind it (kept_outward)
 BEHIND_FRACTION = 1e-3
 
@@ -176,35 +180,83 @@ def flat_faces(vertices: np.ndarray, faces: np.ndarray, width_mm: float) -> np.n
     return width[patch] > width_mm
 
 
-def facet_normals(vertices: np.ndarray, faces: np.ndarray, points: np.ndarray, side: np.ndarray,
-                  flat_width_mm: float) -> np.ndarray:
-    """Unit normals (p, 3) at ``points`` lying on the mesh (``vertices``, ``faces``): interpolated
-    linearly across the face holding each point from its corner normals (``corner_normals``),
-    or the face's own normal on a flat patch wider than ``flat_width_mm`` (``flat_faces``).
-    A point on an edge or a vertex is held by the face whose normal is nearest its ``side`` (unit
-    normals from the faces on the point's side of a sharp edge); a point on no face keeps its side."""
-    import trimesh
+@dataclass(frozen=True, eq=False)
+class Facets:
+    """The part's own facets (outward-wound) with a normal at each corner: ``corners`` (m, 3, 3)
+    (``corner_normals``, or the face's own normal on a flat patch wider than the smoothing,
+    ``flat_faces``), and the normals and the smooth surface they give at points on the facets."""
 
-    split, corner = corner_normals(vertices, faces)
-    face_n = face_normals(vertices, faces)[0]
-    corners = np.where(flat_faces(vertices, faces, flat_width_mm)[:, None, None], face_n[:, None, :], corner[split])
-    extent = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
-    owner, face, distance = TriangleBoxes(vertices, faces).touching(points, ON_FACET_SHARE * extent)
-    on = distance <= ON_FACET_SHARE * extent
-    owner, face = owner[on], face[on]
-    # per point the face best facing its side: sort by point, then by agreement, keep the last
-    agreement = np.einsum("ij,ij->i", face_n[face], side[owner])
-    order = np.lexsort((agreement, owner))
-    last = np.r_[owner[order][1:] != owner[order][:-1], True]
-    held, by = owner[order][last], face[order][last]
-    weights = trimesh.triangles.points_to_barycentric(vertices[faces[by]], points[held])
-    weights = np.clip(weights, 0.0, None)
-    interpolated = np.einsum("ij,ijk->ik", weights, corners[by])
-    norm = np.linalg.norm(interpolated, axis=1)
-    good = norm > 1e-9  # false also where a sliver's weights are not numbers
-    out = side.copy()
-    out[held[good]] = interpolated[good] / norm[good, None]
-    return out
+    vertices: np.ndarray
+    faces: np.ndarray
+    face_n: np.ndarray
+    corners: np.ndarray
+    boxes: TriangleBoxes
+
+    @classmethod
+    def of(cls, vertices: np.ndarray, faces: np.ndarray, smoothing_mm: float) -> Facets:
+        """The facets ``faces`` (wound consistently) of a part whose normals are smoothed over
+        ``smoothing_mm`` (a flat patch wider than ``FLAT_FACE_SMOOTHING_LENGTHS`` of it is a face)."""
+        split, corner = corner_normals(vertices, faces)
+        face_n = face_normals(vertices, faces)[0]
+        flat = flat_faces(vertices, faces, FLAT_FACE_SMOOTHING_LENGTHS * smoothing_mm)
+        corners = np.where(flat[:, None, None], face_n[:, None, :], corner[split])
+        return cls(vertices, faces, face_n, corners, TriangleBoxes(vertices, faces))
+
+    def _holding(self, points: np.ndarray, side: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(points held, their faces, barycentric weights): a point on an edge or a vertex is held
+        by the face whose normal is nearest its ``side`` (unit normals from the faces on the
+        point's side of a sharp edge); a point on no face, or on a sliver, is left out."""
+        import trimesh
+
+        extent = float(np.ptp(self.vertices, axis=0).max()) if len(self.vertices) else 0.0
+        owner, face, distance = self.boxes.touching(points, ON_FACET_SHARE * extent)
+        on = distance <= ON_FACET_SHARE * extent
+        owner, face = owner[on], face[on]
+        # per point the face best facing its side: sort by point, then by agreement, keep the last
+        order = np.lexsort((np.einsum("ij,ij->i", self.face_n[face], side[owner]), owner))
+        last = np.r_[owner[order][1:] != owner[order][:-1], True]
+        held, by = owner[order][last], face[order][last]
+        weights = np.clip(trimesh.triangles.points_to_barycentric(self.vertices[self.faces[by]], points[held]), 0, None)
+        good = np.isfinite(weights).all(axis=1)
+        return held[good], by[good], weights[good]
+
+    def largest_lift_mm(self) -> float:
+        """An upper bound on how far ``lifted`` moves a point: a point p of face f moves by
+        PHONG_SHAPE * sum_i b_i |(p - v_i) . n_i| <= PHONG_SHAPE * (f's longest edge) * (the
+        largest sine between f's normal and a corner normal of f), as (p - v_i) lies in f's plane."""
+        if not len(self.faces):
+            return 0.0
+        triangles = self.vertices[self.faces]
+        longest = np.linalg.norm(triangles - np.roll(triangles, -1, axis=1), axis=2).max(axis=1)
+        cos = np.clip(np.einsum("ijk,ik->ij", self.corners, self.face_n), -1.0, 1.0)
+        return float(PHONG_SHAPE * (longest * np.sqrt(1.0 - cos**2).max(axis=1)).max())
+
+    def normals(self, points: np.ndarray, side: np.ndarray) -> np.ndarray:
+        """Unit normals (p, 3) at ``points`` on the facets, interpolated linearly across the face
+        holding each from its corners; a point on no face keeps its ``side``."""
+        held, by, weights = self._holding(points, side)
+        interpolated = np.einsum("ij,ijk->ik", weights, self.corners[by])
+        norm = np.linalg.norm(interpolated, axis=1)
+        good = norm > 1e-9
+        out = side.copy()
+        out[held[good]] = interpolated[good] / norm[good, None]
+        return out
+
+    def lifted(self, points: np.ndarray, side: np.ndarray) -> np.ndarray:
+        """``points`` on the facets moved along their unit normals ``side`` onto the smooth surface
+        the corner normals describe (Phong tessellation: halfway to the mean of the point's
+        projections onto the corners' tangent planes, weighted as its barycentric coordinates;
+        half, ``PHONG_SHAPE``, is exact to second order on a circle or a sphere, where the whole
+        way overshoots by the facet's own sagitta). Along the normal, so that the tool point
+        stays on the normal's ray (a sphere's passes keep their tool points on the sphere's
+        radii); on a flat face a point stays put; a point on no face stays."""
+        held, by, weights = self._holding(points, side)
+        offset = points[held, None, :] - self.vertices[self.faces[by]]
+        height = np.einsum("ijk,ijk->ij", offset, self.corners[by])
+        move = -PHONG_SHAPE * np.einsum("ij,ijk->ik", weights * height, self.corners[by])
+        out = points.copy()
+        out[held] = points[held] + np.einsum("ij,ij->i", move, side[held])[:, None] * side[held]
+        return out
 
 
 def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float,

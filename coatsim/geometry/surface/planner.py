@@ -27,7 +27,7 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import EmptyRegionOfInterest, InputError
 from coatsim.geometry.surface.boundary import boundary_piece
-from coatsim.geometry.surface.boxes import SmallTriangles, TriangleBoxes
+from coatsim.geometry.surface.boxes import SmallTriangles
 from coatsim.geometry.surface.contours import level_curves
 from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.features import SHARP_EDGE_DEG, edge_length_mm, selection_normals, sharp_at_scale
@@ -38,7 +38,7 @@ from coatsim.geometry.surface.normals import (
     Orientation,
     closed_faces,
     face_normals,
-    facet_normals,
+    Facets,
     kept_outward,
     largest_angle_deg,
     orient,
@@ -81,8 +81,6 @@ Pattern = Literal["raster", "geodesic", "boundary"]
 SELECTION_CELLS = 200.0
 #: normals are smoothed over the surface running on past the region this many smoothing lengths
 RING_SMOOTHING_LENGTHS = 2.0
-#: a flat patch wider than this many smoothing lengths is a face of the part, not a facet (normals.flat_faces)
-FLAT_FACE_SMOOTHING_LENGTHS = 2.0
 #: a face touches a pass point within this fraction of the part's extent
 TOUCH_FRACTION = 1e-7
 
@@ -172,10 +170,10 @@ class _Clock:
 
 
 def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
-                 notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                 notes: list[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray, Facets]:
     """The coated region: vertices, faces (oriented outward, refined to ``max_edge_mm``, made
     manifold and cut along sharp edges) and unit vertex normals (smoothed within each feature
-    region, over the region and the surface running on past it); and the part's own faces
+    region, over the region and the surface running on past it); and the part's own facets
     wound outward."""
     oriented = orient(part.vertices_mm, part.faces, None)
     toward, why = _toward(o.region, part.vertices_mm, oriented)
@@ -214,11 +212,11 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
                      "deg): normals are smoothed on either side, never across, and passes stop at them")
     sf, copies = manifold_split(sf, pairs[~sharp])
     sv = sv[copies]
-    raw = facet_normals(part.vertices_mm, oriented.faces, sv, vertex_normals(sv, sf),
-                        FLAT_FACE_SMOOTHING_LENGTHS * s.smoothing_mm)
+    facets = Facets.of(part.vertices_mm, oriented.faces, s.smoothing_mm)
+    raw = facets.normals(sv, vertex_normals(sv, sf))
     normals = smooth_normals(sv, sf, s.smoothing_mm, raw)
     rv, rf, parent = submesh(sv, sf, inside)
-    return rv, rf, normals[parent], oriented.faces
+    return rv, rf, normals[parent], facets
 
 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> tuple[np.ndarray, str]:
@@ -321,24 +319,25 @@ def _filling(pieces: list[Piece], traces: list[Trace], band: float, spacing_mm: 
     return added
 
 
-def _passes(pieces: list[Piece], traces: list[Trace], part: Part, outward_faces: np.ndarray, o: PlanOptions,
+def _passes(pieces: list[Piece], traces: list[Trace], part: Part, facets: Facets, o: PlanOptions,
             s: _Settings, notes: list[str]) -> tuple[Pass, ...]:
     """Passes in spraying order with their normals (kept out of the part's faces at their points,
-    normals.kept_outward) and leads."""
-    boxes = TriangleBoxes(part.vertices_mm, outward_faces)
-    face_n = face_normals(part.vertices_mm, outward_faces)[0]
+    normals.kept_outward) and leads; the points lifted off the part's facets onto the smooth
+    surface their corner normals describe, along their normals (Facets.lifted: a cylinder's pass
+    is a circle, not a polygon's chords)."""
     passes, turned = [], 0
     for curve, index in spraying_order(traces, o.order):
         piece = pieces[index]
         normals = curve.sample(piece.faces, piece.normals)
-        normals, changed = kept_outward(curve.points, unit_rows(normals), boxes, face_n,
+        normals, changed = kept_outward(curve.points, unit_rows(normals), facets.boxes, facets.face_n,
                                         TOUCH_FRACTION * part.extent_mm)
         turned += changed
+        points = facets.lifted(curve.points, normals)
         if curve.closed:
             lead_in = lead_out = np.zeros((0, 3))
         else:
-            lead_in, lead_out = leads(curve.points, normals, s.margin_mm, 0.5 * s.spacing_mm)
-        passes.append(Pass(curve.points, normals, bool(curve.closed), lead_in, lead_out))
+            lead_in, lead_out = leads(points, normals, s.margin_mm, 0.5 * s.spacing_mm)
+        passes.append(Pass(points, normals, bool(curve.closed), lead_in, lead_out))
     if turned:
         notes.append(f"{turned} normal(s) that leaned into a face at their point (a crease sharper than the smoothing "
                      "can follow, the foot of an overhanging wall) turned to the mean of the faces there")
@@ -363,7 +362,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     """
     s = _settings(options)
     clock, notes = _Clock(), list(part.notes)
-    rv, rf, normals, outward_faces = _region_mesh(part, options, s, notes)
+    rv, rf, normals, facets = _region_mesh(part, options, s, notes)
     clock.lap("region and normals")
     pieces, region_area, angle = _pieces(rv, rf, normals, s, notes)
     clock.lap("border")
@@ -386,7 +385,7 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     note = band_note(np.concatenate(gaps), np.concatenate(ends), s.spacing_mm)
     notes.extend([note] if note else [])
     clock.lap("measure")
-    passes = _passes(pieces, traces, part, outward_faces, options, s, notes)
+    passes = _passes(pieces, traces, part, facets, options, s, notes)
     if not passes:
         raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm",
                                     parameters=("edge_band_mm",))

@@ -1,7 +1,9 @@
 """An independent check of a plan against its part, run before a plan is returned.
 
 It uses only the part as read (not the refined and cut meshes the planner worked on) and the
-plan's passes: every point must lie on the part's surface, every normal must be a unit vector
+plan's passes: every point must lie on the part's surface (its facets, or the smooth surface
+their corner normals describe, which the planner lifts its points onto: within the bound on
+that lift, normals.Facets.largest_lift_mm), every normal must be a unit vector
 within a few degrees of the cone of the part's face normals near it, and on a closed part every
 normal must point out of it. The faces near a point are those of its own feature region (the
 faces joined to the ones it lies on by edges that are not sharp at the smoothing length, as the
@@ -20,7 +22,7 @@ from coatsim.core.errors import ExecutionError
 from coatsim.geometry.surface.boxes import TriangleBoxes
 from coatsim.geometry.surface.features import feature_labels
 from coatsim.geometry.surface.mesh import Part
-from coatsim.geometry.surface.normals import face_normals
+from coatsim.geometry.surface.normals import Facets, face_normals, orient
 from coatsim.geometry.surface.surfacepaths import SurfacePaths
 
 #: a point farther than this fraction of the part's extent from its surface is off the mesh
@@ -69,11 +71,13 @@ def verify(part: Part, paths: SurfacePaths) -> float:
     if len(bad):
         _fail(paths, int(bad[0]), f"has a normal of length {length[bad[0]]:.6g}")
     tolerance = ON_MESH_FRACTION * part.extent_mm
-    surface = TriangleBoxes(part.vertices_mm, part.faces)
-    owner, _, distance = surface.touching(points, tolerance)
+    facets = Facets.of(part.vertices_mm, orient(part.vertices_mm, part.faces, None).faces,
+                       paths.stats.normal_smoothing_mm)
+    reach = tolerance + facets.largest_lift_mm()
+    owner, _, distance = facets.boxes.touching(points, reach)
     nearest = np.full(len(points), np.inf)
     np.minimum.at(nearest, owner, distance)
-    off = np.flatnonzero(~(nearest <= tolerance))
+    off = np.flatnonzero(~(nearest <= reach))
     if len(off):
         _fail(paths, int(off[0]), "lies off the part's surface")
     radius = CONE_SMOOTHING_LENGTHS * paths.stats.normal_smoothing_mm
@@ -86,8 +90,9 @@ def verify(part: Part, paths: SurfacePaths) -> float:
     cone = TriangleBoxes(part.vertices_mm, part.faces[chosen])
     worst_deg = 0.0
     for chunk in np.array_split(np.arange(len(points)), max(1, len(points) // VERIFY_CHUNK)):
-        owner, face, distance = surface.touching(points[chunk], tolerance)
-        own = (owner[distance <= tolerance], face[distance <= tolerance])
+        owner, face, distance = facets.boxes.touching(points[chunk], reach)
+        on = distance <= nearest[chunk][owner] + tolerance  # the faces nearest the point
+        own = (owner[on], face[on])
         owner, rep = cone.near(points[chunk], radius)
         near = (owner, chosen[rep])
         excess = _normal_excess_deg(normals[chunk], own, near, face_n, weight, label)

@@ -89,7 +89,11 @@ def test_cone_circles_step_by_the_spacing_along_the_slant():
     vertices, faces = cone(base, height, 160, 40)
     paths = planned(vertices, faces, region=Everything(), step_direction=(0, 0, 1))
     z = np.array([p.points[:, 2].mean() for p in paths.passes])
-    assert all(p.closed and np.ptp(p.points[:, 2]) < 1e-6 for p in paths.passes)
+    # plane sections of the facets, lifted along the normal onto the smooth cone: out of their
+    # planes by at most the facets' sagitta (0.012 mm) times the normal's z (0.45)
+    assert all(p.closed and np.ptp(p.points[:, 2]) < 0.006 for p in paths.passes)
+    first = paths.passes[0].points  # on the cone itself, within a micrometre
+    assert np.abs(np.hypot(first[:, 0], first[:, 1]) - base * (1 - first[:, 2] / height)).max() < 1e-3
     slant = math.hypot(base, height) / height  # surface length per unit of height
     # the slant is no whole number of spacings: every gap is the same, at most the spacing
     assert np.diff(z) == pytest.approx(np.diff(z).mean(), rel=1e-3)
@@ -199,7 +203,8 @@ def test_a_torus_splits_its_sections_in_two():
     levels: dict[float, list] = {}
     for p in paths.passes:
         assert p.closed
-        levels.setdefault(round(float(p.points[:, 2].mean()), 6), []).append(p)
+        # lifted along the normal off the facets onto the torus: out of their planes by microns
+        levels.setdefault(round(float(p.points[:, 2].mean()), 1), []).append(p)
     assert len(levels) >= 3 and all(len(loops) == 2 for loops in levels.values())
     for z, loops in levels.items():
         radii = sorted(float(np.linalg.norm(p.points[:, :2], axis=1).mean()) for p in loops)
