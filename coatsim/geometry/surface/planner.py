@@ -211,10 +211,8 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
         notes.append(f"the region has {sharp_mm:.4g} mm of sharp edges (faces meeting at more than {SHARP_EDGE_DEG:g} "
                      "deg): normals are smoothed on either side, never across, and passes stop at them")
     sf, copies = manifold_split(sf, pairs[~sharp])
-    sv = sv[copies]
-    facets = Facets.of(part.vertices_mm, oriented.faces, s.smoothing_mm)
-    raw = facets.normals(sv, vertex_normals(sv, sf))
-    normals = smooth_normals(sv, sf, s.smoothing_mm, raw)
+    sv, facets = sv[copies], Facets.of(part.vertices_mm, oriented.faces, s.smoothing_mm)
+    normals = smooth_normals(sv, sf, s.smoothing_mm, facets.normals(sv, vertex_normals(sv, sf)))
     rv, rf, parent = submesh(sv, sf, inside)
     return rv, rf, normals[parent], facets
 
