@@ -259,10 +259,9 @@ class Facets:
         return out
 
 
-def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float,
-                   raw: np.ndarray | None = None) -> np.ndarray:
-    """Unit vertex normals (n, 3) averaged over about ``length_mm`` along the surface, from
-    ``raw`` normals (n, 3) (default: area-weighted).
+def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float, raw: np.ndarray) -> np.ndarray:
+    """Unit vertex normals (n, 3) averaged over about ``length_mm`` along the surface, from the
+    unit ``raw`` normals (n, 3) (Facets.normals).
 
     The system is symmetric positive definite; conjugate gradients with a diagonal
     preconditioner solve it in time about linear in the mesh size (a direct factorisation's
@@ -271,7 +270,6 @@ def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float,
     from scipy.sparse import diags
     from scipy.sparse.linalg import LinearOperator, cg
 
-    raw = vertex_normals(vertices, faces) if raw is None else raw
     if length_mm <= 0:
         return raw
     laplacian = pp3d.cotan_laplacian(vertices, faces, denom_eps=1e-12)
