@@ -105,6 +105,10 @@ def verify(part: Part, paths: SurfacePaths) -> float:
         step = INWARD_STEP_FRACTION * part.extent_mm
         probes = points + step * normals
         inside = np.flatnonzero(mesh.contains(probes))
+        if len(inside):  # again from the point's foot on the facets: a point lifted onto a concave
+            # stretch of the smooth surface lies inside the facets by up to their sagitta
+            probes[inside] = trimesh.proximity.closest_point(mesh, points[inside])[0] + step * normals[inside]
+            inside = inside[mesh.contains(probes[inside])]
         # a probe running along a face (at a concave sharp edge) is not inside by rounding alone
         depth = np.linalg.norm(trimesh.proximity.closest_point(mesh, probes[inside])[0] - probes[inside], axis=1) \
             if len(inside) else np.zeros(0)

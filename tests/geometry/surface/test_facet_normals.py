@@ -102,3 +102,19 @@ def test_a_faceted_cylinder_plans_circles_a_single_arc_each():
         assert np.abs(np.hypot(p.points[:, 0], p.points[:, 1]) - 60.0).max() < 1e-3
         fit = segment_space_curve(make_space_curve(p.points + 100.0 * p.normals, "pass", "no"), 0.1)
         assert fit.chain.n_segments == fit.chain.n_arcs == 1
+
+
+def test_points_lifted_into_a_concave_waist_pass_the_check():
+    """A closed spool whose waist is concave along its axis, in coarse rings (their chords along
+    the axis sag 0.2 mm outward of the smooth waist): the points lifted onto the waist lie inside
+    the facets, and the check still finds every normal pointing out of the part."""
+    z = np.linspace(0.0, 100.0, 9)
+    profile = np.column_stack([40.0 - 10.0 * np.sin(np.pi * z / 100.0), z])
+    outline = np.vstack([[0.0, 0.0], profile, [0.0, 100.0]])
+    spool = trimesh.creation.revolve(outline, sections=64)
+    assert spool.is_watertight
+    paths = planned(np.asarray(spool.vertices), np.asarray(spool.faces), region=Facing((1, 0, 0), 60.0),
+                    step_direction=(0, 0, 1))
+    points = np.concatenate([p.points for p in paths.passes])
+    waist = 40.0 - 10.0 * np.sin(np.pi * points[:, 2] / 100.0)
+    assert np.abs(np.hypot(points[:, 0], points[:, 1]) - waist).max() < 0.05  # on the smooth waist
