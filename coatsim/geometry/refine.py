@@ -336,7 +336,7 @@ def chord_insets(points: np.ndarray, closed_loop: bool = False) -> tuple[np.ndar
         before[0], after[-1] = ell[-1], ell[0]
     longest = np.maximum(before, after)
     span = before + after
-    inset = longest**2 * 2 * np.abs(turn) / span / 8
+    inset = np.divide(longest**2 * np.abs(turn), 4 * span, out=np.zeros_like(span), where=span > 0)
     return np.where(turn > 0, inset, 0.0), np.where(turn < 0, inset, 0.0)
 
 

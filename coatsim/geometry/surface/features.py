@@ -120,6 +120,8 @@ def selection_normals(vertices: np.ndarray, faces: np.ndarray, scale_mm: float) 
     cross = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
     face_n = cross / np.maximum(np.linalg.norm(cross, axis=1), 1e-300)[:, None]
     sliver = np.flatnonzero(_slivers(vertices, faces))
+    if len(sliver) and scale_mm > 0:
+        sliver = sliver[~_settled(vertices, faces, face_n, sliver, scale_mm)]
     if not len(sliver) or scale_mm <= 0:
         return face_n
     pairs, sharp = sharp_at_scale(vertices, faces, scale_mm)
@@ -139,6 +141,40 @@ def _slivers(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     a, b, c = (vertices[faces[:, k]] for k in range(3))
     longest = np.linalg.norm(np.stack([b - a, c - b, a - c]), axis=2).max(axis=0)
     return np.linalg.norm(np.cross(b - a, c - a), axis=1) < SLIVER_ASPECT * longest**2
+
+
+def _settled(vertices: np.ndarray, faces: np.ndarray, face_n: np.ndarray, seeds: np.ndarray,
+             radius_mm: float) -> np.ndarray:
+    """Whether every face within ``radius_mm`` of each seed face's centre has its normal within
+    ``PERSISTENT_SHARP_DEG`` of the seed's (so any mean of them is too), (k,) bool; proven, not
+    measured face by face: such a face has its corners within the radius plus the longest edge,
+    so in the 27 cubes of that size round the centre's, and each cube's faces (those with a
+    corner in it) lie in a cone of normals about their mean."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    size = radius_mm + float(np.linalg.norm(np.stack([b - a, c - b, a - c]), axis=2).max())
+    cells, at = np.unique(np.floor(vertices / size).astype(np.int64), axis=0, return_inverse=True)
+    corner_cell, corner_face = at.ravel()[faces.ravel()], np.repeat(np.arange(len(faces)), 3)
+    mean = np.zeros((len(cells), 3))
+    np.add.at(mean, corner_cell, face_n[corner_face])
+    mean /= np.maximum(np.linalg.norm(mean, axis=1), 1e-300)[:, None]
+    widest = np.zeros(len(cells))  # each cube's cone half-angle, rad
+    np.maximum.at(widest, corner_cell,
+                  np.arccos(np.clip(np.einsum("ij,ij->i", mean[corner_cell], face_n[corner_face]), -1.0, 1.0)))
+    centre_cell = np.floor(vertices[faces[seeds]].mean(axis=1) / size).astype(np.int64)
+    low = cells.min(axis=0) - 1
+    span = cells.max(axis=0) - low + 2
+
+    def scalar(cell: np.ndarray) -> np.ndarray:  # a cube's index in the order np.unique sorts them
+        return ((cell[:, 0] - low[0]) * span[1] + cell[:, 1] - low[1]) * span[2] + cell[:, 2] - low[2]
+
+    known, settled = scalar(cells), np.ones(len(seeds), dtype=bool)
+    for step in np.array(np.meshgrid(*[(-1, 0, 1)] * 3)).reshape(3, -1).T:
+        key = scalar(centre_cell + step)
+        at_key = np.minimum(np.searchsorted(known, key), len(cells) - 1)
+        there = known[at_key] == key
+        off = np.arccos(np.clip(np.einsum("ij,ij->i", mean[at_key], face_n[seeds]), -1.0, 1.0)) + widest[at_key]
+        settled &= ~there | (off <= math.radians(PERSISTENT_SHARP_DEG))
+    return settled
 
 
 def _adjacency(n_faces: int, pairs: np.ndarray) -> csr_matrix:
@@ -215,7 +251,6 @@ def _patches(vertices: np.ndarray, faces: np.ndarray, adjacency: csr_matrix, row
     """Pairs (patch ``rows``, face ``cols``): the seed faces of each patch grown ring by ring
     through ``adjacency`` (faces sharing an edge) by the faces within ``radius_mm`` of the
     patch's centre, ``centres[row]``."""
-    import trimesh
     from scipy.sparse import coo_matrix
 
     n = len(faces)
@@ -224,11 +259,26 @@ def _patches(vertices: np.ndarray, faces: np.ndarray, adjacency: csr_matrix, row
     while len(frontier):
         ring = coo_matrix((np.ones(len(frontier)), (frontier // n, frontier % n)), shape=(len(centres), n))
         touched = (ring.tocsr() @ adjacency).tocoo()  # no pair twice
-        new = touched.row.astype(np.int64) * n + touched.col
+        new = np.sort(touched.row.astype(np.int64) * n + touched.col)
         at = np.minimum(np.searchsorted(tried, new), len(tried) - 1)
         new = new[tried[at] != new]
-        row, col = new // n, new % n
-        gap = trimesh.triangles.closest_point(vertices[faces[col]], centres[row]) - centres[row]
-        frontier = new[np.linalg.norm(gap, axis=1) <= radius_mm]
-        tried, kept = np.sort(np.concatenate([tried, new])), np.concatenate([kept, frontier])
+        frontier = new[_within(vertices[faces[new % n]], centres[new // n], radius_mm)]
+        # two sorted runs: a stable sort merges them in linear time
+        tried, kept = np.sort(np.concatenate([tried, new]), kind="stable"), np.concatenate([kept, frontier])
     return kept // n, kept % n
+
+
+def _within(triangles: np.ndarray, points: np.ndarray, radius_mm: float) -> np.ndarray:
+    """Whether each triangle (k, 3, 3) comes within ``radius_mm`` of its point (k, 3): a corner
+    that near, or none farther than the radius past the centroid decides; the rest are measured."""
+    import trimesh
+
+    corner = np.linalg.norm(triangles - points[:, None, :], axis=2)
+    centroid = triangles.mean(axis=1)
+    reach = np.linalg.norm(triangles - centroid[:, None, :], axis=2).max(axis=1)
+    near = corner.min(axis=1) <= radius_mm
+    unsure = ~near & (np.linalg.norm(centroid - points, axis=1) - reach <= radius_mm)
+    if unsure.any():
+        gap = trimesh.triangles.closest_point(triangles[unsure], points[unsure]) - points[unsure]
+        near[unsure] = np.linalg.norm(gap, axis=1) <= radius_mm
+    return near
