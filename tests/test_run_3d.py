@@ -133,3 +133,37 @@ def test_thickness_scale_is_shared_by_the_variants_glbs(tube_run) -> None:
         assert "thickness" in scene.geometry and len(scene.geometry) >= 2  # the part and the passes
     assert len(tops) == 1
     assert np.isfinite(float(next(iter(tops))[1]))
+
+
+def test_a_gun_mounted_at_an_angle_coats_the_tube_as_the_straight_one(tube_run, tmp_path) -> None:
+    """A cell whose gun leaves the flange 30 deg off its axis: the programs carry that TOOL, the
+    arm takes other joint paths, and the spray point runs the same path at the same speed, so the
+    coat is the straight gun's."""
+    from importlib.resources import files
+
+    import yaml
+
+    models = files("coatsim") / "models"
+    cells = tmp_path / "cells"
+    cells.mkdir()
+    for name in ("coating_cell.xml", "rs013n_arm.xml"):
+        (cells / name).write_text((models / name).read_text(encoding="utf-8"), encoding="utf-8")
+    straight = '<site name="tcp" pos="0.25 0 0" quat="0.70710678 0 0.70710678 0"'
+    gun = (models / "plasma_gun.xml").read_text(encoding="utf-8")
+    assert straight in gun
+    # the spray axis turned 30 deg about the flange's y axis, the nozzle 250 mm out along it
+    (cells / "plasma_gun.xml").write_text(gun.replace(straight, '<site name="tcp" pos="0.21650635 0 0.125" '
+                                                                'quat="0.8660254 0 0.5 0"'), encoding="utf-8")
+    doc = yaml.safe_load(tube_run[1].read_text(encoding="utf-8"))
+    doc["variants"], doc["robot"] = ["polysegment"], {"model": str(cells / "coating_cell.xml")}
+    scenario = tmp_path / "angled.yaml"
+    scenario.write_text(yaml.safe_dump(doc, sort_keys=False), encoding="utf-8")
+    result = run_scenario(scenario, tmp_path / "out", fast=True, progress=False, report=False)
+    check_run(result, ["polysegment"])
+    program = (tmp_path / "out" / "polysegment.as").read_text(encoding="utf-8")
+    assert re.search(r"TOOL TRANS\(-125\.0+,0\.0+,216\.50635\d*,180\.0+,30\.0+,180\.0+\)", program)
+    angled = json.loads((tmp_path / "out" / "metrics.json").read_text(encoding="utf-8"))["variants"]["polysegment"]
+    ref = json.loads((tube_run[0].outdir / "metrics.json").read_text(encoding="utf-8"))["variants"]["polysegment"]
+    for group, key, rel in (("coating", "thickness_mean_um", 1e-3), ("coating", "thickness_cv", 1e-2),
+                            ("motion", "cycle_time_s", 1e-2), ("motion", "min_speed_ratio", 1e-3)):
+        assert angled[group][key] == pytest.approx(ref[group][key], rel=rel), (group, key)
