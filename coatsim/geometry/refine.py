@@ -281,6 +281,7 @@ def refine_chain(
     iteration = 0  # LP steps, shared by all exchange rounds
     history, stalled = [f], False
     for _ in range(EXCHANGE_ROUNDS):
+        linear = None  # the residuals, end gap and their Jacobians at z (kept while a step is refused)
         while iteration < max_iter:
             iteration += 1
             if f <= target or (iteration >= EARLY and f > 1.5 * target):
@@ -290,8 +291,9 @@ def refine_chain(
                        or (iteration > HOPELESS_STEP and f > HOPELESS_SHARE * stall_above))
             if stalled:
                 break
-            r, jr = jacobian(prob.residuals, z)
-            c, jc = jacobian(prob.closure, z)
+            if linear is None:
+                linear = (*jacobian(prob.residuals, z), *jacobian(prob.closure, z))
+            r, jr, c, jc = linear
             lower, upper = prob.bounds(z, radius)
             solved = _minimax_step(r, jr, prob.inset_left[prob.pick], prob.inset_right[prob.pick], c, jc,
                                    lower, upper, weight)
@@ -304,7 +306,7 @@ def refine_chain(
             f_new = float(merit((z + step)[None])[0])
             ratio = (f - f_new) / predicted
             if ratio > 0:
-                z, f = z + step, f_new
+                z, f, linear = z + step, f_new, None
             radius = radius * 2.0 if ratio > 0.75 else radius * 0.25 if ratio < 0.25 else radius
             history.append(f)
             if radius < 1e-9:

@@ -282,8 +282,13 @@ def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | No
     if (not curve.closed or found[0].n_segments <= TAUGHT_SHARE * (len(curve.points) - 1) or found[0].corners
             or found[4] or not is_sparse(curve.points, curve.closed, tol)):
         return found
+    aim = TAUGHT_AIM * tol
+    # a loop with corners at the aim has one at its seam: that chain would not replace this one
+    pts = curve.points
+    if recover_exact(pts, True, aim) is None and len(corners_and_notes(pts, True, corner_deg, aim)[0]):
+        return found
     try:
-        other = _fit_within(curve, TAUGHT_AIM * tol, corner_deg, min_segment_mm, speed_kappa)
+        other = _fit_within(curve, aim, corner_deg, min_segment_mm, speed_kappa)
     except InputError:
         return found
     smooth = not other[0].corners and not other[4]
