@@ -47,7 +47,7 @@ from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.pair_terms import LeafBlocks, NearPairs, PairBuffer, leaf_blocks, near_pairs
 from coatsim.spray.surfaces import Surface
-from coatsim.spray.visibility import RayCaster, Visibility, check_shadow_mode, visibility
+from coatsim.spray.visibility import ClearCosines, RayCaster, Visibility, check_shadow_mode, visibility
 
 MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far below float overflow
 _LEAF_TESTS_PER_BATCH = 400_000
@@ -202,11 +202,13 @@ class Deposit:
 
 @dataclass(frozen=True, eq=False)
 class _Shadows:
-    """The ray caster, the vertices it never needs to test and the gun-position group of every
-    sub-step (consecutive sub-steps at one position share their visibility)."""
+    """The ray caster, the vertices it never needs to test, the incidence cosine above which a
+    vertex needs no ray, and the gun-position group of every sub-step (consecutive sub-steps at
+    one position share their visibility)."""
 
     caster: RayCaster
     exposed: np.ndarray
+    clear: ClearCosines
     group: np.ndarray
 
 
@@ -252,7 +254,7 @@ def _shadows(surface: Surface, model: SprayModel, steps: SubSteps) -> _Shadows |
     if seen.caster is None:
         return None
     moved = np.r_[True, np.any(steps.position[1:] != steps.position[:-1], axis=1)]
-    return _Shadows(seen.caster, seen.exposed, np.cumsum(moved) - 1)
+    return _Shadows(seen.caster, seen.exposed, seen.clear, np.cumsum(moved) - 1)
 
 
 def _blocked(shadows: _Shadows, steps: SubSteps, s: np.ndarray, i: np.ndarray, d: np.ndarray,
@@ -298,7 +300,10 @@ def _batch(surface: Surface, steps: SubSteps, near: NearPairs, touched: np.ndarr
     dist = near.dist[on]
     if shadows is not None:
         hideable = np.flatnonzero(~shadows.exposed[i])
-        aim = np.flatnonzero(~shadows.exposed[i[on]])
+        i_on = i[on]
+        aim = np.flatnonzero(~shadows.exposed[i_on])
+        # a pair seen more steeply than its vertex's clear cosine needs no ray
+        aim = aim[near.facing[on][aim] <= shadows.clear(i_on[aim]) * dist[aim]]
         on_aim = np.arange(len(rate))[on][aim]
         s_aim, i_aim = s[on_aim], i[on_aim]
         hidden, rays = _blocked(shadows, steps, s_aim, i_aim, _offsets(surface, steps, s_aim, i_aim), dist[aim],
