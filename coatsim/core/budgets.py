@@ -37,8 +37,10 @@ MAX_MESH_VERTICES = 2_000_000
 #: default); ~0.2 kB each before the deposition kernel runs over them.
 MAX_SPRAY_SUBSTEPS = 2_000_000
 #: Memory of the coating stage's ray caster for shadows: Embree's scene (~100 bytes per
-#: triangle with our float32 copies) and one batch of rays, estimated before it is built.
-MAX_SHADOW_BYTES = 1_500_000_000
+#: triangle with our float32 copies), the exposure test's hull, the clear cosines' triangles
+#: (~120 bytes each) and one batch of rays, estimated before it is built (a surface at the
+#: mesh_vertices budget stays within it).
+MAX_SHADOW_BYTES = 2_000_000_000
 #: Distinct points of an input curve (files and built-in curves), after dropping repeated ones.
 MAX_CURVE_POINTS = 2_000_000
 #: Size of a curve text file (CSV/TXT): 64 bytes per point at the point budget.

@@ -61,6 +61,8 @@ CLEAR_USEFUL = 0.9
 CLEAR_LOAD = 256
 CLEAR_VERTICES = 512
 CLEAR_PAIR_BYTES = 150
+#: The clear cosines keep each triangle's corners, centre and extent, and its place in the cubes.
+CLEAR_BYTES_PER_TRIANGLE = 120
 
 
 def _relative_tolerance(vertices: np.ndarray) -> float:
@@ -277,10 +279,11 @@ def clear_cosines(vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray) 
 
 
 def shadow_memory_bytes(n_vertices: int, n_triangles: int) -> float:
-    """Memory shadows need for a surface: the exposure test's hull, Embree's scene, one chunk of
-    the clear cosines' search and one batch of rays."""
-    return (SCENE_BYTES_PER_TRIANGLE * float(n_triangles) + (SCENE_BYTES_PER_VERTEX + HULL_BYTES_PER_VERTEX)
-            * float(n_vertices) + CLEAR_PAIR_BYTES * float(CLEAR_VERTICES * CLEAR_LOAD) + RAY_BYTES * float(RAYS_PER_BATCH))
+    """Memory shadows need for a surface: the exposure test's hull, Embree's scene, the clear
+    cosines' triangles and one chunk of their search, and one batch of rays."""
+    return ((SCENE_BYTES_PER_TRIANGLE + CLEAR_BYTES_PER_TRIANGLE) * float(n_triangles)
+            + (SCENE_BYTES_PER_VERTEX + HULL_BYTES_PER_VERTEX) * float(n_vertices)
+            + CLEAR_PAIR_BYTES * float(CLEAR_VERTICES * CLEAR_LOAD) + RAY_BYTES * float(RAYS_PER_BATCH))
 
 
 class RayCaster:

@@ -170,6 +170,14 @@ def test_the_budget_refuses_a_scene_before_it_is_built(monkeypatch):
     assert not deposit(surface, shelf_pass(), gun(shadows="off")).shadows
 
 
+def test_a_surface_at_the_vertex_budget_fits_the_shadow_budget():
+    """A mesh file's surface has about twice as many triangles as vertices."""
+    from coatsim.core.budgets import MAX_MESH_VERTICES, MAX_SHADOW_BYTES
+    from coatsim.spray.visibility import shadow_memory_bytes
+
+    assert shadow_memory_bytes(MAX_MESH_VERTICES, 2 * MAX_MESH_VERTICES) <= MAX_SHADOW_BYTES
+
+
 def test_without_embreex_auto_warns_and_on_refuses(monkeypatch):
     surface, _ = shelf_over_floor(4.0)
     monkeypatch.setitem(sys.modules, "embreex", None)  # what an interpreter without the package raises
