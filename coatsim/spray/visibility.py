@@ -12,7 +12,7 @@ maximum).
 Most vertices of a scanned or dished part are not exposed: its noise or its own concavity rises
 above their tangent planes somewhere. Yet a nozzle seen from x steeply enough is still clear of
 it: every point z of the segment from x to the nozzle p has n.(z - x) = cos g |z - x|, with g the
-spray's incidence angle. ``clear_cosines`` bounds, per vertex, n.(z - x) / |z - x| over every point
+spray's incidence angle. ``ClearCosines`` bounds, per vertex, n.(z - x) / |z - x| over every point
 z != x of the surface (a triangle with the vertex x lies in its plane, so its bound is the sine of
 its tilt against n; any other triangle T gives at most max over its corners of n.(y - x) over its
 distance to x); a pair whose cos g exceeds the bound needs no ray.
@@ -33,6 +33,7 @@ from trimesh.triangles import closest_point
 from coatsim.core.numeric import ROUND_OFF
 from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
+from coatsim.geometry.surface.normals import face_normals
 
 SHADOW_MODES = ("auto", "on", "off")
 #: A ray from the nozzle stops this fraction of its length before the vertex it aims at, so the
@@ -47,7 +48,7 @@ SCENE_BYTES_PER_VERTEX = 16
 #: Rays are cast in batches of at most this many (28 bytes each in float32 arrays).
 RAYS_PER_BATCH = 1_000_000
 RAY_BYTES = 28
-#: ``clear_cosines`` proves no vertex clearer than CLEAR_FLOOR (an incidence of 60 deg: sprays land
+#: ``ClearCosines`` proves no vertex clearer than CLEAR_FLOOR (an incidence of 60 deg: sprays land
 #: well inside it). It buckets the triangles in cubes of CLEAR_CELL_EDGES median edge lengths,
 #: those in cubes of 4 x 4 x 4 of them and so on, up to at most CLEAR_TOP boxes. A vertex that
 #: sees a point of the surface at an incidence cosine above CLEAR_USEFUL (it would spare few
@@ -143,14 +144,13 @@ def exposed_vertices(vertices: np.ndarray, normals: np.ndarray) -> np.ndarray:
 
 def _tilt_sines(vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Per vertex, the largest sine between its normal and the plane normal of a triangle it
-    belongs to (1 for a degenerate triangle): n.(z - x) / |z - x| over those triangles."""
-    cross = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
-    length = np.linalg.norm(cross, axis=1)
-    unit = cross / np.where(length > 0, length, 1.0)[:, None]
+    belongs to (1 for a degenerate triangle, whose normal is 0): n.(z - x) / |z - x| over those
+    triangles."""
+    unit = face_normals(vertices, faces)[0]
     sines = np.zeros(len(vertices))
     for corner in range(3):
         cosine = np.einsum("ij,ij->i", normals[faces[:, corner]], unit)
-        np.maximum.at(sines, faces[:, corner], np.where(length > 0, np.sqrt(np.clip(1.0 - cosine**2, 0.0, 1.0)), 1.0))
+        np.maximum.at(sines, faces[:, corner], np.sqrt(np.clip(1.0 - cosine**2, 0.0, 1.0)))
     return sines
 
 
