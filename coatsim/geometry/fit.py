@@ -13,7 +13,9 @@ Per run of the curve between true corners (or the whole closed loop):
 5. if no chain keeps the limits, chains within a fraction of σ are tried, then (dense runs)
    looser caps, and as the last resort fillets at every vertex; a sparse run (taught points,
    coatsim.geometry.sparse) is band-fitted along its guide and, where even that finds no
-   chain, comes back as its own lines with a note rather than with arcs tighter than it turns.
+   chain, an open one in halves joined G1 (coatsim.geometry.halves), each half again the same
+   way; a loop, and what no half follows, comes back as its own lines with a note, never as
+   arcs tighter than it turns.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from coatsim.core.progress import check_time
 from coatsim.geometry.band_fit import BandProblem, BandStuck, fit_band
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.fillet import fillet_chain
+from coatsim.geometry.halves import in_halves
 from coatsim.geometry.limits import MIN_LENGTH_SIGMAS, FitLimits, arc_excess, fit_limits
 from coatsim.geometry.polysegment import Polysegment, chain
 from coatsim.geometry.primitives import Line, Segment, snap_end
@@ -313,7 +316,11 @@ def fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, limits: Fi
         # than the taught points turn anywhere (the circle through three of them) is honest.
         found = _constrained(pts, tolerance, closed_loop, limits.relaxed(SPARSE_RELAX), [RELAXED_ATTEMPTS], *pins)
         gentle = found is not None and max(abs(s.curvature) for s in found[0]) <= (1 + SLACK) / own_radius(pts, closed_loop)
-        return RunFit(*found) if gentle else taught_lines(pts, closed_loop, tolerance)
+        if gentle:
+            return RunFit(*found)
+        if closed_loop:
+            return taught_lines(pts, True, tolerance)
+        return in_halves(pts, tolerance, limits, fit_run, fillet, *pins)
     for factor in RELAX:
         found = _constrained(pts, tolerance, closed_loop, limits.relaxed(factor), [RELAXED_ATTEMPTS], *pins)
         if found is not None:

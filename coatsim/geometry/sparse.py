@@ -14,8 +14,10 @@ move): it passes a vertex on an arc spanning the vertex and its edges, no tighte
 polyline turns there, so it strays at least about d/2 from the vertex or its edges
 (rounding_error). A vertex between two long edges is *roundable* when that is within
 ROUND_SHARE σ; where σ is below it, the vertex is a corner at this tolerance
-(coatsim.geometry.corners) and a note says from which tolerance on it is rounded. A sparse run
-that no chain with fewer segments than moves follows is kept as its own lines (taught_lines).
+(coatsim.geometry.corners) and a note says from which tolerance on it is rounded. An open sparse
+run that no chain with fewer segments than moves follows is fitted in halves
+(coatsim.geometry.halves); a loop, and what no half follows, is kept as its own lines
+(taught_lines).
 """
 
 from __future__ import annotations

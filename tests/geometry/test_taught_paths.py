@@ -293,3 +293,35 @@ def test_a_taught_polygon_just_past_its_caps_is_fitted_with_arcs_no_tighter_than
     assert poly.n_segments <= 10 and not poly.corners and not seg.notes, seg.summary()
     own = _own_radius(pts, True)
     assert min(s.radius for s in poly.segments if isinstance(s, Arc)) >= own / 1.02
+
+
+def _taught_log_spiral(count: int, share: float, seed: int, jitter: float = 0.2) -> tuple[np.ndarray, float]:
+    """A log spiral (r = 12 e^(0.12 t), 2.5 turns) taught with ``count`` points evenly along it,
+    each but the last jittered by ``jitter`` σ, and σ (``share`` of the clean polygon's chordal
+    deviation, mm)."""
+    t = np.linspace(0.0, 5 * math.pi, 40_001)
+    dense = (12 * np.exp(0.12 * t))[:, None] * np.column_stack((np.cos(t), np.sin(t)))
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))))
+    knots = np.linspace(0.0, s[-1], count)
+    pts = np.column_stack((np.interp(knots, s, dense[:, 0]), np.interp(knots, s, dense[:, 1])))
+    edge = np.searchsorted(knots, s, side="right").clip(1, count - 1) - 1
+    d = pts[edge + 1] - pts[edge]
+    tol = share * float((np.abs(_cross(d, dense - pts[edge])) / np.linalg.norm(d, axis=1)).max())
+    pts[:-1] += np.random.default_rng(seed).normal(0.0, jitter * tol, (count - 1, 2))
+    return pts, tol
+
+
+@pytest.mark.parametrize("seed", [1, 5, 13])
+def test_a_taught_run_no_one_chain_follows_is_fitted_in_halves_joined_smoothly(seed):
+    """A log spiral taught with 20 points, jittered: no one chain of the band fit follows these
+    (they came back as their 19 lines with 18 corners), each half of them does. The halves
+    join G1 in the middle of an edge: a few arcs (and a line), no corner, no note, no arc much
+    tighter than the points turn (a fillet at a vertex is far tighter)."""
+    pts, tol = _taught_log_spiral(20, 0.7, seed)
+    seg = segment_curve(make_curve(pts, "log spiral", "no"), tol)
+    assert_contract(seg, tol)
+    poly = seg.polysegment
+    assert not poly.corners and not seg.notes, seg.summary()
+    assert 3 * poly.n_segments <= len(pts) - 1, f"{poly.n_segments} segments for {len(pts) - 1} moves"
+    own = _own_radius(pts, False)
+    assert min(s.radius for s in poly.segments if isinstance(s, Arc)) >= 0.75 * own
