@@ -24,6 +24,24 @@ settings.register_profile("ci", derandomize=True, database=None, print_blob=True
 settings.register_profile("explore", derandomize=False, print_blob=True)
 settings.load_profile("ci")
 
+
+def _import_every_module() -> None:
+    """Import every coatsim module now. Hypothesis draws some examples from the constants of
+    the project's modules loaded so far, so without this a property test's examples would
+    depend on which tests ran before it (a file run alone got other examples than in the
+    whole suite)."""
+    import importlib
+    import pkgutil
+
+    import coatsim
+
+    for info in pkgutil.walk_packages(coatsim.__path__, "coatsim."):
+        if not info.name.endswith("__main__"):
+            importlib.import_module(info.name)
+
+
+_import_every_module()
+
 METRICS_PAGE = Path(__file__).resolve().parents[1] / "docs" / "reference" / "metrics.md"
 
 
