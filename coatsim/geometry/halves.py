@@ -10,8 +10,7 @@ the same way; a joint where a half's own lines had to be kept is a corner. The h
 only where they need fewer segments than the run's own lines (sparse.taught_lines).
 
 A taught loop no chain follows keeps its lines (coatsim.geometry.segment): cut in halves at its
-first point, taught ellipses closed with a corner there, and a rounded rectangle's straight side
-came back as an arc of 290 mm radius.
+first point, taught ellipses closed with a corner there.
 """
 
 from __future__ import annotations
@@ -49,13 +48,18 @@ class _Run:
     start_heading: float | None
     end_heading: float | None
 
+    @property
+    def middle(self) -> np.ndarray:
+        """The cut: the middle of the edge (mm)."""
+        return (self.pts[self.edge] + self.pts[self.edge + 1]) / 2
+
     def head(self, start: float | None, end: float | None) -> RunFit:
-        middle = (self.pts[self.edge] + self.pts[self.edge + 1]) / 2
-        return self._part(np.vstack((self.pts[:self.edge + 1], middle)), start, end)
+        """The first half's fit, to the cut, its end tangents pinned where given."""
+        return self._part(np.vstack((self.pts[:self.edge + 1], self.middle)), start, end)
 
     def tail(self, start: float | None, end: float | None) -> RunFit:
-        middle = (self.pts[self.edge] + self.pts[self.edge + 1]) / 2
-        return self._part(np.vstack((middle, self.pts[self.edge + 1:])), start, end)
+        """The second half's fit, from the cut, its end tangents pinned where given."""
+        return self._part(np.vstack((self.middle, self.pts[self.edge + 1:])), start, end)
 
     def joints(self) -> Iterator[tuple[RunFit, RunFit]]:
         """The halves' fits, joined: both along the edge at its middle (where a smooth curve
