@@ -75,10 +75,7 @@ class _Run:
         """One half, an open run under its own curvature caps (the whole run's minimum length
         and speed), its end tangents pinned where given (only the end: the reversed half's start)."""
         if start is None and end is not None:
-            back = self._part(pts[::-1], end + math.pi, None)
-            n = len(back.segments)
-            return RunFit(tuple(s.reversed() for s in reversed(back.segments)), back.deviation_mm, back.limits_kept,
-                          tuple(sorted(n - 2 - k for k in back.corners)), back.notes)
+            return self._part(pts[::-1], end + math.pi, None).reversed()
         own = fit_limits(pts, False, self.tolerance, self.limits.min_length_mm, self.limits.speed_kappa)
         return self.fit(pts, self.tolerance, False, own, fillet=self.fillet, start_heading=start, end_heading=end)
 

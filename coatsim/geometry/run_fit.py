@@ -19,3 +19,10 @@ class RunFit:
     limits_kept: bool = True
     corners: tuple[int, ...] = ()
     notes: tuple[str, ...] = ()
+
+    def reversed(self) -> RunFit:
+        """The same chain run backwards (an open run's fit with its start pinned, turned round
+        to pin the end): segments reversed, corner k (end of segment k) now at n - 2 - k."""
+        n = len(self.segments)
+        return RunFit(tuple(s.reversed() for s in reversed(self.segments)), self.deviation_mm, self.limits_kept,
+                      tuple(sorted(n - 2 - k for k in self.corners)), self.notes)

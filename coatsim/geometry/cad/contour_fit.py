@@ -105,12 +105,11 @@ def _fit_free(points: np.ndarray, tolerance: float, closed_loop: bool, start_hea
     if start_heading is None and end_heading is not None:
         back = dense[::-1]
         fit = fit_run(back, tolerance, False, fit_limits(back, False, tolerance, None, speed_kappa),
-                      start_heading=end_heading + math.pi)
-        segments, dev = tuple(s.reversed() for s in reversed(fit.segments)), fit.deviation_mm
+                      start_heading=end_heading + math.pi).reversed()
     else:
         fit = fit_run(dense, tolerance, closed_loop, fit_limits(dense, closed_loop, tolerance, None, speed_kappa),
                       start_heading=start_heading, end_heading=end_heading)
-        segments, dev = tuple(fit.segments), fit.deviation_mm
+    segments, dev = tuple(fit.segments), fit.deviation_mm
     if originals is not None:
         originals.append(Fitted(points.copy(), start_heading, end_heading, segments, dev))
     return segments, dev
