@@ -13,11 +13,14 @@ EXEC, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, FOR_INIT, FOR_TEST, FOR_NEXT, CASE = ra
 
 @dataclass(frozen=True)
 class Code:
-    """The ops of one program; ``loops`` names the loop a backward jump closes (for the step
-    budget's message): op index -> (line, what)."""
+    """The ops of one program; ``loops`` names the loop a backward jump closes (for the
+    interpreter's messages): op index -> (line, what); ``endless`` the backward jumps that close
+    a loop with no way out (no jump out of it, no RETURN, STOP or HALT in it, a WHILE or
+    DO ... UNTIL whose condition is a constant that never ends it): a cycle the cell repeats."""
 
     ops: tuple[tuple, ...]
     loops: dict[int, tuple[int, str]]
+    endless: frozenset[int] = frozenset()
 
 
 class _Compiler:
@@ -137,7 +140,39 @@ class _Compiler:
             self.ops[index][3] = target
             if target <= index:
                 self.loops[index] = (self.label_lines[label], f"GOTO {label} loop")
-        return Code(tuple(tuple(op) for op in self.ops), self.loops)
+        ops = tuple(tuple(op) for op in self.ops)
+        return Code(ops, self.loops, frozenset(back for back in self.loops if _endless(ops, back)))
+
+
+def _endless(ops: tuple[tuple, ...], back: int) -> bool:
+    """Whether the loop closed by the backward jump at ``back`` has no way out: every jump
+    inside it stays inside it (its own back jump aside), a loop test can never end it (a
+    constant condition), and no RETURN, STOP or HALT is in it."""
+    op = ops[back]
+    if op[0] in (FOR_NEXT, JUMP_IF_TRUE) or (op[0] == JUMP_IF_FALSE and not _constant(op[2], False)):
+        return False  # (a FOR loop ends; falling through a conditional GOTO or an UNTIL leaves the loop)
+    top = op[3]
+    inside = range(top, back + 1)
+    for k in range(top, back):
+        kind = ops[k][0]
+        if kind == EXEC:
+            st = ops[k][2]
+            if isinstance(st, ast.Return) or (isinstance(st, ast.Stop) and st.op != "PAUSE"):
+                return False
+        elif kind == JUMP_IF_FALSE and _constant(ops[k][2], True):
+            continue  # (WHILE TRUE: its test never jumps)
+        elif kind in (JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE) and ops[k][3] not in inside:
+            return False
+        elif kind == FOR_TEST and ops[k][4] not in inside:
+            return False
+        elif kind == CASE and any(t not in inside for t in (*ops[k][3], ops[k][4], ops[k][5])):
+            return False
+    return True
+
+
+def _constant(condition: ast.Expr, truth: bool) -> bool:
+    """Whether ``condition`` is a constant (TRUE, ON, 1, FALSE, ...) of truth ``truth``."""
+    return isinstance(condition, ast.Num) and (condition.value != 0) == truth
 
 
 def compile_program(program: ast.Program) -> Code:

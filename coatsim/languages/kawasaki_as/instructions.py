@@ -52,7 +52,7 @@ DISPLAY = frozenset({
 # Interrupts, timers, signal housekeeping, sensing, logging and the options' instructions (conveyor
 # tracking, collision detection, force sensing, analog outputs): not simulated (a note).
 HOUSEKEEPING = frozenset({
-    "ON", "ONI", "ONE", "IGNORE", "TIMER", "UTIMER", "RUNMASK", "SOUT", "DEFSIG", "RESET", "ERESET", "ALLERESET",
+    "ON", "ONI", "ONE", "IGNORE", "TIMER", "UTIMER", "RUNMASK", "SOUT", "DEFSIG", "ERESET", "ALLERESET",
     "SIGPOINT", "TRACE", "ERRLOG", "MVWAIT", "MON_TWAIT", "SIGAPPRO", "SIGDEPART", "RSIGCORRECT", "RSIGPOINT",
     "RSIGRANGE", "CVRESETSIG_DELAY", "SCNT", "SCNTRESET", "HSENSE", "HSENSESET", "INPUT", "OUTPUT", "IO", "OPLOG",
     "LSTRACE", "RESTRACE", "SETTRACE", "STIM", "ERR_ALLROBSTOP", "INTFCHK", "IPEAKCLR", "IPEAKLOG", "INS_POWER",
@@ -68,7 +68,9 @@ HOUSEKEEPING = frozenset({
     "CVPITCH", "CVPOS", "CVPOS2", "CVRESET", "CVSCALE", "CVSET", "CVSIMU", "CVSMAX", "CVSPEED", "CVSWITCH",
     "CVWAIT", "CVXYSIGN", "CVCOOPJT", "FHERE", "MHERE", "S_HERE",
 })
-COMMANDS = UNSIMULATED_MOTION | GRIPPER | CONFIGURATION | TASKS | NETWORK | DISPLAY | HOUSEKEEPING
+# Turns every external output off (the gun with it).
+OUTPUTS_OFF = frozenset({"RESET"})
+COMMANDS = UNSIMULATED_MOTION | GRIPPER | CONFIGURATION | TASKS | NETWORK | DISPLAY | HOUSEKEEPING | OUTPUTS_OFF
 # Commands whose text after the word is kept verbatim (it is not expression syntax).
 RAW_TEXT = frozenset({"MC", "EXECUTE", "ON", "ONI", "ONE", "TIMER", "UTIMER", "PCEXECUTE", "PCABORT", "PCKILL",
                       "PCEND", "PCCONTINUE", "PCSTEP", "ABORT", "KILL", "CONTINUE", "SOUT", "DEFSIG", "EXTCALL",

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import random as _random
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Mapping, Optional, Sequence, Union
 
 
@@ -79,9 +79,13 @@ class Run:
 
 @dataclass
 class _Frame:
+    """One program invocation: its locals, its FOR loops' bounds (by slot) and, per backward
+    jump, the run's state when it was last taken (Interpreter.jump)."""
+
     program: ast.Program
     scope: Scope
-    loops: dict
+    loops: dict = field(default_factory=dict)
+    visits: dict = field(default_factory=dict)
 
 
 class Interpreter(Memory, SignalIO, RobotQueries):
@@ -108,6 +112,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.stack: list[_Frame] = []
         self.code: dict[str, Code] = {}
         self.steps, self.line, self.last_loop = 0, 0, None
+        self.changes = 0  # values and signals changed so far (a loop that changes nothing: see jump)
         self.stopped = ""  # "file:line: HALT" of the STOP / HALT that ended the run
         self.rng: Optional[_random.Random] = None
         self.origins: list[tuple[str, int, int]] = []
@@ -159,6 +164,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         if self.rng is None:
             self.rng = _random.Random(0)
             self.warn("random", "RANDOM gives a fixed pseudo-random sequence (seed 0), the same on every run")
+        self.changes += 1
         return self.rng.random()
 
     # --- running -------------------------------------------------------------------------
@@ -190,7 +196,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
             if by_ref:
                 copy_back.append((formal, actual))
         caller_line = self.line
-        self.stack.append(_Frame(program, scope, {}))
+        self.stack.append(_Frame(program, scope))
         try:
             self.execute(self.compiled(program))
         except ReturnFromProgram:
@@ -202,6 +208,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
             if actual.whole:
                 for kind, suffix, value in frame.scope.array(norm(formal.name)):
                     self.scope_of(actual).set(kind, norm(actual.name) + suffix, value)
+                self.changes += 1
                 continue
             for kind in KINDS:
                 value = frame.scope.get(kind, norm(formal.name))
@@ -311,9 +318,33 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         return self.guarded(self.eval.truth, e, False)
 
     def jump(self, code: Code, pc: int, target: int) -> int:
-        if target <= pc:
-            self.last_loop = (self.source, *code.loops.get(pc, (self.line, "loop")))
-        return target
+        """Where a jump at ``pc`` goes. Backward (a loop): a loop with no way out is a cycle the
+        cell repeats, run once (the program ends there); a loop whose last pass changed nothing
+        (no motion, no value, no signal) repeats the same way for ever: if it read what the twin
+        does not know (an input, a timer, a message), it waits for that and is taken as ended
+        (the jump is not taken), else it never ends (ExecutionError)."""
+        if target > pc:
+            return target
+        line, what = code.loops.get(pc, (self.line, "loop"))
+        self.last_loop = (self.source, line, what)
+        if pc in code.endless:
+            self.warn(f"cycle:{self.where()}", f"the {what} of line {line} has no way out: a cycle the "
+                      "cell repeats; the twin runs it once and ends there")
+            raise StopProgram()
+        state = (len(self.controller.moves), self.changes)
+        reads = (self.unknowns.reads, self.signals.unknown_reads)
+        visits = self.stack[-1].visits
+        last = visits.get(pc)
+        visits[pc] = (state, reads)
+        if last is None or last[0] != state:
+            return target
+        if reads != last[1]:
+            read = self.unknowns.last if reads[0] != last[1][0] else "an input not given"
+            self.warn(f"wait:{self.where()}", f"the {what} of line {line} waits for what the twin does "
+                      f"not know (it reads {read}, and nothing changes); taken as ended")
+            return pc + 1
+        raise self.failure(f"the {what} of line {line} repeats with nothing changing: it never ends (end it with "
+                           "STOP or HALT, or change what it tests)")
 
     def case(self, op: tuple) -> int:
         st: ast.Case = op[2]

@@ -92,6 +92,8 @@ class SignalIO:
             self.warn(f"set-input:{number}", f"signal {number} is an input; the program sets it here")
         if number < FIRST_INPUT:
             self.outputs.add(number)
+        if self.signals.states.get(number) != on:
+            self.changes += 1
         self.signals.set(number, on)
 
 
@@ -102,6 +104,7 @@ class Signals:
         self.given = dict(inputs)
         self.states: dict[int, bool] = {}
         self.unknown_read = False  # an unknown input was read since the flag was last cleared
+        self.unknown_reads = 0  # reads of unknown signals in the run
 
     def set(self, number: int, on: bool) -> None:
         self.states[number] = on
@@ -114,4 +117,5 @@ class Signals:
         if number in self.given:
             return self.given[number], True
         self.unknown_read = True
+        self.unknown_reads += 1
         return False, False

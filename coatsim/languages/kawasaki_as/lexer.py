@@ -25,10 +25,12 @@ _TOKEN = re.compile(
     |(?P<num>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)
     |(?P<name>(?:\.&|&|\.)?[$\#]?[A-Za-z_][A-Za-z0-9_.]*)
     |(?P<str>"[^"]*")
-    |(?P<op>==|<>|<=|>=|[-+*/^()\[\],=<>:\#%@])
+    |(?P<op>==|<>|<=|>=|=<|=>|[-+*/^()\[\],=<>:\#%@])
     """,
     re.VERBOSE,
 )
+# Relational operators AS also accepts the other way round.
+_SPELLED = {"=<": "<=", "=>": ">="}
 _SCAN = re.compile(_TOKEN.pattern + r"|(?P<comment>;.*)|(?P<bad>.)", re.VERBOSE | re.DOTALL)
 
 
@@ -58,8 +60,10 @@ def tokenize(text: str, source: str, line: int) -> list[Token]:
         if kind == "ws":
             continue
         pos = m.start()
-        if kind == "name" or kind == "op":
+        if kind == "name":
             append(Token(kind, m.group(), pos + 1))
+        elif kind == "op":
+            append(Token(kind, _SPELLED.get(m.group(), m.group()), pos + 1))
         elif kind == "num" or kind == "hex":
             word = m.group()
             append(Token("num", word, pos + 1, _number(word, source, line, pos)))

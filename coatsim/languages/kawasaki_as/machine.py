@@ -25,6 +25,7 @@ class Machine(Protocol):
     """The running program: its variables, signals, controller, frames and robot queries."""
 
     base: Pose
+    changes: int
     controller: Controller
     eval: Evaluation
     gun: int

@@ -121,7 +121,12 @@ class Memory:
         return self.scope_of(name).has("pose", self.key(name))
 
     def set(self, kind: str, name: ast.Name, value) -> None:
-        self.scope_of(name).set(kind, self.key(name), value)
+        scope, k = self.scope_of(name), self.key(name)
+        before = scope.get(kind, k)
+        if not (before is value or (isinstance(value, (float, str, tuple)) and type(before) is type(value)
+                                    and before == value)):
+            self.changes += 1  # (a loop that changes nothing repeats the same way: see Interpreter.jump)
+        scope.set(kind, k, value)
 
     def set_string(self, name: ast.Name, value: str) -> None:
         self.set("string", name, value)

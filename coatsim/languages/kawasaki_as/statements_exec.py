@@ -15,6 +15,7 @@ from coatsim.languages.kawasaki_as.instructions import (
     GRIPPER,
     HOUSEKEEPING,
     NETWORK,
+    OUTPUTS_OFF,
     TASKS,
     UNSIMULATED_MOTION,
 )
@@ -272,15 +273,21 @@ def _network_defaults(run: Machine, st: ast.Command) -> None:
     names = [a for a in st.args if isinstance(a, ast.Name) and a.kind == "value"]
     if st.args and isinstance(st.args[0], ast.Name) and st.args[0].kind == "value":
         run.set("real", st.args[0], 1.0 if st.name in ("TCP_ACCEPT", "TCP_CONNECT") else 0.0)
-    if st.name in ("TCP_RECV", "UDP_RECVFROM", "SC2RECEIVE") and len(st.args) > 3 and st.args[3] in names:
-        run.set("real", st.args[3], 0.0)
+    if st.name in ("TCP_RECV", "UDP_RECVFROM", "SC2RECEIVE"):
+        run.unknowns.reads += 1  # (a message from outside: a loop that waits for one is taken as ended)
+        run.unknowns.last = f"{st.name}'s message"
+        if len(st.args) > 3 and st.args[3] in names:
+            run.set("real", st.args[3], 0.0)
 
 
 def _command(run: Machine, st: ast.Command) -> None:
     name = st.name
     if name in UNSIMULATED_MOTION:
         raise NotSimulated(f"{name} moves the arm in a way coatsim does not simulate")
-    if name in NETWORK:
+    if name in OUTPUTS_OFF:
+        for number in sorted(n for n, on in run.signals.states.items() if on and n < FIRST_INPUT):
+            run.set_signal(number, False)
+    elif name in NETWORK:
         _network_defaults(run, st)
         run.warn(f"cmd:{name}", f"{name}: network and serial I/O are not simulated; the status is 0 and nothing is "
                  "received")

@@ -75,8 +75,76 @@ def test_step_budget_names_the_loop():
         globals_after("x = 0\nWHILE x >= 0 DO\n  x = x + 1\nEND", max_steps=5000)
     assert str(info.value).startswith("t.as:3: ") and "WHILE loop of line 3" in str(info.value)
     with pytest.raises(ExecutionError) as info:
-        globals_after("x = 0\n10 x = x + 1\nGOTO 10", max_steps=5000)
+        globals_after("x = 0\n10 x = x + 1\nIF x > 0 GOTO 10", max_steps=5000)
     assert "GOTO 10 loop of line 3" in str(info.value)
+
+
+CYCLE_DATA = ".TRANS\np1 600 -100 300 0 180 0\np2 700 -100 300 0 180 0\np3 700 100 300 0 180 0\n.END\n"
+PAINT = ".PROGRAM paint()\n  JMOVE p1\n  BREAK\n  SIGNAL 1\n  LMOVE p2\n  LMOVE p3\n  BREAK\n  SIGNAL -1\n.END\n"
+
+
+def _cycle(body: str, extra: str = PAINT, inputs: dict | None = None):
+    f = parse_as(".PROGRAM main()\n" + body + "\n.END\n" + extra + CYCLE_DATA, "m.as")
+    run = Interpreter((f,), 1, inputs or {}, None, 1000.0, 100_000)
+    tp = run.run(f.programs[0])
+    return run, tp
+
+
+@pytest.mark.parametrize("body", [
+    "1 SWAIT 1001\nSIGNAL -2001\nCALL paint\nSIGNAL 2001\nSWAIT -1001\nGOTO 1",
+    "cnt = 0\n10\nCALL paint\ncnt = cnt + 1\nIF cnt > 5 THEN\n  cnt = 0\nEND\nGOTO 10",
+    "WHILE TRUE DO\n  SWAIT 1001\n  CALL paint\nEND",
+    "DO\n  CALL paint\n  TWAIT 1\nUNTIL FALSE",
+])
+def test_a_production_cycle_with_no_way_out_is_read_once(body):
+    """A main program that repeats its cycle for ever (a label and GOTO back, WHILE TRUE, DO ...
+    UNTIL FALSE, with no jump out, RETURN, STOP or HALT in it) is read once, with a note: the
+    cell's cycle, not a refusal after 200 000 motions."""
+    run, tp = _cycle(body)
+    assert len(tp.moves) == 3 and sum(m.spray for m in tp.moves) == 2
+    assert any("has no way out: a cycle the cell repeats; the twin runs it once" in w for w in tp.warnings), tp.warnings
+
+
+def test_a_loop_with_a_way_out_runs_to_its_end():
+    """A GOTO loop left by a counter is no cycle: all its passes run."""
+    _, tp = _cycle("n = 0\n10 CALL paint\nn = n + 1\nIF n >= 3 GOTO 20\nGOTO 10\n20 x = 1", extra=PAINT)
+    assert len(tp.moves) == 9 and not any("no way out" in w for w in tp.warnings)
+
+
+@pytest.mark.parametrize("body,reads", [
+    ("TIMER 1 = 0\nWHILE TIMER(1) < 3 DO\n  TWAIT 0.5\nEND", "TIMER"),
+    ("10 IF SIG(1002) GOTO 20\nTWAIT 0.1\nGOTO 10\n20 x = 1", "an input not given"),
+    ("10 TCP_RECV .ret, 1, .$buf[1], .num, 30, 255\nIF .num <= 0 GOTO 10\nx = 1", "TCP_RECV's message"),
+    ("DO\n  TWAIT 0.2\nUNTIL SIG(1003)", "an input not given"),
+])
+def test_a_loop_that_waits_for_what_the_twin_does_not_know_is_taken_as_ended(body, reads):
+    """A loop whose pass changes nothing but reads a timer, an input nobody gives or a message
+    waits for the cell: it is taken as ended with a note, and the program goes on."""
+    run, tp = _cycle(body + "\nCALL paint", extra=PAINT)
+    assert len(tp.moves) == 3
+    assert any(f"waits for what the twin does not know (it reads {reads}" in w for w in tp.warnings), tp.warnings
+
+
+def test_a_loop_that_changes_nothing_and_reads_nothing_unknown_never_ends():
+    """Waiting on an input the cell gives as OFF: nothing can end it; said at once, naming it."""
+    with pytest.raises(ExecutionError) as info:
+        _cycle("10 TWAIT 0.1\nIF SIG(-1001) GOTO 10\nCALL paint", inputs={1001: False})
+    assert "the GOTO 10 loop of line 2 repeats with nothing changing: it never ends" in str(info.value)
+
+
+@pytest.mark.parametrize("body,expected", [
+    ("x = 3 =< 3", -1.0), ("x = 2 => 3", 0.0), ("y = 4\nx = 0\nIF y => 4 THEN\n  x = 1\nEND", 1.0),
+    ("y = 5\nDO\n  y = y - 1\nUNTIL y =< 2\nx = y", 2.0),
+])
+def test_relational_operators_are_read_either_way_round(body, expected):
+    get, _ = globals_after(body)
+    assert get("real", "x") == expected
+
+
+def test_reset_turns_every_output_off_the_gun_with_them():
+    """RESET switches the external outputs off: the moves after it are not sprayed."""
+    _, tp = _cycle("JMOVE p1\nBREAK\nSIGNAL 1, 5\nLMOVE p2\nBREAK\nRESET\nLMOVE p3\nLMOVE p1", extra="")
+    assert [m.spray for m in tp.moves] == [False, True, False, False]
 
 
 @pytest.mark.parametrize("body,extra,kind,words", [
