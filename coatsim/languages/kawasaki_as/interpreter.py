@@ -12,8 +12,10 @@ depends on one is reported, a statement that cannot run without it (a motion to 
 gives, a motion the twin does not simulate, a CALL of a program not loaded) is skipped with a
 note in ``Run.skipped``. What the twin does not simulate either stops the run (exit 3: the gun
 pulsed, a BRAKE during a motion) or is one warning line in ``ToolPath.warnings`` (tasks,
-network, grippers, displays, unknown inputs). A step budget stops a program that never ends,
-naming its loop; CALLs nested too deep name their cycle.
+network, grippers, displays, unknown inputs). A loop with no way out is the cell's cycle, run
+once; a loop that changes nothing waits for the cell (taken as ended) or never ends (said at
+once); a step budget stops any other program that never ends, naming its loop; CALLs nested too
+deep name their cycle.
 """
 
 from __future__ import annotations
