@@ -115,6 +115,7 @@ class Interpreter(Memory, SignalIO, RobotQueries):
         self.code: dict[str, Code] = {}
         self.steps, self.line, self.last_loop = 0, 0, None
         self.changes = 0  # values and signals changed so far (a loop that changes nothing: see jump)
+        self.served: set[tuple[str, int]] = set()  # loops taken as ended that waited for an input or a message
         self.stopped = ""  # "file:line: HALT" of the STOP / HALT that ended the run
         self.rng: Optional[_random.Random] = None
         self.origins: list[tuple[str, int, int]] = []
@@ -334,19 +335,33 @@ class Interpreter(Memory, SignalIO, RobotQueries):
                       "cell repeats; the twin runs it once and ends there")
             raise StopProgram()
         state = (len(self.controller.moves), self.changes)
-        reads = (self.unknowns.reads, self.signals.unknown_reads)
+        reads = (self.unknowns.reads, self.signals.unknown_reads, self.unknowns.messages)
         visits = self.stack[-1].visits
         last = visits.get(pc)
         visits[pc] = (state, reads)
         if last is None or last[0] != state:
             return target
         if reads != last[1]:
-            read = self.unknowns.last if reads[0] != last[1][0] else "an input not given"
-            self.warn(f"wait:{self.where()}", f"the {what} of line {line} waits for what the twin does "
-                      f"not know (it reads {read}, and nothing changes); taken as ended")
-            return pc + 1
+            return self.waited(pc, line, what, [r != r0 for r, r0 in zip(reads, last[1])])
         raise self.failure(f"the {what} of line {line} repeats with nothing changing: it never ends (end it with "
                            "STOP or HALT, or change what it tests)")
+
+    def waited(self, pc: int, line: int, what: str, read: list[bool]) -> int:
+        """A loop that waits for what the twin does not know (``read``: an unknown value, an input
+        not given, a message) is taken as ended: where it goes on. One that waits for an input or a
+        message serves the cell: when it waits again, the run has read a pass of the loop that
+        serves and ends there (it would take the same turn for ever)."""
+        reads = self.unknowns.last if read[0] else "an input not given" if read[1] else "a message"
+        if read[1] or read[2]:
+            place = (self.stack[-1].program.name, pc)
+            if place in self.served:
+                self.warn(f"served:{self.where()}", f"the {what} of line {line} waits again for {reads}: the "
+                          "twin read one pass of the loop that serves the cell and ends there")
+                raise StopProgram()
+            self.served.add(place)
+        self.warn(f"wait:{self.where()}", f"the {what} of line {line} waits for what the twin does not know "
+                  f"(it reads {reads}, and nothing changes); taken as ended")
+        return pc + 1
 
     def case(self, op: tuple) -> int:
         st: ast.Case = op[2]

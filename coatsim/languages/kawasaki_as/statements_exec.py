@@ -274,8 +274,7 @@ def _network_defaults(run: Machine, st: ast.Command) -> None:
     if st.args and isinstance(st.args[0], ast.Name) and st.args[0].kind == "value":
         run.set("real", st.args[0], 1.0 if st.name in ("TCP_ACCEPT", "TCP_CONNECT") else 0.0)
     if st.name in ("TCP_RECV", "UDP_RECVFROM", "SC2RECEIVE"):
-        run.unknowns.reads += 1  # (a message from outside: a loop that waits for one is taken as ended)
-        run.unknowns.last = f"{st.name}'s message"
+        run.unknowns.messages += 1  # (a loop that waits for one serves the cell: see Interpreter.jump)
         if len(st.args) > 3 and st.args[3] in names:
             run.set("real", st.args[3], 0.0)
 

@@ -61,6 +61,7 @@ class Unknowns:
     first: dict[str, UnknownRead] = field(default_factory=dict)
     reads: int = 0
     last: str = ""
+    messages: int = 0  # messages received that the twin does not have (TCP_RECV, ...)
     skipped: list[str] = field(default_factory=list)
     unsimulated: list[str] = field(default_factory=list)  # the skipped ones the twin does not simulate
 

@@ -114,7 +114,7 @@ def test_a_loop_with_a_way_out_runs_to_its_end():
 @pytest.mark.parametrize("body,reads", [
     ("TIMER 1 = 0\nWHILE TIMER(1) < 3 DO\n  TWAIT 0.5\nEND", "TIMER"),
     ("10 IF SIG(1002) GOTO 20\nTWAIT 0.1\nGOTO 10\n20 x = 1", "an input not given"),
-    ("10 TCP_RECV .ret, 1, .$buf[1], .num, 30, 255\nIF .num <= 0 GOTO 10\nx = 1", "TCP_RECV's message"),
+    ("10 TCP_RECV .ret, 1, .$buf[1], .num, 30, 255\nIF .num <= 0 GOTO 10\nx = 1", "a message"),
     ("DO\n  TWAIT 0.2\nUNTIL SIG(1003)", "an input not given"),
 ])
 def test_a_loop_that_waits_for_what_the_twin_does_not_know_is_taken_as_ended(body, reads):
@@ -123,6 +123,24 @@ def test_a_loop_that_waits_for_what_the_twin_does_not_know_is_taken_as_ended(bod
     run, tp = _cycle(body + "\nCALL paint", extra=PAINT)
     assert len(tp.moves) == 3
     assert any(f"waits for what the twin does not know (it reads {reads}" in w for w in tp.warnings), tp.warnings
+
+
+def test_a_loop_serving_the_cell_is_read_for_one_pass():
+    """A server loop: wait for a message (or an input), work, go back and wait again, with a way
+    out only on an error status. The first wait is taken as ended; the second ends the run."""
+    body = ("n = 0\n10 TCP_RECV .ret, 1, .$buf[1], .num, 30, 255\nIF .ret < 0 GOTO 900\nIF .num <= 0 GOTO 10\n"
+            "CALL paint\nn = n + 1\nGOTO 10\n900 TCP_CLOSE .ret, 1")
+    run, tp = _cycle(body)
+    assert len(tp.moves) == 3 and run.globals.get("real", "n") == 1.0
+    assert any("waits again for a message: the twin read one pass of the loop that serves the cell" in w
+               for w in tp.warnings), tp.warnings
+
+
+def test_a_loop_waiting_for_a_timer_in_a_finite_loop_is_taken_as_ended_each_pass():
+    """A flash-off wait on a timer between coats does not end the run: all three coats are read."""
+    body = "FOR .c = 1 TO 3\n  CALL paint\n  TIMER 1 = 0\n  WHILE TIMER(1) < 30 DO\n    TWAIT 1\n  END\nEND"
+    _, tp = _cycle(body)
+    assert len(tp.moves) == 9
 
 
 def test_a_loop_that_changes_nothing_and_reads_nothing_unknown_never_ends():
