@@ -39,7 +39,7 @@ _EXIST = {"EXISTREAL", "EXISTTRANS", "EXISTJOINT", "EXISTCHAR", "EXISTPGM", "EXI
           "EXISTLOCALCHAR", "EXISTLOCALINTEGER", "EXISTLOCALJOINT", "EXISTLOCALREAL", "EXISTLOCALTRANS"}
 REAL_FUNCTIONS = _MATH1 | _EXIST | {
     "ATAN2", "MAXVAL", "MINVAL", "LEN", "ASC", "VAL", "STRTOVAL", "INSTR", "SIG", "BITS", "BITS32", "DISTANCE", "DX",
-    "DY", "DZ", "DEXT", "MSPEED", "MSPEED2", "RANDOM", "SWITCH", "TASKNO", "WHICHTASK"}
+    "DY", "DZ", "DEXT", "MSPEED", "MSPEED2", "RANDOM", "SWITCH", "TASKNO", "WHICHTASK", "BCD", "DCB"}
 JOINT_FUNCTIONS = {"#HERE", "#DEST", "#PPOINT", "#HOME"}
 
 
@@ -82,6 +82,9 @@ def real_call(ev: Evaluation, e: ast.Call) -> float:
     if name in ("BITS", "BITS32"):
         start, count = ev.integer(ev.arg(e, 0), "the first signal"), ev.integer(ev.arg(e, 1), "the count")
         return float(ev.run.read_bits(start, count))
+    if name in ("BCD", "DCB"):
+        ev.arity(e, 1)
+        return _bcd(ev, name, ev.integer(ev.arg(e, 0), f"the {name} value"))
     if name == "DISTANCE":
         ev.arity(e, 2)
         return float(np.linalg.norm(ev.pose(ev.arg(e, 0)).translation_mm - ev.pose(ev.arg(e, 1)).translation_mm))
@@ -123,6 +126,19 @@ def _math1(ev: Evaluation, name: str, x: float) -> float:
         return float(math.floor(abs(x) + 0.5)) * (1.0 if x >= 0 else -1.0)  # ROUND: half away from zero
     except ValueError:
         raise ev.failure(f"{name}({x:g}) has no real value") from None
+
+
+def _bcd(ev: Evaluation, name: str, n: int) -> float:
+    """BCD: a whole number 0..99 999 999 as binary-coded decimal (a digit per 4 bits, for
+    BITS outputs); DCB: such a code back to its number."""
+    if name == "BCD":
+        if not 0 <= n <= 99_999_999:
+            raise ev.failure(f"BCD({n}): takes a whole number from 0 to 99999999")
+        return float(int(str(n), 16))
+    digits = format(n, "x") if n >= 0 else "-"
+    if not digits.isdigit():
+        raise ev.failure(f"DCB({n}): {n} is not a binary-coded decimal (a digit per 4 bits, each 0..9)")
+    return float(int(digits))
 
 
 def _switch_name(ev: Evaluation, e: ast.Call) -> str:

@@ -49,6 +49,7 @@ FUNCTIONS = [
     ("SIG(-1)", -1.0), ("MSPEED", 100.0), ("PI", math.pi), ("DX(NULL)", 0.0), ("DZ(RX(90) + TRANS(0, 1, 0))", 1.0),
     ("EXISTREAL(\"r\")", -1.0), ("EXISTTRANS(\"nothere\")", 0.0), ("EXISTPGM(\"t\")", -1.0),
     ("BITS(1, 4)", 0.0), ("DX(FRAME(p, q, TRANS(0, 99, 30), p))", 10.0),
+    ("BCD(1234)", 0x1234), ("DCB(^H1234)", 1234.0), ("DCB(BCD(907))", 907.0), ("BCD(0)", 0.0),
 ]
 
 
@@ -84,6 +85,7 @@ ERRORS = [
     ('"a" + 1', InputError, "expected a number, found a string"), ("SIN(1, 2)", InputError, "takes 1 argument"),
     ("LEN(1)", InputError, "expected a string, found a number"), ("10 ^ 400", ExecutionError, "no real value"),
     ("$MID(\"a\") + \"b\"", InputError, "needs argument 2"), ("p", InputError, "is a pose variable"),
+    ("BCD(-1)", ExecutionError, "from 0 to 99999999"), ("DCB(^H1A)", ExecutionError, "not a binary-coded decimal"),
 ]
 
 
