@@ -12,10 +12,10 @@ depends on one is reported, a statement that cannot run without it (a motion to 
 gives, a motion the twin does not simulate, a CALL of a program not loaded) is skipped with a
 note in ``Run.skipped``. What the twin does not simulate either stops the run (exit 3: the gun
 pulsed, a BRAKE during a motion) or is one warning line in ``ToolPath.warnings`` (tasks,
-network, grippers, displays, unknown inputs). A loop with no way out is the cell's cycle, run
-once; a loop that changes nothing waits for the cell (taken as ended) or never ends (said at
-once); a step budget stops any other program that never ends, naming its loop; CALLs nested too
-deep name their cycle.
+network, grippers, displays, unknown inputs). Backward jumps follow
+:mod:`~coatsim.languages.kawasaki_as.loops` (a cycle the cell repeats runs once; a loop that
+changes nothing waits for the cell or never ends; a step budget stops any other loop that never
+ends, naming it); CALLs nested too deep name their cycle.
 """
 
 from __future__ import annotations
@@ -35,6 +35,7 @@ from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_
     Code, compile_program
 from coatsim.languages.kawasaki_as.evaluate import Evaluator
 from coatsim.languages.kawasaki_as.io_model import SignalIO, Signals, Warnings
+from coatsim.languages.kawasaki_as.loops import LoopControl
 from coatsim.languages.kawasaki_as.memory import Memory
 from coatsim.languages.kawasaki_as.motion import FULL_SPEED_MM_S, Controller
 from coatsim.languages.kawasaki_as.parser import key as norm
@@ -90,7 +91,7 @@ class _Frame:
     visits: dict = field(default_factory=dict)
 
 
-class Interpreter(Memory, SignalIO, RobotQueries):
+class Interpreter(Memory, SignalIO, RobotQueries, LoopControl):
     """State of one run: variables, signals, the controller, the call stack, the budget."""
 
     def __init__(self, files: Sequence[ast.AsFile], gun: int, inputs: Mapping[int, bool],
@@ -320,49 +321,6 @@ class Interpreter(Memory, SignalIO, RobotQueries):
     def test(self, e: ast.Expr) -> bool:
         return self.guarded(self.eval.truth, e, False)
 
-    def jump(self, code: Code, pc: int, target: int) -> int:
-        """Where a jump at ``pc`` goes. Backward (a loop): a loop with no way out is a cycle the
-        cell repeats, run once (the program ends there); a loop whose last pass changed nothing
-        (no motion, no value, no signal) repeats the same way for ever: if it read what the twin
-        does not know (an input, a timer, a message), it waits for that and is taken as ended
-        (the jump is not taken), else it never ends (ExecutionError)."""
-        if target > pc:
-            return target
-        line, what = code.loops.get(pc, (self.line, "loop"))
-        self.last_loop = (self.source, line, what)
-        if pc in code.endless:
-            self.warn(f"cycle:{self.where()}", f"the {what} of line {line} has no way out: a cycle the "
-                      "cell repeats; the twin runs it once and ends there")
-            raise StopProgram()
-        state = (len(self.controller.moves), self.changes)
-        reads = (self.unknowns.reads, self.signals.unknown_reads, self.unknowns.messages)
-        visits = self.stack[-1].visits
-        last = visits.get(pc)
-        visits[pc] = (state, reads)
-        if last is None or last[0] != state:
-            return target
-        if reads != last[1]:
-            return self.waited(pc, line, what, [r != r0 for r, r0 in zip(reads, last[1])])
-        raise self.failure(f"the {what} of line {line} repeats with nothing changing: it never ends (end it with "
-                           "STOP or HALT, or change what it tests)")
-
-    def waited(self, pc: int, line: int, what: str, read: list[bool]) -> int:
-        """A loop that waits for what the twin does not know (``read``: an unknown value, an input
-        not given, a message) is taken as ended: where it goes on. One that waits for an input or a
-        message serves the cell: when it waits again, the run has read a pass of the loop that
-        serves and ends there (it would take the same turn for ever)."""
-        reads = self.unknowns.last if read[0] else "an input not given" if read[1] else "a message"
-        if read[1] or read[2]:
-            place = (self.stack[-1].program.name, pc)
-            if place in self.served:
-                self.warn(f"served:{self.where()}", f"the {what} of line {line} waits again for {reads}: the "
-                          "twin read one pass of the loop that serves the cell and ends there")
-                raise StopProgram()
-            self.served.add(place)
-        self.warn(f"wait:{self.where()}", f"the {what} of line {line} waits for what the twin does not know "
-                  f"(it reads {reads}, and nothing changes); taken as ended")
-        return pc + 1
-
     def case(self, op: tuple) -> int:
         st: ast.Case = op[2]
         value = self.eval.string if st.string else self.eval.real
@@ -371,13 +329,6 @@ class Interpreter(Memory, SignalIO, RobotQueries):
             if any(value(v) == subject for v in values):
                 return target
         return op[4]
-
-    def budget_error(self) -> ExecutionError:
-        if self.last_loop is not None:
-            source, line, what = self.last_loop
-            return ExecutionError(f"{source}:{line}: the program ran {self.max_steps} steps without ending, in the "
-                                  f"{what} of line {line}; an endless cycle? (end it with STOP or HALT)")
-        return self.failure(f"the program ran {self.max_steps} steps without ending")
 
     def run(self, main: ast.Program) -> ToolPath:
         if main.params:
