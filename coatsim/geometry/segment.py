@@ -28,11 +28,10 @@ from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.scatter import THIN_ROOM, noise_hint, scatter_mm, thinned
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
+from coatsim.geometry.taught_retry import retried
 from coatsim.geometry.theta import ThetaFunction, paper_within, theta_of_polyline
 
 Method = Literal["optimal", "paper"]
-TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
-TAUGHT_AIM = 0.9  # ... it is fitted again within this share of σ (the fewer segments kept)
 SEAM_TRIES = 4  # a taught loop no chain follows from its calmest point gets quick fits from this many other vertices
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 SMALL_SIGMAS = 10.0  # a curve spanning fewer tolerances than this is most likely in another unit than mm
@@ -272,27 +271,13 @@ def _with_speed(poly: Polysegment, speed_mm_s: float | None, tool_accel_mm_s2: f
 
 def _fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
          speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]]:
-    """The default fitter (_fit_within); a taught (sparse) loop whose smooth chain keeps more
-    than TAUGHT_SHARE of its moves is fitted again within TAUGHT_AIM of the tolerance: the band
-    fit is a heuristic, and where a loop's chain starts and closes on a few vertices a tighter
-    aim often lands on fewer pieces, within this tolerance too. That chain replaces it when it
-    has fewer segments and no corner or note. (Open taught paths, whose ends are pinned, gained
-    nothing from it in scripts/bench_sparse.py and are not fitted again.)"""
+    """The default fitter (_fit_within); a taught (sparse) curve's fit is tried again where it
+    fell short (coatsim.geometry.taught_retry)."""
     found = _fit_within(curve, tol, corner_deg, min_segment_mm, speed_kappa)
-    if (not curve.closed or found[0].n_segments <= TAUGHT_SHARE * (len(curve.points) - 1) or found[0].corners
-            or found[4] or not is_sparse(curve.points, curve.closed, tol)):
+    if not is_sparse(curve.points, curve.closed, tol):
         return found
-    aim = TAUGHT_AIM * tol
-    # a loop with corners at the aim has one at its seam: that chain would not replace this one
-    pts = curve.points
-    if recover_exact(pts, True, aim) is None and len(corners_and_notes(pts, True, corner_deg, aim)[0]):
-        return found
-    try:
-        other = _fit_within(curve, aim, corner_deg, min_segment_mm, speed_kappa)
-    except InputError:
-        return found
-    smooth = not other[0].corners and not other[4]
-    return other if smooth and other[0].n_segments < found[0].n_segments else found
+    return retried(curve.points, curve.closed, tol, corner_deg,
+                   lambda aim, degrees: _fit_within(curve, aim, degrees, min_segment_mm, speed_kappa), found)
 
 
 def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,

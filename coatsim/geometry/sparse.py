@@ -111,14 +111,14 @@ def rounding_error(points: np.ndarray, closed: bool) -> np.ndarray:
     left, right = chord_insets(pts, closed)
     spanning = (left + right) / 2
     half = np.abs(_turns(pts, closed)) / 2
-    radius = _near_radius(pts, closed)
+    radius = near_radius(pts, closed)
     with np.errstate(invalid="ignore", over="ignore"):
         fits = (half > 0) & (radius * np.tan(half) <= _room(pts, closed))
         filleted = np.where(fits, radius * (1.0 / np.cos(half) - 1.0) / 2, np.inf)
     return np.minimum(spanning, filleted)
 
 
-def _near_radius(pts: np.ndarray, closed: bool) -> np.ndarray:
+def near_radius(pts: np.ndarray, closed: bool) -> np.ndarray:
     """Per vertex (n,), the tightest circle (mm) through three consecutive vertices centred
     on it or on a neighbour (inf where they are collinear, and beyond an open run's ends)."""
     body = pts[:-1] if closed else pts
@@ -141,7 +141,7 @@ def _near_radius(pts: np.ndarray, closed: bool) -> np.ndarray:
 
 def own_radius(points: np.ndarray, closed: bool) -> float:
     """The tightest circle (mm) through three consecutive vertices (inf if none turns)."""
-    return float(np.min(_near_radius(np.asarray(points, dtype=float), closed)))
+    return float(np.min(near_radius(np.asarray(points, dtype=float), closed)))
 
 
 def unroundable(points: np.ndarray, closed: bool, tolerance: float) -> tuple[np.ndarray, np.ndarray]:

@@ -44,7 +44,11 @@ FAMILIES = {
 def _along(name: str, count: int) -> tuple[np.ndarray, bool, float]:
     """``count`` vertices evenly along the curve (a closed one repeats its first), whether it
     is closed and the polygon's chordal deviation (mm: the largest sagitta of an edge)."""
-    f, t0, t1, closed = FAMILIES[name]
+    return _evenly(*FAMILIES[name], count)
+
+
+def _evenly(f, t0: float, t1: float, closed: bool, count: int) -> tuple[np.ndarray, bool, float]:
+    """As _along, for the curve ``f`` over [t0, t1]."""
     dense = f(np.linspace(t0, t1, 40_001))
     s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))))
     knots = np.linspace(0.0, s[-1], count + 1 if closed else count)
@@ -325,3 +329,41 @@ def test_a_taught_run_no_one_chain_follows_is_fitted_in_halves_joined_smoothly(s
     assert 3 * poly.n_segments <= len(pts) - 1, f"{poly.n_segments} segments for {len(pts) - 1} moves"
     own = _own_radius(pts, False)
     assert min(s.radius for s in poly.segments if isinstance(s, Arc)) >= 0.75 * own
+
+
+def _trochoid(a: float, b: float, k: float, epi: bool):
+    """x = a cos t ± b cos kt, y = a sin t - b sin kt (+: a hypotrochoid, -: an epitrochoid)."""
+    sign = -1.0 if epi else 1.0
+    return lambda t: np.column_stack((a * np.cos(t) + sign * b * np.cos(k * t), a * np.sin(t) - b * np.sin(k * t)))
+
+
+def test_a_taught_rose_is_rounded_at_its_lobes_not_kept_with_silent_corners():
+    """r = 60 + 15 cos 4θ taught with 30 points, σ = its chordal deviation: its lobe tips turn
+    more than corner_deg and twice their neighbours, yet a smooth chain with arcs no tighter
+    than the polygon turns there has fewer segments (9 against 12 with 4 corners and no note)."""
+    rose = lambda t: (60 + 15 * np.cos(4 * t))[:, None] * np.column_stack((np.cos(t), np.sin(t)))
+    pts, _, sag = _evenly(rose, 0.0, TAU, True, 30)
+    seg = segment_curve(make_curve(pts, "rose", "yes"), sag)
+    assert_contract(seg, sag)
+    assert not seg.polysegment.corners and not seg.notes and 3 * seg.polysegment.n_segments <= 30, seg.summary()
+
+
+def test_taught_vertices_kept_as_corners_are_named_in_a_note():
+    """A hypotrochoid taught with 100 points (σ its chordal deviation): its 5 lobe tips stay
+    corners (the smooth chain needs more segments and arcs tighter than the polygon turns), and
+    a note says so, with the corner_deg that rounds them."""
+    pts, _, sag = _evenly(_trochoid(60.0, 8.0, 4.0, False), 0.0, TAU, True, 100)
+    seg = segment_curve(make_curve(pts, "hypotrochoid", "yes"), sag)
+    assert_contract(seg, sag)
+    assert len(seg.polysegment.corners) == 5
+    assert any("5 taught vertices turn more than corner_deg 20 degrees" in n for n in seg.notes), seg.notes
+
+
+def test_a_taught_loop_back_as_its_lines_is_fitted_from_a_smaller_tolerance():
+    """An epitrochoid taught with 30 points at 0.6 of its chordal deviation came back as its 30
+    lines; a fit within 0.7 of that σ has 21 segments, within σ too."""
+    pts, _, sag = _evenly(_trochoid(60.0, 7.0, 4.0, True), 0.0, TAU, True, 30)
+    tol = 0.6 * sag
+    seg = segment_curve(make_curve(pts, "epitrochoid", "yes"), tol)
+    assert_contract(seg, tol)
+    assert seg.polysegment.n_segments < 30, seg.summary()
