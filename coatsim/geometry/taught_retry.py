@@ -39,7 +39,8 @@ def retried(points: np.ndarray, closed: bool, tol: float, corner_deg: float, fit
     """``found`` (the fit of taught ``points`` within ``tol``), or a better one: (1) one that
     follows points that came back as their own lines, from a smaller tolerance; (2) one without
     the corners kept silently at vertices turning more than ``corner_deg``, where its arcs are
-    no tighter than the polygon turns at them and it needs no more segments; (3) for a loop
+    no tighter than the polygon turns at them and it needs no more segments (else a note names
+    the gentle ones, _gentle_corners); (3) for a loop
     keeping more than a third of its moves, one with fewer segments from TAUGHT_AIM σ."""
     moves = len(points) - 1
     if found[0].n_segments >= moves and found[0].corners:
@@ -49,7 +50,7 @@ def retried(points: np.ndarray, closed: bool, tol: float, corner_deg: float, fit
         gentle = _gentle_corners(found[0], tol)
         if gentle:
             found = found[:4] + ((_corner_note(found[0], gentle, corner_deg),),)
-    if closed and found[0].n_segments > TAUGHT_SHARE * moves and not found[0].corners and not found[4]:
+    if closed and found[0].n_segments > TAUGHT_SHARE * moves and _smooth(found):
         found = _tighter_aim(points, tol, corner_deg, fit, found)
     return found
 
