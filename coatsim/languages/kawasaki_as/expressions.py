@@ -88,6 +88,19 @@ class Cursor:
             return self.take().upper
         return None
 
+    def qualifier(self, *words: str) -> Optional[str]:
+        """Take the next token if it is one of the qualifiers ``words`` or a leading part of two
+        letters or more of exactly one of them (``ALW`` for ALWAYS): programs typed on the pendant
+        keep qualifiers shortened as they keep instruction words."""
+        tok = self.peek()
+        if tok is None or tok.kind != "name" or not tok.text.isalpha():
+            return None
+        matches = [w for w in words if w.startswith(tok.upper)]
+        if tok.upper in words or (len(tok.text) >= 2 and len(matches) == 1):
+            self.take()
+            return tok.upper if tok.upper in words else matches[0]
+        return None
+
     def expect_word(self, word: str, context: str) -> None:
         if self.word(word) is None:
             raise self.error(f"expected {word} {context}, found {self.found(self.peek())}", self.peek())

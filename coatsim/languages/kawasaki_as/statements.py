@@ -61,7 +61,7 @@ def _speed(c: StatementParser, op: str, line: int) -> Item:
         unit = f"{base}/{word}"
     elif c.word("S"):
         unit = "S"
-    always = c.word("ALWAYS") is not None
+    always = c.qualifier("ALWAYS") is not None
     if not c.at_end():
         raise c.error(f"unexpected {c.peek().show()} in SPEED; expected a unit (%, MM/S, MM/MIN, S), ALWAYS or "
                       "end of line", c.peek())
@@ -72,7 +72,7 @@ def _accuracy(c: StatementParser, op: str, line: int) -> Item:
     value = c.expr("an accuracy in mm")
     flags: set[str] = set()
     while not c.at_end():
-        word = c.word("ALWAYS", "FINE")
+        word = c.qualifier("ALWAYS", "FINE")
         if word is None:
             raise c.error(f"unexpected {c.peek().show()} in ACCURACY; expected ALWAYS, FINE or end of line", c.peek())
         if word in flags:
@@ -218,7 +218,7 @@ PARSERS: dict[str, Parser] = {
     "SPEED": _speed,
     "ACCURACY": _accuracy,
     **dict.fromkeys(("ACCEL", "DECEL"), lambda c, op, line: ast.Accel(line, op, c.expr("a percentage"),
-                                                                       c.word("ALWAYS") is not None)),
+                                                                       c.qualifier("ALWAYS") is not None)),
     **dict.fromkeys((*SWITCHES, "SWITCH"), _switch),
     "BREAK": _simple(ast.Break),
     "BRAKE": _simple(ast.Brake),
@@ -312,10 +312,29 @@ def _instruction(c: StatementParser, keyword: Token) -> str:
     full, matches = KEYWORDS.expand(word)
     if full is not None:
         return full
+    fits = [m for m in matches if _reads_as(c, m)]
+    if len(fits) == 1:
+        return fits[0]  # (SW 1001: SWAIT; a SWITCH needs a switch name)
     if matches:
         raise c.error(f"{keyword.show()} abbreviates several AS instructions ({', '.join(matches[:6])}"
                       f"{', ...' if len(matches) > 6 else ''}); write the one meant in full", keyword)
     raise c.error(f"{keyword.show()} is not an AS instruction coatsim knows", keyword)
+
+
+def _reads_as(c: StatementParser, word: str) -> bool:
+    """Whether the rest of the line reads as the instruction ``word`` (the cursor is left where it was)."""
+    if word in BLOCK_STEPS:
+        return False
+    pos, depth = c.pos, c.depth
+    try:
+        c.take()
+        PARSERS.get(word, _switch)(c, word, 0)
+        c.end(f"{word} statement")
+        return True
+    except AsSyntaxError:
+        return False
+    finally:
+        c.pos, c.depth = pos, depth
 
 
 def _is_switch_line(c: StatementParser) -> bool:
