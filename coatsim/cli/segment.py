@@ -24,7 +24,7 @@ def segment(
     closed: str = typer.Option("auto", "--closed", help="auto | yes | no: whether the curve is a closed loop."),
     theta_tol: Optional[float] = typer.Option(None, "--theta-tol", help="paper method: fixed RDP tolerance on θ instead of searching for tol."),
     output: Optional[Path] = typer.Option(None, "-o", "--output", help="Polysegment JSON to write."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="PNG of the curve (arcs and lines) and of θ with its approximation; of a 3-D curve, the curve in space and its deviation along it."),
     timings: bool = typer.Option(False, "--timings", help="Print the fitter's wall time on stderr."),
     min_segment: Optional[float] = typer.Option(None, "--min-segment", help="Shortest fitted segment, mm [default: 5 x --tol or 1/500 of the curve between corners, the longer]."),
     speed: Optional[float] = typer.Option(None, "--speed", help="Programmed speed, mm/s: no arc tighter than speed²/tool-accel where the curve allows; the rest is listed as speed-limited."),
@@ -80,10 +80,9 @@ def _segment_curve(input: str, tol: float, method: str, corner_deg: float, close
 
     curve = load_curve(input, closed) if input.startswith("builtin:") else read_any_curve(input, closed)
     if isinstance(curve, SpaceCurve):
-        if method != "optimal" or theta_tol is not None or plot is not None:
-            fail(f"{curve.name}: a 3-D curve is fitted by the default method only (no --method paper, --theta-tol "
-                 "or --plot)")
-        return _segment_space(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, output, arc_planes)
+        if method != "optimal" or theta_tol is not None:
+            fail(f"{curve.name}: a 3-D curve is fitted by the default method only (no --method paper or --theta-tol)")
+        return _segment_space(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, output, plot, arc_planes)
     seg = segment_curve(curve, tol, method=method, corner_deg=corner_deg,
                         theta_tolerance=theta_tol, min_segment_mm=min_segment, speed_mm_s=speed,
                         tool_accel_mm_s2=accel_mm_s2)
@@ -101,7 +100,7 @@ def _segment_curve(input: str, tol: float, method: str, corner_deg: float, close
 
 
 def _segment_space(curve, tol: float, corner_deg: float, min_segment: Optional[float], speed: Optional[float],
-                   accel_mm_s2: Optional[float], output: Optional[Path], arc_planes: str) -> float:
+                   accel_mm_s2: Optional[float], output: Optional[Path], plot: Optional[Path], arc_planes: str) -> float:
     """Fit a 3-D curve as a G1 chain of 3-D lines and arcs (polysegment/2); the fitter's seconds."""
     from coatsim.geometry.space.polysegment_json import write_chain_json
     from coatsim.geometry.space.segment import segment_space_curve
@@ -109,9 +108,14 @@ def _segment_space(curve, tol: float, corner_deg: float, min_segment: Optional[f
     seg = segment_space_curve(curve, tol, corner_deg, min_segment, speed, accel_mm_s2, arc_planes)
     if output is not None:
         write_chain_json(output, seg.chain, seg.tolerance_mm, seg.stats())
+    if plot is not None:
+        from coatsim.geometry.space.plots import write_space_segmentation_plot
+
+        write_space_segmentation_plot(seg, plot)
     typer.echo(seg.summary())
-    if output is not None:
-        typer.echo(f"wrote {output}")
+    for path in (output, plot):
+        if path is not None:
+            typer.echo(f"wrote {path}")
     return seg.seconds
 
 

@@ -266,10 +266,12 @@ def test_three_columns_make_a_space_curve(tmp_path):
 def test_segment_command_on_a_3d_curve(tmp_path, run_cli):
     path = tmp_path / "helix.csv"
     np.savetxt(path, FAMILIES["helix"](1500), delimiter=",")
-    out = tmp_path / "helix.json"
-    code, stdout, stderr = run_cli(["segment", str(path), "--tol", "0.1", "-o", str(out)])
+    out, plot = tmp_path / "helix.json", tmp_path / "helix.png"
+    code, stdout, stderr = run_cli(["segment", str(path), "--tol", "0.1", "-o", str(out), "--plot", str(plot)])
     assert code == 0, stderr
     assert "not planar" in stdout and json.loads(out.read_text())["format"] == "coatsim.polysegment/2"
+    png = plot.read_bytes()
+    assert png.startswith(b"\x89PNG\r\n\x1a\n") and len(png) > 20_000 and f"wrote {plot}" in stdout
     code, _, stderr = run_cli(["segment", str(path), "--method", "paper"])
     assert code == 2 and stderr.count("\n") == 1 and "default method only" in stderr
     code, _, stderr = run_cli(["segment", str(path), "--tol", "-1"])
