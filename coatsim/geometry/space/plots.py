@@ -48,8 +48,8 @@ def space_segmentation_figure_png(seg: SpaceSegmentation, dpi: int = 110) -> byt
     ax_curve.set_xlabel("x (mm)")
     ax_curve.set_ylabel("y (mm)")
     ax_curve.set_zlabel("z (mm)")
-    ax_curve.set_title(f"{seg.curve.name}: {chain.n_segments} segments, deviation {seg.max_deviation_mm:.4g} mm "
-                       f"(σ = {seg.tolerance_mm:g} mm)")
+    fig.suptitle(f"{Path(seg.curve.name).name}: {chain.n_segments} segments, deviation {seg.max_deviation_mm:.4g} mm "
+                 f"(σ = {seg.tolerance_mm:g} mm)")  # (a 3-D axes' own title is cut at the figure's edge)
     ax_curve.legend(loc="upper left", fontsize=8)
 
     s = arc_length(pts)

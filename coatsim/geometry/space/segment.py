@@ -35,9 +35,11 @@ from coatsim.geometry.space.fit import RunChain, fit_run3
 from coatsim.geometry.space.greedy import greedy_knots
 from coatsim.geometry.space.local import curvature_profile3, detect_corners3, tangent_at, arc_length, window_mm
 from coatsim.geometry.space.pose import Pose
-from coatsim.geometry.space.primitives import Arc3, place
+from coatsim.geometry.space.primitives import Arc3, Line3, Segment3, place
 from coatsim.geometry.space.principal import check_arc_planes, fit_principal, is_principal
-from coatsim.geometry.space.tube_fit import fit_tube_run
+from coatsim.geometry.space.bend import bend_arc
+from coatsim.geometry.space.straight import Straight, straight_stretches
+from coatsim.geometry.space.tube_fit import CAP_SLACK, fit_tube_run
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
 NARROWER = (0.9, 0.75, 0.5, 0.3)  # working tolerances (shares of σ) tried in turn
@@ -162,6 +164,11 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
         pose = None
         chain, dev, radius, kept, added = _fit_space(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s,
                                                      tool_accel_mm_s2)
+    shortest = min(seg.length for seg in chain.segments)
+    if min_segment_mm is not None and chain.n_segments > 1 and shortest < (1 - CAP_SLACK) * min_segment_mm:
+        raise InputError(f"{curve.name}: no chain within {tolerance_mm:g} mm was found that keeps every segment at "
+                         f"least min_segment_mm {min_segment_mm:g} mm long (the shortest is {shortest:.4g} mm); "
+                         "give a shorter one", parameters=("min_segment_mm",))
     if speed_mm_s is not None and not chain.speed_limited:
         chain = replace(chain, speed_limited=speed_limited(chain, speed_mm_s, tool_accel_mm_s2))  # type: ignore[arg-type]
     return SpaceSegmentation(curve, chain, tolerance_mm, dev, time.perf_counter() - started, pose, radius,
@@ -201,13 +208,13 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
     for a, b in zip(cuts[:-1], cuts[1:]):
         if loop:
             fitted, dev, limits = _fit_loop(curve.name, pts, tol, min_segment_mm, speed_kappa)
+            radii.append(limits.profile.tightest_radius_mm)
         else:
-            limits, window = _limits(pts[a : b + 1], False, tol, min_segment_mm, speed_kappa)
-            fitted, dev = _fit_run(curve.name, pts[a : b + 1], tol, limits, window, None)
+            fitted, dev, radius = _fit_open_run(curve.name, pts[a : b + 1], tol, min_segment_mm, speed_kappa)
+            radii.append(radius)
         segments.extend(fitted.segments)
         junctions.append(len(segments) - 1)
         kept = kept and fitted.limits_kept
-        radii.append(limits.profile.tightest_radius_mm)
         devs.append(dev)
     corner_junctions = tuple(junctions[:-1]) + ((junctions[-1],) if curve.closed and len(corners) else ())
     chain, added = _with_kinks(SpaceChain(tuple(segments), curve.closed, corner_junctions))
@@ -218,20 +225,76 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
     return chain, dev, tightest if math.isfinite(tightest) else None, kept, added
 
 
+def _fit_open_run(name: str, run: np.ndarray, tol: float, min_segment_mm: float | None,
+                  speed_kappa: float | None) -> tuple[RunChain, float, float]:
+    """An open run's chain: its straight stretches as lines (coatsim.geometry.space.straight),
+    the bends between two lines in one plane as one arc tangent to both
+    (coatsim.geometry.space.bend), the other curved stretches fitted with their end tangents
+    pinned to the lines' (where one of those then breaks its tangent or the whole misses σ,
+    the run without lines); its certified deviation and the tightest radius of its input."""
+    lines = straight_stretches(run, tol)
+    if lines:
+        fitted, _, radius = _fit_stretches(name, run, tol, min_segment_mm, speed_kappa, lines)
+        chain = SpaceChain(fitted.segments)
+        if not np.any(chain.junction_breaks() > KINK_RAD):
+            dev = hausdorff3(run, chain, tol).hausdorff
+            if dev <= tol:
+                return fitted, dev, radius
+    return _fit_stretches(name, run, tol, min_segment_mm, speed_kappa, [])
+
+
+def _fit_stretches(name: str, run: np.ndarray, tol: float, min_segment_mm: float | None, speed_kappa: float | None,
+                   lines: list[Straight]) -> tuple[RunChain, float, float]:
+    """The chain of an open run with ``lines`` standing for its straight stretches (see
+    _fit_open_run), the deviation of its last curved stretch (the run's, without lines)."""
+    segments: list[Segment3] = []
+    kept, radius, dev = True, math.inf, math.inf
+    after: Straight | None = None  # the line before the curved stretch
+    for line in [*lines, None]:
+        bend = None if after is None or line is None else bend_arc(after, line, run, tol)
+        if bend is not None:
+            after, arc, line = bend
+            segments[-1] = Line3(after.start, after.end)
+            segments += [arc, Line3(line.start, line.end)]
+            after = line
+            continue
+        head = run[:1] if after is None else after.end[None]
+        body = run[(0 if after is None else after.last) + 1 : (len(run) - 1 if line is None else line.first)]
+        tail = run[-1:] if line is None else line.start[None]
+        stretch = np.vstack((head, body, tail)) if after is not None or line is None or line.first > 0 else None
+        if stretch is not None and (len(body) or float(np.linalg.norm(stretch[-1] - stretch[0])) > 0):
+            limits, window = _limits(stretch, False, tol, min_segment_mm, speed_kappa)
+            fitted, dev = _fit_run(name, stretch, tol, limits, window, None,
+                                   None if after is None else after.direction, None if line is None else line.direction)
+            segments.extend(fitted.segments)
+            kept, radius = kept and fitted.limits_kept, min(radius, limits.profile.tightest_radius_mm)
+        if line is not None:
+            segments.append(Line3(line.start, line.end))
+            after = line
+    return RunChain(tuple(segments), kept), dev, radius
+
+
 def _fit_run(name: str, run: np.ndarray, tol: float, limits: FitLimits, window: float,
-             seam: np.ndarray | None) -> tuple[RunChain, float]:
+             seam: np.ndarray | None, start_tangent: np.ndarray | None = None,
+             end_tangent: np.ndarray | None = None) -> tuple[RunChain, float]:
     """A run's chain and its certified deviation: biarcs through the input narrowed until
     within (coatsim.geometry.space.fit), cheap and G1 but with about twice the pieces, then
     the arc spline in the tube (coatsim.geometry.space.tube_fit) searched from no more than
-    the biarcs' count (on sharp or noisy runs most of its search is spent on counts no better)."""
+    the biarcs' count (on sharp or noisy runs most of its search is spent on counts no better).
+    ``seam``: the run is a closed loop with this tangent at its seam; ``start_tangent`` and
+    ``end_tangent`` pin an open run's end tangents (a line's next to it)."""
+    if seam is not None:
+        start_tangent = end_tangent = seam
     biarcs, dev = None, math.inf
     for share in NARROWER:
-        fitted = fit_run3(run, share * tol, limits, window, seam, seam)
+        fitted = fit_run3(run, share * tol, limits, window, start_tangent, end_tangent)
         dev = hausdorff3(run, SpaceChain(fitted.segments, seam is not None), tol).hausdorff
         if dev <= tol:
             biarcs = (fitted, dev)
             break
     tube = fit_tube_run(run, tol, limits, window, seam_tangent=seam,
+                        start_tangent=None if seam is not None else start_tangent,
+                        end_tangent=None if seam is not None else end_tangent,
                         at_most=None if biarcs is None else len(biarcs[0].segments))
     if tube is not None and (biarcs is None or len(tube.segments) <= len(biarcs[0].segments)):
         return tube, tube.deviation_mm

@@ -327,3 +327,80 @@ def test_no_tangent_break_is_left_unlisted(seed, n, tol):
     fit = segment_space_curve(curve, tol)
     assert fit.max_deviation_mm <= tol
     assert fit.chain.max_tangent_break() <= 1e-9
+
+
+# --- straight stretches and bends --------------------------------------------------------------
+def _leg(a: np.ndarray, b: np.ndarray, step: float = 0.5) -> np.ndarray:
+    m = int(math.ceil(np.linalg.norm(b - a) / step))
+    return a + (b - a) * np.linspace(0, 1, m + 1)[:-1, None]
+
+
+def _bend(centre, u, w, radius, sweep, step: float = 0.5) -> np.ndarray:
+    m = int(math.ceil(radius * sweep / step))
+    t = np.linspace(0, sweep, m + 1)[:-1, None]
+    return centre + radius * (u * np.cos(t) + w * np.sin(t))
+
+
+def pipe_centreline() -> np.ndarray:
+    """Line 100, bend r 40 through 90° in XY, line 80, bend r 60 through 90° in YZ, line 120 (mm)."""
+    x, y, z = np.eye(3)
+    return np.vstack([_leg(np.r_[0.0, 0, 0], np.r_[100.0, 0, 0]), _bend(np.r_[100.0, 40, 0], -y, x, 40, math.pi / 2),
+                      _leg(np.r_[140.0, 40, 0], np.r_[140.0, 120, 0]), _bend(np.r_[140.0, 120, 60], -z, y, 60, math.pi / 2),
+                      _leg(np.r_[140.0, 180, 60], np.r_[140.0, 180, 180]), [[140.0, 180, 180]]])
+
+
+@pytest.mark.parametrize("tol", [0.05, 0.1, 0.5])
+def test_a_pipe_centreline_comes_back_as_its_lines_and_bends(tol):
+    fit = segment_space_curve(make_space_curve(pipe_centreline(), "pipe"), tol)
+    segs = fit.chain.segments
+    assert [s.kind for s in segs] == ["line", "arc", "line", "arc", "line"] and fit.chain.corners == ()
+    assert segs[1].radius == pytest.approx(40, rel=0.01) and segs[3].radius == pytest.approx(60, rel=0.01)
+    assert abs(segs[1].normal @ [0, 0, 1]) > 0.999 and abs(segs[3].normal @ [1, 0, 0]) > 0.999
+    assert [s.length for s in segs[::2]] == pytest.approx([100, 80, 120], abs=2 * tol)
+    assert fit.max_deviation_mm <= tol and brute_hausdorff(fit.curve.points, fit.chain, tol / 20) <= tol * 1.05
+    assert_g1(fit.chain)
+
+
+def _route(seed: int) -> tuple[np.ndarray, int]:
+    """Straight legs of 80-200 mm in random directions, turning 30-150° in bends of r 10-50 mm."""
+    rng = np.random.default_rng(seed)
+    legs = int(rng.integers(2, 5))
+    u = rng.normal(size=3)
+    u /= np.linalg.norm(u)
+    points, here = [], np.zeros(3)
+    for k in range(legs):
+        length = rng.uniform(80, 200)
+        points.append(_leg(here, here + u * length))
+        here = here + u * length
+        if k < legs - 1:
+            turn, radius = rng.uniform(math.radians(30), math.radians(150)), rng.uniform(10, 50)
+            w = rng.normal(size=3)
+            w -= (w @ u) * u
+            w /= np.linalg.norm(w)
+            points.append(_bend(here + radius * w, -w, u, radius, turn))
+            here = here + radius * w + radius * (-w * math.cos(turn) + u * math.sin(turn))
+            u = math.cos(turn) * u + math.sin(turn) * w
+    return np.vstack(points + [here[None]]), legs
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_pipe_routes_give_a_line_per_leg_and_an_arc_per_bend(seed):
+    points, legs = _route(seed)
+    fit = segment_space_curve(make_space_curve(points, "route", "no"), 0.1)
+    assert "".join(s.kind[0] for s in fit.chain.segments) == "la" * (legs - 1) + "l"
+    assert fit.max_deviation_mm <= 0.1 and fit.chain.corners == ()
+    assert_g1(fit.chain)
+
+
+def test_a_helix_with_straight_leads_keeps_them_as_lines():
+    t = np.linspace(0, 4 * math.pi, 1200)
+    helix = np.column_stack((50 * np.cos(t), 50 * np.sin(t), 20 * t))
+    into = np.array([0, 50, 20.0]) / math.hypot(50, 20)
+    out = np.array([-50 * math.sin(t[-1]), 50 * math.cos(t[-1]), 20.0]) / math.hypot(50, 20)
+    points = np.vstack((helix[0] - into * np.linspace(100, 0, 200, endpoint=False)[:, None], helix,
+                        helix[-1] + out * np.linspace(0, 100, 201)[1:, None]))
+    fit = segment_space_curve(make_space_curve(points, "leads"), 0.1)
+    segs = fit.chain.segments
+    assert segs[0].kind == segs[-1].kind == "line" and segs[0].length > 99 and segs[-1].length > 99
+    assert all(s.kind == "arc" for s in segs[1:-1]) and fit.max_deviation_mm <= 0.1
+    assert_g1(fit.chain)

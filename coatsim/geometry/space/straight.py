@@ -1,0 +1,146 @@
+"""Straight stretches of a space curve: where a line follows the input as far as an arc would.
+
+The arc spline of a run (coatsim.geometry.space.tube_fit) has no lines: a straight stretch
+comes back as an arc of a radius of kilometres, bowing inside σ, that a controller runs as a
+circle and a user reads as a fault (a pipe's centreline, line–bend–line–bend–line in two
+planes, came back as five arcs). A stretch is straight where the line between two input
+points keeps every point between them within LINE_SHARE σ and reaches at least ARC_SHARE of
+as far as the greedy arc from the same point does within σ (on a gently curved stretch an
+arc reaches much farther than a line, and keeps it). The chain takes such a stretch as that
+line, and the curved stretches between lines are fitted with their end tangents pinned to
+the lines' directions, so the chain stays G1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from coatsim.geometry.space.greedy import farthest
+from coatsim.geometry.space.local import arc_length
+
+LINE_SHARE = 0.5  # a straight stretch's line keeps the input within this share of σ, ...
+MIN_SIGMAS = 50.0  # ... is at least this many σ long (a piece of a bend's end is shorter), ...
+SAG_SHARE, REF_SIGMAS = 0.25, 100.0  # ... and bends so little that a chord of its length (or of REF_SIGMAS σ,
+                                     # the longer: a curved tail is no line) stays within SAG_SHARE σ
+JOIN_GAP = 2  # two straight stretches this few input points apart are one, where one line keeps them
+SKIP = 4  # where a line from a point is no straight stretch, the next is tried this share of its reach on
+END_SHARE = 0.05  # the line ends where the input leaves it by this share of σ: a line drawn on into a bend
+                  # leaves the next arc a tangent the curve has already turned from (2 mm into a bend of
+                  # r 40 mm, 2.9 degrees: no honest arc then follows within σ)
+
+
+@dataclass(frozen=True, eq=False)
+class Straight:
+    """Input points ``first`` to ``last`` (indices) stood for by the line from ``start`` to
+    ``end`` (mm; the run's own end point where the stretch reaches it)."""
+
+    first: int
+    last: int
+    start: np.ndarray
+    end: np.ndarray
+
+    @property
+    def direction(self) -> np.ndarray:
+        d = self.end - self.start
+        return d / np.linalg.norm(d)
+
+
+def straight_stretches(points: np.ndarray, tolerance: float) -> list[Straight]:
+    """The straight stretches of a run of input points (n, 3), in order and not overlapping
+    (see the module text)."""
+    n, s = len(points), arc_length(points)
+    out: list[Straight] = []
+    i = 0
+    while i < n - 1:
+        j = farthest(i, n, lambda a, b: _line_fits(points, a, b, LINE_SHARE * tolerance))
+        if s[j] - s[i] >= MIN_SIGMAS * tolerance and j - i >= 2 and _unbent(points, i, j, tolerance):
+            line = _trimmed(points, i, _onwards(points, i, j, END_SHARE * tolerance), END_SHARE * tolerance)
+            if line is not None and float(np.linalg.norm(line.end - line.start)) >= MIN_SIGMAS * tolerance:
+                joined = _joined(points, out[-1], line, tolerance) if out else None
+                if joined is not None:
+                    out[-1] = joined
+                else:
+                    out.append(line)
+                i = max(j, line.last)
+                continue
+        i += max(1, (j - i) // SKIP)
+    return out
+
+
+def _unbent(points: np.ndarray, i: int, j: int, tolerance: float) -> bool:
+    """Whether points i..j bend by no more than a line allows: the curvature of the parabola
+    fitted to their offsets from their least-squares line (least squares: noise averages out,
+    where a curve's offsets grow as the square of the distance) would take a chord of
+    max(its length, REF_SIGMAS σ) no more than SAG_SHARE σ off it."""
+    stretch = points[i : j + 1]
+    centre = stretch.mean(axis=0)
+    u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    t = (stretch - centre) @ u
+    offsets = stretch - centre - t[:, None] * u
+    basis = np.column_stack((np.ones_like(t), t, t * t))
+    bend = np.linalg.lstsq(basis, offsets, rcond=None)[0][2]  # offset = ... + bend t²: curvature 2|bend|
+    chord = max(float(t.max() - t.min()), REF_SIGMAS * tolerance)
+    return 2.0 * float(np.linalg.norm(bend)) * chord * chord / 8.0 <= SAG_SHARE * tolerance
+
+
+def _joined(points: np.ndarray, first: Straight, second: Straight, tolerance: float) -> Straight | None:
+    """One line for two straight stretches that meet (a line searched from a point where the
+    input is still leaving a bend can stop in the middle of the straight after it), or None
+    where one line does not keep the input of both within LINE_SHARE σ."""
+    if second.first - first.last > JOIN_GAP or not _line_fits(points, first.first, second.last, LINE_SHARE * tolerance):
+        return None
+    return _trimmed(points, first.first, second.last, END_SHARE * tolerance)
+
+
+def _onwards(points: np.ndarray, i: int, j: int, band: float) -> int:
+    """j, or the last of the points after it that stay within ``band`` of the least-squares line of
+    points i..j one after another (a line searched from a point still inside the bend before it
+    stops short of where the straight stretch ends)."""
+    stretch = points[i : j + 1]
+    centre = stretch.mean(axis=0)
+    u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    rel = points[j + 1 :] - centre
+    off = np.linalg.norm(rel - (rel @ u)[:, None] * u, axis=1)
+    out = np.flatnonzero(off > band)
+    return j + (int(out[0]) if len(out) else len(rel))
+
+
+def _trimmed(points: np.ndarray, i: int, j: int, band: float) -> Straight | None:
+    """The least-squares line of points i..j (through the run's end point where the stretch
+    reaches it), from the projection of the first point within ``band`` of it to that of the
+    last (the run's own end point there), or None where fewer than two points lie within the band."""
+    stretch, n = points[i : j + 1], len(points)
+    if i == 0 and j == n - 1:  # the whole run: the line between its ends
+        centre, u = points[0], (points[-1] - points[0]) / np.linalg.norm(points[-1] - points[0])
+    elif i == 0 or j == n - 1:  # through the run's end it reaches (where the chain must start or end)
+        centre = points[0] if i == 0 else points[-1]
+        u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    else:
+        centre = stretch.mean(axis=0)
+        u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    u = u if (points[j] - points[i]) @ u > 0 else -u
+    t = (stretch - centre) @ u
+    off = np.linalg.norm(stretch - centre - t[:, None] * u, axis=1)
+    near = np.flatnonzero(off <= band)
+    if len(near) < 2:
+        return None
+    a, b = int(near[0]), int(near[-1])
+    start = points[0].copy() if i + a == 0 else centre + t[a] * u
+    end = points[-1].copy() if i + b == n - 1 else centre + t[b] * u
+    return Straight(i + a, i + b, start, end)
+
+
+def _line_fits(points: np.ndarray, i: int, j: int, within: float) -> bool:
+    a, b = points[i], points[j]
+    d = b - a
+    length = float(np.linalg.norm(d))
+    if j - i < 2:
+        return True
+    if length == 0.0:
+        return False
+    u = d / length
+    rel = points[i : j + 1] - a
+    t = np.clip(rel @ u, 0.0, length)
+    return float(np.linalg.norm(rel - t[:, None] * u, axis=1).max()) <= within
