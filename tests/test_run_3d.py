@@ -167,3 +167,28 @@ def test_a_gun_mounted_at_an_angle_coats_the_tube_as_the_straight_one(tube_run, 
     for group, key, rel in (("coating", "thickness_mean_um", 1e-3), ("coating", "thickness_cv", 1e-2),
                             ("motion", "cycle_time_s", 1e-2), ("motion", "min_speed_ratio", 1e-3)):
         assert angled[group][key] == pytest.approx(ref[group][key], rel=rel), (group, key)
+
+
+def test_a_part_wound_inwards_is_coated_as_the_same_part_wound_outwards(tube_run, tmp_path) -> None:
+    """The tube's file with every triangle (and then a strip of them) wound the other way: the
+    planner turns them, and the coat and the cell must see the surface it planned on (the coat
+    took the file's winding, found the region of interest empty and refused the run)."""
+    import trimesh
+    import yaml
+
+    doc = yaml.safe_load(tube_run[1].read_text(encoding="utf-8"))
+    mesh = trimesh.load(doc["part"]["mesh"], force="mesh", process=False)
+    ref = json.loads((tube_run[0].outdir / "metrics.json").read_text(encoding="utf-8"))["variants"]["polysegment"]
+    for label, flipped in (("all", np.ones(len(mesh.faces), bool)), ("strip", np.arange(len(mesh.faces)) % 7 == 0)):
+        faces = mesh.faces.copy()
+        faces[flipped] = faces[flipped][:, ::-1]
+        path = tmp_path / f"tube_{label}.stl"
+        trimesh.Trimesh(mesh.vertices, faces, process=False).export(path)
+        doc["part"]["mesh"], doc["variants"] = str(path), ["polysegment"]
+        scenario = tmp_path / f"{label}.yaml"
+        scenario.write_text(yaml.safe_dump(doc, sort_keys=False), encoding="utf-8")
+        result = run_scenario(scenario, tmp_path / label, fast=True, progress=False, report=False)
+        check_run(result, ["polysegment"])
+        got = json.loads((tmp_path / label / "metrics.json").read_text(encoding="utf-8"))["variants"]["polysegment"]
+        for key in ("thickness_mean_um", "thickness_cv", "coated_fraction"):
+            assert got["coating"][key] == pytest.approx(ref["coating"][key], rel=1e-6, abs=1e-9), (label, key)

@@ -27,6 +27,7 @@ from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.geometry.surface import Box, Everything, Facing, PlanOptions, load_part, plan, write_surfacepaths
 from coatsim.geometry.surface import SurfacePaths as Plan
 from coatsim.geometry.surface.mesh import Part
+from coatsim.geometry.surface.planner import outward_faces
 from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions
@@ -124,12 +125,13 @@ def part_job(loaded: ScenarioFile, cell: Cell, out: Path, fast: bool, part: Part
     matrix = np.eye(4)
     matrix[:3, :3], matrix[:3, 3] = pose.rotation, pose.translation_mm
     spacing = spec.fast.coating_spacing_mm if fast else spec.coating.spacing_mm
+    faces = outward_faces(part, region_of(spec.part.region))
     try:
-        surface = mesh_surface(part.vertices_mm, part.faces, spacing, matrix, spec.part.mesh)
+        surface = mesh_surface(part.vertices_mm, faces, spacing, matrix, spec.part.mesh)
     except InputError as exc:
         raise InputError(f"{loaded.where('coating', 'spacing_mm')}: {exc}") from None
     away = away_from_border(surface, edge_band_width(model, spec.coating.edge_band_mm), spacing)
-    placed = with_part(cell, PartMesh(pose.apply(part.vertices_mm), part.faces))
+    placed = with_part(cell, PartMesh(pose.apply(part.vertices_mm), faces))
     sample = spec.fast.sample_step_mm if fast else defaults.STEP_MM
     return PartJob(loaded, planned, program_input(planned, pose, PATHS_FILE), surface, model, placed, out, sample,
                    spacing, away)

@@ -81,7 +81,7 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
                          f"export the part as {', '.join(s[1:].upper() for s in MESH_SUFFIXES)}")
     data = read_input(path, "part mesh", "plan_mesh_bytes")
     if path.suffix.lower() == ".stl":
-        _check_binary_stl(path, data)
+        _check_stl(path, data)
     try:
         mesh = trimesh.load(str(path), force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for malformed files
@@ -99,10 +99,19 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
     return _part(str(path), hashlib.sha256(data).hexdigest(), vertices, faces, units, file_units)
 
 
-def _check_binary_stl(path: Path, data: bytes) -> None:
+def _check_stl(path: Path, data: bytes) -> None:
     """A binary STL states its triangle count: refuse a truncated file, and one over the budget
-    before it is read. (A file that starts with 'solid' and is not binary-sized is ASCII.)"""
-    if len(data) < 84 or (data[:5].lower() == b"solid" and (len(data) - 84) % 50 != 0):
+    before it is read. An ASCII one (it starts with 'solid' and is not binary-sized) closes every
+    facet it opens and ends with 'endsolid': refuse one cut off (its reader keeps nothing of it)."""
+    if data[:5].lower() == b"solid" and (len(data) < 84 or (len(data) - 84) % 50 != 0):
+        text = data.lower()
+        opened, closed = text.count(b"facet normal"), text.count(b"endfacet")
+        if opened != closed or b"endsolid" not in text[-4096:]:
+            raise InputError(f"{path}: the ASCII STL is cut off ({opened} facets begun, {closed} ended"
+                             f"{'' if b'endsolid' in text[-4096:] else ', no endsolid'}); the file is truncated or "
+                             "damaged, export it again")
+        return
+    if len(data) < 84:
         return
     count = int.from_bytes(data[80:84], "little")
     if len(data) != 84 + 50 * count:

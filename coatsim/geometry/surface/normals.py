@@ -46,6 +46,10 @@ FLAT_FACE_SMOOTHING_LENGTHS = 2.0
 PHONG_SHAPE = 0.5
 #: a probe counts as behind a face when more than this fraction of its step behind it (kept_outward)
 BEHIND_FRACTION = 1e-3
+#: an open piece whose net facing towards the gun is below this share of its area, ...
+FACING_SHARE = 0.05
+#: ... and whose volume about its own centre is above this share of (area/2)^1.5, wraps round (_outward)
+WRAP_SHARE = 0.01
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,7 +118,9 @@ def _closed_pieces(edges: Edges, piece: np.ndarray, n_pieces: int) -> np.ndarray
 
 def _outward(vertices: np.ndarray, faces: np.ndarray, piece: np.ndarray, n_pieces: int, closed: np.ndarray,
              toward: np.ndarray | None) -> np.ndarray:
-    """Which pieces to flip: closed ones with negative volume, open ones facing away from ``toward``."""
+    """Which pieces to flip: closed ones with negative volume; open ones facing away from
+    ``toward``, or, where they face it and away from it alike but wrap round (a pipe seen from
+    its side, whose net facing is nil), with a negative volume about their own centre."""
     a, b, c = (vertices[faces[:, k]] for k in range(3))
     centre = vertices.mean(axis=0)
     volume = np.bincount(piece, weights=np.einsum("ij,ij->i", a - centre, np.cross(b - centre, c - centre)),
@@ -124,7 +130,14 @@ def _outward(vertices: np.ndarray, faces: np.ndarray, piece: np.ndarray, n_piece
         area_normal = np.cross(b - a, c - a)
         facing = np.bincount(piece, weights=area_normal @ toward, minlength=n_pieces)
         total = np.bincount(piece, weights=np.linalg.norm(area_normal, axis=1), minlength=n_pieces)
-        flip |= ~closed & (facing < -1e-6 * total)
+        # about its own centre, an open piece that wraps round (a pipe, a tube without its ends)
+        # has the volume sign of the closed part it is most of
+        mid = (a + b + c) / 3
+        own = np.column_stack([np.bincount(piece, weights=mid[:, k], minlength=n_pieces) for k in range(3)])
+        own = (own / np.maximum(np.bincount(piece, minlength=n_pieces), 1)[:, None])[piece]
+        wrap = np.bincount(piece, weights=np.einsum("ij,ij->i", a - own, np.cross(b - own, c - own)), minlength=n_pieces)
+        wraps = (np.abs(facing) <= FACING_SHARE * total) & (np.abs(wrap) > WRAP_SHARE * (total / 2) ** 1.5)
+        flip |= ~closed & np.where(wraps, wrap < 0, facing < -1e-6 * total)
     return flip
 
 

@@ -175,11 +175,9 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     manifold and cut along sharp edges) and unit vertex normals (smoothed within each feature
     region, over the region and the surface running on past it); and the part's own facets
     wound outward."""
-    oriented = orient(part.vertices_mm, part.faces, None)
-    toward, why = _toward(o.region, part.vertices_mm, oriented)
+    oriented, toward, why = _oriented(part, o.region)
     if isinstance(o.region, Box):
         notes.append(f"box region: the gun comes from ({', '.join(f'{round(x, 6) + 0.0:.3g}' for x in toward)}), {why}")
-    oriented = orient(part.vertices_mm, part.faces, toward)
     notes.extend(oriented.notes)
     if oriented.flipped:
         notes.append(f"turned {oriented.flipped} of {len(part.faces)} triangles to a consistent outward winding")
@@ -215,6 +213,20 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     normals = smooth_normals(sv, sf, s.smoothing_mm, facets.normals(sv, vertex_normals(sv, sf)))
     rv, rf, parent = submesh(sv, sf, inside)
     return rv, rf, normals[parent], facets
+
+
+def _oriented(part: Part, region: RegionSpec) -> tuple[Orientation, np.ndarray, str]:
+    """The part's triangles wound consistently and outward, open pieces towards the gun's side
+    of ``region``; that side and what it is (see _toward)."""
+    toward, why = _toward(region, part.vertices_mm, orient(part.vertices_mm, part.faces, None))
+    return orient(part.vertices_mm, part.faces, toward), toward, why
+
+
+def outward_faces(part: Part, region: RegionSpec) -> np.ndarray:
+    """The part's triangles (m, 3) wound as the planner winds them for ``region``: the coat and
+    the cell must see the surface the passes were planned on (a file wound inwards, or with
+    some triangles the other way, is turned)."""
+    return _oriented(part, region)[0].faces
 
 
 def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> tuple[np.ndarray, str]:

@@ -10,6 +10,7 @@ import trimesh
 from coatsim.core.budgets import MAX_PLAN_MESH_BYTES
 from coatsim.core.errors import InputError
 from coatsim.geometry.surface import Everything, Facing, load_part, part_from_arrays, plan
+from coatsim.geometry.surface.normals import face_normals, orient
 from surface_helpers import grid, options
 
 
@@ -82,6 +83,17 @@ def test_a_truncated_binary_stl_is_refused(tmp_path):
     data = (tmp_path / "box.stl").read_bytes()
     _write(tmp_path / "cut.stl", data[: len(data) // 2])
     with pytest.raises(InputError, match="truncated or damaged"):
+        load_part(tmp_path / "cut.stl")
+
+
+@pytest.mark.parametrize("cut", [0.5, 0.999])
+def test_an_ascii_stl_cut_off_is_refused_as_truncated_not_as_a_point_cloud(tmp_path, cut):
+    """A cut-off ASCII STL read as nothing at all: it was called a point cloud to mesh."""
+    trimesh.creation.icosphere().export(tmp_path / "ball.stl", file_type="stl_ascii")
+    data = (tmp_path / "ball.stl").read_bytes()
+    assert len(load_part(tmp_path / "ball.stl").faces) == 1280
+    _write(tmp_path / "cut.stl", data[: int(len(data) * cut)])
+    with pytest.raises(InputError, match=r"the ASCII STL is cut off \(\d+ facets begun, \d+ ended.*truncated or damaged"):
         load_part(tmp_path / "cut.stl")
 
 
@@ -214,3 +226,24 @@ def test_caps_that_the_raster_planes_cross_edge_on_get_their_own_passes(axis):
     assert np.isclose(height.min(), -60.0) and np.isclose(height.max(), 60.0)
     assert paths.stats.coverage > 0.95
     assert any("rastered along their own longest axis" in n for n in paths.notes), paths.notes
+
+
+@pytest.mark.parametrize("length", [200.0, 60.0])
+def test_an_open_pipe_wound_inwards_is_turned_outwards_when_seen_from_its_side(length):
+    """A tube without its ends, its axis across the gun's way: its net facing towards the gun is
+    nil, so the facing decides nothing; its volume about its own centre does (a short stub too)."""
+    t = np.linspace(0, 2 * np.pi, 49)[:-1]
+    ring = np.column_stack((np.zeros_like(t), 40 * np.cos(t), 40 * np.sin(t)))
+    vertices = np.vstack([ring + [x, 0, 0] for x in np.linspace(0, length, 11)])
+    faces = []
+    for i in range(10):
+        for k in range(48):
+            a, b, c, d = i * 48 + k, i * 48 + (k + 1) % 48, (i + 1) * 48 + k, (i + 1) * 48 + (k + 1) % 48
+            faces += [[a, b, d], [a, d, c]]
+    faces = np.array(faces)
+    for wound in (faces, faces[:, ::-1]):
+        oriented = orient(vertices, wound, np.array([0.0, 0.0, 1.0]))
+        normals, _ = face_normals(vertices, oriented.faces)
+        centres = vertices[oriented.faces].mean(axis=1)
+        radial = centres * [0.0, 1.0, 1.0]
+        assert (np.einsum("ij,ij->i", normals, radial) > 0).all()
