@@ -30,7 +30,7 @@ METRICS: dict[str, MetricInfo] = {
     "segmentation.curve_length_mm": MetricInfo("mm", "length of the programmed curve (without run-in and run-out)"),
     "segmentation.max_curvature_jump_per_mm": MetricInfo("1/mm", "largest curvature change at a junction that is not a corner (a tool at speed v feels v² x this as a step of its sideways acceleration; 0 for a polyline)"),
     # motion: the simulated arm running the program text (the robot stage's motion metrics)
-    "motion.programmed_speed_mm_s": MetricInfo("mm/s", "tool speed the program asks for on the curve"),
+    "motion.programmed_speed_mm_s": MetricInfo("mm/s", "tool speed the program asks for on the curve (the largest, where the speed is on the trace and each move asks its own; the other motion figures then measure the tool against each move's)"),
     "motion.curve_length_mm": MetricInfo("mm", "length of the curve proper along the programmed path (run-in and run-out excluded)"),
     "motion.cycle_time_s": MetricInfo("s", "time the simulated tool takes over the curve proper"),
     "motion.ideal_time_s": MetricInfo("s", "curve length / programmed speed: the cycle time of a tool that never slows down"),

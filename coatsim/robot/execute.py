@@ -84,6 +84,15 @@ def _curves_proper(toolpath: ToolPath, ref: ReferencePath) -> tuple[list[tuple[f
     return spans, float(speed)
 
 
+def _asked(toolpath: ToolPath, ref: ReferencePath, progress_mm: np.ndarray) -> np.ndarray:
+    """The speed each log row's move asks for (n,) mm/s: with the speed on the trace, every move
+    of a pass has its own (see coatsim.path.surface_program), and the tool is measured against it."""
+    k = np.clip(np.searchsorted(ref.offsets, progress_mm, side="right") - 1, 0, len(ref.moves) - 1)
+    speeds = np.array([m.settings.speed_mm_s for m in toolpath.moves])
+    move = ref.moves[k]
+    return np.where(move >= 0, speeds[np.maximum(move, 0)], speeds[0])
+
+
 def _allowances(toolpath: ToolPath, n: int) -> list[CurveAllowance]:
     """Where the program's record says each curve proper allows the programmed speed (no record:
     everywhere but near the rest points at the ends)."""
@@ -155,8 +164,9 @@ def _measure(toolpath: ToolPath, cell: Cell, run: Playback, path: JointPath) -> 
     trace = trace_metrics(log, spans, speed, target, standoff, cell.tool_accel_mm_s2, allowances)
     residual = path.residual
     limits = (curvature, cell.tool_accel_mm_s2, cell.v_max, cell.a_max, (residual.position_mm, residual.rotation_deg))
-    metrics = motion_metrics(log, spans, speed, *limits, allowances)
-    per_contour = tuple(motion_metrics(log, span, speed, *limits, allowance) for span, allowance in zip(spans, allowances)) \
+    asked = _asked(toolpath, ref, progress) if process.speed_on == "trace" else speed
+    metrics = motion_metrics(log, spans, asked, *limits, allowances)
+    per_contour = tuple(motion_metrics(log, span, asked, *limits, allowance) for span, allowance in zip(spans, allowances)) \
         if len(spans) > 1 else (metrics,)
     return Execution(log=log, metrics=metrics, events=(), residual=residual, reference=ref,
                      curve=(spans[0][0], spans[-1][1]), warnings=toolpath.warnings, curves=tuple(spans),

@@ -94,7 +94,7 @@ def allowed_by_curve(s_mm: np.ndarray, length_mm: float, speed_mm_s: float, tool
     return ok
 
 
-def _stops(speed: np.ndarray, programmed: float) -> int:
+def _stops(speed: np.ndarray, programmed: float | np.ndarray) -> int:
     """Number of times the tool comes to rest inside the window.
 
     A stop is a run below STOPPED of the programmed speed; two runs are one stop unless the
@@ -127,7 +127,7 @@ def _window(log: TrajectoryLog, curve: tuple[float, float]) -> slice:
 def motion_metrics(
     log: TrajectoryLog,
     curve: tuple[float, float] | Sequence[tuple[float, float]],
-    speed_mm_s: float,
+    speed_mm_s: float | np.ndarray,
     path_curvature: np.ndarray,
     tool_accel_mm_s2: float,
     v_max: np.ndarray,
@@ -140,20 +140,25 @@ def motion_metrics(
     speeds and path errors are taken over all their rows together, fractions are of their
     total length).
 
-    ``path_curvature`` (n,) is the programmed curvature at each row's closest point; the
+    ``speed_mm_s``: the programmed speed, or the programmed speed at each row (n,) where it
+    varies along the curve (the speed on the trace: every ratio is then to the row's own, the
+    largest is reported). ``path_curvature`` (n,) is the programmed curvature at each row's closest point; the
     "feasible" fraction counts only rows where speed^2 * curvature <= ``tool_accel_mm_s2``.
     ``allowance`` says where the curve allows the programmed speed (for ``min_speed_ratio``).
     """
     curves = [curve] if np.ndim(curve) == 1 else list(curve)
     allowances = [allowance] * len(curves) if isinstance(allowance, CurveAllowance) else list(allowance)
     windows = [_window(log, c) for c in curves]
+    asked = np.broadcast_to(np.asarray(speed_mm_s, dtype=float), (len(log),))  # programmed speed at each row
+    top = float(max(asked[w].max() for w in windows))
     speeds = [log.speed[w] for w in windows]
     steps = [np.linalg.norm(np.diff(log.position[w], axis=0), axis=1) for w in windows]
-    fast = np.concatenate([v[:-1] >= AT_SPEED * speed_mm_s for v in speeds])
-    feasible = np.concatenate([(speed_mm_s**2 * path_curvature[w][:-1]) <= tool_accel_mm_s2 for w in windows])
-    allowed = np.concatenate([allowed_by_curve(log.progress[w] - a, b - a, speed_mm_s, tool_accel_mm_s2, al)
+    fast = np.concatenate([v[:-1] >= AT_SPEED * asked[w][:-1] for v, w in zip(speeds, windows)])
+    feasible = np.concatenate([(asked[w][:-1] ** 2 * path_curvature[w][:-1]) <= tool_accel_mm_s2 for w in windows])
+    allowed = np.concatenate([allowed_by_curve(log.progress[w] - a, b - a, top, tool_accel_mm_s2, al)
                               for w, (a, b), al in zip(windows, curves, allowances)])
     speed, step = np.concatenate(speeds), np.concatenate(steps)
+    ratio = speed / np.concatenate([asked[w] for w in windows])
     travelled = float(step.sum())
     dt = float(np.median(np.diff(log.t)))
     qd = np.gradient(log.q, dt, axis=0)
@@ -162,10 +167,10 @@ def motion_metrics(
     mean = float(speed.mean())
     length = float(sum(b - a for a, b in curves))
     return MotionMetrics(
-        programmed_speed_mm_s=float(speed_mm_s),
+        programmed_speed_mm_s=top,
         curve_length_mm=length,
         cycle_time_s=float(sum(log.t[w.stop - 1] - log.t[w.start] for w in windows)),
-        ideal_time_s=float(length / speed_mm_s),
+        ideal_time_s=float(length / top) if np.ndim(speed_mm_s) == 0 else _ideal_time(steps, [asked[w] for w in windows], length),
         total_time_s=float(log.t[-1]),
         mean_speed_mm_s=mean,
         min_speed_mm_s=float(speed.min()),
@@ -173,8 +178,8 @@ def motion_metrics(
         fraction_at_speed=float(step[fast].sum() / travelled) if travelled > 0 else 0.0,
         fraction_at_speed_feasible=float(step[fast & feasible].sum() / step[feasible].sum())
         if step[feasible].sum() > 0 else 0.0,
-        min_speed_ratio=float(speed[allowed].min() / speed_mm_s) if allowed.any() else None,
-        stops=sum(_stops(v, speed_mm_s) for v in speeds),
+        min_speed_ratio=float(ratio[allowed].min()) if allowed.any() else None,
+        stops=sum(_stops(v, asked[w]) for v, w in zip(speeds, windows)),
         max_path_error_mm=float(err.max()),
         rms_path_error_mm=float(np.sqrt(np.mean(err**2))),
         max_joint_speed_ratio=float(np.max(np.abs(qd) / v_max)),
@@ -182,6 +187,12 @@ def motion_metrics(
         max_ik_residual_mm=float(ik_residual[0]),
         max_ik_residual_deg=float(ik_residual[1]),
     )
+
+
+def _ideal_time(steps: list[np.ndarray], asked: list[np.ndarray], length_mm: float) -> float:
+    """Seconds the curve takes at the speed asked at each row (the log's steps scaled to its length)."""
+    step, pace = np.concatenate(steps), np.concatenate([a[:-1] for a in asked])
+    return float((step / pace).sum() * length_mm / max(float(step.sum()), 1e-300))
 
 
 def spot_speed(t: np.ndarray, position_mm: np.ndarray, axis: np.ndarray, standoff_mm: float) -> np.ndarray:

@@ -107,3 +107,28 @@ def test_the_sprayed_header_decides_whether_the_leads_are_part_of_the_curve(cell
     with_leads = execute(ToolPath(line.name, line.moves, ProcessInfo(lead_in_mm=20.0, lead_out_mm=30.0)), cell)
     assert with_leads.metrics.curve_length_mm == pytest.approx(250.0, abs=1e-6)
 
+
+
+def test_a_speed_that_varies_along_the_curve_is_the_measure_of_each_row():
+    """With the speed on the trace every move asks its own: a tool at 300 mm/s where 300 is asked
+    and at 600 where 600 is, slowed to 25 mm/s in the first half, runs at speed everywhere but
+    there, and that slowing is no stop (5 % of 300 is 15); measured against the largest (600)
+    half the curve was slow and the dip a stop."""
+    from coatsim.robot.motion_metrics import motion_metrics
+    from coatsim.robot.trajectory_log import TrajectoryLog
+
+    s = np.linspace(0.0, 200.0, 2001)
+    asked = np.where(s < 100.0, 300.0, 600.0)
+    speed = asked.copy()
+    speed[(s > 80) & (s < 82)] = 25.0
+    t = np.concatenate(([0.0], np.cumsum(np.diff(s) / speed[1:])))
+    log = TrajectoryLog(t=t, position=np.column_stack((s, 0 * s, 0 * s)), axis=np.tile([0, 0, -1.0], (len(s), 1)),
+                        speed=speed, spray=np.ones(len(s), bool), progress=s, path_error=0 * s,
+                        q=np.zeros((len(s), 6)), trace_speed=speed)
+    args = (np.zeros(len(s)), A, np.full(6, 1e9), np.full(6, 1e9), (0.0, 0.0))
+    rows = motion_metrics(log, (0.0, 200.0), asked, *args)
+    flat = motion_metrics(log, (0.0, 200.0), 600.0, *args)
+    assert rows.stops == 0 and flat.stops == 1
+    assert rows.fraction_at_speed == pytest.approx(0.99, abs=0.005) and flat.fraction_at_speed == pytest.approx(0.5, abs=0.01)
+    assert rows.min_speed_ratio == pytest.approx(25 / 300) and rows.programmed_speed_mm_s == 600.0
+    assert rows.ideal_time_s == pytest.approx(100 / 300 + 100 / 600, rel=1e-3)
