@@ -233,16 +233,41 @@ class Facets:
         good = np.isfinite(weights).all(axis=1)
         return held[good], by[good], weights[good]
 
-    def largest_lift_mm(self) -> float:
-        """An upper bound on how far ``lifted`` moves a point: a point p of face f moves by
-        PHONG_SHAPE * sum_i b_i |(p - v_i) . n_i| <= PHONG_SHAPE * (f's longest edge) * (the
-        largest sine between f's normal and a corner normal of f), as (p - v_i) lies in f's plane."""
-        if not len(self.faces):
-            return 0.0
+    def widths_mm(self) -> np.ndarray:
+        """Each face's smallest width (m,): twice its area over its longest edge."""
         triangles = self.vertices[self.faces]
         longest = np.linalg.norm(triangles - np.roll(triangles, -1, axis=1), axis=2).max(axis=1)
+        area = 0.5 * np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]),
+                                    axis=1)
+        return 2.0 * area / np.maximum(longest, 1e-300)
+
+    def folded(self, width_mm: float) -> np.ndarray:
+        """Faces (m,) a scan's noise folded over, or that are too narrow to say which way they
+        face: narrower than ``width_mm``, or facing against the area-weighted mean of the faces
+        sharing their edges (an overhanging wall's faces face with their neighbours)."""
+        edges = mesh_edges(self.faces)
+        pairs, _ = face_pairs(self.faces, edges)
+        _, area = face_normals(self.vertices, self.faces)
+        around = np.zeros_like(self.face_n)
+        weighted = self.face_n * area[:, None]
+        np.add.at(around, pairs[:, 0], weighted[pairs[:, 1]])
+        np.add.at(around, pairs[:, 1], weighted[pairs[:, 0]])
+        return (self.widths_mm() < width_mm) | (np.einsum("ij,ij->i", self.face_n, around) < 0)
+
+    def lift_caps_mm(self) -> np.ndarray:
+        """The most each face (m,) lets ``lifted`` move a point: PHONG_SHAPE times the face's
+        smallest width (twice its area over its longest edge) times the largest sine between
+        its normal and a corner normal. On a well-shaped facet the smooth surface lies within it
+        (a sphere's equilateral facet of side a sags a²/6R, the cap is a²/4R); a long thin one (a
+        CAD fillet's strip the length of the part) has corner normals turning along its length
+        that no curvature there explains, and uncapped, halfway to their tangent planes threw
+        pass points 4.7 mm off a filleted box whose facets sag 0.3 mm."""
         cos = np.clip(np.einsum("ijk,ik->ij", self.corners, self.face_n), -1.0, 1.0)
-        return float(PHONG_SHAPE * (longest * np.sqrt(1.0 - cos**2).max(axis=1)).max())
+        return PHONG_SHAPE * self.widths_mm() * np.sqrt(1.0 - cos**2).max(axis=1)
+
+    def largest_lift_mm(self) -> float:
+        """An upper bound on how far ``lifted`` moves a point (the largest of lift_caps_mm)."""
+        return float(self.lift_caps_mm().max()) if len(self.faces) else 0.0
 
     def normals(self, points: np.ndarray, side: np.ndarray) -> np.ndarray:
         """Unit normals (p, 3) at ``points`` on the facets, interpolated linearly across the face
@@ -262,13 +287,16 @@ class Facets:
         half, ``PHONG_SHAPE``, is exact to second order on a circle or a sphere, where the whole
         way overshoots by the facet's own sagitta). Along the normal, so that the tool point
         stays on the normal's ray (a sphere's passes keep their tool points on the sphere's
-        radii); on a flat face a point stays put; a point on no face stays."""
+        radii); on a flat face a point stays put; a point on no face stays; no point moves more
+        than its face's cap (lift_caps_mm)."""
         held, by, weights = self._holding(points, side)
         offset = points[held, None, :] - self.vertices[self.faces[by]]
         height = np.einsum("ijk,ijk->ij", offset, self.corners[by])
         move = -PHONG_SHAPE * np.einsum("ij,ijk->ik", weights * height, self.corners[by])
+        cap = self.lift_caps_mm()[by]
+        along = np.clip(np.einsum("ij,ij->i", move, side[held]), -cap, cap)
         out = points.copy()
-        out[held] = points[held] + np.einsum("ij,ij->i", move, side[held])[:, None] * side[held]
+        out[held] = points[held] + along[:, None] * side[held]
         return out
 
 
@@ -305,15 +333,17 @@ def largest_angle_deg(vertex_normals_: np.ndarray, faces: np.ndarray, normals_of
 
 
 def kept_outward(points: np.ndarray, normals: np.ndarray, boxes: TriangleBoxes, face_n: np.ndarray,
-                 tolerance: float) -> tuple[np.ndarray, int]:
+                 tolerance: float, ignored: np.ndarray | None = None) -> tuple[np.ndarray, int]:
     """Unit normals at points made to leave the (outward-wound) part: a normal whose first step
     (``tolerance`` long) goes behind the faces touching its point (the floor's normal at the foot
     of an overhanging wall, smoothing across a concave crease it cannot follow) becomes the mean
     of the touching faces' normals, or failing that the normal of the nearest face to that step.
-    ``boxes`` holds the part's faces, ``face_n`` their unit outward normals. Returns the normals
-    and how many were changed."""
+    ``boxes`` holds the part's faces, ``face_n`` their unit outward normals; faces ``ignored``
+    (m,) judge nothing (a scan's slivers, which its noise folds over: a normal "behind" one was
+    turned to a mean of the faces there 86-113 deg off its neighbours'). Returns the normals and
+    how many were changed."""
     owner, face, distance = boxes.touching(points, tolerance)
-    keep = distance <= tolerance
+    keep = (distance <= tolerance) & (True if ignored is None else ~ignored[face])
     owner, face = owner[keep], face[keep]
     probes = points + tolerance * normals
     bad = np.flatnonzero(_behind(probes, owner, face, boxes.triangles, face_n, len(points), BEHIND_FRACTION * tolerance))

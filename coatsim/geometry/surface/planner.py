@@ -83,6 +83,9 @@ SELECTION_CELLS = 200.0
 RING_SMOOTHING_LENGTHS = 2.0
 #: a face touches a pass point within this fraction of the part's extent
 TOUCH_FRACTION = 1e-7
+#: a face narrower than this share of the smoothing length (a scan's sliver), or folded against its
+#: neighbours, does not judge whether a pass point's normal leans into the part (normals.kept_outward)
+SLIVER_SHARE = 0.02
 
 
 @dataclass(frozen=True)
@@ -336,11 +339,12 @@ def _passes(pieces: list[Piece], traces: list[Trace], part: Part, facets: Facets
     surface their corner normals describe, along their normals (Facets.lifted: a cylinder's pass
     is a circle, not a polygon's chords)."""
     passes, turned = [], 0
+    folded = facets.folded(SLIVER_SHARE * s.smoothing_mm)
     for curve, index in spraying_order(traces, o.order):
         piece = pieces[index]
         normals = curve.sample(piece.faces, piece.normals)
         normals, changed = kept_outward(curve.points, unit_rows(normals), facets.boxes, facets.face_n,
-                                        TOUCH_FRACTION * part.extent_mm)
+                                        TOUCH_FRACTION * part.extent_mm, folded)
         turned += changed
         points = facets.lifted(curve.points, normals)
         if curve.closed:
