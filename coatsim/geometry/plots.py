@@ -53,8 +53,15 @@ def segmentation_figure_png(seg: Segmentation, dpi: int = 110) -> bytes:
     ax_theta.set_title(f"angular characteristic function ({seg.method})")
     ax_theta.legend(loc="best", fontsize=8)
     ax_theta.grid(alpha=0.3)
+    return figure_png(fig, dpi)
+
+
+def figure_png(fig, dpi: int) -> bytes:
+    """PNG bytes of a matplotlib figure, which is closed; no version stamp: the same bytes everywhere."""
+    import matplotlib.pyplot as plt
+
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})  # no version stamp: same bytes everywhere
+    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
     plt.close(fig)
     return buf.getvalue()
 

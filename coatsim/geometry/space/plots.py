@@ -3,13 +3,12 @@ from every input point to the chain along the curve against σ."""
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import numpy as np
 
 from coatsim.core.fileio import write_bytes
-from coatsim.geometry.plots import ARC_COLOUR, LINE_COLOUR
+from coatsim.geometry.plots import ARC_COLOUR, LINE_COLOUR, figure_png
 from coatsim.geometry.space.deviation import distance_to_chain
 from coatsim.geometry.space.local import arc_length
 from coatsim.geometry.space.primitives import Arc3
@@ -62,10 +61,7 @@ def space_segmentation_figure_png(seg: SpaceSegmentation, dpi: int = 110) -> byt
     ax_dist.set_title("deviation of the input from the chain")
     ax_dist.legend(loc="upper right", fontsize=8)
     ax_dist.grid(alpha=0.3)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})  # no version stamp: same bytes everywhere
-    plt.close(fig)
-    return buf.getvalue()
+    return figure_png(fig, dpi)
 
 
 def write_space_segmentation_plot(seg: SpaceSegmentation, path: str | Path) -> None:
