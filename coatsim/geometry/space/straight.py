@@ -1,14 +1,16 @@
-"""Straight stretches of a space curve: where a line follows the input as far as an arc would.
+"""Straight stretches of a space curve, where a line stands for the input.
 
 The arc spline of a run (coatsim.geometry.space.tube_fit) has no lines: a straight stretch
 comes back as an arc of a radius of kilometres, bowing inside σ, that a controller runs as a
 circle and a user reads as a fault (a pipe's centreline, line–bend–line–bend–line in two
 planes, came back as five arcs). A stretch is straight where the line between two input
-points keeps every point between them within LINE_SHARE σ and reaches at least ARC_SHARE of
-as far as the greedy arc from the same point does within σ (on a gently curved stretch an
-arc reaches much farther than a line, and keeps it). The chain takes such a stretch as that
-line, and the curved stretches between lines are fitted with their end tangents pinned to
-the lines' directions, so the chain stays G1.
+points keeps every point between them within LINE_SHARE σ over at least MIN_SIGMAS σ, and the
+points do not bend: the parabola fitted to their offsets from their least-squares line has a
+curvature that keeps a chord of the stretch (or of REF_SIGMAS σ, the longer) within SAG_SHARE σ
+(the longest line within the band on a gently curved stretch uses the whole band: an arc keeps
+it). The line is the points' least-squares line, ending where the input leaves it by END_SHARE
+σ; the caller fits the curved stretches between lines with their end tangents pinned to the
+lines' directions (or one arc tangent to both, coatsim.geometry.space.bend), so the chain stays G1.
 """
 
 from __future__ import annotations
@@ -69,14 +71,20 @@ def straight_stretches(points: np.ndarray, tolerance: float) -> list[Straight]:
     return out
 
 
+def _fitted_line(stretch: np.ndarray, through: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """A point and the unit direction of the least-squares line of points (k, 3), or of the one
+    through the point ``through``."""
+    centre = stretch.mean(axis=0) if through is None else through
+    return centre, np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+
+
 def _unbent(points: np.ndarray, i: int, j: int, tolerance: float) -> bool:
     """Whether points i..j bend by no more than a line allows: the curvature of the parabola
     fitted to their offsets from their least-squares line (least squares: noise averages out,
     where a curve's offsets grow as the square of the distance) would take a chord of
     max(its length, REF_SIGMAS σ) no more than SAG_SHARE σ off it."""
     stretch = points[i : j + 1]
-    centre = stretch.mean(axis=0)
-    u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    centre, u = _fitted_line(stretch)
     t = (stretch - centre) @ u
     offsets = stretch - centre - t[:, None] * u
     basis = np.column_stack((np.ones_like(t), t, t * t))
@@ -98,9 +106,7 @@ def _onwards(points: np.ndarray, i: int, j: int, band: float) -> int:
     """j, or the last of the points after it that stay within ``band`` of the least-squares line of
     points i..j one after another (a line searched from a point still inside the bend before it
     stops short of where the straight stretch ends)."""
-    stretch = points[i : j + 1]
-    centre = stretch.mean(axis=0)
-    u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    centre, u = _fitted_line(points[i : j + 1])
     rel = points[j + 1 :] - centre
     off = np.linalg.norm(rel - (rel @ u)[:, None] * u, axis=1)
     out = np.flatnonzero(off > band)
@@ -114,12 +120,8 @@ def _trimmed(points: np.ndarray, i: int, j: int, band: float) -> Straight | None
     stretch, n = points[i : j + 1], len(points)
     if i == 0 and j == n - 1:  # the whole run: the line between its ends
         centre, u = points[0], (points[-1] - points[0]) / np.linalg.norm(points[-1] - points[0])
-    elif i == 0 or j == n - 1:  # through the run's end it reaches (where the chain must start or end)
-        centre = points[0] if i == 0 else points[-1]
-        u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
-    else:
-        centre = stretch.mean(axis=0)
-        u = np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
+    else:  # through the run's end it reaches (where the chain must start or end)
+        centre, u = _fitted_line(stretch, points[0] if i == 0 else points[-1] if j == n - 1 else None)
     u = u if (points[j] - points[i]) @ u > 0 else -u
     t = (stretch - centre) @ u
     off = np.linalg.norm(stretch - centre - t[:, None] * u, axis=1)
