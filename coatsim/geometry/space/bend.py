@@ -7,8 +7,10 @@ three arcs where the input has one. Where the lines lie in one plane (they meet 
 COPLANAR_SHARE σ), the arc tangent to both whose radius fits the bend's input best (least
 squares of the distances to its centre) stands for the bend, the line before ending at its first
 tangent point and the line after leaving its last one for its own far end (so that each line's
-direction is the arc's tangent exactly and the chain stays G1); it is taken where the lines and the arc keep the input of the whole
-stretch within σ both ways, else None (the caller fits the bend as a free arc spline).
+direction is the arc's tangent exactly and the chain stays G1); it is taken where the lines and
+the arc keep the input of the whole stretch within σ both ways, else None (the caller fits the
+bend as a free arc spline). An arc tighter than the speed allows is listed as speed-limited, as
+any arc the curve itself forces.
 """
 
 from __future__ import annotations
