@@ -205,8 +205,12 @@ def _fit_space(curve: SpaceCurve, tol: float, corner_deg: float, min_segment_mm:
     loop = curve.closed and not len(corners)
     speed_kappa = curvature_limit(speed_mm_s, tool_accel_mm_s2)
     segments, kept, radii, junctions, devs = [], True, [], [], []
+    lined = _fit_lined_loop(curve.name, pts, tol, min_segment_mm, speed_kappa) if loop else None
     for a, b in zip(cuts[:-1], cuts[1:]):
-        if loop:
+        if lined is not None:
+            fitted, dev, radius = lined
+            radii.append(radius)
+        elif loop:
             fitted, dev, limits = _fit_loop(curve.name, pts, tol, min_segment_mm, speed_kappa)
             radii.append(limits.profile.tightest_radius_mm)
         else:
@@ -243,10 +247,33 @@ def _fit_open_run(name: str, run: np.ndarray, tol: float, min_segment_mm: float 
     return _fit_stretches(name, run, tol, min_segment_mm, speed_kappa, [])
 
 
+def _fit_lined_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | None,
+                    speed_kappa: float | None) -> tuple[RunChain, float, float] | None:
+    """A closed loop without corners that has straight stretches, as an open run from the start
+    of its first one round to it again, the last curved stretch arriving along that line: its
+    chain, certified deviation and the tightest radius of its input; None where it has no
+    straight stretch, or the chain breaks a tangent (the seam's too) or misses σ."""
+    lines = straight_stretches(loop, tol)
+    if not lines:
+        return None
+    body, first = loop[:-1], lines[0].first
+    run = np.vstack((body[first:], body[:first], body[first : first + 1]))
+    lines = straight_stretches(run, tol)
+    if not lines or lines[0].first != 0:
+        return None
+    fitted, _, radius = _fit_stretches(name, run, tol, min_segment_mm, speed_kappa, lines, lines[0].direction)
+    chain = SpaceChain(fitted.segments, closed=True)
+    if np.any(chain.junction_breaks() > KINK_RAD):
+        return None
+    dev = hausdorff3(run, chain, tol).hausdorff
+    return (fitted, dev, radius) if dev <= tol else None
+
+
 def _fit_stretches(name: str, run: np.ndarray, tol: float, min_segment_mm: float | None, speed_kappa: float | None,
-                   lines: list[Straight]) -> tuple[RunChain, float, float]:
+                   lines: list[Straight], closing: np.ndarray | None = None) -> tuple[RunChain, float, float]:
     """The chain of an open run with ``lines`` standing for its straight stretches (see
-    _fit_open_run), the deviation of its last curved stretch (the run's, without lines)."""
+    _fit_open_run), the deviation of its last curved stretch (the run's, without lines);
+    ``closing``: the tangent the run arrives with at its end (a loop's first line's)."""
     segments: list[Segment3] = []
     kept, radius, dev = True, math.inf, math.inf
     after: Straight | None = None  # the line before the curved stretch
@@ -265,7 +292,7 @@ def _fit_stretches(name: str, run: np.ndarray, tol: float, min_segment_mm: float
         if stretch is not None and (len(body) or float(np.linalg.norm(stretch[-1] - stretch[0])) > 0):
             limits, window = _limits(stretch, False, tol, min_segment_mm, speed_kappa)
             fitted, dev = _fit_run(name, stretch, tol, limits, window, None,
-                                   None if after is None else after.direction, None if line is None else line.direction)
+                                   None if after is None else after.direction, closing if line is None else line.direction)
             segments.extend(fitted.segments)
             kept, radius = kept and fitted.limits_kept, min(radius, limits.profile.tightest_radius_mm)
         if line is not None:

@@ -404,3 +404,24 @@ def test_a_helix_with_straight_leads_keeps_them_as_lines():
     assert segs[0].kind == segs[-1].kind == "line" and segs[0].length > 99 and segs[-1].length > 99
     assert all(s.kind == "arc" for s in segs[1:-1]) and fit.max_deviation_mm <= 0.1
     assert_g1(fit.chain)
+
+
+def test_a_closed_loop_keeps_its_straight_sides_as_lines_and_its_seam_smooth():
+    """A racetrack 200 x 100 mm (corners r 20) bent over a cylinder (z = x² / 500): its short
+    sides stay straight, its long sides curve; the loop is fitted from the start of a straight
+    side round to it again, G1 across the seam."""
+    legs = []
+    for k, (p0, p1, c) in enumerate((((-80, -50), (80, -50), (80, -30)), ((100, -30), (100, 30), (80, 30)),
+                                      ((80, 50), (-80, 50), (-80, 30)), ((-100, 30), (-100, -30), (-80, -30)))):
+        legs.append(_leg(np.r_[p0, 0.0], np.r_[p1, 0.0]))
+        t = -math.pi / 2 + k * math.pi / 2
+        legs.append(_bend(np.r_[c, 0.0], np.r_[math.cos(t), math.sin(t), 0.0],
+                          np.r_[-math.sin(t), math.cos(t), 0.0], 20.0, math.pi / 2))
+    flat = np.vstack(legs + [legs[0][:1]])
+    points = flat + np.column_stack((0 * flat[:, 0], 0 * flat[:, 0], flat[:, 0] ** 2 / 500))
+    fit = segment_space_curve(make_space_curve(points, "racetrack"), 0.1)
+    lines = [s for s in fit.chain.segments if s.kind == "line"]
+    assert fit.chain.closed and fit.planar_pose is None and fit.chain.corners == () and len(lines) == 2
+    assert all(abs(s.direction @ [0, 1, 0]) > 0.9999 and s.length > 55 for s in lines)
+    assert fit.max_deviation_mm <= 0.1 and brute_hausdorff(fit.curve.points, fit.chain, 0.005) <= 0.105
+    assert_g1(fit.chain) and max(fit.chain.junction_breaks()) < 1e-9  # the seam's too
