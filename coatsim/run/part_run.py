@@ -27,7 +27,7 @@ from coatsim.geometry.space.xyzoat import pose_from_xyzoat
 from coatsim.geometry.surface import Box, Everything, Facing, PlanOptions, load_part, plan, write_surfacepaths
 from coatsim.geometry.surface import SurfacePaths as Plan
 from coatsim.geometry.surface.mesh import Part
-from coatsim.geometry.surface.planner import outward_faces
+from coatsim.geometry.surface.gun_side import outward_faces
 from coatsim.languages.registry import language
 from coatsim.path.build import ProgramOptions
 from coatsim.path.language import ReadOptions

@@ -33,15 +33,13 @@ from coatsim.geometry.surface.distance import Marching
 from coatsim.geometry.surface.features import SHARP_EDGE_DEG, edge_length_mm, selection_normals, sharp_at_scale
 from coatsim.geometry.surface.fill import MIN_LENGTH_FRACTION, filled
 from coatsim.geometry.surface.geodesic import FromBoundary, FromPoints, Start, assign_points, geodesic_piece
+from coatsim.geometry.surface.gun_side import oriented_for
 from coatsim.geometry.surface.mesh import Part
 from coatsim.geometry.surface.normals import (
-    Orientation,
-    closed_faces,
     face_normals,
     Facets,
     kept_outward,
     largest_angle_deg,
-    orient,
     smooth_normals,
     vertex_normals,
 )
@@ -54,9 +52,7 @@ from coatsim.geometry.surface.region import (
     Everything,
     Facing,
     RegionSpec,
-    box_toward,
     check_region,
-    default_toward,
     principal_axes,
     select_faces,
     sign_fixed,
@@ -178,7 +174,7 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     manifold and cut along sharp edges) and unit vertex normals (smoothed within each feature
     region, over the region and the surface running on past it); and the part's own facets
     wound outward."""
-    oriented, toward, why = _oriented(part, o.region)
+    oriented, toward, why = oriented_for(part, o.region)
     if isinstance(o.region, Box):
         notes.append(f"box region: the gun comes from ({', '.join(f'{round(x, 6) + 0.0:.3g}' for x in toward)}), {why}")
     notes.extend(oriented.notes)
@@ -216,31 +212,6 @@ def _region_mesh(part: Part, o: PlanOptions, s: _Settings,
     normals = smooth_normals(sv, sf, s.smoothing_mm, facets.normals(sv, vertex_normals(sv, sf)))
     rv, rf, parent = submesh(sv, sf, inside)
     return rv, rf, normals[parent], facets
-
-
-def _oriented(part: Part, region: RegionSpec) -> tuple[Orientation, np.ndarray, str]:
-    """The part's triangles wound consistently and outward, open pieces towards the gun's side
-    of ``region``; that side and what it is (see _toward)."""
-    toward, why = _toward(region, part.vertices_mm, orient(part.vertices_mm, part.faces, None))
-    return orient(part.vertices_mm, part.faces, toward), toward, why
-
-
-def outward_faces(part: Part, region: RegionSpec) -> np.ndarray:
-    """The part's triangles (m, 3) wound as the planner winds them for ``region``: the coat and
-    the cell must see the surface the passes were planned on (a file wound inwards, or with
-    some triangles the other way, is turned)."""
-    return _oriented(part, region)[0].faces
-
-
-def _toward(region: RegionSpec, vertices: np.ndarray, oriented: Orientation) -> tuple[np.ndarray, str]:
-    """The gun's side and what it is: the facing direction, the way a box's faces face, or the
-    part's default (see region.default_toward and box_toward)."""
-    if isinstance(region, Facing) and region.direction is not None:
-        return unit_vector(region.direction, "region facing direction", "region"), "the facing direction"
-    if isinstance(region, Box) and (side := box_toward(vertices, oriented.faces, region)) is not None:
-        return side, "the mean normal of the faces in the box"
-    return default_toward(vertices, oriented.faces, closed_faces(oriented.faces)), \
-        "the part's default side" + (" (the faces in the box face every way)" if isinstance(region, Box) else "")
 
 
 def describe_region(region: RegionSpec, toward: np.ndarray) -> str:
