@@ -204,6 +204,7 @@ class Facets:
     face_n: np.ndarray
     corners: np.ndarray
     boxes: TriangleBoxes
+    caps: np.ndarray  # the most each face lets ``lifted`` move a point, mm (face_widths_mm)
 
     @classmethod
     def of(cls, vertices: np.ndarray, faces: np.ndarray, smoothing_mm: float) -> Facets:
@@ -213,7 +214,9 @@ class Facets:
         face_n = face_normals(vertices, faces)[0]
         flat = flat_faces(vertices, faces, FLAT_FACE_SMOOTHING_LENGTHS * smoothing_mm)
         corners = np.where(flat[:, None, None], face_n[:, None, :], corner[split])
-        return cls(vertices, faces, face_n, corners, TriangleBoxes(vertices, faces))
+        cos = np.clip(np.einsum("ijk,ik->ij", corners, face_n), -1.0, 1.0)
+        caps = PHONG_SHAPE * face_widths_mm(vertices, faces) * np.sqrt(1.0 - cos**2).max(axis=1)
+        return cls(vertices, faces, face_n, corners, TriangleBoxes(vertices, faces), caps)
 
     def _holding(self, points: np.ndarray, side: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(points held, their faces, barycentric weights): a point on an edge or a vertex is held
@@ -233,14 +236,6 @@ class Facets:
         good = np.isfinite(weights).all(axis=1)
         return held[good], by[good], weights[good]
 
-    def widths_mm(self) -> np.ndarray:
-        """Each face's smallest width (m,): twice its area over its longest edge."""
-        triangles = self.vertices[self.faces]
-        longest = np.linalg.norm(triangles - np.roll(triangles, -1, axis=1), axis=2).max(axis=1)
-        area = 0.5 * np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]),
-                                    axis=1)
-        return 2.0 * area / np.maximum(longest, 1e-300)
-
     def folded(self, width_mm: float) -> np.ndarray:
         """Faces (m,) a scan's noise folded over, or that are too narrow to say which way they
         face: narrower than ``width_mm``, or facing against the area-weighted mean of the faces
@@ -252,22 +247,11 @@ class Facets:
         weighted = self.face_n * area[:, None]
         np.add.at(around, pairs[:, 0], weighted[pairs[:, 1]])
         np.add.at(around, pairs[:, 1], weighted[pairs[:, 0]])
-        return (self.widths_mm() < width_mm) | (np.einsum("ij,ij->i", self.face_n, around) < 0)
-
-    def lift_caps_mm(self) -> np.ndarray:
-        """The most each face (m,) lets ``lifted`` move a point: PHONG_SHAPE times the face's
-        smallest width (twice its area over its longest edge) times the largest sine between
-        its normal and a corner normal. On a well-shaped facet the smooth surface lies within it
-        (a sphere's equilateral facet of side a sags a²/6R, the cap is a²/4R); a long thin one (a
-        CAD fillet's strip the length of the part) has corner normals turning along its length
-        that no curvature there explains, and uncapped, halfway to their tangent planes threw
-        pass points 4.7 mm off a filleted box whose facets sag 0.3 mm."""
-        cos = np.clip(np.einsum("ijk,ik->ij", self.corners, self.face_n), -1.0, 1.0)
-        return PHONG_SHAPE * self.widths_mm() * np.sqrt(1.0 - cos**2).max(axis=1)
+        return (face_widths_mm(self.vertices, self.faces) < width_mm) | (np.einsum("ij,ij->i", self.face_n, around) < 0)
 
     def largest_lift_mm(self) -> float:
-        """An upper bound on how far ``lifted`` moves a point (the largest of lift_caps_mm)."""
-        return float(self.lift_caps_mm().max()) if len(self.faces) else 0.0
+        """An upper bound on how far ``lifted`` moves a point (the largest of ``caps``)."""
+        return float(self.caps.max()) if len(self.faces) else 0.0
 
     def normals(self, points: np.ndarray, side: np.ndarray) -> np.ndarray:
         """Unit normals (p, 3) at ``points`` on the facets, interpolated linearly across the face
@@ -288,16 +272,30 @@ class Facets:
         way overshoots by the facet's own sagitta). Along the normal, so that the tool point
         stays on the normal's ray (a sphere's passes keep their tool points on the sphere's
         radii); on a flat face a point stays put; a point on no face stays; no point moves more
-        than its face's cap (lift_caps_mm)."""
+        than its face's cap (``caps``)."""
         held, by, weights = self._holding(points, side)
         offset = points[held, None, :] - self.vertices[self.faces[by]]
         height = np.einsum("ijk,ijk->ij", offset, self.corners[by])
         move = -PHONG_SHAPE * np.einsum("ij,ijk->ik", weights * height, self.corners[by])
-        cap = self.lift_caps_mm()[by]
+        cap = self.caps[by]
         along = np.clip(np.einsum("ij,ij->i", move, side[held]), -cap, cap)
         out = points.copy()
         out[held] = points[held] + along[:, None] * side[held]
         return out
+
+
+def face_widths_mm(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Each face's smallest width (m,): twice its area over its longest edge. A point is lifted
+    (Facets.lifted) by at most PHONG_SHAPE times its face's width times the largest sine between
+    the face's normal and a corner normal: on a well-shaped facet the smooth surface lies within
+    that (a sphere's equilateral facet of side a sags a²/6R, the cap is a²/4R); a long thin one
+    (a CAD fillet's strip the length of the part) has corner normals turning along its length
+    that no curvature there explains, and uncapped, halfway to their tangent planes threw pass
+    points 4.7 mm off a filleted box whose facets sag 0.3 mm."""
+    triangles = vertices[faces]
+    longest = np.linalg.norm(triangles - np.roll(triangles, -1, axis=1), axis=2).max(axis=1)
+    area = 0.5 * np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
+    return 2.0 * area / np.maximum(longest, 1e-300)
 
 
 def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float, raw: np.ndarray) -> np.ndarray:
