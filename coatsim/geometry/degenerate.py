@@ -2,8 +2,8 @@
 
 A tolerance at least the curve's extent (the diagonal of its bounding box) is met by the
 simplest chain there is: the line from the start to the end point of an open curve, or for a
-closed one (or an open one that ends where it starts) a circle through the start point,
-tangent to the first edge, turning the way the curve does, as two half arcs. Every input
+closed one a circle through the start point, tangent to the first edge, turning the way the
+curve does (as two half arcs for an open curve that ends where it starts). Every input
 point is within the extent of the start point, and every point of these chains within the
 extent of an input point, so both are within the tolerance.
 """
@@ -15,10 +15,12 @@ import math
 import numpy as np
 
 from coatsim.core.errors import InputError
+from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Line, Segment
 
-LONGEST_SWEEP = 1.5 * math.pi  # arcs turning more are cut into equal parts (all within (-2π, 2π))
+LONGEST_SWEEP = 1.5 * math.pi  # arcs of a chain turning more are cut into equal parts (all within (-2π, 2π))
+CIRCLE_SHARE = 0.1  # a closed chain of arcs whose centres and radii agree within this share of σ is one circle
 RESOLVED = 1e-11  # the finest tolerance, relative to the coordinates (float64 resolves 2.2e-16 of them;
 #                   arc centres, sincs and running sums of lengths lose the rest)
 
@@ -57,9 +59,10 @@ def obvious_answer(points: np.ndarray, closed: bool, tolerance: float) -> Polyse
     turn = 1.0 if area >= 0 else -1.0  # counter-clockwise: the centre on the left of the first edge
     heading = math.atan2(edges[0][1], edges[0][0]) + turn * math.pi / 2
     center = (start[0] + radius * math.cos(heading), start[1] + radius * math.sin(heading))
+    if closed:
+        return full_circle(center, radius, heading + math.pi, turn, start)
     far = (2 * center[0] - start[0], 2 * center[1] - start[1])
-    arcs = (Arc(start, far, center, radius, turn * math.pi), Arc(far, start, center, radius, turn * math.pi))
-    return Polysegment(arcs, closed=closed)
+    return Polysegment((Arc(start, far, center, radius, turn * math.pi), Arc(far, start, center, radius, turn * math.pi)))
 
 
 def split_long_arcs(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:
@@ -82,11 +85,43 @@ def split_long_arcs(segments: tuple[Segment, ...]) -> tuple[Segment, ...]:
     return tuple(out)
 
 
+def full_circle(center: tuple[float, float], radius: float, start_angle: float, turn: float,
+                start: tuple[float, float] | None = None) -> Polysegment:
+    """The closed chain of one arc turning a whole circle (``turn`` +1 counter-clockwise, -1
+    clockwise) from the point at ``start_angle`` (rad) about ``center`` (``start`` if given:
+    that point exactly)."""
+    if start is None:
+        start = (center[0] + radius * math.cos(start_angle), center[1] + radius * math.sin(start_angle))
+    return Polysegment((Arc(start, start, center, radius, turn * 2 * math.pi),), closed=True)
+
+
+def one_circle(points: np.ndarray, poly: Polysegment, tolerance: float) -> Polysegment | None:
+    """A closed chain of arcs of one circle (centres and radii within CIRCLE_SHARE σ, all
+    turning one way, no corner) as that circle in one arc, if it keeps the points within
+    ``tolerance``; else None. The fit splits long arcs and starts a loop at its seam, so a
+    circle comes out as a few arcs of itself; the user asked for a circle."""
+    segs = poly.segments
+    if not poly.closed or poly.corners or len(segs) < 2 or not all(isinstance(s, Arc) for s in segs):
+        return None
+    centers = np.array([s.center for s in segs])
+    radii = np.array([s.radius for s in segs])
+    turns = {math.copysign(1.0, s.sweep) for s in segs}
+    spread = max(float(np.ptp(centers, axis=0).max()), float(np.ptp(radii)))
+    if len(turns) != 1 or spread > CIRCLE_SHARE * tolerance:
+        return None
+    weights = np.array([s.length for s in segs])
+    center = tuple(float(v) for v in weights @ centers / weights.sum())
+    first = segs[0]
+    angle = math.atan2(first.start[1] - center[1], first.start[0] - center[0])
+    circle = full_circle(center, float(weights @ radii / weights.sum()), angle, turns.pop())
+    return circle if hausdorff(points, circle).hausdorff <= tolerance else None
+
+
 def check_chain(poly: Polysegment, extent: float) -> None:
     """Raise InputError if a chain has an arc below the numerical floor of its size (centre
-    and radius lost in round-off) or one turning a full circle or more."""
+    and radius lost in round-off) or one turning more than a full circle."""
     floor = 1e-9 * max(extent, 1.0)
     for k, seg in enumerate(poly.segments):
-        if isinstance(seg, Arc) and (seg.radius < floor or not abs(seg.sweep) < 2 * math.pi):
+        if isinstance(seg, Arc) and (seg.radius < floor or not abs(seg.sweep) <= 2 * math.pi * (1 + 1e-12)):
             raise InputError(f"the fit produced an unusable arc (segment {k}: radius {seg.radius:.3g} mm, sweep "
                              f"{seg.sweep:.3g} rad); try a smaller tolerance")

@@ -14,7 +14,8 @@ from coatsim.core.progress import progress
 from coatsim.core.errors import CoatsimError, InputError
 from coatsim.geometry.corners import corners_and_notes
 from coatsim.geometry.curves import Curve
-from coatsim.geometry.degenerate import check_chain, check_resolvable, extent_mm, obvious_answer, split_long_arcs
+from coatsim.geometry.degenerate import (check_chain, check_resolvable, extent_mm, obvious_answer, one_circle,
+                                         split_long_arcs)
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.limits import check_min_segment
 from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed_limited
@@ -225,6 +226,9 @@ def segment_curve(
             poly, dev, input_radius, kept, notes = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
         except InputError as exc:
             raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
+    circle = one_circle(pts, poly, tol)
+    if circle is not None:
+        poly, dev = circle, hausdorff(pts, circle).hausdorff
     extent = extent_mm(pts)
     check_chain(poly, extent)
     if extent < SMALL_SIGMAS * tol:

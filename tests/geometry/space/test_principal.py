@@ -116,7 +116,7 @@ def test_a_circle_in_z_const_is_one_circle(noise):
         assert isinstance(arc, Arc3) and abs(abs(arc.normal[2]) - 1.0) <= 1e-12 and abs(arc.center[2] - 30) < 0.05
         assert np.linalg.norm(arc.center[:2] - [30, -10]) < 0.05 and abs(arc.radius - 45) < 0.05
     assert math.fsum(a.sweep for a in fit.chain.segments) == pytest.approx(2 * math.pi, abs=1e-6)
-    assert fit.max_deviation_mm <= 0.1
+    assert fit.max_deviation_mm <= 0.1 and fit.chain.n_segments == 1
 
 
 def test_a_pass_around_a_cylinder_about_x_is_one_arc_about_x():
