@@ -249,36 +249,45 @@ def _fit_open_run(name: str, run: np.ndarray, tol: float, min_segment_mm: float 
 
 def _fit_lined_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | None,
                     speed_kappa: float | None) -> tuple[RunChain, float, float] | None:
-    """A closed loop without corners that has straight stretches, as an open run from the start
-    of its first one round to it again, the last curved stretch arriving along that line: its
-    chain, certified deviation and the tightest radius of its input; None where it has no
-    straight stretch, or the chain breaks a tangent (the seam's too) or misses σ."""
+    """A closed loop without corners that has straight stretches, fitted from the start of one
+    (not the one the loop's first point may cut in two) round to that stretch again, so the bend
+    before it is one arc as any other, and closed on its line: the chain, its certified deviation
+    and the tightest radius of its input; None where it has no straight stretch, or the chain
+    breaks a tangent (the seam's too) or misses σ."""
     lines = straight_stretches(loop, tol)
     if not lines:
         return None
-    body, first = loop[:-1], lines[0].first
+    body, first = loop[:-1], (lines[1] if len(lines) > 1 and lines[0].first == 0 else lines[0]).first
     run = np.vstack((body[first:], body[:first], body[first : first + 1]))
     lines = straight_stretches(run, tol)
     if not lines or lines[0].first != 0:
         return None
-    fitted, _, radius = _fit_stretches(name, run, tol, min_segment_mm, speed_kappa, lines, lines[0].direction)
-    chain = SpaceChain(fitted.segments, closed=True)
-    if np.any(chain.junction_breaks() > KINK_RAD):
-        return None
-    dev = hausdorff3(run, chain, tol).hausdorff
-    return (fitted, dev, radius) if dev <= tol else None
+    head, lap = lines[0], len(run) - 1
+    again = Straight(head.first + lap, head.last + lap, head.start, head.end)
+    for bend_back in (True, False):  # each bend leaves its line after re-aimed (lines in space are a hair skew):
+        fitted, _, radius = _fit_stretches(name, np.vstack((run, run[1 : head.last + 1])), tol,  # the one back onto
+                                           min_segment_mm, speed_kappa, [*lines, again], tail=False,  # the first line
+                                           bend_back=bend_back)  # may miss its direction by 1e-7 rad: pinned arcs there
+        segs = fitted.segments
+        chain = SpaceChain((Line3(segs[-1].start, segs[0].end),) + segs[1:-1], closed=True)
+        if not np.any(chain.junction_breaks() > KINK_RAD):
+            dev = hausdorff3(run, chain, tol).hausdorff
+            return (RunChain(chain.segments, fitted.limits_kept), dev, radius) if dev <= tol else None
+    return None
 
 
 def _fit_stretches(name: str, run: np.ndarray, tol: float, min_segment_mm: float | None, speed_kappa: float | None,
-                   lines: list[Straight], closing: np.ndarray | None = None) -> tuple[RunChain, float, float]:
+                   lines: list[Straight], tail: bool = True, bend_back: bool = True) -> tuple[RunChain, float, float]:
     """The chain of an open run with ``lines`` standing for its straight stretches (see
-    _fit_open_run), the deviation of its last curved stretch (the run's, without lines);
-    ``closing``: the tangent the run arrives with at its end (a loop's first line's)."""
+    _fit_open_run), the deviation of its last curved stretch (the run's, without lines) and the
+    tightest radius of its input; ``tail``: the stretch after the last line too; without
+    ``bend_back`` the stretch before the last line is fitted with pinned ends, never as one bend."""
     segments: list[Segment3] = []
     kept, radius, dev = True, math.inf, math.inf
     after: Straight | None = None  # the line before the curved stretch
-    for line in [*lines, None]:
-        bend = None if after is None or line is None else bend_arc(after, line, run, tol)
+    for line in [*lines, None] if tail else lines:
+        bend = None if after is None or line is None or (line is lines[-1] and not bend_back) \
+            else bend_arc(after, line, run, tol)
         if bend is not None:
             after, arc, line = bend
             segments[-1] = Line3(after.start, after.end)
@@ -292,7 +301,7 @@ def _fit_stretches(name: str, run: np.ndarray, tol: float, min_segment_mm: float
         if stretch is not None and (len(body) or float(np.linalg.norm(stretch[-1] - stretch[0])) > 0):
             limits, window = _limits(stretch, False, tol, min_segment_mm, speed_kappa)
             fitted, dev = _fit_run(name, stretch, tol, limits, window, None,
-                                   None if after is None else after.direction, closing if line is None else line.direction)
+                                   None if after is None else after.direction, None if line is None else line.direction)
             segments.extend(fitted.segments)
             kept, radius = kept and fitted.limits_kept, min(radius, limits.profile.tightest_radius_mm)
         if line is not None:

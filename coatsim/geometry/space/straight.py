@@ -5,10 +5,11 @@ comes back as an arc of a radius of kilometres, bowing inside σ, that a control
 circle and a user reads as a fault (a pipe's centreline, line–bend–line–bend–line in two
 planes, came back as five arcs). A stretch is straight where the line between two input
 points keeps every point between them within LINE_SHARE σ over at least MIN_SIGMAS σ, and the
-points do not bend: the parabola fitted to their offsets from their least-squares line has a
-curvature that keeps a chord of the stretch (or of REF_SIGMAS σ, the longer) within SAG_SHARE σ
-(the longest line within the band on a gently curved stretch uses the whole band: an arc keeps
-it). The line is the points' least-squares line, ending where the input leaves it by END_SHARE
+points do not bend (_unbent: by least squares, the mean curvature over the whole band and the
+largest over the points the line stands for each keep a chord of the stretch, or of REF_SIGMAS σ,
+the longer, within SAG_SHARE σ; a gently curved stretch uses the whole band, a sine's flank
+bends at its ends: arcs keep both). Points (n, 2) or (n, 3): the planar fit finds its lines the
+same way (coatsim.geometry.lined). The line is the points' least-squares line, ending where the input leaves it by END_SHARE
 σ; the caller fits the curved stretches between lines with their end tangents pinned to the
 lines' directions (or one arc tangent to both, coatsim.geometry.space.bend), so the chain stays G1.
 """
@@ -23,10 +24,9 @@ from coatsim.geometry.space.greedy import farthest
 from coatsim.geometry.space.local import arc_length
 
 LINE_SHARE = 0.5  # a straight stretch's line keeps the input within this share of σ, ...
-MIN_SIGMAS = 50.0  # ... is at least this many σ long (a piece of a bend's end is shorter), ...
+MIN_SIGMAS = 50.0  # ... is at least this many σ long (REF_SIGMAS where the run ends before the band is used up), ...
 SAG_SHARE, REF_SIGMAS = 0.25, 100.0  # ... and bends so little that a chord of its length (or of REF_SIGMAS σ,
                                      # the longer: a curved tail is no line) stays within SAG_SHARE σ
-JOIN_GAP = 2  # two straight stretches this few input points apart are one, where one line keeps them
 SKIP = 4  # where a line from a point is no straight stretch, the next is tried this share of its reach on
 END_SHARE = 0.05  # the line ends where the input leaves it by this share of σ: a line drawn on into a bend
                   # leaves the next arc a tangent the curve has already turned from (2 mm into a bend of
@@ -50,16 +50,18 @@ class Straight:
 
 
 def straight_stretches(points: np.ndarray, tolerance: float) -> list[Straight]:
-    """The straight stretches of a run of input points (n, 3), in order and not overlapping
+    """The straight stretches of a run of input points (n, 2 or 3), in order and not overlapping
     (see the module text)."""
     n, s = len(points), arc_length(points)
     out: list[Straight] = []
     i = 0
     while i < n - 1:
         j = farthest(i, n, lambda a, b: _line_fits(points, a, b, LINE_SHARE * tolerance))
-        if s[j] - s[i] >= MIN_SIGMAS * tolerance and j - i >= 2 and _unbent(points, i, j, tolerance):
+        if s[j] - s[i] >= MIN_SIGMAS * tolerance and j - i >= 2:
             line = _trimmed(points, i, _onwards(points, i, j, END_SHARE * tolerance), END_SHARE * tolerance)
-            if line is not None and float(np.linalg.norm(line.end - line.start)) >= MIN_SIGMAS * tolerance:
+            shortest = (REF_SIGMAS if j == n - 1 else MIN_SIGMAS) * tolerance  # a band cut off by the run's end
+            if line is not None and float(np.linalg.norm(line.end - line.start)) >= shortest \
+                    and _unbent(points, i, j, line, tolerance):                # says less of a bend
                 joined = _joined(points, out[-1], line, tolerance) if out else None
                 if joined is not None:
                     out[-1] = joined
@@ -78,26 +80,48 @@ def _fitted_line(stretch: np.ndarray, through: np.ndarray | None = None) -> tupl
     return centre, np.linalg.svd(stretch - centre, full_matrices=False)[2][0]
 
 
-def _unbent(points: np.ndarray, i: int, j: int, tolerance: float) -> bool:
-    """Whether points i..j bend by no more than a line allows: the curvature of the parabola
-    fitted to their offsets from their least-squares line (least squares: noise averages out,
-    where a curve's offsets grow as the square of the distance) would take a chord of
-    max(its length, REF_SIGMAS σ) no more than SAG_SHARE σ off it."""
+def _offsets(points: np.ndarray, i: int, j: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """Points i..j as positions t along their least-squares line, scaled to [-1, 1], their
+    offsets from it, and the scale (mm)."""
     stretch = points[i : j + 1]
     centre, u = _fitted_line(stretch)
     t = (stretch - centre) @ u
-    offsets = stretch - centre - t[:, None] * u
-    basis = np.column_stack((np.ones_like(t), t, t * t))
-    bend = np.linalg.lstsq(basis, offsets, rcond=None)[0][2]  # offset = ... + bend t²: curvature 2|bend|
-    chord = max(float(t.max() - t.min()), REF_SIGMAS * tolerance)
-    return 2.0 * float(np.linalg.norm(bend)) * chord * chord / 8.0 <= SAG_SHARE * tolerance
+    scale = max(float(np.abs(t).max()), 1e-300)
+    return t / scale, stretch - centre - t[:, None] * u, scale
+
+
+def _sag(kappa: float, chord: float, tolerance: float) -> bool:
+    """Whether a curvature ``kappa`` takes a chord of max(``chord``, REF_SIGMAS σ) no more than
+    SAG_SHARE σ off it."""
+    chord = max(chord, REF_SIGMAS * tolerance)
+    return kappa * chord * chord / 8.0 <= SAG_SHARE * tolerance
+
+
+def _unbent(points: np.ndarray, i: int, j: int, line: Straight, tolerance: float) -> bool:
+    """Whether points i..j (where a line keeps the input within the band) and the stretch
+    ``line`` stands for (the points within END_SHARE σ of it) bend by no more than a line
+    allows: the mean curvature of the parabola fitted to the offsets of i..j from their
+    least-squares line passes _sag over i..j (a gently curved stretch uses the whole band), and
+    so does the largest curvature (at an end) of the cubic fitted to those of the line's own
+    points over its length (across an inflection, a sine's flank, the parabola has no bend).
+    Least squares: noise averages out, where a curve's offsets grow as the square of the
+    distance, or as its cube."""
+    x, off, scale = _offsets(points, i, j)
+    bend = np.linalg.lstsq(np.column_stack((np.ones_like(x), x, x * x)), off, rcond=None)[0][2] / scale**2
+    if not _sag(2.0 * float(np.linalg.norm(bend)), 2.0 * scale, tolerance):
+        return False
+    x, off, scale = _offsets(points, line.first, line.last)
+    coef = np.linalg.lstsq(np.column_stack((np.ones_like(x), x, x * x, x**3)), off, rcond=None)[0]
+    bend, twist = coef[2] / scale**2, coef[3] / scale**3  # offset = ... + bend t² + twist t³: curvature 2 bend + 6 twist t
+    kappa = max(float(np.linalg.norm(2 * bend + 6 * twist * end * scale)) for end in (x[0], x[-1]))
+    return _sag(kappa, float(np.linalg.norm(line.end - line.start)), tolerance)
 
 
 def _joined(points: np.ndarray, first: Straight, second: Straight, tolerance: float) -> Straight | None:
-    """One line for two straight stretches that meet (a line searched from a point where the
-    input is still leaving a bend can stop in the middle of the straight after it), or None
-    where one line does not keep the input of both within LINE_SHARE σ."""
-    if second.first - first.last > JOIN_GAP or not _line_fits(points, first.first, second.last, LINE_SHARE * tolerance):
+    """One line for two straight stretches that one line keeps, with the points between them,
+    within LINE_SHARE σ (a line searched from a point where the input is still leaving a bend
+    can stop in the middle of the straight after it), else None."""
+    if not _line_fits(points, first.first, second.last, LINE_SHARE * tolerance):
         return None
     return _trimmed(points, first.first, second.last, END_SHARE * tolerance)
 

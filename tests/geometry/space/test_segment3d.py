@@ -425,3 +425,41 @@ def test_a_closed_loop_keeps_its_straight_sides_as_lines_and_its_seam_smooth():
     assert all(abs(s.direction @ [0, 1, 0]) > 0.9999 and s.length > 55 for s in lines)
     assert fit.max_deviation_mm <= 0.1 and brute_hausdorff(fit.curve.points, fit.chain, 0.005) <= 0.105
     assert_g1(fit.chain) and max(fit.chain.junction_breaks()) < 1e-9  # the seam's too
+
+
+def filleted_loop(corners: np.ndarray, radius: float) -> np.ndarray:
+    """A closed polygon through ``corners`` (k, 3) with every vertex rounded by an arc of
+    ``radius`` in the plane of its two legs, from the middle of the first leg, every 0.5 mm."""
+    k = len(corners)
+    pieces, tangent_points = [], []
+    for i in range(k):
+        a, v, b = corners[i - 1], corners[i], corners[(i + 1) % k]
+        u1, u2 = (v - a) / np.linalg.norm(v - a), (b - v) / np.linalg.norm(b - v)
+        turn = math.acos(float(np.clip(u1 @ u2, -1, 1)))
+        inward = (u2 - (u2 @ u1) * u1) / np.linalg.norm(u2 - (u2 @ u1) * u1)
+        d = radius * math.tan(turn / 2)
+        tangent_points.append((v - u1 * d, v + u2 * d))
+        pieces.append(_bend(v - u1 * d + inward * radius, -inward, u1, radius, turn))
+    start = (corners[0] + corners[1]) / 2
+    out = [_leg(start, tangent_points[1][0])]
+    for i in range(1, k + 1):
+        out += [pieces[i % k], _leg(tangent_points[i % k][1], tangent_points[(i + 1) % k][0] if i < k else start)]
+    return np.vstack(out + [start[None]])
+
+
+@pytest.mark.parametrize("tol", [0.05, 0.2])
+def test_a_closed_pipe_loop_in_space_is_a_line_per_leg_and_an_arc_per_bend(tol):
+    """A skew quadrilateral (not planar) with every corner bent r 25: a line per leg and an arc
+    per bend, but the bend the loop closes on, which may take two (lines in space found from
+    points are a hair skew, and each bend re-aims the line after it: the last one cannot also
+    keep the first line's direction); it came back as nine arcs, its legs of radius km."""
+    corners = np.array([[0.0, 0, 0], [200, 0, 0], [200, 150, 0], [0, 150, 120]])
+    fit = segment_space_curve(make_space_curve(filleted_loop(corners, 25.0), "loop", "yes"), tol)
+    kinds = "".join(s.kind[0] for s in fit.chain.segments)
+    assert fit.planar_pose is None and fit.chain.closed and fit.chain.corners == ()
+    assert kinds.count("l") == 4 and kinds.count("a") <= 5 and "ll" not in kinds + kinds[0]
+    lines = sorted(s.length for s in fit.chain.segments if s.kind == "line")
+    assert lines == pytest.approx([100, 132.2, 150, 173.4], abs=1.0)  # the legs between the tangent points
+    assert sum(s.radius == pytest.approx(25, rel=0.01) for s in fit.chain.segments if s.kind == "arc") >= 3
+    assert fit.max_deviation_mm <= tol and brute_hausdorff(fit.curve.points, fit.chain, tol / 20) <= tol * 1.05
+    assert_g1(fit.chain) and max(fit.chain.junction_breaks()) < 1e-9
