@@ -22,8 +22,9 @@ from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed
 from coatsim.geometry.fit import fit_free, fit_run
 from coatsim.geometry.run_fit import RunFit
 from coatsim.geometry.limits import fit_limits
+from coatsim.geometry.lined import lined_loop, lined_run
 from coatsim.geometry.polysegment import Polysegment
-from coatsim.geometry.primitives import Arc, Segment
+from coatsim.geometry.primitives import Arc, Line, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
 from coatsim.geometry.scatter import THIN_ROOM, noise_hint, scatter_mm, thinned
@@ -306,7 +307,8 @@ def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: flo
     with progress(f"{curve.name}: fitting runs between corners", len(runs)) as advance:
         for run in runs:  # the time budget is checked after each run (coatsim.core.progress)
             limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-            found = fit_run(run, tol, False, limits, fillet=min_segment_mm is None)
+            found = _fewer(lined_run(run, tol, min_segment_mm, speed_kappa),
+                           fit_run(run, tol, False, limits, fillet=min_segment_mm is None))
             segments, run_corners = _split_arcs(found)
             inner += [sum(len(p) for p in pieces) + k for k in run_corners]
             pieces.append(segments)
@@ -320,6 +322,16 @@ def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: flo
     poly = Polysegment(segments, closed=curve.closed, corners=tuple(sorted(set(junctions) | set(inner))))
     dev = deviations[0] if len(runs) == 1 else hausdorff(rotated, poly).hausdorff
     return poly, dev, _finite(min(radii)), kept, notes
+
+
+def _fewer(lined: RunFit | None, plain: RunFit) -> RunFit:
+    """The chain with lines for the straight stretches (coatsim.geometry.lined) where it has
+    fewer segments than the one without, or as many and more lines: a line where an arc of
+    kilometres stood, at no cost (a chain of exact lines and circles stays as it is)."""
+    if lined is None:
+        return plain
+    lines = lambda fit: sum(isinstance(s, Line) for s in fit.segments)  # noqa: E731
+    return lined if (len(lined.segments), -lines(lined)) < (len(plain.segments), -lines(plain)) else plain
 
 
 def _split_arcs(found: RunFit) -> tuple[tuple[Segment, ...], list[int]]:
@@ -349,7 +361,8 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
     the first point, needs at most one segment more (or the quick fit fails). Where the quick
     fit fails and no chain of honest arcs follows taught points from the calmest point, quick
     fits from other vertices are tried (_other_seams); if none follows them either, they come
-    back as their lines from the first point."""
+    back as their lines from the first point. The loop with lines for its straight stretches
+    (coatsim.geometry.lined) is taken where it needs no more segments."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     quick = fit_free(pts, tol, True, limits, quick=True)
     found = quick
@@ -364,6 +377,7 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
             replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
         if quick is None or len(calm.segments) <= len(quick.segments) + 1:
             found = calm
+    found = _fewer(lined_loop(pts, tol, min_segment_mm, speed_kappa), found)
     segments, corners = _split_arcs(found)
     poly = Polysegment(segments, closed=True, corners=tuple(corners))
     return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept, found.notes
