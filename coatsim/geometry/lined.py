@@ -28,7 +28,7 @@ from coatsim.geometry.limits import fit_limits
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Line, Segment, make_segment
 from coatsim.geometry.run_fit import RunFit
-from coatsim.geometry.space.straight import Straight, straight_stretches
+from coatsim.geometry.space.straight import Straight, lined_loop_run, straight_stretches
 from coatsim.geometry.sparse import is_sparse
 
 G1_RAD = 1e-9  # a junction of the lined chain breaking its tangent by more: the chain is not taken
@@ -57,26 +57,19 @@ def lined_run(points: np.ndarray, tol: float, min_segment_mm: float | None,
 
 def lined_loop(points: np.ndarray, tol: float, min_segment_mm: float | None,
                speed_kappa: float | None) -> RunFit | None:
-    """The lined chain of a closed loop (n, 2; last point = first) without corners, or None (as
-    lined_run). It starts where a straight stretch starts (not the one the loop's first point
-    may cut in two) and is fitted round to that stretch again, so the bend before it is one arc
-    as any other; the chain closes on the stretch's line."""
-    lines = straight_stretches(points, tol)
-    if not lines:
+    """The lined chain of a closed loop (n, 2; last point = first) without corners, fitted
+    round it from the start of a straight stretch to that stretch again
+    (coatsim.geometry.space.straight.lined_loop_run), or None (as lined_run)."""
+    lined = lined_loop_run(points, tol)
+    if lined is None:
         return None
-    body, first = points[:-1], (lines[1] if len(lines) > 1 and lines[0].first == 0 else lines[0]).first
-    run = np.vstack((body[first:], body[:first], body[first : first + 1]))
-    lines = straight_stretches(run, tol)
-    if not lines or lines[0].first != 0:
-        return None
-    head, lap = lines[0], len(run) - 1
-    again = Straight(head.first + lap, head.last + lap, head.start, head.end)
+    loop = lined.points[: lined.lap + 1]
     for bend_back in (True, False):  # a U-turn re-aims the line after it: one back onto the first line may
-        chain = _chain(np.vstack((run, run[1 : head.last + 1])), tol, [*lines, again],  # miss its direction
-                       min_segment_mm, speed_kappa, tail=False, bend_back=bend_back)   # (a slot): pinned arcs
+        chain = _chain(lined.points, tol, lined.lines, min_segment_mm, speed_kappa,  # miss its direction (a
+                       tail=False, bend_back=bend_back)                              # slot): pinned arcs there
         if chain is not None:
             segments, kept = chain
-            found = _checked(run, (Line(segments[-1].start, segments[0].end),) + segments[1:-1], kept, True, tol)
+            found = _checked(loop, (Line(segments[-1].start, segments[0].end),) + segments[1:-1], kept, True, tol)
             if found is not None:
                 return found
     return None

@@ -326,8 +326,7 @@ def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: flo
 
 def _fewer(lined: RunFit | None, plain: RunFit) -> RunFit:
     """The chain with lines for the straight stretches (coatsim.geometry.lined) where it has
-    fewer segments than the one without, or as many and more lines: a line where an arc of
-    kilometres stood, at no cost (a chain of exact lines and circles stays as it is)."""
+    fewer segments than the one without, or as many and more lines: lines at no cost."""
     if lined is None:
         return plain
     lines = lambda fit: sum(isinstance(s, Line) for s in fit.segments)  # noqa: E731
@@ -361,8 +360,7 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
     the first point, needs at most one segment more (or the quick fit fails). Where the quick
     fit fails and no chain of honest arcs follows taught points from the calmest point, quick
     fits from other vertices are tried (_other_seams); if none follows them either, they come
-    back as their lines from the first point. The loop with lines for its straight stretches
-    (coatsim.geometry.lined) is taken where it needs no more segments."""
+    back as their lines from the first point. Lines for straight stretches where they cost nothing."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     quick = fit_free(pts, tol, True, limits, quick=True)
     found = quick

@@ -38,7 +38,7 @@ from coatsim.geometry.space.pose import Pose
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3, place
 from coatsim.geometry.space.principal import check_arc_planes, fit_principal, is_principal
 from coatsim.geometry.space.bend import bend_arc
-from coatsim.geometry.space.straight import Straight, straight_stretches
+from coatsim.geometry.space.straight import Straight, lined_loop_run, straight_stretches
 from coatsim.geometry.space.tube_fit import CAP_SLACK, fit_tube_run
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
@@ -249,29 +249,20 @@ def _fit_open_run(name: str, run: np.ndarray, tol: float, min_segment_mm: float 
 
 def _fit_lined_loop(name: str, loop: np.ndarray, tol: float, min_segment_mm: float | None,
                     speed_kappa: float | None) -> tuple[RunChain, float, float] | None:
-    """A closed loop without corners that has straight stretches, fitted from the start of one
-    (not the one the loop's first point may cut in two) round to that stretch again, so the bend
-    before it is one arc as any other, and closed on its line: the chain, its certified deviation
-    and the tightest radius of its input; None where it has no straight stretch, or the chain
-    breaks a tangent (the seam's too) or misses σ."""
-    lines = straight_stretches(loop, tol)
-    if not lines:
+    """A closed loop without corners that has straight stretches, fitted round it from the start
+    of one to that stretch again (coatsim.geometry.space.straight.lined_loop_run): the chain, its
+    certified deviation and the tightest radius of its input; None where it has no straight
+    stretch, or the chain breaks a tangent (the seam's too) or misses σ."""
+    lined = lined_loop_run(loop, tol)
+    if lined is None:
         return None
-    body, first = loop[:-1], (lines[1] if len(lines) > 1 and lines[0].first == 0 else lines[0]).first
-    run = np.vstack((body[first:], body[:first], body[first : first + 1]))
-    lines = straight_stretches(run, tol)
-    if not lines or lines[0].first != 0:
-        return None
-    head, lap = lines[0], len(run) - 1
-    again = Straight(head.first + lap, head.last + lap, head.start, head.end)
     for bend_back in (True, False):  # each bend leaves its line after re-aimed (lines in space are a hair skew):
-        fitted, _, radius = _fit_stretches(name, np.vstack((run, run[1 : head.last + 1])), tol,  # the one back onto
-                                           min_segment_mm, speed_kappa, [*lines, again], tail=False,  # the first line
-                                           bend_back=bend_back)  # may miss its direction by 1e-7 rad: pinned arcs there
-        segs = fitted.segments
+        fitted, _, radius = _fit_stretches(name, lined.points, tol, min_segment_mm, speed_kappa,  # the one back
+                                           lined.lines, tail=False, bend_back=bend_back)  # onto the first may miss
+        segs = fitted.segments                                                   # its direction: pinned arcs there
         chain = SpaceChain((Line3(segs[-1].start, segs[0].end),) + segs[1:-1], closed=True)
         if not np.any(chain.junction_breaks() > KINK_RAD):
-            dev = hausdorff3(run, chain, tol).hausdorff
+            dev = hausdorff3(lined.points[: lined.lap + 1], chain, tol).hausdorff
             return (RunChain(chain.segments, fitted.limits_kept), dev, radius) if dev <= tol else None
     return None
 

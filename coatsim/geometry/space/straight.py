@@ -73,6 +73,34 @@ def straight_stretches(points: np.ndarray, tolerance: float) -> list[Straight]:
     return out
 
 
+@dataclass(frozen=True, eq=False)
+class LinedLoop:
+    """A closed loop with straight stretches as an open run round it and a part of a lap
+    more: ``points`` start where a stretch starts (not the one the loop's first point may cut
+    in two) and go round to the end of that stretch again; ``lines`` are the run's stretches,
+    the first one again last (the loop is ``points[:lap + 1]``), so a fit along them has the
+    bend back onto the first line as any other and closes on its line."""
+
+    points: np.ndarray
+    lines: list[Straight]
+    lap: int
+
+
+def lined_loop_run(loop: np.ndarray, tolerance: float) -> LinedLoop | None:
+    """The loop (last point = first) as a LinedLoop, or None where it has no straight stretch."""
+    lines = straight_stretches(loop, tolerance)
+    if not lines:
+        return None
+    body, first = loop[:-1], (lines[1] if len(lines) > 1 and lines[0].first == 0 else lines[0]).first
+    run = np.vstack((body[first:], body[:first], body[first : first + 1]))
+    lines = straight_stretches(run, tolerance)
+    if not lines or lines[0].first != 0:
+        return None
+    head, lap = lines[0], len(run) - 1
+    again = Straight(head.first + lap, head.last + lap, head.start, head.end)
+    return LinedLoop(np.vstack((run, run[1 : head.last + 1])), [*lines, again], lap)
+
+
 def _fitted_line(stretch: np.ndarray, through: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """A point and the unit direction of the least-squares line of points (k, 3), or of the one
     through the point ``through``."""
