@@ -75,6 +75,15 @@ def lined_loop(points: np.ndarray, tol: float, min_segment_mm: float | None,
     return None
 
 
+def at_no_cost(lined: RunFit | None, plain: RunFit) -> RunFit:
+    """The lined chain where it has fewer segments than the one without lines, or as many and
+    more lines: lines at no cost (a chain of exact lines and circles stays as it is)."""
+    if lined is None:
+        return plain
+    lines = lambda fit: sum(isinstance(s, Line) for s in fit.segments)  # noqa: E731
+    return lined if (len(lined.segments), -lines(lined)) < (len(plain.segments), -lines(plain)) else plain
+
+
 def _checked(points: np.ndarray, segments: tuple[Segment, ...], kept: bool, closed: bool,
              tol: float) -> RunFit | None:
     """The chain as a run's fit where it is G1 at every junction and within σ of ``points``."""

@@ -27,6 +27,7 @@ THIN_ROOM = 4.0  # scatters of the tolerance kept for the points between the thi
 THIN_SCATTERS = 12.0  # points are thinned from a tolerance of this many scatters (the fit keeps 8 of them)
 MIN_THINNED = 20  # fewer thinned points than this are no curve to fit
 NOISY_SPACING = 0.25  # points scattering by more than this share of their spacing turn chords back at random
+NOISY_FALLBACK = 0.05  # ... and by more than this share where the fit of all of them had to loosen its caps
 
 
 def scatter_mm(points: np.ndarray, closed: bool) -> float:
@@ -62,14 +63,14 @@ def _spacing(points: np.ndarray) -> float:
     return float(np.median(np.linalg.norm(np.diff(points, axis=0), axis=1)))
 
 
-def thinned(curve: Curve, tolerance_mm: float) -> tuple[Curve, float] | None:
-    """Every k-th point of a curve whose points scatter across it by more than NOISY_SPACING of
+def thinned(curve: Curve, tolerance_mm: float, share: float = NOISY_SPACING) -> tuple[Curve, float] | None:
+    """Every k-th point of a curve whose points scatter across it by more than ``share`` of
     their spacing (noise that turns chords back: no shape between the points to fit), k such
     that they lie a tolerance apart, with the scatter; None where the points do not scatter so,
     or the tolerance is under THIN_SCATTERS scatters."""
     pts = curve.points
     spacing, noise = _spacing(pts), scatter_mm(pts, curve.closed)
-    if not (noise > NOISY_SPACING * spacing and THIN_SCATTERS * noise < tolerance_mm):
+    if not (noise > share * spacing and THIN_SCATTERS * noise < tolerance_mm):
         return None
     index = np.arange(0, len(pts) - 1, math.ceil(tolerance_mm / spacing))
     if len(index) < MIN_THINNED:

@@ -22,12 +22,12 @@ from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed
 from coatsim.geometry.fit import fit_free, fit_run
 from coatsim.geometry.run_fit import RunFit
 from coatsim.geometry.limits import fit_limits
-from coatsim.geometry.lined import lined_loop, lined_run
+from coatsim.geometry.lined import at_no_cost, lined_loop, lined_run
 from coatsim.geometry.polysegment import Polysegment
-from coatsim.geometry.primitives import Arc, Line, Segment
+from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
-from coatsim.geometry.scatter import THIN_ROOM, noise_hint, scatter_mm, thinned
+from coatsim.geometry.scatter import NOISY_FALLBACK, NOISY_SPACING, THIN_ROOM, noise_hint, scatter_mm, thinned
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
 from coatsim.geometry.taught_retry import retried
@@ -227,6 +227,9 @@ def segment_curve(
             poly, dev, input_radius, kept, notes = _fit(curve, tol, corner_deg, min_segment_mm, speed_kappa)
         except InputError as exc:
             raise InputError(f"{curve.name}: {exc}", parameters=exc.parameters) from None
+        rescue = None if kept else _thinned_fit(curve, tol, corner_deg, min_segment_mm, speed_kappa, NOISY_FALLBACK)
+        if rescue is not None and rescue[0].n_segments < poly.n_segments:  # caps loosened: less noise may be why
+            poly, dev, input_radius, kept, notes = rescue
     circle = one_circle(pts, poly, tol)
     if circle is not None:
         poly, dev = circle, hausdorff(pts, circle).hausdorff
@@ -245,12 +248,12 @@ def segment_curve(
                         speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept, notes=notes)
 
 
-def _thinned_fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None,
-                 speed_kappa: float | None) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]] | None:
-    """The fit of every k-th point of a curve whose points scatter by a good share of their
-    spacing (scatter.thinned), within the tolerance less THIN_ROOM scatters, where it holds
+def _thinned_fit(curve: Curve, tol: float, corner_deg: float, min_segment_mm: float | None, speed_kappa: float | None,
+                 share: float = NOISY_SPACING) -> tuple[Polysegment, float, float | None, bool, tuple[str, ...]] | None:
+    """The fit of every k-th point of a curve whose points scatter by more than ``share`` of
+    their spacing (scatter.thinned), within the tolerance less THIN_ROOM scatters, where it holds
     within the tolerance of all the points; else None (the curve is fitted as it is)."""
-    found = thinned(curve, tol)
+    found = thinned(curve, tol, share)
     if found is None:
         return None
     thin, noise = found
@@ -307,7 +310,7 @@ def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: flo
     with progress(f"{curve.name}: fitting runs between corners", len(runs)) as advance:
         for run in runs:  # the time budget is checked after each run (coatsim.core.progress)
             limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-            found = _fewer(lined_run(run, tol, min_segment_mm, speed_kappa),
+            found = at_no_cost(lined_run(run, tol, min_segment_mm, speed_kappa),
                            fit_run(run, tol, False, limits, fillet=min_segment_mm is None))
             segments, run_corners = _split_arcs(found)
             inner += [sum(len(p) for p in pieces) + k for k in run_corners]
@@ -322,15 +325,6 @@ def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: flo
     poly = Polysegment(segments, closed=curve.closed, corners=tuple(sorted(set(junctions) | set(inner))))
     dev = deviations[0] if len(runs) == 1 else hausdorff(rotated, poly).hausdorff
     return poly, dev, _finite(min(radii)), kept, notes
-
-
-def _fewer(lined: RunFit | None, plain: RunFit) -> RunFit:
-    """The chain with lines for the straight stretches (coatsim.geometry.lined) where it has
-    fewer segments than the one without, or as many and more lines: lines at no cost."""
-    if lined is None:
-        return plain
-    lines = lambda fit: sum(isinstance(s, Line) for s in fit.segments)  # noqa: E731
-    return lined if (len(lined.segments), -lines(lined)) < (len(plain.segments), -lines(plain)) else plain
 
 
 def _split_arcs(found: RunFit) -> tuple[tuple[Segment, ...], list[int]]:
@@ -360,7 +354,7 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
     the first point, needs at most one segment more (or the quick fit fails). Where the quick
     fit fails and no chain of honest arcs follows taught points from the calmest point, quick
     fits from other vertices are tried (_other_seams); if none follows them either, they come
-    back as their lines from the first point. Lines for straight stretches where they cost nothing."""
+    back as their lines from the first point. Lines for straight stretches where they cost nothing (at_no_cost)."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     quick = fit_free(pts, tol, True, limits, quick=True)
     found = quick
@@ -375,7 +369,7 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
             replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
         if quick is None or len(calm.segments) <= len(quick.segments) + 1:
             found = calm
-    found = _fewer(lined_loop(pts, tol, min_segment_mm, speed_kappa), found)
+    found = at_no_cost(lined_loop(pts, tol, min_segment_mm, speed_kappa), found)
     segments, corners = _split_arcs(found)
     poly = Polysegment(segments, closed=True, corners=tuple(corners))
     return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept, found.notes

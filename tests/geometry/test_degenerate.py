@@ -229,3 +229,30 @@ def test_a_flat_ellipse_of_a_kilometre_falls_back_to_few_fillets():
     seg = segment_curve(load_curve("builtin:ellipse:a=1e9,b=20"), 0.1)
     assert_sane(seg, 0.1)
     assert seg.polysegment.n_segments <= 200
+
+
+@pytest.mark.parametrize("aspect", [1.002, 1.01, 1.1])
+def test_an_ellipse_is_not_taken_for_a_circle(aspect):
+    """Arcs are one circle only where their centres and radii agree within σ/10 and the one arc
+    keeps the points within σ: a slightly flattened circle (semi-axes 50 and 50·aspect, its
+    radius of curvature 50/aspect² .. 50·aspect) at σ 0.05 keeps the arcs it needs."""
+    t = np.linspace(0.0, 2 * math.pi, 2001)
+    pts = np.column_stack((50 * aspect * np.cos(t), 50 * np.sin(t)))
+    pts[-1] = pts[0]
+    seg = segment_curve(make_curve(pts, "ellipse", "yes"), 0.05)
+    assert_sane(seg, 0.05)
+    assert seg.polysegment.n_segments > 1 and brute_hausdorff(pts, seg.polysegment, 0.005) <= 0.0505
+
+
+@pytest.mark.parametrize("tol", [0.05, 0.5])
+def test_a_circle_taken_as_one_arc_is_within_sigma_of_its_points(tol):
+    """The one arc of a sampled, jittered circle is certified again: every point within σ."""
+    rng = np.random.default_rng(11)
+    t = np.sort(rng.uniform(0.0, 2 * math.pi, 1500))
+    pts = np.column_stack((20 + 35 * np.cos(t), -7 + 35 * np.sin(t))) + rng.normal(scale=tol / 20, size=(1500, 2))
+    pts = np.vstack((pts, pts[:1]))
+    seg = segment_curve(make_curve(pts, "circle", "yes"), tol)
+    (arc,) = seg.polysegment.segments
+    assert isinstance(arc, Arc) and abs(arc.sweep) == 2 * math.pi and arc.start == arc.end
+    assert arc.radius == pytest.approx(35, abs=tol) and math.dist(arc.center, (20, -7)) <= tol
+    assert brute_hausdorff(pts, seg.polysegment, tol / 20) <= tol * 1.02

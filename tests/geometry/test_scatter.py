@@ -90,3 +90,19 @@ def test_a_refusal_of_noisy_points_names_their_scatter_and_the_tolerance_that_fi
                   r"fitted through every k-th point", str(refused.value))
     assert m and 0.015 < float(m.group(1)) < 0.025, str(refused.value)
     assert segment_curve(curve, 1.01 * float(m.group(2))).polysegment.n_segments <= 20
+
+
+@pytest.mark.parametrize("even", [True, False])
+@pytest.mark.parametrize("tol", [0.2, 0.5])
+@pytest.mark.parametrize("seed", [11, 12])
+def test_a_circle_whose_noise_is_a_small_share_of_its_spacing_is_still_one_circle(even, tol, seed):
+    """Noise of σ/20 on points 0.15 mm apart (a sixth of the spacing at σ 0.5): the fit of all the
+    points loosened its caps and came back as 50–110 lines and arcs; where it has to, the fit of
+    every k-th point is tried (scatter.NOISY_FALLBACK) and checked against all: one circle."""
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0.0, 2 * math.pi, 1500) if even else np.sort(rng.uniform(0.0, 2 * math.pi, 1500))
+    pts = np.column_stack((20 + 35 * np.cos(t), -7 + 35 * np.sin(t))) + rng.normal(scale=tol / 20, size=(1500, 2))
+    pts = np.vstack((pts, pts[:1]))
+    seg = segment_curve(make_curve(pts, "circle", "yes"), tol)
+    poly = seg.polysegment
+    assert poly.n_segments <= 8 and poly.n_lines == 0 and seg.limits_kept and seg.max_deviation_mm <= tol
