@@ -8,9 +8,10 @@ came back as fifteen arcs, its straight sides of radius 5–90 m, that a control
 circles and a user reads as a fault. The straight stretches are found as in space
 (coatsim.geometry.space.straight: within σ/2 of a line over at least 50 σ, and unbent); a bend
 between two lines is the arc tangent to both with the radius that fits its input best, each line
-ending at a tangent point, where that keeps the input of the bend and both lines within σ; the
-chain is taken where it is G1 at every junction and within σ of the whole run, else the caller
-fits the run without lines.
+ending at a tangent point (between lines running opposite ways, a U-turn: the arc tangent to the
+first, the second leaving it along its tangent), where that keeps the input of the bend and both
+lines within σ. The chain is a candidate where it is G1 at every junction and within σ of the
+whole run; the caller takes it over the chain without lines where lines cost nothing (at_no_cost).
 """
 
 from __future__ import annotations
