@@ -95,10 +95,10 @@ def full_circle(center: tuple[float, float], radius: float, start_angle: float, 
     return Polysegment((Arc(start, start, center, radius, turn * 2 * math.pi),), closed=True)
 
 
-def one_circle(points: np.ndarray, poly: Polysegment, tolerance: float) -> Polysegment | None:
+def one_circle(points: np.ndarray, poly: Polysegment, tolerance: float) -> tuple[Polysegment, float] | None:
     """A closed chain of arcs of one circle (centres and radii within CIRCLE_SHARE σ, all
-    turning one way, no corner) as that circle in one arc, if it keeps the points within
-    ``tolerance``; else None. The fit splits long arcs and starts a loop at its seam, so a
+    turning one way, no corner) as that circle in one arc, with its verified deviation, if it
+    keeps the points within ``tolerance``; else None. The fit splits long arcs and starts a loop at its seam, so a
     circle comes out as a few arcs of itself; the user asked for a circle."""
     segs = poly.segments
     if not poly.closed or poly.corners or len(segs) < 2 or not all(isinstance(s, Arc) for s in segs):
@@ -114,7 +114,8 @@ def one_circle(points: np.ndarray, poly: Polysegment, tolerance: float) -> Polys
     first = segs[0]
     angle = math.atan2(first.start[1] - center[1], first.start[0] - center[0])
     circle = full_circle(center, float(weights @ radii / weights.sum()), angle, turns.pop())
-    return circle if hausdorff(points, circle).hausdorff <= tolerance else None
+    dev = hausdorff(points, circle).hausdorff
+    return (circle, dev) if dev <= tolerance else None
 
 
 def check_chain(poly: Polysegment, extent: float) -> None:

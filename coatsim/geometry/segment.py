@@ -232,7 +232,7 @@ def segment_curve(
             poly, dev, input_radius, kept, notes = rescue
     circle = one_circle(pts, poly, tol)
     if circle is not None:
-        poly, dev = circle, hausdorff(pts, circle).hausdorff
+        poly, dev = circle
     extent = extent_mm(pts)
     check_chain(poly, extent)
     if extent < SMALL_SIGMAS * tol:
