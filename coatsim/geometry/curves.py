@@ -18,6 +18,10 @@ from coatsim.core.number_text import read_rows, table_text
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
+CLOSE_SPACINGS = 1.5  # or within this many of the spacings at the ends, the curve running on across the gap
+CLOSE_MIN_POINTS = 8  # ... for a curve of at least this many points
+CLOSE_TURN_DEG = 120.0  # ... no turn at either end of the gap sharper than this (not doubling back)
+CLOSE_SMOOTH, CLOSE_SMOOTH_DEG = 2.0, 5.0  # ... and at one end a turn at most 2x the turn before it + 5 deg
 SNAP_NOTE_MM = 0.01  # an automatic closure that moves the last point further than this says so
 MIN_LENGTH_MM = 1e-6  # a shorter curve is no curve to spray (and leaves no room for float round-off)
 
@@ -51,7 +55,9 @@ def make_curve(points: np.ndarray, name: str, closed: ClosedMode = "auto") -> Cu
     Args:
         points: an (n, 2) array, mm.
         name: how errors name the input (a file, a built-in curve).
-        closed: ``auto`` (closed when the ends meet), ``yes`` or ``no``.
+        closed: ``auto`` (closed when the ends meet, or when a loop is given without its closing
+            point: the gap about one point spacing and the curve running on across it), ``yes``
+            or ``no``.
 
     Returns:
         The Curve.
@@ -89,11 +95,15 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
         raise InputError(f"{name}: the curve is {length:.3g} mm long; give at least {MIN_LENGTH_MM:g} mm (coordinates in mm)")
     gap = float(np.linalg.norm(pts[-1] - pts[0]))
     if closed == "auto":
-        is_closed = len(pts) >= 4 and gap <= CLOSE_FRACTION * length
+        is_closed = len(pts) >= 4 and ends_meet(pts)
+        if not is_closed and _runs_across_gap(pts):
+            is_closed = True
+            warnings.warn(f"{name}: read as closed, its ends {gap:.4g} mm apart, about one point spacing, the curve "
+                          "running on across the gap (closed='no' keeps it open)", CoatsimWarning, stacklevel=3)
     else:
         is_closed = closed == "yes"
     if is_closed:
-        if gap <= CLOSE_FRACTION * length:
+        if ends_meet(pts):
             if closed == "auto" and gap > SNAP_NOTE_MM:
                 warnings.warn(f"{name}: read as closed, its ends {gap:.4g} mm apart ({gap / length:.2g} of its length): "
                               "the last point is moved onto the first (closed='no' keeps it open)",
@@ -104,6 +114,33 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
         if len(pts) < 4:
             raise InputError(f"{name}: a closed curve needs at least three distinct points")
     return pts, is_closed
+
+
+def ends_meet(points: np.ndarray) -> bool:
+    """Whether the first and last point coincide within CLOSE_FRACTION of the length: a path that
+    returns to its start (a program's path is closed only so)."""
+    length = float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+    return bool(np.linalg.norm(points[-1] - points[0]) <= CLOSE_FRACTION * length)
+
+
+def _runs_across_gap(pts: np.ndarray) -> bool:
+    """Whether a curve whose ends do not meet is still a loop given without its closing point:
+    the gap is no wider than CLOSE_SPACINGS of the spacings at its ends, the curve runs on
+    across it at one end at least (turning onto or off it no more than CLOSE_SMOOTH times the
+    turn at the point before, plus CLOSE_SMOOTH_DEG: the other end may be a corner), and at
+    neither end does it double back (a turn sharper than CLOSE_TURN_DEG)."""
+    if len(pts) < CLOSE_MIN_POINTS:
+        return False
+    steps = np.diff(np.vstack((pts, pts[:1])), axis=0)  # the last step is the gap
+    widths = np.linalg.norm(steps, axis=1)
+    if widths[-1] > CLOSE_SPACINGS * max(widths[0], widths[-2]):
+        return False
+    unit = steps / widths[:, None]
+    turn = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", unit, np.roll(unit, -1, axis=0)), -1.0, 1.0)))
+    onto, off = turn[-2], turn[-1]  # at the last point (onto the gap), at the first (off it)
+    before_onto, after_off = turn[-3], turn[0]
+    smooth = (onto <= CLOSE_SMOOTH * before_onto + CLOSE_SMOOTH_DEG) or (off <= CLOSE_SMOOTH * after_off + CLOSE_SMOOTH_DEG)
+    return bool(smooth and max(onto, off) < CLOSE_TURN_DEG)
 
 
 def _read_text_points(path: Path) -> np.ndarray:

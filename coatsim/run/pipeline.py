@@ -21,6 +21,7 @@ from coatsim.core.fileio import write_text
 from coatsim.core.progress import Step, labelled, progress as progress_bar
 from coatsim.geometry import make_curve, segment_curve, write_polysegment_json
 from coatsim.geometry.cad import PartSegmentation
+from coatsim.geometry.curves import ends_meet
 from coatsim.geometry.deviation import hausdorff
 from coatsim.geometry.part_json import write_part_json
 from coatsim.geometry.polysegment import Polysegment
@@ -307,7 +308,8 @@ def _segmentation(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation,
         user = user_program(toolpath, curve_frame(spec), "")
     except CoatsimError as exc:
         raise exc.prefixed(f"{loaded.where('variants')}: variant {entry.name}") from None
-    seg = segment_curve(make_curve(user.points, entry.name, "auto"), spec.segmentation.tolerance_mm,
+    closed = "yes" if ends_meet(user.points) else "no"  # a program drives no step it does not list
+    seg = segment_curve(make_curve(user.points, entry.name, closed), spec.segmentation.tolerance_mm,
                         method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
                         speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2)
     return (seg,), None, (0.0, 0.0)

@@ -13,7 +13,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from coatsim.core.errors import CoatsimWarning, InputError
-from coatsim.geometry import BUILTINS, builtin_curve, load_curve, make_curve, read_curve_file
+from coatsim.geometry import BUILTINS, builtin_curve, load_curve, make_curve, read_curve_file, segment_curve
+from coatsim.geometry.curves import ends_meet
+from coatsim.geometry.space.curve import make_space_curve
 
 # Six points of a parabola, written with repr() so every reader must give them back exactly.
 POINTS = np.array([[0.0, 0.0], [1.5, 0.25], [3.0, 1.0], [4.5, 2.25], [6.0, 4.0], [7.25, 6.125], [-2.5e-3, 1e3]])
@@ -131,16 +133,87 @@ def test_a_visible_gap_is_open(tmp_path):
 
 
 def test_closed_forcing(tmp_path):
-    open_path = write_rows(tmp_path / "open.csv", circle())
+    three_quarters = circle()[:30]
+    open_path = write_rows(tmp_path / "open.csv", three_quarters)
     assert read_curve_file(open_path).closed is False
     forced = load_curve(str(open_path), "yes")
     assert forced.closed is True
-    assert len(forced.points) == len(circle()) + 1 and tuple(forced.points[-1]) == tuple(forced.points[0])
+    assert len(forced.points) == len(three_quarters) + 1 and tuple(forced.points[-1]) == tuple(forced.points[0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert load_curve(str(write_rows(tmp_path / "loop.csv", circle())), "no").closed is False
 
     closed_path = write_rows(tmp_path / "closed.csv", np.vstack((circle(), circle()[:1])))
     kept_open = load_curve(str(closed_path), "no")
     assert kept_open.closed is False and len(kept_open.points) == len(circle()) + 1
     assert load_curve(str(closed_path), "auto").closed is True
+
+
+def _placed(points: np.ndarray, dim: int, seed: int) -> np.ndarray:
+    """Points in the plane, in 3-D turned into a random plane and moved."""
+    if dim == 2:
+        return points
+    rng = np.random.default_rng(seed)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    return np.column_stack((points, np.zeros(len(points)))) @ q.T + rng.uniform(-100, 100, 3)
+
+
+@settings(max_examples=40, deadline=None)
+@given(n=st.integers(8, 400), radius=st.floats(1.0, 500.0), start=st.floats(0.0, 2 * math.pi),
+       dim=st.sampled_from([2, 3]), seed=st.integers(0, 2**16))
+def test_a_loop_given_without_its_closing_point_is_closed_and_says_so(n, radius, start, dim, seed):
+    a = start + np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    pts = _placed(np.column_stack((radius * np.cos(a), radius * np.sin(a))), dim, seed)
+    make = make_curve if dim == 2 else make_space_curve
+    with pytest.warns(CoatsimWarning, match=r"c.csv: read as closed, its ends [0-9.e+-]+ mm apart, about one point spacing"):
+        c = make(pts, "c.csv", "auto")
+    assert c.closed and len(c.points) == n + 1
+    np.testing.assert_array_equal(c.points[:-1], pts)
+    assert tuple(c.points[-1]) == tuple(c.points[0])
+
+
+@settings(max_examples=40, deadline=None)
+@given(n=st.integers(12, 400), missing=st.floats(2.0, 40.0), dim=st.sampled_from([2, 3]), seed=st.integers(0, 2**16))
+def test_an_arc_stopping_more_than_a_step_and_a_half_short_of_closing_is_open(n, missing, dim, seed):
+    step = 2 * math.pi / (n - 1 + missing)  # the gap spans `missing` steps of the arc
+    a = step * np.arange(n)
+    pts = _placed(np.column_stack((40 * np.cos(a), 40 * np.sin(a))), dim, seed)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        c = (make_curve if dim == 2 else make_space_curve)(pts, "c.csv", "auto")
+    assert not c.closed and len(c.points) == n
+
+
+def test_a_rectangle_from_a_corner_without_its_closing_point_is_closed():
+    """The gap runs on along the last side; the start is a corner, which one end may be."""
+    side = np.linspace(0.0, 1.0, 21)[:-1]
+    corners = np.array([[0.0, 0.0], [80.0, 0.0], [80.0, 30.0], [0.0, 30.0], [0.0, 0.0]])
+    pts = np.vstack([a + np.outer(side, b - a) for a, b in zip(corners[:-1], corners[1:])])
+    with pytest.warns(CoatsimWarning, match="about one point spacing"):
+        assert make_curve(pts, "r.csv", "auto").closed
+
+
+def test_a_path_that_comes_back_along_itself_is_not_closed_by_its_last_step():
+    out = np.column_stack((np.linspace(0.0, 100.0, 51), np.zeros(51)))
+    back = out[::-1][1:-1]  # back along the same line, stopping one step short of the start
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert make_curve(np.vstack((out, back)), "hairpin.csv", "auto").closed is False
+
+
+def test_a_circle_given_without_its_closing_point_is_one_circle():
+    with pytest.warns(CoatsimWarning, match="about one point spacing"):
+        curve = make_curve(circle(200, 40.0), "c.csv", "auto")
+    poly = segment_curve(curve, 0.1).polysegment
+    assert poly.closed and poly.n_segments == 1 and poly.segments[0].radius == pytest.approx(40.0, abs=0.1)
+
+
+def test_a_programs_path_is_closed_only_where_it_returns_to_its_start():
+    """A program drives no step it does not list: ends_meet, not a step's gap, closes its path."""
+    assert not ends_meet(circle(200, 40.0))
+    assert ends_meet(np.vstack((circle(200, 40.0), circle(200, 40.0)[:1])))
+    nearly = np.vstack((circle(200, 40.0), circle(200, 40.0)[:1] + [0.0, 0.02]))  # 8e-5 of the length
+    assert ends_meet(nearly)
 
 
 def test_closed_forcing_on_builtins():
