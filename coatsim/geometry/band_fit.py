@@ -141,10 +141,9 @@ def _reach(prob: BandProblem, a: int, value: float, slope: float, band: float) -
         stop = min(n, start + width)
         u = prob.s[start:stop] - prob.s[a]
         base = value + slope * u
-        inv = 2.0 / (u * u)
-        half = band * prob.width[start:stop]
-        lo = np.maximum.accumulate(np.concatenate(([lo_run], (prob.phi[start:stop] - half - base) * inv)))[1:]
-        hi = np.minimum.accumulate(np.concatenate(([hi_run], (prob.phi[start:stop] + half - base) * inv)))[1:]
+        lo_at, hi_at = _bounds(prob.phi[start:stop], band * prob.width[start:stop], base, u)
+        lo = np.maximum.accumulate(np.concatenate(([lo_run], lo_at)))[1:]
+        hi = np.minimum.accumulate(np.concatenate(([hi_run], hi_at)))[1:]
         cap = np.maximum.accumulate(np.concatenate(([cap_run], prob.cap[start:stop])))[1:]
         bad = np.flatnonzero(lo > hi)
         stop_at = bad[0] if len(bad) else len(lo)
@@ -165,6 +164,15 @@ def _farthest(prob: BandProblem, a: int, lo: np.ndarray, hi: np.ndarray) -> int:
     return a + 1 + int(ok[-1]) if len(ok) else a
 
 
+def _bounds(phi: np.ndarray, half: np.ndarray, base: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The curvatures (lo, hi) a piece leaving a knot on ``base`` (Φ̂ there) may have to stay within
+    ``half`` of Φ at a knot ``u`` mm on: (Φ ∓ half − base)·2/u². A knot at u = 0 (coincident points)
+    bounds none: ±inf, or 0/0 on the band's edge."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 2.0 / (u * u)
+        return np.fmax((phi - half - base) * inv, -np.inf), np.fmin((phi + half - base) * inv, np.inf)
+
+
 def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slopes: list[float], band: float,
                  width: int = 256) -> list[int]:
     """_farthest after _reach for many states at once (the look-ahead's candidates): the same
@@ -180,11 +188,9 @@ def _farthest_of(prob: BandProblem, knots: list[int], values: list[float], slope
     idx = np.minimum(idx, n - 1)
     u = prob.s[idx] - prob.s[a][:, None]
     base = np.asarray(values)[:, None] + np.asarray(slopes)[:, None] * u
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = 2.0 / (u * u)
-        half = band * prob.width[idx]
-        lo = np.maximum.accumulate(np.where(inside, (prob.phi[idx] - half - base) * inv, np.inf), axis=1)
-        hi = np.minimum.accumulate(np.where(inside, (prob.phi[idx] + half - base) * inv, -np.inf), axis=1)
+    lo_at, hi_at = _bounds(prob.phi[idx], band * prob.width[idx], base, u)
+    lo = np.maximum.accumulate(np.where(inside, lo_at, np.inf), axis=1)
+    hi = np.minimum.accumulate(np.where(inside, hi_at, -np.inf), axis=1)
     cap = np.maximum.accumulate(np.concatenate((prob.cap[a][:, None], prob.cap[idx]), axis=1), axis=1)[:, 1:]
     bad = lo > hi  # (past the last knot every entry is bad)
     held = np.where(bad.any(axis=1), bad.argmax(axis=1), width)

@@ -2,6 +2,9 @@
 (the same arithmetic element by element), on curves sampled evenly and unevenly, inside the
 block and past it."""
 
+import dataclasses
+import warnings
+
 import numpy as np
 from hypothesis import given, settings, strategies as st
 
@@ -36,3 +39,24 @@ def test_batched_lookahead_matches_reach(seed, n, width, band, narrowed):
 
 def test_no_states():
     assert _farthest_of(_problem(0, 20), [], [], [], 0.1) == []
+
+
+@given(st.integers(0, 2**32 - 1), st.booleans())
+@settings(max_examples=20, deadline=None)
+def test_a_knot_at_no_distance_bounds_no_curvature(seed, on_edge):
+    """Coincident points (closer than float64 resolves at their arc length) give a knot at u = 0:
+    it bounds no curvature (no warning, no NaN), one by one as in the batched look-ahead."""
+    prob = _problem(seed, 60)
+    s, phi = prob.s.copy(), prob.phi.copy()
+    s[6], phi[6] = s[5], phi[5]
+    prob = dataclasses.replace(prob, s=s, phi=phi, first_steps={})
+    band = 0.05
+    value = float(phi[5] + (band * prob.width[6] if on_edge else 0.0))  # on the band's edge: 0/0
+    slope = float((phi[8] - phi[5]) / (s[8] - s[5]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        b, lo, hi = _reach(prob, 5, value, slope, band)
+        batched = _farthest_of(prob, [5], [value], [slope], band, width=8)
+    assert not np.isnan(lo).any() and not np.isnan(hi).any()
+    assert b > 6 and lo[0] == -prob.cap[5] and hi[0] == prob.cap[5]  # the knot at u = 0 left the caps alone
+    assert batched == [_farthest(prob, 5, lo, hi)]
