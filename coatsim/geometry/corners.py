@@ -149,9 +149,21 @@ def _dense_corners(pts: np.ndarray, closed: bool, corner_deg: float, tolerance: 
     corners: list[int] = []
     for h in hits[np.argsort(-turn[hits], kind="stable")]:
         v = _sharpest_near(s, vertex_turn, int(idx[h]), w, closed)
+        if not _stands_out(vertex_turn, v, corner_deg, closed):
+            continue  # ... and a vertex there is sharp: a bend beside a line turns little at each vertex
         if all(_arc_gap(s, v, c, total, closed) > 2 * w for c in corners):
             corners.append(v)
     return np.array(sorted(set(corners)), dtype=int)
+
+
+def _stands_out(vertex_turn: np.ndarray, v: int, corner_deg: float, closed: bool) -> bool:
+    """Whether vertex v turns more than ``corner_deg`` or more than STANDS_OUT times either
+    neighbour: a corner, or a corner rounded over a few vertices, is sharp at one; a bend the
+    sampling resolves turns alike at neighbouring vertices, each a little."""
+    last = len(vertex_turn) - 1
+    before = vertex_turn[v - 1] if v > 0 else (vertex_turn[last - 1] if closed else 0.0)
+    after = vertex_turn[v + 1] if v < last else (vertex_turn[1] if closed else 0.0)
+    return bool(vertex_turn[v] > math.radians(corner_deg) or vertex_turn[v] > STANDS_OUT * max(before, after))
 
 
 def _vertex_turns(pts: np.ndarray, closed: bool) -> np.ndarray:
