@@ -148,15 +148,15 @@ def _dense_corners(pts: np.ndarray, closed: bool, corner_deg: float, tolerance: 
     vertex_turn = _vertex_turns(pts, closed)
     corners: list[int] = []
     for h in hits[np.argsort(-turn[hits], kind="stable")]:
-        v = _sharpest_near(s, vertex_turn, int(idx[h]), w, closed)
-        if not _stands_out(vertex_turn, v, corner_deg, closed):
+        v = sharpest_near(s, vertex_turn, int(idx[h]), w, closed)
+        if not stands_out(vertex_turn, v, corner_deg, closed):
             continue  # ... and a vertex there is sharp: a bend beside a line turns little at each vertex
         if all(_arc_gap(s, v, c, total, closed) > 2 * w for c in corners):
             corners.append(v)
     return np.array(sorted(set(corners)), dtype=int)
 
 
-def _stands_out(vertex_turn: np.ndarray, v: int, corner_deg: float, closed: bool) -> bool:
+def stands_out(vertex_turn: np.ndarray, v: int, corner_deg: float, closed: bool) -> bool:
     """Whether vertex v turns more than ``corner_deg`` or more than STANDS_OUT times either
     neighbour: a corner, or a corner rounded over a few vertices, is sharp at one; a bend the
     sampling resolves turns alike at neighbouring vertices, each a little."""
@@ -177,7 +177,7 @@ def _vertex_turns(pts: np.ndarray, closed: bool) -> np.ndarray:
     return turn
 
 
-def _sharpest_near(s: np.ndarray, vertex_turn: np.ndarray, v: int, w: float, closed: bool) -> int:
+def sharpest_near(s: np.ndarray, vertex_turn: np.ndarray, v: int, w: float, closed: bool) -> int:
     """The vertex within w of vertex v that turns most (where a cusp or a sharp corner
     really is: the chord test ties along the stretch around it)."""
     total = s[-1]

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 from coatsim.geometry import make_curve, segment_curve
 from coatsim.geometry.corners import corners_and_notes
+from coatsim.geometry.space.local import detect_corners3
 
 
 def _resampled(points: np.ndarray, spacing: float) -> np.ndarray:
@@ -21,7 +22,7 @@ def _resampled(points: np.ndarray, spacing: float) -> np.ndarray:
 
 def serpentine(passes: int, length: float, pitch: float, bulge: float) -> np.ndarray:
     """Passes along x joined by semi-elliptical turn-arounds (semi-axes ``bulge`` along x, pitch/2
-    along y: radius bulge²/(pitch/2) where they meet the passes, tangent to them), densely."""
+    along y, tangent to the passes), densely."""
     t = np.linspace(0.0, math.pi, 2001)
     parts = []
     for i in range(passes):
@@ -34,11 +35,16 @@ def serpentine(passes: int, length: float, pitch: float, bulge: float) -> np.nda
     return np.vstack(parts)
 
 
+def tightest(bulge: float, pitch: float) -> float:
+    """The tightest radius of a turn-around: where it meets a pass, or at its tip."""
+    return min(bulge ** 2 / (pitch / 2), (pitch / 2) ** 2 / bulge)
+
+
 @settings(max_examples=40, deadline=None)
 @given(bulge=st.floats(3.0, 10.0), pitch=st.floats(10.0, 30.0), share=st.floats(0.03, 1.0 / 3.0),
        tolerance=st.floats(0.05, 1.0))
 def test_a_tight_turn_around_the_sampling_resolves_is_no_corner(bulge, pitch, share, tolerance):
-    radius = bulge ** 2 / (pitch / 2)  # the tightest radius, where a turn-around meets a pass
+    radius = tightest(bulge, pitch)
     spacing = min(share * radius, 1.0)  # each vertex turns at most 1/3 rad (19°)
     pts = _resampled(serpentine(3, 100.0, pitch, bulge), spacing)
     corners, _ = corners_and_notes(pts, False, 20.0, tolerance)
@@ -74,3 +80,31 @@ def test_a_serpentine_with_elliptical_turns_is_tangent_continuous():
     seg = segment_curve(curve, 0.5)
     poly = seg.polysegment
     assert poly.corners == () and poly.max_tangent_break() <= 1e-9 and seg.max_deviation_mm <= 0.5
+
+
+def _on_cylinder(points: np.ndarray, radius: float) -> np.ndarray:
+    """Plane points wrapped onto a cylinder about the y axis (x measured along its surface)."""
+    a = points[:, 0] / radius
+    return np.column_stack((radius * np.sin(a), points[:, 1], radius * (1 - np.cos(a))))
+
+
+@settings(max_examples=30, deadline=None)
+@given(bulge=st.floats(3.0, 10.0), pitch=st.floats(10.0, 30.0), share=st.floats(0.03, 1.0 / 3.0),
+       tolerance=st.floats(0.05, 1.0), cylinder=st.floats(60.0, 300.0))
+def test_in_space_a_tight_turn_around_the_sampling_resolves_is_no_corner(bulge, pitch, share, tolerance, cylinder):
+    radius = tightest(bulge, pitch)
+    pts = _on_cylinder(_resampled(serpentine(3, 100.0, pitch, bulge), min(share * radius, 1.0)), cylinder)
+    assert detect_corners3(pts, False, 20.0, tolerance).tolist() == []
+
+
+@settings(max_examples=30, deadline=None)
+@given(turn_deg=st.floats(25.0, 150.0), share=st.floats(0.05, 1.9), tolerance=st.floats(0.02, 1.0),
+       seed=st.integers(0, 2**16))
+def test_in_space_a_sharp_vertex_of_dense_points_is_a_corner(turn_deg, share, tolerance, seed):
+    spacing, a = share * tolerance, math.radians(turn_deg)
+    legs = [np.array([[-60.0, 0.0], [0.0, 0.0]]), np.array([[0.0, 0.0], [60.0 * math.cos(a), 60.0 * math.sin(a)]])]
+    flat = np.vstack([_resampled(leg, spacing)[:-1] for leg in legs] + [legs[-1][-1:]])
+    q, _ = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    pts = np.column_stack((flat, np.zeros(len(flat)))) @ q.T
+    corners = detect_corners3(pts, False, 20.0, tolerance)
+    assert len(corners) == 1 and np.linalg.norm(pts[corners[0]]) <= spacing + 1e-9

@@ -6,7 +6,8 @@ s + w, and the angle between the two chords joining them, over w (exact on a cir
 below half its circumference). The tangent at a vertex is the derivative of a least-squares
 quadratic through the points within ± w. A corner is, as in the plane
 (coatsim.geometry.corners), a turn above ``corner_deg`` between the chords p(s − w) -> p(s)
-and p(s) -> p(s + w) that persists over 3w and is concentrated (at most twice the turn at w).
+and p(s) -> p(s + w) that persists over 3w and is concentrated (at most twice the turn at w),
+with a sharp vertex near it (coatsim.geometry.corners.stands_out).
 """
 
 from __future__ import annotations
@@ -15,10 +16,9 @@ import math
 
 import numpy as np
 
+from coatsim.geometry.corners import CONCENTRATED, SPARSE, sharpest_near, stands_out
 from coatsim.geometry.envelope import MAX_GRID, WINDOW_EDGES, WINDOW_SIGMAS, CurvatureProfile
 
-CONCENTRATED = 2.0  # a corner turns at most this much more over 3w than over w
-SPARSE = 10.0  # a polyline whose median edge is this many σ long has only its vertices to go by
 
 
 def arc_length(points: np.ndarray) -> np.ndarray:
@@ -124,9 +124,12 @@ def detect_corners3(points: np.ndarray, closed: bool, corner_deg: float, toleran
     near, wide = turn(w), turn(3 * w)
     limit = math.radians(corner_deg)
     hit = (near > limit) & (wide > limit) & (wide <= CONCENTRATED * near)
+    vertex_turn = _vertex_turns3(pts, closed)
     found: list[int] = []
     for k in np.argsort(-near[hit], kind="stable"):
         i = int(idx[hit][k])
+        if not stands_out(vertex_turn, sharpest_near(s, vertex_turn, i, w, closed), corner_deg, closed):
+            continue  # a tight bend the sampling resolves, beside a line: no corner (as in the plane)
         if all(min(abs(s[i] - s[j]), total - abs(s[i] - s[j]) if closed else math.inf) > 2 * w for j in found):
             found.append(i)
     return np.array(sorted(found), dtype=int)
@@ -134,11 +137,18 @@ def detect_corners3(points: np.ndarray, closed: bool, corner_deg: float, toleran
 
 def _vertex_corners(points: np.ndarray, closed: bool, corner_deg: float) -> np.ndarray:
     """The vertices of a sparse polyline where it turns by more than ``corner_deg``."""
+    turn = _vertex_turns3(points, closed)
+    return np.flatnonzero(turn[:-1] > math.radians(corner_deg) if closed else turn > math.radians(corner_deg))
+
+
+def _vertex_turns3(points: np.ndarray, closed: bool) -> np.ndarray:
+    """|turn| (rad) at every vertex between its two edges (0 at an open curve's ends; a closed
+    one's seam at its first and last point)."""
     body = points[:-1] if closed else points
     before = body - np.roll(body, 1, axis=0)
     after = np.roll(body, -1, axis=0) - body
     turn = np.arctan2(np.linalg.norm(np.cross(before, after), axis=1), np.einsum("ij,ij->i", before, after))
-    hit = turn > math.radians(corner_deg)
-    if not closed:
-        hit[[0, -1]] = False
-    return np.flatnonzero(hit)
+    if closed:
+        return np.append(turn, turn[0])
+    turn[[0, -1]] = 0.0
+    return turn
