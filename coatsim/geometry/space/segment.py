@@ -39,6 +39,7 @@ from coatsim.geometry.space.primitives import Arc3, Line3, Segment3, place
 from coatsim.geometry.space.principal import check_arc_planes, fit_principal, is_principal
 from coatsim.geometry.space.bend import bend_arc
 from coatsim.geometry.space.straight import Straight, lined_loop_run, straight_stretches
+from coatsim.geometry.space.taught import taught_fit
 from coatsim.geometry.space.tube_fit import CAP_SLACK, fit_tube_run
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
@@ -164,6 +165,11 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
         pose = None
         chain, dev, radius, kept, added = _fit_space(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s,
                                                      tool_accel_mm_s2)
+        fit_guide = lambda guide, within: _fit_space(guide, within, corner_deg, min_segment_mm,  # noqa: E731
+                                                     speed_mm_s, tool_accel_mm_s2)[::4]  # (chain, corners added)
+        taught = taught_fit(curve, tolerance_mm, corner_deg, fit_guide, chain.n_segments)  # a sparse polyline
+        if taught is not None:
+            chain, dev, added = taught
     shortest = min(seg.length for seg in chain.segments)
     if min_segment_mm is not None and chain.n_segments > 1 and shortest < (1 - CAP_SLACK) * min_segment_mm:
         raise InputError(f"{curve.name}: no chain within {tolerance_mm:g} mm was found that keeps every segment at "
