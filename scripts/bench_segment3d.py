@@ -28,6 +28,11 @@ deviation and CPU seconds of each; then the exponent of the principal fit's CPU 
 
     python scripts/bench_segment3d.py [--sigmas 0.05,0.1,0.5] [--points 1500] [--only helix,trefoil] [--axes]
     python scripts/bench_segment3d.py --arc-planes [--sigmas ...] [--points ...] [--only ...]
+    python scripts/bench_segment3d.py --taught [--only ...]
+
+``--taught``: instead, each family taught with 15, 30 and 60 of its own points at σ = 1 and 0.7 ×
+the polygon's chordal deviation (coatsim.geometry.space.taught): segments against moves and
+against the greedy fitter on the same vertices, corners, deviation, CPU seconds.
 """
 
 from __future__ import annotations
@@ -114,6 +119,35 @@ def arc_planes_section(families: dict, names: list[str], sigmas: list[float], n_
     report("principal-plane fit against input points", rows)
 
 
+def taught_section(families: dict, names: list[str], vertices: tuple[int, ...] = (15, 30, 60)) -> None:
+    """Each family taught with a few vertices (its own points at that count), σ a share of the
+    polygon's chordal deviation (the densely sampled curve's largest distance from it): moves
+    in, segments out against the greedy fitter's on the same vertices, corners, the certified
+    deviation and CPU seconds."""
+    from coatsim.geometry.space.nearest import polyline_index
+
+    print("# taught (sparse) space polylines: σ = share × chordal deviation")
+    print(f"  {'curve':<10} {'moves':>5} {'share':>5} {'σ mm':>7} {'segs':>5} {'segs/moves':>10} {'greedy':>6} "
+          f"{'corners':>7} {'dev mm':>9} {'CPU s':>7}")
+    total = [0, 0, 0.0]
+    for name in names:
+        dense = families[name](20000)
+        for n in vertices:
+            poly = families[name](n)
+            sag = float(polyline_index(poly)[0].distance(dense)[0].max())
+            for share in (1.0, 0.7):
+                tol = share * sag
+                closed = "yes" if np.array_equal(poly[0], poly[-1]) else "no"
+                seconds, fit = cpu(lambda: segment_space_curve(make_space_curve(poly, name, closed), tol))
+                moves = len(poly) - 1
+                greedy = len(greedy_knots(poly, tol)) - 1
+                print(f"  {name:<10} {moves:>5} {share:>5g} {tol:>7.3f} {fit.chain.n_segments:>5} "
+                      f"{fit.chain.n_segments / moves:>10.2f} {greedy:>6} {len(fit.chain.corners):>7} "
+                      f"{fit.max_deviation_mm:>9.4f} {seconds:>7.2f}")
+                total = [total[0] + moves, total[1] + fit.chain.n_segments, total[2] + seconds]
+    print(f"  moves {total[0]}, segments {total[1]} ({total[1] / max(total[0], 1):.2f}), CPU {total[2]:.1f} s")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sigmas", default=",".join(str(s) for s in TOLERANCES_MM))
@@ -121,6 +155,7 @@ def main() -> None:
     parser.add_argument("--only", default="", help="comma-separated family names (default: all)")
     parser.add_argument("--axes", action="store_true", help="also fit each curve with spray axes (orientation error)")
     parser.add_argument("--arc-planes", action="store_true", help="only the section on arc_planes='principal'")
+    parser.add_argument("--taught", action="store_true", help="only the section on taught (sparse) polylines")
     args = parser.parse_args()
     sigmas = [float(s) for s in args.sigmas.split(",")]
     families = {**FAMILIES, **HELD_OUT}
@@ -129,6 +164,9 @@ def main() -> None:
     names = [n for n in families if not args.only or n in args.only.split(",")]
     if args.arc_planes:
         arc_planes_section(families, names, sigmas, args.points)
+        return
+    if args.taught:
+        taught_section(families, names)
         return
     print(f"# 3-D fit: {args.points} points per curve; segments ours / greedy (3-point arcs, no tangency); "
           f"held out: {', '.join(HELD_OUT)}")

@@ -27,7 +27,6 @@ from coatsim.geometry.space.deviation import hausdorff3
 from coatsim.geometry.space.nearest import polyline_index
 
 ARC_SAMPLES = 8  # a rounding arc is sampled at least this many times
-RESCUE_SHARE = 1 / 3  # the guide is fitted where the polyline's own fit needs more than this share of its moves
 ROOMS = (1.0, 1.4, 1.8)  # the guide is fitted within these multiples of σ less its distance from the polyline
 
 Fit = Callable[[SpaceCurve, float], tuple[SpaceChain, int]]  # (chain, corners it added where lines stand in)
@@ -130,12 +129,10 @@ def taught_fit(curve: SpaceCurve, tolerance: float, corner_deg: float, fit: Fit,
                beat: int) -> tuple[SpaceChain, float, int] | None:
     """The chain of a sparse space polyline fitted along its guide by ``fit`` (a dense space
     curve and a tolerance -> a chain and the corners it added), its certified deviation from
-    the polyline and those corners, where the
-    fit of the polyline itself needs ``beat`` segments, more than RESCUE_SHARE of its moves;
-    None where it needs fewer, the polyline is not sparse, the guide leaves no room, or no chain
-    within σ has fewer segments than ``beat``."""
+    the polyline and those corners; None where the polyline is not sparse, the guide leaves no
+    room, or no chain within σ has fewer segments than ``beat`` (the polyline's own fit's)."""
     pts = curve.points
-    if beat <= RESCUE_SHARE * (len(pts) - 1) or not is_sparse3(pts, curve.closed, tolerance):
+    if not is_sparse3(pts, curve.closed, tolerance):
         return None
     guide = guide3(pts, curve.closed, tolerance, corner_deg)
     to_polyline = polyline_index(pts)[0].distance(guide)[0].max()
