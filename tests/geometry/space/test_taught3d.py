@@ -3,6 +3,7 @@ few points per turn came back as its own lines, a corner at every vertex (29 mov
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -96,3 +97,16 @@ def test_a_dense_curve_is_not_sparse():
     t = np.linspace(0.0, 6 * math.pi, 3000)
     helix = np.column_stack((40 * np.cos(t), 40 * np.sin(t), 5 * t))
     assert not is_sparse3(helix, False, 0.05)
+
+
+def test_segment_command_on_a_taught_helix(tmp_path, run_cli):
+    """A user's taught points (31, ten a turn, written as `x y z` with a header) at σ 2 mm."""
+    poly, _ = taught_helix(10, 40.0, 30.0)
+    path = tmp_path / "taught.txt"
+    np.savetxt(path, poly, header="x y z", fmt="%.4f")
+    out = tmp_path / "taught.json"
+    code, stdout, stderr = run_cli(["segment", str(path), "--tol", "2", "-o", str(out)])
+    assert code == 0, stderr
+    doc = json.loads(out.read_text())
+    assert doc["format"] == "coatsim.polysegment/2" and doc["corners"] == []
+    assert len(doc["segments"]) <= 10 and all(s["kind"] == "arc" for s in doc["segments"])
