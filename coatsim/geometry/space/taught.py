@@ -5,10 +5,12 @@ of the vertices and of the edges passes *between* them, inside each vertex that 
 half the sagitta e of its rounding and outside its edges by as much. The fit follows a *guide*
 along those channels' middles: every vertex is rounded by an arc tangent to both its edges, in
 their plane, as gentle as its share of the edges and an apex of GUIDE_SHARE σ allow (a true
-corner — turning more than ``corner_deg`` and STANDS_OUT times either neighbour — is kept); that
-chain, sampled, is moved back out towards each vertex by e/2 at its arc's middle, by a shift
-that varies linearly along it in between. The guide is fitted as a dense space curve within σ
-less its own distance from the polyline, and the chain is certified against the polyline itself.
+corner — turning more than ``corner_deg`` and STANDS_OUT times either neighbour, or doubling
+back — is kept); that chain, sampled, is moved back out towards each vertex by e/2 at its arc's
+middle, by a shift that varies linearly along it in between. The guide is fitted as a dense
+space curve within σ less its own distance from the polyline (that distance is the guide's at
+its worst, at a vertex: wider rooms are tried while the chain holds), and the chain is certified
+against the polyline itself.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from coatsim.geometry.space.deviation import hausdorff3
 from coatsim.geometry.space.nearest import polyline_index
 
 ARC_SAMPLES = 8  # a rounding arc is sampled at least this many times
+CUSP_DEG = 170.0  # a vertex turning more is a corner however its neighbours turn (the path doubles back)
 ROOMS = (1.0, 1.4, 1.8)  # the guide is fitted within these multiples of σ less its distance from the polyline
 
 Fit = Callable[[SpaceCurve, float], tuple[SpaceChain, int]]  # (chain, corners it added where lines stand in)
@@ -75,7 +78,7 @@ def guide3(points: np.ndarray, closed: bool, tolerance: float, corner_deg: float
     before, after, ell = _edges(pts, closed)
     turn = _turns(before, after)
     near = np.maximum(np.roll(turn, 1), np.roll(turn, -1))  # (an open one's ends turn 0)
-    corner = (turn > math.radians(corner_deg)) & (turn > STANDS_OUT * near)
+    corner = ((turn > math.radians(corner_deg)) & (turn > STANDS_OUT * near)) | (turn > math.radians(CUSP_DEG))
     turn = np.where(corner, 0.0, turn)
     prev_turn, next_turn = np.roll(turn, 1), np.roll(turn, -1)
     if not closed:
