@@ -20,7 +20,6 @@ from coatsim.geometry.corners import CONCENTRATED, SPARSE, sharpest_near, stands
 from coatsim.geometry.envelope import MAX_GRID, WINDOW_EDGES, WINDOW_SIGMAS, CurvatureProfile
 
 
-
 def arc_length(points: np.ndarray) -> np.ndarray:
     return np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))))
 
