@@ -308,7 +308,8 @@ def _segmentation(loaded: ScenarioFile, cell: Cell) -> tuple[tuple[Segmentation,
         user = user_program(toolpath, curve_frame(spec), "")
     except CoatsimError as exc:
         raise exc.prefixed(f"{loaded.where('variants')}: variant {entry.name}") from None
-    closed = "yes" if ends_meet(user.points) else "no"  # a program drives no step it does not list
+    # a program drives no step it does not list: its path is closed only where it returns to its start
+    closed = "yes" if len(user.points) >= 4 and ends_meet(user.points) else "no"
     seg = segment_curve(make_curve(user.points, entry.name, closed), spec.segmentation.tolerance_mm,
                         method=spec.segmentation.method, corner_deg=spec.segmentation.corner_deg,
                         speed_mm_s=spec.motion.speed_mm_s, tool_accel_mm_s2=cell.tool_accel_mm_s2)
