@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -42,10 +43,12 @@ def tightest(bulge: float, pitch: float) -> float:
 
 @settings(max_examples=40, deadline=None)
 @given(bulge=st.floats(3.0, 10.0), pitch=st.floats(10.0, 30.0), share=st.floats(0.03, 1.0 / 3.0),
-       tolerance=st.floats(0.05, 1.0))
-def test_a_tight_turn_around_the_sampling_resolves_is_no_corner(bulge, pitch, share, tolerance):
+       below=st.floats(0.05, 0.95))
+def test_a_tight_turn_around_the_sampling_resolves_is_no_corner(bulge, pitch, share, below):
+    """σ below three spacings (the spacing sets the corner test's window): no corner."""
     radius = tightest(bulge, pitch)
     spacing = min(share * radius, 1.0)  # each vertex turns at most 1/3 rad (19°)
+    tolerance = below * 3 * spacing
     pts = _resampled(serpentine(3, 100.0, pitch, bulge), spacing)
     corners, _ = corners_and_notes(pts, False, 20.0, tolerance)
     assert corners.tolist() == []
@@ -73,13 +76,22 @@ def test_a_sharp_vertex_of_dense_points_is_a_corner(turn_deg, share, tolerance, 
     assert np.linalg.norm(pts[corners[0]]) <= spacing + 1e-9
 
 
-def test_a_serpentine_with_elliptical_turns_is_tangent_continuous():
-    """Sampled every 0.5 mm (radius 3.6 mm where a turn meets a pass) at σ 0.5: it came back as
-    lines and one arc per turn with eight corners (stops) between them."""
+@pytest.mark.parametrize("tolerance", [0.5, 1.0])
+def test_a_serpentine_with_elliptical_turns_is_tangent_continuous(tolerance):
+    """Sampled every 0.5 mm (radius 3.6 mm where a turn meets a pass) at σ 0.5 and 1: it came
+    back as lines and one arc per turn with eight corners (stops) between them."""
     curve = make_curve(_resampled(serpentine(5, 100.0, 20.0, 6.0), 0.5), "serpentine", "no")
-    seg = segment_curve(curve, 0.5)
+    seg = segment_curve(curve, tolerance)
     poly = seg.polysegment
-    assert poly.corners == () and poly.max_tangent_break() <= 1e-9 and seg.max_deviation_mm <= 0.5
+    assert poly.corners == () and poly.max_tangent_break() <= 1e-9 and seg.max_deviation_mm <= tolerance
+
+
+def test_where_sigma_sets_the_window_a_tight_bend_is_a_corner():
+    """At σ 2 (above three spacings) the turn-arounds' ends, radius 3.6 mm, are corners at this
+    tolerance (a sharp corner lies within σ of such a bend), as an airfoil's leading edge is at
+    σ 30: the fit of a run that doubles back within σ would need an arc of no radius."""
+    pts = _resampled(serpentine(5, 100.0, 20.0, 6.0), 0.5)
+    assert len(corners_and_notes(pts, False, 20.0, 2.0)[0]) == 8
 
 
 def _on_cylinder(points: np.ndarray, radius: float) -> np.ndarray:
@@ -90,10 +102,11 @@ def _on_cylinder(points: np.ndarray, radius: float) -> np.ndarray:
 
 @settings(max_examples=30, deadline=None)
 @given(bulge=st.floats(3.0, 10.0), pitch=st.floats(10.0, 30.0), share=st.floats(0.03, 1.0 / 3.0),
-       tolerance=st.floats(0.05, 1.0), cylinder=st.floats(60.0, 300.0))
-def test_in_space_a_tight_turn_around_the_sampling_resolves_is_no_corner(bulge, pitch, share, tolerance, cylinder):
-    radius = tightest(bulge, pitch)
-    pts = _on_cylinder(_resampled(serpentine(3, 100.0, pitch, bulge), min(share * radius, 1.0)), cylinder)
+       below=st.floats(0.05, 0.95), cylinder=st.floats(60.0, 300.0))
+def test_in_space_a_tight_turn_around_the_sampling_resolves_is_no_corner(bulge, pitch, share, below, cylinder):
+    spacing = min(share * tightest(bulge, pitch), 1.0)
+    tolerance = below * 3 * spacing
+    pts = _on_cylinder(_resampled(serpentine(3, 100.0, pitch, bulge), spacing), cylinder)
     assert detect_corners3(pts, False, 20.0, tolerance).tolist() == []
 
 

@@ -7,7 +7,7 @@ below half its circumference). The tangent at a vertex is the derivative of a le
 quadratic through the points within ± w. A corner is, as in the plane
 (coatsim.geometry.corners), a turn above ``corner_deg`` between the chords p(s − w) -> p(s)
 and p(s) -> p(s + w) that persists over 3w and is concentrated (at most twice the turn at w),
-with a sharp vertex near it (coatsim.geometry.corners.stands_out).
+with a sharp vertex near it where the spacing sets w (coatsim.geometry.corners.stands_out).
 """
 
 from __future__ import annotations
@@ -127,7 +127,7 @@ def detect_corners3(points: np.ndarray, closed: bool, corner_deg: float, toleran
     found: list[int] = []
     for k in np.argsort(-near[hit], kind="stable"):
         i = int(idx[hit][k])
-        if not stands_out(vertex_turn, sharpest_near(s, vertex_turn, i, w, closed), corner_deg, closed):
+        if w > tolerance and not stands_out(vertex_turn, sharpest_near(s, vertex_turn, i, w, closed), corner_deg, closed):
             continue  # a tight bend the sampling resolves, beside a line: no corner (as in the plane)
         if all(min(abs(s[i] - s[j]), total - abs(s[i] - s[j]) if closed else math.inf) > 2 * w for j in found):
             found.append(i)
