@@ -28,23 +28,45 @@ THIN_SCATTERS = 12.0  # points are thinned from a tolerance of this many scatter
 MIN_THINNED = 20  # fewer thinned points than this are no curve to fit
 NOISY_SPACING = 0.25  # points scattering by more than this share of their spacing turn chords back at random
 NOISY_FALLBACK = 0.05  # ... and by more than this share where the fit of all of them had to loosen its caps
+NOISE_SHARE = 0.1  # points scattering by more than this share of the tolerance leave a fit little room
 
 
 def scatter_mm(points: np.ndarray, closed: bool) -> float:
-    """The deviation (mm) of the points' scatter across the curve (0 on fewer than WINDOW + 2)."""
-    p = np.asarray(points, dtype=float)[:, :2]
+    """The deviation (mm) of the points' scatter across the curve, plane (n, 2) or space (n, 3)
+    (0 on fewer than WINDOW + 2). In space the offset from the chord is a vector across it, its
+    running median taken per coordinate; the residual's length is then Rayleigh distributed
+    (two independent components of variance 1.5 sigma^2), its median sqrt(2 ln 2) of its scale."""
+    p = np.asarray(points, dtype=float)
     if closed:
         p = np.vstack([p[-1:], p, p[:1]])
     a, b, c = p[:-2], p[1:-1], p[2:]
     chord = c - a
     length = np.linalg.norm(chord, axis=1)
     ok = length > 0
-    offset = (chord[ok, 0] * (b - a)[ok, 1] - chord[ok, 1] * (b - a)[ok, 0]) / length[ok]
+    if p.shape[1] == 2:
+        offset = (chord[ok, 0] * (b - a)[ok, 1] - chord[ok, 1] * (b - a)[ok, 0]) / length[ok]
+    else:
+        unit = chord[ok] / length[ok, None]
+        rel = (b - a)[ok]
+        offset = rel - np.einsum("ij,ij->i", rel, unit)[:, None] * unit
     if len(offset) < WINDOW:
         return 0.0
-    padded = np.pad(offset, WINDOW // 2, mode="edge")
-    residual = offset - np.median(sliding_window_view(padded, WINDOW), axis=1)
-    return float(MAD_TO_SIGMA * np.median(np.abs(residual)) / math.sqrt(1.5))
+    pad = ((WINDOW // 2, WINDOW // 2),) + ((0, 0),) * (offset.ndim - 1)
+    residual = offset - np.median(sliding_window_view(np.pad(offset, pad, mode="edge"), WINDOW, axis=0), axis=-1)
+    if offset.ndim == 1:
+        return float(MAD_TO_SIGMA * np.median(np.abs(residual)) / math.sqrt(1.5))
+    return float(np.median(np.linalg.norm(residual, axis=1)) / (math.sqrt(2 * math.log(2)) * math.sqrt(1.5)))
+
+
+def noise_notes(points: np.ndarray, closed: bool, tolerance_mm: float) -> tuple[str, ...]:
+    """For a fit that had to loosen its caps: a note where the points scatter across the curve
+    by more than NOISE_SHARE of the tolerance (noise the arcs followed), else none."""
+    noise = scatter_mm(points, closed)
+    if not noise > NOISE_SHARE * tolerance_mm:
+        return ()
+    return (f"the points scatter about {noise:.2g} mm (rms) across the curve: measurement noise that the arcs "
+            f"follow within tolerance_mm {tolerance_mm:g} (their caps loosened); a tolerance many times the scatter, or "
+            "smoothed points, fits the curve itself",)
 
 
 def noise_hint(curve: Curve) -> str:

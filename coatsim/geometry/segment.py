@@ -27,7 +27,7 @@ from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
 from coatsim.geometry.sampling_check import check_sampling
-from coatsim.geometry.scatter import NOISY_FALLBACK, NOISY_SPACING, THIN_ROOM, noise_hint, scatter_mm, thinned
+from coatsim.geometry.scatter import NOISY_FALLBACK, NOISY_SPACING, THIN_ROOM, noise_hint, noise_notes, thinned
 from coatsim.geometry.seam import calm_start, reseat, rotated_loop
 from coatsim.geometry.sparse import is_sparse, taught_lines
 from coatsim.geometry.taught_retry import retried
@@ -37,7 +37,6 @@ Method = Literal["optimal", "paper"]
 SEAM_TRIES = 4  # a taught loop no chain follows from its calmest point gets quick fits from this many other vertices
 HOOK_SHARE = 0.2  # a seam segment shorter than this share of the median segment makes a hook
 SMALL_SIGMAS = 10.0  # a curve spanning fewer tolerances than this is most likely in another unit than mm
-NOISE_SHARE = 0.1  # points scattering by more than this share of the tolerance leave a fit little room
 METHODS = ("optimal", "paper")
 
 
@@ -238,11 +237,8 @@ def segment_curve(
     if extent < SMALL_SIGMAS * tol:
         notes += (f"the curve spans {extent:.3g} mm, {extent / tol:.2g} times tolerance_mm {tol:g}: its coordinates "
                   "are read as mm (a curve in metres or inches is scaled to mm first)",)
-    noise = 0.0 if kept or thin or is_sparse(pts, curve.closed, tol) else scatter_mm(pts, curve.closed)
-    if noise > NOISE_SHARE * tol:
-        notes += (f"the points scatter about {noise:.2g} mm (rms) across the curve: measurement noise that the arcs "
-                  f"follow within tolerance_mm {tol:g} (their caps loosened); a tolerance many times the scatter, or "
-                  "smoothed points, fits the curve itself",)
+    if not (kept or thin or is_sparse(pts, curve.closed, tol)):
+        notes += noise_notes(pts, curve.closed, tol)
     return Segmentation(curve, _with_speed(poly, speed_mm_s, tool_accel_mm_s2), method, tol, dev,
                         time.perf_counter() - started, theta, input_min_radius_mm=input_radius,
                         speed_mm_s=speed_mm_s, tool_accel_mm_s2=tool_accel_mm_s2, limits_kept=kept, notes=notes)

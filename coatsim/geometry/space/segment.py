@@ -7,7 +7,8 @@ curve is split at its true corners and each run fitted by an arc spline whose ju
 free inside the σ-tube (coatsim.geometry.space.tube_fit), or, where that finds nothing with
 fewer pieces, by spatial biarcs through the input narrowed until within (coatsim.geometry.space.fit); a
 closed loop without corners keeps its tangent across the seam, which is tried at a few places
-(the one knot the fit cannot move). Every run is certified by the exact 3-D Hausdorff check.
+(the one knot the fit cannot move); a sparse polyline (taught points) is also fitted between its
+vertices (coatsim.geometry.space.taught). Every run is certified by the exact 3-D Hausdorff check.
 With ``arc_planes="principal"`` every arc lies in a plane normal to X, Y or Z
 (coatsim.geometry.space.principal) unless the curve's own plane already is one.
 """
@@ -27,6 +28,7 @@ from coatsim.geometry.limits import check_min_segment
 from coatsim.geometry.dynamics import curvature_limit, speed_limited
 from coatsim.geometry.limits import MIN_LENGTH_SHARE, MIN_LENGTH_SIGMAS, NEIGHBOURHOOD_WINDOWS, FitLimits
 from coatsim.geometry.sampling_check import check_sampling
+from coatsim.geometry.scatter import noise_notes
 from coatsim.geometry.segment import segment_curve
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import SpaceCurve
@@ -39,7 +41,7 @@ from coatsim.geometry.space.primitives import Arc3, Line3, Segment3, place
 from coatsim.geometry.space.principal import check_arc_planes, fit_principal, is_principal
 from coatsim.geometry.space.bend import bend_arc
 from coatsim.geometry.space.straight import Straight, lined_loop_run, straight_stretches
-from coatsim.geometry.space.taught import taught_fit
+from coatsim.geometry.space.taught import is_sparse3, taught_fit
 from coatsim.geometry.space.tube_fit import CAP_SLACK, fit_tube_run
 
 PLANAR_SHARE = 0.5  # a curve within this share of σ of its best plane is fitted in that plane
@@ -170,6 +172,8 @@ def segment_space_curve(curve: SpaceCurve, tolerance_mm: float, corner_deg: floa
         taught = taught_fit(curve, tolerance_mm, corner_deg, fit_guide, chain.n_segments)  # a sparse polyline
         if taught is not None:
             chain, dev, added = taught
+        elif kept is False and not is_sparse3(curve.points, curve.closed, tolerance_mm):
+            notes += noise_notes(curve.points, curve.closed, tolerance_mm)  # why the caps were loosened
     shortest = min(seg.length for seg in chain.segments)
     if min_segment_mm is not None and chain.n_segments > 1 and shortest < (1 - CAP_SLACK) * min_segment_mm:
         raise InputError(f"{curve.name}: no chain within {tolerance_mm:g} mm was found that keeps every segment at "

@@ -59,10 +59,11 @@ def _turns(before: np.ndarray, after: np.ndarray) -> np.ndarray:
 
 
 def is_sparse3(points: np.ndarray, closed: bool, tolerance: float) -> bool:
-    """Whether a space polyline has a vertex between two edges SPARSE_EDGE_SIGMAS σ long or
-    longer whose edges dip SPARSE_INSET σ or more inside the curve through its vertices."""
+    """Whether a space polyline's edges are SPARSE_EDGE_SIGMAS σ long or longer (their median:
+    a few long steps of noisy dense points are none) and it has a vertex between two such edges
+    that dip SPARSE_INSET σ or more inside the curve through its vertices."""
     pts = np.asarray(points, dtype=float)
-    if len(pts) < 3:
+    if len(pts) < 3 or np.median(np.linalg.norm(np.diff(pts, axis=0), axis=1)) < SPARSE_EDGE_SIGMAS * tolerance:
         return False
     before, after, ell = _edges(pts, closed)
     turn = _turns(before, after)

@@ -15,6 +15,7 @@ from scipy.spatial.transform import Rotation
 from coatsim.geometry.space.curve import make_space_curve
 from coatsim.geometry.space.segment import segment_space_curve
 from coatsim.geometry.space.taught import guide3, is_sparse3
+from coatsim.geometry.scatter import scatter_mm
 from coatsim.geometry.space.nearest import polyline_index
 
 from strategies import rotations
@@ -110,3 +111,17 @@ def test_segment_command_on_a_taught_helix(tmp_path, run_cli):
     doc = json.loads(out.read_text())
     assert doc["format"] == "coatsim.polysegment/2" and doc["corners"] == []
     assert len(doc["segments"]) <= 10 and all(s["kind"] == "arc" for s in doc["segments"])
+
+
+def test_noisy_dense_points_are_no_taught_polyline_and_say_why_their_arcs_are_tight():
+    """A helix on points 0.15 mm apart with noise 0.025 mm at σ 0.1: a few steps are 2σ long and
+    turn (noise), which made it 'sparse' (and its guide was fitted for nothing: 21 s); its arcs
+    follow the noise with loosened caps, and a note now says the scatter, measured in space."""
+    rng = np.random.default_rng(1)
+    t = np.linspace(0.0, 2 * math.pi, 1675)
+    pts = np.column_stack((40 * np.cos(t), 40 * np.sin(t), 30 * t / (2 * math.pi))) + rng.normal(scale=0.025, size=(1675, 3))
+    assert not is_sparse3(pts, False, 0.1)
+    fit = segment_space_curve(make_space_curve(pts, "noisy helix", "no"), 0.1)
+    assert fit.max_deviation_mm <= 0.1 and fit.limits_kept is False
+    assert any("scatter about 0.025 mm" in note for note in fit.notes)
+    assert scatter_mm(pts, False) == pytest.approx(0.025, rel=0.1)
