@@ -94,8 +94,9 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
     if not length >= MIN_LENGTH_MM:
         raise InputError(f"{name}: the curve is {length:.3g} mm long; give at least {MIN_LENGTH_MM:g} mm (coordinates in mm)")
     gap = float(np.linalg.norm(pts[-1] - pts[0]))
+    meets = gap <= CLOSE_FRACTION * length  # (ends_meet)
     if closed == "auto":
-        is_closed = len(pts) >= 4 and ends_meet(pts)
+        is_closed = len(pts) >= 4 and meets
         if not is_closed and _runs_across_gap(pts):
             is_closed = True
             warnings.warn(f"{name}: read as closed, its ends {gap:.4g} mm apart, about one point spacing, the curve "
@@ -103,7 +104,7 @@ def clean_points(pts: np.ndarray, name: str, closed: ClosedMode) -> tuple[np.nda
     else:
         is_closed = closed == "yes"
     if is_closed:
-        if ends_meet(pts):
+        if meets:
             if closed == "auto" and gap > SNAP_NOTE_MM:
                 warnings.warn(f"{name}: read as closed, its ends {gap:.4g} mm apart ({gap / length:.2g} of its length): "
                               "the last point is moved onto the first (closed='no' keeps it open)",
@@ -131,14 +132,13 @@ def _runs_across_gap(pts: np.ndarray) -> bool:
     neither end does it double back (a turn sharper than CLOSE_TURN_DEG)."""
     if len(pts) < CLOSE_MIN_POINTS:
         return False
-    steps = np.diff(np.vstack((pts, pts[:1])), axis=0)  # the last step is the gap
+    steps = np.diff(np.vstack((pts[-3:], pts[:3])), axis=0)  # two before the gap, the gap, two after
     widths = np.linalg.norm(steps, axis=1)
-    if widths[-1] > CLOSE_SPACINGS * max(widths[0], widths[-2]):
+    if widths[2] > CLOSE_SPACINGS * max(widths[1], widths[3]):
         return False
     unit = steps / widths[:, None]
-    turn = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", unit, np.roll(unit, -1, axis=0)), -1.0, 1.0)))
-    onto, off = turn[-2], turn[-1]  # at the last point (onto the gap), at the first (off it)
-    before_onto, after_off = turn[-3], turn[0]
+    turn = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", unit[:-1], unit[1:]), -1.0, 1.0)))
+    before_onto, onto, off, after_off = turn  # at the last point but one, the last (onto the gap), the first, the second
     smooth = (onto <= CLOSE_SMOOTH * before_onto + CLOSE_SMOOTH_DEG) or (off <= CLOSE_SMOOTH * after_off + CLOSE_SMOOTH_DEG)
     return bool(smooth and max(onto, off) < CLOSE_TURN_DEG)
 
