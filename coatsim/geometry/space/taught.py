@@ -20,6 +20,7 @@ from typing import Callable
 
 import numpy as np
 
+from coatsim.core.errors import InputError
 from coatsim.geometry.corners import STANDS_OUT
 from coatsim.geometry.envelope import SPARSE_EDGE_SIGMAS
 from coatsim.geometry.sparse import GUIDE_SHARE, KNOT_SIGMAS, MAX_KNOTS, SPARSE_INSET
@@ -146,7 +147,10 @@ def taught_fit(curve: SpaceCurve, tolerance: float, corner_deg: float, fit: Fit,
     for wider in ROOMS:  # the room is the guide's distance at its worst (a vertex): wider, while the chain holds
         if not 0 < wider * room < tolerance:
             break
-        chain, added = fit(SpaceCurve(guide, curve.closed, curve.name), wider * room)
+        try:
+            chain, added = fit(SpaceCurve(guide, curve.closed, curve.name), wider * room)
+        except InputError:  # no chain along the guide: the polyline's own fit stands
+            break
         dev = hausdorff3(pts, chain, tolerance).hausdorff
         if dev > tolerance:
             break
