@@ -31,6 +31,7 @@ from coatsim.geometry.space.nearest import polyline_index
 
 ARC_SAMPLES = 8  # a rounding arc is sampled at least this many times
 CUSP_DEG = 170.0  # a vertex turning more is a corner however its neighbours turn (the path doubles back)
+RESCUE_SHARE = 0.25  # the guide is fitted where the polyline's own fit needs more than this share of its moves
 ROOMS = (1.0, 1.4, 1.8)  # the guide is fitted within these multiples of σ less its distance from the polyline
 
 Fit = Callable[[SpaceCurve, float], tuple[SpaceChain, int]]  # (chain, corners it added where lines stand in)
@@ -134,10 +135,12 @@ def taught_fit(curve: SpaceCurve, tolerance: float, corner_deg: float, fit: Fit,
                beat: int) -> tuple[SpaceChain, float, int] | None:
     """The chain of a sparse space polyline fitted along its guide by ``fit`` (a dense space
     curve and a tolerance -> a chain and the corners it added), its certified deviation from
-    the polyline and those corners; None where the polyline is not sparse, the guide leaves no
-    room, or no chain within σ has fewer segments than ``beat`` (the polyline's own fit's)."""
+    the polyline and those corners; None where the polyline's own fit needs ``beat`` segments,
+    no more than RESCUE_SHARE of its moves (a smooth pass sampled every few σ: its guide costs
+    fits and gains nothing), the polyline is not sparse, the guide leaves no room, or no chain
+    within σ has fewer segments than ``beat``."""
     pts = curve.points
-    if not is_sparse3(pts, curve.closed, tolerance):
+    if beat <= RESCUE_SHARE * (len(pts) - 1) or not is_sparse3(pts, curve.closed, tolerance):
         return None
     guide = guide3(pts, curve.closed, tolerance, corner_deg)
     to_polyline = polyline_index(pts)[0].distance(guide)[0].max()
