@@ -14,7 +14,7 @@ from coatsim.core import defaults
 
 FLAGS = {"tolerance_mm": "--tol", "gun_signal": "--gun", "lines": "--lines", "program": "--program",
          "approach_mm": "--approach", "name": "--name", "corner_deg": "--corner-deg", "standalone": "--standalone",
-         "inputs": "--inputs", "language": "--language", "target": "--to"}
+         "inputs": "--inputs", "language": "--language", "target": "--to", "angle_tol_deg": "--angle-tol"}
 
 
 def convert(
@@ -29,6 +29,7 @@ def convert(
     settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses and HOME [default: the shipped coating_cell.xml]."),
     corner_deg: float = typer.Option(defaults.CORNER_DEG, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),
+    angle_tol: float = typer.Option(defaults.ANGLE_TOL_DEG, "--angle-tol", help="Largest angle the new program's tool may turn away from the original's along the path, deg (poses are added where it would)."),
     name: Optional[str] = typer.Option(None, "--name", help="Name of the standalone program [default: the original's]."),
     language: Optional[str] = typer.Option(None, "--language", help=LANGUAGE_HELP),
     to: Optional[str] = typer.Option(None, "--to", help="Language of the converted program (another one writes a standalone program) [default: the original's]."),
@@ -54,7 +55,7 @@ def convert(
         if name is None and output is not None and target.capabilities.named_by_file:
             name = target.program_name(output.stem)  # the controller loads a program by its file's name
         options = ConvertOptions(tolerance_mm=tol, gun_signal=gun, program=main, lines=_line_range(lines),
-                                 standalone=standalone, corner_deg=corner_deg, name=name)
+                                 standalone=standalone, corner_deg=corner_deg, name=name, angle_tol_deg=angle_tol)
         result = convert_program(paths, options, language=source, target=target, inputs=input_states(inputs) or None,
                                  kinematics=LazyKinematics(model), variables=variables(settings))
     if not result.written:  # nothing gained: no file written, nothing on stdout, the input untouched

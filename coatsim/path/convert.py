@@ -2,8 +2,9 @@
 
 The program is read in its language (:class:`~coatsim.path.reading.Reading`). The process path
 is every stretch of Cartesian moves the gun sprays (or the moves of a range of lines). Each is
-fitted in its plane (:mod:`coatsim.path.path_fit`) and written as linear and circular moves: in
-place of the statements that made it, by a language that edits its programs in place
+fitted in its plane, or in space if it has none, with the original's tool at every pose
+(:mod:`coatsim.path.path_fit`), and written as linear and circular moves: in place of the
+statements that made it, by a language that edits its programs in place
 (:mod:`coatsim.path.edit`; same poses, tool, speed and signals around it, every other line kept
 byte for byte), or as a clean standalone program in any language (the same frame, tool, speed and
 gun output). The result is read back and interpreted: the deviation reported is measured on the
@@ -33,7 +34,8 @@ from coatsim.path.placement import PlacedPath
 from coatsim.path.plan import ProgramPlan
 from coatsim.path.process import ProcessInfo
 from coatsim.path.process_path import dense_points, moves_in_lines, path_distance, spray_runs
-from coatsim.path.reading import Reading
+from coatsim.path.reading import Reading, outputs_switched
+from coatsim.path.taught_orientation import tool_angle
 from coatsim.path.toolpath import CircularMove, Kinematics, ToolPath
 
 Paths = Union[str, Path, Sequence[Union[str, Path]]]
@@ -51,8 +53,12 @@ class ConvertOptions:
     corner_deg: float = defaults.CORNER_DEG
     approach_mm: float = 50.0
     name: Optional[str] = None
+    angle_tol_deg: float = defaults.ANGLE_TOL_DEG
 
     def __post_init__(self) -> None:
+        if not (math.isfinite(self.angle_tol_deg) and 0.0 < self.angle_tol_deg < 90.0):
+            raise InputError(f"angle_tol_deg {self.angle_tol_deg}: must be between 0 and 90 (deg)",
+                             parameters=("angle_tol_deg",))
         if not (math.isfinite(self.tolerance_mm) and self.tolerance_mm > 0.0):
             raise InputError(f"tolerance_mm {self.tolerance_mm}: must be a finite number > 0 (mm)",
                              parameters=("tolerance_mm",))
@@ -64,8 +70,10 @@ class ConvertOptions:
 @dataclass(frozen=True)
 class PathReport:
     """Figures of one converted path: the source lines replaced (in place) or the path came
-    from (standalone); ``deviation_mm`` measured on the program written; ``kept``: the arcs
-    gained no move, the path is as it was."""
+    from (standalone); ``plane_deviation_mm`` how far the path leaves its plane (None: fitted
+    in space); ``deviation_mm`` measured on the program written; ``tool_angle_deg`` the largest
+    angle the new program's tool turns away from the original's; ``kept``: the arcs gained no
+    move, the path is as it was."""
 
     first_line: int
     last_line: int
@@ -73,10 +81,11 @@ class PathReport:
     moves_after: int
     n_arcs: int
     n_lines: int
-    plane_deviation_mm: float
+    plane_deviation_mm: Optional[float]
     deviation_mm: float
     length_mm: float
     kept: bool = False
+    tool_angle_deg: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,11 +116,9 @@ def _candidates(reading: Reading, options: ConvertOptions, motions: str) -> list
         return [moves]
     runs = [r for r in spray_runs(toolpath) if len(r) >= 2]
     if not runs:
-        outputs = reading.outputs
-        switched = f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}" \
-            if outputs else "it switches no output"
+        switched = outputs_switched(reading.outputs, reading.switches)
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
-                         f"consecutive {motions} moves ({switched}: is the process signal one of "
+                         f"consecutive {motions} moves ({switched}; is the process signal one of "
                          "them?); name the moves with lines FIRST-LAST", parameters=("lines",))
     return runs
 
@@ -149,8 +156,8 @@ def _standalone(reading: Reading, fitted: list[FittedPath], options: ConvertOpti
     speed, accuracy, cp = settings.pop()
     tool = toolpath.tool
     tool_frame = Pose(tool.rotation, tool.offset_mm) if tool is not None else DEFAULT_TOOL
-    paths = tuple(PlacedPath(f.segments, f.plane.normal, 0.0, 0.0, 0.0, float(sum(s.length for s in f.segments)))
-                  for f in fitted)
+    paths = tuple(PlacedPath(f.segments, -f.segments[0].start.rotation[:, 2] if f.plane is None else f.plane.normal,
+                             0.0, 0.0, 0.0, float(sum(s.length for s in f.segments))) for f in fitted)
     n_moves = sum(len(f.path.moves) for f in fitted)
     n_segments = sum(len(f.segments) for f in fitted)
     process = ProcessInfo(variant="convert", source=f"{toolpath.name} lines {spans}",
@@ -186,7 +193,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     """Convert the process path(s) of program files of ``language`` loaded together: in place
     (a language that edits in place, ``target`` None or the same language, not ``standalone``)
     or as a standalone program in ``target`` (default: the same language). InputError on what
-    cannot be converted (not planar, not editable in place, a statement skipped for want of a
+    cannot be converted (not editable in place, a statement skipped for want of a
     value that ``variables`` does not give), with the reason."""
     items = [Path(paths)] if isinstance(paths, (str, Path)) else [Path(p) for p in paths]
     target = target or language
@@ -202,7 +209,8 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     reading.require_complete()
     motions = language.capabilities.motions
     limit, taught = target.capabilities.max_arc_sweep_deg, target is language
-    fitted = [fit_path(reading, c, options.tolerance_mm, options.corner_deg, limit, taught) for c in _candidates(reading, options, motions)]
+    fitted = [fit_path(reading, c, options.tolerance_mm, options.corner_deg, limit, taught, options.angle_tol_deg,
+                       target.capabilities.arc_planes) for c in _candidates(reading, options, motions)]
     notes = [n for f in fitted for n in f.notes]
     gains = [moves_written(f.segments, limit) < len(f.path.moves) for f in fitted]
     notes += [f"lines {f.lines[0]}-{f.lines[1]}: the arc program has no fewer moves "
@@ -234,7 +242,7 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
             new = _read_edited(language, items, replaces, data, read_options)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
-    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm / 20.0,
+    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm,
                       replaces or "the standalone program")
     fitted_reports = reports if not standalone else [r for r, gained in zip(reports, gains) if gained]
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
@@ -258,8 +266,12 @@ def _kept_report(reading: Reading, f: FittedPath) -> PathReport:
     """The figures of a path kept as it was: its own moves, no deviation."""
     n = len(f.path.moves)
     n_arcs = sum(isinstance(reading.toolpath.moves[i], CircularMove) for i in f.path.moves)
-    return PathReport(f.lines[0], f.lines[1], n, n, n_arcs, n - n_arcs, f.plane.deviation_mm, 0.0, f.path.length_mm,
+    return PathReport(f.lines[0], f.lines[1], n, n, n_arcs, n - n_arcs, _plane_deviation(f), 0.0, f.path.length_mm,
                       kept=True)
+
+
+def _plane_deviation(f: FittedPath) -> Optional[float]:
+    return None if f.plane is None else f.plane.deviation_mm
 
 
 def _read_edited(language: Language, items: Sequence[Path], replaces: str, data: bytes, options: ReadOptions) -> Reading:
@@ -304,9 +316,10 @@ def _same(a, b) -> bool:
 
 
 def _verify(original: ToolPath, converted: ToolPath, fitted: list[FittedPath], counts: Optional[list[int]],
-            ranges: list[tuple[int, int]], step: float, where: str) -> list[PathReport]:
-    """Each new process path against its original, measured both ways on the programs' paths;
-    in place, every other move must be the same as before (``where`` names the file edited)."""
+            ranges: list[tuple[int, int]], tolerance_mm: float, where: str) -> list[PathReport]:
+    """Each new process path against its original, measured both ways on the programs' paths
+    (and the tool along it against the original's); in place, every other move must be the same
+    as before (``where`` names the file edited)."""
     old, new = original.moves, converted.moves
     blocks = []
     if counts is None:
@@ -335,10 +348,11 @@ def _verify(original: ToolPath, converted: ToolPath, fitted: list[FittedPath], c
     reports = []
     for f, block, (first, last) in zip(fitted, blocks, ranges):
         old_moves = [old[i] for i in f.path.moves]
-        a, b = dense_points(old_moves, step), dense_points(block, step)
+        a, b = dense_points(old_moves, tolerance_mm / 20.0), dense_points(block, tolerance_mm / 20.0)
         deviation = max(path_distance(a, b), path_distance(b, a))
+        tool = tool_angle([taught_move(m, False) for m in block], f.path, tolerance_mm)
         reports.append(PathReport(first, last, len(old_moves), len(block), f.n_arcs, f.n_lines,
-                                  f.plane.deviation_mm, deviation, f.path.length_mm))
+                                  _plane_deviation(f), deviation, f.path.length_mm, tool_angle_deg=math.degrees(tool)))
     return reports
 
 
@@ -350,9 +364,12 @@ def conversion_summary(c: Conversion) -> str:
             out.append(f"lines {r.first_line}-{r.last_line}: {r.moves_before} moves ({r.n_lines} lines + {r.n_arcs} arcs) "
                        "kept as they were")
             continue
+        where = ("in space, arcs each in its own plane" if r.plane_deviation_mm is None
+                 else f"out of plane {r.plane_deviation_mm:.4f} mm")
+        tool = f"; tool within {r.tool_angle_deg:.2f} deg of the original's" if r.tool_angle_deg > 0 else ""
         out.append(f"lines {r.first_line}-{r.last_line}: {r.moves_before} moves -> {r.moves_after} "
                    f"({r.n_lines} lines + {r.n_arcs} arcs), path {r.length_mm:.3f} mm, deviation {r.deviation_mm:.4f} mm "
-                   f"(tolerance {c.tolerance_mm:g} mm; out of plane {r.plane_deviation_mm:.4f} mm)")
+                   f"(tolerance {c.tolerance_mm:g} mm; {where}{tool})")
     before, after = sum(r.moves_before for r in c.paths), sum(r.moves_after for r in c.paths)
     done = ("nothing gained: no program written (the original stays as it is)" if not c.written
             else f"path replaced in a copy of {c.replaces} (every other line as it was)" if c.replaces

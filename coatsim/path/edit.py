@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol, Sequence, runtime_checkable
+from typing import Optional, Protocol, Sequence, runtime_checkable
 
 from coatsim.path.language import ReadOptions
 from coatsim.path.placement import PlacedMove
@@ -19,11 +19,12 @@ from coatsim.path.process_path import PlaneFrame, ProcessPath
 @dataclass(frozen=True, eq=False)
 class FittedPath:
     """One process path and its fit: the moves it replaces (``path.moves``, indices into the
-    reading's ToolPath), its plane, the fitted lines and arcs in the robot base frame, their
-    counts, the fit's deviation, the source lines the path spans, notes."""
+    reading's ToolPath), its plane (None: fitted in space), the fitted lines and arcs in the
+    robot base frame, their counts, the fit's deviation, the source lines the path spans,
+    notes."""
 
     path: ProcessPath
-    plane: PlaneFrame
+    plane: Optional[PlaneFrame]
     segments: tuple[PlacedMove, ...]
     n_arcs: int
     n_lines: int

@@ -10,14 +10,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
 
 import numpy as np
-from scipy.spatial.transform import Rotation, Slerp
 
 from coatsim.core.numeric import ROUND_OFF, TINY
 from coatsim.core.errors import InputError
-from coatsim.path.arcs import move_length, sample_move
+from coatsim.path.arcs import move_length, move_rotations, sample_move
 from coatsim.path.reading import MoveSource
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Move, ToolPath
 
@@ -69,8 +67,7 @@ def _move_points(move: Move, spacing: float) -> tuple[np.ndarray, np.ndarray]:
     else:
         u = np.array([1.0])
         pts = np.asarray(move.end.translation_mm, dtype=float)[None]
-    rot = Slerp([0.0, 1.0], Rotation.from_matrix([move.start.rotation, move.end.rotation]))(u).as_matrix()
-    return pts, rot
+    return pts, move_rotations(move, u)
 
 
 def path_of(toolpath: ToolPath, moves: tuple[int, ...], spacing_mm: float) -> ProcessPath:
@@ -140,35 +137,6 @@ def planar_frame(points: np.ndarray, tool_z: np.ndarray) -> PlaneFrame:
     e2 = np.cross(normal, e1)
     deviation = float(np.abs((pts - centre) @ normal).max())
     return PlaneFrame(centre, e1, e2, normal, deviation)
-
-
-def rotation_along(path: ProcessPath, queries: np.ndarray) -> np.ndarray:
-    """Tool rotations (k, 3, 3) at points near the path: interpolated along the nearest piece."""
-    rots = path.rotations
-    if np.allclose(rots, rots[0], atol=1e-12):
-        return np.broadcast_to(rots[0], (len(queries), 3, 3)).copy()
-    from scipy.spatial import cKDTree
-
-    pts = path.points
-    nearest = cKDTree(pts).query(queries)[1]
-    out = np.empty((len(queries), 3, 3))
-    for k, (q, i) in enumerate(zip(queries, nearest)):
-        best: Optional[tuple[float, int, float]] = None
-        for a in (i - 1, i):
-            if a < 0 or a + 1 >= len(pts):
-                continue
-            ab = pts[a + 1] - pts[a]
-            t = float(np.clip((q - pts[a]) @ ab / max(ab @ ab, 1e-300), 0.0, 1.0))
-            d = float(np.linalg.norm(pts[a] + t * ab - q))
-            if best is None or d < best[0]:
-                best = (d, a, t)
-        if best is None:
-            out[k] = rots[i]
-            continue
-        _, a, t = best
-        out[k] = Slerp([0.0, 1.0], Rotation.from_matrix([rots[a], rots[a + 1]]))([t]).as_matrix()[0]
-    return out
-
 
 
 def path_distance(a: np.ndarray, b: np.ndarray) -> float:

@@ -96,16 +96,27 @@ class Reading:
         with ``needs_spray`` a sprayed path (InputError naming the outputs switched instead)."""
         self.require_complete()
         if needs_spray and not self.toolpath.spray_moves:
-            raise InputError(f"{gun_never_on(first_file, gun_signal, self.outputs)}; give the output that opens the "
+            raise InputError(f"{gun_never_on(first_file, gun_signal, self.outputs, self.switches)}; give the output that opens the "
                              "gun as gun_signal", parameters=("gun_signal",))
         return self.toolpath
 
 
-def gun_never_on(source: str, gun_signal: int, outputs: tuple[int, ...]) -> str:
+def gun_never_on(source: str, gun_signal: int, outputs: tuple[int, ...],
+                 switches: Sequence[OutputSwitch] = ()) -> str:
     """What to say of a program that never sprays: the outputs it switches instead."""
-    switched = f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}" if outputs \
-        else "it switches no output"
-    return f"{source}: the gun (output {gun_signal}) is never on during a motion; {switched}"
+    return f"{source}: the gun (output {gun_signal}) is never on during a motion; {outputs_switched(outputs, switches)}"
+
+
+def outputs_switched(outputs: tuple[int, ...], switches: Sequence[OutputSwitch]) -> str:
+    """The outputs a program switches (it never opens the gun): their numbers, or the first
+    statement that switches an output with no number (a signal named without digits)."""
+    if outputs:
+        return f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}"
+    if switches:
+        more = f" and {len(switches) - 1} more" if len(switches) > 1 else ""
+        return (f"it switches no numbered output ({switches[0]}{more}: a signal named without a number takes "
+                "the one a variable of its name gives, NAME=N)")
+    return "it switches no output"
 
 
 def require_every_statement(skipped: Sequence[str], unsimulated: Collection[str]) -> None:

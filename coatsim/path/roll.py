@@ -16,6 +16,11 @@ the tool's x axis at every pose:
   the wrist up by half a turn each). The roll then turns too, which bends the slerped axis off
   the great circle.
 
+An arc's via pose is written halfway along the turn from its start pose to its end pose: many
+controllers turn the tool so over a circular move whatever the via's orientation (RAPID's circle
+point, KRL's auxiliary point, URScript's movec), others through the via's; with the via there,
+both turn it alike.
+
 Pieces are halved, the new pose on the wanted axis, until the slerped axis stays within the angle
 tolerance of the wanted one and the tool's turning rate changes little at every pose (a rate
 that jumps makes the joints change speed at once: the tool slows there) — where halving lowers
@@ -34,7 +39,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from coatsim.core.errors import InputError
-from coatsim.geometry.space.pose import exp_rotation
+from coatsim.geometry.space.pose import exp_rotation, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
 from coatsim.geometry.space.rotations import rot_z
 
@@ -142,6 +147,8 @@ def orient(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, reference: n
         if isinstance(seg, Arc3):
             via = _carry(here, av) if rule == "fixed" else _frame(av, sign * _tangent(seg, "via"))
         end = _carry(via if via is not None else here, a1) if rule == "fixed" else _frame(a1, sign * _tangent(seg, "end"))
+        if via is not None:  # written halfway along the turn from start to end (module text)
+            via = slerp(here, end, 0.5)[0]
         out.append(Oriented(seg, here @ roll, None if via is None else via @ roll, end @ roll))
         here = end
     return out
@@ -193,11 +200,7 @@ def _checked(out: list[Oriented], wanted: Wanted, angle_tol_rad: float) -> tuple
 def _halves(piece: AxisPiece, wanted: Wanted) -> tuple[AxisPiece, AxisPiece]:
     """A piece split at its middle, the new poses' axes the wanted ones there."""
     seg, (a0, _, a1) = piece.geometry, piece.axes
-    if isinstance(seg, Line3):
-        first, second = Line3(seg.start, seg.via), Line3(seg.via, seg.end)
-    else:
-        first = Arc3(seg.start, seg.via, seg.center, seg.normal, seg.radius, seg.sweep / 2)
-        second = Arc3(seg.via, seg.end, seg.center, seg.normal, seg.radius, seg.sweep / 2)
+    first, second = seg.halves()
     q0, mid, q1 = wanted(np.array([first.via, seg.via, second.via]))
     return AxisPiece(first, (a0, q0, mid)), AxisPiece(second, (mid, q1, a1))
 

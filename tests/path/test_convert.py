@@ -116,16 +116,6 @@ def test_switch_inside_the_path_is_written_again(tmp_path):
     assert result.paths[0].moves_before == len(pts) - 1 and "gun on (as in the original)" in result.text
 
 
-def test_not_planar_is_one_line(tmp_path):
-    lines = ["  LMOVE h[%d]" % i for i in range(1, 200)]
-    trans = "\n".join(f"h[{i}] {700 + 50 * math.cos(i / 10):.4f} {50 * math.sin(i / 10):.4f} {300 + i / 5:.4f} 0 180 0"
-                      for i in range(200))
-    text = ".PROGRAM helix()\n  JMOVE h[0]\n  BREAK\n  SIGNAL 1\n" + "\n".join(lines) + f"\n  BREAK\n  SIGNAL -1\n.END\n.TRANS\n{trans}\n.END\n"
-    with pytest.raises(InputError) as info:
-        convert_program(write(tmp_path, text.encode()), ConvertOptions(TOL))
-    assert "is not planar" in str(info.value) and "\n" not in str(info.value)
-
-
 @pytest.mark.parametrize("inside,words", [
     ("  TWAIT 0.5\n", "TWAIT"), ("  SIGNAL 5\n", "SIGNAL"), ("  SPEED 50 MM/S ALWAYS\n", "SPEED"),
     ("  CALL noop\n", "a CALL statement"), ("  ACCURACY 2\n", "an ACCURACY statement"), ("  CP OFF\n", "a CP OFF statement"),

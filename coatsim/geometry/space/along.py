@@ -86,12 +86,18 @@ class AlongPass:
             best_s[closer] = (self.arc[a] + u * (self.arc[a + 1] - self.arc[a]))[closer]
         return best_s
 
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        """The wanted unit axes (n, 3) at points ``x`` (n, 3) on the path: the input axes
-        interpolated at the input's arc length matched to theirs."""
+    def input_place(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Where points ``x`` (n, 3) on the path lie along the input: the input edge (n,) (from
+        point ``edge`` to ``edge + 1``) at the input's arc length matched to theirs, and the
+        fraction (n,) of it."""
         s_in = np.interp(self.arc_length(np.atleast_2d(x)), self.path_s, self.matched_s)
         edge = np.clip(np.searchsorted(self.input_s, s_in, side="right") - 1, 0, len(self.points) - 2)
         span = self.input_s[edge + 1] - self.input_s[edge]
-        u = np.clip((s_in - self.input_s[edge]) / np.where(span > 0, span, 1.0), 0.0, 1.0)
+        return edge, np.clip((s_in - self.input_s[edge]) / np.where(span > 0, span, 1.0), 0.0, 1.0)
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        """The wanted unit axes (n, 3) at points ``x`` (n, 3) on the path: the input axes
+        interpolated at their place along the input (:meth:`input_place`)."""
+        edge, u = self.input_place(x)
         v = (1 - u)[:, None] * self.axes[edge] + u[:, None] * self.axes[edge + 1]
         return v / np.linalg.norm(v, axis=1)[:, None]

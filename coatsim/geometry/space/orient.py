@@ -26,7 +26,7 @@ from coatsim.core.errors import InputError
 from coatsim.geometry.space.along import AlongPass
 from coatsim.geometry.space.chain import SpaceChain
 from coatsim.geometry.space.curve import make_space_curve
-from coatsim.geometry.space.primitives import Arc3, Line3, Segment3
+from coatsim.geometry.space.primitives import Line3, Segment3
 from coatsim.geometry.space.segment import SpaceSegmentation, segment_space_curve
 
 ANGLE_TOL_DEG = defaults.ANGLE_TOL_DEG  # the interpolated axis stays this close to the wanted one
@@ -82,14 +82,6 @@ def _segment_error(seg: Segment3, wanted: AlongPass) -> tuple[float, tuple[np.nd
     return float(err.max()), ends  # type: ignore[return-value]
 
 
-def _halves(seg: Segment3) -> tuple[Segment3, Segment3]:
-    mid = seg.via
-    if isinstance(seg, Line3):
-        return Line3(seg.start, mid), Line3(mid, seg.end)
-    return (Arc3(seg.start, mid, seg.center, seg.normal, seg.radius, seg.sweep / 2),
-            Arc3(mid, seg.end, seg.center, seg.normal, seg.radius, seg.sweep / 2))
-
-
 def _check_axes(points: np.ndarray, axes: np.ndarray, name: str) -> np.ndarray:
     a = np.asarray(axes, dtype=float)
     if a.shape != points.shape:
@@ -132,7 +124,7 @@ def fit_surface_pass(points: np.ndarray, spray_axes: np.ndarray, tolerance_mm: f
             s = todo.pop(0)
             err, ends = _segment_error(s, wanted)
             if err > limit and s.length / 2 >= MIN_SPLIT_MM:
-                todo[:0] = list(_halves(s))
+                todo[:0] = list(s.halves())
                 continue
             worst = max(worst, err)
             done.append(s)

@@ -124,6 +124,10 @@ class Line3:
     def reversed(self) -> Line3:
         return Line3(self.end, self.start)
 
+    def halves(self) -> tuple[Line3, Line3]:
+        """The line split at its middle: the same path, one more point to give a pose at."""
+        return Line3(self.start, self.via), Line3(self.via, self.end)
+
 
 @dataclass(frozen=True, eq=False)
 class Arc3:
@@ -226,6 +230,12 @@ class Arc3:
 
     def reversed(self) -> Arc3:
         return Arc3(self.end, self.start, self.center, -self.normal, self.radius, self.sweep)
+
+    def halves(self) -> tuple[Arc3, Arc3]:
+        """The arc split at its middle into two arcs of its circle: the same path and tangents."""
+        mid, half = self.via, self.sweep / 2
+        return (Arc3(self.start, mid, self.center, self.normal, self.radius, half),
+                Arc3(mid, self.end, self.center, self.normal, self.radius, half))
 
 
 Segment3 = Union[Line3, Arc3]

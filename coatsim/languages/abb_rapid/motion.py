@@ -24,6 +24,7 @@ import numpy as np
 from coatsim.geometry.space.pose import Pose
 from coatsim.languages.abb_rapid import data as d
 from coatsim.languages.script import nodes as n
+from coatsim.path.arcs import via_on_turn
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings, ToolFrame
 
 # Instruction -> (positional parameters, the index of its target, of its circle point or None)
@@ -103,7 +104,8 @@ class Motions:
                 move = JointMove(self.tcp, end, settings, self.spraying, call.line)
             else:
                 start = self.tcp if self.tcp is not None else self._home_start(call.name, tool)
-                move = (CircularMove(start, via, end, settings, self.spraying, call.line) if via is not None
+                move = (CircularMove(start, via_on_turn(start, via, end), end, settings, self.spraying, call.line)
+                        if via is not None
                         else LinearMove(start, end, settings, self.spraying, call.line))
             self.add_move(move, call, frame)
             self.tcp = end

@@ -18,6 +18,7 @@ from coatsim.languages.kuka_krl.evaluate import Unknown
 from coatsim.languages.kuka_krl.parser import Line, split_commas, statement_text
 from coatsim.languages.script import nodes as n
 from coatsim.languages.script.tokens import NAME
+from coatsim.path.arcs import via_on_turn
 from coatsim.path.reading import MoveSource
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, MotionSettings
 
@@ -238,7 +239,8 @@ class Motions:
             move = JointMove(self.tcp, end, settings, self.spraying, ln.line, joints_rad=joints)
         else:
             start = self.tcp if self.tcp is not None else self._home_start(word)
-            move = (CircularMove(start, via, end, settings, self.spraying, ln.line) if via is not None
+            move = (CircularMove(start, via_on_turn(start, via, end), end, settings, self.spraying, ln.line)
+                    if via is not None
                     else LinearMove(start, end, settings, self.spraying, ln.line))
         self.moves.append(move)
         self.sources.append(MoveSource(self.source, self.routine, ln.line, ln.line))

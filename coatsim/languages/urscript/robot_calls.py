@@ -33,6 +33,7 @@ from coatsim.geometry.space.pose import Pose, exp_rotation
 from coatsim.geometry.space.primitives import DegenerateArc, arc_through
 from coatsim.languages.urscript.blend import M_TO_MM, blend_settings
 from coatsim.languages.urscript.values import FramedPose, PoseJoints, PoseValue
+from coatsim.path.arcs import via_on_turn
 from coatsim.path.language import ReadOptions
 from coatsim.path.toolpath_builder import ToolPathBuilder
 
@@ -236,15 +237,14 @@ class RobotCalls:
         if mode not in (0, 1):
             raise self.error("movec(): mode is 0 (orientation to pose_to) or 1 (fixed to the path)")
         start = self.builder.here("movec()", line)
-        if mode == 1:
-            try:
-                arc = arc_through(start.translation_mm, via.translation_mm, end.translation_mm)
-            except DegenerateArc as exc:
-                raise self.error(f"movec(): the start, via and end define no arc: {exc}") from None
-            turn = exp_rotation(arc.normal * arc.sweep)
-            end = Pose(turn @ start.rotation, end.translation_mm)
+        try:
+            arc = arc_through(start.translation_mm, via.translation_mm, end.translation_mm)
+        except DegenerateArc as exc:
+            raise self.error(f"movec(): the start, via and end define no arc: {exc}") from None
+        if mode == 1:  # the tool turns with the tangent, by the arc's turn
+            end = Pose(exp_rotation(arc.normal * arc.sweep) @ start.rotation, end.translation_mm)
         settings = blend_settings(self._speed("movec", values, end), float(values["r"]))
-        self.builder.circular(Pose(start.rotation, via.translation_mm), end, settings, line)
+        self.builder.circular(via_on_turn(start, via, end), end, settings, line)  # the via's orientation not used
 
     def set_output(self, name: str, args: tuple) -> None:
         kind = _OUTPUTS[name]

@@ -175,3 +175,17 @@ def test_defects_name_the_line(tmp_path, text, words):
     with pytest.raises((InputError, ExecutionError)) as info:
         read(tmp_path, text)
     assert "prog.mod:" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_movec_turns_the_tool_from_start_to_end_whatever_the_circle_point_s_orientation(tmp_path):
+    """RAPID uses the circle point's orientation only to pick the way round: the tool turns
+    from the start's orientation to the destination's, so the via is read with that turn's
+    orientation at its place (a quarter of the way at a circle point a quarter along)."""
+    from coatsim.geometry.space.pose import slerp
+
+    quarter = f"[{math.cos(math.pi / 8)},0,0,{math.sin(math.pi / 8)}]"
+    data = (f"  CONST robtarget c1 := {rt(600 + 50 * math.sqrt(0.5), 50 - 50 * math.sqrt(0.5), 300, '[0.5,0.5,0.5,0.5]')};\n"
+            f"  CONST robtarget c2 := {rt(600, 100, 300, quarter)};")
+    r = read(tmp_path, module("    MoveL p20, v500, fine, tGun;\n    MoveC c1, c2, v200, fine, tGun;", data))
+    arc = r.toolpath.moves[2]
+    np.testing.assert_allclose(arc.via.rotation, slerp(arc.start.rotation, arc.end.rotation, 0.25)[0], atol=1e-9)

@@ -140,3 +140,14 @@ def test_frames_set_by_the_program_after_an_unknown_fdat_bring_the_motions_back(
     both = read(tmp_path, prog(body.replace("{base}", "  $BASE = {X 700,Y 0,Z 200,A 0,B 0,C 0}\n")), kinematics=kin)
     assert both.skipped == () and len(both.toolpath.moves) == 4
     assert np.allclose(both.toolpath.moves[-1].end.translation_mm, [800, 0, 300])
+
+
+def test_circ_turns_the_tool_from_start_to_end_whatever_the_auxiliary_point_s_orientation(tmp_path):
+    """KRL does not use the auxiliary point's orientation: the tool turns from the start's to
+    the end's along the arc, so the via is read with that turn's orientation at its place."""
+    from coatsim.geometry.space.pose import slerp
+
+    r = read(tmp_path, prog("  LIN {X 600,Y 0,Z 300,A 0,B 90,C 0}\n"
+                            "  CIRC {X 650,Y 50,Z 300,A 40,B 10,C 70},{X 600,Y 100,Z 300,A 90,B 90,C 0}"))
+    arc = r.toolpath.moves[2]
+    np.testing.assert_allclose(arc.via.rotation, slerp(arc.start.rotation, arc.end.rotation, 0.5)[0], atol=1e-9)

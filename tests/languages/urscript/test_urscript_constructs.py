@@ -54,8 +54,13 @@ def test_movec_through_the_via_with_orientation_to_the_target_or_fixed_to_the_pa
     arc = arc_through(free.start.translation_mm, free.via.translation_mm, free.end.translation_mm)
     assert np.allclose(arc.center, [600, 50, 300]) and arc.sweep == pytest.approx(math.pi)
     assert np.allclose(free.end.rotation, rot_x(math.pi))
+    assert np.allclose(free.via.rotation, rot_x(math.pi))   # the tool turns start -> end; the via's is not used
     fixed = run(head + "movec(p[0.65, 0.05, 0.3, 0, 0, 0], p[0.6, 0.1, 0.3, 0, 0, 0], mode=1)", tmp_path).moves[1]
     assert np.allclose(fixed.end.rotation, rot_z(math.pi) @ rot_x(math.pi))  # turned with the half circle
+    assert np.allclose(fixed.via.rotation, rot_z(math.pi / 2) @ rot_x(math.pi))  # a quarter turn at the via
+    tilt = f"movec(p[0.65, 0.05, 0.3, 0, 0, 0], p[0.6, 0.1, 0.3, {math.pi / 2}, 0, 0])"
+    turning = run(head + tilt, tmp_path).moves[1]   # from pointing down to pointing sideways: half-way at the via
+    assert np.allclose(turning.via.rotation, rot_x(3 * math.pi / 4))
 
 
 def test_movep_is_a_blended_linear_move(tmp_path):
