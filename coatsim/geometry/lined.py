@@ -11,7 +11,8 @@ between two lines is the arc tangent to both with the radius that fits its input
 ending at a tangent point (between lines running opposite ways, a U-turn: the arc tangent to the
 first, the second leaving it along its tangent), where that keeps the input of the bend and both
 lines within σ. The chain is a candidate where it is G1 at every junction and within σ of the
-whole run; the caller takes it over the chain without lines where lines cost nothing (at_no_cost).
+whole run; the caller takes it over the chain without lines where each straight stretch costs at
+most a segment (with_lines).
 """
 
 from __future__ import annotations
@@ -76,13 +77,16 @@ def lined_loop(points: np.ndarray, tol: float, min_segment_mm: float | None,
     return None
 
 
-def at_no_cost(lined: RunFit | None, plain: RunFit) -> RunFit:
-    """The lined chain where it has fewer segments than the one without lines, or as many and
-    more lines: lines at no cost (a chain of exact lines and circles stays as it is)."""
+def with_lines(lined: RunFit | None, plain: RunFit) -> RunFit:
+    """The lined chain where its straight stretches cost at most a segment each: fewer segments
+    than the chain without lines, or more lines and no more segments than it has plus the lines
+    added (a straight side drawn as an arc of metres reads as a fault and runs as a circle; a
+    chain of exact lines and circles stays as it is)."""
     if lined is None:
         return plain
     lines = lambda fit: sum(isinstance(s, Line) for s in fit.segments)  # noqa: E731
-    return lined if (len(lined.segments), -lines(lined)) < (len(plain.segments), -lines(plain)) else plain
+    extra, added = len(lined.segments) - len(plain.segments), lines(lined) - lines(plain)
+    return lined if extra < 0 or 0 < added >= extra else plain
 
 
 def _checked(points: np.ndarray, segments: tuple[Segment, ...], kept: bool, closed: bool,

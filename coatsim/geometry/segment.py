@@ -22,7 +22,7 @@ from coatsim.geometry.dynamics import curvature_limit, max_curvature_jump, speed
 from coatsim.geometry.fit import fit_free, fit_run
 from coatsim.geometry.run_fit import RunFit
 from coatsim.geometry.limits import fit_limits
-from coatsim.geometry.lined import at_no_cost, lined_loop, lined_run
+from coatsim.geometry.lined import with_lines, lined_loop, lined_run
 from coatsim.geometry.polysegment import Polysegment
 from coatsim.geometry.primitives import Arc, Segment
 from coatsim.geometry.recover import recover_exact
@@ -306,7 +306,7 @@ def _fit_within(curve: Curve, tol: float, corner_deg: float, min_segment_mm: flo
     with progress(f"{curve.name}: fitting runs between corners", len(runs)) as advance:
         for run in runs:  # the time budget is checked after each run (coatsim.core.progress)
             limits = fit_limits(run, False, tol, min_segment_mm, speed_kappa)
-            found = at_no_cost(lined_run(run, tol, min_segment_mm, speed_kappa),
+            found = with_lines(lined_run(run, tol, min_segment_mm, speed_kappa),
                            fit_run(run, tol, False, limits, fillet=min_segment_mm is None))
             segments, run_corners = _split_arcs(found)
             inner += [sum(len(p) for p in pieces) + k for k in run_corners]
@@ -350,7 +350,7 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
     the first point, needs at most one segment more (or the quick fit fails). Where the quick
     fit fails and no chain of honest arcs follows taught points from the calmest point, quick
     fits from other vertices are tried (_other_seams); if none follows them either, they come
-    back as their lines from the first point. Lines for straight stretches where they cost nothing (at_no_cost)."""
+    back as their lines from the first point. Lines for straight stretches where they cost nothing (with_lines)."""
     limits = fit_limits(pts, True, tol, min_segment_mm, speed_kappa)
     quick = fit_free(pts, tol, True, limits, quick=True)
     found = quick
@@ -365,7 +365,7 @@ def _fit_loop(pts: np.ndarray, tol: float, min_segment_mm: float | None,
             replace(calm, segments=reseat(calm.segments, pts[0], limits.min_length_mm))
         if quick is None or len(calm.segments) <= len(quick.segments) + 1:
             found = calm
-    found = at_no_cost(lined_loop(pts, tol, min_segment_mm, speed_kappa), found)
+    found = with_lines(lined_loop(pts, tol, min_segment_mm, speed_kappa), found)
     segments, corners = _split_arcs(found)
     poly = Polysegment(segments, closed=True, corners=tuple(corners))
     return poly, found.deviation_mm, _finite(limits.profile.tightest_radius_mm), found.limits_kept, found.notes
