@@ -111,7 +111,7 @@ def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, 
         notes.append(f"{where} makes no motion here: every motion of its run is skipped for want of a value (the "
                      "statements skipped are listed); give the values as NAME=VALUE")
     elif not toolpath.spray_moves:
-        notes.append(gun_never_on(reading.sources[0], gun_signal, reading.outputs, reading.switches))
+        notes.append(gun_never_on(reading.sources[0], gun_signal, reading.outputs, reading.unnumbered))
     elif reading.gun_on_at_end:
         problems.append(f"the gun (output {gun_signal}) is still on at the end of the program")
     return ProgramCheck(

@@ -72,8 +72,8 @@ class PathReport:
     """Figures of one converted path: the source lines replaced (in place) or the path came
     from (standalone); ``plane_deviation_mm`` how far the path leaves its plane (None: fitted
     in space); ``deviation_mm`` measured on the program written; ``tool_angle_deg`` the largest
-    angle the new program's tool turns away from the original's; ``kept``: the arcs gained no
-    move, the path is as it was."""
+    angle the new program's tool (its spray axis, in a language that does not turn the gun)
+    turns away from the original's; ``kept``: the arcs gained no move, the path is as it was."""
 
     first_line: int
     last_line: int
@@ -116,9 +116,9 @@ def _candidates(reading: Reading, options: ConvertOptions, motions: str) -> list
         return [moves]
     runs = [r for r in spray_runs(toolpath) if len(r) >= 2]
     if not runs:
-        switched = outputs_switched(reading.outputs, reading.switches)
+        switched = outputs_switched(reading.outputs, reading.unnumbered)
         raise InputError(f"no process path: the gun (output {options.gun_signal}) is never on over two or more "
-                         f"consecutive {motions} moves ({switched}; is the process signal one of "
+                         f"consecutive {motions} moves ({switched}: is the process signal one of "
                          "them?); name the moves with lines FIRST-LAST", parameters=("lines",))
     return runs
 
@@ -242,8 +242,12 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
             new = _read_edited(language, items, replaces, data, read_options)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
-    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm,
+    roll = target.capabilities.tool_orientation
+    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm, roll,
                       replaces or "the standalone program")
+    if not roll:
+        notes.append(f"{target.title} does not turn the gun: the angle given is the spray axis's (the gun's turn "
+                     "about it is the work frame's)")
     fitted_reports = reports if not standalone else [r for r, gained in zip(reports, gains) if gained]
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
               f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over {limit:g} deg takes several "
@@ -316,10 +320,10 @@ def _same(a, b) -> bool:
 
 
 def _verify(original: ToolPath, converted: ToolPath, fitted: list[FittedPath], counts: Optional[list[int]],
-            ranges: list[tuple[int, int]], tolerance_mm: float, where: str) -> list[PathReport]:
+            ranges: list[tuple[int, int]], tolerance_mm: float, roll: bool, where: str) -> list[PathReport]:
     """Each new process path against its original, measured both ways on the programs' paths
-    (and the tool along it against the original's); in place, every other move must be the same
-    as before (``where`` names the file edited)."""
+    (and the tool along it against the original's: its spray axis alone without ``roll``); in
+    place, every other move must be the same as before (``where`` names the file edited)."""
     old, new = original.moves, converted.moves
     blocks = []
     if counts is None:
@@ -350,7 +354,7 @@ def _verify(original: ToolPath, converted: ToolPath, fitted: list[FittedPath], c
         old_moves = [old[i] for i in f.path.moves]
         a, b = dense_points(old_moves, tolerance_mm / 20.0), dense_points(block, tolerance_mm / 20.0)
         deviation = max(path_distance(a, b), path_distance(b, a))
-        tool = tool_angle([taught_move(m, False) for m in block], f.path, tolerance_mm)
+        tool = tool_angle([taught_move(m, False) for m in block], f.path, tolerance_mm, roll)
         reports.append(PathReport(first, last, len(old_moves), len(block), f.n_arcs, f.n_lines,
                                   _plane_deviation(f), deviation, f.path.length_mm, tool_angle_deg=math.degrees(tool)))
     return reports
@@ -366,7 +370,7 @@ def conversion_summary(c: Conversion) -> str:
             continue
         where = ("in space, arcs each in its own plane" if r.plane_deviation_mm is None
                  else f"out of plane {r.plane_deviation_mm:.4f} mm")
-        tool = f"; tool within {r.tool_angle_deg:.2f} deg of the original's" if r.tool_angle_deg > 0 else ""
+        tool = f"; tool within {r.tool_angle_deg:.2f} deg of the original's" if r.tool_angle_deg >= 0.005 else ""
         out.append(f"lines {r.first_line}-{r.last_line}: {r.moves_before} moves -> {r.moves_after} "
                    f"({r.n_lines} lines + {r.n_arcs} arcs), path {r.length_mm:.3f} mm, deviation {r.deviation_mm:.4f} mm "
                    f"(tolerance {c.tolerance_mm:g} mm; {where}{tool})")

@@ -26,8 +26,8 @@ from coatsim.geometry.space.segment import segment_space_curve
 from coatsim.path.edit import FittedPath
 from coatsim.path.placement import PlacedMove, placed_line
 from coatsim.path.process_path import PlaneFrame, ProcessPath, path_of, planar_frame
-from coatsim.path.taught_orientation import orient_as_taught
 from coatsim.path.reading import Reading
+from coatsim.path.taught_orientation import orient_as_taught
 from coatsim.path.toolpath import CircularMove, LinearMove
 
 PLANE_SHARE = 0.5  # the part of the tolerance a path may leave its plane by

@@ -52,7 +52,9 @@ class Reading:
     ``move_frames`` hold one entry per move of ``toolpath``: where it comes from and the user frame
     (BASE, work object) its poses were given in. ``n_steps`` counts the main program's statements,
     ``n_poses`` the poses the files declare. ``switches`` lists every statement that switches
-    outputs, ``outputs`` the outputs switched. ``problems`` are what is legal but suspicious in the
+    outputs, ``outputs`` the outputs switched, ``unnumbered`` the output signals switched that
+    have no number (a RAPID signal named without digits: no output number until a variable gives
+    it one), each with where it is first switched. ``problems`` are what is legal but suspicious in the
     language's own terms, ``notes`` what a reader must know; ``unknowns`` the variables read that
     no file gives (with their first line), ``skipped`` the statements not run for want of a
     value, of which ``unsimulated`` are those the twin does not simulate. ``gun_on_at_end``: the
@@ -73,6 +75,7 @@ class Reading:
     n_poses: int
     switches: tuple[OutputSwitch, ...] = ()
     outputs: tuple[int, ...] = ()
+    unnumbered: tuple[str, ...] = ()
     problems: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
     unknowns: tuple[str, ...] = ()
@@ -96,27 +99,24 @@ class Reading:
         with ``needs_spray`` a sprayed path (InputError naming the outputs switched instead)."""
         self.require_complete()
         if needs_spray and not self.toolpath.spray_moves:
-            raise InputError(f"{gun_never_on(first_file, gun_signal, self.outputs, self.switches)}; give the output that opens the "
+            raise InputError(f"{gun_never_on(first_file, gun_signal, self.outputs, self.unnumbered)}; give the output that opens the "
                              "gun as gun_signal", parameters=("gun_signal",))
         return self.toolpath
 
 
-def gun_never_on(source: str, gun_signal: int, outputs: tuple[int, ...],
-                 switches: Sequence[OutputSwitch] = ()) -> str:
+def gun_never_on(source: str, gun_signal: int, outputs: tuple[int, ...], unnumbered: tuple[str, ...] = ()) -> str:
     """What to say of a program that never sprays: the outputs it switches instead."""
-    return f"{source}: the gun (output {gun_signal}) is never on during a motion; {outputs_switched(outputs, switches)}"
+    return f"{source}: the gun (output {gun_signal}) is never on during a motion; {outputs_switched(outputs, unnumbered)}"
 
 
-def outputs_switched(outputs: tuple[int, ...], switches: Sequence[OutputSwitch]) -> str:
-    """The outputs a program switches (it never opens the gun): their numbers, or the first
-    statement that switches an output with no number (a signal named without digits)."""
-    if outputs:
-        return f"it switches output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}"
-    if switches:
-        more = f" and {len(switches) - 1} more" if len(switches) > 1 else ""
-        return (f"it switches no numbered output ({switches[0]}{more}: a signal named without a number takes "
-                "the one a variable of its name gives, NAME=N)")
-    return "it switches no output"
+def outputs_switched(outputs: tuple[int, ...], unnumbered: tuple[str, ...]) -> str:
+    """The outputs a program switches (it never opens the gun): their numbers, and the signals
+    it switches that have no number (with where, and how to number them)."""
+    said = [f"output{'s' if len(outputs) > 1 else ''} {', '.join(map(str, outputs))}"] if outputs else []
+    if unnumbered:
+        said.append(f"signal{'s' if len(unnumbered) > 1 else ''} {', '.join(unnumbered)} with no number (a "
+                    "variable of the signal's name numbers it, NAME=N)")
+    return f"it switches {' and '.join(said)}" if said else "it switches no output"
 
 
 def require_every_statement(skipped: Sequence[str], unsimulated: Collection[str]) -> None:

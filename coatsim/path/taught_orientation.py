@@ -61,9 +61,9 @@ def rotation_angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.arctan2(sin, cos)
 
 
-def _stray(move: PlacedMove, wanted: TaughtRotations) -> float:
+def _stray(move: PlacedMove, wanted: TaughtRotations, roll: bool = True) -> float:
     """The largest angle (rad) between the tool the controller turns along ``move`` and the
-    original's there."""
+    original's there (their spray axes' without ``roll``)."""
     seg = move.geometry
     s = np.linspace(0.0, seg.length, max(_MIN_SAMPLES, int(math.ceil(seg.length * SAMPLES_PER_MM)) + 1))
     if move.via_pose is None:
@@ -73,7 +73,11 @@ def _stray(move: PlacedMove, wanted: TaughtRotations) -> float:
         first = s <= half
         got = np.concatenate((slerp(move.start.rotation, move.via_pose.rotation, s[first] / half),
                               slerp(move.via_pose.rotation, move.end.rotation, (s[~first] - half) / half)))
-    return float(rotation_angles(got, wanted(seg.points(s))).max())
+    want = wanted(seg.points(s))
+    if not roll:
+        cos = np.einsum("ni,ni->n", got[:, :, 2], want[:, :, 2])
+        return float(np.arctan2(np.linalg.norm(np.cross(got[:, :, 2], want[:, :, 2]), axis=1), cos).max())
+    return float(rotation_angles(got, want).max())
 
 
 def orient_as_taught(segments: Sequence[Segment3], path: ProcessPath, tolerance_mm: float, angle_tol_rad: float,
@@ -103,8 +107,9 @@ def orient_as_taught(segments: Sequence[Segment3], path: ProcessPath, tolerance_
     return tuple(out)
 
 
-def tool_angle(moves: Sequence[PlacedMove], path: ProcessPath, tolerance_mm: float) -> float:
+def tool_angle(moves: Sequence[PlacedMove], path: ProcessPath, tolerance_mm: float, roll: bool = True) -> float:
     """The largest angle (rad) between the tool a controller turns along ``moves`` (within
-    ``tolerance_mm`` of ``path``) and the original's there."""
+    ``tolerance_mm`` of ``path``) and the original's there; between their spray axes without
+    ``roll`` (a language that does not turn the gun about its axis)."""
     wanted = TaughtRotations([m.geometry for m in moves], path, tolerance_mm)
-    return max(_stray(m, wanted) for m in moves)
+    return max(_stray(m, wanted, roll) for m in moves)

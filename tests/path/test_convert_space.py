@@ -240,8 +240,24 @@ def test_a_rapid_module_with_a_named_gun_signal(tmp_path):
     rapid = language("abb-rapid")
     with pytest.raises(InputError) as info:
         convert_program(src, ConvertOptions(TOL, standalone=True), language=rapid)
-    assert "no numbered output (" in str(info.value) and "SetDO doGun, 1" in str(info.value)
+    assert "it switches signal doGun (" in str(info.value) and "Module1.mod:" in str(info.value)
     result = convert_program(src, ConvertOptions(TOL, standalone=True), language=rapid, variables={"doGun": "1"})
     (report,) = result.paths
     assert report.moves_after <= 20 and report.deviation_mm <= TOL and report.tool_angle_deg <= 2.0
     assert "MoveC" in result.text
+
+
+def test_g_code_keeps_the_spray_axis_and_says_the_roll_is_not_its_own(tmp_path):
+    """A planar contour sprayed with the gun turned 90 degrees about its axis: G-code writes no
+    roll (its reader gives the work frame's), so the angle measured is the spray axis's, 0, and
+    a note says so; RAPID keeps the roll."""
+    t = np.linspace(0.0, 2 * math.pi, 181)[:-1]
+    points = np.column_stack((700 + 60 * np.cos(t), 30 * np.sin(t), np.full_like(t, 300.0)))
+    rolled = np.diag([1.0, -1.0, -1.0]) @ np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    src = tmp_path / "rolled.as"
+    src.write_text(_as_program(points, np.broadcast_to(rolled, (len(points), 3, 3)), "rolled"))
+    for name, note in (("gcode", True), ("abb-rapid", False)):
+        result = convert_program(src, ConvertOptions(TOL, standalone=True), language=language("kawasaki-as"),
+                                 target=language(name))
+        assert result.paths[0].tool_angle_deg < 1e-3 and result.paths[0].moves_after <= 20
+        assert any("does not turn the gun: the angle given is the spray axis's" in n for n in result.notes) == note

@@ -57,6 +57,8 @@ class Instructions:
         gun = number == self.options.gun_signal
         if number is not None:
             self.outputs.add(number)
+        else:
+            self.unnumbered.setdefault(name.lower(), f"{name} ({self.source}:{call.line})")
         if gun:
             self.spraying = on
         if not any(sw.line == call.line and sw.source == self.source for sw in self.switches):

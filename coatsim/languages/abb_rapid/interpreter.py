@@ -49,6 +49,7 @@ class Interpreter(Instructions, Expressions, Motions):
         self.warnings: dict[str, str] = {}
         self.switches: list[OutputSwitch] = []
         self.outputs: set[int] = set()
+        self.unnumbered: dict[str, str] = {}  # signal name -> where it is first switched
         self.skipped: list[str] = []
         self.unsimulated: list[str] = []
         self.unknowns: dict[str, str] = {}  # the inputs read that nobody gives

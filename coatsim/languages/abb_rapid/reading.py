@@ -51,7 +51,7 @@ def read_rapid(paths: Sequence[Path], options: ReadOptions) -> Reading:
         ended=f"{run.stopped} ends it" if run.stopped else f"it ends at line {main.end_line}",
         move_sources=tuple(run.sources), move_frames=tuple(run.move_frames),
         n_steps=_count(main.body), n_poses=sum(1 for m in modules for x in m.data if x.type in ("robtarget", "jointtarget")),
-        switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), problems=tuple(_problems(modules)),
+        switches=tuple(run.switches), outputs=tuple(sorted(run.outputs)), unnumbered=tuple(run.unnumbered.values()), problems=tuple(_problems(modules)),
         unknowns=tuple(run.unknowns.values()) + run.unknown.unknowns(), skipped=tuple(run.skipped), unsimulated=tuple(run.unsimulated),
         gun_on_at_end=run.spraying,
         external_axes=any(_has_axes(v) for v in run.globals.values()),
