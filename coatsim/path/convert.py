@@ -242,12 +242,9 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
             new = _read_edited(language, items, replaces, data, read_options)
     except CoatsimError as exc:
         raise InputError(f"the converted program does not run as the original ({exc}); use --standalone") from None
-    roll = target.capabilities.tool_orientation
-    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm, roll,
-                      replaces or "the standalone program")
-    if not roll:
-        notes.append(f"{target.title} does not turn the gun: the angle given is the spray axis's (the gun's turn "
-                     "about it is the work frame's)")
+    reports = _verify(reading.toolpath, new.toolpath, fitted, counts, ranges, options.tolerance_mm,
+                      target.capabilities.tool_orientation, replaces or "the standalone program")
+    notes += _axis_only(target)
     fitted_reports = reports if not standalone else [r for r, gained in zip(reports, gains) if gained]
     notes += [f"lines {r.first_line}-{r.last_line}: the arc program has no fewer moves ({r.moves_after} against "
               f"{r.moves_before}: {r.n_lines} lines and {r.n_arcs} arcs; an arc over {limit:g} deg takes several "
@@ -257,6 +254,14 @@ def convert_program(paths: Paths, options: ConvertOptions, *, language: Language
     else:
         reports = sorted(reports + kept, key=lambda r: r.first_line)
     return Conversion(text, replaces, tuple(reports), tuple(notes), options.tolerance_mm, data)
+
+
+def _axis_only(target: Language) -> list[str]:
+    """The note for a language that does not turn the gun: the tool's angle is its axis's."""
+    if target.capabilities.tool_orientation:
+        return []
+    return [f"{target.title} does not turn the gun: the angle given is the spray axis's (the gun's turn about it "
+            "is the work frame's)"]
 
 
 def _as_taught(reading: Reading, f: FittedPath, taught: bool) -> FittedPath:
