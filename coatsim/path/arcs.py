@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from coatsim.geometry.space.pose import Pose, slerp
-from coatsim.geometry.space.primitives import DegenerateArc, arc_through
+from coatsim.geometry.space.primitives import Arc3, DegenerateArc, arc_through
 from coatsim.path.toolpath import CircularMove, JointMove, LinearMove, Move
 
 
@@ -47,8 +47,12 @@ def via_on_turn(start: Pose, via: Pose, end: Pose) -> Pose:
         arc = arc_through(start.translation_mm, via.translation_mm, end.translation_mm)
     except DegenerateArc:
         return via
-    at_via = float(arc.nearest(via.translation_mm[None])[1][0]) / arc.length
-    return Pose(slerp(start.rotation, end.rotation, at_via)[0], via.translation_mm)
+    return Pose(slerp(start.rotation, end.rotation, _at_via(arc, via))[0], via.translation_mm)
+
+
+def _at_via(arc: Arc3, via: Pose) -> float:
+    """The fraction of ``arc``'s length at which it passes ``via``."""
+    return float(arc.nearest(via.translation_mm[None])[1][0]) / arc.length
 
 
 def move_rotations(move: LinearMove | CircularMove, u: np.ndarray) -> np.ndarray:
@@ -58,7 +62,7 @@ def move_rotations(move: LinearMove | CircularMove, u: np.ndarray) -> np.ndarray
     if not isinstance(move, CircularMove):
         return slerp(move.start.rotation, move.end.rotation, u)
     arc = arc_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm)
-    at_via = min(max(float(arc.nearest(move.via.translation_mm[None])[1][0]) / arc.length, 1e-9), 1.0 - 1e-9)
+    at_via = min(max(_at_via(arc, move.via), 1e-9), 1.0 - 1e-9)
     first = u <= at_via
     out = np.empty((len(u), 3, 3))
     out[first] = slerp(move.start.rotation, move.via.rotation, u[first] / at_via)
