@@ -17,7 +17,7 @@ FLAGS = {"tolerance_mm": "--tol", "min_segment_mm": "--min-segment", "speed_mm_s
 
 
 def segment(
-    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns, or x,y,z for a 3-D curve), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
+    input: str = typer.Argument(..., help="Curve file (CSV/TXT/NPY: x,y columns, or x,y,z for a 3-D curve; a header may name them among others and give their unit, x_in), a drawing (DXF/SVG) or builtin:NAME[:key=value,...]."),
     tol: float = typer.Option(defaults.TOLERANCE_MM, "--tol", help="Tolerance sigma: max two-sided deviation, mm."),
     method: str = typer.Option("optimal", "--method", help="optimal (guaranteed tolerance, few segments) | paper (literal RDP on θ)."),
     corner_deg: float = typer.Option(defaults.CORNER_DEG, "--corner-deg", help="Turn within a short length that counts as a true corner, deg."),

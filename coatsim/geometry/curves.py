@@ -4,6 +4,7 @@ closure detection."""
 from __future__ import annotations
 
 import io
+import re
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,6 +16,7 @@ from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import read_input
 from coatsim.core.number_text import read_rows, table_text
+from coatsim.core.units import UNIT_SPELLINGS, UNITS_MM
 
 ClosedMode = Literal["auto", "yes", "no"]
 CLOSE_FRACTION = 1e-4  # first/last within this fraction of the length -> closed
@@ -23,6 +25,8 @@ CLOSE_MIN_POINTS = 8  # ... for a curve of at least this many points
 CLOSE_TURN_DEG = 120.0  # ... no turn at either end of the gap sharper than this (not doubling back)
 CLOSE_SMOOTH, CLOSE_SMOOTH_DEG = 2.0, 5.0  # ... and at one end a turn at most 2x the turn before it + 5 deg
 SNAP_NOTE_MM = 0.01  # an automatic closure that moves the last point further than this says so
+_HEADER_FIELD = re.compile(r'([xyz])\s*[_-]?\s*(?:[\[(]\s*([^\])]*?)\s*[\])]|([a-z"]+))?', re.IGNORECASE)  # x, X [mm], y_in
+_UNIT_WORDS = {"cm": "centimetres", "m": "metres", "in": "inches"}
 MIN_LENGTH_MM = 1e-6  # a shorter curve is no curve to spray (and leaves no room for float round-off)
 
 
@@ -153,20 +157,78 @@ def _read_text_points(path: Path) -> np.ndarray:
                          "or an (n, 2) or (n, 3) .npy array)") from None
     rows = read_rows(text, str(path), "x,y or x,y,z columns")
     widths = rows.widths
+    named = _named_columns(rows.header, path)
+    if named is not None:
+        index, unit = named
+        short = widths != len(rows.header)
+        if short.any():
+            k = int(np.argmax(short))
+            raise InputError(f"{path}:{int(rows.lines[k])}: {int(widths[k])} values where the header names "
+                             f"{len(rows.header)} columns")
     wrong = (widths < 2) | (widths > 3) | (widths != widths[:1])
-    if wrong.any():
+    if named is None and wrong.any():
         k = int(np.argmax(wrong))
         number, count = int(rows.lines[k]), int(widths[k])
         if count < 2:
             raise InputError(f"{path}:{number}: expected two columns x,y (or three x,y,z), found {count}")
         if count > 3:
-            raise InputError(f"{path}:{number}: {count} numeric columns; a curve has x,y or x,y,z (mm)")
+            raise InputError(f"{path}:{number}: {count} numeric columns; a curve has x,y or x,y,z (mm), or a header "
+                             "naming its x, y (and z) columns among others (i,x,y,z)")
         raise InputError(f"{path}:{number}: {count} columns where the rows above have {int(widths[0])}")
     if not len(widths):
         raise InputError(f"{path}: no points (empty file)")
     for note in rows.notes:
         warnings.warn(note, CoatsimWarning, stacklevel=2)
-    return rows.flat.reshape(-1, int(widths[0]))
+    if named is None:
+        return rows.flat.reshape(-1, int(widths[0]))
+    if index != list(range(len(rows.header))):
+        warnings.warn(f"{path}: read the columns {', '.join(rows.header[k] for k in index)} of "
+                      f"{', '.join(rows.header)} as x, y{', z' if len(index) == 3 else ''}", CoatsimWarning, stacklevel=2)
+    if unit != "mm":
+        warnings.warn(f"{path}: read in {_UNIT_WORDS[unit]} as its header says ({', '.join(rows.header[k] for k in index)}), "
+                      "converted to mm", CoatsimWarning, stacklevel=2)
+    return rows.columns(index) * UNITS_MM[unit]
+
+
+def _coordinate(field: str) -> tuple[str, str] | None:
+    """The axis (x, y or z) and the unit ("" when none; "?" and the text for a unit in brackets
+    that is none of UNIT_SPELLINGS) a header field names ("x", "X [mm]", "y_in", "z(inch)",
+    "x mm"); None for any other field."""
+    text = field.strip()
+    if len(text) > 1 and text[0] == text[-1] and text[0] in "'\"":  # a quoted field
+        text = text[1:-1].strip()
+    found = _HEADER_FIELD.fullmatch(text)
+    if found is None:
+        return None
+    bracketed, word = found.group(2), found.group(3) or ""
+    if bracketed is not None:  # "x [ft]" names an axis in a unit not read: said, not taken for mm
+        return found.group(1).lower(), UNIT_SPELLINGS.get(bracketed.lower(), f"?{bracketed}")
+    if word and word.lower() not in UNIT_SPELLINGS:
+        return None
+    return found.group(1).lower(), UNIT_SPELLINGS.get(word.lower(), "")
+
+
+def _named_columns(header: list[str], path: Path) -> tuple[list[int], str] | None:
+    """Where a header names an x and a y column (and a z): their indices and the unit the header
+    gives them (mm when it gives none); None where it names no x and y, the columns then being
+    x, y (and z) in order. InputError where the named columns give different units."""
+    axes: dict[str, tuple[int, str]] = {}
+    for k, field in enumerate(header):
+        coordinate = _coordinate(field)
+        if coordinate is not None and coordinate[0] not in axes:
+            axes[coordinate[0]] = (k, coordinate[1])
+    if "x" not in axes or "y" not in axes:
+        return None
+    picked = [axes[a] for a in ("x", "y", "z") if a in axes]
+    units = sorted({unit for _, unit in picked} - {""})
+    unknown = [header[k] for k, unit in picked if unit.startswith("?")]
+    if unknown:
+        raise InputError(f"{path}: column {unknown[0]!r}: a unit not read; give the coordinates in "
+                         f"{', '.join(UNITS_MM)}")
+    if len(units) > 1:
+        raise InputError(f"{path}: the header gives the coordinates different units ({', '.join(units)}); "
+                         "give them in one unit")
+    return [k for k, _ in picked], units[0] if units else "mm"
 
 
 def _read_npy_points(path: Path) -> np.ndarray:

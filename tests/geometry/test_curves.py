@@ -536,3 +536,57 @@ def test_a_curve_a_few_tolerances_across_gets_a_note_on_its_unit():
     notes = segment_curve(make_curve(small, "metres", "yes"), 0.1).notes
     assert any("the curve spans 0.323 mm" in n and "read as mm" in n for n in notes), notes
     assert not any("read as mm" in n for n in segment_curve(make_curve(small * 1000, "mm", "yes"), 0.1).notes)
+
+
+# --- columns named in a header: picked by name, in the header's unit -------------------------
+
+from coatsim.geometry.curves import read_points_file  # noqa: E402
+
+_XYZ = np.array([[0.0, 1.0, 2.0], [3.5, -4.25, 5.0], [6.0, 7.0, -8.5], [9.0, 10.0, 11.0]])
+
+
+@pytest.mark.parametrize("header, scale", [("x,y,z", 1.0), ("x [mm],y [mm],z [mm]", 1.0), ("X_in,Y_in,Z_in", 25.4),
+                                           ("x (cm), y (cm), z (cm)", 10.0), ("x_m,y_m,z_m", 1000.0),
+                                           ('x",y",z"', 25.4), ('"x","y","z"', 1.0), ("x inch,y inch,z inch", 25.4)])
+def test_a_header_gives_the_unit(tmp_path, header, scale):
+    """A header's unit converts the coordinates to mm, and says so; mm or none reads as is."""
+    path = tmp_path / "c.csv"
+    np.savetxt(path, _XYZ, delimiter=",", header=header, comments="")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert np.allclose(read_points_file(path), _XYZ * scale)
+    said = [str(w.message) for w in caught if issubclass(w.category, CoatsimWarning)]
+    assert any("converted to mm" in s for s in said) is (scale != 1.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(order=st.permutations(["x", "y", "z", "i", "t_s"]), three=st.booleans())
+def test_named_columns_are_picked_in_any_order(tmp_path_factory, order, three):
+    """x, y (and z) among other columns in any order: the points are those columns, x, y, z."""
+    names = [n for n in order if three or n != "z"]
+    values = {"x": _XYZ[:, 0], "y": _XYZ[:, 1], "z": _XYZ[:, 2], "i": np.arange(4.0), "t_s": np.arange(4.0) / 10}
+    path = tmp_path_factory.mktemp("named") / "c.csv"
+    np.savetxt(path, np.column_stack([values[n] for n in names]), delimiter=",", header=",".join(names), comments="")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        points = read_points_file(path)
+    assert np.array_equal(points, _XYZ if three else _XYZ[:, :2])
+
+
+@pytest.mark.parametrize("text, message", [
+    ("x [ft],y [ft]\n1,2\n3,4\n", r"column 'x \[ft\]': a unit not read"),
+    ("x_mm,y_in\n1,2\n3,4\n", r"different units \(in, mm\)"),
+    ("i,x,y,z\n0,1,2,3\n1,4,5\n", r"c.csv:3: 3 values where the header names 4 columns"),
+])
+def test_a_header_that_cannot_be_read_as_it_says_is_refused(tmp_path, text, message):
+    path = tmp_path / "c.csv"
+    path.write_text(text)
+    with pytest.raises(InputError, match=message):
+        read_points_file(path)
+
+
+def test_a_header_naming_no_coordinates_reads_the_columns_in_order(tmp_path):
+    """A header of other names (a, b, c) leaves the columns x, y, z in order, as before."""
+    path = tmp_path / "c.csv"
+    np.savetxt(path, _XYZ, delimiter=",", header="a,b,c", comments="")
+    assert np.array_equal(read_points_file(path), _XYZ)

@@ -19,9 +19,9 @@ from coatsim.core import defaults
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import InputError
 from coatsim.core.fileio import read_input
+from coatsim.core.units import UNITS_MM
 
 #: millimetres per unit of a mesh file
-UNITS_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
 UNIT_CHOICES = (*UNITS_MM, "auto")
 #: ``units="auto"``: a part whose largest extent is below this many file units is read as metres
 #: (a sprayed part is rarely smaller than 10 mm and rarely larger than 10 m)
