@@ -35,11 +35,13 @@ import numpy as np
 from coatsim.core import defaults
 from coatsim.core.errors import InputError
 from coatsim.core.numbers import fmt_short
+from coatsim.geometry.scatter import THIN_SCATTERS, scatter_mm
 from coatsim.geometry.space.along import AlongPass
 from coatsim.geometry.space.orient import ANGLE_TOL_DEG, MIN_SPLIT_MM, slerp_axes
 from coatsim.geometry.space.pose import Pose, slerp
 from coatsim.geometry.space.primitives import Arc3, Line3
 from coatsim.geometry.space.rotations import rot_z
+from coatsim.geometry.space.taught import noisy
 from coatsim.path.build import ProgramOptions
 from coatsim.path.expressible import expressible
 from coatsim.path.frames import DEFAULT_FRAME
@@ -57,6 +59,7 @@ from coatsim.path.unfold import MIN_ADVANCE
 
 _TRACE_SAMPLES = 33      # samples per move when its trace length is measured
 _KINK_RAD = 1e-6         # a junction breaking its tangent by more is a corner (speed 0 there)
+_NOISE_SHARE = 0.25      # tool points scattering by more than this share of the tolerance are noise the arcs follow
 
 
 @dataclass(frozen=True)
@@ -254,7 +257,8 @@ def build_surface_program(paths: SurfacePaths, options: ProgramOptions, surface:
     placed = travel_clearances(placed, options.approach_mm, surface_points, standoff, paths.source)
     _check_range(placed, language, paths.source)
     plan, notes = _surface_plan(paths, options, surface, language, placed, tuple(contours), counts,
-                                arcs_as_lines, _tilt_notes(tcps, surface) + _axis_notes(errors, surface),
+                                arcs_as_lines, _noise_notes(tcps, surface) + _tilt_notes(tcps, surface)
+                                + _axis_notes(errors, surface),
                                 (lead_in, lead_out), standoff, pose)
     return SurfaceProgram(language.write(plan), plan, tuple(counts), max(errors), notes, tuple(t.tcp_mm for t in tcps))
 
@@ -278,6 +282,23 @@ def _check_untilted(tcps: tuple[PassTcp, ...], language: Language, source: str) 
             raise InputError(f"{source}: passes[{k}] point {i} tilts the gun {math.degrees(tilt[i]):.3g} deg from -Z: "
                              f"{language.title} has no tool orientation, the gun points along -Z; write these "
                              "passes in a language with tool orientation")
+
+
+def _noise_notes(tcps: tuple[PassTcp, ...], surface: SurfaceOptions) -> tuple[str, ...]:
+    """What the user is told where the tool points of a pass scatter about a smooth path by more
+    than _NOISE_SHARE of the tolerance (a scanned part's roughness, in its points and, through the
+    stand-off, in its normals): the arcs follow that noise within the tolerance, many short ones. Judged only on
+    passes whose points turn back and forth like noise (``taught.noisy``), where the scatter
+    measures noise rather than a sparse pass's own bends."""
+    scatter = [(k, scatter_mm(t.tcp_mm, False)) for k, t in enumerate(tcps) if noisy(t.tcp_mm)]
+    over = [(k, s) for k, s in scatter if s > _NOISE_SHARE * surface.tolerance_mm]
+    if not over:
+        return ()
+    k, worst = max(over, key=lambda item: item[1])
+    return (f"the tool points scatter up to {worst:.2g} mm (rms) about a smooth path (passes[{k}]; {len(over)} of "
+            f"{len(tcps)} passes): the mesh's roughness, a scan's noise, in its points and, through the stand-off, in "
+            f"its normals; the arcs follow it within tolerance_mm {fmt_short(surface.tolerance_mm)} with many short moves; a tolerance "
+            f"of {fmt_short(THIN_SCATTERS * worst, 2)} mm or more, or a smoother mesh, fits the surface itself",)
 
 
 def _tilt_notes(tcps: list[PassTcp], surface: SurfaceOptions) -> tuple[str, ...]:

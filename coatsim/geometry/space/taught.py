@@ -32,6 +32,7 @@ from coatsim.geometry.space.nearest import polyline_index
 ARC_SAMPLES = 8  # a rounding arc is sampled at least this many times
 CUSP_DEG = 170.0  # a vertex turning more is a corner however its neighbours turn (the path doubles back)
 RESCUE_SHARE = 0.25  # the guide is fitted where the polyline's own fit needs more than this share of its moves
+NOISE_FLIPS = (30, 0.4)  # from this many turns on, a polyline turning back on this share of them is measured noise
 ROOMS = (1.0, 1.4, 1.8)  # the guide is fitted within these multiples of σ less its distance from the polyline
 
 Fit = Callable[[SpaceCurve, float], tuple[SpaceChain, int]]  # (chain, corners it added where lines stand in)
@@ -72,6 +73,22 @@ def is_sparse3(points: np.ndarray, closed: bool, tolerance: float) -> bool:
     span = ell.sum(axis=0)
     inset = np.divide(ell.max(axis=0) ** 2 * turn, 4 * span, out=np.zeros_like(span), where=span > 0)
     return bool(np.any((ell.min(axis=0) >= SPARSE_EDGE_SIGMAS * tolerance) & (inset >= SPARSE_INSET * tolerance)))
+
+
+def noisy(points: np.ndarray) -> bool:
+    """Whether a polyline's vertices are measured points with their noise rather than taught
+    ones: over NOISE_FLIPS[0] turns or more, the next vertex turns back against the last
+    (binormals opposed) at NOISE_FLIPS[1] of them or more. A taught polygon of a smooth curve
+    turns one way between its inflections (at most 0.17 of its turns back on the benchmark's
+    families at 15 vertices and more); the passes over a scan with 0.2 mm of noise turn back at
+    0.6 of theirs, and their guide cost ten times the polyline's own fit for a segment in twenty."""
+    d = np.diff(np.asarray(points, dtype=float), axis=0)
+    binormal = np.cross(d[:-1], d[1:])
+    size = np.linalg.norm(binormal, axis=1)
+    unit = binormal[size > 0] / size[size > 0, None]
+    if len(unit) < NOISE_FLIPS[0]:
+        return False
+    return float(np.mean(np.einsum("ij,ij->i", unit[1:], unit[:-1]) < 0)) >= NOISE_FLIPS[1]
 
 
 def guide3(points: np.ndarray, closed: bool, tolerance: float, corner_deg: float) -> np.ndarray:
@@ -137,10 +154,10 @@ def taught_fit(curve: SpaceCurve, tolerance: float, corner_deg: float, fit: Fit,
     curve and a tolerance -> a chain and the corners it added), its certified deviation from
     the polyline and those corners; None where the polyline's own fit needs ``beat`` segments,
     no more than RESCUE_SHARE of its moves (a smooth pass sampled every few σ: its guide costs
-    fits and gains nothing), the polyline is not sparse, the guide leaves no room, or no chain
-    within σ has fewer segments than ``beat``."""
+    fits and gains nothing), the polyline is not sparse or is measured noise (``noisy``), the
+    guide leaves no room, or no chain within σ has fewer segments than ``beat``."""
     pts = curve.points
-    if beat <= RESCUE_SHARE * (len(pts) - 1) or not is_sparse3(pts, curve.closed, tolerance):
+    if beat <= RESCUE_SHARE * (len(pts) - 1) or not is_sparse3(pts, curve.closed, tolerance) or noisy(pts):
         return None
     guide = guide3(pts, curve.closed, tolerance, corner_deg)
     to_polyline = polyline_index(pts)[0].distance(guide)[0].max()

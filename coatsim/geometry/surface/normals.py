@@ -14,11 +14,16 @@ normals from facet normals", 1999). A flat face of the part (a patch of coplanar
 than the smoothing reaches across, a box's side next to its fillet) keeps its own normal: a
 corner shared with a fillet would tilt it across the whole of a long triangle.
 
-Smoothing: the raw vertex normals diffuse over the surface for a time t = L^2/2 (one
-implicit step of the heat equation, (M + t L) N = M N0 with the cotangent Laplacian L and the
-lumped mass M), which averages them over about a length L along the surface (not through the
-part, so the two skins of a thin part stay apart), and are normalised. On a cylinder or a
-sphere the normal field is an eigenfunction of the Laplacian, so smoothing leaves it exact.
+Smoothing: the raw vertex normals diffuse over the surface for a time t = L^2/2 (implicit
+steps of the heat equation, (M + t/k L) N = M N0 with the cotangent Laplacian L and the lumped
+mass M, k = SMOOTHING_STEPS of them), which averages them over about a length L along the
+surface (not through the part, so the two skins of a thin part stay apart), and are
+normalised. One step damps a wave of the normals of wavenumber w by 1 / (1 + t w^2), k steps by
+(1 + t w^2 / k)^-k: alike for the part's shape (w L small), but a scan's noise from vertex to
+vertex (w L large) one step leaves at a share that a 100 mm stand-off turns into tenths of a
+millimetre of the tool's path (0.2 mm of noise on 1.7 mm facets: its tool points scattered
+0.07 mm with one step, 0.04 mm with two). On a cylinder or a sphere the normal field is an
+eigenfunction of the Laplacian, so smoothing leaves it exact.
 """
 
 from __future__ import annotations
@@ -33,6 +38,9 @@ from coatsim.geometry.surface.topology import Edges, face_components, face_pairs
 
 #: relative residual at which the smoothing solve stops (normals to about 1e-8)
 SMOOTHING_RTOL = 1e-9
+#: implicit steps the smoothing time is split into (smooth_normals): the part's shape is damped
+#: alike by one or more, a scan's noise from vertex to vertex far more by two
+SMOOTHING_STEPS = 2
 #: an edge shorter than this share of the median edge weighs as that long in Max's corner weights
 #: (a sliver's corner would otherwise outweigh its whole fan)
 SHORT_EDGE_SHARE = 1e-2
@@ -313,11 +321,13 @@ def smooth_normals(vertices: np.ndarray, faces: np.ndarray, length_mm: float, ra
         return raw
     laplacian = pp3d.cotan_laplacian(vertices, faces, denom_eps=1e-12)
     mass = pp3d.vertex_areas(vertices, faces)
-    system = (diags(mass) + 0.5 * length_mm**2 * laplacian).tocsr()
+    system = (diags(mass) + 0.5 * length_mm**2 / SMOOTHING_STEPS * laplacian).tocsr()
     diagonal = system.diagonal()
     jacobi = LinearOperator(system.shape, matvec=lambda x: x / diagonal, dtype=float)
-    smoothed = np.column_stack([cg(system, mass * raw[:, k], x0=raw[:, k], rtol=SMOOTHING_RTOL, maxiter=10_000,
-                                   M=jacobi)[0] for k in range(3)])
+    smoothed = raw
+    for _ in range(SMOOTHING_STEPS):
+        smoothed = np.column_stack([cg(system, mass * smoothed[:, k], x0=smoothed[:, k], rtol=SMOOTHING_RTOL,
+                                       maxiter=10_000, M=jacobi)[0] for k in range(3)])
     norm = np.linalg.norm(smoothed, axis=1)
     bad = ~(norm > 1e-9)
     smoothed[bad], norm[bad] = raw[bad], 1.0
