@@ -26,6 +26,7 @@ from coatsim.geometry.space.pose import Pose
 from coatsim.robot.cell import MM, Cell, cell_of
 
 PART_BODY = "part"
+WORKPIECE_SITE = "workpiece"  # the cell's own workpiece is the body holding this site (the part replaces it)
 PATCH_MM = 20.0      # the side of a patch of faces made one convex piece
 MAX_PIECES = 600     # larger parts get larger patches (MuJoCo compiles each hull)
 THICKNESS_MM = 2.0   # how deep a patch's slab reaches behind the surface
@@ -87,8 +88,13 @@ def convex_pieces(part: PartMesh, patch_mm: float = PATCH_MM, thickness_mm: floa
 
 def with_part(cell: Cell, part: PartMesh) -> Cell:
     """The cell with the part in it (body ``part``, one mesh geom per convex piece, colliding with
-    the arm and the gun as the cell's own fixtures do)."""
+    the arm and the gun as the cell's own fixtures do) in place of the cell's own workpiece (the
+    body holding the site ``WORKPIECE_SITE``, the shipped cell's flat plate: a part placed where it
+    lies, a bowl sunk through it, had the gun touch a plate the user never asked for)."""
     spec = mujoco.MjSpec.from_file(str(cell.path))
+    workpiece = next((site for site in spec.sites if site.name == WORKPIECE_SITE), None)
+    if workpiece is not None and workpiece.parent.name != "world":
+        spec.delete(workpiece.parent)
     body = spec.worldbody.add_body(name=PART_BODY)
     for k, pts in enumerate(convex_pieces(part)):
         mesh = spec.add_mesh(name=f"{PART_BODY}_piece_{k}")

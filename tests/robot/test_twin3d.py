@@ -247,3 +247,31 @@ def test_the_part_is_covered_by_convex_slabs(tmp_path):
     assert 40 <= len(pieces) <= 200
     covered = np.vstack(pieces)
     assert np.isin(part.vertices.round(9), covered.round(9)).all(axis=1).all()  # every vertex in some slab
+
+
+def test_a_part_takes_the_place_of_the_cells_own_workpiece(cell, tmp_path):
+    """The part replaces the body holding the site ``workpiece`` (the shipped cell's plate, 190
+    to 200 mm up, on the table whose top is at 190): in a bowl sunk through the plate (its floor
+    at 100 mm) the gun runs with its tip (the tool point) at 196 mm, where the plate was (with it,
+    "the gun touches the plate") and above the table, which stays."""
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=4, radius=200.0)
+    cap = sphere.vertices[:, 2] < -150.0
+    bowl = trimesh.Trimesh(sphere.vertices, sphere.faces[cap[sphere.faces].all(axis=1)])
+    bowl.remove_unreferenced_vertices()
+    bowl.invert()  # its inside faces up
+    mesh = tmp_path / "bowl.stl"
+    bowl.export(mesh)
+    placed = with_part(cell, load_part(mesh, pose_from_xyzoat((800.0, 0.0, 300.0, 0.0, 0.0, 0.0))))
+    names = {placed.model.body(b).name for b in range(placed.model.nbody)}
+    assert "part" in names and "table" in names and "plate" not in names
+    assert {cell.model.body(b).name for b in range(cell.model.nbody)} - names == {"plate"}
+    program = tmp_path / "inside.as"  # the gun's tip 96 mm over the bowl's floor, where the plate was
+    program.write_text(".PROGRAM inside()\n  SPEED 100 MM/S ALWAYS\n  JMOVE TRANS(800, -20, 400, 0, 180, 0)\n"
+                       "  LMOVE TRANS(800, -20, 196, 0, 180, 0)\n  LMOVE TRANS(800, 20, 196, 0, 180, 0)\n.END\n")
+    execute(read_toolpath(program), placed)
+    with pytest.raises(Collision) as info:
+        execute(read_toolpath(program), with_part(cell, load_part(mesh, pose_from_xyzoat((800.0, 0.0, 400.0, 0.0, 0.0,
+                                                                                         0.0)))))
+    assert info.value.bodies[1] == "part"  # raised 100 mm, the floor is above the tool
