@@ -17,7 +17,7 @@ if TYPE_CHECKING:
     from coatsim.robot.execute import Execution
 
 FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs",
-         "part_pose": "--part-pose", "language": "--language"}
+         "part_pose": "--part-pose", "units": "--part-units", "language": "--language"}
 
 
 def execute(
@@ -30,7 +30,8 @@ def execute(
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
-    part: Optional[Path] = typer.Option(None, "--part", help="A part mesh (STL/PLY/OBJ/OFF/GLB, mm) put in the cell: a contact of the arm or gun with it is exit 3."),
+    part: Optional[Path] = typer.Option(None, "--part", help="A part mesh (STL/PLY/OBJ/OFF/GLB) put in the cell in place of its plate: a contact of the arm or gun with it is exit 3."),
+    part_units: str = typer.Option(defaults.PLAN_UNITS, "--part-units", help="The part mesh's unit: mm | cm | m | in | auto (from the file, else from the extent, with a note), as plan --units."),
     part_pose: Optional[str] = typer.Option(None, "--part-pose", help="The part's pose x,y,z,o,a,t in the robot base frame (mm, deg O-A-T) [default: " + ",".join(f"{v:g}" for v in defaults.WORKPIECE_FRAME) + "]."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
     language: Optional[str] = typer.Option(None, "--language", help=LANGUAGE_HELP),
@@ -42,7 +43,7 @@ def execute(
     with speaking_flags(FLAGS):
         result, files = execute_program(program, model, output, gun, step, main, input_states(inputs),
                                         variables(settings), force=force, part=part, part_pose=part_pose,
-                                        language=language)
+                                        part_units=part_units, language=language)
     m = result.metrics
     typer.echo(f"cycle {m.cycle_time_s:.3f} s (ideal {m.ideal_time_s:.3f} s, program {m.total_time_s:.3f} s); "
                f"speed mean {m.mean_speed_mm_s:.1f} min {m.min_speed_mm_s:.1f} mm/s of {m.programmed_speed_mm_s:g}, "
@@ -66,12 +67,13 @@ def execute(
 def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path, gun_signal: int,
                     step_mm: float, main: Optional[str], inputs: Mapping[int, bool], variables: Mapping[str, str],
                     force: bool = False, part: Optional[Path] = None, part_pose: Optional[str] = None,
+                    part_units: str = defaults.PLAN_UNITS,
                     language: Optional[str] = None) -> tuple[Execution, list[Path]]:
     """Read program files (in ``language``, default by their suffix or opening), run the main
     program (``main``, default the first), write trajectory.csv, motion.json and speed.png into
     ``outdir`` (held for the run; see coatsim.core.outputs_guard); ``variables`` gives variables
-    no file gives; ``part`` a mesh put in the cell at ``part_pose`` (x,y,z,o,a,t; default the
-    workpiece frame)."""
+    no file gives; ``part`` a mesh in ``part_units`` put in the cell at ``part_pose`` (x,y,z,o,a,t;
+    default the workpiece frame), its reading's notes said on stdout."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
     from coatsim.languages.registry import language_of
     from coatsim.path.language import ReadOptions
@@ -90,14 +92,20 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
     if part is not None:
         from coatsim.geometry.space.xyzoat import parse_xyzoat
         from coatsim.path.frames import DEFAULT_FRAME
-        from coatsim.robot.collisions import load_part, with_part
+        from coatsim.robot.collisions import load_part, part_overlaps, with_part
 
         pose = DEFAULT_FRAME if part_pose is None else parse_xyzoat(part_pose, "part_pose")
-        cell = with_part(cell, load_part(part, pose))
-    elif part_pose is not None:
+        placed = load_part(part, pose, part_units)
+        for note in placed.notes:
+            typer.echo(f"note: {note}")
+        cell = with_part(cell, placed)
+        for warning in part_overlaps(cell):
+            typer.echo(f"warning: {warning}", err=True)
+    elif part_pose is not None or part_units != defaults.PLAN_UNITS:
         from coatsim.cli.flags import fail
 
-        fail("--part-pose places the part given with --part; give --part MESH")
+        fail(f"{'--part-pose places' if part_pose is not None else '--part-units reads'} the part given with --part; "
+             "give --part MESH")
     options = ReadOptions(gun_signal=gun_signal, program=main, inputs=inputs, kinematics=CellKinematics(cell),
                           variables=variables)
     toolpath = language_of(sources, language).read([Path(p) for p in sources], options)

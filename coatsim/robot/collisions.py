@@ -21,6 +21,7 @@ from typing import Callable
 import mujoco
 import numpy as np
 
+from coatsim.core import defaults
 from coatsim.core.errors import ExecutionError, InputError
 from coatsim.geometry.space.pose import Pose
 from coatsim.robot.cell import MM, Cell, cell_of
@@ -46,22 +47,18 @@ class PartMesh:
 
     vertices: np.ndarray
     faces: np.ndarray
+    notes: tuple[str, ...] = ()
 
 
-def load_part(path: str | Path, pose: Pose) -> PartMesh:
-    """A mesh file (STL, PLY, OBJ, OFF, GLB) placed by ``pose`` (its frame in the base frame, mm)."""
-    import trimesh
+def load_part(path: str | Path, pose: Pose, units: str = defaults.PLAN_UNITS) -> PartMesh:
+    """A mesh file (STL, PLY, OBJ, OFF, GLB) read as ``plan`` reads it (in ``units``: mm, cm, m,
+    in, or auto from the file, else from its extent, with a note; repaired) and placed by
+    ``pose`` (its frame in the base frame, mm). Read in its file's numbers, a part in metres was
+    a thousandth of its size in the cell, and no contact with it could be found."""
+    from coatsim.geometry.surface.mesh import load_part as read_mesh
 
-    try:
-        mesh = trimesh.load(str(path), force="mesh", process=False)
-    except (OSError, ValueError) as exc:
-        raise InputError(f"{path}: cannot read the part mesh ({exc})") from None
-    if not isinstance(mesh, trimesh.Trimesh) or not len(mesh.faces):
-        raise InputError(f"{path}: the part mesh has no triangles")
-    vertices = np.asarray(mesh.vertices, dtype=float)
-    if not np.isfinite(vertices).all():
-        raise InputError(f"{path}: the part mesh has vertices that are not finite")
-    return PartMesh(pose.apply(vertices), np.asarray(mesh.faces, dtype=int))
+    part = read_mesh(path, units)
+    return PartMesh(pose.apply(part.vertices_mm), part.faces, part.notes)
 
 
 def convex_pieces(part: PartMesh, patch_mm: float = PATCH_MM, thickness_mm: float = THICKNESS_MM) -> list[np.ndarray]:
@@ -107,6 +104,30 @@ def with_part(cell: Cell, part: PartMesh) -> Cell:
     except ValueError as exc:
         raise InputError(f"the part mesh cannot be added to the cell: {str(exc).strip().splitlines()[0]}") from None
     return cell_of(model, cell.path)
+
+
+def part_overlaps(cell: Cell) -> tuple[str, ...]:
+    """What to tell the user where the part placed in ``cell`` (:func:`with_part`) reaches into a
+    body of the cell that is not on the arm (a part centred on the table's top, half of it
+    inside the table): one line per such body, with its deepest piece's depth in it. The
+    gun meets that body where it sprays the part near it, and the run then stops (Collision)."""
+    model = cell.model
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    body_of = model.geom_bodyid
+    on_arm = _moving_geoms(model)
+    part = [g for g in range(model.ngeom) if model.body(int(body_of[g])).name == PART_BODY]
+    fixed = [g for g in range(model.ngeom) if not on_arm[g] and model.body(int(body_of[g])).name != PART_BODY]
+    deepest: dict[str, float] = {}
+    fromto = np.zeros(6)
+    for g in fixed:
+        name = model.body(int(body_of[g])).name
+        for p in part:
+            depth = -mujoco.mj_geomDistance(model, data, g, p, 0.0, fromto)
+            if depth > deepest.get(name, 0.0):
+                deepest[name] = depth
+    return tuple(f"the part overlaps the cell's {name} ({depth / MM:.1f} mm deep): the gun meets the {name} where it "
+                 "sprays the part near it; place the part clear of it" for name, depth in deepest.items())
 
 
 def _moving_geoms(model: mujoco.MjModel) -> np.ndarray:

@@ -275,3 +275,45 @@ def test_a_part_takes_the_place_of_the_cells_own_workpiece(cell, tmp_path):
         execute(read_toolpath(program), with_part(cell, load_part(mesh, pose_from_xyzoat((800.0, 0.0, 400.0, 0.0, 0.0,
                                                                                          0.0)))))
     assert info.value.bodies[1] == "part"  # raised 100 mm, the floor is above the tool
+
+
+def _pipe(tmp_path: Path, scale: float, name: str) -> Path:
+    """A pipe of radius 50.8 mm and length 152.4 mm along x, its axis through its frame's origin,
+    written in file units of ``scale`` mm."""
+    import trimesh
+
+    pipe = trimesh.creation.cylinder(radius=50.8 / scale, height=152.4 / scale, sections=64)
+    pipe.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 2, [0, 1, 0]))
+    path = tmp_path / name
+    pipe.export(path)
+    return path
+
+
+@pytest.mark.parametrize("scale, units", [(1.0, "mm"), (25.4, "in"), (1000.0, "m"), (1000.0, "auto")])
+def test_a_part_is_read_in_its_units(tmp_path, scale, units):
+    """A part in inches or metres is put in the cell at its size in mm (read as its numbers, a
+    part in metres was a thousandth of its size, and no contact with it could be found)."""
+    part = load_part(_pipe(tmp_path, scale, "pipe.stl"), Pose.identity(), units)
+    assert np.allclose(np.ptp(part.vertices, axis=0), [152.4, 101.6, 101.6], rtol=1e-3)
+    assert any("metres" in note for note in part.notes) is (units == "auto")
+
+
+def test_a_part_sunk_into_the_table_is_told(cell, tmp_path, run_cli):
+    """The pipe's axis on the table's top (190 mm, the top 40 mm thick): the part overlaps the
+    table through its whole thickness, and execute says so before it runs; 110 mm higher,
+    nothing is said."""
+    from coatsim.robot.collisions import part_overlaps
+
+    mesh = _pipe(tmp_path, 25.4, "pipe_in.stl")
+    sunk = part_overlaps(with_part(cell, load_part(mesh, pose_from_xyzoat((700.0, 0.0, 190.0, 0, 0, 0)), "in")))
+    assert len(sunk) == 1 and "the part overlaps the cell's table (40.0 mm deep)" in sunk[0]
+    assert part_overlaps(with_part(cell, load_part(mesh, pose_from_xyzoat((700.0, 0.0, 300.0, 0, 0, 0)), "in"))) == ()
+    program = tmp_path / "above.as"
+    program.write_text(".PROGRAM above()\n  SPEED 100 MM/S ALWAYS\n  JMOVE TRANS(700, -20, 450, 0, 180, 0)\n"
+                       "  LMOVE TRANS(700, 20, 450, 0, 180, 0)\n.END\n")
+    code, out, err = run_cli(["execute", str(program), "--part", str(mesh), "--part-units", "in",
+                              "--part-pose", "700,0,190,0,0,0", "-o", str(tmp_path / "run")])
+    assert code == 0, err
+    assert "warning: the part overlaps the cell's table (40.0 mm deep)" in err
+    code, _, err = run_cli(["execute", str(program), "--part-units", "in", "-o", str(tmp_path / "run2")])
+    assert code == 2 and "--part-units reads the part given with --part" in err
