@@ -10,12 +10,13 @@ import typer
 from coatsim.core import defaults
 
 #: The coating library's parameters as this command's flags.
-FLAGS = {"shadows": "--shadows", "tolerance_pct": "--tolerance-pct"}
+FLAGS = {"shadows": "--shadows", "tolerance_pct": "--tolerance-pct", "units": "--surface-units"}
 
 
 def coat(
     trajectory: Path = typer.Argument(..., help="Trajectory CSV (coatsim execute / run)."),
     surface: str = typer.Option(..., "--surface", help="plate:WxH@x,y,z | cylinder:RxL@x,y,z[,axis] | MESH.stl/ply/obj/glb optionally @x,y,z (mm, base frame)."),
+    surface_units: str = typer.Option(defaults.PLAN_UNITS, "--surface-units", help="A mesh surface's unit: mm | cm | m | in | auto (from the file, else from the extent, with a warning), as plan --units."),
     spacing: Optional[float] = typer.Option(None, "--spacing", help="Mesh vertex spacing, mm (default: sigma/3; R/20 for beta footprints)."),
     footprint: str = typer.Option(defaults.FOOTPRINT, "--footprint", help="gaussian:sigma= | elliptic:sx=,sy= | beta:radius=,beta= | double-beta:a=,b=,beta1=,beta2= | table:FILE.csv (mm)."),
     rate: float = typer.Option(defaults.FLOW_MM3_S, "--rate", help="Deposited volume rate Q, mm3/s."),
@@ -38,7 +39,8 @@ def coat(
     try:
         with speaking_flags(FLAGS):
             result, files = run_coat(trajectory, surface, spacing, footprint, rate, standoff, target_um, roi,
-                                     edge_band, efficiency, shadows, section, out, force, tolerance_pct)
+                                     edge_band, efficiency, shadows, section, out, force, tolerance_pct,
+                                     surface_units)
     except EmptyRegionOfInterest as exc:
         raise InputError(f"{exc}; try --roi part or a smaller --edge-band") from None
     m = result.metrics

@@ -148,9 +148,11 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
              target_um: float | None = None, roi: str = "band", edge_band_mm: float | None = None,
              efficiency: str = defaults.EFFICIENCY, shadows: str = defaults.SHADOWS, section: str | None = None,
              outdir: str | Path = "out/coat", force: bool = False,
-             tolerance_pct: float = defaults.TOLERANCE_PCT) -> tuple[CoatingResult, list[Path]]:
-    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default);
-    the output folder is held for the run (see coatsim.core.outputs_guard)."""
+             tolerance_pct: float = defaults.TOLERANCE_PCT,
+             surface_units: str = defaults.PLAN_UNITS) -> tuple[CoatingResult, list[Path]]:
+    """``coatsim coat``: read, build, deposit, measure and write (spacing: footprint default; a
+    mesh surface in ``surface_units``); the output folder is held for the run (see
+    coatsim.core.outputs_guard)."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
 
     fp = parse_footprint_spec(footprint)
@@ -165,7 +167,7 @@ def run_coat(trajectory: str | Path, surface_spec: str, spacing: float | None = 
               ("the footprint table", getattr(fp, "path", None)),
               ("the efficiency table", getattr(de, "source", None) or None)]
     check_distinct(inputs, [("output", outdir / name) for name in COATING_FILES])
-    surface = parse_surface_spec(surface_spec, spacing)
+    surface = parse_surface_spec(surface_spec, spacing, surface_units)
     log = read_trajectory_csv(trajectory)
     with output_folder(outdir, COATING_FILES, "coatsim coat", force):
         with _progress("coating") as progress:

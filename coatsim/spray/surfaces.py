@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -19,8 +20,10 @@ from scipy.spatial import cKDTree
 
 from coatsim.core.numeric import ROUND_OFF, TINY, steps_over
 from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
-from coatsim.core.errors import InputError
+from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import check_input
+from coatsim.core.units import UNITS_MM
+from coatsim.geometry.surface.mesh import TRIMESH_UNITS, UNIT_CHOICES, length_unit
 
 MIN_PART_MM = 1e-3  # smallest plate or cylinder dimension (a micrometre)
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
@@ -145,8 +148,10 @@ def cylinder(radius: float, length: float, spacing: float, axis: str = "x",
                    vertex_areas(vertices, faces), view, (f"along {axis} (mm)", "unrolled arc (mm)"))
 
 
-def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) -> Surface:
-    """Triangle mesh from an STL / PLY / OBJ / GLB file (mm), refined so no edge exceeds spacing."""
+def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None, units: str = "mm") -> Surface:
+    """Triangle mesh from an STL / PLY / OBJ / GLB file in ``units`` (mm, cm, m, in, or auto: the
+    file's, else guessed from its extent as ``plan`` guesses it, with a warning), refined so no
+    edge exceeds spacing."""
     import trimesh
     import trimesh.remesh
 
@@ -164,7 +169,15 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None) 
     mesh.update_faces(mesh.nondegenerate_faces())
     if len(mesh.faces) == 0:
         raise InputError(f"{path}: every triangle of the mesh is degenerate (zero area)")
-    return mesh_surface(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces), spacing, pose, str(path))
+    if units not in UNIT_CHOICES:
+        raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}", parameters=("units",))
+    extent = float(np.ptp(mesh.vertices, axis=0).max())
+    unit, guess = length_unit(extent, units, TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower()))
+    if guess:
+        warnings.warn(f"{path}: units auto: {guess}; give the units if the file is in "
+                      f"{'mm, cm or inches' if unit == 'm' else 'm, cm or inches'}", CoatsimWarning, stacklevel=2)
+    vertices = np.asarray(mesh.vertices, dtype=float) * UNITS_MM[unit]
+    return mesh_surface(vertices, np.asarray(mesh.faces), spacing, pose, str(path))
 
 
 def mesh_surface(vertices: np.ndarray, faces: np.ndarray, spacing: float, pose: np.ndarray | None = None,
@@ -231,9 +244,10 @@ def surface_file(spec: str) -> Path | None:
     return Path(_mesh_spec(spec)[0])
 
 
-def parse_surface_spec(spec: str, spacing: float) -> Surface:
+def parse_surface_spec(spec: str, spacing: float, units: str = "mm") -> Surface:
     """Surface from ``plate:WxH@x,y,z`` (normal +z), ``cylinder:RxL@x,y,z[,axis]`` (axis x by
-    default) or a mesh file path with an optional ``@x,y,z`` translation; all in mm."""
+    default) or a mesh file path in ``units`` (mesh_file) with an optional ``@x,y,z``
+    translation; all in mm."""
     spec = spec.strip()
     match = _PRIMITIVE.match(spec)
     if match:
@@ -250,8 +264,8 @@ def parse_surface_spec(spec: str, spacing: float) -> Surface:
     path, place = _mesh_spec(spec)
     if place is not None:
         pose, _ = _placement(place, spec, allow_axis=False)
-        return mesh_file(path, spacing, pose)
-    return mesh_file(path, spacing)
+        return mesh_file(path, spacing, pose, units)
+    return mesh_file(path, spacing, units=units)
 
 
 def merged_vertices(vertices: np.ndarray) -> np.ndarray:

@@ -136,3 +136,26 @@ def test_empty_and_unreadable_meshes(tmp_path):
     trimesh.creation.box((1000, 1000, 1000)).export(big)
     with pytest.raises(InputError, match="larger spacing"):
         mesh_file(big, 0.001)
+
+
+@pytest.mark.parametrize("scale, units, said", [(1.0, "mm", False), (25.4, "in", False), (1000.0, "m", False),
+                                               (1000.0, "auto", True), (1.0, "auto", True)])
+def test_a_mesh_surface_is_read_in_its_units(tmp_path, scale, units, said):
+    """A 120 x 80 mm sheet written in inches or metres is coated at its size in mm (read in the
+    file's numbers, a sheet in metres was 0.12 mm wide and the spray missed it); auto guesses
+    from the extent as plan does, with a warning."""
+    import warnings as w
+
+    from coatsim.core.errors import CoatsimWarning
+
+    sheet = trimesh.creation.box(extents=(120.0 / scale, 80.0 / scale, 2.0 / scale))
+    path = tmp_path / "sheet.stl"
+    sheet.export(path)
+    with w.catch_warnings(record=True) as caught:
+        w.simplefilter("always")
+        surface = parse_surface_spec(f"{path}@700,0,200", 4.0, units)
+    assert np.allclose(np.ptp(surface.vertices, axis=0), [120.0, 80.0, 2.0], rtol=1e-6)
+    assert np.allclose(surface.vertices.mean(axis=0)[:2], [700.0, 0.0], atol=1.0)
+    assert any("units auto" in str(c.message) for c in caught if issubclass(c.category, CoatsimWarning)) is said
+    with pytest.raises(InputError, match="units must be one of mm, cm, m, in, auto, found 'ft'"):
+        parse_surface_spec(str(path), 4.0, "ft")

@@ -27,7 +27,7 @@ UNIT_CHOICES = (*UNITS_MM, "auto")
 #: (a sprayed part is rarely smaller than 10 mm and rarely larger than 10 m)
 AUTO_METRES_BELOW = 10.0
 #: units trimesh reports for files that carry them (glTF is metres by its specification)
-_TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimeters": "cm", "cm": "cm",
+TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimeters": "cm", "cm": "cm",
                   "meters": "m", "meter": "m", "m": "m", "inches": "in", "inch": "in", "in": "in"}
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".off", ".glb", ".gltf")
 #: vertices closer than this fraction of the part's extent are one vertex
@@ -94,7 +94,7 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
                          "mesh the scan first (e.g. Poisson reconstruction) and export the surface")
     check_budget(f"{path}: triangles", len(faces), "plan_triangles",
                  "decimate the mesh (e.g. MeshLab quadric edge collapse)")
-    file_units = _TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
+    file_units = TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
     vertices = np.asarray(mesh.vertices, dtype=float)
     return _part(str(path), hashlib.sha256(data).hexdigest(), vertices, faces, units, file_units)
 
@@ -146,7 +146,7 @@ def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units
     extent = float(np.ptp(vertices[used], axis=0).max())
     if not extent > 0:
         raise InputError(f"{name}: every vertex is at one point (the mesh has no extent)")
-    unit, guess = _unit(extent, units, file_units)
+    unit, guess = length_unit(extent, units, file_units)
     notes = [f"units auto: {guess}; give the units if the file is in "
              f"{'mm, cm or inches' if unit == 'm' else 'm, cm or inches'}"] if guess else []
     notes += [f"units auto: the file says {file_units}"] if units == "auto" and file_units is not None else []
@@ -158,7 +158,7 @@ def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units
     return Part(name, digest, vertices, faces, unit, tuple(notes), guess)
 
 
-def _unit(extent: float, units: str, file_units: str | None) -> tuple[str, str]:
+def length_unit(extent: float, units: str, file_units: str | None) -> tuple[str, str]:
     """The unit the file is read in, and how it was guessed from the extent ("" when given or in the file)."""
     if units != "auto":
         return units, ""
