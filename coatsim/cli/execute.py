@@ -14,6 +14,8 @@ from coatsim.core import defaults
 from coatsim.core.fileio import write_text
 
 if TYPE_CHECKING:
+    from coatsim.geometry.space.pose import Pose
+    from coatsim.robot.cell import Cell
     from coatsim.robot.execute import Execution
 
 FLAGS = {"gun_signal": "--gun", "step_mm": "--step-mm", "program": "--program", "inputs": "--inputs",
@@ -32,7 +34,7 @@ def execute(
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
     part: Optional[Path] = typer.Option(None, "--part", help="A part mesh (STL/PLY/OBJ/OFF/GLB) put in the cell in place of its plate: a contact of the arm or gun with it is exit 3."),
     part_units: str = typer.Option(defaults.PLAN_UNITS, "--part-units", help="The part mesh's unit: mm | cm | m | in | auto (from the file, else from the extent, with a note), as plan --units."),
-    part_pose: Optional[str] = typer.Option(None, "--part-pose", help="The part's pose x,y,z,o,a,t in the robot base frame (mm, deg O-A-T) [default: " + ",".join(f"{v:g}" for v in defaults.WORKPIECE_FRAME) + "]."),
+    part_pose: Optional[str] = typer.Option(None, "--part-pose", help="The part's pose x,y,z,o,a,t in the robot base frame (mm, deg O-A-T) [default: the frame a coatsim program records, where its passes were planned; else " + ",".join(f"{v:g}" for v in defaults.WORKPIECE_FRAME) + "]."),
     force: bool = typer.Option(False, "--force", help="Replace files in the output folder that coatsim did not write."),
     language: Optional[str] = typer.Option(None, "--language", help=LANGUAGE_HELP),
 ) -> None:
@@ -73,7 +75,8 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
     program (``main``, default the first), write trajectory.csv, motion.json and speed.png into
     ``outdir`` (held for the run; see coatsim.core.outputs_guard); ``variables`` gives variables
     no file gives; ``part`` a mesh in ``part_units`` put in the cell at ``part_pose`` (x,y,z,o,a,t;
-    default the workpiece frame), its reading's notes said on stdout."""
+    default the frame the program records, else the workpiece frame), its reading's notes said
+    on stdout."""
     from coatsim.core.outputs_guard import check_distinct, output_folder
     from coatsim.languages.registry import language_of
     from coatsim.path.language import ReadOptions
@@ -89,19 +92,7 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
     check_distinct([*(("the program", p) for p in sources), ("--model", model), ("--part", part)],
                    [("output", f) for f in files])
     cell = load_cell(model)
-    if part is not None:
-        from coatsim.geometry.space.xyzoat import parse_xyzoat
-        from coatsim.path.frames import DEFAULT_FRAME
-        from coatsim.robot.collisions import load_part, part_overlaps, with_part
-
-        pose = DEFAULT_FRAME if part_pose is None else parse_xyzoat(part_pose, "part_pose")
-        placed = load_part(part, pose, part_units)
-        for note in placed.notes:
-            typer.echo(f"note: {note}")
-        cell = with_part(cell, placed)
-        for warning in part_overlaps(cell):
-            typer.echo(f"warning: {warning}", err=True)
-    elif part_pose is not None or part_units != defaults.PLAN_UNITS:
+    if part is None and (part_pose is not None or part_units != defaults.PLAN_UNITS):
         from coatsim.cli.flags import fail
 
         fail(f"{'--part-pose places' if part_pose is not None else '--part-units reads'} the part given with --part; "
@@ -109,6 +100,8 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
     options = ReadOptions(gun_signal=gun_signal, program=main, inputs=inputs, kinematics=CellKinematics(cell),
                           variables=variables)
     toolpath = language_of(sources, language).read([Path(p) for p in sources], options)
+    if part is not None:
+        cell = _with_part(cell, part, part_pose, part_units, toolpath.process.frame)
     with output_folder(out, names, "coatsim execute", force):
         result = execute(toolpath, cell, step_mm)
         result.log.write_csv(files[0])
@@ -128,3 +121,26 @@ def execute_program(program: Sequence[Path], model: Optional[Path], outdir: Path
         plot_speed(result.log, result.metrics, result.curves, files[2],
                    title=f"{label}: tool speed over the sprayed stretch")
     return result, files
+
+
+def _with_part(cell: Cell, part: Path, part_pose: Optional[str], part_units: str, frame: Optional[Pose]) -> Cell:
+    """The cell with the part read in ``part_units`` placed at ``part_pose``, else where the
+    program says its passes were planned (its record's frame), else the default workpiece frame;
+    notes on stdout, an overlap with the cell's bodies as a warning."""
+    from coatsim.geometry.space.xyzoat import format_xyzoat, parse_xyzoat
+    from coatsim.path.frames import DEFAULT_FRAME
+    from coatsim.robot.collisions import load_part, part_overlaps, with_part
+
+    if part_pose is not None:
+        pose = parse_xyzoat(part_pose, "part_pose")
+    else:
+        pose = DEFAULT_FRAME if frame is None else frame
+        where = "the default workpiece frame" if frame is None else "the frame the program's passes were planned in"
+        typer.echo(f"note: the part placed at {format_xyzoat(pose)} ({where}; --part-pose places it elsewhere)")
+    placed = load_part(part, pose, part_units)
+    for note in placed.notes:
+        typer.echo(f"note: {note}")
+    cell = with_part(cell, placed)
+    for warning in part_overlaps(cell):
+        typer.echo(f"warning: {warning}", err=True)
+    return cell

@@ -238,6 +238,9 @@ def test_a_gun_driven_into_the_part_stops_naming_the_step(cell, tmp_path, run_cl
     code, out, err = run_cli(["execute", str(prog), "--part", str(mesh), "--part-pose", "900,0,300,0,0,0",
                               "-o", str(tmp_path / "out2")])
     assert code == 0, err  # at its stand-off the same program clears the part
+    code, out, err = run_cli(["execute", str(prog), "--part", str(mesh), "-o", str(tmp_path / "out3")])
+    assert code == 0, err  # placed where the program's passes were planned, as the record says
+    assert "note: the part placed at 900,0,300,0,0,0 (the frame the program's passes were planned in" in out
 
 
 def test_the_part_is_covered_by_convex_slabs(tmp_path):
