@@ -23,7 +23,7 @@ from coatsim.core.budgets import MAX_ABS_COORDINATE_MM, check_budget
 from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.core.fileio import check_input
 from coatsim.core.units import UNITS_MM
-from coatsim.geometry.surface.mesh import TRIMESH_UNITS, UNIT_CHOICES, length_unit
+from coatsim.geometry.surface.mesh import UNIT_CHOICES, guessed_unit_note, length_unit, units_of
 
 MIN_PART_MM = 1e-3  # smallest plate or cylinder dimension (a micrometre)
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".glb", ".gltf", ".off")
@@ -172,10 +172,9 @@ def mesh_file(path: str | Path, spacing: float, pose: np.ndarray | None = None, 
     if units not in UNIT_CHOICES:
         raise InputError(f"units must be one of {', '.join(UNIT_CHOICES)}, found {units!r}", parameters=("units",))
     extent = float(np.ptp(mesh.vertices, axis=0).max())
-    unit, guess = length_unit(extent, units, TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower()))
+    unit, guess = length_unit(extent, units, units_of(mesh))
     if guess:
-        warnings.warn(f"{path}: units auto: {guess}; give the units if the file is in "
-                      f"{'mm, cm or inches' if unit == 'm' else 'm, cm or inches'}", CoatsimWarning, stacklevel=2)
+        warnings.warn(f"{path}: {guessed_unit_note(unit, guess)}", CoatsimWarning, stacklevel=2)
     vertices = np.asarray(mesh.vertices, dtype=float) * UNITS_MM[unit]
     return mesh_surface(vertices, np.asarray(mesh.faces), spacing, pose, str(path))
 

@@ -27,7 +27,7 @@ UNIT_CHOICES = (*UNITS_MM, "auto")
 #: (a sprayed part is rarely smaller than 10 mm and rarely larger than 10 m)
 AUTO_METRES_BELOW = 10.0
 #: units trimesh reports for files that carry them (glTF is metres by its specification)
-TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimeters": "cm", "cm": "cm",
+_TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimeters": "cm", "cm": "cm",
                   "meters": "m", "meter": "m", "m": "m", "inches": "in", "inch": "in", "in": "in"}
 MESH_SUFFIXES = (".stl", ".ply", ".obj", ".off", ".glb", ".gltf")
 #: vertices closer than this fraction of the part's extent are one vertex
@@ -94,7 +94,7 @@ def load_part(path: str | Path, units: str = defaults.PLAN_UNITS) -> Part:
                          "mesh the scan first (e.g. Poisson reconstruction) and export the surface")
     check_budget(f"{path}: triangles", len(faces), "plan_triangles",
                  "decimate the mesh (e.g. MeshLab quadric edge collapse)")
-    file_units = TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
+    file_units = units_of(mesh)
     vertices = np.asarray(mesh.vertices, dtype=float)
     return _part(str(path), hashlib.sha256(data).hexdigest(), vertices, faces, units, file_units)
 
@@ -147,8 +147,7 @@ def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units
     if not extent > 0:
         raise InputError(f"{name}: every vertex is at one point (the mesh has no extent)")
     unit, guess = length_unit(extent, units, file_units)
-    notes = [f"units auto: {guess}; give the units if the file is in "
-             f"{'mm, cm or inches' if unit == 'm' else 'm, cm or inches'}"] if guess else []
+    notes = [guessed_unit_note(unit, guess)] if guess else []
     notes += [f"units auto: the file says {file_units}"] if units == "auto" and file_units is not None else []
     far = float(np.abs(vertices[used]).max()) * UNITS_MM[unit]
     if not far <= MAX_ABS_COORDINATE_MM:
@@ -156,6 +155,17 @@ def _part(name: str, digest: str, vertices: np.ndarray, faces: np.ndarray, units
                          "re-export the mesh")
     vertices, faces = _repaired(vertices * UNITS_MM[unit], faces, name, notes)
     return Part(name, digest, vertices, faces, unit, tuple(notes), guess)
+
+
+def units_of(mesh: object) -> str | None:
+    """The unit a mesh loaded by trimesh says its file is in (None where it says none)."""
+    return _TRIMESH_UNITS.get(str(getattr(mesh, "units", None) or "").lower())
+
+
+def guessed_unit_note(unit: str, guess: str) -> str:
+    """What the user is told where the unit was guessed from the extent (``length_unit``)."""
+    others = "mm, cm or inches" if unit == "m" else "m, cm or inches"
+    return f"units auto: {guess}; give the units if the file is in {others}"
 
 
 def length_unit(extent: float, units: str, file_units: str | None) -> tuple[str, str]:
