@@ -68,6 +68,12 @@ def test_line_ends_case_bom_and_code_pages():
     assert decode(b"\xef\xbb\xbfab") == "ab" and decode(b"a\xe9") == "a\xe9"
 
 
+def test_trailing_ctrl_z_ends_the_file():
+    for tail in (b"\x1a", b"\r\n\x1a", b"\r\n\x1a\x1a\x1a", b"\r\n\x1a\r\n\x1a"):
+        f = parse_as_bytes(b".PROGRAM a()\r\n  TWAIT 1\r\n.END" + tail)
+        assert [p.name for p in f.programs] == ["a"] and f.programs[0].end_line == 3
+
+
 def test_metadata_comments():
     f = parse_as(".PROGRAM x()\n  ; coatsim: lead_in_mm=30\n  ;coatsim:variant= polyline-stop \n  ; coatsim prose\n.END\n")
     assert f.programs[0].metadata == (("lead_in_mm", "30"), ("variant", "polyline-stop"))
