@@ -52,6 +52,11 @@ FLAT_PATCH_DEG = 0.05
 FLAT_FACE_SMOOTHING_LENGTHS = 2.0
 #: the share of the way a point is lifted toward its corners' tangent planes (Facets.lifted)
 PHONG_SHAPE = 0.5
+#: a facet whose longest edge is more than this many times its width is a strip (along_flattened) ...
+STRIP_ASPECT = 4.0
+#: ... whose normals turn along it by more than this many times the sag they turn across it: no
+#: curvature of the part (CAD facets sag about alike)
+STRIP_SAG_RATIO = 10.0
 #: a probe counts as behind a face when more than this fraction of its step behind it (kept_outward)
 BEHIND_FRACTION = 1e-3
 #: an open piece whose net facing towards the gun is below this share of its area, ...
@@ -221,7 +226,7 @@ class Facets:
         split, corner = corner_normals(vertices, faces)
         face_n = face_normals(vertices, faces)[0]
         flat = flat_faces(vertices, faces, FLAT_FACE_SMOOTHING_LENGTHS * smoothing_mm)
-        corners = np.where(flat[:, None, None], face_n[:, None, :], corner[split])
+        corners = along_flattened(vertices, faces, np.where(flat[:, None, None], face_n[:, None, :], corner[split]))
         cos = np.clip(np.einsum("ijk,ik->ij", corners, face_n), -1.0, 1.0)
         caps = PHONG_SHAPE * face_widths_mm(vertices, faces) * np.sqrt(1.0 - cos**2).max(axis=1)
         return cls(vertices, faces, face_n, corners, TriangleBoxes(vertices, faces), caps)
@@ -290,6 +295,43 @@ class Facets:
         out = points.copy()
         out[held] = points[held] + along[:, None] * side[held]
         return out
+
+
+def along_flattened(vertices: np.ndarray, faces: np.ndarray, corners: np.ndarray) -> np.ndarray:
+    """Corner normals (m, 3, 3) with the tilt along a strip taken out where no curvature explains
+    it. CAD tessellates a surface finely across its curvature and coarsely along the directions it
+    barely curves in (a cylinder's rulings, a fillet's length), so that every facet sags about
+    alike from the surface: a turn of the normal by a angle along an edge l long means a sag of
+    about l a / 8. A strip (longest edge more than ``STRIP_ASPECT`` times its width) whose corner
+    normals turn along its longest edge by more than ``STRIP_SAG_RATIO`` times the sag they turn
+    across it does not curve that way: its ends are corners shared with another surface (a
+    capsule's cap, a box's end), whose facets tilt them by half their own turn. Interpolated along
+    160 mm of a capsule's side that tilt put the normal 1.7 deg off 10 mm from the cap (a sag
+    along of 1.4 mm against 0.04 mm across: 32 times); a spool's waist in coarse rings, concave
+    along its axis, sags 0.19 mm along and 0.034 mm across (5.6 times) and keeps its tilt."""
+    triangles = vertices[faces]
+    edges = np.roll(triangles, -1, axis=1) - triangles
+    lengths = np.linalg.norm(edges, axis=2)
+    k = np.argmax(lengths, axis=1)
+    rows = np.arange(len(faces))
+    longest = lengths[rows, k]
+    width = face_widths_mm(vertices, faces)
+    along = edges[rows, k] / np.maximum(longest, 1e-300)[:, None]
+    start, end, apex = corners[rows, k], corners[rows, (k + 1) % 3], corners[rows, (k + 2) % 3]
+    to_apex = triangles[rows, (k + 2) % 3] - triangles[rows, k]
+    across = to_apex - np.einsum("ij,ij->i", to_apex, along)[:, None] * along  # in the face, across the edge
+    across /= np.maximum(np.linalg.norm(across, axis=1), 1e-300)[:, None]
+    sag_along = longest * np.abs(np.einsum("ij,ij->i", end - start, along)) / 8.0
+    foot = np.clip(np.einsum("ij,ij->i", to_apex, along) / np.maximum(longest, 1e-300), 0.0, 1.0)[:, None]
+    at_foot = (1.0 - foot) * start + foot * end  # the normal on the edge across from the apex
+    sag_across = width * np.abs(np.einsum("ij,ij->i", apex - at_foot, across)) / 8.0
+    strip = (longest > STRIP_ASPECT * width) & (sag_along > STRIP_SAG_RATIO * sag_across)
+    if not strip.any():
+        return corners
+    kept = corners[strip] - np.einsum("ijk,ik->ij", corners[strip], along[strip])[:, :, None] * along[strip, None, :]
+    out = corners.copy()
+    out[strip] = kept / np.maximum(np.linalg.norm(kept, axis=2), 1e-300)[:, :, None]
+    return out
 
 
 def face_widths_mm(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
