@@ -24,8 +24,11 @@ from coatsim.core.units import UNITS_MM
 #: millimetres per unit of a mesh file
 UNIT_CHOICES = (*UNITS_MM, "auto")
 #: ``units="auto"``: a part whose largest extent is below this many file units is read as metres
-#: (a sprayed part is rarely smaller than 10 mm and rarely larger than 10 m)
-AUTO_METRES_BELOW = 10.0
+#: (a part an arm sprays is rarely larger than 2.5 m) ...
+AUTO_METRES_BELOW = 2.5
+#: ... and from there to this many as inches (64–254 mm: as many metres fit no arm's reach, and as
+#: many millimetres are rarely a sprayed part; CAD exports without units are often in inches)
+AUTO_INCHES_BELOW = 10.0
 #: units trimesh reports for files that carry them (glTF is metres by its specification)
 _TRIMESH_UNITS = {"millimeters": "mm", "millimeter": "mm", "mm": "mm", "centimeters": "cm", "cm": "cm",
                   "meters": "m", "meter": "m", "m": "m", "inches": "in", "inch": "in", "in": "in"}
@@ -164,7 +167,7 @@ def units_of(mesh: object) -> str | None:
 
 def guessed_unit_note(unit: str, guess: str) -> str:
     """What the user is told where the unit was guessed from the extent (``length_unit``)."""
-    others = "mm, cm or inches" if unit == "m" else "m, cm or inches"
+    others = {"m": "mm, cm or inches", "in": "mm, cm or m"}.get(unit, "m, cm or inches")
     return f"units auto: {guess}; give the units if the file is in {others}"
 
 
@@ -176,6 +179,8 @@ def length_unit(extent: float, units: str, file_units: str | None) -> tuple[str,
         return file_units, ""
     if extent < AUTO_METRES_BELOW:
         return "m", f"largest extent {extent:.4g} read as metres ({extent * 1000:.4g} mm)"
+    if extent < AUTO_INCHES_BELOW:
+        return "in", f"largest extent {extent:.4g} read as inches ({extent * UNITS_MM['in']:.4g} mm)"
     return "mm", f"largest extent {extent:.4g} read as millimetres"
 
 

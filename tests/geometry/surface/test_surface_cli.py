@@ -10,6 +10,7 @@ import pytest
 import trimesh
 
 from coatsim.geometry.surface import read_surfacepaths
+from coatsim.geometry.surface.mesh import load_part
 from coatsim.geometry.surface.surfacepaths import FORMAT, dumps
 
 
@@ -124,13 +125,25 @@ def test_ripple_sets_the_largest_spacing_that_keeps_it(box_file, tmp_path, run_c
 
 
 def test_a_part_over_the_budget_at_a_guessed_unit_names_the_guess(tmp_path, run_cli):
-    """An 8-inch plate without units is read as 8 m (extent below the metres threshold): the
+    """A 2.4-inch plate without units is read as 2.4 m (extent below the metres threshold): the
     budget error then names the guess and --units, the fix that is right, besides the budget."""
     path = tmp_path / "plate_in.stl"
-    trimesh.creation.box((8.0, 6.0, 0.5)).export(path)
+    trimesh.creation.box((2.4, 1.8, 0.2)).export(path)
     code, stdout, stderr = run_cli(["plan", str(path), "-o", str(tmp_path / "p.json"), "--region", "facing:0,0,1"])
     assert code == 2 and len(stderr.splitlines()) == 1, stderr
-    assert "or give the --units (largest extent 8 read as metres (8000 mm))" in stderr
+    assert "or give the --units (largest extent 2.4 read as metres (2400 mm))" in stderr
     code, _, stderr = run_cli(["plan", str(path), "-o", str(tmp_path / "q.json"), "--region", "facing:0,0,1",
                                "--units", "in"])
     assert code == 0, stderr
+
+
+@pytest.mark.parametrize("extent, unit, size_mm", [(2.4, "metres", 2400.0), (3.0, "inches", 76.2),
+                                                   (8.0, "inches", 203.2), (12.0, "millimetres", 12.0)])
+def test_auto_units_guess_from_the_extent(tmp_path, extent, unit, size_mm):
+    """Without a unit in the file: below 2.5 metres, up to 10 inches (as many metres fit no arm's
+    reach; CAD exports without units are often in inches), from 10 millimetres; the note says which."""
+    path = tmp_path / "plate.stl"
+    trimesh.creation.box((extent, extent / 2, extent / 20)).export(path)
+    part = load_part(path, "auto")
+    assert np.ptp(part.vertices_mm, axis=0).max() == pytest.approx(size_mm, rel=1e-6)  # STL: float32
+    assert f"read as {unit}" in part.notes[0]
