@@ -31,6 +31,23 @@ def open_dxf(path: Path):
     """The ezdxf document of the DXF file at ``path``, read through the safe reader; its records
     (entities, table entries, objects) are counted against the budget drawing_entities before
     ezdxf builds any of them."""
+    import ezdxf
+
+    data = read_input(path, "drawing")
+    if data.startswith(b"AC10") or data.startswith(b"AC1."):
+        raise InputError(f"{path}: a DWG file, not DXF (save it as DXF from the CAD program)")
+    try:
+        doc = _load(data, path)
+    except (UnicodeError, LookupError, ValueError, StopIteration, EOFError, ezdxf.DXFError) as exc:
+        detail = str(exc).replace(str(path), "file")[:200] or "it ends before its header does"
+        raise InputError(f"{path}: not a readable DXF file ({detail})") from None
+    if b"$INSUNITS" not in data:  # ezdxf fills a missing header from its template, which says metres
+        doc.header["$INSUNITS"] = 0
+    return doc
+
+
+def _load(data: bytes, path: Path):
+    """The ezdxf document of the DXF text or binary ``data``."""
     import io
 
     import ezdxf
@@ -39,23 +56,16 @@ def open_dxf(path: Path):
     from ezdxf.lldxf.tagger import binary_tags_loader
     from ezdxf.lldxf.validator import is_dxf_stream
 
-    data = read_input(path, "drawing")
-    if data.startswith(b"AC10") or data.startswith(b"AC1."):
-        raise InputError(f"{path}: a DWG file, not DXF (save it as DXF from the CAD program)")
-    try:
-        if data.startswith(_BINARY_DXF):
-            return Document.load(binary_tags_loader(data, errors="surrogateescape"))
-        check_budget(f"{path}: DXF records (entities, table entries, objects)", len(_RECORD.findall(data)),
-                     "drawing_entities", "split the drawing or leave out what is not sprayed")
-        head = io.StringIO(data[:1 << 16].decode("utf-8", errors="ignore"), newline=None)
-        if not is_dxf_stream(head):
-            raise InputError(f"{path}: not a readable DXF file (no SECTION where a DXF file starts)")
-        head.seek(0)
-        encoding = dxf_stream_info(head).encoding
-        return ezdxf.read(io.StringIO(data.decode(encoding, errors="surrogateescape"), newline=None))
-    except (UnicodeError, LookupError, ValueError, StopIteration, EOFError, ezdxf.DXFError) as exc:
-        detail = str(exc).replace(str(path), "file")[:200] or "it ends before its header does"
-        raise InputError(f"{path}: not a readable DXF file ({detail})") from None
+    if data.startswith(_BINARY_DXF):
+        return Document.load(binary_tags_loader(data, errors="surrogateescape"))
+    check_budget(f"{path}: DXF records (entities, table entries, objects)", len(_RECORD.findall(data)),
+                 "drawing_entities", "split the drawing or leave out what is not sprayed")
+    head = io.StringIO(data[:1 << 16].decode("utf-8", errors="ignore"), newline=None)
+    if not is_dxf_stream(head):
+        raise InputError(f"{path}: not a readable DXF file (no SECTION where a DXF file starts)")
+    head.seek(0)
+    encoding = dxf_stream_info(head).encoding
+    return ezdxf.read(io.StringIO(data.decode(encoding, errors="surrogateescape"), newline=None))
 
 
 def _numbers(entity) -> np.ndarray:

@@ -45,7 +45,11 @@ IGNORED = {
 }
 _REASON = {kind: reason for reason, kinds in IGNORED.items() for kind in kinds}
 GEOMETRY = ("LINE", "ARC", "CIRCLE", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE")
-_FLAT = 1e-9  # relative: z differences and tilts below this are round-off
+_FLAT = 1e-9  # relative: tilts below this are round-off
+_FLAT_Z_MM = 1e-3  # z differences below this (or _FLAT of the coordinates) are round-off, not a 3-D drawing
+_FLAT_BULGE = 1e-7  # a polyline's arc sagging less than this share of its chord is a line
+_SPLINE_FIT, _SPLINE_FRAME = 4, 16  # POLYLINE flag: spline-fit vertices added; VERTEX flag: frame control point
+_QUADRATIC_SMOOTH = 5  # POLYLINE smooth type: quadratic B-spline (6: cubic)
 
 
 class _Plane:
@@ -72,7 +76,7 @@ class _Plane:
         pts = list(points)
         zs = [self.xyz(p)[1] for p in pts]
         scale = max((abs(float(c)) for p in pts for c in p), default=1.0)
-        return not zs or max(zs) - min(zs) <= _FLAT * max(1.0, scale)
+        return not zs or max(zs) - min(zs) <= max(_FLAT * scale, _FLAT_Z_MM)
 
     def sense(self, entity) -> Optional[float]:
         """+1 / -1 for an extrusion along / against the normal; None for a tilted one."""
@@ -97,6 +101,7 @@ class _Walk:
     other_layers: Counter = field(default_factory=Counter)
     tilted: list[str] = field(default_factory=list)
     tilts: Counter = field(default_factory=Counter)
+    invalid: list[str] = field(default_factory=list)  # entities left out, each with why
 
     def layer_state(self, name: str) -> tuple[bool, bool]:
         """(off, frozen) of a layer; a layer missing from the table is visible."""
@@ -145,12 +150,14 @@ def _ellipse(entity, label: str, walk: _Walk) -> None:
         return
     tool = entity.construction_tool()
     span = (tool.end_param - tool.start_param) % (2 * math.pi) or 2 * math.pi
+    if span == 2 * math.pi:  # equal parameters are a whole ellipse (ezdxf flattens it to nothing)
+        tool.start_param, tool.end_param = 0.0, span
     xy = walk.plane.xy
     if abs(tool.ratio - 1.0) <= 1e-12:  # a circle drawn as an ellipse: a native arc
         walk.pieces.append(arc_piece(xy(tool.center), tool.major_axis.magnitude, xy(tool.start_point),
                                      xy(tool.end_point), sense * span, label))
         return
-    pts = np.array([xy(v) for v in entity.flattening(walk.flatten, segments=16)])
+    pts = np.array([xy(v) for v in tool.flattening(walk.flatten, segments=16)])
     t0, t1 = tool.tangents([tool.start_param, tool.start_param + span])
     walk.pieces.append(FreePiece(pts, heading_of(xy(t0)), heading_of(xy(t1)), label))
 
@@ -168,7 +175,8 @@ def _spline(entity, label: str, walk: _Walk) -> None:
     except MemoryError:
         raise
     except Exception as exc:  # ezdxf raises assorted errors on malformed splines
-        raise InputError(f"{label}: not a valid spline ({exc})") from None
+        walk.invalid.append(f"{label}: not a valid spline ({exc})")
+        return
     lo, hi = float(knots[degree]), float(knots[-degree - 1])
     values, counts = np.unique(knots, return_counts=True)
     breaks = [float(v) for v, c in zip(values, counts) if c >= degree and lo < v < hi]
@@ -219,12 +227,56 @@ def _polyline(entity, label: str, walk: _Walk) -> None:
     elif walk.plane.sense(entity) is None:
         walk.tilt(entity, label)
         return
+    if _spline_frame(entity, label, walk):
+        return
+    _drawn(entity)
     for k, part in enumerate(entity.virtual_entities()):
         sub = f"{label} segment {k + 1}"
         if part.dxftype() == "LINE":
             walk.pieces.append(line_piece(walk.plane.xy(part.dxf.start), walk.plane.xy(part.dxf.end), sub))
         elif part.dxftype() == "ARC":
             _circle_or_arc(part, sub, walk)
+
+
+def _spline_frame(entity, label: str, walk: _Walk) -> bool:
+    """Read an R12 spline-fit POLYLINE (PEDIT Spline: flag 4) as the B-spline its frame's control
+    vertices (flag 16) define, quadratic or cubic as its smooth type says, closed with the
+    polyline; its fit vertices are only that curve cut into lines. False for any other polyline."""
+    if entity.dxftype() != "POLYLINE" or not entity.dxf.get("flags", 0) & _SPLINE_FIT:
+        return False
+    frame = [v.dxf.location for v in entity.vertices if v.dxf.get("flags", 0) & _SPLINE_FRAME]
+    degree = 2 if entity.dxf.get("smooth_type", 0) == _QUADRATIC_SMOOTH else 3
+    if len(frame) <= degree:
+        return False
+    from ezdxf.math import BSpline, closed_uniform_bspline
+
+    curve = closed_uniform_bspline(frame, order=degree + 1) if entity.is_closed else BSpline(frame, order=degree + 1)
+    lo, hi = (float(curve.knots()[degree]), float(curve.knots()[-degree - 1])) if entity.is_closed else (0.0, curve.max_t)
+
+    def at(t: np.ndarray) -> np.ndarray:
+        return np.array([walk.plane.xy(v) for v in curve.points(lo + np.asarray(t, float) * (hi - lo))])
+
+    walk.pieces.append(free_or_native(at, walk.flatten, label))
+    return True
+
+
+def _drawn(entity) -> None:
+    """A polyline (in the document read, not the file) reduced to the path it draws: a
+    spline-fit POLYLINE without a frame to read its curve from keeps its fit vertices (ezdxf
+    would draw the frame's control vertices too); bulges are set to zero where they sag from
+    their chords by less than ``_FLAT_BULGE`` of it (sagitta / chord = |bulge| / 2): rounding that
+    CAD left on straight edges (a bulge of 1e-12 is an arc 5e13 mm from the origin)."""
+    limit = 2.0 * _FLAT_BULGE
+    if entity.dxftype() == "POLYLINE" and entity.dxf.get("flags", 0) & _SPLINE_FIT:
+        entity.vertices[:] = [v for v in entity.vertices if not v.dxf.get("flags", 0) & _SPLINE_FRAME]
+    if entity.dxftype() == "LWPOLYLINE":
+        points = entity.get_points("xyseb")
+        if any(0.0 < abs(p[4]) <= limit for p in points):
+            entity.set_points([(*p[:4], 0.0 if abs(p[4]) <= limit else p[4]) for p in points], format="xyseb")
+        return
+    for vertex in entity.vertices:
+        if 0.0 < abs(vertex.dxf.get("bulge", 0.0)) <= limit:
+            vertex.dxf.bulge = 0.0
 
 
 _READERS = {"LINE": _line, "ARC": _circle_or_arc, "CIRCLE": _circle_or_arc, "ELLIPSE": _ellipse,
@@ -308,6 +360,8 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         notes.append("no $INSUNITS in the header: coordinates taken as mm")
     if walk.ignored:
         notes.append(_ignored_note("ignored", walk.ignored))
+    if walk.invalid:
+        notes.append(f"left out {len(walk.invalid)} entities that draw nothing readable (first: {walk.invalid[0]})")
     if walk.tilted:
         notes.append(f"ignored {len(walk.tilted)} entities not parallel to the drawing plane (first: {walk.tilted[0]})")
     if sum(walk.hidden.values()):
@@ -349,6 +403,8 @@ def _nothing(walk: _Walk, layers: Sequence[str] | None) -> str:
                 f"first: {walk.tilted[0]})")
     if walk.ignored:
         return f"{_ignored_note('no geometry to spray: only', walk.ignored)}; coatsim reads {read}"
+    if walk.invalid:
+        return f"no geometry to spray: {walk.invalid[0]}" + (f" (and {len(walk.invalid) - 1} more)" if len(walk.invalid) > 1 else "")
     return f"no geometry to spray (coatsim reads {read})"
 
 

@@ -99,6 +99,9 @@ def _parse(path: Path, data: bytes):
     try:
         if b"<symbol" in data:
             data = symbols_placed(data)
+        data = sized(data)
+        if b"flowRoot" in data:
+            data = without_flowed_text(data)
         svg = se.SVG.parse(io.BytesIO(data), ppi=96.0, reify=False)
     except ET.ParseError as exc:
         line, col = exc.position
@@ -140,6 +143,42 @@ def _viewbox_transform(viewbox: str, width: float, height: float, aspect: str) -
         fx = fy = 0.0
     tx, ty = fx * (width - w * sx) - x * sx, fy * (height - h * sy) - y * sy
     return f"translate({tx!r},{ty!r}) scale({sx!r},{sy!r})"
+
+
+def without_flowed_text(data: bytes) -> bytes:
+    """The document without Inkscape's flowed text (``<flowRoot>``): text, and the frame its
+    ``<flowRegion>`` flows it into is no contour (svgelements drew that frame as a rectangle)."""
+    root = ET.fromstring(data)
+    for parent in list(root.iter()):
+        for child in list(parent):
+            if child.tag in (f"{_SVG_NS}flowRoot", "flowRoot"):
+                parent.remove(child)
+    return ET.tostring(root)
+
+
+def sized(data: bytes) -> bytes:
+    """The document with the root's missing width or height given, where it has the other and a
+    viewBox: the viewBox's aspect sets it (SVG's auto size; svgelements takes the missing one as
+    100 % of a default viewport, and a width="200mm" over a 100 x 50 viewBox drew a 20-unit
+    square 5.3 mm wide instead of 40)."""
+    root = ET.fromstring(data)
+    box = (root.get("viewBox") or "").replace(",", " ").split()
+    width, height = root.get("width"), root.get("height")
+    if len(box) != 4 or (width is None) == (height is None):
+        return data
+    try:
+        w, h = float(box[2]), float(box[3])
+    except ValueError:
+        return data
+    given = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(px|mm|cm|in|pt|pc)?\s*", width or height)
+    if given is None or not (w > 0 and h > 0):
+        return data
+    value, unit = float(given.group(1)), given.group(2) or ""
+    if width is None:
+        root.set("width", f"{value * w / h!r}{unit}")
+    else:
+        root.set("height", f"{value * h / w!r}{unit}")
+    return ET.tostring(root)
 
 
 def symbols_placed(data: bytes) -> bytes:
@@ -314,6 +353,7 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     wanted = check_layers(str(path), layers, known)
     pieces: list[Piece] = []
     ignored, hidden, elsewhere = Counter(), 0, 0
+    ignored["flowRoot"] = len(re.findall(rb"<(?:\w+:)?flowRoot\b", data))
     for index, (el, labels) in enumerate(elements):
         if not isinstance(el, se.Shape):
             if isinstance(el, (se.Text, se.Image)):
@@ -331,6 +371,7 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
             raise InputError(f"{path}: {label}: {problem}")
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
     notes = []
+    ignored = +ignored  # no zero counts
     if ignored:
         notes.append(count_note("ignored", ignored, "not contour geometry"))
     if hidden:

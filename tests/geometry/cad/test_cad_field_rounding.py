@@ -1,0 +1,127 @@
+"""Drawings as plotter, CAM and older CAD programs write them: no header, rounding left in
+bulges and heights, R12 spline-fit polylines, degenerate entities beside good ones, flowed text
+and an SVG sized by one side."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from coatsim.core.errors import InputError
+from coatsim.geometry.cad import read_drawing, segment_drawing
+
+from cad_helpers import points_along, write_dxf, write_svg
+
+TOL = 0.1
+
+
+def polysegments(path):
+    return [c.polysegment for c in segment_drawing(path, TOL).contours]
+
+
+def extent(polys) -> np.ndarray:
+    ends = np.array([p for poly in polys for s in poly.segments for p in (s.start, s.end)])
+    return np.ptp(ends, axis=0)
+
+
+def test_a_dxf_without_a_header_is_read_in_mm_not_in_ezdxf_s_template_metres(tmp_path):
+    """ezdxf fills a missing HEADER from its template ($INSUNITS 6, metres): a 100 mm line came
+    back 100 m long."""
+    path = tmp_path / "plotter.dxf"
+    path.write_text("0\nSECTION\n2\nENTITIES\n0\nLINE\n8\n0\n10\n0\n20\n0\n11\n100\n21\n0\n0\nENDSEC\n0\nEOF\n")
+    drawing = read_drawing(path)
+    assert drawing.units == "mm" and any("no $INSUNITS" in n for n in drawing.notes)
+    assert polysegments(path)[0].segments[0].length == pytest.approx(100.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("bulge", [1e-12, 1e-9, 1e-7])
+def test_a_rounding_bulge_on_a_straight_edge_is_a_line(tmp_path, bulge):
+    """A bulge of 1e-12 is an arc 5e13 mm from the origin: the drawing was refused whole."""
+    path = write_dxf(tmp_path, lambda msp, doc: msp.add_lwpolyline(
+        [(0, 0, 0, 0, bulge), (100, 0, 0, 0, 0), (100, 60, 0, 0, 0), (0, 60, 0, 0, 0)], format="xyseb", close=True))
+    (poly,) = polysegments(path)
+    assert poly.closed and poly.n_arcs == 0 and poly.n_lines == 4
+    assert extent([poly]) == pytest.approx([100.0, 60.0], abs=1e-9)
+
+
+def test_a_real_bulge_stays_an_arc(tmp_path):
+    path = write_dxf(tmp_path, lambda msp, doc: msp.add_lwpolyline(
+        [(0, 0, 0, 0, 1e-3), (100, 0, 0, 0, 0), (100, 60, 0, 0, 0), (0, 60, 0, 0, 0)], format="xyseb", close=True))
+    pieces = read_drawing(path).pieces
+    assert any(getattr(getattr(p, "segment", None), "radius", 0) > 0 for p in pieces)
+
+
+@pytest.mark.parametrize("params", [(0.0, 0.0), (1.0, 1.0)])
+def test_an_ellipse_with_equal_start_and_end_parameters_is_whole(tmp_path, params):
+    """Equal parameters crashed the reader (ezdxf flattens such an ellipse to nothing)."""
+    def draw(msp, doc):
+        msp.add_ellipse((0, 0), major_axis=(50, 0), ratio=0.5, start_param=params[0], end_param=params[1])
+
+    (poly,) = polysegments(write_dxf(tmp_path, draw))
+    a, b = 50.0, 25.0
+    ramanujan = math.pi * (3 * (a + b) - math.sqrt((3 * a + b) * (a + 3 * b)))
+    assert poly.closed and poly.length == pytest.approx(ramanujan, rel=1e-3)
+
+
+def test_an_r12_spline_fit_polyline_is_its_b_spline_without_the_frame(tmp_path):
+    """PEDIT Spline keeps the frame's control vertices (flag 16) beside the fit vertices (flag 8):
+    ezdxf drew the frame as a second, closed contour."""
+    def draw(msp, doc):
+        poly = msp.add_polyline2d([], dxfattribs={"flags": 4, "smooth_type": 6})
+        frame = [(0, 0), (20, 40), (60, 40), (80, 0)]
+        fit = [(0, 0), (18.125, 22.5), (40, 30), (61.875, 22.5), (80, 0)]
+        poly.append_vertices(frame, dxfattribs={"flags": 16})
+        poly.append_vertices(fit, dxfattribs={"flags": 8})
+
+    (poly,) = polysegments(write_dxf(tmp_path, draw, version="R12"))
+    assert not poly.closed and poly.n_segments <= 4
+    samples = points_along(poly)
+    for fit in [(18.125, 22.5), (40, 30), (61.875, 22.5)]:  # the frame's cubic Bézier at t = 1/4, 1/2, 3/4
+        assert np.linalg.norm(samples - fit, axis=1).min() < TOL
+
+
+def test_heights_that_differ_by_rounding_are_one_plane(tmp_path):
+    """z of 2.3e-6 on one corner made the lines 'tilted' and the drawing was refused."""
+    def draw(msp, doc):
+        z = [0.0, 2.3e-6, -1.1e-6, 4e-7]
+        corners = [(0, 0), (100, 0), (100, 50), (0, 50)]
+        for k in range(4):
+            a, b = corners[k], corners[(k + 1) % 4]
+            msp.add_line((*a, z[k]), (*b, z[(k + 1) % 4]))
+
+    (poly,) = polysegments(write_dxf(tmp_path, draw))
+    assert poly.closed and poly.n_lines == 4
+
+
+def test_a_degenerate_spline_beside_good_geometry_is_left_out_with_a_note(tmp_path):
+    def draw(msp, doc):
+        msp.add_lwpolyline([(0, 0), (100, 0), (100, 60), (0, 60)], close=True)
+        msp.add_spline(fit_points=[(5, 5), (5, 5), (5, 5)])
+
+    path = write_dxf(tmp_path, draw)
+    assert any("left out 1 entities" in n and "SPLINE" in n for n in read_drawing(path).notes)
+    assert len(polysegments(path)) == 1
+
+
+def test_a_drawing_of_only_a_degenerate_spline_is_refused_naming_it(tmp_path):
+    path = write_dxf(tmp_path, lambda msp, doc: msp.add_spline(fit_points=[(5, 5), (5, 5), (5, 5)]))
+    with pytest.raises(InputError, match="no geometry to spray: SPLINE"):
+        read_drawing(path)
+
+
+@pytest.mark.parametrize("attrs, side_mm", [('width="200mm" viewBox="0 0 100 50"', 40.0),
+                                            ('height="1in" viewBox="0 0 100 50"', 20 * 25.4 / 50)])
+def test_an_svg_sized_by_one_side_takes_the_other_from_its_viewbox(tmp_path, attrs, side_mm):
+    """width="200mm" over a 100 x 50 viewBox: 2 mm a unit (a 20-unit square came back 5.3 mm)."""
+    path = write_svg(tmp_path, '<rect x="10" y="10" width="20" height="20"/>', attrs=attrs)
+    assert extent(polysegments(path)) == pytest.approx([side_mm, side_mm], rel=1e-9)
+
+
+def test_flowed_text_and_its_frame_are_not_contours(tmp_path):
+    body = ('<rect x="10" y="10" width="30" height="30"/><flowRoot><flowRegion><rect width="40" height="20" '
+            'x="50" y="10"/></flowRegion><flowPara>Part 12</flowPara></flowRoot>')
+    path = write_svg(tmp_path, body)
+    assert len(polysegments(path)) == 1
+    assert any("flowRoot" in n for n in read_drawing(path).notes)
