@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from coatsim.core.errors import InputError
 from coatsim.languages.kawasaki_as import ast
@@ -16,11 +16,15 @@ class Code:
     """The ops of one program; ``loops`` names the loop a backward jump closes (for the
     interpreter's messages): op index -> (line, what); ``endless`` the backward jumps that close
     a loop with no way out (no jump out of it, no RETURN, STOP or HALT in it, a WHILE or
-    DO ... UNTIL whose condition is a constant that never ends it): a cycle the cell repeats."""
+    DO ... UNTIL whose condition is a constant that never ends it): a cycle the cell repeats;
+    ``exits`` per backward jump whose loop does more than wait (TWAIT, SWAIT, WAIT) and is left
+    only by conditional jumps, those jumps' op indices (a loop ended by what the cell tells: see
+    coatsim.languages.kawasaki_as.loops)."""
 
     ops: tuple[tuple, ...]
     loops: dict[int, tuple[int, str]]
     endless: frozenset[int] = frozenset()
+    exits: dict[int, tuple[int, ...]] = field(default_factory=dict)
 
 
 class _Compiler:
@@ -141,7 +145,35 @@ class _Compiler:
             if target <= index:
                 self.loops[index] = (self.label_lines[label], f"GOTO {label} loop")
         ops = tuple(tuple(op) for op in self.ops)
-        return Code(ops, self.loops, frozenset(back for back in self.loops if _endless(ops, back)))
+        exits = {back: tests for back in self.loops if (tests := _exit_tests(ops, back))}
+        return Code(ops, self.loops, frozenset(back for back in self.loops if _endless(ops, back)), exits)
+
+
+def _exit_tests(ops: tuple[tuple, ...], back: int) -> tuple[int, ...]:
+    """The conditional jumps that leave the loop closed by ``back`` (``back`` itself when it is
+    one: falling through it leaves), or () when it has any other way out (a FOR, a jump, RETURN,
+    STOP, HALT, a CASE branch out of it) or none, or when it only waits (a loop that changes
+    nothing: LoopControl.waited)."""
+    op = ops[back]
+    if op[0] == FOR_NEXT:
+        return ()
+    inside = range(op[3], back + 1)
+    tests, works = [], False
+    for k in range(op[3], back + 1):
+        kind = ops[k][0]
+        if kind == EXEC:
+            st = ops[k][2]
+            if isinstance(st, ast.Return) or (isinstance(st, ast.Stop) and st.op != "PAUSE"):
+                return ()
+            works = works or not isinstance(st, (ast.Twait, ast.Swait, ast.Wait))
+        elif kind in (JUMP_IF_FALSE, JUMP_IF_TRUE) and not _constant(ops[k][2], kind == JUMP_IF_FALSE):
+            if k == back or ops[k][3] not in inside:
+                tests.append(k)
+        elif (kind == JUMP and ops[k][3] not in inside) or (kind == FOR_TEST and ops[k][4] not in inside):
+            return ()
+        elif kind == CASE and any(t not in inside for t in (*ops[k][3], ops[k][4], ops[k][5])):
+            return ()
+    return tuple(tests) if works else ()
 
 
 def _endless(ops: tuple[tuple, ...], back: int) -> bool:

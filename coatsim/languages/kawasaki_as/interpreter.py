@@ -82,13 +82,15 @@ class Run:
 
 @dataclass
 class _Frame:
-    """One program invocation: its locals, its FOR loops' bounds (by slot) and, per backward
-    jump, the run's state when it was last taken (Interpreter.jump)."""
+    """One program invocation: its locals, its FOR loops' bounds (by slot), per backward jump
+    the run's state when it was last taken (Interpreter.jump) and, per conditional jump, what
+    unknown its condition last turned on ("" when none: LoopControl.blind)."""
 
     program: ast.Program
     scope: Scope
     loops: dict = field(default_factory=dict)
     visits: dict = field(default_factory=dict)
+    blind: dict = field(default_factory=dict)
 
 
 class Interpreter(Memory, SignalIO, RobotQueries, LoopControl):
@@ -259,9 +261,9 @@ class Interpreter(Memory, SignalIO, RobotQueries, LoopControl):
             elif kind == JUMP:
                 pc = self.jump(code, pc, op[3])
             elif kind == JUMP_IF_FALSE:
-                pc = pc + 1 if test(op[2]) else self.jump(code, pc, op[3])
+                pc = pc + 1 if test(op[2], pc) else self.jump(code, pc, op[3])
             elif kind == JUMP_IF_TRUE:
-                pc = self.jump(code, pc, op[3]) if test(op[2]) else pc + 1
+                pc = self.jump(code, pc, op[3]) if test(op[2], pc) else pc + 1
             elif kind == FOR_INIT:
                 st = op[2]
                 step = 1.0 if st.step is None else self.guarded(self.eval.real, st.step, 1.0)
@@ -318,8 +320,16 @@ class Interpreter(Memory, SignalIO, RobotQueries, LoopControl):
             self.skipped_via = st.line if st.op == "C1MOVE" else None
         self.skip(st, reason, unsimulated)
 
-    def test(self, e: ast.Expr) -> bool:
-        return self.guarded(self.eval.truth, e, False)
+    def test(self, e: ast.Expr, at: Optional[int] = None) -> bool:
+        """The truth of condition ``e``; that of the conditional jump at op ``at`` notes what
+        unknown it turned on (for a loop ended only by those)."""
+        if at is None:
+            return self.guarded(self.eval.truth, e, False)
+        before = (self.unknowns.reads, self.signals.unknown_reads)
+        value = self.guarded(self.eval.truth, e, False)
+        self.stack[-1].blind[at] = self.blind(e, self.signals.unknown_reads > before[1]) \
+            if (self.unknowns.reads, self.signals.unknown_reads) != before else ""
+        return value
 
     def case(self, op: tuple) -> int:
         st: ast.Case = op[2]

@@ -5,14 +5,22 @@ budget and its messages).
 A loop with no way out (coatsim.languages.kawasaki_as.compile) is the cycle the cell repeats: it
 runs once and the run ends there. A loop whose pass changed nothing (no motion, no value, no
 signal) would repeat the same way for ever: if it read what the twin does not know it waits for
-the cell and is taken as ended, else it never ends (ExecutionError, at once). Any other loop runs
-until the step budget, whose message names it.
+the cell and is taken as ended, else it never ends (ExecutionError, at once). A loop left only
+by conditions that turn on nothing but what the twin does not know (variables no file or value
+gives, inputs not given: ``WHILE NOT SIG(1020) DO``) and that does more than wait ends when the
+cell says so: it runs once and goes on at its first way out. Any other loop runs until the step budget, whose message
+names it.
 """
 
 from __future__ import annotations
 
+from typing import Iterator, Optional
+
 from coatsim.core.errors import ExecutionError
-from coatsim.languages.kawasaki_as.compile import Code
+from coatsim.languages.kawasaki_as import ast
+from coatsim.languages.kawasaki_as.compile import EXEC, Code
+from coatsim.languages.kawasaki_as.parser import key as norm
+from coatsim.languages.kawasaki_as.printer import expr_text
 from coatsim.languages.kawasaki_as.statements_exec import StopProgram
 
 
@@ -34,6 +42,10 @@ class LoopControl:
                       "cell repeats; the twin runs it once and ends there")
             raise StopProgram()
         state = (len(self.controller.moves), self.changes)
+        exits = code.exits.get(pc, ())
+        blind = [self.stack[-1].blind.get(k, "") for k in exits]
+        if exits and all(blind) and self.untouched(code, pc, exits):
+            return self.left(code, pc, line, what, exits, blind)
         reads = (self.unknowns.reads, self.signals.unknown_reads, self.unknowns.messages)
         visits = self.stack[-1].visits
         last = visits.get(pc)
@@ -62,6 +74,59 @@ class LoopControl:
                   f"(it reads {reads}, and nothing changes); taken as ended")
         return pc + 1
 
+    def left(self, code: Code, pc: int, line: int, what: str, exits: tuple[int, ...], reads: list[str]) -> int:
+        """A loop that does more than wait but is left only by conditions on what the twin does not know
+        (``reads`` per exit of ``exits``) ends when the cell says so: run once, it is left where
+        its first exit leaves it."""
+        conditions = "; ".join(f"{expr_text(code.ops[k][2])} (line {code.ops[k][1]}, it reads {r})"
+                               for k, r in zip(exits, reads))
+        self.warn(f"outside:{self.where()}", f"the {what} of line {line} ends only on what the twin does not know: "
+                  f"{conditions}; the twin runs it once and leaves it (give those a value to run it as written)")
+        return pc + 1 if exits[0] == pc else code.ops[exits[0]][3]
+
+    def untouched(self, code: Code, pc: int, exits: tuple[int, ...]) -> bool:
+        """Whether nothing in the loop closed at ``pc`` (nor in what it CALLs) names a variable or
+        switches a signal its exit conditions read: what ends it comes from outside."""
+        statements = [op[2] for op in code.ops[code.ops[pc][3]:pc + 1] if op[0] == EXEC]
+        names: set[str] = set()
+        signals: set[int] = set()
+        called: set[str] = set()
+        while statements:
+            for node in _nodes(statements.pop()):
+                if isinstance(node, ast.Name):
+                    names.add(norm(node.name))
+                elif isinstance(node, ast.CallProgram):
+                    callee = self.programs.get(node.program.lower()) if isinstance(node.program, str) else None
+                    if callee is None and not isinstance(node.program, str):
+                        return False  # (a program named by a string: it may set anything)
+                    if callee is not None and callee.name.lower() not in called:
+                        called.add(callee.name.lower())
+                        statements.extend(callee.body)
+                elif isinstance(node, (ast.Signal, ast.Pulse, ast.Bits)):
+                    numbers = [_number(e) for e in (node.outputs if isinstance(node, ast.Signal) else
+                                                    (node.signal,) if isinstance(node, ast.Pulse) else (None,))]
+                    if None in numbers:
+                        return False  # (a signal number computed, or a group of BITS: it may be any)
+                    signals.update(numbers)
+        for k in exits:
+            nodes = list(_nodes(code.ops[k][2]))
+            if any(norm(n.name) in names for n in nodes if isinstance(n, ast.Name)):
+                return False
+            for n in nodes:
+                if isinstance(n, ast.Call) and n.name.upper() == "SIG" and \
+                        any(_number(a) in signals or _number(a) is None for a in n.args):
+                    return False
+        return True
+
+    def blind(self, e: ast.Expr, signal: bool) -> str:
+        """What a condition that read an unknown turns on, when that is all it turns on (every
+        variable it names has no value: the unknowns, and an input not given if ``signal``);
+        "" when it also names a variable that has one (a counter may end the loop)."""
+        names = list(dict.fromkeys(_names(e)))
+        if any(norm(n) not in self.unknowns.first for n in names):
+            return ""
+        return ", ".join(names + (["an input not given"] if signal else []))
+
     def budget_error(self) -> ExecutionError:
         if self.last_loop is not None:
             source, line, what = self.last_loop
@@ -69,3 +134,26 @@ class LoopControl:
                                   f"{what} of line {line}; an endless cycle? (end it with STOP or HALT)")
         return self.failure(f"the program ran {self.max_steps} steps without ending")
 
+
+
+def _nodes(e) -> Iterator:
+    """Every node of an expression or statement (blocks and indices entered), itself first."""
+    if isinstance(e, tuple):
+        for item in e:
+            yield from _nodes(item)
+    elif hasattr(e, "__dataclass_fields__"):
+        yield e
+        for f in e.__dataclass_fields__:
+            yield from _nodes(getattr(e, f))
+
+
+def _names(e) -> list[str]:
+    """The variables an expression names (as written)."""
+    return [n.name for n in _nodes(e) if isinstance(n, ast.Name)]
+
+
+def _number(e) -> Optional[int]:
+    """A signal number written as a number (signed): its absolute value, else None."""
+    if isinstance(e, ast.Unary) and e.op in "-+":
+        e = e.operand
+    return int(abs(e.value)) if isinstance(e, ast.Num) else None

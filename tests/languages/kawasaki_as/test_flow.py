@@ -112,6 +112,44 @@ def test_a_loop_with_a_way_out_runs_to_its_end():
 
 
 @pytest.mark.parametrize("body,reads", [
+    ("WHILE NOT stop.req DO\n  CALL paint\nEND\nx = 1", "NOT stop.req (line 2, it reads stop.req)"),
+    ("WHILE NOT SIG(1020) DO\n  CALL paint\nEND\nx = 1", "NOT SIG(1020) (line 2, it reads an input not given)"),
+    ("10 CALL paint\nIF SIG(1020) GOTO 99\nGOTO 10\nx = 2\n99 x = 1", "SIG(1020) (line 3, it reads an input not given)"),
+    ("DO\n  CALL paint\nUNTIL done.flag\nx = 1", "done.flag (line 4, it reads done.flag)"),
+])
+def test_a_loop_ended_only_by_the_cell_runs_once(body, reads):
+    """A loop that works but is left only on a variable no file gives or an input not given
+    (the operator's stop request) runs once and is left where its exit goes, with a note naming
+    what it waits on; not run to the motion cap."""
+    run, tp = _cycle(body)
+    assert len(tp.moves) == 3 and run.globals.get("real", "x") == 1.0
+    assert any(f"ends only on what the twin does not know: {reads}; the twin runs it once" in w
+               for w in tp.warnings), tp.warnings
+
+
+@pytest.mark.parametrize("body,inputs", [
+    ("n = 0\nWHILE NOT SIG(1020) AND n < 3 DO\n  CALL paint\n  n = n + 1\nEND", {}),
+    ("n = 0\n10 CALL paint\nn = n + 1\nIF SIG(1020) OR n >= 3 GOTO 99\nGOTO 10\n99 x = 1", {}),
+    ("n = 0\nWHILE NOT SIG(2020) DO\n  CALL paint\n  n = n + 1\n  IF n >= 3 THEN\n    SIGNAL 2020\n  END\nEND", {}),
+    ("n = 0\nWHILE NOT done DO\n  CALL paint\n  n = n + 1\n  done = n >= 3\nEND", {}),
+])
+def test_a_loop_with_a_known_way_out_runs_as_written(body, inputs):
+    """A loop whose exit also turns on a value the run has (a counter), or on a variable or a
+    signal the loop itself sets, runs all its passes."""
+    _, tp = _cycle(body, inputs=inputs)
+    assert len(tp.moves) == 9 and not any("ends only on" in w for w in tp.warnings), tp.warnings
+
+
+def test_a_value_given_for_the_exit_of_a_loop_is_honoured():
+    """Given the input or the variable, the loop runs as written: not entered, or to its end."""
+    _, tp = _cycle("WHILE NOT SIG(1020) DO\n  CALL paint\nEND\nCALL paint", inputs={1020: True})
+    assert len(tp.moves) == 3 and not any("ends only on" in w for w in tp.warnings)
+    f = parse_as(".PROGRAM main()\nWHILE NOT stop.req DO\n  CALL paint\nEND\nCALL paint\n.END\n" + PAINT + CYCLE_DATA)
+    tp = interpret_run((f,), variables={"stop.req": 1}).toolpath
+    assert len(tp.moves) == 3 and not any("ends only on" in w for w in tp.warnings)
+
+
+@pytest.mark.parametrize("body,reads", [
     ("TIMER 1 = 0\nWHILE TIMER(1) < 3 DO\n  TWAIT 0.5\nEND", "TIMER"),
     ("10 IF SIG(1002) GOTO 20\nTWAIT 0.1\nGOTO 10\n20 x = 1", "an input not given"),
     ("10 TCP_RECV .ret, 1, .$buf[1], .num, 30, 255\nIF .num <= 0 GOTO 10\nx = 1", "a message"),
