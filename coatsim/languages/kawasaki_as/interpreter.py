@@ -1,7 +1,8 @@
 """Interpreter: parsed AS files -> the ToolPath the robot executes.
 
-Runs the main program (the one named, else the first one loaded that is not a background PC
-program ``*.pc``) with the programs it CALLs, their control flow, variables and expressions.
+Runs the main program (the one named, else one no other program CALLs:
+:mod:`~coatsim.languages.kawasaki_as.main_program`) with the programs it CALLs, their control
+flow, variables and expressions.
 Poses are relative to the current BASE (``BASE``); the ToolPath is in the robot base frame.
 Motions, settings, the gun and the rests follow :mod:`~coatsim.languages.kawasaki_as.motion`; signals
 and unknown inputs :mod:`~coatsim.languages.kawasaki_as.io_model`; variables
@@ -34,6 +35,7 @@ from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
 from coatsim.languages.kawasaki_as.evaluate import Evaluator
+from coatsim.languages.kawasaki_as.main_program import choose_main
 from coatsim.languages.kawasaki_as.io_model import SignalIO, Signals, Warnings
 from coatsim.languages.kawasaki_as.loops import LoopControl
 from coatsim.languages.kawasaki_as.memory import Memory
@@ -60,7 +62,8 @@ class Run:
     (program, line) ran, the programs loaded, whether the gun output is still on when the
     program ends (a switch after the last motion counts), the STOP / HALT that ended it
     ("file:line: HALT"; empty when it ran to its end), the variables it read that no file gives,
-    the statements it skipped for want of a value, and the outputs (below the inputs) it switches."""
+    the statements it skipped for want of a value, the outputs (below the inputs) it switches,
+    and what a reader must know of the run (which program was taken as the main one)."""
 
     toolpath: ToolPath
     move_origins: tuple[tuple[str, int, int], ...]
@@ -73,6 +76,7 @@ class Run:
     skipped: tuple[str, ...] = ()
     outputs: tuple[int, ...] = ()
     unsimulated: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
 
     def require_complete(self) -> None:
         """What simulates or rewrites the path needs every statement: InputError naming the first
@@ -358,8 +362,8 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
                   *, inputs: Optional[Mapping[int, bool]] = None, kinematics: Optional[Kinematics] = None,
                   full_speed_mm_s: float = FULL_SPEED_MM_S, max_steps: int = MAX_STEPS,
                   variables: Optional[Mapping[str, Union[str, float]]] = None) -> Run:
-    """Run the main program of ``files`` (``program``, else the first one loaded that is not a
-    background PC program ``*.pc``) and report where each move comes from. ``variables`` gives
+    """Run the main program of ``files`` (``program``, else the one
+    :func:`~coatsim.languages.kawasaki_as.main_program.choose_main` takes) and report where each move comes from. ``variables`` gives
     global variables values from outside the files (``{"direction": 8, "pick": "TRANS(...)"}``)."""
     files = (files,) if isinstance(files, ast.AsFile) else tuple(files)
     if gun_signal < 1:
@@ -370,8 +374,10 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
         raise InputError(f"{names}: no .PROGRAM section; expected '.PROGRAM name()' ... '.END'")
     run = Interpreter(files, gun_signal, inputs or {}, kinematics, full_speed_mm_s, max_steps)
     run.give(variables or {})
-    if program is None:  # PC programs (autostart.pc, ...) are background tasks, never the robot's main program
-        main = next((p for p in all_programs if not p.name.lower().endswith(".pc")), all_programs[0])
+    notes: tuple[str, ...] = ()
+    if program is None:
+        main, note = choose_main(all_programs)
+        notes = (note,) if note else ()
     else:
         main = run.programs.get(program.lower())
         if main is None:
@@ -380,7 +386,7 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
     toolpath = run.run(main)
     return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs),
                run.controller.gun_on, run.stopped, tuple(run.unknowns.first.values()), tuple(run.unknowns.skipped),
-               tuple(sorted(run.outputs)), tuple(run.unknowns.unsimulated))
+               tuple(sorted(run.outputs)), tuple(run.unknowns.unsimulated), notes)
 
 
 def interpret(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

@@ -14,11 +14,12 @@ names it.
 
 from __future__ import annotations
 
-from typing import Iterator, Optional
+from typing import Optional
 
 from coatsim.core.errors import ExecutionError
 from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, Code
+from coatsim.languages.kawasaki_as.main_program import nodes
 from coatsim.languages.kawasaki_as.parser import key as norm
 from coatsim.languages.kawasaki_as.printer import expr_text
 from coatsim.languages.kawasaki_as.statements_exec import StopProgram
@@ -92,7 +93,7 @@ class LoopControl:
         signals: set[int] = set()
         called: set[str] = set()
         while statements:
-            for node in _nodes(statements.pop()):
+            for node in nodes(statements.pop()):
                 if isinstance(node, ast.Name):
                     names.add(norm(node.name))
                 elif isinstance(node, ast.CallProgram):
@@ -109,10 +110,10 @@ class LoopControl:
                         return False  # (a signal number computed, or a group of BITS: it may be any)
                     signals.update(numbers)
         for k in exits:
-            nodes = list(_nodes(code.ops[k][2]))
-            if any(norm(n.name) in names for n in nodes if isinstance(n, ast.Name)):
+            read = list(nodes(code.ops[k][2]))
+            if any(norm(n.name) in names for n in read if isinstance(n, ast.Name)):
                 return False
-            for n in nodes:
+            for n in read:
                 if isinstance(n, ast.Call) and n.name.upper() == "SIG" and \
                         any(_number(a) in signals or _number(a) is None for a in n.args):
                     return False
@@ -136,20 +137,9 @@ class LoopControl:
 
 
 
-def _nodes(e) -> Iterator:
-    """Every node of an expression or statement (blocks and indices entered), itself first."""
-    if isinstance(e, tuple):
-        for item in e:
-            yield from _nodes(item)
-    elif hasattr(e, "__dataclass_fields__"):
-        yield e
-        for f in e.__dataclass_fields__:
-            yield from _nodes(getattr(e, f))
-
-
 def _names(e) -> list[str]:
     """The variables an expression names (as written)."""
-    return [n.name for n in _nodes(e) if isinstance(n, ast.Name)]
+    return [n.name for n in nodes(e) if isinstance(n, ast.Name)]
 
 
 def _number(e) -> Optional[int]:

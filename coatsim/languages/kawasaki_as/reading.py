@@ -157,6 +157,7 @@ def read_as(paths: Sequence[Path], options: ReadOptions) -> Reading:
         switches=tuple(switches),
         outputs=run.outputs,
         problems=tuple(problems),
+        notes=run.notes,
         unknowns=tuple(u.note() for u in run.unknowns),
         skipped=run.skipped,
         unsimulated=run.unsimulated,

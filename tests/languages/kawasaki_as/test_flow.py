@@ -308,6 +308,30 @@ def test_drawing_robot():
     assert any("TCP_RECV" in w for w in tp.warnings)
 
 
+HELPERS = (".PROGRAM a.home()\n  JMOVE p1\n.END\n.PROGRAM gun.off()\n  SIGNAL -1\n.END\n"
+           ".PROGRAM pg1()\n  CALL a.home\n  LMOVE p1\n  SIGNAL 1\n  LMOVE p2\n  CALL gun.off\n.END\n")
+
+
+@pytest.mark.parametrize("text,main,note", [
+    (HELPERS, "pg1", "program pg1 is taken as the main program: no other loaded program CALLs it (the first, a.home, "
+                     "is CALLed by another)"),
+    (".PROGRAM a.log()\n  x = 1\n.END\n" + HELPERS, "pg1",
+     "program pg1 is taken as the main program: no other loaded program CALLs it (the first, a.log, is without "
+     "motion); other programs no one CALLs: a.log; name one to run it instead"),
+    (".PROGRAM main()\n  JMOVE p1\n.END\n.PROGRAM spare()\n  JMOVE p2\n.END\n", "main",
+     "program main is taken as the main program: no other loaded program CALLs it; other programs no one CALLs: "
+     "spare; name one to run it instead"),
+    (".PROGRAM main()\n  JMOVE p1\n.END\n", "main", ""),
+])
+def test_the_main_program_of_a_backup_is_one_no_program_calls(text, main, note):
+    """A backup saves programs alphabetically: the main program is the first that no other
+    program CALLs and that moves, not the helper saved first; the note says which and the
+    other candidates."""
+    run = interpret_run(parse_as(text + CYCLE_DATA, "backup.as"))
+    assert run.toolpath.name == main and run.notes == ((note,) if note else ())
+    assert interpret_run(parse_as(text + CYCLE_DATA), program=main).notes == ()
+
+
 def test_backup_file():
     f = parse_as_bytes(BACKUP, "backup.as")
     tp = interpret(f, program="main")
