@@ -32,6 +32,7 @@ from coatsim.languages.kawasaki_as.unknowns import NotSimulated
 from coatsim.languages.kawasaki_as.values import PoseJoints
 
 TRUE, FALSE = -1.0, 0.0
+_WHERE = ("#HERE", "#DEST")  # the joint value where the robot is (the motion ended: DEST is HERE)
 _COMPARE = {"==": lambda a, b: a == b, "<>": lambda a, b: a != b, "<": lambda a, b: a < b,
             ">": lambda a, b: a > b, "<=": lambda a, b: a <= b, ">=": lambda a, b: a >= b}
 
@@ -263,11 +264,14 @@ class Evaluator:
         """A joint value: its angles (deg), or the pose a POINT #j = p gave it."""
         if isinstance(e, ast.Name) and e.kind == "joint" and not e.whole:
             return self.run.get_joints(e)
+        if isinstance(e, ast.Call) and e.name in _WHERE:
+            return self.run.here_value()
         return self.joints(e)
 
     def joints(self, e: ast.Expr) -> tuple[float, ...]:
         """The angles (deg) of a joint value."""
-        value = self.run.get_joints(e) if isinstance(e, ast.Name) and e.kind == "joint" and not e.whole else None
+        value = self.run.get_joints(e) if isinstance(e, ast.Name) and e.kind == "joint" and not e.whole else \
+            self.run.here_value() if isinstance(e, ast.Call) and e.name in _WHERE else None
         if isinstance(value, PoseJoints):
             raise NotSimulated(f"the joint angles of {e.name} (taken from a pose) need the arm's inverse kinematics")
         if value is not None:

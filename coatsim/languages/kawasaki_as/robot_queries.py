@@ -64,6 +64,13 @@ class RobotQueries:
         current = self.controller.need_current("HERE", self.line)
         return self.base.inverse() @ current
 
+    def here_value(self) -> tuple[float, ...] | PoseJoints:
+        """The joint value where the robot is (HERE #j, #HERE, #DEST): its angles, or after a
+        Cartesian motion the pose it is at (the angles need the inverse kinematics)."""
+        if self.controller.current_joints is None and self.controller.current is not None:
+            return PoseJoints(self.controller.current, None)
+        return self.here_joints()
+
     def here_joints(self) -> tuple[float, ...]:
         if self.controller.current is None and self.kinematics is not None:
             self.controller.need_current("#HERE", self.line)

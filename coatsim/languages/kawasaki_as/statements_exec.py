@@ -159,11 +159,7 @@ def _decompose(run: Machine, st: ast.Decompose) -> None:
 
 def _here(run: Machine, st: ast.Here) -> None:
     if st.target.kind == "joint":
-        if run.controller.current_joints is None and run.controller.current is not None:
-            # after a Cartesian motion the angles need the inverse kinematics: the value keeps the pose
-            run.set("joint", st.target, PoseJoints(run.controller.current, None))
-            return
-        run.set("joint", st.target, run.here_joints())
+        run.set("joint", st.target, run.here_value())
     elif st.target.kind == "value":
         run.set("pose", st.target, run.here())
     else:

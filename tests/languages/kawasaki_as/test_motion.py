@@ -258,6 +258,20 @@ def test_here_into_a_joint_value_after_a_cartesian_motion_keeps_the_pose(kin):
     assert np.allclose(tp.moves[-1].target.translation_mm, tp.moves[1].end.translation_mm) and tp.moves[-1].joints_rad is None
 
 
+@pytest.mark.parametrize("where", ["#DEST", "#HERE"])
+def test_dest_after_a_cartesian_motion_is_where_the_robot_is_as_here(kin, where):
+    """#DEST (and #HERE) after a Cartesian motion keep the pose as HERE #j does: a JMOVE moves
+    there, a POINT copies it; DECOMPOSE of its angles is skipped with a note (no stop)."""
+    result = interpret_run(parse_as(".PROGRAM m()\n  JMOVE a\n  LMOVE b\n  POINT #j = " + where + "\n  LMOVE c\n"
+                                    f"  JMOVE #j\n  JMOVE {where}\n  DECOMPOSE j[1] = {where}\n.END\n" + TRANS, "t.as"),
+                           kinematics=kin)
+    tp = result.toolpath
+    assert np.allclose(tp.moves[3].target.translation_mm, tp.moves[1].end.translation_mm)
+    assert np.allclose(tp.moves[4].target.translation_mm, tp.moves[1].end.translation_mm)
+    assert result.skipped == (f"t.as:8: DECOMPOSE skipped: the joint angles of {where} (taken from a pose) need the "
+                              "arm's inverse kinematics",)
+
+
 # --- what the twin cannot simulate: one line, exit 3 ----------------------------------------
 @pytest.mark.parametrize("body,words", [
     ("  HOME\n", "needs the cell's kinematics"), ("  JMOVE #[0, 0, 0, 0, 0, 0]\n", "needs the cell's kinematics"),
