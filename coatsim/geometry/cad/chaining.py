@@ -2,7 +2,9 @@
 
 Pieces are joined end to end where their ends lie within the join tolerance of each other
 (either direction: a piece drawn backwards is reversed). Zero-length pieces (not longer than
-the join tolerance) and duplicates (same ends and middle within it) are dropped first. Where
+the join tolerance) and duplicates (same ends and middle within it, or within ``NEAR_SHARE`` σ
+when σ is given) are dropped first; so is a piece no longer than ``NEAR_SHARE`` σ whose
+neighbours meet tangentially across it (a path closed a few micrometres short of its start). Where
 three or more ends meet, they are paired by tangent continuity (the straightest
 continuation first) and what is left over ends a contour; this is noted. A contour whose
 last end meets its first is closed.
@@ -42,6 +44,7 @@ from coatsim.geometry.primitives import Arc
 TANGENT_EXACT_RAD = 1e-6
 TANGENT_FREE_DEG = 0.5
 NEAR_SHARE = 0.5  # a near-miss join may move the drawing by this share of σ
+_MOVE_SAMPLES = 33  # points along an arc at which its move is measured (_moved)
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,18 +110,21 @@ class _Sets:
             self.parent[max(a, b)] = min(a, b)
 
 
-def _drop_degenerate(pieces: Sequence[Piece], tol: float, notes: list[str]) -> list[Piece]:
-    """Without zero-length pieces and duplicates (the later copy goes)."""
+def _drop_degenerate(pieces: Sequence[Piece], tol: float, same_mm: float, notes: list[str]) -> list[Piece]:
+    """Without zero-length pieces (not longer than ``tol``) and duplicates (the same within
+    ``same_mm``: the later copy goes; an outline drawn twice, once rounded to 0.01 mm, was
+    sprayed twice)."""
     kept = [p for p in pieces if p.length > tol]
     if len(kept) < len(pieces):
         first = next(p for p in pieces if p.length <= tol)
         notes.append(f"dropped {len(pieces) - len(kept)} zero-length pieces (first: {first.source})")
     if len(kept) < 2:
         return kept
-    duplicate = _duplicates(kept, tol)
+    duplicate = _duplicates(kept, same_mm)
     if duplicate:
         first = kept[min(duplicate)]
-        notes.append(f"dropped {len(duplicate)} duplicate pieces (first: {first.source})")
+        notes.append(f"dropped {len(duplicate)} duplicate pieces, each within {same_mm:g} mm of one kept "
+                     f"(first: {first.source})")
     return [p for k, p in enumerate(kept) if k not in duplicate]
 
 
@@ -187,6 +193,31 @@ def _pair_ends(pieces: list[Piece], tol: float, notes: list[str]) -> dict[tuple[
     return partner
 
 
+def _bridged(kept: list[Piece], partner: dict, limit_mm: float, notes: list[str]) -> tuple[list[Piece], dict]:
+    """The pieces without those no longer than ``limit_mm`` whose neighbours meet tangentially
+    across them (within ``TANGENT_FREE_DEG``), the neighbours paired instead: a path closed
+    0.004 mm short of its start (Z draws that as a line) gave a micro-segment and two corners."""
+    dropped = set()
+    for i, piece in enumerate(kept):
+        a, b = partner.get((i, 0)), partner.get((i, 1))
+        if piece.length > limit_mm or a is None or b is None or i in (a[0], b[0]) or a == b:
+            continue
+        if a[0] in dropped or b[0] in dropped:
+            continue
+        if _wrap(_leave(kept[b[0]], b[1]) - _arrive(kept[a[0]], a[1])) <= math.radians(TANGENT_FREE_DEG):
+            partner[a], partner[b] = b, a
+            del partner[(i, 0)], partner[(i, 1)]
+            dropped.add(i)
+    if not dropped:
+        return kept, partner
+    first = kept[min(dropped)]
+    notes.append(f"dropped {len(dropped)} pieces of {limit_mm:g} mm or less between pieces that meet tangentially "
+                 f"across them (rounding where a path closes; first: {first.source}, {first.length:.3g} mm)")
+    index = {old: new for new, old in enumerate(k for k in range(len(kept)) if k not in dropped)}
+    moved = {(index[i], side): (index[j], other) for (i, side), (j, other) in partner.items()}
+    return [p for k, p in enumerate(kept) if k not in dropped], moved
+
+
 def _walk(start: int, partner: dict, pieces: list[Piece]) -> tuple[list[Piece], list[int], bool]:
     """Oriented pieces of the chain through ``start`` (drawn direction), their indices,
     and whether the chain closes."""
@@ -223,29 +254,34 @@ def _junction(a: Piece, b: Piece) -> tuple[float, float]:
     return ((a.end[0] + b.start[0]) / 2, (a.end[1] + b.start[1]) / 2)
 
 
-def _snap(oriented: list[Piece], closed: bool) -> tuple[tuple[Piece, ...], float]:
-    """The pieces with coinciding ends at every join, and how far that moved any drawn point
-    (mm: an end, or an arc's centre, which bounds how far its points moved)."""
+def _snap(oriented: list[Piece], closed: bool) -> tuple[tuple[Piece, ...], list[float]]:
+    """The pieces with coinciding ends at every join, and how far that moved each one's drawn
+    points (mm)."""
     n = len(oriented)
     joins = [_junction(oriented[k], oriented[k + 1]) for k in range(n - 1)]
     seam = _junction(oriented[-1], oriented[0]) if closed else None
-    out, moved = [], 0.0
+    out, moved = [], []
     for k, piece in enumerate(oriented):
         start = joins[k - 1] if k > 0 else (seam if closed else piece.start)
         end = joins[k] if k < n - 1 else (seam if closed else piece.end)
+        moved.append(0.0)
         if (start, end) != (piece.start, piece.end):
             snapped = piece.with_ends(start, end)
-            moved = max(moved, _moved(piece, snapped))
+            moved[-1] = _moved(piece, snapped)
             piece = snapped
         out.append(piece)
     return tuple(out), moved
 
 
 def _moved(old: Piece, new: Piece) -> float:
-    """How far moving a piece's ends moved its points, at most (mm)."""
+    """How far moving a piece's ends moved its points, at most (mm): of an arc, the largest
+    distance between its points at the same share of its length before and after (its centre
+    moves far more than its points where a long arc's ends move along its chord)."""
     ends = max(math.dist(old.start, new.start), math.dist(old.end, new.end))
     if _is_native(old) and isinstance(old.segment, Arc):
-        return max(ends, math.dist(old.segment.center, new.segment.center) + abs(old.segment.radius - new.segment.radius))
+        u = np.linspace(0.0, 1.0, _MOVE_SAMPLES)
+        before, after = old.segment.points(u * old.segment.length), new.segment.points(u * new.segment.length)
+        return max(ends, float(np.linalg.norm(before - after, axis=1).max()))
     return ends
 
 
@@ -326,13 +362,16 @@ def _contours(kept: list[Piece], partner: dict, near: list, tol: float, limit: f
     while True:
         contours, undone = [], False
         for oriented, members, closed in _chains(kept, partner):
-            snapped, moved = _snap(oriented, closed)
+            snapped, moves = _snap(oriented, closed)
+            moved = max(moves)
             inside = [(a, b) for a, b in near if a[0] in members]
             if moved > limit and inside:
-                for a, b in inside:
+                over = {m for m, mv in zip(members, moves) if mv > limit}
+                culprits = [(a, b) for a, b in inside if a[0] in over or b[0] in over] or inside
+                for a, b in culprits:
                     partner.pop(a), partner.pop(b)
                     near.remove((a, b))
-                notes.append(f"{len(inside)} near-miss joins in the contour from {kept[members[0]].source} undone: "
+                notes.append(f"{len(culprits)} near-miss joins in the contour from {kept[members[0]].source} undone: "
                              f"they would move it by {moved:.3g} mm")
                 undone = True
                 break
@@ -352,7 +391,8 @@ def chain_pieces(pieces: Sequence[Piece], join_tol_mm: float, source: str = "dra
     if not (math.isfinite(join_tol_mm) and join_tol_mm > 0):
         raise InputError(f"join tolerance {join_tol_mm} mm (--join-tol): must be a finite number > 0")
     notes: list[str] = []
-    kept = _drop_degenerate(pieces, join_tol_mm, notes)
+    near = near_mm is not None and near_mm > join_tol_mm
+    kept = _drop_degenerate(pieces, join_tol_mm, NEAR_SHARE * near_mm if near else join_tol_mm, notes)
     if not kept:
         raise InputError(f"{source}: every piece is shorter than the join tolerance {join_tol_mm:g} mm")
     overlaps = overlapping_lines(kept, join_tol_mm)
@@ -360,6 +400,8 @@ def chain_pieces(pieces: Sequence[Piece], join_tol_mm: float, source: str = "dra
         notes.append(f"{len(overlaps)} pairs of lines overlap along one line, kept and sprayed twice there "
                      f"(first: {overlaps[0][0].source} and {overlaps[0][1].source})")
     partner = _pair_ends(kept, join_tol_mm, notes)
-    near = _near_joins(kept, partner, join_tol_mm, near_mm, notes) if near_mm is not None and near_mm > join_tol_mm else []
+    if near:
+        kept, partner = _bridged(kept, partner, NEAR_SHARE * near_mm, notes)
+    joins = _near_joins(kept, partner, join_tol_mm, near_mm, notes) if near else []
     limit = NEAR_SHARE * near_mm if near_mm is not None else math.inf
-    return Chaining(_contours(kept, partner, near, join_tol_mm, limit, notes), tuple(notes))
+    return Chaining(_contours(kept, partner, joins, join_tol_mm, limit, notes), tuple(notes))

@@ -10,6 +10,8 @@ stretches fitted within the tolerance.
   default fitter (``fit_run``) from its first to its last point; where it joins a native
   piece tangentially its end tangent is pinned to that piece's, so the join is G1 exactly.
   A closed contour that is one tangent free-form loop is fitted as a closed point curve.
+- Lines and arcs that meet at a tangent broken by rounding only (within ``TANGENT_FREE_DEG``)
+  are fitted as free-form pieces, so that join comes out tangent.
 - Joins that are not tangent are the polysegment's corners.
 
 The deviation reported is the largest of the merges' and of the fitted stretches' bounds:
@@ -21,11 +23,11 @@ the flattening distance. It is 0 for a contour of lines and arcs.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from coatsim.geometry.cad.chaining import Contour, TANGENT_EXACT_RAD
+from coatsim.geometry.cad.chaining import TANGENT_EXACT_RAD, TANGENT_FREE_DEG, Contour, join_is_tangent
 from coatsim.geometry.cad.fit_copies import Fitted, bucket, reuse
 from coatsim.geometry.cad.pieces import FreePiece
 from coatsim.geometry.corners import detect_corners
@@ -242,6 +244,32 @@ def _merge(segments: list[Segment], corner_after: list[bool], closed: bool) -> t
     return segs, corners, worst
 
 
+def _rounded_joins_freed(contour: Contour, flatten_mm: float) -> Contour:
+    """The contour with the arcs at a join that breaks tangency by rounding only (more than
+    ``TANGENT_EXACT_RAD``, at most ``TANGENT_FREE_DEG``; two lines there: both) made free-form
+    pieces (their samples), so that the fit makes those joins tangent within the tolerance, its
+    arcs pinned to the lines beside them. A
+    CAM program's biarcs with their ends rounded to 0.01 mm meet 0.01-0.1 deg apart: kept as
+    drawn, every join was a corner, a stop of the robot (72 on an ellipse)."""
+    n = len(contour.pieces)
+    rounded = [contour.breaks[k] > TANGENT_EXACT_RAD and contour.breaks[k] <= math.radians(TANGENT_FREE_DEG)
+               and not isinstance(contour.pieces[k], FreePiece) and not isinstance(contour.pieces[(k + 1) % n], FreePiece)
+               for k in range(len(contour.breaks))]
+    if not any(rounded):
+        return contour
+    freed = set()
+    for k, r in enumerate(rounded):
+        pair = {k, (k + 1) % n}
+        arcs = {j for j in pair if isinstance(contour.pieces[j].segment, Arc)}
+        if r:
+            freed |= arcs or pair  # a line next to an arc stays: the arc's fit is pinned to it
+    pieces = tuple(FreePiece(p.samples(flatten_mm), p.start_heading, p.end_heading, p.source) if k in freed else p
+                   for k, p in enumerate(contour.pieces))
+    pairs = list(zip(pieces[:-1], pieces[1:])) + ([(pieces[-1], pieces[0])] if contour.closed else [])
+    tangent = tuple(join_is_tangent(a, b, brk) for (a, b), brk in zip(pairs, contour.breaks))
+    return replace(contour, pieces=pieces, tangent=tangent)
+
+
 def _samples(contour: Contour, flatten_mm: float) -> np.ndarray:
     parts = [contour.pieces[0].samples(flatten_mm)[:1]] + [p.samples(flatten_mm)[1:] for p in contour.pieces]
     pts = np.vstack(parts)
@@ -262,6 +290,7 @@ def fit_contour(contour: Contour, tolerance_mm: float, flatten_mm: float, corner
     if not 0 < flatten_mm < tolerance_mm:
         raise ValueError("flatten_mm must be between 0 and the tolerance")
     fit_tol = tolerance_mm - flatten_mm
+    contour = _rounded_joins_freed(contour, flatten_mm)
     blocks, tangent_after, loop = _blocks(contour)
     if loop:
         poly, dev = _free_loop(_free_points(blocks[0]), fit_tol, corner_deg, speed_kappa, cache)

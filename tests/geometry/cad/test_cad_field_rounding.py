@@ -125,3 +125,72 @@ def test_flowed_text_and_its_frame_are_not_contours(tmp_path):
     path = write_svg(tmp_path, body)
     assert len(polysegments(path)) == 1
     assert any("flowRoot" in n for n in read_drawing(path).notes)
+
+
+def _circle_through(a, b, c) -> tuple[tuple[float, float], float]:
+    (ax, ay), (bx, by), (cx, cy) = a, b, c
+    d = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    ux = ((ax**2 + ay**2) * (by - cy) + (bx**2 + by**2) * (cy - ay) + (cx**2 + cy**2) * (ay - by)) / d
+    uy = ((ax**2 + ay**2) * (cx - bx) + (bx**2 + by**2) * (ax - cx) + (cx**2 + cy**2) * (bx - ax)) / d
+    return (ux, uy), math.hypot(ax - ux, ay - uy)
+
+
+@pytest.mark.parametrize("decimals", [2, 3])
+def test_a_cam_arc_fit_rounded_to_decimals_is_one_tangent_contour(tmp_path, decimals):
+    """A CAM program's outline of an 80 x 40 ellipse in 72 ARCs through three of its points each,
+    centres and radii rounded: ends 0.015 mm apart, tangents 0.01-0.3 deg apart. One near-miss
+    join moving an arc's centre was taken for moving the drawing and undid all 70 (70 open
+    contours); kept as drawn, every join was a corner (72 stops)."""
+    def draw(msp, doc):
+        point = lambda t: (100 + 40 * math.cos(t), 50 + 20 * math.sin(t))  # noqa: E731
+        for k in range(72):
+            t0, t1 = 2 * math.pi * k / 72, 2 * math.pi * (k + 1) / 72
+            (cx, cy), r = _circle_through(point(t0), point((t0 + t1) / 2), point(t1))
+            a0 = math.degrees(math.atan2(point(t0)[1] - cy, point(t0)[0] - cx)) % 360
+            a1 = math.degrees(math.atan2(point(t1)[1] - cy, point(t1)[0] - cx)) % 360
+            msp.add_arc((round(cx, decimals), round(cy, decimals)), round(r, decimals), round(a0, decimals),
+                        round(a1, decimals))
+
+    part = segment_drawing(write_dxf(tmp_path, draw), TOL)
+    (contour,) = part.contours
+    poly = contour.polysegment
+    assert poly.closed and not poly.corners and poly.n_segments <= 14
+    assert contour.max_deviation_mm <= TOL
+    assert np.ptp(points_along(poly), axis=0) == pytest.approx([80.0, 40.0], abs=2 * TOL)  # drawn arcs bulge too
+
+
+def test_a_path_closed_short_of_its_start_by_rounding_has_no_micro_segment(tmp_path):
+    """The last edge of a rounded rectangle ends 0.004 mm short of its start; Z draws that gap as
+    a line, which came back as a 0.004 mm segment between two corners."""
+    d = "M15,10h50a5,5 0 0 1 5,5v20a5,5 0 0 1-5,5h-50a5,5 0 0 1-5-5v-19.996a5,5 0 0 1 5-5z"
+    path = write_svg(tmp_path, f'<path d="{d}"/>')
+    (contour,) = segment_drawing(path, TOL).contours
+    poly = contour.polysegment
+    assert poly.closed and not poly.corners and min(s.length for s in poly.segments) > 0.5
+    assert contour.max_deviation_mm <= TOL
+    assert any("dropped 1 pieces" in n for n in segment_drawing(path, TOL).notes)
+
+
+def test_a_step_below_the_tolerance_between_collinear_edges_goes_within_it(tmp_path):
+    """A 0.03 mm step between two collinear edges at σ 0.1 is bridged (its edges meet tangentially
+    across it); the contour keeps its four corners and stays within σ of the drawing."""
+    d = "M0,0 h50 v0.03 h50 v40 h-100 z"
+    (contour,) = segment_drawing(write_svg(tmp_path, f'<path d="{d}"/>'), TOL).contours
+    assert contour.polysegment.n_segments == 4 and len(contour.polysegment.corners) == 4
+    assert contour.max_deviation_mm <= TOL
+
+
+def test_an_outline_drawn_twice_once_rounded_is_sprayed_once(tmp_path):
+    """The same rectangle as exact LINEs and again rounded to 0.01 mm: two contours, sprayed twice,
+    without a word; two lines 0.004 mm apart were chained into an out-and-back 'closed' contour."""
+    def draw(msp, doc):
+        corners = [(10, 10), (90, 10), (90, 60), (10, 60)]
+        for shift in ((0.0, 0.0), (0.0031, 0.0042)):
+            for a, b in zip(corners, corners[1:] + corners[:1]):
+                msp.add_line((a[0] + shift[0], a[1] + shift[1]), (b[0] + shift[0], b[1] + shift[1]))
+        msp.add_line((0, 100), (100, 100))
+        msp.add_line((0, 100.004), (100, 100.004))
+
+    part = segment_drawing(write_dxf(tmp_path, draw), TOL)
+    assert sorted((c.polysegment.closed, c.polysegment.n_segments) for c in part.contours) == [(False, 1), (True, 4)]
+    assert any("dropped 5 duplicate pieces" in n for n in part.notes)

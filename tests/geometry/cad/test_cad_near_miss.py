@@ -142,8 +142,10 @@ def test_librecad_arcs_with_rounded_angles(tmp_path):
 
     part = segment_drawing(write_dxf(tmp_path, draw, version="R2000"), TOL)
     assert len(part.contours) == 2 and all(c.polysegment.closed for c in part.contours)
-    slot = next(c for c in part.contours if c.polysegment.n_arcs == 2)
-    assert slot.polysegment.n_segments == 4 and slot.max_deviation_mm <= TOL
+    slot = next(c for c in part.contours if c.polysegment.n_arcs >= 2)
+    # the rounded angles break tangency by 0.004 deg: the arcs are fitted tangent to the lines
+    # (one of them in two pieces) rather than kept with four corners, four stops of the robot
+    assert slot.polysegment.n_segments <= 5 and not slot.polysegment.corners and slot.max_deviation_mm <= TOL
     assert 0.0005 < _gap_note(part) < TOL / 2
 
 
