@@ -45,7 +45,7 @@ def _moves(name: str, programs: dict[str, ast.Program], seen: set[str]) -> bool:
 
 def choose_main(programs: Sequence[ast.Program]) -> tuple[ast.Program, str]:
     """The main program of those loaded (in order), and a note when the choice is not plain (it
-    is not the first program, or other programs no one CALLs could be it); "" otherwise."""
+    is not the first program, or other programs no one CALLs move too); "" otherwise."""
     candidates = [p for p in programs if not p.name.lower().endswith(".pc")] or list(programs)
     by_name = {p.name.lower(): p for p in programs}
     called = set().union(*(_callees(p) for p in programs))
@@ -53,7 +53,7 @@ def choose_main(programs: Sequence[ast.Program]) -> tuple[ast.Program, str]:
     moving = [p for p in roots if _moves(p.name.lower(), by_name, set())]
     first = candidates[0]
     main = first if first in moving else (moving or roots)[0]
-    others = [p.name for p in roots if p is not main]
+    others = [p.name for p in moving if p is not main]
     if main is first and not others:
         return main, ""
     note = f"program {main.name} is taken as the main program: no other loaded program CALLs it"
@@ -61,5 +61,5 @@ def choose_main(programs: Sequence[ast.Program]) -> tuple[ast.Program, str]:
         note += f" (the first, {first.name}, is " + (
             "CALLed by another)" if first.name.lower() in called else "without motion)")
     if others:
-        note += f"; other programs no one CALLs: {', '.join(others)}; name one to run it instead"
+        note += f"; other programs no one CALLs that move: {', '.join(others)}; name one to run it instead"
     return main, note

@@ -315,13 +315,13 @@ HELPERS = (".PROGRAM a.home()\n  JMOVE p1\n.END\n.PROGRAM gun.off()\n  SIGNAL -1
 @pytest.mark.parametrize("text,main,note", [
     (HELPERS, "pg1", "program pg1 is taken as the main program: no other loaded program CALLs it (the first, a.home, "
                      "is CALLed by another)"),
-    (".PROGRAM a.log()\n  x = 1\n.END\n" + HELPERS, "pg1",
+    (".PROGRAM a.log()\n  x = 1\n.END\n" + HELPERS + ".PROGRAM spare()\n  JMOVE p2\n.END\n", "pg1",
      "program pg1 is taken as the main program: no other loaded program CALLs it (the first, a.log, is without "
-     "motion); other programs no one CALLs: a.log; name one to run it instead"),
+     "motion); other programs no one CALLs that move: spare; name one to run it instead"),
     (".PROGRAM main()\n  JMOVE p1\n.END\n.PROGRAM spare()\n  JMOVE p2\n.END\n", "main",
-     "program main is taken as the main program: no other loaded program CALLs it; other programs no one CALLs: "
-     "spare; name one to run it instead"),
-    (".PROGRAM main()\n  JMOVE p1\n.END\n", "main", ""),
+     "program main is taken as the main program: no other loaded program CALLs it; other programs no one CALLs "
+     "that move: spare; name one to run it instead"),
+    (".PROGRAM main()\n  JMOVE p1\n.END\n.PROGRAM comment()\n  ; notes\n.END\n", "main", ""),
 ])
 def test_the_main_program_of_a_backup_is_one_no_program_calls(text, main, note):
     """A backup saves programs alphabetically: the main program is the first that no other
