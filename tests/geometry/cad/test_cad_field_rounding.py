@@ -194,3 +194,16 @@ def test_an_outline_drawn_twice_once_rounded_is_sprayed_once(tmp_path):
     part = segment_drawing(write_dxf(tmp_path, draw), TOL)
     assert sorted((c.polysegment.closed, c.polysegment.n_segments) for c in part.contours) == [(False, 1), (True, 4)]
     assert any("dropped 5 duplicate pieces" in n for n in part.notes)
+
+
+def test_a_spline_in_a_contour_with_rounded_joins_is_read(tmp_path):
+    """A slot whose arc's angles are rounded (tangent to 0.004 deg) closed by a spline: a free-form
+    piece in a contour with rounded native joins (an internal error once)."""
+    def draw(msp, doc):
+        msp.add_line((0.0, -12.5), (80.0, -12.5))
+        msp.add_arc((80.0, 0.0), 12.5, round(-90.0 + 0.004, 2) + 0.003, round(90.0 - 0.003, 2))
+        msp.add_line((80.0, 12.5), (0.0, 12.5))
+        msp.add_spline([(0.0, 12.5), (-16.0, 12.5), (-16.0, -12.5), (0.0, -12.5)])
+
+    (contour,) = segment_drawing(write_dxf(tmp_path, draw), TOL).contours
+    assert contour.polysegment.closed and contour.max_deviation_mm <= TOL
