@@ -1,5 +1,5 @@
-"""The AS instruction words coatsim knows but does not give a motion meaning of their own, by
-what the twin does with them (the parser accepts them; the interpreter acts by group).
+"""The AS instruction words coatsim reads as commands (a name and its arguments), by what the
+twin does with them (the parser accepts them; the interpreter acts by group; only DRIVE moves).
 
 The lists follow the instruction index of the AS language (program instructions, the monitor
 commands a program may hold, and the options' instructions: conveyor tracking, dual arm, sensing,
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 # Motions coatsim cannot simulate: the motion is skipped with a note (execution refuses).
 UNSIMULATED_MOTION = frozenset({
-    "ALIGN", "DRIVE", "ABSDRIVE", "HMOVE", "FLMOVE", "FJMOVE", "L3LMOVE", "L3C1MOVE", "L3C2MOVE", "MLJMOVE",
+    "ALIGN", "ABSDRIVE", "FLMOVE", "FJMOVE", "L3LMOVE", "L3C1MOVE", "L3C2MOVE", "MLJMOVE",
     "MLLMOVE", "MLC1MOVE", "MLC2MOVE", "MRLMOVE", "MRC1MOVE", "MRC2MOVE", "CVLMOVE", "CVJMOVE", "CVC1MOVE",
     "CVC2MOVE", "CVLAPPRO", "CVLDEPART", "CVHMOVE", "CVMLJMOVE", "CVL3LMOVE", "CVMLL3LMOVE", "MLZL3LMOVE", "JUMP",
     "SJUMP", "COOP.DRIVE.EX1", "COOP.DRIVE.EX2",
@@ -70,7 +70,10 @@ HOUSEKEEPING = frozenset({
 })
 # Turns every external output off (the gun with it).
 OUTPUTS_OFF = frozenset({"RESET"})
-COMMANDS = UNSIMULATED_MOTION | GRIPPER | CONFIGURATION | TASKS | NETWORK | DISPLAY | HOUSEKEEPING | OUTPUTS_OFF
+# Turns one joint by an angle (DRIVE joint, angle[, speed]): a joint move, run by the interpreter.
+JOINT_DRIVE = frozenset({"DRIVE"})
+COMMANDS = UNSIMULATED_MOTION | GRIPPER | CONFIGURATION | TASKS | NETWORK | DISPLAY | HOUSEKEEPING | OUTPUTS_OFF | \
+    JOINT_DRIVE
 # Commands whose text after the word is kept verbatim (it is not expression syntax).
 RAW_TEXT = frozenset({"MC", "EXECUTE", "ON", "ONI", "ONE", "TIMER", "UTIMER", "PCEXECUTE", "PCABORT", "PCKILL",
                       "PCEND", "PCCONTINUE", "PCSTEP", "ABORT", "KILL", "CONTINUE", "SOUT", "DEFSIG", "EXTCALL",

@@ -208,7 +208,7 @@ def _one(factory: Callable[[int, ast.Expr], Item], what: str) -> Parser:
 
 
 PARSERS: dict[str, Parser] = {
-    **dict.fromkeys(("JMOVE", "LMOVE", "C1MOVE", "C2MOVE", "XMOVE"), _move),
+    **dict.fromkeys(("JMOVE", "LMOVE", "C1MOVE", "C2MOVE", "XMOVE", "HMOVE"), _move),
     **dict.fromkeys(("JAPPRO", "LAPPRO"), _appro),
     **dict.fromkeys(("JDEPART", "LDEPART"), lambda c, op, line: ast.Depart(line, op, c.expr("a distance in mm"))),
     **dict.fromkeys(("DRAW", "TDRAW"), lambda c, op, line: ast.Draw(line, op, c.optional_list(f"{op} value", 7))),

@@ -14,6 +14,7 @@ from coatsim.languages.kawasaki_as.instructions import (
     DISPLAY,
     GRIPPER,
     HOUSEKEEPING,
+    JOINT_DRIVE,
     NETWORK,
     OUTPUTS_OFF,
     TASKS,
@@ -55,7 +56,9 @@ def _move(run: Machine, st: ast.Move) -> None:
         raise Absent(f"the arc's C1MOVE (line {via}) was skipped")
     if st.clamp is not None:
         run.warn("clamp", f"{op} ..., clamp: clamps are not simulated")
-    if op == "JMOVE" and run.eval.kind(st.target) == "joint":
+    if op == "HMOVE":  # (hybrid: the main axes joint-interpolated, the wrist straight; it ends at its pose)
+        run.warn("hmove", "HMOVE (hybrid interpolation) is taken as a joint move to its pose")
+    if op in ("JMOVE", "HMOVE") and run.eval.kind(st.target) == "joint":
         values = run.eval.joint_value(st.target)
         if isinstance(values, PoseJoints):
             if values.reference is not None:
@@ -67,7 +70,7 @@ def _move(run: Machine, st: ast.Move) -> None:
         c.joint(run.fk(q, "JMOVE to a joint value"), st.line, joints=q)
         return
     target = _target(run, run.eval.pose(st.target))
-    if op == "JMOVE":
+    if op in ("JMOVE", "HMOVE"):
         c.joint(target, st.line)
     elif op in ("LMOVE", "XMOVE"):
         if op == "XMOVE":
@@ -275,11 +278,33 @@ def _network_defaults(run: Machine, st: ast.Command) -> None:
             run.set("real", st.args[3], 0.0)
 
 
+def _drive(run: Machine, st: ast.Command) -> None:
+    """DRIVE joint, angle[, speed]: a joint move turning one joint by ``angle`` deg from where
+    the arm is (the speed, a % of the joint's, is the cell's)."""
+    if len(st.args) not in (2, 3):
+        raise run.error(f"DRIVE takes a joint number, an angle and an optional speed, found '{st.text}'")
+    joint = run.eval.integer(st.args[0], "the DRIVE joint number")
+    if not 1 <= joint <= 6:
+        raise run.error(f"DRIVE joint {joint}: this six-axis arm has joints 1 to 6")
+    angle = run.eval.real(st.args[1])
+    q = run.controller.current_joints
+    if q is None:
+        raise NotSimulated("DRIVE turns a joint from where the arm is, whose joint angles are unknown here (after a "
+                           "Cartesian motion they need the arm's inverse kinematics)")
+    q = q.copy()
+    q[joint - 1] += np.radians(angle)
+    if len(st.args) == 3:
+        run.warn("drive-speed", "DRIVE ..., speed: the joint's speed is the cell's")
+    run.controller.joint(run.fk(q, "DRIVE"), st.line, joints=q)
+
+
 def _command(run: Machine, st: ast.Command) -> None:
     name = st.name
-    if name in UNSIMULATED_MOTION:
+    if name in JOINT_DRIVE:
+        _drive(run, st)
+    elif name in UNSIMULATED_MOTION:
         raise NotSimulated(f"{name} moves the arm in a way coatsim does not simulate")
-    if name in OUTPUTS_OFF:
+    elif name in OUTPUTS_OFF:
         for number in sorted(n for n, on in run.signals.states.items() if on and n < FIRST_INPUT):
             run.set_signal(number, False)
     elif name in NETWORK:

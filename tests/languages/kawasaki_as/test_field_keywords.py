@@ -151,7 +151,8 @@ def test_instructions_of_the_index_parse_and_are_noted(line):
 
 @pytest.mark.parametrize("line,words", [
     ("ALIGN", "ALIGN skipped: ALIGN moves the arm in a way coatsim does not simulate"),
-    ("DRIVE 1, 10, 50", "DRIVE skipped"), ("HMOVE place", "HMOVE skipped"), ("SJUMP place", "SJUMP skipped"),
+    ("DRIVE 1, 10, 50", "DRIVE skipped: DRIVE turns a joint from where the arm is, whose joint angles are unknown"),
+    ("SJUMP place", "SJUMP skipped"),
     ("LINEAR 125. ACCU1 TIMER0", "LINEAR skipped: a teach-pendant block step"),
 ])
 def test_motions_the_twin_does_not_simulate_are_skipped_with_a_note(line, words):

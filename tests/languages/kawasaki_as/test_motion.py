@@ -272,6 +272,30 @@ def test_dest_after_a_cartesian_motion_is_where_the_robot_is_as_here(kin, where)
                               "arm's inverse kinematics",)
 
 
+def test_hmove_is_a_joint_move_to_its_pose_and_what_follows_starts_there(kin):
+    """HMOVE (hybrid interpolation) ends at its pose: a joint move there (a note), so a relative
+    move after it starts from that pose, not from the one before."""
+    tp = run("  JMOVE a\n  HMOVE b\n  LDEPART 50\n  HMOVE #[0, 0, 35, 0, 55, 0]\n", kinematics=kin)
+    hmove, depart, joints = tp.moves[1], tp.moves[2], tp.moves[3]
+    assert hmove.kind == "joint" and np.allclose(depart.start.translation_mm, hmove.target.translation_mm)
+    assert np.allclose(joints.joints_rad, np.radians([0, 0, 35, 0, 55, 0]))
+    assert any("HMOVE (hybrid interpolation) is taken as a joint move to its pose" in w for w in tp.warnings)
+
+
+def test_drive_turns_one_joint_from_where_the_arm_is(kin):
+    """DRIVE joint, angle[, speed] is a joint move turning that joint by the angle; where the
+    arm's joint angles are unknown (after a Cartesian motion) it is skipped with a note."""
+    result = interpret_run(parse_as(".PROGRAM t()\n  JMOVE #[0, 0, 35, 0, 55, 0]\n  DRIVE 1, 30\n  DRIVE 6, -10, 50\n"
+                                    "  LMOVE a\n  DRIVE 2, 5\n.END\n" + TRANS, "t.as"), kinematics=kin)
+    moves = result.toolpath.moves
+    assert np.allclose(moves[1].joints_rad, np.radians([30, 0, 35, 0, 55, 0]))
+    assert np.allclose(moves[2].joints_rad, np.radians([30, 0, 35, 0, 55, -10]))
+    assert np.allclose(moves[2].target.translation_mm, kin.forward(np.radians([30, 0, 35, 0, 55, -10])).translation_mm)
+    assert len(moves) == 4 and result.skipped[0].startswith("t.as:6: DRIVE skipped: DRIVE turns a joint")
+    with pytest.raises(InputError, match="DRIVE joint 7: this six-axis arm has joints 1 to 6"):
+        run("  JMOVE #[0, 0, 35, 0, 55, 0]\n  DRIVE 7, 10\n", kinematics=kin)
+
+
 # --- what the twin cannot simulate: one line, exit 3 ----------------------------------------
 @pytest.mark.parametrize("body,words", [
     ("  HOME\n", "needs the cell's kinematics"), ("  JMOVE #[0, 0, 0, 0, 0, 0]\n", "needs the cell's kinematics"),
