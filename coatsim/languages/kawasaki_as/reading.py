@@ -72,8 +72,11 @@ def _switch(st: ast.Statement, gun: int, source: str, reals: Mapping[str, float]
         gun_parts = ["gun on" if v > 0 else "gun off" for v in values if v is not None and abs(v) == gun]
         return OutputSwitch(source, st.line, text + (f" ({', '.join(gun_parts)})" if gun_parts else ""))
     if isinstance(st, ast.Pulse):
+        value = _constant(st.signal, reals)
+        gun_part = "" if value is None or abs(value) != gun else " (gun pulsed)" if st.op == "PULSE" else \
+            " (gun on)" if value > 0 else " (gun off)"
         return OutputSwitch(source, st.line, f"{st.op} {expr_text(st.signal)}"
-                            + (f", {expr_text(st.seconds)}" if st.seconds is not None else ""))
+                            + (f", {expr_text(st.seconds)}" if st.seconds is not None else "") + gun_part)
     if isinstance(st, ast.Bits):
         return OutputSwitch(source, st.line, f"BITS {expr_text(st.start)}, {expr_text(st.count)} = {expr_text(st.value)}")
     return None

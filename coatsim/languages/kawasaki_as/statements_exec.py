@@ -181,10 +181,14 @@ def _pulse(run: Machine, st: ast.Pulse) -> None:
     n = run.eval.integer(st.signal, "a signal number")
     if st.seconds is not None:
         _seconds(run, st.seconds)
-    if abs(n) == run.gun:
-        raise NotSimulated(f"{st.op} of the gun output {run.gun} is not simulated; switch it with SIGNAL")
     if n == 0:
         raise run.error(f"{st.op}: signal number 0 does not exist")
+    if abs(n) == run.gun and st.op == "DLYSIG":  # (switched where the program reaches it: never dropped)
+        run.warn(f"pulse:{st.line}", f"DLYSIG {n}: the delay is not timed; the gun switches here, as SIGNAL {n} would")
+        run.set_signal(run.gun, n > 0)
+        return
+    if abs(n) == run.gun:  # (a pulse sprays for its time wherever the arm is: no switch of a motion models it)
+        raise NotSimulated(f"PULSE of the gun output {run.gun} is not simulated; switch it with SIGNAL")
     run.warn(f"pulse:{st.line}", f"{st.op} {n}: the delay is not simulated; the output takes its final state at once")
     if abs(n) < FIRST_INPUT:
         run.outputs.add(abs(n))

@@ -321,6 +321,16 @@ def test_what_the_twin_does_not_simulate_is_read_and_refused_by_a_simulation(bod
     assert str(info.value).startswith(words) and "\n" not in str(info.value)
 
 
+def test_dlysig_of_the_gun_switches_it_where_the_program_reaches_it():
+    """DLYSIG of the gun output is a switch (its delay not timed, a note), as SIGNAL would be:
+    dropped, the gun stayed on through the depart."""
+    done = interpret_run(parse_as(".PROGRAM t()\n  JMOVE a\n  BREAK\n  DLYSIG 1, 0.1\n  LMOVE b\n  BREAK\n"
+                                  "  DLYSIG -1, 0.05\n  LDEPART 50\n.END\n" + TRANS, "t.as"))
+    assert [m.spray for m in done.toolpath.moves] == [False, True, False] and done.skipped == ()
+    assert not done.gun_on_at_end
+    assert "t.as:7: DLYSIG -1: the delay is not timed; the gun switches here, as SIGNAL -1 would" in done.toolpath.warnings
+
+
 def test_brake_at_rest_does_nothing():
     assert len(run("  JMOVE a\n  BREAK\n  BRAKE\n  LMOVE b\n").moves) == 2
 
