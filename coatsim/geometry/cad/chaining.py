@@ -3,7 +3,7 @@
 Pieces are joined end to end where their ends lie within the join tolerance of each other
 (either direction: a piece drawn backwards is reversed). Zero-length pieces (not longer than
 the join tolerance) and duplicates (same ends and middle within it, or within ``NEAR_SHARE`` σ
-when σ is given) are dropped first; so is a piece no longer than ``NEAR_SHARE`` σ whose
+for pieces longer than σ when σ is given) are dropped first; so is a piece no longer than ``NEAR_SHARE`` σ whose
 neighbours meet tangentially across it (a path closed a few micrometres short of its start). Where
 three or more ends meet, they are paired by tangent continuity (the straightest
 continuation first) and what is left over ends a contour; this is noted. A contour whose
@@ -111,16 +111,20 @@ class _Sets:
 
 
 def _drop_degenerate(pieces: Sequence[Piece], tol: float, same_mm: float, notes: list[str]) -> list[Piece]:
-    """Without zero-length pieces (not longer than ``tol``) and duplicates (the same within
-    ``same_mm``: the later copy goes; an outline drawn twice, once rounded to 0.01 mm, was
-    sprayed twice)."""
+    """Without zero-length pieces (not longer than ``tol``) and duplicates (the later copy goes):
+    the same within ``tol``, or pieces longer than twice ``same_mm`` the same within it (an
+    outline drawn twice, once rounded to 0.01 mm, was sprayed twice; shorter pieces within it
+    are a path's own detail, a spike out and back)."""
     kept = [p for p in pieces if p.length > tol]
     if len(kept) < len(pieces):
         first = next(p for p in pieces if p.length <= tol)
         notes.append(f"dropped {len(pieces) - len(kept)} zero-length pieces (first: {first.source})")
     if len(kept) < 2:
         return kept
-    duplicate = _duplicates(kept, same_mm)
+    duplicate = _duplicates(kept, tol)
+    if same_mm > tol:  # within same_mm only pieces longer than twice that: short ones are a path's detail
+        long = [k for k, p in enumerate(kept) if p.length > 2.0 * same_mm and k not in duplicate]
+        duplicate |= {long[k] for k in _duplicates([kept[k] for k in long], same_mm)}
     if duplicate:
         first = kept[min(duplicate)]
         notes.append(f"dropped {len(duplicate)} duplicate pieces, each within {same_mm:g} mm of one kept "
