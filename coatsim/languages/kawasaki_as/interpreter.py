@@ -35,6 +35,7 @@ from coatsim.languages.kawasaki_as import ast
 from coatsim.languages.kawasaki_as.compile import EXEC, FOR_INIT, FOR_NEXT, FOR_TEST, JUMP, JUMP_IF_FALSE, JUMP_IF_TRUE, \
     Code, compile_program
 from coatsim.languages.kawasaki_as.evaluate import Evaluator
+from coatsim.languages.kawasaki_as.instructions import UNSIMULATED_MOTION
 from coatsim.languages.kawasaki_as.main_program import choose_main
 from coatsim.languages.kawasaki_as.io_model import SignalIO, Signals, Warnings
 from coatsim.languages.kawasaki_as.loops import LoopControl
@@ -52,7 +53,7 @@ from coatsim.path.toolpath import Kinematics, ToolPath
 MAX_STEPS = 1_000_000
 MAX_CALL_DEPTH = 50
 # Statements that place the arm or a pose: an unknown number in them skips them (no made-up place).
-_MOTIONS = (ast.Move, ast.Appro, ast.Depart, ast.Draw, ast.Home, ast.PointAssign)
+_MOTIONS = (ast.Move, ast.Appro, ast.Depart, ast.Draw, ast.Home, ast.PointAssign)  # (the motions, then POINT)
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,7 +64,8 @@ class Run:
     program ends (a switch after the last motion counts), the STOP / HALT that ended it
     ("file:line: HALT"; empty when it ran to its end), the variables it read that no file gives,
     the statements it skipped for want of a value, the outputs (below the inputs) it switches,
-    and what a reader must know of the run (which program was taken as the main one)."""
+    what a reader must know of the run (which program was taken as the main one), and where
+    motions were skipped while the gun was on (the sprayed path lacks them: ``dry``)."""
 
     toolpath: ToolPath
     move_origins: tuple[tuple[str, int, int], ...]
@@ -77,6 +79,7 @@ class Run:
     outputs: tuple[int, ...] = ()
     unsimulated: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
+    dry: tuple[str, ...] = ()
 
     def require_complete(self) -> None:
         """What simulates or rewrites the path needs every statement: InputError naming the first
@@ -132,6 +135,7 @@ class Interpreter(Memory, SignalIO, RobotQueries, LoopControl):
         self.skipped_via: Optional[int] = None  # line of a C1MOVE skipped: its C2MOVE goes too
         self.placing = False  # a motion statement runs: an unknown number is Absent, not 0 (no move to a made-up place)
         self.outputs: set[int] = set()  # outputs the program switches (SIGNAL, PULSE, DLYSIG, BITS)
+        self.dry: list[str] = []  # "file:line" of the motions skipped while the gun is on
         self.controller = Controller(full_speed_mm_s, self.where, self.home_pose if kinematics is not None else None)
 
     # --- messages ------------------------------------------------------------------------
@@ -322,6 +326,9 @@ class Interpreter(Memory, SignalIO, RobotQueries, LoopControl):
         if isinstance(st, ast.Move) and st.op in ("C1MOVE", "C2MOVE"):
             self.controller.c1 = None
             self.skipped_via = st.line if st.op == "C1MOVE" else None
+        moves = isinstance(st, _MOTIONS[:-1]) or (isinstance(st, ast.Command) and st.name in UNSIMULATED_MOTION)
+        if moves and self.controller.gun_on:
+            self.dry.append(self.where())
         self.skip(st, reason, unsimulated)
 
     def test(self, e: ast.Expr, at: Optional[int] = None) -> bool:
@@ -386,7 +393,7 @@ def interpret_run(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: in
     toolpath = run.run(main)
     return Run(toolpath, tuple(run.origins), tuple(run.bases), dict(run.executions), dict(run.programs),
                run.controller.gun_on, run.stopped, tuple(run.unknowns.first.values()), tuple(run.unknowns.skipped),
-               tuple(sorted(run.outputs)), tuple(run.unknowns.unsimulated), notes)
+               tuple(sorted(run.outputs)), tuple(run.unknowns.unsimulated), notes, tuple(run.dry))
 
 
 def interpret(files: Union[ast.AsFile, Sequence[ast.AsFile]], gun_signal: int = 1, program: Optional[str] = None,

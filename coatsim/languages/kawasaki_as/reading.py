@@ -1,6 +1,7 @@
 """AS files read for check-program and convert: the Reading of an interpreted run, with what
 only AS can tell (its statement count, its poses, its SIGNAL/PULSE/BITS lines, SPEED in %,
-15-character names, poses never used, controller sections, arc pairs of 180 deg or more)."""
+15-character names, poses never used, controller sections, arc pairs of 180 deg or more, motions
+skipped while the gun is on)."""
 
 from __future__ import annotations
 
@@ -120,6 +121,18 @@ def _problems(files, run: Run, used: set[str]) -> list[str]:
     return problems
 
 
+def _dry(dry: tuple[str, ...], gun: int, sprays: bool) -> str:
+    """The problem of motions skipped while the gun is on (``dry``: where); ``sprays`` whether
+    any motion read sprays (else nothing sprayed is read at all)."""
+    shown = ", ".join(dry[:_LISTED]) + (f" and {len(dry) - _LISTED} more" if len(dry) > _LISTED else "")
+    if not sprays:
+        return (f"every motion while the gun (output {gun}) is on is skipped ({shown}): the program's sprayed path "
+                "is not read")
+    many = len(dry) > 1
+    return (f"{len(dry)} motion{'s' if many else ''} while the gun (output {gun}) is on {'are' if many else 'is'} "
+            f"skipped ({shown}): the sprayed path read lacks {'them' if many else 'it'}")
+
+
 def read_as(paths: Sequence[Path], options: ReadOptions) -> Reading:
     """Parse and interpret AS files loaded together (statements that cannot run are skipped
     and listed) and describe the run."""
@@ -144,6 +157,8 @@ def read_as(paths: Sequence[Path], options: ReadOptions) -> Reading:
         if len(p.name) > MAX_NAME_LENGTH:
             problems.append(f"{p.source}:{p.line}: program name '{p.name}' is longer than {MAX_NAME_LENGTH} characters")
     problems += _problems(files, run, used)
+    if run.dry:
+        problems.append(_dry(run.dry, options.gun_signal, bool(toolpath.spray_moves)))
     return Reading(
         toolpath=toolpath,
         sources=tuple(f.source for f in files),

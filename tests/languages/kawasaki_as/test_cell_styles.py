@@ -55,6 +55,20 @@ def test_gun_switched_off_after_the_last_motion_is_off_at_the_end(tmp_path):
     assert any("the gun (output 1) is still on at the end" in p for p in left_on.problems)
 
 
+@pytest.mark.parametrize("moves,words", [
+    ("  CVLMOVE b\n  CVLMOVE c\n", "every motion while the gun (output 1) is on is skipped ({f}:5, {f}:6): the "
+                                  "program's sprayed path is not read"),
+    ("  LMOVE b\n  CVLMOVE c\n", "1 motion while the gun (output 1) is on is skipped ({f}:6): the sprayed path "
+                                "read lacks it"),
+])
+def test_motions_skipped_while_the_gun_is_on_are_a_problem(tmp_path, moves, words):
+    """Conveyor tracking (CVLMOVE) is not simulated: its motions are skipped; with the gun on the
+    sprayed path read lacks them, which is a problem, not 'no problems found'."""
+    done = _check(tmp_path, ".PROGRAM t()\n  JMOVE a\n  BREAK\n  SIGNAL 1\n" + moves + "  BREAK\n  SIGNAL -1\n  CVLMOVE a\n"
+                  ".END\n" + POSES)
+    assert done.problems == (words.format(f=tmp_path / "cell.as"),)
+
+
 def test_block_if_and_elseif_without_then():
     run = run_globals('  $ids = "4,5"\n  IF INSTR($ids, ",")\n    a = 1\n  ELSEIF 1\n    a = 2\n  ELSE\n    a = 3\n  END\n'
                       '  IF 0\n    b = 1\n  ELSEIF 1 == 1\n    b = 2\n  END')
