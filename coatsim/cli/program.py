@@ -17,11 +17,24 @@ if TYPE_CHECKING:
     from coatsim.path.language import Language
     from coatsim.path.part_program import PartProgram
 
+def _numbers(text: str, flag: str) -> tuple[float, float, float]:
+    """Three comma-separated numbers X,Y,Z."""
+    parts = text.split(",")
+    try:
+        values = tuple(float(t) for t in parts)
+    except ValueError:
+        values = ()
+    if len(values) != 3:
+        fail(f"{flag}: expected X,Y,Z, found {text!r}")
+    return values  # type: ignore[return-value]
+
+
 FLAGS = {"tolerance_mm": "--tol", "speed_mm_s": "--speed", "accuracy_mm": "--accuracy", "approach_mm": "--approach",
          "gun_signal": "--gun", "variant": "--variant", "name": "--name", "order": "--order", "frame": "--frame",
          "standoff_mm": "--standoff", "lead_in_mm": "--lead-in", "lead_out_mm": "--lead-out", "roll_deg": "--roll-deg",
          "join_tolerance_mm": "--join-tol", "layers": "--layer", "tool_accel_mm_s2": "--tool-accel",
-         "angle_tol_deg": "--angle-tol", "speed_on": "--speed-on", "roll": "--follow-tangent", "pose": "--frame", "language": "--language"}
+         "angle_tol_deg": "--angle-tol", "speed_on": "--speed-on", "roll": "--follow-tangent", "pose": "--frame", "language": "--language",
+         "spray_axis": "--spray-axis"}
 
 
 def program(
@@ -38,6 +51,7 @@ def program(
     roll: float = typer.Option(0.0, "--roll-deg", help="Tool roll about the spray axis, deg."),
     follow_tangent: bool = typer.Option(False, "--follow-tangent", help="Turn the tool with the path tangent (roll relative to it); surface paths: otherwise the tool is carried along without turning about its axis."),
     angle_tol: float = typer.Option(defaults.ANGLE_TOL_DEG, "--angle-tol", help="Surface paths: the spray axis the controller interpolates stays this close to the surface normal, deg."),
+    spray_axis: Optional[str] = typer.Option(None, "--spray-axis", help="3-D curves (x,y,z columns, or a 3-D polysegment): the gun's fixed direction X,Y,Z in the frame, from the gun toward the curve (0,0,-1: from above); the curve is written as one pass of surface passes' program."),
     speed_on: str = typer.Option("tcp", "--speed-on", help="Surface paths: where the programmed speed holds: tcp (every move) | trace (the spot on the surface: each move gets the speed that moves it at the programmed speed)."),
     center: Optional[bool] = typer.Option(None, "--center/--no-center", help="Move the curve's bounding-box centre to the frame origin [default: on for builtin curves]."),
     gun: int = typer.Option(defaults.GUN_SIGNAL, "--gun", help="Gun output signal number."),
@@ -64,8 +78,11 @@ def program(
                                  gun_signal=gun, name=name)
         from coatsim.path.surfacepaths import is_surfacepaths
 
-        if is_surfacepaths(input):
-            surface = run_surface_program(input, options, tol=tol, frame=frame, standoff_mm=standoff,
+        if spray_axis is not None and is_surfacepaths(input):
+            fail("--spray-axis is for 3-D curves; surface passes carry their own normals")
+        if is_surfacepaths(input) or spray_axis is not None:
+            axis = None if spray_axis is None else _numbers(spray_axis, "--spray-axis")
+            surface = run_surface_program(input, options, tol=tol, frame=frame, standoff_mm=standoff, spray_axis=axis,
                                           lead_in_mm=lead_in, lead_out_mm=lead_out, roll_deg=roll,
                                           follow_tangent=follow_tangent, angle_tol_deg=angle_tol, speed_on=speed_on,
                                           tool_accel_mm_s2=accel_mm_s2, output=output, language=writer)
@@ -142,23 +159,32 @@ def run_surface_program(spec: str, options: ProgramOptions, *, tol: Optional[flo
                         standoff_mm: Optional[float], lead_in_mm: Optional[float], lead_out_mm: Optional[float],
                         roll_deg: float, follow_tangent: bool, angle_tol_deg: float, speed_on: str,
                         tool_accel_mm_s2: Optional[float], output: Optional[Path] = None,
-                        language: Optional[Language] = None) -> SurfaceProgram:
-    """The program of every pass of a surfacepaths file (coatsim.path.surface_program), read
-    back in its own language and written to ``output`` if given."""
+                        language: Optional[Language] = None,
+                        spray_axis: Optional[tuple[float, float, float]] = None) -> SurfaceProgram:
+    """The program of every pass of a surfacepaths file (coatsim.path.surface_program), or of a
+    3-D curve sprayed along ``spray_axis`` (coatsim.path.fixed_axis: its leads the planar
+    defaults), read back in its own language and written to ``output`` if given."""
     from coatsim.core.outputs_guard import check_distinct
     from coatsim.geometry.space.xyzoat import parse_xyzoat
     from coatsim.languages.registry import DEFAULT_LANGUAGE, language as language_named
     from coatsim.path.program_files import program_paths, write_program
+    from coatsim.path.fixed_axis import fixed_axis_paths
     from coatsim.path.surface_program import SurfaceOptions, build_surface_program
     from coatsim.path.surfacepaths import read_surfacepaths
 
     language = language or language_named(DEFAULT_LANGUAGE)
     check_distinct([("the input", spec)], [("-o", p) for p in (program_paths(language, output) if output else ())])
+    if spray_axis is not None:
+        paths, tol = fixed_axis_paths(spec, spray_axis, tol)
+        lead_in_mm = defaults.LEAD_IN_MM if lead_in_mm is None else lead_in_mm
+        lead_out_mm = defaults.LEAD_OUT_MM if lead_out_mm is None else lead_out_mm
+    else:
+        paths = read_surfacepaths(spec)
     surface = SurfaceOptions(standoff_mm=standoff_mm, pose=None if frame is None else parse_xyzoat(frame, "pose"),
                              tolerance_mm=defaults.TOLERANCE_MM if tol is None else tol, angle_tol_deg=angle_tol_deg,
                              roll="follow" if follow_tangent else "fixed", roll_deg=roll_deg, speed_on=speed_on,
                              lead_in_mm=lead_in_mm, lead_out_mm=lead_out_mm, tool_accel_mm_s2=tool_accel_mm_s2)
-    built = build_surface_program(read_surfacepaths(spec), options, surface, language)
+    built = build_surface_program(paths, options, surface, language)
     _reads_back(built.text, language)
     if output is not None:
         write_program(language, built.text, output)

@@ -268,5 +268,6 @@ def read_curve_file(path: str | Path, closed: ClosedMode = "auto") -> Curve:
     points = read_points_file(path)
     if points.shape[1] == 3:
         raise InputError(f"{path}: a 3-D curve (x,y,z columns); a planar x,y curve is needed here "
-                         "(3-D curves are segmented in space, not programmed from the plane)")
+                         "(3-D curves are segmented in space, not programmed from the plane; a program sprays one "
+                         "with the gun's fixed direction given, spray_axis)", parameters=("spray_axis",))
     return make_curve(points, str(path), closed)

@@ -73,8 +73,9 @@ def part_from_document(doc: Any, source: str) -> PartFile:
         return PartFile((polysegment_from_document(doc, source),), _tolerance(doc.get("tolerance_mm")), source)
     if isinstance(doc, dict) and doc.get("format") == SPACE_FORMAT:
         raise InputError(f"{source}: a 3-D polysegment (\"{SPACE_FORMAT}\") gives no spray axis along the curve; "
-                         "write the program from the surface paths it was fitted from (\"coatsim.surfacepaths/1\", "
-                         "which carry the normals), or from a planar curve's polysegment")
+                         "give the gun's fixed direction (spray_axis), or write the program from the surface paths "
+                         "it was fitted from (\"coatsim.surfacepaths/1\", which carry the normals)",
+                         parameters=("spray_axis",))
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
         raise InputError(f"{source}: not a part or polysegment file (expected \"format\": \"{FORMAT}\" "
                          f"or \"{POLYSEGMENT_FORMAT}\")")

@@ -1,0 +1,62 @@
+"""A 3-D curve sprayed with the gun along one fixed direction, as one pass of a surface program.
+
+A seam glued from above, a helix sprayed from one side: the curve has no surface to take normals
+from, so the user gives the spray axis (from the gun toward the curve, in the curve's frame) and
+every point of the pass gets minus that axis as its normal. The surface program then places the
+tool centre point the stand-off back along the axis, fits the pass as tangent-continuous 3-D
+lines and arcs (the axis never turns, so no pose is added for orientation) and writes it with
+the polyline variants, in any language that has arcs in 3-D.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from coatsim.core.errors import InputError
+from coatsim.geometry.curves import ClosedMode
+from coatsim.geometry.polysegment_json import read_json_document
+from coatsim.geometry.space.curve import SpaceCurve, read_any_curve
+from coatsim.geometry.space.polysegment_json import FORMAT as SPACE_FORMAT, read_chain_json
+from coatsim.geometry.surface.region import unit_vector
+from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
+
+SAMPLES_PER_TOLERANCE = 4  # a 3-D polysegment is sampled every tolerance / this for the fit
+
+
+def is_space_polysegment(path: str | Path) -> bool:
+    """Whether ``path`` is a JSON file that says it is a 3-D polysegment (reads its start only)."""
+    p = Path(path)
+    if p.suffix.lower() != ".json" or not p.is_file():
+        return False
+    with open(p, "rb") as handle:
+        return SPACE_FORMAT.encode() in handle.read(4096)
+
+
+def fixed_axis_paths(spec: str, spray_axis: tuple[float, float, float], tolerance_mm: float | None,
+                     closed: ClosedMode = "auto") -> tuple[SurfacePaths, float]:
+    """The 3-D curve file ``spec`` (x,y,z columns; or a polysegment/2 file, sampled) as one
+    pass sprayed along ``spray_axis``, and the tolerance to fit it within (``tolerance_mm``; a
+    polysegment's own when None). A planar x,y curve is refused: it is sprayed along -Z of its
+    frame, without a spray axis."""
+    axis = unit_vector(spray_axis, "spray_axis", "spray_axis")
+    if is_space_polysegment(spec):
+        tolerance = float(read_json_document(Path(spec))["tolerance_mm"]) if tolerance_mm is None else tolerance_mm
+        chain = read_chain_json(spec)
+        points, _ = chain.sample(tolerance / SAMPLES_PER_TOLERANCE)
+        is_closed = chain.closed
+    else:
+        if spec.startswith("builtin:") or Path(spec).suffix.lower() == ".json":
+            raise InputError(f"{spec}: a planar curve; spray_axis is for 3-D curves (x,y,z columns or a 3-D "
+                             "polysegment), a planar one is sprayed along -Z of its frame", parameters=("spray_axis",))
+        if tolerance_mm is None:
+            raise InputError(f"{spec}: tolerance_mm is needed to fit a curve", parameters=("tolerance_mm",))
+        curve = read_any_curve(spec, closed)
+        if not isinstance(curve, SpaceCurve):
+            raise InputError(f"{spec}: a planar x,y curve; spray_axis is for 3-D curves (x,y,z columns), a planar "
+                             "one is sprayed along -Z of its frame", parameters=("spray_axis",))
+        tolerance, points, is_closed = tolerance_mm, curve.points, curve.closed
+    normals = np.tile(-axis, (len(points), 1))
+    empty = np.zeros((0, 3))
+    return SurfacePaths(str(spec), (SurfacePass(points, normals, is_closed, empty, empty),), None, None, None), tolerance
