@@ -45,7 +45,7 @@ def cell():
 CHECKS = [
     ("pallet_sjis.as", {}, (14, 24, 0), 0.0, ["SPEED in %", "never on during a motion"]),
     ("features_tabs.as", {}, (3, 3, 0), 100.0, []),
-    ("laser_polish.as", {}, (3, 3, 4), 396.991, ["ACCEL: the cell's acceleration limits apply", "arc sweeps 180.0"]),
+    ("laser_polish.as", {}, (3, 3, 4), 396.991, ["ACCEL: the cell's acceleration limits apply"]),
     ("backup_cp1252.as", {"program": "peinture", "inputs": {1001: True}}, (2, 16, 0), 240.0,
      ["sections not read", ".SIG_COMMENT", "external axes"]),
     ("draw_frame.as", {}, (1, 6, 0), 230.0, []),

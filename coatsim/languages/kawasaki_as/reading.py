@@ -1,6 +1,6 @@
 """AS files read for check-program and convert: the Reading of an interpreted run, with what
 only AS can tell (its statement count, its poses, its SIGNAL/PULSE/BITS lines, SPEED in %,
-15-character names, poses never used, controller sections, arc pairs of 180 deg or more, motions
+15-character names, poses never used, controller sections, arc pairs beyond 180 deg, motions
 skipped while the gun is on)."""
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ from coatsim.path.reading import MoveSource, OutputSwitch, Reading
 from coatsim.path.toolpath import CircularMove
 
 _LISTED = 5  # unused poses named before "and N more"
+_HALF_CIRCLE_ROUNDING = math.radians(0.05)  # a half circle of radius 1 mm or more, its poses rounded to 0.001 mm
 
 
 def walk(body: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
@@ -85,7 +86,7 @@ def _switch(st: ast.Statement, gun: int, source: str, reals: Mapping[str, float]
 
 def _problems(files, run: Run, used: set[str]) -> list[str]:
     """Long names, poses never used, external axes that move, sections not read, arc pairs of
-    180 deg or more."""
+    beyond 180 deg (a half circle is one pair's limit, within the rounding of its poses)."""
     problems: list[str] = []
     unused = []
     for f in files:
@@ -115,9 +116,9 @@ def _problems(files, run: Run, used: set[str]) -> list[str]:
     for move, (name, _, _) in zip(run.toolpath.moves, run.move_origins):
         if isinstance(move, CircularMove):
             sweep = arc_through(move.start.translation_mm, move.via.translation_mm, move.end.translation_mm).sweep
-            if sweep >= math.pi:
+            if sweep > math.pi + _HALF_CIRCLE_ROUNDING:
                 problems.append(f"{run.programs[name.lower()].source}:{move.line}: arc sweeps {math.degrees(sweep):.1f} "
-                                "deg; keep one C1MOVE/C2MOVE pair below 180 deg")
+                                "deg; keep one C1MOVE/C2MOVE pair within 180 deg")
     return problems
 
 
