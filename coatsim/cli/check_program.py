@@ -20,7 +20,7 @@ FLAGS = {"gun_signal": "--gun", "program": "--program", "inputs": "--inputs", "l
 def check_program(
     paths: list[Path] = typer.Argument(..., help="Program file(s) loaded together: programs, then data such as poses."),
     gun: int = typer.Option(defaults.GUN_SIGNAL, "--gun", help="Gun output signal number."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file that no loaded program calls, PC programs *.pc skipped; a note names it]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     model: Optional[Path] = typer.Option(None, "--model", help="Cell MJCF for joint poses, HOME and the gun the TOOL is checked against [default: the shipped coating_cell.xml]."),

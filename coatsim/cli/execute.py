@@ -28,7 +28,7 @@ def execute(
     output: Path = typer.Option(Path("."), "-o", "--output", help="Folder for trajectory.csv, motion.json, speed.png."),
     gun: int = typer.Option(defaults.GUN_SIGNAL, "--gun", help="Gun output signal number."),
     step: float = typer.Option(defaults.STEP_MM, "--step-mm", help="Cartesian sampling step for IK, mm."),
-    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file, PC programs *.pc skipped]."),
+    main: Optional[str] = typer.Option(None, "--program", help="Main program [default: the first of the first file that no loaded program calls, PC programs *.pc skipped; a note names it]."),
     inputs: Optional[str] = typer.Option(None, "--inputs", help="Input signals the cell sets, e.g. 1001,-1002 (minus: off)."),
     settings: Optional[list[str]] = typer.Option(None, "--set", help=SET_HELP),
     timings: bool = typer.Option(False, "--timings", help="Print wall times per phase on stderr."),
