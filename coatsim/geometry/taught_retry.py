@@ -28,7 +28,7 @@ Fitter = Callable[[float, float], Fit]
 
 TAUGHT_SHARE = 1 / 3  # a taught curve's chain should keep at most this share of its moves; if not, ...
 TAUGHT_AIM = 0.9  # ... it is fitted again within this share of σ (the fewer segments kept)
-LINES_AIMS = (0.9, 0.8, 0.7, 0.6, 0.5)  # a taught polyline back as its lines is fitted again within these shares of σ
+LINES_AIMS = (0.95, 0.9, 0.8, 0.7, 0.6, 0.5)  # a taught polyline back as its lines is fitted again within these shares of σ
 NO_CORNERS_DEG = 179.0  # corner_deg of the retry without the vertices that turn more than corner_deg
 OWN_SLACK = 1.02  # a rounded corner's arcs are no tighter than the polygon turns there, to this factor
 GENTLE_DEG = 90.0  # corners kept that turn less than this, ...
@@ -60,15 +60,23 @@ def _smooth(fit: Fit) -> bool:
 
 
 def _from_smaller(tol: float, corner_deg: float, fit: Fitter, found: Fit, moves: int) -> Fit:
-    """The first chain with fewer segments than moves found within LINES_AIMS σ, its corners
-    and notes as they are at that aim (the fit is not monotone in σ: an epitrochoid taught with
-    30 points came back as its 30 lines at 0.6 of its chordal deviation, as 21 segments at 0.7
-    of that, and as 16 at 0.5 of the chordal deviation)."""
+    """The first chain within LINES_AIMS σ without corners and with at most TAUGHT_SHARE of the
+    moves, else the best with fewer segments than moves (without corners first, then the fewest
+    segments, then the largest aim), its corners and notes as they are at that aim. The fit is not
+    monotone in σ: an epitrochoid taught with 30 points came back as its 30 lines at 0.7 of its
+    chordal deviation, as 27 segments with 21 corners from 0.6 of σ (then the first aim with
+    fewer segments than moves), and as 9 arcs from 0.95."""
+    tried = []
     for share in LINES_AIMS:
         other = _tried(fit, share * tol, corner_deg)
-        if other is not None and other[0].n_segments < moves:
+        if other is None or other[0].n_segments >= moves:
+            continue
+        if not other[0].corners and other[0].n_segments <= TAUGHT_SHARE * moves:
             return other
-    return found
+        tried.append((other, share))
+    if not tried:
+        return found
+    return min(tried, key=lambda item: (bool(item[0][0].corners), item[0][0].n_segments, -item[1]))[0]
 
 
 def _rounded(points: np.ndarray, closed: bool, tol: float, fit: Fitter, found: Fit) -> Fit:
