@@ -259,6 +259,25 @@ def mm_per_px(svg) -> float:
     return 1.0 / (96.0 * _SVGELEMENTS_INCH_PER_MM) if re.search(r"\d\s*(mm|cm)\b", size) else MM_PER_USER_UNIT
 
 
+def _pixel_note(svg, data: bytes) -> Optional[str]:
+    """What the user is told where the document gives no size in a physical unit (px, or none):
+    it is read at CSS's 96 px per inch, which the tools that wrote it may not have meant."""
+    own = svg.values.get("attributes", {})
+    size = f"{own.get('width', '')} {own.get('height', '')}".lower()
+    if re.search(r"\d\s*(mm|cm|in|pt|pc)\b", size):
+        return None
+    head = data[:4096]
+    version = re.search(rb'inkscape:version="0\.(\d+)', head)
+    if b"Adobe Illustrator" in head:
+        tool = "; Adobe Illustrator wrote it, whose px are 72 per inch: its drawing is 4/3 as large"
+    elif version is not None and int(version.group(1)) <= 91:
+        tool = "; Inkscape 0.91 or older wrote it, whose px are 90 per inch: its drawing is 16/15 as large"
+    else:
+        tool = ""
+    return (f"the drawing's size is in px or not given: read at 96 px per inch (CSS), {MM_PER_USER_UNIT:.4g} mm a "
+            f"unit{tool}; save it with its size in mm to be sure")
+
+
 def _circular(arc) -> bool:
     """A circular arc (svgelements compares the radii exactly; this allows round-off)."""
     rx, ry = float(arc.rx), float(arc.ry)
@@ -370,7 +389,7 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         if problem is not None:
             raise InputError(f"{path}: {label}: {problem}")
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
-    notes = []
+    notes = [note for note in (_pixel_note(svg, data),) if note]
     ignored = +ignored  # no zero counts
     if ignored:
         notes.append(count_note("ignored", ignored, "not contour geometry"))

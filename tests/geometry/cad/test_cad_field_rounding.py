@@ -207,3 +207,20 @@ def test_a_spline_in_a_contour_with_rounded_joins_is_read(tmp_path):
 
     (contour,) = segment_drawing(write_dxf(tmp_path, draw), TOL).contours
     assert contour.polysegment.closed and contour.max_deviation_mm <= TOL
+
+
+@pytest.mark.parametrize("head, attrs, told", [
+    ("", 'width="200" height="100" viewBox="0 0 200 100"', "96 px per inch"),
+    ("<!-- Generator: Adobe Illustrator 24.0.1, SVG Export Plug-In -->\n", 'width="200px" height="100px" viewBox="0 0 200 100"',
+     "72 per inch"),
+    ("", 'inkscape:version="0.91 r13725" width="200" height="100"', "90 per inch"),
+    ("", 'width="200mm" height="100mm" viewBox="0 0 200 100"', None),
+    ("", 'width="2in" height="1in" viewBox="0 0 200 100"', None)])
+def test_a_drawing_sized_in_px_says_at_what_scale_it_is_read(tmp_path, head, attrs, told):
+    """Illustrator's px are 72 to the inch, old Inkscape's 90, CSS's 96: a drawing in px was read at
+    96 without a word, 75 % or 94 % of the size meant."""
+    path = write_svg(tmp_path, '<rect x="10" y="10" width="20" height="20"/>', attrs=attrs)
+    if head:
+        path.write_text(head + path.read_text())
+    notes = [n for n in read_drawing(path).notes if "px" in n]
+    assert (told is None and not notes) or (told is not None and len(notes) == 1 and told in notes[0])
