@@ -390,6 +390,9 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
             raise InputError(f"{path}: {label}: {problem}")
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
     notes = [note for note in (_pixel_note(svg, data),) if note]
+    clipped = len(re.findall(rb"clip-path\s*[=:]\s*[\"']?\s*url", data))
+    if clipped:
+        notes.append(f"{clipped} clip paths not applied: the shapes they clip are read whole")
     ignored = +ignored  # no zero counts
     if ignored:
         notes.append(count_note("ignored", ignored, "not contour geometry"))

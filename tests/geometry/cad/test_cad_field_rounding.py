@@ -224,3 +224,10 @@ def test_a_drawing_sized_in_px_says_at_what_scale_it_is_read(tmp_path, head, att
         path.write_text(head + path.read_text())
     notes = [n for n in read_drawing(path).notes if "px" in n]
     assert (told is None and not notes) or (told is not None and len(notes) == 1 and told in notes[0])
+
+
+def test_a_clipped_shape_is_read_whole_and_said_so(tmp_path):
+    body = ('<clipPath id="c"><rect x="0" y="0" width="50" height="100"/></clipPath>'
+            '<circle cx="50" cy="50" r="30" clip-path="url(#c)"/>')
+    drawing = read_drawing(write_svg(tmp_path, body))
+    assert any("1 clip paths not applied" in n for n in drawing.notes)
