@@ -42,6 +42,7 @@ TANGENT_TOL_RAD = math.radians(0.5)
 # turn it round; the blend curve would fold onto itself).
 REVERSAL_RAD = math.radians(179.5)
 MIN_MOVE_MM = 1e-6
+SAMPLES_PER_MOVE = 10  # samples the blends at a Cartesian move's ends add, as the budget path_samples counts them
 MERGE_MM = 1e-3  # what is left of a move between two blends, below which it gets no sample of its own
 # Where the tool's turning rate changes between two blended moves, the controller blends the
 # orientation over this far either side (capped at half the distance to the next such change).
@@ -329,8 +330,9 @@ def plan_pieces(toolpath: ToolPath, step: float = 1.0) -> tuple[Piece, ...]:
         if not isinstance(move, JointMove):
             spans[index] = _span(toolpath, index)
     length = sum(sp.prim.length for sp in spans.values())
-    check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm)",
-                 length / step + 10 * len(spans), "path_samples",
+    check_budget(f"{toolpath.name}: IK samples of the path ({length:.6g} mm every {step:g} mm, and "
+                 f"{SAMPLES_PER_MOVE} for each of its {len(spans):,} moves)",
+                 length / step + SAMPLES_PER_MOVE * len(spans), "path_samples",
                  "use a larger sampling step (execute --step-mm, or the scenario's fast.sample_step_mm)")
     pieces: list[Piece] = []
     chain: list[_Span] = []
