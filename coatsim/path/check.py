@@ -102,6 +102,8 @@ def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, 
     if not toolpath.moves and not reading.skipped:
         others = [p for p in reading.programs if p != reading.program]
         hint = f"; choose another main program (loaded: {', '.join(others)})" if others else ""
+        unset = [w for w in toolpath.warnings if "is not given; taken as OFF" in w]
+        hint += f"; on its way {unset[0]}" if unset else ""  # a guard on an input left it (IF NOT SIG(1001) ...)
         raise ExecutionError(f"{where} has no motion ({reading.ended} before any motion){hint}")
     problems = list(reading.problems)
     if gun_tcp is not None:

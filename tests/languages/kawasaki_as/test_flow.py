@@ -351,3 +351,16 @@ def test_pose_statements_evaluate():
     assert np.allclose(get("pose", "r").translation_mm, [0, 0, 0]) and np.allclose(get("pose", "r").rotation, get("pose", "b").rotation)
     assert np.allclose(get("pose", "s").translation_mm, 0) and np.allclose(get("pose", "s").rotation, np.eye(3))
     assert get("real", "x") == 0.0
+
+
+def test_a_guard_on_an_input_not_given_names_it_where_nothing_moves(tmp_path):
+    """A part-present guard (IF NOT SIG(1001) THEN RETURN) with the input not given leaves the
+    program before any motion: the error names the input, taken as off, besides the end."""
+    from coatsim.languages.registry import language
+    from coatsim.path.check import check_program
+
+    path = tmp_path / "guard.as"
+    path.write_text(".PROGRAM g()\n  IF NOT SIG(1001) THEN\n    RETURN\n  END\n  LMOVE a\n.END\n"
+                    ".TRANS\na 600 0 300 0 180 0\n.END\n")
+    with pytest.raises(ExecutionError, match="has no motion .*input 1001 is not given; taken as OFF"):
+        check_program(path, language("kawasaki-as"))
