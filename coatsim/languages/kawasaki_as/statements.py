@@ -203,6 +203,17 @@ def _simple(factory: Callable[[int], Item]) -> Parser:
     return parse
 
 
+def _accel(c: StatementParser, op: str, line: int) -> ast.Accel:
+    """ACCEL / DECEL percent [ALWAYS]; a second percentage, which RoboDK's post writes (``ACCEL 50
+    50``), is read and left, as the first is (the cell's limits apply)."""
+    value = c.expr("a percentage")
+    always = c.qualifier("ALWAYS") is not None
+    if not always and not c.at_end():
+        c.expr("a percentage")
+        always = c.qualifier("ALWAYS") is not None
+    return ast.Accel(line, op, value, always)
+
+
 def _one(factory: Callable[[int, ast.Expr], Item], what: str) -> Parser:
     return lambda c, op, line: factory(line, c.expr(what))
 
@@ -217,8 +228,7 @@ PARSERS: dict[str, Parser] = {
     **dict.fromkeys(("DELAY", "STABLE"), lambda c, op, line: ast.Delay(line, op, c.expr("a time in s"))),
     "SPEED": _speed,
     "ACCURACY": _accuracy,
-    **dict.fromkeys(("ACCEL", "DECEL"), lambda c, op, line: ast.Accel(line, op, c.expr("a percentage"),
-                                                                       c.qualifier("ALWAYS") is not None)),
+    **dict.fromkeys(("ACCEL", "DECEL"), _accel),
     **dict.fromkeys((*SWITCHES, "SWITCH"), _switch),
     "BREAK": _simple(ast.Break),
     "BRAKE": _simple(ast.Brake),

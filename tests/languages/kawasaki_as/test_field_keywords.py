@@ -160,3 +160,17 @@ def test_motions_the_twin_does_not_simulate_are_skipped_with_a_note(line, words)
     assert len(run.toolpath.moves) == 2 and words in run.skipped[0]
     with pytest.raises(ExecutionError, match="a simulation runs every statement, and the twin does not simulate"):
         run.require_complete()
+
+
+@pytest.mark.parametrize("text, always", [("ACCEL 50.0 50.0", False), ("ACCEL 50 50 ALWAYS", True),
+                                          ("DECEL 30", False), ("ACCEL 80 ALWAYS", True)])
+def test_accel_with_robodk_s_second_percentage_is_read(text, always):
+    """RoboDK's post writes ``ACCEL a a``: it was refused ("unexpected '50.0' after the ACCEL
+    statement"); the first percentage is read, the second left (the cell's limits apply to both)."""
+    (st,) = parse_as(f".PROGRAM a()\n  {text}\n.END\n").programs[0].body
+    assert isinstance(st, ast.Accel) and st.always is always
+
+
+def test_accel_with_a_dangling_comma_is_refused():
+    with pytest.raises(AsSyntaxError, match="expected a percentage"):
+        parse_as(".PROGRAM a()\n  DECEL 30,\n.END\n")
