@@ -102,6 +102,8 @@ def _parse(path: Path, data: bytes):
         data = sized(data)
         if b"flowRoot" in data:
             data = without_flowed_text(data)
+        if b"<switch" in data:
+            data = switched(data)
         svg = se.SVG.parse(io.BytesIO(data), ppi=96.0, reify=False)
     except ET.ParseError as exc:
         line, col = exc.position
@@ -153,6 +155,20 @@ def without_flowed_text(data: bytes) -> bytes:
         for child in list(parent):
             if child.tag in (f"{_SVG_NS}flowRoot", "flowRoot"):
                 parent.remove(child)
+    return ET.tostring(root)
+
+
+def switched(data: bytes) -> bytes:
+    """The document with each ``<switch>`` reduced to the one child a viewer draws: the first
+    that asks for no extension (Illustrator puts its own data first, under requiredExtensions);
+    svgelements drew every child, one shape over another."""
+    root = ET.fromstring(data)
+    for switch in list(root.iter(f"{_SVG_NS}switch")):
+        children = list(switch)
+        drawn = next((c for c in children if c.get("requiredExtensions") is None), None)
+        for child in children:
+            if child is not drawn:
+                switch.remove(child)
     return ET.tostring(root)
 
 
@@ -390,6 +406,10 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
             raise InputError(f"{path}: {label}: {problem}")
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
     notes = [note for note in (_pixel_note(svg, data),) if note]
+    switches = len(re.findall(rb"<switch\b", data))
+    if switches:
+        notes.append(f"{switches} <switch> elements: each read as its first child that needs no extension, as a viewer "
+                     "draws it")
     clipped = len(re.findall(rb"clip-path\s*[=:]\s*[\"']?\s*url", data))
     if clipped:
         notes.append(f"{clipped} clip paths not applied: the shapes they clip are read whole")

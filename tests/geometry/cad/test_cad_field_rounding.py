@@ -231,3 +231,12 @@ def test_a_clipped_shape_is_read_whole_and_said_so(tmp_path):
             '<circle cx="50" cy="50" r="30" clip-path="url(#c)"/>')
     drawing = read_drawing(write_svg(tmp_path, body))
     assert any("1 clip paths not applied" in n for n in drawing.notes)
+
+
+def test_a_switch_draws_its_first_child_that_needs_no_extension(tmp_path):
+    """Both children of a <switch> were read, one circle over another; Illustrator puts its own
+    data first, under requiredExtensions."""
+    body = ('<switch><foreignObject requiredExtensions="http://ns.adobe.com/AdobeIllustrator/10.0/" width="1" '
+            'height="1"/><circle cx="20" cy="70" r="5" systemLanguage="en"/><circle cx="20" cy="70" r="8"/></switch>')
+    (poly,) = polysegments(write_svg(tmp_path, body))
+    assert poly.closed and poly.length == pytest.approx(2 * math.pi * 5, rel=1e-9)
