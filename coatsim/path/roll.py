@@ -49,6 +49,10 @@ MAX_RATE_JUMP_RAD_MM = 1e-3
 _SAMPLES = 17  # the slerped axis is compared with the wanted one this often per half piece
 Wanted = Callable[[np.ndarray], np.ndarray]  # points (n, 3) -> the wanted unit axes there (n, 3)
 _MIN_PIECE_MM = 1e-3
+#: a halving for the turning rate leaves pieces at least this long: the controller blends the
+#: orientation of shorter ones with their neighbours' (over about 10 mm), which slowed the twin on a
+#: saddle's pass to 0.51 of its speed where two 2.3 mm pieces replaced one of 4.5 mm (0.997 without)
+RATE_MIN_PIECE_MM = 10.0
 _MAX_ROUNDS = 12
 _HELPS = 0.75  # a halving for the turning rate is kept where it brings the jump down to this share (smooth axes: ~1/2)
 
@@ -232,8 +236,8 @@ def oriented_pieces(pieces: Sequence[AxisPiece], rule: str, roll_deg: float, ref
     for _ in range(_MAX_ROUNDS):
         out = orient(pieces, rule, roll_deg, reference)
         stray, jump = _checked(out, wanted, angle_tol_rad)
-        long = np.array([p.geometry.length / 2 >= _MIN_PIECE_MM for p in pieces])
-        stray, rate = stray & long, (jump > max_rate_jump) & long & ~firm & ~stray
+        half = np.array([p.geometry.length / 2 for p in pieces])
+        stray, rate = stray & (half >= _MIN_PIECE_MM), (jump > max_rate_jump) & (half >= RATE_MIN_PIECE_MM) & ~firm & ~stray
         if not (stray | rate).any():
             return out
         trial, origin = _split(pieces, stray | rate, wanted)

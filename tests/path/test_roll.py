@@ -10,7 +10,7 @@ from hypothesis import given, settings, strategies as st
 
 from coatsim.geometry.space.along import AlongPass
 from coatsim.geometry.space.primitives import Line3
-from coatsim.path.roll import MAX_RATE_JUMP_RAD_MM, AxisPiece, _checked, orient, oriented_pieces
+from coatsim.path.roll import MAX_RATE_JUMP_RAD_MM, RATE_MIN_PIECE_MM, AxisPiece, _checked, orient, oriented_pieces
 
 REFERENCE = np.array([-1.0, 0.0, 0.0])
 
@@ -52,3 +52,16 @@ def test_smooth_axes_still_get_poses_where_the_rate_changes():
     _, jump = _checked(out, wanted, math.radians(2.0))
     assert len(out) > 1 and jump.max() <= MAX_RATE_JUMP_RAD_MM
     assert orient(pieces, "fixed", 0.0, REFERENCE) and len(out) < 64
+
+
+def test_no_piece_is_halved_for_the_rate_below_the_controller_s_blend():
+    """A 30 mm pass whose axis turns at a changing rate, within the angle tolerance all along:
+    halving for the rate stops at pieces of RATE_MIN_PIECE_MM (the controller blends the
+    orientation of shorter ones with their neighbours' and slows more than for the jump; a
+    saddle's pass went to 0.51 of its speed where two 2.3 mm pieces replaced one of 4.5 mm)."""
+    s = np.linspace(0.0, 30.0, 121)
+    pieces, wanted = _pass(0.2 * (s / 30.0) ** 2, length_mm=30.0)
+    out = oriented_pieces(pieces, "fixed", 0.0, REFERENCE, wanted, math.radians(2.0))
+    stray, _ = _checked(out, wanted, math.radians(2.0))
+    assert not stray.any() and len(out) == 2
+    assert min(o.geometry.length for o in out) >= RATE_MIN_PIECE_MM
