@@ -65,6 +65,6 @@ def check_summary(check: ProgramCheck) -> str:
     lines += [f"problem: {p}" for p in check.problems] or ["no problems found"]
     if check.unknowns or check.skipped:
         lines.append(f"read with {len(check.unknowns)} unknown variable{'' if len(check.unknowns) == 1 else 's'} "
-                     f"and {len(check.skipped)} statement{'' if len(check.skipped) == 1 else 's'} skipped; give "
-                     "values as --set NAME=VALUE")
+                     f"and {len(check.skipped)} statement{'' if len(check.skipped) == 1 else 's'} skipped"
+                     + ("; give values as --set NAME=VALUE" if check.unknowns else ""))
     return "\n".join(lines)

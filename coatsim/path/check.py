@@ -109,7 +109,10 @@ def check_reading(reading: Reading, gun_signal: int, gun_tcp: tuple[np.ndarray, 
     if gun_tcp is not None:
         problems += [f"{reading.program_source}:{line}: {text}" for line, text in tool_mismatches(toolpath, *gun_tcp)]
     notes = list(reading.notes)
-    if not toolpath.moves:  # read all the same: what it needs is listed, and NAME=VALUE gives it
+    if not toolpath.moves and reading.unsimulated and len(reading.unsimulated) >= len(reading.skipped):
+        problems.append(f"{where} makes no motion here: every motion of its run is in statements the twin does not "
+                        "simulate (listed); no value given would read them")
+    elif not toolpath.moves:  # read all the same: what it needs is listed, and NAME=VALUE gives it
         notes.append(f"{where} makes no motion here: every motion of its run is skipped for want of a value (the "
                      "statements skipped are listed); give the values as NAME=VALUE")
     elif not toolpath.spray_moves:

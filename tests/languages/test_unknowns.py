@@ -338,3 +338,15 @@ def test_a_program_whose_every_motion_waits_for_a_value_is_read_not_refused(tmp_
     assert code == 0, err
     assert "moves: 0 joint, 0 linear, 0 arc" in out and "makes no motion here: every motion of its run is skipped" in out
     assert out.count("skipped") >= 2 and "give values as --set NAME=VALUE" in out
+
+
+def test_a_program_whose_every_motion_is_unsimulated_says_no_value_reads_it(tmp_path, run_cli):
+    """Teach-pendant block steps are not simulated: the report said every motion was skipped "for
+    want of a value" and asked for values (none could help), then "no problems found"."""
+    path = tmp_path / "block.as"
+    path.write_text(".PROGRAM b()\n  LINEAR SPEED4 ACCU1 TIMER0 TOOL1 WORK0 CLAMP1 (OFF,0,0,O) OX=1 WX= "
+                    "#[8.1,22.6,-63.5,0.0,-93.9,8.1] ;\n.END\n")
+    code, out, err = run_cli(["check-program", str(path)])
+    assert code == 0, err
+    assert "problem:" in out and "statements the twin does not simulate" in out
+    assert "no problems found" not in out and "--set" not in out
