@@ -10,6 +10,7 @@ the polyline variants, in any language that has arcs in 3-D.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -26,12 +27,21 @@ SAMPLES_PER_TOLERANCE = 4  # a 3-D polysegment is sampled every tolerance / this
 
 
 def is_space_polysegment(path: str | Path) -> bool:
-    """Whether ``path`` is a JSON file that says it is a 3-D polysegment (reads its start only)."""
+    """Whether ``path`` is a JSON file whose document says it is a 3-D polysegment."""
     p = Path(path)
     if p.suffix.lower() != ".json" or not p.is_file():
         return False
-    with open(p, "rb") as handle:
-        return SPACE_FORMAT.encode() in handle.read(4096)
+    doc = read_json_document(p)
+    return isinstance(doc, dict) and doc.get("format") == SPACE_FORMAT
+
+
+def _file_tolerance(spec: str) -> float:
+    """The tolerance_mm a polysegment file gives (a finite number > 0), else an InputError."""
+    given = read_json_document(Path(spec)).get("tolerance_mm")
+    if isinstance(given, bool) or not isinstance(given, (int, float)) or not (math.isfinite(given) and given > 0):
+        raise InputError(f"{spec}: tolerance_mm: the file gives no number > 0 ({given!r}); give the tolerance",
+                         parameters=("tolerance_mm",))
+    return float(given)
 
 
 def fixed_axis_paths(spec: str, spray_axis: tuple[float, float, float], tolerance_mm: float | None,
@@ -42,8 +52,8 @@ def fixed_axis_paths(spec: str, spray_axis: tuple[float, float, float], toleranc
     frame, without a spray axis."""
     axis = unit_vector(spray_axis, "spray_axis", "spray_axis")
     if is_space_polysegment(spec):
-        tolerance = float(read_json_document(Path(spec))["tolerance_mm"]) if tolerance_mm is None else tolerance_mm
         chain = read_chain_json(spec)
+        tolerance = _file_tolerance(spec) if tolerance_mm is None else tolerance_mm
         points, _ = chain.sample(tolerance / SAMPLES_PER_TOLERANCE)
         is_closed = chain.closed
     else:

@@ -96,3 +96,23 @@ def test_a_3d_curve_without_a_spray_axis_names_it(tmp_path, run_cli):
     write_csv(tmp_path / "helix.csv", helix())
     code, _, err = run_cli(["program", str(tmp_path / "helix.csv"), "--tol", "0.1"])
     assert code == 2 and "--spray-axis" in err
+
+
+def test_a_3d_polysegment_is_known_by_its_format_anywhere_and_needs_a_tolerance(tmp_path, run_cli):
+    """Its "format" may come after its segments (another writer's key order); without a usable
+    tolerance_mm the program asks for --tol in one line (it was an internal error)."""
+    import json
+
+    seg = segment_space_curve(make_space_curve(helix(), "helix", "no"), TOL)
+    write_chain_json(tmp_path / "helix.json", seg.chain, TOL, {})
+    doc = json.loads((tmp_path / "helix.json").read_text())
+    late = {k: v for k, v in doc.items() if k != "format"} | {"format": doc["format"]}
+    (tmp_path / "late.json").write_text(json.dumps(late))
+    code, _, err = run_cli(["program", str(tmp_path / "late.json"), "--spray-axis", "0,0,-1", "-o", str(tmp_path / "a.as")])
+    assert code == 0, err
+    for name, value in (("none.json", None), ("text.json", "0.1"), ("zero.json", 0)):
+        bad = dict(doc)
+        bad.pop("tolerance_mm") if value is None else bad.update(tolerance_mm=value)
+        (tmp_path / name).write_text(json.dumps(bad))
+        code, _, err = run_cli(["program", str(tmp_path / name), "--spray-axis", "0,0,-1"])
+        assert code == 2 and len(err.strip().splitlines()) == 1 and "--tol" in err, err
