@@ -19,25 +19,16 @@ from coatsim.core.errors import InputError
 from coatsim.geometry.curves import ClosedMode
 from coatsim.geometry.polysegment_json import read_json_document
 from coatsim.geometry.space.curve import SpaceCurve, read_any_curve
-from coatsim.geometry.space.polysegment_json import FORMAT as SPACE_FORMAT, read_chain_json
+from coatsim.geometry.space.polysegment_json import FORMAT as SPACE_FORMAT, chain_from_document
 from coatsim.geometry.surface.region import unit_vector
 from coatsim.path.surfacepaths import SurfacePass, SurfacePaths
 
 SAMPLES_PER_TOLERANCE = 4  # a 3-D polysegment is sampled every tolerance / this for the fit
 
 
-def is_space_polysegment(path: str | Path) -> bool:
-    """Whether ``path`` is a JSON file whose document says it is a 3-D polysegment."""
-    p = Path(path)
-    if p.suffix.lower() != ".json" or not p.is_file():
-        return False
-    doc = read_json_document(p)
-    return isinstance(doc, dict) and doc.get("format") == SPACE_FORMAT
-
-
-def _file_tolerance(spec: str) -> float:
-    """The tolerance_mm a polysegment file gives (a finite number > 0), else an InputError."""
-    given = read_json_document(Path(spec)).get("tolerance_mm")
+def _file_tolerance(doc: dict, spec: str) -> float:
+    """The tolerance_mm a polysegment document gives (a finite number > 0), else an InputError."""
+    given = doc.get("tolerance_mm")
     if isinstance(given, bool) or not isinstance(given, (int, float)) or not (math.isfinite(given) and given > 0):
         raise InputError(f"{spec}: tolerance_mm: the file gives no number > 0 ({given!r}); give the tolerance",
                          parameters=("tolerance_mm",))
@@ -51,15 +42,16 @@ def fixed_axis_paths(spec: str, spray_axis: tuple[float, float, float], toleranc
     polysegment's own when None). A planar x,y curve is refused: it is sprayed along -Z of its
     frame, without a spray axis."""
     axis = unit_vector(spray_axis, "spray_axis", "spray_axis")
-    if is_space_polysegment(spec):
-        chain = read_chain_json(spec)
-        tolerance = _file_tolerance(spec) if tolerance_mm is None else tolerance_mm
+    doc = read_json_document(Path(spec)) if Path(spec).suffix.lower() == ".json" else None
+    if spec.startswith("builtin:") or (doc is not None and not (isinstance(doc, dict) and doc.get("format") == SPACE_FORMAT)):
+        raise InputError(f"{spec}: a planar curve; spray_axis is for 3-D curves (x,y,z columns or a 3-D "
+                         "polysegment), a planar one is sprayed along -Z of its frame", parameters=("spray_axis",))
+    if doc is not None:
+        chain = chain_from_document(doc, spec)
+        tolerance = _file_tolerance(doc, spec) if tolerance_mm is None else tolerance_mm
         points, _ = chain.sample(tolerance / SAMPLES_PER_TOLERANCE)
         is_closed = chain.closed
     else:
-        if spec.startswith("builtin:") or Path(spec).suffix.lower() == ".json":
-            raise InputError(f"{spec}: a planar curve; spray_axis is for 3-D curves (x,y,z columns or a 3-D "
-                             "polysegment), a planar one is sprayed along -Z of its frame", parameters=("spray_axis",))
         if tolerance_mm is None:
             raise InputError(f"{spec}: tolerance_mm is needed to fit a curve", parameters=("tolerance_mm",))
         curve = read_any_curve(spec, closed)
