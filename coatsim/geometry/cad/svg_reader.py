@@ -97,13 +97,7 @@ def _parse(path: Path, data: bytes):
 
     check_svg_structure(data, str(path))
     try:
-        if b"<symbol" in data:
-            data = symbols_placed(data)
-        data = sized(data)
-        if b"flowRoot" in data:
-            data = without_flowed_text(data)
-        if b"<switch" in data:
-            data = switched(data)
+        data = prepared(data)
         svg = se.SVG.parse(io.BytesIO(data), ppi=96.0, reify=False)
     except ET.ParseError as exc:
         line, col = exc.position
@@ -147,65 +141,74 @@ def _viewbox_transform(viewbox: str, width: float, height: float, aspect: str) -
     return f"translate({tx!r},{ty!r}) scale({sx!r},{sy!r})"
 
 
-def without_flowed_text(data: bytes) -> bytes:
-    """The document without Inkscape's flowed text (``<flowRoot>``): text, and the frame its
-    ``<flowRegion>`` flows it into is no contour (svgelements drew that frame as a rectangle)."""
+def prepared(data: bytes) -> bytes:
+    """The document as svgelements should draw it (one parse, and one serialisation where any
+    of these changed it): symbols placed, the root's size completed, flowed text left out,
+    switches reduced to the child drawn."""
     root = ET.fromstring(data)
+    changed = [edit(root) for edit in (symbols_placed, sized, without_flowed_text, switched)]
+    return ET.tostring(root) if any(changed) else data
+
+
+def without_flowed_text(root: ET.Element) -> bool:
+    """Leave out Inkscape's flowed text (``<flowRoot>``): text, and the frame its
+    ``<flowRegion>`` flows it into is no contour (svgelements drew that frame as a rectangle).
+    Whether anything was left out."""
+    changed = False
     for parent in list(root.iter()):
         for child in list(parent):
             if child.tag in (f"{_SVG_NS}flowRoot", "flowRoot"):
                 parent.remove(child)
-    return ET.tostring(root)
+                changed = True
+    return changed
 
 
-def switched(data: bytes) -> bytes:
-    """The document with each ``<switch>`` reduced to the one child a viewer draws: the first
-    that asks for no extension (Illustrator puts its own data first, under requiredExtensions);
-    svgelements drew every child, one shape over another."""
-    root = ET.fromstring(data)
-    for switch in list(root.iter(f"{_SVG_NS}switch")):
+def switched(root: ET.Element) -> bool:
+    """Reduce each ``<switch>`` to the one child a viewer draws: the first that asks for no
+    extension (Illustrator puts its own data first, under requiredExtensions); svgelements drew
+    every child, one shape over another. Whether there was a switch."""
+    switches = list(root.iter(f"{_SVG_NS}switch"))
+    for switch in switches:
         children = list(switch)
         drawn = next((c for c in children if c.get("requiredExtensions") is None), None)
         for child in children:
             if child is not drawn:
                 switch.remove(child)
-    return ET.tostring(root)
+    return bool(switches)
 
 
-def sized(data: bytes) -> bytes:
-    """The document with the root's missing width or height given, where it has the other and a
-    viewBox: the viewBox's aspect sets it (SVG's auto size; svgelements takes the missing one as
-    100 % of a default viewport, and a width="200mm" over a 100 x 50 viewBox drew a 20-unit
-    square 5.3 mm wide instead of 40)."""
-    root = ET.fromstring(data)
+def sized(root: ET.Element) -> bool:
+    """Give the root's missing width or height where it has the other and a viewBox: the
+    viewBox's aspect sets it (SVG's auto size; svgelements takes the missing one as 100 % of a
+    default viewport, and a width="200mm" over a 100 x 50 viewBox drew a 20-unit square 5.3 mm
+    wide instead of 40). Whether it was given."""
     box = (root.get("viewBox") or "").replace(",", " ").split()
     width, height = root.get("width"), root.get("height")
     if len(box) != 4 or (width is None) == (height is None):
-        return data
+        return False
     try:
         w, h = float(box[2]), float(box[3])
     except ValueError:
-        return data
+        return False
     given = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(px|mm|cm|in|pt|pc)?\s*", width or height)
     if given is None or not (w > 0 and h > 0):
-        return data
+        return False
     value, unit = float(given.group(1)), given.group(2) or ""
     if width is None:
         root.set("width", f"{value * w / h!r}{unit}")
     else:
         root.set("height", f"{value * h / w!r}{unit}")
-    return ET.tostring(root)
+    return True
 
 
-def symbols_placed(data: bytes) -> bytes:
-    """The document with every ``<symbol>`` drawn only where a ``<use>`` places it, its
-    viewBox fitted into the use's width and height (svgelements draws a symbol in place as
-    well, and ignores its viewBox)."""
-    root = ET.fromstring(data)
+def symbols_placed(root: ET.Element) -> bool:
+    """Draw every ``<symbol>`` only where a ``<use>`` places it, its viewBox fitted into the
+    use's width and height (svgelements draws a symbol in place as well, and ignores its
+    viewBox). Whether there was a symbol."""
     parents = {child: parent for parent in root.iter() for child in parent}
     symbols = {el.get("id"): el for el in root.iter(f"{_SVG_NS}symbol")}
     if not symbols:
-        return data
+        return False
     defs = ET.SubElement(root, f"{_SVG_NS}defs")
     for el in symbols.values():
         parents[el].remove(el)
@@ -228,7 +231,7 @@ def symbols_placed(data: bytes) -> bytes:
         for h in _HREFS:
             if use.get(h):
                 use.set(h, f"#{group.get('id')}")
-    return ET.tostring(root)
+    return True
 
 
 def hidden_layers(data: bytes) -> list[str]:
