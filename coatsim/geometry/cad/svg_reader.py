@@ -273,17 +273,19 @@ def _name(el, index: int) -> str:
 
 def mm_per_px(svg) -> float:
     """Millimetres per svgelements pixel for this document (see _SVGELEMENTS_INCH_PER_MM)."""
+    return 1.0 / (96.0 * _SVGELEMENTS_INCH_PER_MM) if re.search(r"\d\s*(mm|cm)\b", _root_size(svg)) else MM_PER_USER_UNIT
+
+
+def _root_size(svg) -> str:
+    """The document's width and height as written, lower case ("200mm 100mm")."""
     own = svg.values.get("attributes", {})
-    size = f"{own.get('width', '')} {own.get('height', '')}".lower()
-    return 1.0 / (96.0 * _SVGELEMENTS_INCH_PER_MM) if re.search(r"\d\s*(mm|cm)\b", size) else MM_PER_USER_UNIT
+    return f"{own.get('width', '')} {own.get('height', '')}".lower()
 
 
 def _pixel_note(svg, data: bytes) -> Optional[str]:
     """What the user is told where the document gives no size in a physical unit (px, or none):
     it is read at CSS's 96 px per inch, which the tools that wrote it may not have meant."""
-    own = svg.values.get("attributes", {})
-    size = f"{own.get('width', '')} {own.get('height', '')}".lower()
-    if re.search(r"\d\s*(mm|cm|in|pt|pc)\b", size):
+    if re.search(r"\d\s*(mm|cm|in|pt|pc)\b", _root_size(svg)):
         return None
     head = data[:4096]
     version = re.search(rb'inkscape:version="0\.(\d+)', head)
