@@ -5,9 +5,10 @@ Pieces are joined end to end where their ends lie within the join tolerance of e
 the join tolerance) and duplicates (same ends and middle within it, or within ``NEAR_SHARE`` σ
 for pieces longer than σ when σ is given) are dropped first; so is a piece no longer than ``NEAR_SHARE`` σ whose
 neighbours meet tangentially across it (a path closed a few micrometres short of its start). Where
-three or more ends meet, they are paired by tangent continuity (the straightest
-continuation first) and what is left over ends a contour; this is noted. A contour whose
-last end meets its first is closed.
+three or more ends meet, a drawn path's pieces are followed in the order it was drawn (two
+closed outlines touching at a corner stay two), the other ends are paired by tangent
+continuity (the straightest continuation first), and what is left over ends a contour; this
+is noted. A contour whose last end meets its first is closed.
 
 Ends a few micrometres apart are everyday CAD rounding. Two open ends farther apart than the
 join tolerance but closer than ``near_mm`` (the fit's tolerance σ) are joined too, nearest
@@ -164,6 +165,14 @@ def _leave(piece: Piece, side: int) -> float:
     return piece.start_heading if side == 0 else piece.end_heading + math.pi
 
 
+def _drawn_on(pieces: list[Piece], a: tuple[int, int], b: tuple[int, int]) -> bool:
+    """Whether ends ``a`` and ``b`` (piece index, side) are where one piece of a drawn path
+    ends and the next one drawn begins."""
+    (i, side_i), (j, side_j) = sorted((a, b))
+    return (j == i + 1 and side_i == 1 and side_j == 0 and pieces[i].path != ""
+            and pieces[i].path == pieces[j].path)
+
+
 def _pair_ends(pieces: list[Piece], tol: float, notes: list[str]) -> dict[tuple[int, int], tuple[int, int]]:
     """Partner of every joined end (piece index, side); unpaired ends are open."""
     ends = np.array([p.start for p in pieces] + [p.end for p in pieces], dtype=float)
@@ -183,16 +192,18 @@ def _pair_ends(pieces: list[Piece], tol: float, notes: list[str]) -> dict[tuple[
         elif len(members) > 2:
             branches.append(members)
             options = sorted(
-                (_wrap(_leave(pieces[b[0]], b[1]) - _arrive(pieces[a[0]], a[1])), a, b)
+                (not _drawn_on(pieces, a, b), _wrap(_leave(pieces[b[0]], b[1]) - _arrive(pieces[a[0]], a[1])), a, b)
                 for x, a in enumerate(members) for b in members[x + 1:]
             )
-            for _, a, b in options:
+            for _, _, a, b in options:
                 if a not in partner and b not in partner:
                     partner[a], partner[b] = b, a
     if branches:
         where = ends[branches[0][0][1] * n + branches[0][0][0]]
         names = ", ".join(pieces[i].source for i, _ in branches[0][:4])
-        notes.append(f"{len(branches)} places where three or more pieces meet, paired by tangent continuity "
+        notes.append(f"{len(branches)} place{'s' if len(branches) != 1 else ''} where three or more pieces meet, "
+                     f"paired along their drawn paths, "
+                     f"then by tangent continuity "
                      f"(first at ({where[0]:.4g}, {where[1]:.4g}): {names})")
     return partner
 

@@ -262,7 +262,7 @@ def _rounded_joins_freed(contour: Contour, flatten_mm: float) -> Contour:
         pair = {k, (k + 1) % n}
         arcs = {j for j in pair if isinstance(contour.pieces[j].segment, Arc)}
         freed |= arcs or pair  # a line next to an arc stays: the arc's fit is pinned to it
-    pieces = tuple(FreePiece(p.samples(flatten_mm), p.start_heading, p.end_heading, p.source) if k in freed else p
+    pieces = tuple(FreePiece(p.samples(flatten_mm), p.start_heading, p.end_heading, p.source, p.path) if k in freed else p
                    for k, p in enumerate(contour.pieces))
     pairs = list(zip(pieces[:-1], pieces[1:])) + ([(pieces[-1], pieces[0])] if contour.closed else [])
     tangent = tuple(join_is_tangent(a, b, brk) for (a, b), brk in zip(pairs, contour.breaks))

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Iterable, Optional, Sequence
 
@@ -187,7 +187,7 @@ def _spline(entity, label: str, walk: _Walk) -> None:
             return np.array([xy(v) for v in curve.points(a + np.asarray(t, float) * (b - a))])
 
         sub = label if len(spans) == 1 else f"{label} span {k + 1}"
-        walk.pieces.append(free_or_native(at, walk.flatten, sub))
+        walk.pieces.append(free_or_native(at, walk.flatten, sub, path=label))
 
 
 def _closed_fit_spline(entity):
@@ -230,12 +230,14 @@ def _polyline(entity, label: str, walk: _Walk) -> None:
     if _spline_frame(entity, label, walk):
         return
     _drawn(entity)
+    first = len(walk.pieces)
     for k, part in enumerate(entity.virtual_entities()):
         sub = f"{label} segment {k + 1}"
         if part.dxftype() == "LINE":
             walk.pieces.append(line_piece(walk.plane.xy(part.dxf.start), walk.plane.xy(part.dxf.end), sub))
         elif part.dxftype() == "ARC":
             _circle_or_arc(part, sub, walk)
+    walk.pieces[first:] = [replace(p, path=label) for p in walk.pieces[first:]]
 
 
 def _spline_frame(entity, label: str, walk: _Walk) -> bool:

@@ -3,13 +3,15 @@
 A *native* piece is a line or circular arc of the drawing, kept exactly. A *free-form* piece
 (spline, ellipse, Bézier, elliptical arc) is a dense polyline within a flattening distance of
 the drawn curve, with the drawn curve's exact end tangents (from its derivatives), so a join
-with a neighbour can be judged tangent or not. Every piece names the entity it came from.
+with a neighbour can be judged tangent or not. Every piece names the entity it came from,
+and a piece of a drawn path (a polyline, an SVG path) names that path too: where more than two
+ends meet, a path's own pieces are followed in the order it was drawn.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, Union
 
 import numpy as np
@@ -30,10 +32,12 @@ def heading_of(vector: np.ndarray) -> float:
 
 @dataclass(frozen=True, eq=False)
 class NativePiece:
-    """A line or arc of the drawing, exactly."""
+    """A line or arc of the drawing, exactly; ``path`` names the drawn path it is part of
+    ("" for an entity of its own)."""
 
     segment: Segment
     source: str
+    path: str = ""
 
     @property
     def start(self) -> Point:
@@ -59,19 +63,19 @@ class NativePiece:
         return self.segment.points(np.array([self.length / 2]))[0]
 
     def reversed(self) -> NativePiece:
-        return NativePiece(self.segment.reversed(), self.source)
+        return replace(self, segment=self.segment.reversed())
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float) -> NativePiece:
-        return NativePiece(self.segment.transformed(np.asarray(matrix, float), np.asarray(offset, float), scale),
-                           self.source)
+        return replace(self, segment=self.segment.transformed(np.asarray(matrix, float), np.asarray(offset, float),
+                                                              scale))
 
     def with_ends(self, start: Point, end: Point) -> NativePiece:
         """The piece moved to end exactly at ``start`` and ``end`` (each at most the join
         tolerance away); an arc keeps its radius and sense and gets the centre that fits."""
         seg = self.segment
         if isinstance(seg, Line):
-            return NativePiece(Line(_xy(start), _xy(end)), self.source)
-        return NativePiece(refit_arc(seg, start, end), self.source)
+            return replace(self, segment=Line(_xy(start), _xy(end)))
+        return replace(self, segment=refit_arc(seg, start, end))
 
     def samples(self, flatten_mm: float) -> np.ndarray:
         """Points (n, 2) from start to end, chords within ``flatten_mm`` of the piece."""
@@ -120,12 +124,13 @@ def refit_arc(arc: Arc, start: Point, end: Point) -> Arc:
 @dataclass(frozen=True, eq=False)
 class FreePiece:
     """A free-form curve: ``points`` (n, 2) within the flattening distance of it, start and
-    end exactly on it, and its exact end headings (rad)."""
+    end exactly on it, and its exact end headings (rad); ``path`` as for a native piece."""
 
     points: np.ndarray
     start_heading: float
     end_heading: float
     source: str
+    path: str = ""
 
     @property
     def start(self) -> Point:
@@ -147,18 +152,19 @@ class FreePiece:
         return self.points[k - 1] + u * (self.points[k] - self.points[k - 1])
 
     def reversed(self) -> FreePiece:
-        return FreePiece(self.points[::-1].copy(), self.end_heading + math.pi, self.start_heading + math.pi, self.source)
+        return replace(self, points=self.points[::-1].copy(), start_heading=self.end_heading + math.pi,
+                       end_heading=self.start_heading + math.pi)
 
     def transformed(self, matrix: np.ndarray, offset: np.ndarray, scale: float) -> FreePiece:
         m = np.asarray(matrix, float)
         pts = scale * self.points @ m.T + np.asarray(offset, float)
         turn = lambda h: heading_of(m @ np.array([math.cos(h), math.sin(h)]))  # noqa: E731
-        return FreePiece(pts, turn(self.start_heading), turn(self.end_heading), self.source)
+        return replace(self, points=pts, start_heading=turn(self.start_heading), end_heading=turn(self.end_heading))
 
     def with_ends(self, start: Point, end: Point) -> FreePiece:
         pts = self.points.copy()
         pts[0], pts[-1] = start, end
-        return FreePiece(pts, self.start_heading, self.end_heading, self.source)
+        return replace(self, points=pts)
 
     def samples(self, flatten_mm: float) -> np.ndarray:
         return self.points
@@ -167,14 +173,14 @@ class FreePiece:
 Piece = Union[NativePiece, FreePiece]
 
 
-def line_piece(start: np.ndarray, end: np.ndarray, source: str) -> NativePiece:
-    return NativePiece(Line(_xy(start), _xy(end)), source)
+def line_piece(start: np.ndarray, end: np.ndarray, source: str, path: str = "") -> NativePiece:
+    return NativePiece(Line(_xy(start), _xy(end)), source, path)
 
 
 def arc_piece(center: np.ndarray, radius: float, start: np.ndarray, end: np.ndarray, sweep: float,
-              source: str) -> NativePiece:
+              source: str, path: str = "") -> NativePiece:
     """A circular arc from its centre, radius, end points and signed sweep (rad)."""
-    return NativePiece(Arc(_xy(start), _xy(end), _xy(center), float(radius), float(sweep)), source)
+    return NativePiece(Arc(_xy(start), _xy(end), _xy(center), float(radius), float(sweep)), source, path)
 
 
 def flatten(point_at: Callable[[np.ndarray], np.ndarray], flatten_mm: float, min_pieces: int = 8,
@@ -215,7 +221,8 @@ def tangent_heading(point_at: Callable[[np.ndarray], np.ndarray], at_end: bool) 
     return heading_of(p[1] - p[0])
 
 
-def free_or_native(point_at: Callable[[np.ndarray], np.ndarray], flatten_mm: float, source: str) -> Piece:
+def free_or_native(point_at: Callable[[np.ndarray], np.ndarray], flatten_mm: float, source: str,
+                   path: str = "") -> Piece:
     """A parametric curve on [0, 1] as a free-form piece, or as the native line or arc it
     exactly is (a Bézier with its handles on the chord, a NURBS circle): every sample and
     every point half way between samples on that line or circle to round-off, running along
@@ -224,13 +231,13 @@ def free_or_native(point_at: Callable[[np.ndarray], np.ndarray], flatten_mm: flo
     stay free-form, to be fitted with their neighbours rather than cut a stretch in two."""
     pts = flatten(point_at, flatten_mm)
     if float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()) < NATIVE_MIN_FLATTENINGS * flatten_mm:
-        return FreePiece(pts, tangent_heading(point_at, False), tangent_heading(point_at, True), source)
+        return FreePiece(pts, tangent_heading(point_at, False), tangent_heading(point_at, True), source, path)
     t = np.linspace(0.0, 1.0, len(pts))  # not the samples' parameters: probes between and beyond them
     probe = np.vstack((pts, point_at(t), point_at((t[:-1] + t[1:]) / 2)))
     exact = _exact_line(pts, probe) or _exact_arc(pts, probe)
     if exact is not None:
-        return NativePiece(exact, source)
-    return FreePiece(pts, tangent_heading(point_at, False), tangent_heading(point_at, True), source)
+        return NativePiece(exact, source, path)
+    return FreePiece(pts, tangent_heading(point_at, False), tangent_heading(point_at, True), source, path)
 
 
 def _exact_line(pts: np.ndarray, probe: np.ndarray) -> Line | None:

@@ -219,14 +219,14 @@ def _shape_pieces(shape, label: str, flatten_mm: float, mm_px: float) -> list[Pi
         if isinstance(seg, se.Close) and float(np.linalg.norm(b - a)) <= _ROUND * max(1.0, float(np.abs(a).max())):
             continue  # the path already ends where it started (to round-off): nothing is drawn
         if isinstance(seg, (se.Line, se.Close)) or isinstance(seg, se.Arc) and _degenerate(seg):
-            pieces.append(line_piece(a, b, sub))
+            pieces.append(line_piece(a, b, sub, label))
         elif isinstance(seg, se.Arc) and _circular(seg) and keeps_circles:
             radius = (float(seg.rx) + float(seg.ry)) / 2 * math.sqrt(abs(float(np.linalg.det(matrix))))
             sweep = float(seg.sweep) * (1.0 if np.linalg.det(matrix) > 0 else -1.0)
-            pieces.append(arc_piece(to_mm(seg.center), radius, a, b, sweep, sub))
+            pieces.append(arc_piece(to_mm(seg.center), radius, a, b, sweep, sub, label))
         else:
             at = lambda t, seg=seg: np.asarray(seg.npoint(np.asarray(t, float)), float) @ matrix.T + offset  # noqa: E731
-            pieces.append(free_or_native(at, flatten_mm, sub).with_ends(a, b))
+            pieces.append(free_or_native(at, flatten_mm, sub, label).with_ends(a, b))
     return pieces
 
 

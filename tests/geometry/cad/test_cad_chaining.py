@@ -66,6 +66,28 @@ def test_branches_pair_the_straightest_continuation():
     assert any("three or more pieces meet" in n for n in chaining.notes)
 
 
+@pytest.mark.parametrize("second_first", [False, True])
+def test_closed_paths_touching_at_a_corner_stay_two(second_first):
+    # two squares drawn as closed paths, the second's corner on the first's: the straightest
+    # pairing at the shared corner is any, but each path is followed as it was drawn
+    def path(x0: float, y0: float, name: str) -> list[NativePiece]:
+        p = [(x0, y0), (x0 + 10.0, y0), (x0 + 10.0, y0 + 10.0), (x0, y0 + 10.0)]
+        return [NativePiece(Line(p[k], p[(k + 1) % 4]), f"{name} segment {k + 1}", name) for k in range(4)]
+
+    a, b = path(0.0, 0.0, "A"), path(10.0, 10.0, "B")
+    contours = chain_pieces(b + a if second_first else a + b, JOIN).contours
+    assert len(contours) == 2 and all(c.closed and len(c.pieces) == 4 for c in contours)
+    assert {frozenset(p.path for p in c.pieces) for c in contours} == {frozenset("A"), frozenset("B")}
+
+
+def test_a_path_crossing_its_own_vertex_is_followed_as_drawn():
+    # a bow tie drawn as one path through its centre twice: one closed contour in drawn order
+    p = [(0.0, 0.0), (10.0, 10.0), (20.0, 0.0), (20.0, 20.0), (10.0, 10.0), (0.0, 20.0)]
+    pieces = [NativePiece(Line(p[k], p[(k + 1) % 6]), f"bow segment {k + 1}", "bow") for k in range(6)]
+    (contour,) = chain_pieces(pieces, JOIN).contours
+    assert contour.closed and [q.source for q in contour.pieces] == [q.source for q in pieces]
+
+
 def test_near_miss_is_joined_and_noted():
     pieces = [native(Line((0.0, 0.0), (10.0, 0.0)), "LINE #A"), native(Line((10.01, 0.0), (20.0, 0.0)), "LINE #B")]
     chaining = chain_pieces(pieces, JOIN, "d.dxf", near_mm=0.1)

@@ -79,6 +79,15 @@ def test_lines_and_arcs_come_back_exactly_in_either_direction(tmp_path):
     assert c.n_pieces == 8 and poly.n_segments == 8
 
 
+def test_closed_polylines_touching_at_a_corner_stay_apart(tmp_path):
+    def draw(msp, doc):
+        msp.add_lwpolyline([(0, 0), (50, 0), (50, 50), (0, 50)], close=True)
+        msp.add_lwpolyline([(50, 50), (100, 50), (100, 100), (50, 100)], close=True)
+
+    contours = segment_drawing(write_dxf(tmp_path, draw), 0.1).contours
+    assert [(c.polysegment.closed, c.polysegment.n_segments) for c in contours] == [(True, 4), (True, 4)]
+
+
 def test_bulged_lwpolyline_is_its_lines_and_arcs(tmp_path):
     bulge = math.tan(math.pi / 8)  # a quarter circle
     pts = [(10, 0, 0, 0, 0), (90, 0, 0, 0, bulge), (100, 10, 0, 0, 0), (100, 50, 0, 0, bulge), (90, 60, 0, 0, 0),

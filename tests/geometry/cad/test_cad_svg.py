@@ -129,6 +129,17 @@ def test_pieces_in_separate_elements_chain_in_either_direction(tmp_path):
     assert len(polys) == 1 and polys[0].closed and polys[0].n_segments == 4 and len(polys[0].corners) == 4
 
 
+def test_outlines_touching_at_a_corner_stay_apart(tmp_path):
+    # two rectangles sharing a corner and a bow tie drawn through its own centre: each shape
+    # is one closed contour of its own edges, not a figure eight through the shared point
+    body = """
+    <rect x="10" y="10" width="40" height="40"/>
+    <rect x="50" y="50" width="40" height="40"/>
+    <path d="M 100 10 L 130 40 L 160 10 L 160 70 L 130 40 L 100 70 Z"/>"""
+    polys = segments_of(write_svg(tmp_path, body, attrs=MM))
+    assert [(p.closed, p.n_segments, len(p.corners)) for p in polys] == [(True, 4, 4), (True, 4, 4), (True, 6, 6)]
+
+
 def test_inkscape_layers(tmp_path):
     body = """
     <g inkscape:groupmode="layer" inkscape:label="Cut" id="layer1">
