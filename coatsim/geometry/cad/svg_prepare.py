@@ -1,14 +1,15 @@
 """An SVG document edited before svgelements draws it, where svgelements would draw it other
 than a viewer does: symbols placed only where a ``<use>`` places them, the root's missing width or
 height completed from its viewBox, flowed text left out, each ``<switch>`` reduced to the child
-drawn. One parse, and one serialisation where any edit changed the document."""
+drawn, ``display`` and ``visibility`` read in any letter case. One parse, and one serialisation
+where any edit changed the document."""
 
 from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
 
-_SVG_NS = "{http://www.w3.org/2000/svg}"
+SVG_NS = "{http://www.w3.org/2000/svg}"
 _HREFS = ("href", "{http://www.w3.org/1999/xlink}href")
 _CSS_PX = {"px": 1.0, "": 1.0, "mm": 96 / 25.4, "cm": 96 / 2.54, "in": 96.0, "pt": 96 / 72, "pc": 16.0}
 
@@ -42,10 +43,33 @@ def _viewbox_transform(viewbox: str, width: float, height: float, aspect: str) -
 def prepared(data: bytes) -> bytes:
     """The document as svgelements should draw it (one parse, and one serialisation where any
     of these changed it): symbols placed, the root's size completed, flowed text left out,
-    switches reduced to the child drawn."""
+    switches reduced to the child drawn, display and visibility in lower case."""
     root = ET.fromstring(data)
-    changed = [edit(root) for edit in (symbols_placed, sized, without_flowed_text, switched)]
+    changed = [edit(root) for edit in (symbols_placed, sized, without_flowed_text, switched, shown_lowered)]
     return ET.tostring(root) if any(changed) else data
+
+
+_SHOWN = re.compile(r"(?i)\b(display|visibility)\s*:\s*([a-z-]+)")
+
+
+def shown_lowered(root: ET.Element) -> bool:
+    """``display`` and ``visibility`` in lower case, as attributes and in style (CSS names and
+    keywords are case-insensitive, and svgelements drew a shape styled ``DISPLAY:NONE``).
+    Whether any was changed."""
+    changed = False
+    for el in root.iter():
+        style = el.get("style")
+        if style and _SHOWN.search(style):
+            lowered = _SHOWN.sub(lambda m: f"{m.group(1).lower()}:{m.group(2).lower()}", style)
+            if lowered != style:
+                el.set("style", lowered)
+                changed = True
+        for name in ("display", "visibility"):
+            value = el.get(name)
+            if value is not None and value != value.strip().lower():
+                el.set(name, value.strip().lower())
+                changed = True
+    return changed
 
 
 def without_flowed_text(root: ET.Element) -> bool:
@@ -55,7 +79,7 @@ def without_flowed_text(root: ET.Element) -> bool:
     changed = False
     for parent in list(root.iter()):
         for child in list(parent):
-            if child.tag in (f"{_SVG_NS}flowRoot", "flowRoot"):
+            if child.tag in (f"{SVG_NS}flowRoot", "flowRoot"):
                 parent.remove(child)
                 changed = True
     return changed
@@ -65,7 +89,7 @@ def switched(root: ET.Element) -> bool:
     """Reduce each ``<switch>`` to the one child a viewer draws: the first that asks for no
     extension (Illustrator puts its own data first, under requiredExtensions); svgelements drew
     every child, one shape over another. Whether there was a switch."""
-    switches = list(root.iter(f"{_SVG_NS}switch"))
+    switches = list(root.iter(f"{SVG_NS}switch"))
     for switch in switches:
         children = list(switch)
         drawn = next((c for c in children if c.get("requiredExtensions") is None), None)
@@ -104,21 +128,21 @@ def symbols_placed(root: ET.Element) -> bool:
     use's width and height (svgelements draws a symbol in place as well, and ignores its
     viewBox). Whether there was a symbol."""
     parents = {child: parent for parent in root.iter() for child in parent}
-    symbols = {el.get("id"): el for el in root.iter(f"{_SVG_NS}symbol")}
+    symbols = {el.get("id"): el for el in root.iter(f"{SVG_NS}symbol")}
     if not symbols:
         return False
-    defs = ET.SubElement(root, f"{_SVG_NS}defs")
+    defs = ET.SubElement(root, f"{SVG_NS}defs")
     for el in symbols.values():
         parents[el].remove(el)
     box = (root.get("viewBox") or "").replace(",", " ").split()
     whole_w = float(box[2]) if len(box) == 4 else _length_px(root.get("width"), 0.0) or 0.0
     whole_h = float(box[3]) if len(box) == 4 else _length_px(root.get("height"), 0.0) or 0.0
-    for k, use in enumerate(root.iter(f"{_SVG_NS}use")):
+    for k, use in enumerate(root.iter(f"{SVG_NS}use")):
         href = next((use.get(h) for h in _HREFS if use.get(h)), "")
         symbol = symbols.get(href.lstrip("#")) if href.startswith("#") else None
         if symbol is None:
             continue
-        group = ET.SubElement(defs, f"{_SVG_NS}g", {"id": f"{href[1:]}--placed-{k}"})
+        group = ET.SubElement(defs, f"{SVG_NS}g", {"id": f"{href[1:]}--placed-{k}"})
         group.extend(list(symbol))
         if symbol.get("viewBox"):
             width = _length_px(use.get("width") or symbol.get("width") or "100%", whole_w)

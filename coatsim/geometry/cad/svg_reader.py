@@ -31,7 +31,7 @@ from coatsim.core.errors import InputError, shown
 from coatsim.core.fileio import read_input
 from coatsim.geometry.cad.drawing import Drawing, check_layers, count_note
 from coatsim.geometry.cad.pieces import Piece, arc_piece, free_or_native, line_piece
-from coatsim.geometry.cad.svg_prepare import prepared
+from coatsim.geometry.cad.svg_prepare import SVG_NS, prepared
 from coatsim.geometry.cad.svg_scan import check_svg_structure
 
 MM_PER_USER_UNIT = 25.4 / 96.0
@@ -111,15 +111,21 @@ def _parse(path: Path, data: bytes):
     return svg
 
 
-def hidden_layers(data: bytes) -> list[str]:
-    """Labels of Inkscape layers hidden with ``display:none`` (svgelements drops them whole)."""
-    hidden = []
-    for el in ET.fromstring(data).iter():
+def hidden_by_display(data: bytes) -> tuple[list[str], int]:
+    """Labels of Inkscape layers hidden with ``display:none``, and how many other elements
+    outside ``<defs>`` are (svgelements drops them whole, with what they contain)."""
+    root = ET.fromstring(data)
+    unused = {id(el) for defs in root.iter(f"{SVG_NS}defs") for el in defs.iter()}
+    layers, others = [], 0
+    for el in root.iter():
+        style = re.sub(r"\s+", "", el.get("style") or "").lower()
+        if id(el) in unused or not ("display:none" in style or (el.get("display") or "").strip().lower() == "none"):
+            continue
         if el.get(f"{_INKSCAPE}groupmode") == "layer":
-            style = (el.get("style") or "").replace(" ", "").lower()
-            if "display:none" in style or el.get("display") == "none":
-                hidden.append(str(el.get(f"{_INKSCAPE}label") or el.get("id") or "layer"))
-    return hidden
+            layers.append(str(el.get(f"{_INKSCAPE}label") or el.get("id") or "layer"))
+        else:
+            others += 1
+    return layers, others
 
 
 def _walk(node, labels: tuple[str, ...]) -> Iterator[tuple[object, tuple[str, ...]]]:
@@ -248,6 +254,15 @@ def _attribute_error(el) -> Optional[str]:
     return None
 
 
+def _unpainted(shape) -> bool:
+    """Whether a shape is drawn with neither fill nor stroke (none, transparent, or a stroke
+    of width 0): a viewer shows nothing of it, a guide or a hit area."""
+    def none(color) -> bool:
+        return color is None or color.value is None or color.alpha == 0
+
+    return none(shape.fill) and (none(shape.stroke) or not float(shape.stroke_width or 0.0) > 0)
+
+
 def _degenerate(arc) -> bool:
     """An arc SVG draws as a straight line: a radius of zero, or no sweep."""
     return float(arc.rx) == 0.0 or float(arc.ry) == 0.0 or float(arc.sweep) == 0.0
@@ -262,13 +277,15 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     k = mm_per_px(svg)
     elements = list(_walk(svg, ()))
     known = sorted({label for _, labels in elements for label in labels})
-    hidden_names = hidden_layers(data)
+    hidden_names, undisplayed = hidden_by_display(data)
     for name in layers or ():
         if name.lower() in {h.lower() for h in hidden_names} and name.lower() not in {k.lower() for k in known}:
             raise InputError(f"{path}: layer {name!r} (--layer) is hidden in the drawing (display:none); "
                              "show it in the drawing to spray it")
     wanted = check_layers(str(path), layers, known)
     pieces: list[Piece] = []
+    notes: list[str] = []
+    shapes, unpainted = [], []
     ignored, hidden, elsewhere = Counter(), 0, 0
     ignored["flowRoot"] = len(re.findall(rb"<(?:\w+:)?flowRoot\b", data))
     for index, (el, labels) in enumerate(elements):
@@ -286,20 +303,21 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         problem = path_data_error(str(el.values.get("d", ""))) if isinstance(el, se.Path) else _attribute_error(el)
         if problem is not None:
             raise InputError(f"{path}: {label}: {problem}")
+        (unpainted if _unpainted(el) else shapes).append((el, label))
+    if shapes and unpainted:
+        notes.append(f"left out {len(unpainted)} shapes drawn with neither fill nor stroke, which a viewer does not "
+                     f"show (first: {unpainted[0][1]})")
+    elif unpainted:
+        notes.append(f"every shape is drawn with neither fill nor stroke, which a viewer does not show: all "
+                     f"{len(unpainted)} read")
+    for el, label in shapes or unpainted:
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
-    notes = [note for note in (_pixel_note(svg, data),) if note]
-    switches = len(re.findall(rb"<switch\b", data))
-    if switches:
-        notes.append(f"{switches} <switch> elements: each read as its first child that needs no extension, as a viewer "
-                     "draws it")
-    clipped = len(re.findall(rb"clip-path\s*[=:]\s*[\"']?\s*url", data))
-    if clipped:
-        notes.append(f"{clipped} clip paths not applied: the shapes they clip are read whole")
+    notes += _document_notes(svg, data)
     ignored = +ignored  # no zero counts
     if ignored:
         notes.append(count_note("ignored", ignored, "not contour geometry"))
-    if hidden:
-        notes.append(f"left out {hidden} hidden elements")
+    if hidden or undisplayed:
+        notes.append(f"left out {hidden + undisplayed} hidden elements (display:none or visibility:hidden)")
     if hidden_names and wanted is None:
         notes.append(f"left out {len(hidden_names)} hidden layers ({', '.join(hidden_names)})")
     if not pieces:
@@ -310,5 +328,31 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         else:
             why = "no geometry to spray (no path, rect, circle, ellipse, line, polyline or polygon with a length)"
         raise InputError(f"{path}: {why}")
-    return Drawing(str(path), tuple(pieces), f"SVG px (1 = {k:.9g} mm, y flipped)", tuple(notes))
+    return Drawing(str(path), tuple(pieces), _units(svg, k), tuple(notes))
+
+
+def _document_notes(svg, data: bytes) -> list[str]:
+    """Notes on how the document as a whole is read: its scale where it gives none in a
+    physical unit, switches reduced, clip paths not applied."""
+    notes = [note for note in (_pixel_note(svg, data),) if note]
+    switches = len(re.findall(rb"<switch\b", data))
+    if switches:
+        notes.append(f"{switches} <switch> elements: each read as its first child that needs no extension, as a viewer "
+                     "draws it")
+    clipped = len(re.findall(rb"clip-path\s*[=:]\s*[\"']?\s*url", data))
+    if clipped:
+        notes.append(f"{clipped} clip paths not applied: the shapes they clip are read whole")
+    return notes
+
+
+def _units(svg, mm_px: float) -> str:
+    """The size of the document's user unit in mm, as the summary states it: what its width,
+    height and viewBox make of it (a drawing saved at 1 unit = 1 mm says so)."""
+    import svgelements as se
+
+    view = se.Matrix(svg.viewbox_transform) if svg.viewbox_transform else se.Matrix()
+    sx, sy = math.hypot(view.a, view.b) * mm_px, math.hypot(view.c, view.d) * mm_px
+    if abs(sx - sy) <= 1e-9 * max(sx, sy):
+        return f"SVG user unit {sx:.9g} mm (y flipped)"
+    return f"SVG user unit {sx:.9g} mm across, {sy:.9g} mm down (the viewBox stretches it; y flipped)"
 

@@ -162,6 +162,37 @@ def test_inkscape_layers(tmp_path):
     assert any("hidden layers (Hidden)" in n for n in segment_drawing(path, TOL).notes)
 
 
+@pytest.mark.parametrize("hide", ['style="DISPLAY: None"', 'display="NONE"', 'style="fill:none;display:none"',
+                                  'class="off"', 'visibility="hidden"'])
+def test_hidden_shapes_are_left_out_in_any_letter_case_with_a_note(tmp_path, hide):
+    body = f"""<style>.off {{display:none}}</style>
+    <g {hide}><rect x="10" y="10" width="40" height="40"/></g>
+    <circle cx="150" cy="50" r="20" fill="none" stroke="black"/>"""
+    drawing = segment_drawing(write_svg(tmp_path, body, attrs=MM), TOL)
+    assert [c.polysegment.n_arcs for c in drawing.contours] == [1]
+    if "class" not in hide:  # a style sheet's hiding is applied, not counted
+        assert any("left out 1 hidden elements" in n for n in drawing.notes)
+
+
+def test_shapes_neither_filled_nor_stroked_are_left_out_unless_all_are(tmp_path):
+    frame = '<rect id="frame" x="0" y="0" width="200" height="100" style="fill:none;stroke:none"/>'
+    shapes = [frame, '<rect x="5" y="5" width="20" height="20" fill="none" stroke="#f00" stroke-width="0"/>',
+              '<rect x="5" y="5" width="20" height="20" fill="transparent" stroke="none"/>']
+    drawn = '<circle cx="150" cy="50" r="20" fill="none" stroke="black"/><rect x="60" y="10" width="9" height="9"/>'
+    drawing = segment_drawing(write_svg(tmp_path, "".join(shapes) + drawn, attrs=MM), TOL)
+    assert sorted(c.polysegment.n_arcs for c in drawing.contours) == [0, 1]  # the circle and the filled square
+    assert any("left out 3 shapes drawn with neither fill nor stroke" in n and "frame" in n for n in drawing.notes)
+    alone = segment_drawing(write_svg(tmp_path, frame, name="frame.svg", attrs=MM), TOL)
+    assert len(alone.contours) == 1 and any("all 1 read" in n for n in alone.notes)
+
+
+@pytest.mark.parametrize("attrs, unit_mm", [(MM, "1"), ('width="200mm" height="100mm" viewBox="0 0 800 400"', "0.25"),
+                                            ('width="200" height="100"', "0.264583333")])
+def test_summary_states_the_user_unit_in_mm(tmp_path, attrs, unit_mm):
+    drawing = read_drawing(write_svg(tmp_path, '<circle cx="50" cy="50" r="20"/>', attrs=attrs))
+    assert drawing.units == f"SVG user unit {unit_mm} mm (y flipped)"
+
+
 @pytest.mark.parametrize("d", ["M 0 0 C 30 60 70 -60 100 0", "M 0 0 Q 50 80 100 0 T 200 0",
                                "M 0 0 A 60 20 30 1 1 100 10"])
 def test_curves_within_tolerance(tmp_path, d):
