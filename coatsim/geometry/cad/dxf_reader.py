@@ -102,6 +102,7 @@ class _Walk:
     tilted: list[str] = field(default_factory=list)
     tilts: Counter = field(default_factory=Counter)
     invalid: list[str] = field(default_factory=list)  # entities left out, each with why
+    external: list[str] = field(default_factory=list)  # inserts of external references (XREF), each named
 
     def layer_state(self, name: str) -> tuple[bool, bool]:
         """(off, frozen) of a layer; a layer missing from the table is visible."""
@@ -320,6 +321,9 @@ def _insert(entity, walk: _Walk, layer: str, label: str, depth: int) -> None:
     name = entity.dxf.get("name", "?")
     if entity.block() is None:
         raise InputError(f"{label}: inserts block {name!r}, which the drawing does not define")
+    if entity.block().block.is_xref:
+        walk.external.append(f"{label}: {name!r} from {entity.block().block.dxf.get('xref_path', '?')!r}")
+        return
     try:
         inserts = list(entity.multi_insert()) if entity.mcount > 1 else [entity]
         for one in inserts:
@@ -364,6 +368,9 @@ def read_dxf(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         notes.append(_ignored_note("ignored", walk.ignored))
     if walk.invalid:
         notes.append(f"left out {len(walk.invalid)} entities that draw nothing readable (first: {walk.invalid[0]})")
+    if walk.external:
+        notes.append(f"left out {len(walk.external)} inserts of external references (XREF), whose geometry is in "
+                     f"another file (first: {walk.external[0]}); bind them into the drawing to read them")
     if walk.tilted:
         notes.append(f"ignored {len(walk.tilted)} entities not parallel to the drawing plane (first: {walk.tilted[0]})")
     if sum(walk.hidden.values()):
@@ -405,6 +412,9 @@ def _nothing(walk: _Walk, layers: Sequence[str] | None) -> str:
                 f"first: {walk.tilted[0]})")
     if walk.ignored:
         return f"{_ignored_note('no geometry to spray: only', walk.ignored)}; coatsim reads {read}"
+    if walk.external:
+        return (f"no geometry to spray: only inserts of external references (XREF), whose geometry is in another "
+                f"file (first: {walk.external[0]}); bind them into the drawing to read them")
     if walk.invalid:
         return f"no geometry to spray: {walk.invalid[0]}" + (f" (and {len(walk.invalid) - 1} more)" if len(walk.invalid) > 1 else "")
     return f"no geometry to spray (coatsim reads {read})"

@@ -39,6 +39,7 @@ MM_PER_USER_UNIT = 25.4 / 96.0
 # sized in mm or cm are converted back with the same constant, so the user's mm stay exact.
 _SVGELEMENTS_INCH_PER_MM = 0.0393701
 _INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
+_XLINK = "{http://www.w3.org/1999/xlink}"
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _ROUND = 1e-9  # relative: differences below this are round-off
 _ARITY = {"m": 2, "l": 2, "t": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "a": 7, "z": 0}
@@ -111,10 +112,17 @@ def _parse(path: Path, data: bytes):
     return svg
 
 
-def hidden_by_display(data: bytes) -> tuple[list[str], int]:
+def unresolved_uses(root: ET.Element) -> list[str]:
+    """The references of ``<use>`` elements that name nothing in this document (another file,
+    or an id it does not have): svgelements draws nothing for them."""
+    ids = {el.get("id") for el in root.iter() if el.get("id")}
+    hrefs = ((el.get("href") or el.get(f"{_XLINK}href") or "").strip() for el in root.iter(f"{SVG_NS}use"))
+    return [h for h in hrefs if not (h.startswith("#") and h[1:] in ids)]
+
+
+def hidden_by_display(root: ET.Element) -> tuple[list[str], int]:
     """Labels of Inkscape layers hidden with ``display:none``, and how many other elements
     outside ``<defs>`` are (svgelements drops them whole, with what they contain)."""
-    root = ET.fromstring(data)
     unused = {id(el) for defs in root.iter(f"{SVG_NS}defs") for el in defs.iter()}
     layers, others = [], 0
     for el in root.iter():
@@ -277,7 +285,8 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     k = mm_per_px(svg)
     elements = list(_walk(svg, ()))
     known = sorted({label for _, labels in elements for label in labels})
-    hidden_names, undisplayed = hidden_by_display(data)
+    raw = ET.fromstring(data)
+    hidden_names, undisplayed = hidden_by_display(raw)
     for name in layers or ():
         if name.lower() in {h.lower() for h in hidden_names} and name.lower() not in {k.lower() for k in known}:
             raise InputError(f"{path}: layer {name!r} (--layer) is hidden in the drawing (display:none); "
@@ -285,7 +294,7 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
     wanted = check_layers(str(path), layers, known)
     pieces: list[Piece] = []
     notes: list[str] = []
-    shapes, unpainted = [], []
+    shapes: list[tuple[object, str]] = []
     ignored, hidden, elsewhere = Counter(), 0, 0
     ignored["flowRoot"] = len(re.findall(rb"<(?:\w+:)?flowRoot\b", data))
     for index, (el, labels) in enumerate(elements):
@@ -303,16 +312,14 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         problem = path_data_error(str(el.values.get("d", ""))) if isinstance(el, se.Path) else _attribute_error(el)
         if problem is not None:
             raise InputError(f"{path}: {label}: {problem}")
-        (unpainted if _unpainted(el) else shapes).append((el, label))
-    if shapes and unpainted:
-        notes.append(f"left out {len(unpainted)} shapes drawn with neither fill nor stroke, which a viewer does not "
-                     f"show (first: {unpainted[0][1]})")
-    elif unpainted:
-        notes.append(f"every shape is drawn with neither fill nor stroke, which a viewer does not show: all "
-                     f"{len(unpainted)} read")
-    for el, label in shapes or unpainted:
+        shapes.append((el, label))
+    for el, label in _painted(shapes, notes):
         pieces.extend(_shape_pieces(el, label, flatten_mm, k))
     notes += _document_notes(svg, data)
+    unresolved = unresolved_uses(raw)
+    if unresolved:
+        notes.append(f"left out {len(unresolved)} <use> elements that refer to nothing in this file (first: "
+                     f"{unresolved[0][:80]!r}; another file's shapes are not read)")
     ignored = +ignored  # no zero counts
     if ignored:
         notes.append(count_note("ignored", ignored, "not contour geometry"))
@@ -322,13 +329,34 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
         notes.append(f"left out {len(hidden_names)} hidden layers ({', '.join(hidden_names)})")
     if not pieces:
         if wanted is not None and elsewhere:
-            why = f"no geometry on layer(s) {', '.join(repr(x) for x in layers)}"
-        elif ignored:
-            why = count_note("no geometry to spray: only", ignored, "coatsim reads path, rect, circle, ellipse, line, polyline, polygon")
-        else:
-            why = "no geometry to spray (no path, rect, circle, ellipse, line, polyline or polygon with a length)"
-        raise InputError(f"{path}: {why}")
+            raise InputError(f"{path}: no geometry on layer(s) {', '.join(repr(x) for x in layers)}")
+        raise InputError(f"{path}: {_nothing(unresolved, ignored)}")
     return Drawing(str(path), tuple(pieces), _units(svg, k), tuple(notes))
+
+
+def _painted(shapes: list[tuple[object, str]], notes: list[str]) -> list[tuple[object, str]]:
+    """The shapes (with their labels) a viewer shows: without those drawn with neither fill
+    nor stroke, noted, unless every shape is."""
+    painted = [(el, label) for el, label in shapes if not _unpainted(el)]
+    unpainted = len(shapes) - len(painted)
+    if painted and unpainted:
+        first = next(label for el, label in shapes if _unpainted(el))
+        notes.append(f"left out {unpainted} shapes drawn with neither fill nor stroke, which a viewer does not "
+                     f"show (first: {first})")
+    elif unpainted:
+        notes.append(f"every shape is drawn with neither fill nor stroke, which a viewer does not show: all "
+                     f"{unpainted} read")
+    return painted or shapes
+
+
+def _nothing(unresolved: list[str], ignored: Counter) -> str:
+    """Why a drawing yields no geometry, for the one-line error."""
+    if unresolved:
+        return (f"no geometry to spray: only <use> elements that refer to nothing in this file (first: "
+                f"{unresolved[0][:80]!r}; another file's shapes are not read)")
+    if ignored:
+        return count_note("no geometry to spray: only", ignored, "coatsim reads path, rect, circle, ellipse, line, polyline, polygon")
+    return "no geometry to spray (no path, rect, circle, ellipse, line, polyline or polygon with a length)"
 
 
 def _document_notes(svg, data: bytes) -> list[str]:

@@ -79,6 +79,20 @@ def test_lines_and_arcs_come_back_exactly_in_either_direction(tmp_path):
     assert c.n_pieces == 8 and poly.n_segments == 8
 
 
+def test_inserts_of_external_references_are_named(tmp_path):
+    def draw(msp, doc, circle=True):
+        doc.add_xref_def("frame.dxf", "FRAME")
+        msp.add_blockref("FRAME", (0, 0))
+        if circle:
+            msp.add_circle((0, 0), 20)
+
+    drawing = segment_drawing(write_dxf(tmp_path, draw), 0.1)
+    assert len(drawing.contours) == 1
+    assert any("1 inserts of external references (XREF)" in n and "'frame.dxf'" in n for n in drawing.notes)
+    with pytest.raises(InputError, match=r"only inserts of external references \(XREF\)"):
+        segment_drawing(write_dxf(tmp_path, lambda m, d: draw(m, d, False), name="xref.dxf"), 0.1)
+
+
 def test_closed_polylines_touching_at_a_corner_stay_apart(tmp_path):
     def draw(msp, doc):
         msp.add_lwpolyline([(0, 0), (50, 0), (50, 50), (0, 50)], close=True)

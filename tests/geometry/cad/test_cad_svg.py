@@ -186,6 +186,17 @@ def test_shapes_neither_filled_nor_stroked_are_left_out_unless_all_are(tmp_path)
     assert len(alone.contours) == 1 and any("all 1 read" in n for n in alone.notes)
 
 
+def test_uses_of_another_file_or_a_missing_id_are_named(tmp_path):
+    refs = '<use xlink:href="parts.svg#bracket"/><use href="#nothing"/>'
+    attrs = MM + ' xmlns:xlink="http://www.w3.org/1999/xlink"'
+    drawing = segment_drawing(write_svg(tmp_path, refs + '<circle cx="50" cy="50" r="20"/>', attrs=attrs), TOL)
+    assert len(drawing.contours) == 1
+    assert any("left out 2 <use> elements that refer to nothing in this file" in n and "parts.svg#bracket" in n
+               for n in drawing.notes)
+    with pytest.raises(InputError, match="only <use> elements that refer to nothing in this file"):
+        segment_drawing(write_svg(tmp_path, refs, name="refs.svg", attrs=attrs), TOL)
+
+
 @pytest.mark.parametrize("attrs, unit_mm", [(MM, "1"), ('width="200mm" height="100mm" viewBox="0 0 800 400"', "0.25"),
                                             ('width="200" height="100"', "0.264583333")])
 def test_summary_states_the_user_unit_in_mm(tmp_path, attrs, unit_mm):
