@@ -104,8 +104,8 @@ class LoopControl:
                         called.add(callee.name.lower())
                         statements.extend(callee.body)
                 elif isinstance(node, (ast.Signal, ast.Pulse, ast.Bits)):
-                    numbers = [_number(e) for e in (node.outputs if isinstance(node, ast.Signal) else
-                                                    (node.signal,) if isinstance(node, ast.Pulse) else (None,))]
+                    numbers = [self.signal_number(e) for e in (node.outputs if isinstance(node, ast.Signal) else
+                                                               (node.signal,) if isinstance(node, ast.Pulse) else (None,))]
                     if None in numbers:
                         return False  # (a signal number computed, or a group of BITS: it may be any)
                     signals.update(numbers)
@@ -115,7 +115,7 @@ class LoopControl:
                 return False
             for n in read:
                 if isinstance(n, ast.Call) and n.name.upper() == "SIG" and \
-                        any(_number(a) in signals or _number(a) is None for a in n.args):
+                        any(self.signal_number(a) in signals or self.signal_number(a) is None for a in n.args):
                     return False
         return True
 
@@ -123,10 +123,20 @@ class LoopControl:
         """What a condition that read an unknown turns on, when that is all it turns on (every
         variable it names has no value: the unknowns, and an input not given if ``signal``);
         "" when it also names a variable that has one (a counter may end the loop)."""
-        names = list(dict.fromkeys(_names(e)))
+        numbers = _signal_names(e)  # (a constant naming the input, di.stop = 1010: the input is what is unknown)
+        names = [n for n in dict.fromkeys(_names(e)) if norm(n) not in numbers]
         if any(norm(n) not in self.unknowns.first for n in names):
             return ""
         return ", ".join(names + (["an input not given"] if signal else []))
+
+    def signal_number(self, e) -> Optional[int]:
+        """A signal number written as a number or as a variable with a value (a constant of .REALS,
+        ``SIG(di.stop)``): its absolute value, else None (computed: it may be any)."""
+        if isinstance(e, ast.Unary) and e.op in "-+":
+            e = e.operand
+        if isinstance(e, ast.Name) and not e.index and e.kind == "value" and self.has_real(e):
+            return int(abs(self.get_real(e)))
+        return int(abs(e.value)) if isinstance(e, ast.Num) else None
 
     def budget_error(self) -> ExecutionError:
         if self.last_loop is not None:
@@ -136,14 +146,12 @@ class LoopControl:
         return self.failure(f"the program ran {self.max_steps} steps without ending")
 
 
-
 def _names(e) -> list[str]:
     """The variables an expression names (as written)."""
     return [n.name for n in nodes(e) if isinstance(n, ast.Name)]
 
 
-def _number(e) -> Optional[int]:
-    """A signal number written as a number (signed): its absolute value, else None."""
-    if isinstance(e, ast.Unary) and e.op in "-+":
-        e = e.operand
-    return int(abs(e.value)) if isinstance(e, ast.Num) else None
+def _signal_names(e) -> set[str]:
+    """The variables an expression names inside the signal numbers of its SIG(...) calls."""
+    return {norm(n.name) for call in nodes(e) if isinstance(call, ast.Call) and call.name.upper() == "SIG"
+            for a in call.args for n in nodes(a) if isinstance(n, ast.Name)}

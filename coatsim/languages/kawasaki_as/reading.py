@@ -15,6 +15,7 @@ from coatsim.languages.kawasaki_as.files import parse_files
 from coatsim.languages.kawasaki_as.interpreter import Run, interpret_run
 from coatsim.languages.kawasaki_as.names import MAX_NAME_LENGTH
 from coatsim.languages.kawasaki_as.printer import expr_text
+from coatsim.languages.kawasaki_as.statements_exec import gun_pulse_problem
 from coatsim.path.language import ReadOptions
 from coatsim.path.reading import MoveSource, OutputSwitch, Reading
 from coatsim.path.toolpath import CircularMove
@@ -146,12 +147,16 @@ def read_as(paths: Sequence[Path], options: ReadOptions) -> Reading:
     used: set[str] = set()
     switches: list[OutputSwitch] = []
     reals = {k: d.value for f in files for k, d in f.reals.items()}
+    gun = options.gun_signal
     for p in run.programs.values():
         for st in walk(p.body):
             used.update(used_names(st))
             switch = _switch(st, options.gun_signal, p.source, reals)
             if switch is not None:
                 switches.append(switch)
+            if isinstance(st, ast.Pulse) and st.op == "PULSE" and _constant(st.signal, reals) in (gun, -gun):
+                seconds = None if st.seconds is None else _constant(st.seconds, reals)
+                problems.append(f"{p.source}:{st.line}: {gun_pulse_problem(gun, seconds)}")
             if isinstance(st, ast.Speed) and st.unit == "%":
                 problems.append(f"{p.source}:{st.line}: SPEED in % depends on the robot's maximum speed; coatsim "
                                 "assumes 100 % = 1000 mm/s")

@@ -61,6 +61,9 @@ def _speed(c: StatementParser, op: str, line: int) -> Item:
         unit = f"{base}/{word}"
     elif c.word("S"):
         unit = "S"
+    if c.is_op(","):  # (no AS reference at hand shows a second, rotation speed: refused, not guessed)
+        raise c.error("SPEED with a second speed after ',' (a rotation speed?) is not read: the AS references "
+                      "coatsim follows show one speed; write SPEED v [unit] [ALWAYS]", c.peek())
     always = c.qualifier("ALWAYS") is not None
     if not c.at_end():
         raise c.error(f"unexpected {c.peek().show()} in SPEED; expected a unit (%, MM/S, MM/MIN, S), ALWAYS or "

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Callable
+from typing import Callable, Optional
 
 import numpy as np
 
@@ -179,8 +179,7 @@ def _signal(run: Machine, st: ast.Signal) -> None:
 
 def _pulse(run: Machine, st: ast.Pulse) -> None:
     n = run.eval.integer(st.signal, "a signal number")
-    if st.seconds is not None:
-        _seconds(run, st.seconds)
+    seconds = None if st.seconds is None else _seconds(run, st.seconds)
     if n == 0:
         raise run.error(f"{st.op}: signal number 0 does not exist")
     if abs(n) == run.gun and st.op == "DLYSIG":  # (switched where the program reaches it: never dropped)
@@ -188,11 +187,28 @@ def _pulse(run: Machine, st: ast.Pulse) -> None:
         run.set_signal(run.gun, n > 0)
         return
     if abs(n) == run.gun:  # (a pulse sprays for its time wherever the arm is: no switch of a motion models it)
-        raise NotSimulated(f"PULSE of the gun output {run.gun} is not simulated; switch it with SIGNAL")
+        raise NotSimulated(_gun_pulse(run.gun, seconds))
     run.warn(f"pulse:{st.line}", f"{st.op} {n}: the delay is not simulated; the output takes its final state at once")
     if abs(n) < FIRST_INPUT:
         run.outputs.add(abs(n))
     run.signals.set(abs(n), n > 0 if st.op == "DLYSIG" else False)
+
+
+def _gun_pulse(gun: int, seconds: Optional[float]) -> str:
+    """Why a PULSE of the gun is not simulated (its spray is timed, not tied to a motion), and
+    what to write instead."""
+    return (f"PULSE of the gun (output {gun}) is not simulated: the gun would spray for {_pulse_time(seconds)} from "
+            f"here, over whatever motion runs then; switch the gun with SIGNAL {gun} ... SIGNAL -{gun} around the "
+            "motions it sprays")
+
+
+def _pulse_time(seconds: Optional[float]) -> str:
+    return "its pulse time" if seconds is None else f"{seconds:g} s"
+
+
+def gun_pulse_problem(gun: int, seconds: Optional[float]) -> str:
+    """The problem a PULSE of the gun leaves in the path read (the warning says why)."""
+    return f"the sprayed path read lacks the {_pulse_time(seconds)} the PULSE of the gun (output {gun}) sprays"
 
 
 def _bits(run: Machine, st: ast.Bits) -> None:
@@ -291,15 +307,20 @@ def _drive(run: Machine, st: ast.Command) -> None:
     if not 1 <= joint <= 6:
         raise run.error(f"DRIVE joint {joint}: this six-axis arm has joints 1 to 6")
     angle = run.eval.real(st.args[1])
-    q = run.controller.current_joints
-    if q is None:
-        raise NotSimulated("DRIVE turns a joint from where the arm is, whose joint angles are unknown here (after a "
-                           "Cartesian motion they need the arm's inverse kinematics)")
-    q = q.copy()
+    c = run.controller
+    if c.current is None and not c.moves:
+        c.need_current("DRIVE", st.line)  # (before any motion: the arm stands at the cell's home)
+    if c.current_joints is None:  # (the reader has the cell's forward kinematics only; the IK runs in execute)
+        last = c.moves[-1].line if c.moves else st.line
+        raise NotSimulated(f"DRIVE after a motion to a transformation (line {last}) is not simulated: it turns a "
+                           "joint from the angles the arm has there, which only the arm's inverse kinematics tells "
+                           "and the program reader does not solve; reach that pose with JMOVE to a joint value "
+                           "(#...) before the DRIVE")
+    q = c.current_joints.copy()
     q[joint - 1] += np.radians(angle)
     if len(st.args) == 3:
         run.warn("drive-speed", "DRIVE ..., speed: the joint's speed is the cell's")
-    run.controller.joint(run.fk(q, "DRIVE"), st.line, joints=q)
+    c.joint(run.fk(q, "DRIVE"), st.line, joints=q)
 
 
 def _command(run: Machine, st: ast.Command) -> None:

@@ -40,7 +40,10 @@ def _if(c: StatementParser, op: str, line: int) -> Item:
         return ast.Goto(line, label, condition)
     if not c.at_end():  # THEN may be left out, as controllers save some blocks
         c.expect_word("THEN", "after the IF condition (or GOTO label)")
-    c.end("IF ... THEN")
+    if not c.at_end():  # (AS has no one-line IF ... THEN statement: its only one-line IF is IF ... GOTO)
+        raise c.error(f"unexpected {c.peek().show()} after the IF ... THEN: an AS IF ... THEN opens a block; "
+                      "write its statements on the lines after it and close it with END, or use "
+                      "IF condition GOTO label", c.peek())
     return Open("IF", line, (condition,))
 
 

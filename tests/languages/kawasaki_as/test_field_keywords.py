@@ -151,7 +151,7 @@ def test_instructions_of_the_index_parse_and_are_noted(line):
 
 @pytest.mark.parametrize("line,words", [
     ("ALIGN", "ALIGN skipped: ALIGN moves the arm in a way coatsim does not simulate"),
-    ("DRIVE 1, 10, 50", "DRIVE skipped: DRIVE turns a joint from where the arm is, whose joint angles are unknown"),
+    ("DRIVE 1, 10, 50", "DRIVE skipped: DRIVE after a motion to a transformation (line 2) is not simulated"),
     ("SJUMP place", "SJUMP skipped"),
     ("LINEAR 125. ACCU1 TIMER0", "LINEAR skipped: a teach-pendant block step"),
 ])

@@ -26,6 +26,8 @@ def globals_after(body: str, extra: str = "", **options):
 @pytest.mark.parametrize("body,expected", [
     ("x = 0\n10 x = x + 1\nIF x < 5 GOTO 10", 5.0),
     ("x = 1\nGOTO skip\nx = 2\nskip:", 1.0),
+    ("x = 0\nagain:\nx = x + 1\nIF x < 4 GOTO again", 4.0),  # the one-line IF of AS, to a named label
+    ("x = 0\n10 x = x + 1\nIF SIG(2001) GOTO 20\nIF x >= 2 GOTO 20\nGOTO 10\n20 y = 1", 2.0),
     ("x = 0\nIF 1 > 2 THEN\n x = 1\nELSEIF 2 > 1 THEN\n x = 2\nELSE\n x = 3\nEND", 2.0),
     ("x = 0\nIF 0 THEN\n x = 1\nELSE\n x = 3\nEND", 3.0),
     ("x = 0\nWHILE x < 7 DO\n x = x + 2\nEND", 8.0),
@@ -137,6 +139,33 @@ def test_a_loop_with_a_known_way_out_runs_as_written(body, inputs):
     """A loop whose exit also turns on a value the run has (a counter), or on a variable or a
     signal the loop itself sets, runs all its passes."""
     _, tp = _cycle(body, inputs=inputs)
+    assert len(tp.moves) == 9 and not any("ends only on" in w for w in tp.warnings), tp.warnings
+
+
+CONSTANTS = ".REALS\ndi.stop = 1020\ndo.gun = 1\nint.done = 2020\n.END\n"
+
+
+@pytest.mark.parametrize("body", [
+    "WHILE NOT SIG(di.stop) DO\n  CALL paint\nEND\nx = 1",
+    "WHILE NOT SIG(di.stop) DO\n  SIGNAL -do.gun\n  CALL paint\nEND\nx = 1",
+    "10 CALL paint\nIF SIG(di.stop) GOTO 99\nGOTO 10\nx = 2\n99 x = 1",
+])
+def test_a_loop_on_an_input_named_by_a_constant_runs_once(body):
+    """An input named by a .REALS constant (``di.stop = 1020``, ``WHILE NOT SIG(di.stop) DO``) is
+    what the loop waits on, not the constant, which has its value: the loop runs once with a note,
+    not to the motion cap; signals the loop switches through constants are told apart from it."""
+    run, tp = _cycle(body, extra=PAINT + CONSTANTS)
+    assert len(tp.moves) == 3 and run.globals.get("real", "x") == 1.0
+    assert any("ends only on what the twin does not know" in w and "SIG(di.stop)" in w
+               and "it reads an input not given" in w for w in tp.warnings), tp.warnings
+
+
+def test_a_loop_that_sets_the_signal_a_constant_names_runs_as_written():
+    """A loop that itself switches the signal its exit reads, both named by one constant, runs all
+    its passes."""
+    body = "n = 0\nWHILE NOT SIG(int.done) DO\n  CALL paint\n  n = n + 1\n  IF n >= 3 THEN\n" \
+           "    SIGNAL int.done\n  END\nEND"
+    _, tp = _cycle(body, extra=PAINT + CONSTANTS)
     assert len(tp.moves) == 9 and not any("ends only on" in w for w in tp.warnings), tp.warnings
 
 

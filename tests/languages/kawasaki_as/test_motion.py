@@ -291,9 +291,24 @@ def test_drive_turns_one_joint_from_where_the_arm_is(kin):
     assert np.allclose(moves[1].joints_rad, np.radians([30, 0, 35, 0, 55, 0]))
     assert np.allclose(moves[2].joints_rad, np.radians([30, 0, 35, 0, 55, -10]))
     assert np.allclose(moves[2].target.translation_mm, kin.forward(np.radians([30, 0, 35, 0, 55, -10])).translation_mm)
-    assert len(moves) == 4 and result.skipped[0].startswith("t.as:6: DRIVE skipped: DRIVE turns a joint")
+    assert len(moves) == 4 and result.skipped[0].startswith(
+        "t.as:6: DRIVE skipped: DRIVE after a motion to a transformation (line 5) is not simulated: it turns a joint "
+        "from the angles the arm has there, which only the arm's inverse kinematics tells")
+    assert "reach that pose with JMOVE to a joint value (#...) before the DRIVE" in result.skipped[0]
+    assert result.unsimulated == result.skipped
     with pytest.raises(InputError, match="DRIVE joint 7: this six-axis arm has joints 1 to 6"):
         run("  JMOVE #[0, 0, 35, 0, 55, 0]\n  DRIVE 7, 10\n", kinematics=kin)
+
+
+def test_drive_before_any_motion_turns_a_joint_from_home(kin):
+    """A DRIVE that opens the program turns a joint from where every program starts (the cell's
+    home), not skipped for want of joint angles; without a cell it asks for a first motion."""
+    tp = run("  DRIVE 1, 20\n  LMOVE a\n", kinematics=kin)
+    home = kin.home(1).copy()
+    home[0] += np.radians(20)
+    assert tp.moves[0].kind == "joint" and np.allclose(tp.moves[0].joints_rad, home)
+    with pytest.raises(InputError, match="DRIVE needs a known start pose"):
+        run("  DRIVE 1, 20\n")
 
 
 # --- what the twin cannot simulate: one line, exit 3 ----------------------------------------
@@ -309,7 +324,8 @@ def test_unsimulated_is_one_line_exit_3(body, words):
 @pytest.mark.parametrize("body,words", [
     ("  JMOVE a\n  DRAW 1, 0, 0, 0, 10, 0\n", "t.as:3: DRAW skipped: DRAW with a rotation is not simulated"),
     ("  JMOVE a\n  LMOVE b\n  BRAKE\n", "t.as:4: BRAKE skipped: BRAKE stops the motion"),
-    ("  PULSE 1, 0.5\n  JMOVE a\n", "t.as:2: PULSE skipped: PULSE of the gun output 1 is not simulated"),
+    ("  PULSE 1, 0.5\n  JMOVE a\n", "t.as:2: PULSE skipped: PULSE of the gun (output 1) is not simulated: the gun "
+     "would spray for 0.5 s from here, over whatever motion runs then; switch the gun with SIGNAL 1 ... SIGNAL -1"),
     ("  SPEED 30 DEG/S\n  JMOVE a\n", "t.as:2: SPEED skipped: SPEED in DEG/S (a rotation speed) is not simulated"),
 ])
 def test_what_the_twin_does_not_simulate_is_read_and_refused_by_a_simulation(body, words):
@@ -319,6 +335,24 @@ def test_what_the_twin_does_not_simulate_is_read_and_refused_by_a_simulation(bod
     with pytest.raises(ExecutionError) as info:
         done.require_complete()
     assert str(info.value).startswith(words) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("gun,signal,problem", [
+    (1, "1", "/t.as:3: the sprayed path read lacks the 2 s the PULSE of the gun (output 1) sprays"),
+    (9, "do.gun", "/t.as:3: the sprayed path read lacks the 2 s the PULSE of the gun (output 9) sprays"),
+])
+def test_a_pulse_of_the_gun_is_a_problem_of_the_reading(tmp_path, gun, signal, problem):
+    """check-program does not say "no problems found" of a program whose gun is pulsed (output 1,
+    or the --gun output named by a .REALS constant): its spray is missing from the path read."""
+    from program_helpers import check_as
+
+    path = tmp_path / "t.as"
+    path.write_text(f".PROGRAM t()\n  JMOVE a\n  PULSE {signal}, 2\n  LMOVE b\n.END\n" + TRANS
+                    + ".REALS\ndo.gun = 9\n.END\n")
+    checked = check_as([path], gun_signal=gun)
+    assert any(p.endswith(problem) for p in checked.problems), checked.problems
+    assert any(f"t.as:3: PULSE skipped: PULSE of the gun (output {gun}) is not simulated" in s
+               for s in checked.skipped), checked.skipped
 
 
 def test_dlysig_of_the_gun_switches_it_where_the_program_reaches_it():

@@ -102,6 +102,11 @@ SYNTAX_ERRORS = [
     (".PROGRAM x()\n  JAPPRO p1\n.END\n", 2, 12, "expected ','"),
     (".PROGRAM x()\n  SPEED fast MM/H\n.END\n", 2, 17, "expected 'S' or 'MIN'"),
     (".PROGRAM x()\n  SPEED 10 MM/S ALWAYS NOW\n.END\n", 2, 24, "SPEED"),
+    # a second (rotation) speed: no AS reference confirms it, so it is refused, not guessed
+    (".PROGRAM x()\n  SPEED 100 MM/S, 60 DEG/S\n.END\n", 2, 17, "SPEED with a second speed after ','"),
+    (".PROGRAM x()\n  SPEED 100 MM/S, 60 DEG/S ALWAYS\n.END\n", 2, 17, "write SPEED v [unit] [ALWAYS]"),
+    # AS has one one-line IF, IF ... GOTO; IF ... THEN opens a block
+    (".PROGRAM x()\n  IF n == 1 THEN CALL sub END\n.END\n", 2, 18, "an AS IF ... THEN opens a block"),
     (".PROGRAM x()\n  ACCURACY 1 ALWAYS ALWAYS\n.END\n", 2, 21, "given twice"),
     (".PROGRAM x()\n  ACCURACY 1 SOON\n.END\n", 2, 14, "expected ALWAYS, FINE"),
     (".PROGRAM x()\n  CP MAYBE\n.END\n", 2, 6, "expected ON or OFF"),

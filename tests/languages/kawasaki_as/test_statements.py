@@ -165,7 +165,7 @@ BLOCK_ERRORS = [
     ("CASE x OF\n  y = 1\n  VALUE 1:\nEND", "statement before the first VALUE"),
     ("CASE x OF\n  SVALUE \"a\":\nEND", "expected VALUE"),
     ("CASE x OF\n ANY\n VALUE 2:\nEND", "after ANY"),
-    ("IF a THEN x = 1\nEND", "expected end of line"),
+    ("IF a THEN x = 1\nEND", "an AS IF ... THEN opens a block"),
     ("IF a = 1 THEN\nEND", "compare with '=='"),
     ("FOR $s = 1 TO 2\nEND", "must be a real"),
     ("FOO p1", "is not an AS instruction"),
