@@ -94,8 +94,9 @@ def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits
                counts: tuple[int, int | None]) -> RunChain | None:
     """The fewest pieces the tube fit finds within the target at the input points, built and
     certified by the exact check. While that misses: the places of the input it missed at
-    (between the measured points) are measured too, else it is aimed lower; the same chain
-    is refitted first, searched afresh only if that misses."""
+    (between the measured points) are measured too, and where the fitted chain is within
+    there (the built one is not: the biarc that closes a loop) it is aimed lower; the same
+    chain is refitted first, searched afresh only if that misses."""
     seam = ends.seam is not None
     s = arc_length(points)
     problem = TubeProblem(ref, points, s, tol, limits, ends)
@@ -113,8 +114,8 @@ def _certified(ref: Reference, points: np.ndarray, tol: float, limits: FitLimits
         if len(missed):  # the chain bulged between measured points: measure there too, refit it
             points, s = _inserted(points, s, missed)
             problem = TubeProblem(ref, points, s, tol, limits, ends)
-        else:
-            target *= LOWER * tol / dev
+        if not len(missed) or float(problem.offsets(chain).max()) <= target:
+            target *= LOWER * tol / dev  # the build missed where the fit was within (a loop's closing biarc): aim lower
         closer, miss = problem.fit(chain, target)  # the same pieces pulled in, a fresh search if that misses
         chain = closer if miss <= target else _fewest(problem, density, target, counts)
     return None
