@@ -91,7 +91,8 @@ def verify(part: Part, paths: SurfacePaths) -> float:
     worst_deg = 0.0
     for chunk in np.array_split(np.arange(len(points)), max(1, len(points) // VERIFY_CHUNK)):
         owner, face, distance = facets.boxes.touching(points[chunk], reach)
-        on = distance <= nearest[chunk][owner] + tolerance  # the faces nearest the point
+        on = distance <= nearest[chunk][owner] + reach  # the faces nearest the point, to the lift: a point lifted
+        # onto the smooth surface at a sharp edge lies as near the other side's facet as its own
         own = (owner[on], face[on])
         owner, rep = cone.near(points[chunk], radius)
         near = (owner, chosen[rep])

@@ -114,6 +114,26 @@ def noisy_dome(radius: float = 120.0, cap_deg: float = 40.0, n: int = 90, noise_
     return vertices, faces[flat[faces].all(axis=1) & outside_hole]
 
 
+def domed_flange(height: float = 35.0, base: float = 70.0, rim: float = 100.0, rings: int = 14,
+                 around: int = 72) -> tuple[np.ndarray, np.ndarray]:
+    """A spherical cap of base radius ``base`` and ``height`` standing on a flat ring out to
+    ``rim`` (z = 0), as a lathe profile is meshed: rings of ``around`` vertices, a fan at the
+    pole. The cap meets the ring at a sharp crease (53 deg for the defaults)."""
+    sphere = (base**2 + height**2) / (2 * height)
+    top = math.asin(base / sphere)
+    profile = [(sphere * math.sin(p), sphere * math.cos(p) - (sphere - height)) for p in np.linspace(0, top, rings)[1:]]
+    profile += [(r, 0.0) for r in np.linspace(base, rim, 5)[1:]]
+    t = np.linspace(0, 2 * math.pi, around, endpoint=False)
+    vertices = np.vstack([[0.0, 0.0, height]] + [np.column_stack([r * np.cos(t), r * np.sin(t), np.full(around, z)])
+                                                 for r, z in profile])
+    k = np.arange(around)
+    faces = [np.column_stack([np.zeros(around, int), 1 + k, 1 + (k + 1) % around])]
+    for ring in range(len(profile) - 1):
+        a, b = 1 + ring * around + k, 1 + ring * around + (k + 1) % around
+        faces += [np.column_stack([a, a + around, b + around]), np.column_stack([a, b + around, b])]
+    return vertices, np.vstack(faces)
+
+
 def plate_with_arm(step_mm: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
     """A plate 100 x 60 x 6 mm with an arm 8 mm wide and 50 mm long (narrower than a spacing
     of 10 mm) off one side, as a closed solid of flat faces."""

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from heldout_parts import filleted_slab, l_bracket, noisy_dome, plate_with_arm
+from heldout_parts import domed_flange, filleted_slab, l_bracket, noisy_dome, plate_with_arm
 from scipy.spatial.transform import Rotation
 from surface_helpers import SPACING, options
 
@@ -49,6 +49,20 @@ def test_the_check_refuses_a_normal_averaged_across_a_sharp_edge():
                           tuple(bad), paths.stats)
     with pytest.raises(PlanCheckFailed, match="outside the faces around it"):
         verify(part, tilted)
+
+
+@pytest.mark.parametrize("pattern", ["raster", "geodesic", "boundary"])
+def test_a_dome_on_a_flange_plans_across_its_crease(pattern):
+    # a lathe part: the cap meets the flat ring at a 53 deg crease; a raster point lifted onto the
+    # cap's smooth surface right at the crease lies as near the ring's facet as the cap's, and
+    # takes the cap's normal: the check accepts either side of a sharp edge (it refused the plan)
+    vertices, faces = domed_flange()
+    part = part_from_arrays(vertices, faces)
+    paths = plan(part, options(pattern=pattern))
+    assert verify(part, paths) < 5.0 and paths.stats.coverage > 0.95
+    for p in paths.passes:
+        on_ring = p.points[:, 2] < 1e-6
+        assert np.all(p.normals[on_ring, 2] > 0.999) or not on_ring.any()
 
 
 def test_fillets_are_followed_and_the_flat_top_keeps_its_normal():
