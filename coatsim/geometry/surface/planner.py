@@ -290,6 +290,19 @@ def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
             for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces)]
 
 
+def _long_enough(traces: list[Trace], spacing_mm: float, notes: list[str]) -> list[Trace]:
+    """The level curves no shorter than fill.py keeps a pass: a level just below a peak or ridge
+    of the field is a loop round it a fraction of a millimetre long (a dome's flange gave 141
+    passes under 5 mm, each a gun-on pass with its leads), which the passes beside it cover;
+    what they leave is filled (_filling) and measured."""
+    kept = [t for t in traces if t.curve.length_mm >= MIN_LENGTH_FRACTION * spacing_mm]
+    if len(kept) < len(traces):
+        shortest = min(t.curve.length_mm for t in traces)
+        notes.append(f"left out {len(traces) - len(kept)} level curves shorter than half a spacing (the shortest "
+                     f"{shortest:.3g} mm: loops round a peak or ridge of the field), covered by the passes beside them")
+    return kept
+
+
 def _filling(pieces: list[Piece], traces: list[Trace], band: float, spacing_mm: float, notes: list[str]) -> list[Trace]:
     """Passes where the levels leave a patch uncovered (fill.py), sprayed after each piece's
     levels; what the edge band leaves of one is dropped when shorter than fill.py drops a pass."""
@@ -358,7 +371,8 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
                 else sign_fixed(principal_axes(rv, rf)[1]))
     pieces = _patterned(pieces, options, s, step, notes)
     clock.lap(options.pattern)
-    traces = [t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)]
+    traces = _long_enough([t for k, p in enumerate(pieces) for t in _traces(p, k, options.edge_band_mm)],
+                          s.spacing_mm, notes)
     traces += _filling(pieces, traces, options.edge_band_mm, s.spacing_mm, notes)
     clock.lap("fill")
     gaps, ends, covered = [np.zeros(0)], [np.zeros(0, dtype=bool)], 0.0

@@ -12,7 +12,7 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial import Delaunay
-from surface_helpers import options
+from surface_helpers import SPACING, options
 
 from coatsim.geometry.surface import part_from_arrays, plan
 from coatsim.geometry.surface.features import SHARP_EDGE_DEG
@@ -39,7 +39,11 @@ def test_a_noisy_scan_on_random_points_plans_like_the_clean_sheet():
     # at the smoothing length a few slivers along the border are left
     sharp = [float(re.search(r"has ([\d.]+) mm of sharp edges", n).group(1)) for n in noisy.notes if "sharp edges" in n]
     assert sum(sharp) < 50.0 and not [n for n in noisy.notes if "island" in n]
-    assert abs(len(noisy.passes) - len(clean.passes)) <= 1
+    # as many passes a spacing or longer; the noise may leave a patch at the region's end that
+    # a short pass fills (a level curve there was a loop of 0.1 mm, left out)
+    spans = lambda paths: [float(np.linalg.norm(np.diff(p.points, axis=0), axis=1).sum()) for p in paths.passes]  # noqa: E731
+    assert abs(sum(x >= SPACING for x in spans(noisy)) - sum(x >= SPACING for x in spans(clean))) <= 1
+    assert sum(x for x in spans(noisy) if x < SPACING) < 2 * SPACING
     assert noisy.stats.coverage > 0.98 and noisy.stats.normal_off_faces_deg < 5.0
 
 
