@@ -65,6 +65,21 @@ def test_a_dome_on_a_flange_plans_across_its_crease(pattern):
         assert np.all(p.normals[on_ring, 2] > 0.999) or not on_ring.any()
 
 
+def test_a_flat_rings_ridge_gives_no_sliver_passes():
+    # the distance from a ring's border peaks along its middle circle: the level just below the
+    # peak broke into 141 loops under 5 mm, each a pass; level curves that short are left out
+    t = np.linspace(0, 2 * math.pi, 72, endpoint=False)
+    rings = np.linspace(70.0, 100.0, 5)
+    vertices = np.vstack([np.column_stack([r * np.cos(t), r * np.sin(t), np.zeros_like(t)]) for r in rings])
+    k = np.arange(72)
+    faces = np.vstack([np.column_stack([j * 72 + k, (j + 1) * 72 + k, (j + 1) * 72 + (k + 1) % 72]) for j in range(4)]
+                      + [np.column_stack([j * 72 + k, (j + 1) * 72 + (k + 1) % 72, j * 72 + (k + 1) % 72]) for j in range(4)])
+    paths = plan(part_from_arrays(vertices, faces), options(pattern="boundary"))
+    lengths = [float(np.linalg.norm(np.diff(p.points, axis=0), axis=1).sum()) for p in paths.passes]
+    assert min(lengths) >= SPACING / 2 and len(lengths) <= 6 and paths.stats.coverage > 0.97
+    assert any("level curves shorter than half a spacing" in n for n in paths.notes)
+
+
 def test_fillets_are_followed_and_the_flat_top_keeps_its_normal():
     vertices, faces = filleted_slab(n_profile=96, n_along=40)
     paths = plan(part_from_arrays(vertices, faces), options(region=Facing((0, 0, 1)), step_direction=(1, 0, 0)))
