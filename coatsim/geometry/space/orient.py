@@ -112,7 +112,13 @@ def fit_surface_pass(points: np.ndarray, spray_axes: np.ndarray, tolerance_mm: f
     axes = _check_axes(np.asarray(points, dtype=float), spray_axes, name)
     keep = np.ones(len(points), dtype=bool)  # make_space_curve dropped repeated points: so do the axes
     keep[1:] = np.any(np.diff(np.asarray(points, dtype=float), axis=0) != 0.0, axis=1)
-    seg = segment_space_curve(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
+    try:
+        seg = segment_space_curve(curve, tolerance_mm, corner_deg, min_segment_mm, speed_mm_s, tool_accel_mm_s2)
+    except InputError as exc:  # said of the pass it is about, with its size (a loop of a millimetre misfits)
+        if str(exc).startswith(name):
+            raise
+        length = float(np.linalg.norm(np.diff(curve.points, axis=0), axis=1).sum())
+        raise type(exc)(f"{name} (its tool path {length:.3g} mm long): {exc}", parameters=exc.parameters) from None
     wanted = AlongPass(seg.chain.segments, curve.points, axes[keep], tolerance_mm)
     limit = math.radians(angle_tol_deg)
     pieces: list[list[Segment3]] = [[s] for s in seg.chain.segments]

@@ -71,3 +71,17 @@ def test_bad_axes_are_refused():
         fit_surface_pass(points, np.where(np.arange(200)[:, None] == 2, 0.0, axes), 0.1)
     with pytest.raises(InputError, match="angle_tol_deg"):
         fit_surface_pass(points, axes, 0.1, 0.0)
+
+
+def test_a_pass_the_fit_cannot_follow_is_named_with_its_length():
+    # a sliver loop of four points 0.4 mm across (a planner's level just below a ridge), offset
+    # 100 mm along its normals: the planar fit of its tool path collapses the loop; the error
+    # names the pass and its length, not only "the fit produced an unusable arc"
+    surface = np.array([[16.768393, -54.767831, -2.46213], [16.89317, -55.103887, -2.526675],
+                        [17.106368, -55.105692, -2.547391], [17.16158, -54.835536, -2.509824]])
+    normals = np.array([[0.087792453, -0.145463837, 0.985460683], [0.088898061, -0.144860468, 0.985450445],
+                        [0.087073241, -0.146050829, 0.985437672], [0.085163858, -0.147534092, 0.985383585]])
+    tcp = surface + 100.0 * normals
+    loop, axes = np.vstack((tcp, tcp[:1])), -np.vstack((normals, normals[:1]))
+    with pytest.raises(InputError, match=r"^plan\.json: passes\[3\] \(its tool path 0\.9\d+ mm long\): "):
+        fit_surface_pass(loop, axes, 0.1, name="plan.json: passes[3]")
