@@ -28,6 +28,7 @@ N_CURVATURE_CANDIDATES = 5
 N_HEADING_CANDIDATES = 7
 LP_KNOTS = 400
 LANDED_BAND = 0.9  # a re-measured state keeps its offset within this share of the band
+CLOSE_RAD = 0.01  # a loop's pieces that turn by its turn to this close it (fit_band)
 
 
 @dataclass(frozen=True, eq=False)
@@ -388,9 +389,31 @@ def fit_band(
     otherwise chosen by look-ahead. With ``landed``, the state after every piece is
     re-measured on the real arc (``ref``: the heading Φ is taken against), which helps on
     long runs whose chain drifts along the curve. With ``end_turn`` (closed loops) the last
-    pieces are chosen to end with the start slope plus that turn where the band allows it.
-    Returns (start slope, pieces).
+    pieces are chosen to end with the start slope plus that turn where the band allows it;
+    where no pair of pieces does from the slope the look-ahead chose (a seam at a petal's tip:
+    it chose 0.26 rad off the curve's tangent), the loop is fitted again starting along the
+    input's tangent at the seam, and that fit kept if it closes. Returns (start slope, pieces).
     """
+    slope0, pieces = _greedy(prob, ref, band, start_slope, end_turn, landed)
+    if end_turn is None or start_slope is not None or _closes(pieces, end_turn):
+        return slope0, pieces
+    d_first, d_last = prob.points[1] - prob.points[0], prob.points[-1] - prob.points[-2]
+    seam = math.remainder(math.atan2(d_first[1] + d_last[1], d_first[0] + d_last[0]) - ref, 2 * math.pi)
+    try:
+        along = _greedy(prob, ref, band, seam, end_turn, landed)
+    except _Stuck:
+        return slope0, pieces
+    return along if _closes(along[1], end_turn) else (slope0, pieces)
+
+
+def _closes(pieces: list[Piece], end_turn: float) -> bool:
+    """Whether a loop's pieces turn by ``end_turn`` (to CLOSE_RAD): it ends with its start slope."""
+    return abs(sum(p.kappa * p.length for p in pieces) - end_turn) <= CLOSE_RAD
+
+
+def _greedy(prob: BandProblem, ref: float, band: float, start_slope: float | None, end_turn: float | None,
+            landed: bool) -> tuple[float, list[Piece]]:
+    """One greedy pass of fit_band from ``start_slope`` (or the look-ahead's)."""
     slope0, piece, v, t = _first_step(prob, band, start_slope)
     last = len(prob.s) - 1
     pose = _Pose(float(prob.points[0][0]), float(prob.points[0][1]), ref + slope0)
