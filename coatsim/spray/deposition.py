@@ -47,7 +47,8 @@ from coatsim.spray.efficiency import Efficiency
 from coatsim.spray.footprints import Footprint
 from coatsim.spray.pair_terms import LeafBlocks, NearPairs, PairBuffer, leaf_blocks, near_pairs
 from coatsim.spray.surfaces import Surface
-from coatsim.spray.visibility import ClearCosines, RayCaster, Visibility, check_shadow_mode, visibility
+from coatsim.geometry.rays import RayCaster
+from coatsim.spray.visibility import ClearCosines, Visibility, check_shadow_mode, visibility
 
 MAX_RATE_MM3_S = 1e12  # a cubic metre per millisecond: far beyond any gun, far below float overflow
 _LEAF_TESTS_PER_BATCH = 400_000

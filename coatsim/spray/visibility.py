@@ -18,7 +18,7 @@ its tilt against n; any other triangle T gives at most max over its corners of n
 distance to x); a pair whose cos g exceeds the bound needs no ray.
 
 For the other pairs a ray runs from the nozzle towards the vertex and stops a hair short of
-it (``RAY_END_GAP``); any triangle on the way blocks the spray. Embree answers such occlusion
+it (``coatsim.geometry.rays.RAY_END_GAP``); any triangle on the way blocks the spray. Embree answers such occlusion
 queries directly (no hit points), about a microsecond each.
 """
 
@@ -33,21 +33,15 @@ from trimesh.triangles import closest_point
 from coatsim.core.numeric import ROUND_OFF
 from coatsim.core.budgets import check_budget
 from coatsim.core.errors import InputError
+from coatsim.geometry.rays import RAY_BYTES, RAYS_PER_BATCH, RayCaster
 from coatsim.geometry.surface.normals import face_normals
 
 SHADOW_MODES = ("auto", "on", "off")
-#: A ray from the nozzle stops this fraction of its length before the vertex it aims at, so the
-#: vertex's own triangles never block it (0.01 mm at 100 mm: ten times float32 rounding at
-#: 1 % incidence cosine), plus 1e-6 of the part's size.
-RAY_END_GAP = 1e-4
 #: Memory of the exposure test per vertex (Qhull's hull, measured ~300 bytes per hull vertex) and
 #: of Embree's scene per triangle (its BVH, measured ~66, and our float32 copies), with margin.
 HULL_BYTES_PER_VERTEX = 400
 SCENE_BYTES_PER_TRIANGLE = 100
 SCENE_BYTES_PER_VERTEX = 16
-#: Rays are cast in batches of at most this many (28 bytes each in float32 arrays).
-RAYS_PER_BATCH = 1_000_000
-RAY_BYTES = 28
 #: ``ClearCosines`` proves no vertex clearer than CLEAR_FLOOR (an incidence of 60 deg: sprays land
 #: well inside it). It buckets the triangles in cubes of CLEAR_CELL_EDGES median edge lengths,
 #: those in cubes of 4 x 4 x 4 of them and so on, up to at most CLEAR_TOP boxes. A vertex that
@@ -284,34 +278,6 @@ def shadow_memory_bytes(n_vertices: int, n_triangles: int) -> float:
     return ((SCENE_BYTES_PER_TRIANGLE + CLEAR_BYTES_PER_TRIANGLE) * float(n_triangles)
             + (SCENE_BYTES_PER_VERTEX + HULL_BYTES_PER_VERTEX) * float(n_vertices)
             + CLEAR_PAIR_BYTES * float(CLEAR_VERTICES * CLEAR_LOAD) + RAY_BYTES * float(RAYS_PER_BATCH))
-
-
-class RayCaster:
-    """Occlusion queries against a triangle mesh (mm) with Embree; coordinates are taken
-    relative to the mesh's bounding-box centre so float32 keeps its resolution."""
-
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
-        from embreex import rtcore_scene
-        from embreex.mesh_construction import TriangleMesh
-
-        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-        self.origin = 0.5 * (lo + hi)
-        self.gap_mm = 1e-6 * max(float(np.max(hi - lo)), 1e-3)
-        self.scene = rtcore_scene.EmbreeScene()
-        TriangleMesh(scene=self.scene, vertices=(vertices - self.origin).astype(np.float32),
-                     indices=np.asarray(faces, dtype=np.int32))
-
-    def blocked(self, origins: np.ndarray, offsets: np.ndarray, lengths: np.ndarray) -> np.ndarray:
-        """True where a triangle lies on the segment from ``origins`` towards ``origins + offsets``
-        (lengths = |offsets|), short of its end by RAY_END_GAP of the length."""
-        out = np.zeros(len(origins), dtype=bool)
-        for lo in range(0, len(origins), RAYS_PER_BATCH):
-            sl = slice(lo, lo + RAYS_PER_BATCH)
-            stop = 1.0 - RAY_END_GAP - self.gap_mm / lengths[sl]
-            hit = self.scene.run((origins[sl] - self.origin).astype(np.float32), offsets[sl].astype(np.float32),
-                                 dists=stop.astype(np.float32), query="OCCLUDED")
-            out[sl] = np.asarray(hit) != -1
-        return out
 
 
 @dataclass(frozen=True, eq=False)

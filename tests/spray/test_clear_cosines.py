@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 
 from coatsim.spray import visibility
 from coatsim.spray.deposition import deposit
-from coatsim.spray.visibility import CLEAR_FLOOR, RayCaster, clear_cosines
+from coatsim.geometry.rays import RayCaster
+from coatsim.spray.visibility import CLEAR_FLOOR, clear_cosines
 from spray_helpers import gun, line_log, mesh_surface
 
 #: Barycentric weights spread over a triangle, its corners and edges included.

@@ -17,7 +17,8 @@ from coatsim.core.errors import CoatsimWarning, InputError
 from coatsim.spray.coating_metrics import coating_metrics
 from coatsim.spray.deposition import deposit
 from coatsim.spray.surfaces import cylinder, plate
-from coatsim.spray.visibility import RayCaster, exposed_vertices
+from coatsim.geometry.rays import RayCaster
+from coatsim.spray.visibility import exposed_vertices
 from spray_helpers import (
     H0, Q, gun, line_log, make_log, mesh_surface, shelf_over_floor, sphere, stationary_log, volume,
 )

@@ -60,6 +60,7 @@ from coatsim.geometry.surface.region import (
     unit_vector,
 )
 from coatsim.geometry.surface.spacing import band_note, measure, ripple_pct, spacing_for_ripple
+from coatsim.geometry.surface.standoff import blocked_standoff
 from coatsim.geometry.surface.surfacepaths import PATTERNS, MeshInfo, Pass, PlanStats, SurfacePaths
 from coatsim.geometry.surface.topology import (
     border_vertices,
@@ -82,6 +83,8 @@ TOUCH_FRACTION = 1e-7
 #: a face narrower than this share of the smoothing length (a scan's sliver), or folded against its
 #: neighbours, does not judge whether a pass point's normal leans into the part (normals.kept_outward)
 SLIVER_SHARE = 0.02
+#: the stand-off is checked from this fraction of the part's extent over a pass point's lift (standoff.py)
+STANDOFF_CLEAR_FRACTION = 1e-4
 
 
 @dataclass(frozen=True)
@@ -290,6 +293,19 @@ def _traces(piece: Piece, index: int, band: float) -> list[Trace]:
             for part in clip(curve, piece.border_mm, band, piece.vertices, piece.faces)]
 
 
+def _standoff_note(part: Part, passes: tuple[Pass, ...], standoff_mm: float, lift_mm: float) -> list[str]:
+    """A note where the part lies between a pass point and its tool centre point (standoff.py)."""
+    blocked = blocked_standoff(part.vertices_mm, part.faces, passes, standoff_mm,
+                               lift_mm + STANDOFF_CLEAR_FRACTION * part.extent_mm)
+    if not blocked:
+        return []
+    first = blocked[0]
+    return [f"the part lies within the stand-off ({standoff_mm:g} mm) along the normal of "
+            f"{sum(b.points for b in blocked)} points of {len(blocked)} passes: the gun cannot spray them from there and "
+            f"the twin stops on the collision (first: pass {first.pass_index + 1} point {first.first_point + 1}, the "
+            f"part {first.distance_mm:.3g} mm out); use a smaller standoff_mm or a region without them"]
+
+
 def _long_enough(traces: list[Trace], spacing_mm: float, notes: list[str]) -> list[Trace]:
     """The level curves no shorter than fill.py keeps a pass: a level just below a peak or ridge
     of the field is a loop round it a fraction of a millimetre long (a dome's flange gave 141
@@ -388,6 +404,8 @@ def plan(part: Part, options: PlanOptions) -> SurfacePaths:
     if not passes:
         raise EmptyRegionOfInterest("no pass fits in the region (the edge band covers it); use a smaller edge_band_mm",
                                     parameters=("edge_band_mm",))
+    notes.extend(_standoff_note(part, passes, options.standoff_mm, facets.largest_lift_mm()))
+    clock.lap("stand-off")
     gap = np.concatenate(gaps)
     spacing_stats = (float(gap.min()), float(np.median(gap)), float(gap.max())) if len(gap) else (None,) * 3
     stats = PlanStats(len(passes), region_area, min(1.0, covered / region_area), *spacing_stats, s.smoothing_mm, angle)

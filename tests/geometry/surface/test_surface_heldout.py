@@ -4,6 +4,7 @@ with a hole, a narrow arm, metres, flipped triangles; what a thermal-spray engin
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -78,6 +79,30 @@ def test_a_flat_rings_ridge_gives_no_sliver_passes():
     lengths = [float(np.linalg.norm(np.diff(p.points, axis=0), axis=1).sum()) for p in paths.passes]
     assert min(lengths) >= SPACING / 2 and len(lengths) <= 6 and paths.stats.coverage > 0.97
     assert any("level curves shorter than half a spacing" in n for n in paths.notes)
+
+
+def test_passes_inside_the_part_are_named_in_a_note():
+    # an L of two boxes saved as one file without their union (an assembly's bodies): the base's
+    # top face runs on under the upright, and the gun 100 mm over it would stand in the upright;
+    # the one solid bracket is clear
+    import trimesh
+
+    base = trimesh.creation.box(extents=(127.0, 76.0, 10.0))
+    upright = trimesh.creation.box(extents=(10.0, 76.0, 63.0))
+    upright.apply_translation((58.0, 0.0, 36.5))
+    both = trimesh.util.concatenate([base, upright])
+    paths = plan(part_from_arrays(np.asarray(both.vertices), np.asarray(both.faces)),
+                 options(region=Facing((0, 0, 1), 30.0)))
+    note = next(n for n in paths.notes if "within the stand-off (100 mm)" in n)
+    assert 55.0 < float(re.search(r"the part ([\d.]+) mm out", note).group(1)) < 65.0  # the upright's top, 63 over
+    vertices, faces = BRACKET
+    clear = plan(part_from_arrays(vertices, faces), options(region=Facing((0, 0, 1), 30.0)))
+    assert not [n for n in clear.notes if "stand-off" in n]
+    # facing obliquely, the region takes the walls of the base's hole (20 mm across in x): from
+    # them the gun would stand in the opposite wall
+    hole = plan(part_from_arrays(vertices, faces), options(region=Facing((0.6, 0, 0.8), 60.0)))
+    note = next(n for n in hole.notes if "within the stand-off (100 mm)" in n)
+    assert abs(float(re.search(r"the part ([\d.]+) mm out", note).group(1)) - 20.0) < 0.5
 
 
 def test_fillets_are_followed_and_the_flat_top_keeps_its_normal():
