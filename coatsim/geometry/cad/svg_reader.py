@@ -337,10 +337,11 @@ def read_svg(path: Path, layers: Sequence[str] | None, flatten_mm: float) -> Dra
 def _painted(shapes: list[tuple[object, str]], notes: list[str]) -> list[tuple[object, str]]:
     """The shapes (with their labels) a viewer shows: without those drawn with neither fill
     nor stroke, noted, unless every shape is."""
-    painted = [(el, label) for el, label in shapes if not _unpainted(el)]
+    bare = [_unpainted(el) for el, _ in shapes]
+    painted = [shape for shape, b in zip(shapes, bare) if not b]
     unpainted = len(shapes) - len(painted)
     if painted and unpainted:
-        first = next(label for el, label in shapes if _unpainted(el))
+        first = shapes[bare.index(True)][1]
         notes.append(f"left out {unpainted} shapes drawn with neither fill nor stroke, which a viewer does not "
                      f"show (first: {first})")
     elif unpainted:
